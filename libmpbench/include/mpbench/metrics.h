@@ -1,0 +1,45 @@
+/*
+ * metrics.h - measures of one path, computed by mpbench itself (never taken
+ * from the planner). A path is num_waypoints joint vectors of num_joints
+ * values each, stored row after row: waypoint i, joint j is
+ * wp[i * num_joints + j]. Definitions, units and edge cases are in
+ * docs/metrics.md; they follow Table I of the paper in shared/reference.
+ */
+#ifndef MPBENCH_METRICS_H
+#define MPBENCH_METRICS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/*
+ * Which joints wrap around (continuous joints): continuous[j] != 0 means the
+ * difference between two values of joint j is taken the short way round, in
+ * (-pi, pi]. NULL means no joint wraps.
+ */
+typedef const unsigned char *mpb_joint_wrap;
+
+/* Joint-space difference b - a of one joint, the short way round if it wraps. */
+double mpb_joint_delta(double a, double b, int wraps);
+
+/*
+ * l_p: the sum of the Euclidean joint-space lengths of the segments (rad,
+ * or m for prismatic joints). 0 for fewer than two waypoints.
+ */
+double mpb_path_length(const double *wp, int num_waypoints, int num_joints,
+                       mpb_joint_wrap continuous);
+
+/*
+ * kappa': (1/n) * sum over i = 2..n of alpha_i^2, where alpha_i is the angle
+ * (rad) between segments i-1 and i of the path's n segments. Zero-length
+ * segments have no direction: they are dropped first, and n counts the
+ * segments that remain. 0 for a path of fewer than two segments.
+ */
+double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
+                      mpb_joint_wrap continuous);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPBENCH_METRICS_H */

@@ -1,0 +1,70 @@
+/*
+ * mpbench.h - the public API of libmpbench, the motion-planner benchmarking
+ * library. Include this one header; it includes the others.
+ *
+ * Conventions, written down once:
+ *   - Every name is prefixed mpb_ (types, functions) or MPB_ (macros).
+ *   - Functions that can fail return an int: 0 (MPB_OK) on success, a
+ *     negative MPB_E... code on failure. mpb_strerror() names a code; the
+ *     handle's own errmsg function (e.g. mpb_store_errmsg()) gives the detail.
+ *   - Objects are opaque handles made by mpb_x_open()/mpb_x_create() and
+ *     released by mpb_x_close()/mpb_x_destroy(); releasing NULL does nothing.
+ *   - Who frees returned memory is stated at each function.
+ *   - The library never prints and never exits.
+ */
+#ifndef MPBENCH_H
+#define MPBENCH_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define MPB_VERSION_MAJOR 0
+#define MPB_VERSION_MINOR 1
+#define MPB_VERSION_PATCH 0
+#define MPB_VERSION_STRING "0.1.0"
+
+/*
+ * The error codes: name, value, meaning. One list generates the enum and
+ * mpb_strerror(), so the two cannot drift apart.
+ */
+#define MPB_ERRNO_MAP(X)                                          \
+    X(OK,          0,   "success")                                \
+    X(ERROR,      -1,   "unspecified error")                      \
+    X(NOMEM,      -2,   "out of memory")                          \
+    X(INVAL,      -3,   "invalid argument")                       \
+    X(IO,         -4,   "input/output error")                     \
+    X(PARSE,      -5,   "malformed input")                        \
+    X(DB,         -6,   "database error")                         \
+    X(NOTFOUND,   -7,   "not found")                              \
+    X(EXISTS,     -8,   "already exists")                         \
+    X(LCM,        -9,   "LCM error")                              \
+    X(UNSUPPORTED,-10,  "unsupported format or feature")          \
+    X(REJECTED,   -11,  "message rejected")
+
+typedef enum mpb_errno {
+#define MPB__ERRNO_ENUM(name, value, text) MPB_E##name = (value),
+    MPB_ERRNO_MAP(MPB__ERRNO_ENUM)
+#undef MPB__ERRNO_ENUM
+} mpb_errno;
+
+#define MPB_OK MPB_EOK
+
+/* A static English description of an error code; never NULL. */
+const char *mpb_strerror(int code);
+
+/* The symbolic name of an error code ("MPB_EPARSE"); never NULL. */
+const char *mpb_err_name(int code);
+
+#ifdef __cplusplus
+}
+#endif
+
+#include "mpbench/metrics.h"
+#include "mpbench/stats.h"
+#include "mpbench/store.h"
+#include "mpbench/proto.h"
+#include "mpbench/world.h"
+#include "mpbench/verify.h"
+
+#endif /* MPBENCH_H */

@@ -1,0 +1,66 @@
+/*
+ * proto.h - the LCM protocol shared by the daemon and planners written in C
+ * or C++: channel names, run ids, content hashes, and building and checking
+ * messages. The messages themselves are generated from lcmtypes/ (C types
+ * mpb_*_t); docs/protocol.md is the full description.
+ */
+#ifndef MPBENCH_PROTO_H
+#define MPBENCH_PROTO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Channels. A request goes to one planner: MPB_CHANNEL_REQUEST_PREFIX + id. */
+#define MPB_CHANNEL_ANNOUNCE        "MPB_ANNOUNCE"
+#define MPB_CHANNEL_REQUEST_PREFIX  "MPB_REQUEST_"
+#define MPB_CHANNEL_RESULT          "MPB_RESULT"
+#define MPB_CHANNEL_ACK             "MPB_ACK"
+#define MPB_CHANNEL_STATUS          "MPB_STATUS"
+
+/* The LCM URL used when none is given: loopback-only multicast (ttl=0). */
+#define MPB_DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
+
+/* Hex run id: 128 random bits, 32 hex digits and a NUL. */
+#define MPB_RUN_ID_SIZE 33
+/* Hex content hash: 128-bit BLAKE2b, 32 hex digits and a NUL. */
+#define MPB_HASH_SIZE 33
+
+/* Longest planner id accepted; an id must be a channel-safe word. */
+#define MPB_PLANNER_ID_MAX 96
+
+/* Fill out with a new unguessable run id. Returns MPB_OK or MPB_EIO. */
+int mpb_run_id_new(char out[MPB_RUN_ID_SIZE]);
+
+/* 1 if s is 32 lower-case hex digits, else 0. */
+int mpb_run_id_is_valid(const char *s);
+
+/* Hex BLAKE2b-128 digest of len bytes at data. */
+void mpb_hash_hex(const void *data, size_t len, char out[MPB_HASH_SIZE]);
+
+/*
+ * 1 if id may name a planner (and so a channel): 1..MPB_PLANNER_ID_MAX
+ * characters from [A-Za-z0-9_.:@-], else 0.
+ */
+int mpb_planner_id_is_valid(const char *id);
+
+/* Write MPB_CHANNEL_REQUEST_PREFIX + planner_id into out (size outlen). */
+int mpb_request_channel(const char *planner_id, char *out, size_t outlen);
+
+/* Microseconds since the epoch (CLOCK_REALTIME), for utime fields. */
+int64_t mpb_utime_now(void);
+
+/* Seconds on a monotonic clock, for measuring durations. */
+double mpb_monotonic_s(void);
+
+/* Lower-case name of a plan_result_t status ("solved", "timeout", ...). */
+const char *mpb_status_name(int status);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPBENCH_PROTO_H */

@@ -1,0 +1,57 @@
+/*
+ * stats.h - summaries of samples for reports: mean, standard deviation,
+ * median, quartiles, and the paper's convention for a scene's standard
+ * deviation (computed per query, then averaged over the scene's queries).
+ */
+#ifndef MPBENCH_STATS_H
+#define MPBENCH_STATS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mpb_summary {
+    int    n;          /* samples */
+    double mean;
+    double stddev;     /* sample standard deviation (n - 1); 0 when n < 2 */
+    double min;
+    double q1;         /* quartiles by linear interpolation (type 7, as R and numpy) */
+    double median;
+    double q3;
+    double max;
+} mpb_summary;
+
+/*
+ * Summarise n samples. x is not modified (a sorted copy is made). With n == 0
+ * every field but n is NaN. Returns MPB_OK or MPB_ENOMEM.
+ */
+int mpb_summarize(const double *x, int n, mpb_summary *out);
+
+/*
+ * Accumulates samples group by group (a group is a query) and gives the
+ * scene-level mean over all samples and the mean of the per-group standard
+ * deviations, as the paper reports them. Groups with fewer than two samples
+ * contribute a standard deviation of 0, as one deterministic run does.
+ */
+typedef struct mpb_grouped {
+    double sum;        /* over all samples */
+    long   n;          /* all samples */
+    double sd_sum;     /* sum of per-group standard deviations */
+    int    groups;     /* groups with at least one sample */
+    /* the group being filled (Welford's running mean and M2) */
+    long   g_n;
+    double g_mean;
+    double g_m2;
+} mpb_grouped;
+
+void   mpb_grouped_init(mpb_grouped *g);
+void   mpb_grouped_add(mpb_grouped *g, double x);
+void   mpb_grouped_end_group(mpb_grouped *g);   /* call after each group */
+double mpb_grouped_mean(const mpb_grouped *g);  /* NaN when empty */
+double mpb_grouped_stddev(const mpb_grouped *g);/* NaN when no group */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPBENCH_STATS_H */

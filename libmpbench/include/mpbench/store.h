@@ -1,0 +1,180 @@
+/*
+ * store.h - the SQLite database that holds experiments, their runs, every
+ * stage's trajectory and every metric. All writes and reads go through here;
+ * the schema is in docs/schema.md.
+ *
+ * Writes are idempotent: adding what exists returns the existing row's id,
+ * and finishing a run twice writes nothing the second time. The database is
+ * in WAL mode; group many writes in one mpb_store_begin()/mpb_store_commit()
+ * for speed.
+ */
+#ifndef MPBENCH_STORE_H
+#define MPBENCH_STORE_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mpb_store mpb_store;
+
+/*
+ * Open (creating if needed) the database at path and bring its schema up to
+ * date. *out is set even on failure (except MPB_ENOMEM) so that
+ * mpb_store_errmsg() can say why; close it either way. readonly != 0 opens
+ * without creating or changing anything (for reports).
+ */
+int mpb_store_open(const char *path, int readonly, mpb_store **out);
+void mpb_store_close(mpb_store *s);
+
+/* The last error on s, one line; valid until the next call on s. */
+const char *mpb_store_errmsg(const mpb_store *s);
+
+int mpb_store_begin(mpb_store *s);
+int mpb_store_commit(mpb_store *s);
+int mpb_store_rollback(mpb_store *s);
+
+/* ---- experiments and what they are made of ----------------------------- */
+
+typedef struct mpb_experiment_info {
+    const char *name;
+    const char *config_file;   /* path as given */
+    const char *config_hash;   /* hex digest of the file's bytes */
+    const char *config_text;   /* the file itself */
+    int         runs_per_query;
+    double      time_limit;    /* s */
+} mpb_experiment_info;
+
+int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
+                                int64_t *id);
+/* The newest unfinished experiment with this name and config hash. */
+int mpb_store_experiment_find_unfinished(mpb_store *s, const char *name,
+                                         const char *config_hash, int64_t *id);
+/* The newest experiment of any state; MPB_ENOTFOUND in an empty database. */
+int mpb_store_experiment_latest(mpb_store *s, int64_t *id);
+int mpb_store_experiment_finish(mpb_store *s, int64_t id);
+
+int mpb_store_planner_config_add(mpb_store *s, int64_t experiment_id,
+                                 const char *name, const char *planner,
+                                 const char *algorithm, const char *params,
+                                 int64_t *id);
+
+typedef struct mpb_scene_info {
+    const char *name;
+    const char *robot_format, *robot_hash, *robot;
+    const char *scene_format, *scene_hash, *scene;
+} mpb_scene_info;
+
+int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
+                        const mpb_scene_info *scene, int64_t *id);
+
+typedef struct mpb_query_info {
+    const char   *name;
+    int           num_joints;
+    const char *const *joint_names;
+    const double *start;
+    int           goal_kind;          /* mpb_goal_kind */
+    const double *goal_joints;        /* num_joints values, or NULL */
+    double        goal_tolerance;
+} mpb_query_info;
+
+int mpb_store_query_add(mpb_store *s, int64_t scene_id,
+                        const mpb_query_info *q, int64_t *id);
+
+/* Add one pending run; nothing happens if it already exists. */
+int mpb_store_run_add(mpb_store *s, int64_t experiment_id,
+                      int64_t planner_config_id, int64_t query_id,
+                      int repetition, int64_t seed);
+
+/* ---- scheduling ---------------------------------------------------------- */
+
+typedef struct mpb_run_row {
+    int64_t id;
+    int64_t planner_config_id;
+    int64_t query_id;
+    int     repetition;
+    int64_t seed;
+    int     attempts;
+    int     sent;                     /* 1 if a request went out before */
+    const char *run_uid;              /* current attempt's id, or NULL */
+} mpb_run_row;
+
+/*
+ * Call cb once for each run of the experiment not yet done, in id order.
+ * The row's strings are valid only during the call. A nonzero return from
+ * cb stops the walk and is returned.
+ */
+int mpb_store_runs_unfinished(mpb_store *s, int64_t experiment_id,
+                              int (*cb)(void *ud, const mpb_run_row *row),
+                              void *ud);
+
+/* Counts of an experiment's runs. */
+typedef struct mpb_run_counts {
+    int total, done, succeeded, crashed;
+} mpb_run_counts;
+int mpb_store_run_counts(mpb_store *s, int64_t experiment_id,
+                         mpb_run_counts *out);
+
+/* Record that a request with run_uid went to planner_id (attempts + 1). */
+int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
+                       const char *planner_id);
+
+/* ---- results ------------------------------------------------------------- */
+
+typedef struct mpb_named {
+    const char *name;
+    double      value;
+} mpb_named;
+
+typedef struct mpb_stage_record {
+    const char   *name;           /* "raw", "shortcut", "smoothed", ... */
+    double        time;           /* s, as the planner reported it */
+    int           num_waypoints;
+    int           num_joints;
+    const double *waypoints;      /* row-major, num_waypoints * num_joints */
+    int           valid;          /* mpbench's verdict on this stage */
+    const char   *verdict;        /* verdict name, "valid" when valid */
+    const char   *verdict_detail;
+    int           verdict_segment;/* first failing segment, -1 if none */
+    int           num_metrics;
+    const mpb_named *metrics;     /* path_length, smoothness, ... */
+} mpb_stage_record;
+
+typedef struct mpb_progress_record {
+    double      time;
+    const char *name;
+    double      value;
+} mpb_progress_record;
+
+typedef struct mpb_run_record {
+    int64_t     run_id;
+    const char *run_uid;
+    const char *planner_id;
+    const char *status;           /* mpb_status_name() of the planner's status */
+    const char *message;          /* planner's message, may be "" */
+    int         claimed_success;  /* planner said solved */
+    int         success;          /* solved in time and verified valid */
+    double      time_total, time_raw, time_other; /* tau_t, tau_r, tau_o, s */
+    double      wall_time;        /* request sent to result stored, s */
+    int         num_stages;
+    const mpb_stage_record *stages;
+    int         num_values;
+    const mpb_named *values;      /* the planner's own numbers */
+    int         num_progress;
+    const mpb_progress_record *progress;
+} mpb_run_record;
+
+/*
+ * Store a finished run: its outcome, stages, metrics, planner values and
+ * progress. Returns MPB_OK, or MPB_EXISTS (writing nothing) if the run was
+ * already done, or MPB_ENOTFOUND if run_uid is not the run's current
+ * attempt.
+ */
+int mpb_store_run_finish(mpb_store *s, const mpb_run_record *r);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPBENCH_STORE_H */

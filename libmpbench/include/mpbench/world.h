@@ -1,0 +1,67 @@
+/*
+ * world.h - a robot in a scene: joint names and limits, collision checks and
+ * clearance at a configuration. One opaque handle over several formats, each
+ * a provider behind a private table of functions (libmpbench/src/world_*.c).
+ *
+ * Formats (the robot_format / scene_format strings of a plan request):
+ *   "planar"  A planar arm among circles and boxes, the small world of the
+ *             walking skeleton and of fast tests. Robot text, one item a line,
+ *             '#' starts a comment:
+ *                 base <x> <y>                 (m, optional, default 0 0)
+ *                 link_radius <r>              (m, every link is a capsule)
+ *                 joint <name> <lo> <hi> <length>
+ *                 joint <name> continuous <length>
+ *             Joint i is revolute about z, at the end of link i-1; link i
+ *             runs from joint i to joint i+1 (or the tip). Scene text:
+ *                 circle <cx> <cy> <r>
+ *                 box <cx> <cy> <half_x> <half_y>      (axis-aligned)
+ *   "urdf" + "moveit-scene" are to come (FCL, urdfdom, assimp).
+ *
+ * A world is not thread-safe; use one per thread.
+ */
+#ifndef MPBENCH_WORLD_H
+#define MPBENCH_WORLD_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mpb_world mpb_world;
+
+/*
+ * Build a world from the robot and scene texts. On success *out is a new
+ * world, freed with mpb_world_close(). On failure *out is NULL, the return
+ * is MPB_EPARSE / MPB_EUNSUPPORTED / MPB_ENOMEM, and err (if not NULL)
+ * holds one line naming what is wrong and where ("robot line 3: ...").
+ */
+int mpb_world_open(const char *robot_format, const char *robot_text,
+                   const char *scene_format, const char *scene_text,
+                   mpb_world **out, char *err, size_t errlen);
+
+void mpb_world_close(mpb_world *w);
+
+int         mpb_world_num_joints(const mpb_world *w);
+const char *mpb_world_joint_name(const mpb_world *w, int joint);
+/* Limits of a joint; a continuous joint reports -pi .. pi and wraps. */
+void        mpb_world_joint_limits(const mpb_world *w, int joint,
+                                   double *lo, double *hi);
+int         mpb_world_joint_is_continuous(const mpb_world *w, int joint);
+/* One byte per joint, nonzero where the joint wraps; owned by the world. */
+const unsigned char *mpb_world_joint_wraps(const mpb_world *w);
+
+/* 1 if the robot at q touches an obstacle (or itself), 0 if free. */
+int mpb_world_in_collision(mpb_world *w, const double *q);
+
+/*
+ * Smallest distance (m) from the robot at q to any obstacle; 0 or less when
+ * in collision, +INFINITY in an empty scene.
+ */
+double mpb_world_clearance(mpb_world *w, const double *q);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPBENCH_WORLD_H */

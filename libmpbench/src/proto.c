@@ -1,0 +1,100 @@
+/* proto.c - run ids, content hashes, channel names and clocks of the protocol. */
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include <sodium.h>
+
+#include "mpbench/mpbench.h"
+#include "mpb_plan_result_t.h"
+
+static const char hexdigits[] = "0123456789abcdef";
+
+static void to_hex(const unsigned char *in, size_t n, char *out)
+{
+    for (size_t i = 0; i < n; i++) {
+        out[2 * i] = hexdigits[in[i] >> 4];
+        out[2 * i + 1] = hexdigits[in[i] & 15];
+    }
+    out[2 * n] = '\0';
+}
+
+int mpb_run_id_new(char out[MPB_RUN_ID_SIZE])
+{
+    unsigned char raw[16];
+    /* sodium_init() is idempotent and thread-safe; it opens the kernel's
+     * random source once. */
+    if (sodium_init() < 0)
+        return MPB_EIO;
+    randombytes_buf(raw, sizeof raw);
+    to_hex(raw, sizeof raw, out);
+    return MPB_OK;
+}
+
+int mpb_run_id_is_valid(const char *s)
+{
+    if (s == NULL)
+        return 0;
+    for (int i = 0; i < MPB_RUN_ID_SIZE - 1; i++)
+        if (!((s[i] >= '0' && s[i] <= '9') || (s[i] >= 'a' && s[i] <= 'f')))
+            return 0;
+    return s[MPB_RUN_ID_SIZE - 1] == '\0';
+}
+
+void mpb_hash_hex(const void *data, size_t len, char out[MPB_HASH_SIZE])
+{
+    unsigned char raw[16];
+    crypto_generichash(raw, sizeof raw, data, len, NULL, 0);
+    to_hex(raw, sizeof raw, out);
+}
+
+int mpb_planner_id_is_valid(const char *id)
+{
+    size_t n = 0;
+    if (id == NULL)
+        return 0;
+    for (; id[n] != '\0'; n++) {
+        char c = id[n];
+        if (n >= MPB_PLANNER_ID_MAX)
+            return 0;
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+              (c >= '0' && c <= '9') || strchr("_.:@-", c) != NULL))
+            return 0;
+    }
+    return n > 0;
+}
+
+int mpb_request_channel(const char *planner_id, char *out, size_t outlen)
+{
+    if (!mpb_planner_id_is_valid(planner_id))
+        return MPB_EINVAL;
+    int n = snprintf(out, outlen, "%s%s", MPB_CHANNEL_REQUEST_PREFIX, planner_id);
+    return (n < 0 || (size_t)n >= outlen) ? MPB_EINVAL : MPB_OK;
+}
+
+int64_t mpb_utime_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+double mpb_monotonic_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+const char *mpb_status_name(int status)
+{
+    switch (status) {
+    case MPB_PLAN_RESULT_T_SOLVED:          return "solved";
+    case MPB_PLAN_RESULT_T_APPROXIMATE:     return "approximate";
+    case MPB_PLAN_RESULT_T_TIMEOUT:         return "timeout";
+    case MPB_PLAN_RESULT_T_FAILED:          return "failed";
+    case MPB_PLAN_RESULT_T_INVALID_REQUEST: return "invalid_request";
+    case MPB_PLAN_RESULT_T_CRASH:           return "crash";
+    }
+    return "unknown";
+}
