@@ -1,2 +1,305 @@
-/* main.c - placeholder */
-int main(void) { return 0; }
+/*
+ * main.c - mpbenchd: options, signals, setting up the experiment in the
+ * store, and the single-threaded poll loop that drives everything else.
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "daemon.h"
+
+static volatile sig_atomic_t stop_signal;
+
+static void on_signal(int sig)
+{
+    stop_signal = sig;
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+"usage: mpbenchd [options] EXPERIMENT.yaml\n"
+"\n"
+"Runs a motion-planning benchmark: sends the experiment's runs over LCM to\n"
+"the planner processes that offer its algorithms, verifies and measures every\n"
+"trajectory they return, and stores everything in an SQLite database. Exits\n"
+"when every run is done. Started again on the same database, it resumes an\n"
+"unfinished experiment of the same name and file content.\n"
+"\n"
+"options:\n"
+"  -d, --db PATH         database file (default: mpbench.db)\n"
+"  -u, --lcm-url URL     LCM URL (default: " MPB_DEFAULT_LCM_URL ")\n"
+"  -r, --resolution RAD  joint-space step for collision checks along each\n"
+"                        segment (default: 0.01)\n"
+"      --new             start a new experiment even if one can be resumed\n"
+"      --check           check the experiment file and exit\n"
+"  -v, --verbose         log every run\n"
+"  -h, --help            show this help\n"
+"\n"
+"The experiment file format is described in docs/experiment-format.md.\n");
+}
+
+typedef struct options {
+    const char *db, *lcm_url, *experiment;
+    double resolution;
+    int fresh, check, verbose;
+} options;
+
+static int parse_options(int argc, char **argv, options *o)
+{
+    static const struct option longopts[] = {
+        {"db", required_argument, NULL, 'd'},
+        {"lcm-url", required_argument, NULL, 'u'},
+        {"resolution", required_argument, NULL, 'r'},
+        {"new", no_argument, NULL, 'N'},
+        {"check", no_argument, NULL, 'C'},
+        {"verbose", no_argument, NULL, 'v'},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    int c;
+    char *end;
+    *o = (options){.db = "mpbench.db", .lcm_url = MPB_DEFAULT_LCM_URL,
+                   .resolution = 0.01};
+    while ((c = getopt_long(argc, argv, "d:u:r:vh", longopts, NULL)) != -1) {
+        switch (c) {
+        case 'd': o->db = optarg; break;
+        case 'u': o->lcm_url = optarg; break;
+        case 'r':
+            o->resolution = strtod(optarg, &end);
+            if (*end != '\0' || !(o->resolution > 0)) {
+                fprintf(stderr, "mpbenchd: --resolution must be a positive "
+                                "number, not '%s'\n", optarg);
+                return -1;
+            }
+            break;
+        case 'N': o->fresh = 1; break;
+        case 'C': o->check = 1; break;
+        case 'v': o->verbose = 1; break;
+        case 'h': usage(stdout); exit(0);
+        default: usage(stderr); return -1;
+        }
+    }
+    if (optind != argc - 1) {
+        fprintf(stderr, "mpbenchd: expected one experiment file\n"
+                        "Try 'mpbenchd --help'.\n");
+        return -1;
+    }
+    o->experiment = argv[optind];
+    return 0;
+}
+
+static long count_runs(const mpbd_experiment *e)
+{
+    long n = 0;
+    for (int c = 0; c < e->num_configs; c++)
+        n += (long)e->configs[c].runs * e->num_queries;
+    return n;
+}
+
+/* Everything the experiment is made of, written idempotently: a resumed
+ * experiment takes the same path and finds its rows already there. */
+static int setup_experiment(mpbd *d, int fresh)
+{
+    mpbd_experiment *e = d->exp;
+    mpb_store *s = d->store;
+    int rc, max_runs = 0;
+    mpb_experiment_info info = {
+        .name = e->name, .config_file = e->file, .config_hash = e->hash,
+        .config_text = e->text, .runs_per_query = e->runs,
+        .time_limit = e->time_limit,
+    };
+
+    if ((rc = mpb_store_begin(s)) != MPB_OK)
+        return rc;
+    rc = fresh ? MPB_ENOTFOUND
+               : mpb_store_experiment_find_unfinished(s, e->name, e->hash,
+                                                      &d->experiment_id);
+    if (rc == MPB_OK)
+        mpbd_log("resuming experiment '%s' (id %lld)", e->name,
+                 (long long)d->experiment_id);
+    else if (rc == MPB_ENOTFOUND)
+        rc = mpb_store_experiment_create(s, &info, &d->experiment_id);
+    for (int i = 0; rc == MPB_OK && i < e->num_configs; i++) {
+        mpbd_config *c = &e->configs[i];
+        rc = mpb_store_planner_config_add(s, d->experiment_id, c->name,
+                                          c->planner, c->algorithm,
+                                          c->params_text, &c->db_id);
+        if (c->runs > max_runs)
+            max_runs = c->runs;
+    }
+    for (int i = 0; rc == MPB_OK && i < e->num_scenes; i++) {
+        mpbd_scene *sc = &e->scenes[i];
+        mpb_scene_info si = {
+            .name = sc->name,
+            .robot_format = sc->robot_format, .robot_hash = sc->robot_hash,
+            .robot = sc->robot, .scene_format = sc->scene_format,
+            .scene_hash = sc->scene_hash, .scene = sc->scene,
+        };
+        rc = mpb_store_scene_add(s, d->experiment_id, &si, &sc->db_id);
+    }
+    for (int i = 0; rc == MPB_OK && i < e->num_queries; i++) {
+        mpbd_query *q = &e->queries[i];
+        mpb_query_info qi = {
+            .name = q->name, .num_joints = e->num_joints,
+            .joint_names = (const char *const *)e->joint_names,
+            .start = q->start, .goal_kind = MPB_GOAL_JOINTS,
+            .goal_joints = q->goal, .goal_tolerance = q->tolerance,
+        };
+        rc = mpb_store_query_add(s, e->scenes[q->scene].db_id, &qi, &q->db_id);
+    }
+    /* Repetition first, so that a partial experiment covers every planner
+     * and query evenly. */
+    for (int r = 0; rc == MPB_OK && r < max_runs; r++)
+        for (int q = 0; rc == MPB_OK && q < e->num_queries; q++)
+            for (int c = 0; rc == MPB_OK && c < e->num_configs; c++)
+                if (r < e->configs[c].runs)
+                    rc = mpb_store_run_add(s, d->experiment_id,
+                                           e->configs[c].db_id,
+                                           e->queries[q].db_id, r,
+                                           mpbd_run_seed(e, c, q, r));
+    if (rc != MPB_OK) {
+        mpb_store_rollback(s);
+        return rc;
+    }
+    return mpb_store_commit(s);
+}
+
+/* Wait for the LCM socket to be readable, at most timeout_ms. */
+static int wait_readable(int fd, int timeout_ms)
+{
+    struct pollfd pfd = {.fd = fd, .events = POLLIN};
+    int n = poll(&pfd, 1, timeout_ms);
+    return n > 0 && (pfd.revents & POLLIN);
+}
+
+static int run_loop(mpbd *d)
+{
+    int fd = lcm_get_fileno(d->lcm);
+    double now = mpb_monotonic_s();
+
+    mpbd_status_publish(d, "waiting", now);
+    while (!stop_signal) {
+        int ready = wait_readable(fd, 20);
+        now = mpb_monotonic_s();
+        if (mpb_store_begin(d->store) != MPB_OK) {
+            mpbd_log("database: %s", mpb_store_errmsg(d->store));
+            return -1;
+        }
+        /* Drain what has arrived, in one transaction; bounded, so that
+         * timers still run under a flood. */
+        for (int n = 0; ready && n < 4096; n++) {
+            if (lcm_handle(d->lcm) != 0)
+                break;
+            ready = wait_readable(fd, 0);
+        }
+        mpbd_scheduler_tick(d, now);
+        mpbd_scheduler_dispatch(d, now);
+        if (mpb_store_commit(d->store) != MPB_OK) {
+            mpbd_log("database: %s", mpb_store_errmsg(d->store));
+            mpb_store_rollback(d->store);
+            return -1;
+        }
+        mpbd_acks_flush(d);
+        if (mpbd_scheduler_done(d))
+            return 0;
+        if (now - d->last_status >= MPBD_STATUS_PERIOD_S)
+            mpbd_status_publish(d, d->num_planners ? "running" : "waiting", now);
+    }
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    char err[1024], host[64] = "";
+    mpbd d = {0};
+    int rc, exit_code = 1;
+
+    if (parse_options(argc, argv, &o) != 0)
+        return 2;
+    /* Read and check the whole experiment before touching the database. */
+    if ((d.exp = mpbd_experiment_load(o.experiment, err, sizeof err)) == NULL) {
+        fprintf(stderr, "mpbenchd: %s\n", err);
+        return 1;
+    }
+    d.runs_total = (int)count_runs(d.exp);
+    if (o.check) {
+        printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
+               "%d runs\n", o.experiment, d.exp->num_scenes,
+               d.exp->num_scenes == 1 ? "" : "s", d.exp->num_queries,
+               d.exp->num_queries == 1 ? "y" : "ies", d.exp->num_configs,
+               d.exp->num_configs == 1 ? "" : "s", d.runs_total);
+        mpbd_experiment_free(d.exp);
+        return 0;
+    }
+    d.resolution = o.resolution;
+    d.verbose = o.verbose;
+    gethostname(host, sizeof host - 1);
+    snprintf(d.daemon_id, sizeof d.daemon_id, "mpbenchd@%.60s:%ld", host,
+             (long)getpid());
+
+    if ((rc = mpb_store_open(o.db, 0, &d.store)) != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
+        goto out;
+    }
+    if ((rc = setup_experiment(&d, o.fresh)) != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s: %s\n", o.db, mpb_store_errmsg(d.store));
+        goto out;
+    }
+    if ((rc = mpbd_scheduler_load(&d)) != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s: cannot load runs: %s\n", o.db,
+                mpb_store_errmsg(d.store));
+        goto out;
+    }
+    if ((d.lcm = lcm_create(o.lcm_url)) == NULL) {
+        fprintf(stderr, "mpbenchd: cannot start LCM on %s (no multicast "
+                        "route? see README)\n", o.lcm_url);
+        goto out;
+    }
+    mpbd_planners_subscribe(&d);
+    mpbd_scheduler_subscribe(&d);
+    mpbd_results_subscribe(&d);
+
+    struct sigaction sa = {.sa_handler = on_signal};
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    signal(SIGPIPE, SIG_IGN);
+
+    d.started = mpb_monotonic_s();
+    mpbd_log("experiment '%s' (id %lld): %ld of %d runs to do, database %s",
+             d.exp->name, (long long)d.experiment_id, d.total_pending,
+             d.runs_total, o.db);
+    rc = run_loop(&d);
+    double elapsed = mpb_monotonic_s() - d.started;
+    if (rc == 0) {
+        mpb_run_counts counts = {0};
+        mpb_store_experiment_finish(d.store, d.experiment_id);
+        mpb_store_run_counts(d.store, d.experiment_id, &counts);
+        mpbd_status_publish(&d, "done", mpb_monotonic_s());
+        mpbd_log("experiment '%s' complete: %d runs, %d succeeded, %d crashed "
+                 "(%ld rejected messages), %.1f s", d.exp->name, counts.total,
+                 counts.succeeded, counts.crashed, d.count.rejected, elapsed);
+        exit_code = 0;
+    } else if (rc > 0) {
+        mpbd_status_publish(&d, "stopped", mpb_monotonic_s());
+        mpbd_log("stopped by signal %d with %ld runs left; run the same "
+                 "command to resume", (int)stop_signal,
+                 d.total_pending + d.num_flights);
+        exit_code = 128 + (int)stop_signal;
+    }
+out:
+    if (d.lcm)
+        lcm_destroy(d.lcm);
+    mpbd_scheduler_free(&d);
+    mpbd_planners_free(&d);
+    mpb_store_close(d.store);
+    mpbd_experiment_free(d.exp);
+    return exit_code;
+}

@@ -167,11 +167,120 @@ typedef struct mpb_run_record {
 
 /*
  * Store a finished run: its outcome, stages, metrics, planner values and
- * progress. Returns MPB_OK, or MPB_EXISTS (writing nothing) if the run was
+ * progress. Returns MPB_OK, or MPB_EEXISTS (writing nothing) if the run was
  * already done, or MPB_ENOTFOUND if run_uid is not the run's current
  * attempt.
  */
 int mpb_store_run_finish(mpb_store *s, const mpb_run_record *r);
+
+/* ---- reading, for reports ----------------------------------------------
+ *
+ * Every reader walks rows through a callback, as mpb_store_runs_unfinished()
+ * does: the row and its strings are valid only during the call, and a
+ * nonzero return from cb stops the walk and is returned. Rows come in id
+ * order unless stated. Times are Unix seconds; a number the database does
+ * not have (NULL, or NaN when it was written) reads as NaN.
+ */
+
+typedef struct mpb_experiment_row {
+    int64_t     id;
+    const char *name;
+    const char *config_file;
+    const char *config_hash;
+    const char *config_text;
+    const char *host;
+    const char *version;       /* mpbench version that created it */
+    int         runs_per_query;
+    double      time_limit;    /* s */
+    double      created;
+    double      finished;      /* NaN while unfinished */
+} mpb_experiment_row;
+
+/* Every experiment in the database. */
+int mpb_store_experiments(mpb_store *s,
+                          int (*cb)(void *ud, const mpb_experiment_row *row),
+                          void *ud);
+/* One experiment; MPB_ENOTFOUND (cb not called) if there is no such id. */
+int mpb_store_experiment_get(mpb_store *s, int64_t id,
+                             int (*cb)(void *ud, const mpb_experiment_row *row),
+                             void *ud);
+
+typedef struct mpb_scene_row {
+    int64_t     id;
+    const char *name;
+    const char *robot_format, *robot_hash, *robot;
+    const char *scene_format, *scene_hash, *scene;
+} mpb_scene_row;
+
+/* The scenes of an experiment. */
+int mpb_store_scenes(mpb_store *s, int64_t experiment_id,
+                     int (*cb)(void *ud, const mpb_scene_row *row), void *ud);
+
+typedef struct mpb_planner_config_row {
+    int64_t     id;
+    const char *name;          /* e.g. "ompl/RRTConnect" */
+    const char *planner, *algorithm, *params;
+} mpb_planner_config_row;
+
+/* The planner configurations of an experiment. */
+int mpb_store_planner_configs(mpb_store *s, int64_t experiment_id,
+                              int (*cb)(void *ud,
+                                        const mpb_planner_config_row *row),
+                              void *ud);
+
+typedef struct mpb_query_row {
+    int64_t     id;
+    int64_t     scene_id;
+    const char *name;
+    const char *joint_names;   /* space-separated, as written */
+    const char *start;         /* space-separated numbers */
+    int         goal_kind;     /* mpb_goal_kind */
+    const char *goal_joints;   /* space-separated numbers, or NULL */
+    double      goal_tolerance;
+} mpb_query_row;
+
+/* The queries of a scene. */
+int mpb_store_queries(mpb_store *s, int64_t scene_id,
+                      int (*cb)(void *ud, const mpb_query_row *row), void *ud);
+
+/* Counts of the runs of an experiment's queries in one scene. */
+int mpb_store_scene_run_counts(mpb_store *s, int64_t experiment_id,
+                               int64_t scene_id, mpb_run_counts *out);
+
+/* One finished run, as mpb_store_results() gives it. */
+typedef struct mpb_result_row {
+    int64_t     run_id;
+    int64_t     planner_config_id;
+    int64_t     query_id;
+    int         repetition;
+    int         success;       /* solved in time and verified valid */
+    const char *status;        /* the planner's status name */
+    double      time_total, time_raw, time_other; /* tau_t, tau_r, tau_o, s */
+    const char *stage;         /* where the metrics come from: the chosen
+                                  stage, else the run's final stage; NULL if
+                                  the run has no stage */
+    const double *metrics;     /* one value per name asked for, in that
+                                  order; NaN where the stage lacks it */
+    int         num_named;
+    const mpb_named *named;    /* every metric of that stage, by name */
+} mpb_result_row;
+
+/*
+ * Walk the finished runs (failed ones included; see success) of an
+ * experiment's queries in one scene, in a single pass over the database.
+ * Runs come grouped by query, in query id order, and in run id order
+ * within a query, so per-query statistics need no buffering.
+ *
+ * Metrics are read from the stage named stage, or from each run's final
+ * stage when stage is NULL. names[0..num_names) are the metrics wanted in
+ * row->metrics (e.g. "path_length", "smoothness"); num_names may be 0.
+ * Returns MPB_ENOMEM if a row cannot be assembled.
+ */
+int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
+                      const char *stage, const char *const *names,
+                      int num_names,
+                      int (*cb)(void *ud, const mpb_result_row *row),
+                      void *ud);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,144 @@
+/*
+ * daemon.h - the state of mpbenchd, shared by its parts:
+ *   main.c       options, signals, the poll loop
+ *   experiment.c reading the experiment file
+ *   planners.c   the planner processes seen on MPB_ANNOUNCE
+ *   scheduler.c  which run goes to which planner; resends and deadlines
+ *   results.c    checking, verifying, measuring and storing results
+ *   status.c     the MPB_STATUS message
+ *   log.c        the console log
+ */
+#ifndef MPBD_DAEMON_H
+#define MPBD_DAEMON_H
+
+#include <stdint.h>
+
+#include <lcm/lcm.h>
+
+#include "mpbench/mpbench.h"
+#include "experiment.h"
+
+/* How often and how long things are retried or waited for. */
+#define MPBD_REQUEST_RESEND_S   0.25   /* resend a request not acked by then */
+#define MPBD_REQUEST_MAX_SENDS  20
+#define MPBD_DEADLINE_GRACE_S   5.0    /* beyond the time limit, before crash */
+#define MPBD_PLANNER_MISSED     3      /* heartbeats missed = planner gone */
+#define MPBD_STATUS_PERIOD_S    1.0
+
+typedef struct mpbd_planner {
+    char    id[MPB_PLANNER_ID_MAX + 1];
+    char   *name;
+    char  **algorithms;
+    int     num_algorithms;
+    int     capacity;
+    int     active;          /* runs we have in flight on it */
+    int     runs_done;
+    double  heartbeat_s;
+    double  last_seen;       /* monotonic s */
+    int     gone;
+} mpbd_planner;
+
+/* A run not yet done, as the scheduler holds it. */
+typedef struct mpbd_run {
+    int64_t id;              /* runs.id */
+    int     config;          /* index into experiment configs */
+    int     query;           /* index into experiment queries */
+    int64_t seed;
+    char    uid[MPB_RUN_ID_SIZE];   /* current attempt, "" if none yet */
+} mpbd_run;
+
+/* A request out on the network, waiting for its result. */
+typedef struct mpbd_flight {
+    mpbd_run run;
+    int      planner;        /* index into planners */
+    double   sent_at;        /* monotonic s, first send */
+    double   last_send;
+    int      sends;
+    int      acked;          /* planner said REQUEST_RECEIVED */
+    double   deadline;
+} mpbd_flight;
+
+typedef struct mpbd_counters {
+    long done, succeeded, failed, crashed, rejected;
+} mpbd_counters;
+
+typedef struct mpbd {
+    lcm_t           *lcm;
+    mpb_store       *store;
+    mpbd_experiment *exp;
+    int64_t          experiment_id;
+    char             daemon_id[MPB_PLANNER_ID_MAX + 1];
+    double           resolution;     /* verification step, rad */
+    int              verbose;
+
+    mpbd_planner    *planners;
+    int              num_planners, cap_planners;
+
+    /* Pending runs per configuration: a queue each, so that any idle
+     * planner finds its next run without a search. */
+    mpbd_run       **pending;        /* [config] -> array */
+    int             *pending_len, *pending_head;
+    long             total_pending;
+
+    mpbd_flight     *flights;
+    int              num_flights, cap_flights;
+
+    int              next_config;    /* round-robin start for dispatch */
+
+    /* Results stored in the open transaction, acknowledged only once it
+     * commits: an ack is a promise that the result is on disk. */
+    char           (*acks)[MPB_RUN_ID_SIZE];
+    int              num_acks, cap_acks;
+
+    /* Runs finished lately, so that a re-sent result is acknowledged
+     * again instead of being counted as a stray. */
+    char             recent[256][MPB_RUN_ID_SIZE];
+    int              recent_next;
+
+    int              runs_total;
+    mpbd_counters    count;
+    double           started;        /* monotonic s */
+    double           last_status;
+    double           last_wait_log;
+} mpbd;
+
+/* planners.c */
+void mpbd_planners_subscribe(mpbd *d);
+/* Mark planners silent for too long as gone; returns how many went. */
+int  mpbd_planners_expire(mpbd *d, double now);
+int  mpbd_planner_offers(const mpbd_planner *p, const char *name,
+                         const char *algorithm);
+void mpbd_planners_free(mpbd *d);
+
+/* scheduler.c */
+int  mpbd_scheduler_load(mpbd *d);             /* unfinished runs from the store */
+int  mpbd_scheduler_dispatch(mpbd *d, double now);
+void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost planners */
+mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid);
+void mpbd_flight_remove(mpbd *d, mpbd_flight *f);
+int  mpbd_scheduler_done(const mpbd *d);
+void mpbd_scheduler_free(mpbd *d);
+void mpbd_scheduler_subscribe(mpbd *d);
+/* Publish an acknowledgement now. */
+void mpbd_ack(mpbd *d, const char *run_uid, int kind);
+/* Acknowledge a stored result once the transaction commits. */
+int  mpbd_ack_after_commit(mpbd *d, const char *run_uid);
+/* After a commit: send the acknowledgements it made true. */
+void mpbd_acks_flush(mpbd *d);
+
+/* results.c */
+void mpbd_results_subscribe(mpbd *d);
+/* Record a run that ended without a result (crash, lost planner). */
+int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
+
+/* status.c */
+void mpbd_status_publish(mpbd *d, const char *state, double now);
+
+/* log.c */
+void mpbd_log(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+#endif

@@ -1,0 +1,668 @@
+/*
+ * experiment.c - reading an experiment file (YAML, through libyaml's
+ * document API so that every node keeps its line and column for errors).
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <yaml.h>
+
+#include "experiment.h"
+
+/* Everything the loader carries, so helpers can report errors in one way. */
+typedef struct loader {
+    yaml_document_t doc;
+    const char *path;
+    char       *dir;         /* directory of path, for relative file names */
+    char       *err;
+    size_t      errlen;
+    int         failed;
+} loader;
+
+static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
+{
+    char what[512];
+    va_list ap;
+    if (L->failed)
+        return -1;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    if (n != NULL)
+        snprintf(L->err, L->errlen, "%s:%lu:%lu: %s", L->path,
+                 (unsigned long)n->start_mark.line + 1,
+                 (unsigned long)n->start_mark.column + 1, what);
+    else
+        snprintf(L->err, L->errlen, "%s: %s", L->path, what);
+    L->failed = 1;
+    return -1;
+}
+
+static yaml_node_t *node(loader *L, int id)
+{
+    return yaml_document_get_node(&L->doc, id);
+}
+
+static const char *scalar(const yaml_node_t *n)
+{
+    return n && n->type == YAML_SCALAR_NODE ? (const char *)n->data.scalar.value
+                                            : NULL;
+}
+
+/* The value under key in mapping m, or NULL. */
+static yaml_node_t *get(loader *L, yaml_node_t *m, const char *key)
+{
+    if (m == NULL || m->type != YAML_MAPPING_NODE)
+        return NULL;
+    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
+         p < m->data.mapping.pairs.top; p++) {
+        const char *k = scalar(node(L, p->key));
+        if (k && strcmp(k, key) == 0)
+            return node(L, p->value);
+    }
+    return NULL;
+}
+
+/* Reject keys a mapping does not know: a typo must not pass silently. */
+static int only_keys(loader *L, yaml_node_t *m, const char *const *known)
+{
+    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
+         p < m->data.mapping.pairs.top; p++) {
+        yaml_node_t *kn = node(L, p->key);
+        const char *k = scalar(kn);
+        int ok = 0;
+        for (int i = 0; k && known[i]; i++)
+            ok |= strcmp(k, known[i]) == 0;
+        if (!ok)
+            return fail_at(L, kn, "unknown key '%s'", k ? k : "?");
+    }
+    return 0;
+}
+
+static yaml_node_t *need(loader *L, yaml_node_t *m, const char *key,
+                         yaml_node_type_t type, const char *what)
+{
+    yaml_node_t *n = get(L, m, key);
+    if (n == NULL) {
+        fail_at(L, m, "missing '%s' (%s)", key, what);
+        return NULL;
+    }
+    if (n->type != type) {
+        fail_at(L, n, "'%s' must be %s", key, what);
+        return NULL;
+    }
+    return n;
+}
+
+static char *dup_str(loader *L, const yaml_node_t *n, const char *s)
+{
+    char *d = strdup(s);
+    if (d == NULL)
+        fail_at(L, n, "out of memory");
+    return d;
+}
+
+static char *need_string(loader *L, yaml_node_t *m, const char *key)
+{
+    yaml_node_t *n = need(L, m, key, YAML_SCALAR_NODE, "a string");
+    if (n == NULL)
+        return NULL;
+    if (scalar(n)[0] == '\0') {
+        fail_at(L, n, "'%s' must not be empty", key);
+        return NULL;
+    }
+    return dup_str(L, n, scalar(n));
+}
+
+static int parse_double(loader *L, yaml_node_t *n, const char *what, double *out)
+{
+    const char *s = scalar(n);
+    char *end;
+    if (s == NULL)
+        return fail_at(L, n, "%s must be a number", what);
+    errno = 0;
+    *out = strtod(s, &end);
+    if (end == s || *end != '\0' || errno != 0 || !isfinite(*out))
+        return fail_at(L, n, "%s must be a number, not '%s'", what, s);
+    return 0;
+}
+
+static int parse_positive_int(loader *L, yaml_node_t *n, const char *what,
+                              int *out)
+{
+    const char *s = scalar(n);
+    char *end;
+    long v;
+    if (s == NULL)
+        return fail_at(L, n, "%s must be a positive integer", what);
+    errno = 0;
+    v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno != 0 || v < 1 || v > 1000000000)
+        return fail_at(L, n, "%s must be a positive integer, not '%s'", what, s);
+    *out = (int)v;
+    return 0;
+}
+
+/* A list of exactly n numbers. */
+static double *parse_vector(loader *L, yaml_node_t *n, const char *what, int len)
+{
+    double *v;
+    int count;
+    if (n == NULL || n->type != YAML_SEQUENCE_NODE)
+        return fail_at(L, n, "%s must be a list of %d numbers", what, len), NULL;
+    count = (int)(n->data.sequence.items.top - n->data.sequence.items.start);
+    if (count != len)
+        return fail_at(L, n, "%s has %d values, the robot has %d joints", what,
+                       count, len), NULL;
+    v = calloc((size_t)len, sizeof *v);
+    if (v == NULL)
+        return fail_at(L, n, "out of memory"), NULL;
+    for (int i = 0; i < len; i++)
+        if (parse_double(L, node(L, n->data.sequence.items.start[i]), what,
+                         &v[i]) != 0) {
+            free(v);
+            return NULL;
+        }
+    return v;
+}
+
+/* Read a file whole; NULL with errno set on failure. */
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL;
+    size_t cap = 0, n = 0;
+    if (f == NULL)
+        return NULL;
+    for (;;) {
+        if (n + 4096 + 1 > cap) {
+            char *nb = realloc(buf, cap = cap * 2 + 8192);
+            if (nb == NULL) {
+                free(buf);
+                fclose(f);
+                errno = ENOMEM;
+                return NULL;
+            }
+            buf = nb;
+        }
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0)
+            break;
+    }
+    if (ferror(f)) {
+        free(buf);
+        fclose(f);
+        errno = EIO;
+        return NULL;
+    }
+    fclose(f);
+    buf[n] = '\0';
+    if (len)
+        *len = n;
+    return buf;
+}
+
+/*
+ * A robot or scene: inline `text:` or a `file:` relative to the experiment
+ * file, plus its `format:`.
+ */
+static int load_model(loader *L, yaml_node_t *m, const char *what,
+                      char **format, char **text)
+{
+    static const char *const keys[] = {"format", "file", "text", "name",
+                                       "queries", NULL};
+    yaml_node_t *file, *inline_text;
+    if (m == NULL || m->type != YAML_MAPPING_NODE)
+        return fail_at(L, m, "%s must be a mapping with format and file or text",
+                       what);
+    if (only_keys(L, m, keys) != 0)
+        return -1;
+    if ((*format = need_string(L, m, "format")) == NULL)
+        return -1;
+    file = get(L, m, "file");
+    inline_text = get(L, m, "text");
+    if ((file == NULL) == (inline_text == NULL))
+        return fail_at(L, m, "%s needs exactly one of 'file' and 'text'", what);
+    if (inline_text) {
+        if (scalar(inline_text) == NULL)
+            return fail_at(L, inline_text, "%s text must be a string", what);
+        *text = dup_str(L, inline_text, scalar(inline_text));
+        return *text ? 0 : -1;
+    }
+    if (scalar(file) == NULL || scalar(file)[0] == '\0')
+        return fail_at(L, file, "%s file must be a path", what);
+    char path[4096];
+    const char *f = scalar(file);
+    snprintf(path, sizeof path, "%s%s", f[0] == '/' ? "" : L->dir, f);
+    if ((*text = slurp(path, NULL)) == NULL)
+        return fail_at(L, file, "cannot read %s file %s: %s", what, path,
+                       strerror(errno));
+    return 0;
+}
+
+static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
+{
+    static const char *const keys[] = {"name", "runs", "time_limit", "seed",
+                                       NULL};
+    yaml_node_t *m = need(L, root, "experiment", YAML_MAPPING_NODE,
+                          "a mapping of name, runs, time_limit, seed");
+    yaml_node_t *n;
+    if (m == NULL || only_keys(L, m, keys) != 0)
+        return -1;
+    if ((e->name = need_string(L, m, "name")) == NULL)
+        return -1;
+    e->runs = 1;
+    if ((n = get(L, m, "runs")) && parse_positive_int(L, n, "runs", &e->runs))
+        return -1;
+    if ((n = need(L, m, "time_limit", YAML_SCALAR_NODE, "seconds")) == NULL ||
+        parse_double(L, n, "time_limit", &e->time_limit) != 0)
+        return -1;
+    if (e->time_limit <= 0)
+        return fail_at(L, n, "time_limit must be positive");
+    if ((n = get(L, m, "seed")) != NULL) {
+        double s;
+        if (parse_double(L, n, "seed", &s) != 0)
+            return -1;
+        e->seed = (uint64_t)(int64_t)s;
+    }
+    return 0;
+}
+
+/* The robot: formats its joints, and gives each scene its world. */
+static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
+                      yaml_node_t *where)
+{
+    char why[256];
+    if (mpb_world_open(sc->robot_format, sc->robot, sc->scene_format, sc->scene,
+                       &sc->world, why, sizeof why) != MPB_OK)
+        return fail_at(L, where, "scene '%s': %s", sc->name, why);
+    int nj = mpb_world_num_joints(sc->world);
+    if (e->joint_names == NULL) {
+        e->num_joints = nj;
+        e->joint_names = calloc((size_t)nj, sizeof *e->joint_names);
+        e->wraps = calloc((size_t)nj + 1, 1);
+        if (e->joint_names == NULL || e->wraps == NULL)
+            return fail_at(L, where, "out of memory");
+        for (int j = 0; j < nj; j++) {
+            if ((e->joint_names[j] = strdup(mpb_world_joint_name(sc->world, j)))
+                == NULL)
+                return fail_at(L, where, "out of memory");
+            e->wraps[j] = (unsigned char)mpb_world_joint_is_continuous(sc->world, j);
+        }
+    } else if (nj != e->num_joints) {
+        return fail_at(L, where, "scene '%s': robot has %d joints, earlier "
+                       "scenes have %d", sc->name, nj, e->num_joints);
+    }
+    return 0;
+}
+
+static int load_queries(loader *L, mpbd_experiment *e, int scene,
+                        yaml_node_t *list)
+{
+    static const char *const keys[] = {"name", "start", "goal", "tolerance",
+                                       NULL};
+    if (list == NULL || list->type != YAML_SEQUENCE_NODE ||
+        list->data.sequence.items.top == list->data.sequence.items.start)
+        return fail_at(L, list, "scene '%s' needs a non-empty list 'queries'",
+                       e->scenes[scene].name);
+    for (yaml_node_item_t *it = list->data.sequence.items.start;
+         it < list->data.sequence.items.top; it++) {
+        yaml_node_t *m = node(L, *it), *n;
+        mpbd_query *q = &e->queries[e->num_queries];
+        if (m->type != YAML_MAPPING_NODE)
+            return fail_at(L, m, "a query must be a mapping of name, start, goal");
+        if (only_keys(L, m, keys) != 0)
+            return -1;
+        e->num_queries++;
+        q->scene = scene;
+        q->tolerance = 1e-3;
+        if ((q->name = need_string(L, m, "name")) == NULL)
+            return -1;
+        for (mpbd_query *o = e->queries; o < q; o++)
+            if (o->scene == scene && strcmp(o->name, q->name) == 0)
+                return fail_at(L, m, "query '%s' appears twice in scene '%s'",
+                               q->name, e->scenes[scene].name);
+        if ((q->start = parse_vector(L, get(L, m, "start") ? get(L, m, "start") : m,
+                                     "start", e->num_joints)) == NULL)
+            return -1;
+        if ((q->goal = parse_vector(L, get(L, m, "goal") ? get(L, m, "goal") : m,
+                                    "goal", e->num_joints)) == NULL)
+            return -1;
+        if ((n = get(L, m, "tolerance")) != NULL &&
+            (parse_double(L, n, "tolerance", &q->tolerance) != 0 ||
+             (q->tolerance <= 0 && fail_at(L, n, "tolerance must be positive"))))
+            return -1;
+    }
+    return 0;
+}
+
+static size_t count_items(const yaml_node_t *n)
+{
+    return n && n->type == YAML_SEQUENCE_NODE
+               ? (size_t)(n->data.sequence.items.top - n->data.sequence.items.start)
+               : 0;
+}
+
+static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
+{
+    char *robot_format = NULL, *robot = NULL;
+    yaml_node_t *list = need(L, root, "scenes", YAML_SEQUENCE_NODE,
+                             "a list of scenes");
+    int rc = -1;
+    size_t total_queries = 0;
+
+    if (list == NULL)
+        return -1;
+    if (need(L, root, "robot", YAML_MAPPING_NODE,
+             "a mapping of format and file or text") == NULL ||
+        load_model(L, get(L, root, "robot"), "robot", &robot_format, &robot) != 0)
+        goto done;
+    e->num_scenes = 0;
+    e->scenes = calloc(count_items(list) + 1, sizeof *e->scenes);
+    for (yaml_node_item_t *it = list->data.sequence.items.start;
+         it < list->data.sequence.items.top; it++)
+        total_queries += count_items(get(L, node(L, *it), "queries"));
+    e->queries = calloc(total_queries + 1, sizeof *e->queries);
+    if (e->scenes == NULL || e->queries == NULL) {
+        fail_at(L, list, "out of memory");
+        goto done;
+    }
+    if (count_items(list) == 0) {
+        fail_at(L, list, "'scenes' must not be empty");
+        goto done;
+    }
+    for (yaml_node_item_t *it = list->data.sequence.items.start;
+         it < list->data.sequence.items.top; it++) {
+        yaml_node_t *m = node(L, *it);
+        mpbd_scene *sc = &e->scenes[e->num_scenes];
+        if (m->type != YAML_MAPPING_NODE) {
+            fail_at(L, m, "a scene must be a mapping of name, format, file "
+                          "or text, queries");
+            goto done;
+        }
+        e->num_scenes++;
+        if ((sc->name = need_string(L, m, "name")) == NULL ||
+            load_model(L, m, "scene", &sc->scene_format, &sc->scene) != 0)
+            goto done;
+        for (mpbd_scene *o = e->scenes; o < sc; o++)
+            if (strcmp(o->name, sc->name) == 0) {
+                fail_at(L, m, "scene '%s' appears twice", sc->name);
+                goto done;
+            }
+        if ((sc->robot_format = strdup(robot_format)) == NULL ||
+            (sc->robot = strdup(robot)) == NULL) {
+            fail_at(L, m, "out of memory");
+            goto done;
+        }
+        mpb_hash_hex(sc->robot, strlen(sc->robot), sc->robot_hash);
+        mpb_hash_hex(sc->scene, strlen(sc->scene), sc->scene_hash);
+        if (open_world(L, e, sc, m) != 0 ||
+            load_queries(L, e, e->num_scenes - 1, get(L, m, "queries")) != 0)
+            goto done;
+    }
+    rc = 0;
+done:
+    free(robot_format);
+    free(robot);
+    return rc;
+}
+
+/* "key=value;key=value" for the database; keys in file order. */
+static char *params_text(const mpb_param_t *p, int n)
+{
+    size_t cap = 1;
+    for (int i = 0; i < n; i++)
+        cap += strlen(p[i].key) + strlen(p[i].value) + 2;
+    char *s = malloc(cap), *w = s;
+    if (s == NULL)
+        return NULL;
+    *w = '\0';
+    for (int i = 0; i < n; i++)
+        w += snprintf(w, cap - (size_t)(w - s), "%s%s=%s", i ? ";" : "",
+                      p[i].key, p[i].value);
+    return s;
+}
+
+static int load_params(loader *L, mpbd_config *c, yaml_node_t *m)
+{
+    if (m == NULL)
+        return 0;
+    if (m->type != YAML_MAPPING_NODE)
+        return fail_at(L, m, "params must be a mapping of name: value");
+    size_t n = (size_t)(m->data.mapping.pairs.top - m->data.mapping.pairs.start);
+    c->params = calloc(n + 1, sizeof *c->params);
+    if (c->params == NULL)
+        return fail_at(L, m, "out of memory");
+    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
+         p < m->data.mapping.pairs.top; p++) {
+        const char *k = scalar(node(L, p->key)), *v = scalar(node(L, p->value));
+        if (k == NULL || v == NULL)
+            return fail_at(L, node(L, p->key), "a parameter must be name: value");
+        c->params[c->num_params].key = strdup(k);
+        c->params[c->num_params].value = strdup(v);
+        c->num_params++;
+        if (!c->params[c->num_params - 1].key || !c->params[c->num_params - 1].value)
+            return fail_at(L, m, "out of memory");
+    }
+    return 0;
+}
+
+static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
+{
+    static const char *const keys[] = {"planner", "algorithms", "params",
+                                       "runs", "name", NULL};
+    yaml_node_t *list = need(L, root, "planners", YAML_SEQUENCE_NODE,
+                             "a list of planners");
+    size_t total = 0;
+    if (list == NULL)
+        return -1;
+    for (yaml_node_item_t *it = list->data.sequence.items.start;
+         it < list->data.sequence.items.top; it++)
+        total += count_items(get(L, node(L, *it), "algorithms"));
+    if ((e->configs = calloc(total + 1, sizeof *e->configs)) == NULL)
+        return fail_at(L, list, "out of memory");
+    if (count_items(list) == 0)
+        return fail_at(L, list, "'planners' must not be empty");
+    for (yaml_node_item_t *it = list->data.sequence.items.start;
+         it < list->data.sequence.items.top; it++) {
+        yaml_node_t *m = node(L, *it), *algos, *n;
+        char *planner;
+        const char *suffix = NULL;
+        int runs = e->runs;
+        if (m->type != YAML_MAPPING_NODE)
+            return fail_at(L, m, "a planner must be a mapping of planner, "
+                                 "algorithms");
+        if (only_keys(L, m, keys) != 0 ||
+            (algos = need(L, m, "algorithms", YAML_SEQUENCE_NODE,
+                          "a list of algorithm names")) == NULL)
+            return -1;
+        if (count_items(algos) == 0)
+            return fail_at(L, algos, "'algorithms' must not be empty");
+        if ((n = get(L, m, "runs")) && parse_positive_int(L, n, "runs", &runs))
+            return -1;
+        if ((n = get(L, m, "name")) != NULL && (suffix = scalar(n)) == NULL)
+            return fail_at(L, n, "name must be a string");
+        if ((planner = need_string(L, m, "planner")) == NULL)
+            return -1;
+        for (yaml_node_item_t *a = algos->data.sequence.items.start;
+             a < algos->data.sequence.items.top; a++) {
+            yaml_node_t *an = node(L, *a);
+            mpbd_config *c = &e->configs[e->num_configs++];
+            char name[512];
+            if (scalar(an) == NULL || scalar(an)[0] == '\0') {
+                free(planner);
+                return fail_at(L, an, "an algorithm must be a name");
+            }
+            c->planner = strdup(planner);
+            c->algorithm = strdup(scalar(an));
+            c->runs = runs;
+            snprintf(name, sizeof name, "%s/%s%s%s", planner, scalar(an),
+                     suffix ? "#" : "", suffix ? suffix : "");
+            c->name = strdup(name);
+            if (!c->planner || !c->algorithm || !c->name ||
+                load_params(L, c, get(L, m, "params")) != 0 ||
+                (c->params_text = params_text(c->params, c->num_params)) == NULL) {
+                free(planner);
+                return fail_at(L, an, "out of memory");
+            }
+            for (mpbd_config *o = e->configs; o < c; o++)
+                if (strcmp(o->name, c->name) == 0) {
+                    free(planner);
+                    return fail_at(L, an, "planner configuration '%s' appears "
+                                   "twice (give one a 'name')", c->name);
+                }
+        }
+        free(planner);
+    }
+    return 0;
+}
+
+static char *dir_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    size_t n = slash ? (size_t)(slash - path + 1) : 0;
+    char *d = malloc(n + 1);
+    if (d) {
+        memcpy(d, path, n);
+        d[n] = '\0';
+    }
+    return d;
+}
+
+mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen)
+{
+    static const char *const top_keys[] = {"experiment", "robot", "scenes",
+                                           "planners", NULL};
+    loader L = {.path = path, .err = err, .errlen = errlen};
+    yaml_parser_t parser;
+    mpbd_experiment *e = calloc(1, sizeof *e);
+    size_t len = 0;
+    int have_doc = 0;
+
+    if (e == NULL) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        return NULL;
+    }
+    if ((e->text = slurp(path, &len)) == NULL) {
+        snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
+        goto fail;
+    }
+    if (strlen(e->text) != len) {
+        snprintf(err, errlen, "%s: not a text file (contains a NUL byte)", path);
+        goto fail;
+    }
+    e->file = strdup(path);
+    L.dir = dir_of(path);
+    if (e->file == NULL || L.dir == NULL) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        goto fail;
+    }
+    mpb_hash_hex(e->text, len, e->hash);
+
+    yaml_parser_initialize(&parser);
+    yaml_parser_set_input_string(&parser, (const unsigned char *)e->text, len);
+    if (!yaml_parser_load(&parser, &L.doc)) {
+        snprintf(err, errlen, "%s:%lu:%lu: YAML: %s", path,
+                 (unsigned long)parser.problem_mark.line + 1,
+                 (unsigned long)parser.problem_mark.column + 1,
+                 parser.problem ? parser.problem : "syntax error");
+        yaml_parser_delete(&parser);
+        goto fail;
+    }
+    yaml_parser_delete(&parser);
+    have_doc = 1;
+
+    yaml_node_t *root = yaml_document_get_root_node(&L.doc);
+    if (root == NULL || root->type != YAML_MAPPING_NODE) {
+        fail_at(&L, root, "expected a mapping with experiment, robot, scenes "
+                          "and planners");
+        goto fail;
+    }
+    if (only_keys(&L, root, top_keys) != 0 || load_settings(&L, e, root) != 0 ||
+        load_scenes(&L, e, root) != 0 || load_planners(&L, e, root) != 0)
+        goto fail;
+
+    yaml_document_delete(&L.doc);
+    free(L.dir);
+    return e;
+fail:
+    if (have_doc)
+        yaml_document_delete(&L.doc);
+    free(L.dir);
+    mpbd_experiment_free(e);
+    return NULL;
+}
+
+void mpbd_experiment_free(mpbd_experiment *e)
+{
+    if (e == NULL)
+        return;
+    for (int i = 0; i < e->num_scenes; i++) {
+        mpbd_scene *s = &e->scenes[i];
+        free(s->name);
+        free(s->robot_format);
+        free(s->robot);
+        free(s->scene_format);
+        free(s->scene);
+        mpb_world_close(s->world);
+    }
+    for (int i = 0; i < e->num_queries; i++) {
+        free(e->queries[i].name);
+        free(e->queries[i].start);
+        free(e->queries[i].goal);
+    }
+    for (int i = 0; i < e->num_configs; i++) {
+        mpbd_config *c = &e->configs[i];
+        free(c->name);
+        free(c->planner);
+        free(c->algorithm);
+        for (int p = 0; p < c->num_params; p++) {
+            free(c->params[p].key);
+            free(c->params[p].value);
+        }
+        free(c->params);
+        free(c->params_text);
+    }
+    for (int j = 0; j < e->num_joints && e->joint_names; j++)
+        free(e->joint_names[j]);
+    free(e->joint_names);
+    free(e->wraps);
+    free(e->scenes);
+    free(e->queries);
+    free(e->configs);
+    free(e->name);
+    free(e->file);
+    free(e->text);
+    free(e);
+}
+
+/* splitmix64: a well-mixed 64-bit function of the run's place. */
+static uint64_t mix(uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,
+                      int repetition)
+{
+    uint64_t h = mix(e->seed);
+    h = mix(h ^ (uint64_t)config);
+    h = mix(h ^ (uint64_t)query);
+    h = mix(h ^ (uint64_t)repetition);
+    /* Keep it positive and within 31 bits: every planner's RNG takes it. */
+    return (int64_t)(h & 0x7fffffff);
+}

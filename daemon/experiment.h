@@ -1,0 +1,77 @@
+/*
+ * experiment.h - an experiment file, read and checked: the robot, the scenes
+ * and their queries, the planner configurations, runs and time limit. The
+ * format is described in docs/experiment-format.md.
+ */
+#ifndef MPBD_EXPERIMENT_H
+#define MPBD_EXPERIMENT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "mpbench/mpbench.h"
+#include "mpb_param_t.h"
+
+typedef struct mpbd_config {
+    char       *name;        /* "ompl/RRTConnect", unique in the experiment */
+    char       *planner;     /* planner family, as planners announce it */
+    char       *algorithm;
+    mpb_param_t *params;      /* as sent in requests */
+    int         num_params;
+    char       *params_text; /* "key=value;key=value", for the database */
+    int         runs;        /* per query */
+    int64_t     db_id;
+} mpbd_config;
+
+typedef struct mpbd_scene {
+    char      *name;
+    char      *robot_format, *robot, robot_hash[MPB_HASH_SIZE];
+    char      *scene_format, *scene, scene_hash[MPB_HASH_SIZE];
+    mpb_world *world;        /* for verification */
+    int64_t    db_id;
+} mpbd_scene;
+
+typedef struct mpbd_query {
+    char   *name;
+    int     scene;           /* index into scenes */
+    double *start;           /* num_joints values */
+    double *goal;            /* num_joints values (joint-space goal) */
+    double  tolerance;
+    int64_t db_id;
+} mpbd_query;
+
+typedef struct mpbd_experiment {
+    char   *name;
+    char   *file;            /* path as given */
+    char   *text;            /* the file's bytes */
+    char    hash[MPB_HASH_SIZE];
+    int     runs;            /* default runs per query and configuration */
+    double  time_limit;      /* s */
+    uint64_t seed;
+
+    int     num_joints;
+    char  **joint_names;
+    unsigned char *wraps;    /* per joint, nonzero for continuous joints */
+
+    mpbd_scene  *scenes;
+    int          num_scenes;
+    mpbd_query  *queries;
+    int          num_queries;
+    mpbd_config *configs;
+    int          num_configs;
+} mpbd_experiment;
+
+/*
+ * Read and check the experiment file at path. On failure returns NULL and
+ * writes one line to err: "<file>:<line>:<column>: <what is wrong>".
+ * Free the result with mpbd_experiment_free().
+ */
+mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen);
+
+void mpbd_experiment_free(mpbd_experiment *e);
+
+/* The seed of one run, derived from the experiment seed and the run's place. */
+int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,
+                      int repetition);
+
+#endif

@@ -1,0 +1,116 @@
+/*
+ * planners.c - the planner processes the daemon knows, learnt from their
+ * announcements alone; one that stays silent too long is gone.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon.h"
+#include "mpb_planner_announce_t.h"
+
+static mpbd_planner *find(mpbd *d, const char *id)
+{
+    for (int i = 0; i < d->num_planners; i++)
+        if (strcmp(d->planners[i].id, id) == 0)
+            return &d->planners[i];
+    return NULL;
+}
+
+static void set_offer(mpbd_planner *p, const mpb_planner_announce_t *m)
+{
+    for (int i = 0; i < p->num_algorithms; i++)
+        free(p->algorithms[i]);
+    free(p->algorithms);
+    free(p->name);
+    p->num_algorithms = 0;
+    p->name = strdup(m->name);
+    p->algorithms = calloc((size_t)m->num_algorithms + 1, sizeof *p->algorithms);
+    if (p->algorithms == NULL || p->name == NULL)
+        return;
+    for (int i = 0; i < m->num_algorithms; i++)
+        if ((p->algorithms[p->num_algorithms] = strdup(m->algorithms[i])))
+            p->num_algorithms++;
+}
+
+static void on_announce(const lcm_recv_buf_t *rbuf, const char *channel,
+                        const mpb_planner_announce_t *m, void *user)
+{
+    mpbd *d = user;
+    mpbd_planner *p;
+    double now = mpb_monotonic_s();
+    (void)rbuf;
+    (void)channel;
+
+    if (!mpb_planner_id_is_valid(m->planner_id) || m->name[0] == '\0' ||
+        m->num_algorithms < 0) {
+        d->count.rejected++;
+        return;
+    }
+    if ((p = find(d, m->planner_id)) == NULL) {
+        if (d->num_planners == d->cap_planners) {
+            int cap = d->cap_planners ? d->cap_planners * 2 : 8;
+            mpbd_planner *np = realloc(d->planners, (size_t)cap * sizeof *np);
+            if (np == NULL)
+                return;
+            d->planners = np;
+            d->cap_planners = cap;
+        }
+        p = &d->planners[d->num_planners++];
+        memset(p, 0, sizeof *p);
+        strcpy(p->id, m->planner_id);
+        set_offer(p, m);
+        mpbd_log("planner %s joined (%s, %d algorithm%s)", p->id, m->language,
+                 m->num_algorithms, m->num_algorithms == 1 ? "" : "s");
+    } else if (p->gone) {
+        set_offer(p, m);
+        p->gone = 0;
+        mpbd_log("planner %s is back", p->id);
+    }
+    p->capacity = m->capacity > 0 ? m->capacity : 1;
+    p->heartbeat_s = m->heartbeat_ms > 0 ? m->heartbeat_ms / 1000.0 : 0.5;
+    p->last_seen = now;
+}
+
+void mpbd_planners_subscribe(mpbd *d)
+{
+    mpb_planner_announce_t_subscribe(d->lcm, MPB_CHANNEL_ANNOUNCE, on_announce, d);
+}
+
+int mpbd_planners_expire(mpbd *d, double now)
+{
+    int went = 0;
+    for (int i = 0; i < d->num_planners; i++) {
+        mpbd_planner *p = &d->planners[i];
+        double silence = now - p->last_seen;
+        if (!p->gone && silence > MPBD_PLANNER_MISSED * p->heartbeat_s + 0.5) {
+            p->gone = 1;
+            went++;
+            mpbd_log("planner %s is gone (silent for %.1f s)", p->id, silence);
+        }
+    }
+    return went;
+}
+
+int mpbd_planner_offers(const mpbd_planner *p, const char *name,
+                        const char *algorithm)
+{
+    if (p->name == NULL || strcmp(p->name, name) != 0)
+        return 0;
+    for (int i = 0; i < p->num_algorithms; i++)
+        if (strcmp(p->algorithms[i], algorithm) == 0)
+            return 1;
+    return 0;
+}
+
+void mpbd_planners_free(mpbd *d)
+{
+    for (int i = 0; i < d->num_planners; i++) {
+        for (int a = 0; a < d->planners[i].num_algorithms; a++)
+            free(d->planners[i].algorithms[a]);
+        free(d->planners[i].algorithms);
+        free(d->planners[i].name);
+    }
+    free(d->planners);
+    d->planners = NULL;
+    d->num_planners = d->cap_planners = 0;
+}

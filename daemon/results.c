@@ -1,0 +1,246 @@
+/*
+ * results.c - a planner's answer, checked and measured: is it for a run we
+ * sent, to that planner? Does each stage solve the query (mpbench's own
+ * verdict, the planner's claim kept beside it)? Then its metrics, and one
+ * row per run, stage, metric and value in the store.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon.h"
+#include "mpb_plan_result_t.h"
+#include "mpb_run_ack_t.h"
+
+/* Metrics per stage; keep in step with docs/metrics.md. */
+enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS, M_COUNT };
+
+/* Per stage, what the store needs, owned here for the length of a result. */
+typedef struct stage_work {
+    mpb_stage_record rec;
+    mpb_named        metrics[M_COUNT];
+    mpb_verdict      verdict;
+} stage_work;
+
+static void remember(mpbd *d, const char *uid)
+{
+    memcpy(d->recent[d->recent_next], uid, MPB_RUN_ID_SIZE);
+    d->recent_next = (d->recent_next + 1) % (int)(sizeof d->recent / sizeof d->recent[0]);
+}
+
+static int recently_done(const mpbd *d, const char *uid)
+{
+    for (size_t i = 0; i < sizeof d->recent / sizeof d->recent[0]; i++)
+        if (strcmp(d->recent[i], uid) == 0)
+            return 1;
+    return 0;
+}
+
+static void reject(mpbd *d, const char *why, const mpb_plan_result_t *m)
+{
+    d->count.rejected++;
+    /* A flood of strays must not become a flood of log lines. */
+    if (d->count.rejected <= 10 || d->count.rejected % 1000 == 0)
+        mpbd_log("rejected result %.32s from %.96s: %s (%ld rejected so far)",
+                 m->run_id, m->planner_id, why, d->count.rejected);
+}
+
+/* Check and measure one stage. */
+static void measure_stage(const mpbd *d, const mpbd_query *q,
+                          const mpb_stage_t *st, stage_work *w)
+{
+    const mpbd_experiment *e = d->exp;
+    mpb_world *world = e->scenes[q->scene].world;
+    mpb_goal goal = {.kind = MPB_GOAL_JOINTS, .joints = q->goal,
+                     .joint_tolerance = q->tolerance};
+    int nm = 0;
+
+    w->rec.name = st->name;
+    w->rec.time = st->time;
+    w->rec.verdict_segment = -1;
+    if (st->num_joints != e->num_joints || st->num_waypoints < 0 ||
+        (int64_t)st->num_waypoints * st->num_joints != st->num_values) {
+        w->verdict.code = MPB_VERDICT_WRONG_SIZE;
+        snprintf(w->verdict.detail, sizeof w->verdict.detail,
+                 "stage '%.40s' has %d waypoints of %d joints in %d values; "
+                 "the robot has %d joints", st->name, st->num_waypoints,
+                 st->num_joints, st->num_values, e->num_joints);
+        w->verdict.segment = -1;
+    } else {
+        w->rec.num_waypoints = st->num_waypoints;
+        w->rec.num_joints = st->num_joints;
+        w->rec.waypoints = st->waypoints;
+        mpb_verify_path(world, q->start, q->tolerance, &goal, st->waypoints,
+                        st->num_waypoints, st->num_joints, d->resolution,
+                        &w->verdict);
+    }
+    w->rec.valid = w->verdict.code == MPB_VERDICT_VALID;
+    w->rec.verdict = mpb_verdict_name(w->verdict.code);
+    w->rec.verdict_detail = w->verdict.detail;
+    w->rec.verdict_segment = w->verdict.segment;
+
+    w->metrics[nm++] = (mpb_named){"time", st->time};
+    w->metrics[nm++] = (mpb_named){"waypoints", w->rec.num_waypoints};
+    /* Lengths of a path with NaN in it mean nothing: leave them out. */
+    if (w->rec.waypoints != NULL && w->verdict.code != MPB_VERDICT_NOT_FINITE) {
+        w->metrics[nm++] = (mpb_named){"path_length",
+            mpb_path_length(st->waypoints, st->num_waypoints, st->num_joints,
+                            e->wraps)};
+        w->metrics[nm++] = (mpb_named){"smoothness",
+            mpb_smoothness(st->waypoints, st->num_waypoints, st->num_joints,
+                           e->wraps)};
+    }
+    w->rec.metrics = w->metrics;
+    w->rec.num_metrics = nm;
+}
+
+static int count_progress(const mpb_plan_result_t *m)
+{
+    int n = 0;
+    for (int i = 0; i < m->num_progress; i++)
+        n += m->progress[i].num_values;
+    return n;
+}
+
+/* Store the run; returns what mpb_store_run_finish() returns. */
+static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
+                        double now)
+{
+    const mpbd_query *q = &d->exp->queries[f->run.query];
+    int np = count_progress(m);
+    stage_work *works = calloc((size_t)m->num_stages + 1, sizeof *works);
+    mpb_stage_record *stages = calloc((size_t)m->num_stages + 1, sizeof *stages);
+    mpb_named *values = calloc((size_t)m->num_values + 1, sizeof *values);
+    mpb_progress_record *prog = calloc((size_t)np + 1, sizeof *prog);
+    int rc = MPB_ENOMEM;
+
+    if (!works || !stages || !values || !prog)
+        goto done;
+    for (int i = 0; i < m->num_stages; i++) {
+        measure_stage(d, q, &m->stages[i], &works[i]);
+        stages[i] = works[i].rec;
+    }
+    for (int i = 0; i < m->num_values; i++)
+        values[i] = (mpb_named){m->values[i].name, m->values[i].value};
+    np = 0;
+    for (int i = 0; i < m->num_progress; i++)
+        for (int k = 0; k < m->progress[i].num_values; k++)
+            prog[np++] = (mpb_progress_record){m->progress[i].time,
+                                               m->progress[i].values[k].name,
+                                               m->progress[i].values[k].value};
+
+    int claimed = m->status == MPB_PLAN_RESULT_T_SOLVED;
+    int final_valid = m->num_stages > 0 && stages[m->num_stages - 1].valid;
+    int in_time = isfinite(m->time_total) && m->time_total <= d->exp->time_limit;
+    mpb_run_record rec = {
+        .run_id = f->run.id,
+        .run_uid = f->run.uid,
+        .planner_id = m->planner_id,
+        .status = mpb_status_name(m->status),
+        .message = m->message,
+        .claimed_success = claimed,
+        .success = claimed && final_valid && in_time,
+        .time_total = m->time_total,
+        .time_raw = m->time_total - m->time_other,
+        .time_other = m->time_other,
+        .wall_time = now - f->sent_at,
+        .num_stages = m->num_stages,
+        .stages = stages,
+        .num_values = m->num_values,
+        .values = values,
+        .num_progress = np,
+        .progress = prog,
+    };
+    rc = mpb_store_run_finish(d->store, &rec);
+    if (rc == MPB_OK) {
+        d->count.done++;
+        if (rec.success)
+            d->count.succeeded++;
+        else
+            d->count.failed++;
+        if (d->verbose)
+            mpbd_log("run %lld %s: %s%s", (long long)f->run.id,
+                     d->exp->configs[f->run.config].name, rec.status,
+                     rec.success ? "" : " (not a success)");
+    }
+done:
+    free(works);
+    free(stages);
+    free(values);
+    free(prog);
+    return rc;
+}
+
+static void on_result(const lcm_recv_buf_t *rbuf, const char *channel,
+                      const mpb_plan_result_t *m, void *user)
+{
+    mpbd *d = user;
+    mpbd_flight *f;
+    double now = mpb_monotonic_s();
+    (void)rbuf;
+    (void)channel;
+
+    if (!mpb_run_id_is_valid(m->run_id)) {
+        reject(d, "malformed run id", m);
+        return;
+    }
+    if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
+        if (recently_done(d, m->run_id)) {
+            mpbd_ack(d, m->run_id, MPB_RUN_ACK_T_RESULT_STORED);
+            return;
+        }
+        reject(d, "no such run in flight", m);
+        mpbd_ack(d, m->run_id, MPB_RUN_ACK_T_RESULT_REJECTED);
+        return;
+    }
+    if (strcmp(d->planners[f->planner].id, m->planner_id) != 0) {
+        /* Not acknowledged: the planner the run went to may still answer. */
+        reject(d, "sent by a planner the run did not go to", m);
+        return;
+    }
+    int rc = store_result(d, f, m, now);
+    if (rc == MPB_OK || rc == MPB_EEXISTS) {
+        d->planners[f->planner].runs_done++;
+        remember(d, f->run.uid);
+        mpbd_ack_after_commit(d, f->run.uid);
+        mpbd_flight_remove(d, f);
+    } else if (rc == MPB_ENOTFOUND) {
+        reject(d, "not the run's current attempt", m);
+        mpbd_flight_remove(d, f);
+    } else {
+        /* The store failed: keep the flight, the planner will re-send. */
+        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+    }
+}
+
+void mpbd_results_subscribe(mpbd *d)
+{
+    mpb_plan_result_t_subscribe(d->lcm, MPB_CHANNEL_RESULT, on_result, d);
+}
+
+int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
+{
+    mpb_run_record rec = {
+        .run_id = f->run.id,
+        .run_uid = f->run.uid,
+        .planner_id = d->planners[f->planner].id,
+        .status = "crash",
+        .message = why,
+        .time_total = NAN, .time_raw = NAN, .time_other = NAN,
+        .wall_time = mpb_monotonic_s() - f->sent_at,
+    };
+    int rc = mpb_store_run_finish(d->store, &rec);
+    if (rc == MPB_OK) {
+        d->count.done++;
+        d->count.crashed++;
+        mpbd_log("run %lld %s on %s: crash: %s", (long long)f->run.id,
+                 d->exp->configs[f->run.config].name,
+                 d->planners[f->planner].id, why);
+    } else if (rc != MPB_EEXISTS) {
+        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+    }
+    remember(d, f->run.uid);
+    mpbd_flight_remove(d, f);
+    return rc;
+}

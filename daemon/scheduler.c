@@ -1,0 +1,326 @@
+/*
+ * scheduler.c - which run goes to which planner, and what happens to a run
+ * on the network: resent until the planner acknowledges it, recorded as
+ * crashed if its planner goes silent or its deadline passes.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon.h"
+#include "mpb_plan_request_t.h"
+#include "mpb_run_ack_t.h"
+
+/* Index of the configuration / query with this database id, or -1. */
+static int config_index(const mpbd *d, int64_t db_id)
+{
+    for (int i = 0; i < d->exp->num_configs; i++)
+        if (d->exp->configs[i].db_id == db_id)
+            return i;
+    return -1;
+}
+
+static int query_index(const mpbd *d, int64_t db_id)
+{
+    for (int i = 0; i < d->exp->num_queries; i++)
+        if (d->exp->queries[i].db_id == db_id)
+            return i;
+    return -1;
+}
+
+static int push_pending(mpbd *d, int config, const mpbd_run *run)
+{
+    /* Arrays grow by doubling; the length is a power of two or zero. */
+    int n = d->pending_len[config];
+    if ((n & (n - 1)) == 0) {
+        mpbd_run *a = realloc(d->pending[config],
+                              (size_t)(n ? 2 * n : 16) * sizeof *a);
+        if (a == NULL)
+            return MPB_ENOMEM;
+        d->pending[config] = a;
+    }
+    d->pending[config][n] = *run;
+    d->pending_len[config] = n + 1;
+    d->total_pending++;
+    return MPB_OK;
+}
+
+static int load_row(void *ud, const mpb_run_row *row)
+{
+    mpbd *d = ud;
+    mpbd_run run = {.id = row->id, .seed = row->seed};
+    run.config = config_index(d, row->planner_config_id);
+    run.query = query_index(d, row->query_id);
+    if (run.config < 0 || run.query < 0)
+        return MPB_ENOTFOUND;
+    /* A run sent before a restart keeps its id, so that its result, if the
+     * planner still delivers it, is accepted once. */
+    if (row->sent && row->run_uid && mpb_run_id_is_valid(row->run_uid))
+        memcpy(run.uid, row->run_uid, MPB_RUN_ID_SIZE);
+    return push_pending(d, run.config, &run);
+}
+
+int mpbd_scheduler_load(mpbd *d)
+{
+    int n = d->exp->num_configs;
+    d->pending = calloc((size_t)n, sizeof *d->pending);
+    d->pending_len = calloc((size_t)n, sizeof *d->pending_len);
+    d->pending_head = calloc((size_t)n, sizeof *d->pending_head);
+    if (!d->pending || !d->pending_len || !d->pending_head)
+        return MPB_ENOMEM;
+    int rc = mpb_store_runs_unfinished(d->store, d->experiment_id, load_row, d);
+    if (rc != MPB_OK)
+        return rc;
+    /* Runs already sent before a restart go first. */
+    for (int c = 0; c < n; c++) {
+        mpbd_run *a = d->pending[c];
+        int front = 0;
+        for (int i = 0; i < d->pending_len[c]; i++)
+            if (a[i].uid[0] != '\0') {
+                mpbd_run t = a[i];
+                memmove(&a[front + 1], &a[front], (size_t)(i - front) * sizeof *a);
+                a[front++] = t;
+            }
+    }
+    return MPB_OK;
+}
+
+static int publish_request(mpbd *d, const mpbd_flight *f)
+{
+    const mpbd_experiment *e = d->exp;
+    const mpbd_config *c = &e->configs[f->run.config];
+    const mpbd_query *q = &e->queries[f->run.query];
+    const mpbd_scene *s = &e->scenes[q->scene];
+    const mpbd_planner *p = &d->planners[f->planner];
+    char channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
+    mpb_plan_request_t rq = {
+        .utime = mpb_utime_now(),
+        .run_id = (char *)f->run.uid,
+        .planner_id = (char *)p->id,
+        .algorithm = c->algorithm,
+        .num_params = (int16_t)c->num_params,
+        .params = c->params,
+        .time_limit = e->time_limit,
+        .seed = f->run.seed,
+        .robot_format = s->robot_format,
+        .robot_hash = (char *)s->robot_hash,
+        .robot = s->robot,
+        .scene_format = s->scene_format,
+        .scene_hash = (char *)s->scene_hash,
+        .scene = s->scene,
+        .num_joints = (int16_t)e->num_joints,
+        .joint_names = e->joint_names,
+        .start = q->start,
+        .goal = {
+            .kind = MPB_GOAL_T_JOINTS,
+            .num_joints = (int16_t)e->num_joints,
+            .joints = q->goal,
+            .joint_tolerance = q->tolerance,
+            .link = "",
+        },
+    };
+    if (mpb_request_channel(p->id, channel, sizeof channel) != MPB_OK)
+        return MPB_EINVAL;
+    return mpb_plan_request_t_publish(d->lcm, channel, &rq) == 0 ? MPB_OK
+                                                                  : MPB_ELCM;
+}
+
+static mpbd_flight *add_flight(mpbd *d)
+{
+    if (d->num_flights == d->cap_flights) {
+        int cap = d->cap_flights ? d->cap_flights * 2 : 16;
+        mpbd_flight *a = realloc(d->flights, (size_t)cap * sizeof *a);
+        if (a == NULL)
+            return NULL;
+        d->flights = a;
+        d->cap_flights = cap;
+    }
+    return &d->flights[d->num_flights++];
+}
+
+/* Send the next run of config c to planner p; 0 if there was none. */
+static int send_next(mpbd *d, int c, int p, double now)
+{
+    mpbd_run run;
+    mpbd_flight *f;
+    if (d->pending_head[c] >= d->pending_len[c])
+        return 0;
+    run = d->pending[c][d->pending_head[c]];
+    if (run.uid[0] == '\0' && mpb_run_id_new(run.uid) != MPB_OK) {
+        mpbd_log("cannot draw a random run id");
+        return 0;
+    }
+    if (mpb_store_run_sent(d->store, run.id, run.uid, d->planners[p].id)
+        != MPB_OK) {
+        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+        return 0;
+    }
+    if ((f = add_flight(d)) == NULL)
+        return 0;
+    d->pending_head[c]++;
+    d->total_pending--;
+    *f = (mpbd_flight){.run = run, .planner = p, .sent_at = now,
+                       .last_send = now, .sends = 1,
+                       .deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S};
+    d->planners[p].active++;
+    if (publish_request(d, f) != MPB_OK)
+        mpbd_log("could not publish run %s (will resend)", run.uid);
+    return 1;
+}
+
+static void log_waiting(mpbd *d, double now)
+{
+    if (now - d->last_wait_log < 5.0)
+        return;
+    for (int c = 0; c < d->exp->num_configs; c++) {
+        const mpbd_config *cf = &d->exp->configs[c];
+        int offered = 0;
+        if (d->pending_head[c] >= d->pending_len[c])
+            continue;
+        for (int p = 0; p < d->num_planners && !offered; p++)
+            offered = !d->planners[p].gone &&
+                      mpbd_planner_offers(&d->planners[p], cf->planner,
+                                          cf->algorithm);
+        if (!offered) {
+            mpbd_log("waiting for a planner '%s' offering '%s' (%d runs)",
+                     cf->planner, cf->algorithm,
+                     d->pending_len[c] - d->pending_head[c]);
+            d->last_wait_log = now;
+        }
+    }
+}
+
+int mpbd_scheduler_dispatch(mpbd *d, double now)
+{
+    int sent = 0, nc = d->exp->num_configs;
+    if (d->total_pending == 0)
+        return 0;
+    for (int p = 0; p < d->num_planners; p++) {
+        mpbd_planner *pl = &d->planners[p];
+        while (!pl->gone && pl->active < pl->capacity) {
+            int got = 0;
+            for (int k = 0; k < nc && !got; k++) {
+                int c = (d->next_config + k) % nc;
+                if (mpbd_planner_offers(pl, d->exp->configs[c].planner,
+                                        d->exp->configs[c].algorithm))
+                    got = send_next(d, c, p, now);
+                if (got)
+                    d->next_config = (c + 1) % nc;
+            }
+            if (!got)
+                break;
+            sent++;
+        }
+    }
+    if (d->total_pending > 0)
+        log_waiting(d, now);
+    return sent;
+}
+
+mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid)
+{
+    for (int i = 0; i < d->num_flights; i++)
+        if (strcmp(d->flights[i].run.uid, uid) == 0)
+            return &d->flights[i];
+    return NULL;
+}
+
+void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
+{
+    mpbd_planner *p = &d->planners[f->planner];
+    if (p->active > 0)
+        p->active--;
+    *f = d->flights[--d->num_flights];
+}
+
+void mpbd_scheduler_tick(mpbd *d, double now)
+{
+    mpbd_planners_expire(d, now);
+    for (int i = 0; i < d->num_flights;) {
+        mpbd_flight *f = &d->flights[i];
+        const mpbd_planner *p = &d->planners[f->planner];
+        if (p->gone) {
+            mpbd_record_crash(d, f, "planner went silent during the run");
+            continue; /* f now holds another flight */
+        }
+        if (now > f->deadline) {
+            mpbd_record_crash(d, f, "no result within the time limit and grace");
+            continue;
+        }
+        if (!f->acked && f->sends < MPBD_REQUEST_MAX_SENDS &&
+            now - f->last_send > MPBD_REQUEST_RESEND_S) {
+            f->last_send = now;
+            f->sends++;
+            publish_request(d, f);
+        }
+        i++;
+    }
+}
+
+int mpbd_scheduler_done(const mpbd *d)
+{
+    return d->total_pending == 0 && d->num_flights == 0;
+}
+
+void mpbd_scheduler_free(mpbd *d)
+{
+    for (int c = 0; d->pending && c < d->exp->num_configs; c++)
+        free(d->pending[c]);
+    free(d->pending);
+    free(d->pending_len);
+    free(d->pending_head);
+    free(d->flights);
+    free(d->acks);
+}
+
+void mpbd_ack(mpbd *d, const char *run_uid, int kind)
+{
+    mpb_run_ack_t ack = {
+        .utime = mpb_utime_now(),
+        .run_id = (char *)run_uid,
+        .sender_id = d->daemon_id,
+        .kind = (int8_t)kind,
+    };
+    mpb_run_ack_t_publish(d->lcm, MPB_CHANNEL_ACK, &ack);
+}
+
+int mpbd_ack_after_commit(mpbd *d, const char *run_uid)
+{
+    if (d->num_acks == d->cap_acks) {
+        int cap = d->cap_acks ? d->cap_acks * 2 : 64;
+        char (*a)[MPB_RUN_ID_SIZE] = realloc(d->acks, (size_t)cap * sizeof *a);
+        if (a == NULL)
+            return MPB_ENOMEM;
+        d->acks = a;
+        d->cap_acks = cap;
+    }
+    memcpy(d->acks[d->num_acks++], run_uid, MPB_RUN_ID_SIZE);
+    return MPB_OK;
+}
+
+void mpbd_acks_flush(mpbd *d)
+{
+    for (int i = 0; i < d->num_acks; i++)
+        mpbd_ack(d, d->acks[i], MPB_RUN_ACK_T_RESULT_STORED);
+    d->num_acks = 0;
+}
+
+/* A planner acknowledged a request: stop re-sending it. */
+static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
+                   const mpb_run_ack_t *m, void *user)
+{
+    mpbd *d = user;
+    mpbd_flight *f;
+    (void)rbuf;
+    (void)channel;
+    if (m->kind != MPB_RUN_ACK_T_REQUEST_RECEIVED || !mpb_run_id_is_valid(m->run_id))
+        return;
+    if ((f = mpbd_flight_find(d, m->run_id)) != NULL &&
+        strcmp(d->planners[f->planner].id, m->sender_id) == 0)
+        f->acked = 1;
+}
+
+void mpbd_scheduler_subscribe(mpbd *d)
+{
+    mpb_run_ack_t_subscribe(d->lcm, MPB_CHANNEL_ACK, on_ack, d);
+}

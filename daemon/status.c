@@ -1,0 +1,43 @@
+/* status.c - the daemon's state on MPB_STATUS, for lcm-spy and `mpb status`. */
+#include <stdlib.h>
+
+#include "daemon.h"
+#include "mpb_daemon_status_t.h"
+
+void mpbd_status_publish(mpbd *d, const char *state, double now)
+{
+    mpb_planner_seen_t *seen = calloc((size_t)d->num_planners + 1, sizeof *seen);
+    double elapsed = now - d->started;
+    mpb_daemon_status_t st = {
+        .utime = mpb_utime_now(),
+        .daemon_id = d->daemon_id,
+        .experiment = d->exp->name,
+        .state = (char *)state,
+        .runs_total = d->runs_total,
+        .runs_done = (int32_t)(d->runs_total - d->total_pending - d->num_flights),
+        .runs_succeeded = (int32_t)d->count.succeeded,
+        .runs_failed = (int32_t)d->count.failed,
+        .runs_crashed = (int32_t)d->count.crashed,
+        .runs_in_flight = d->num_flights,
+        .rejected_messages = (int32_t)d->count.rejected,
+        .elapsed_s = elapsed,
+        .runs_per_s = elapsed > 0 ? d->count.done / elapsed : 0,
+        .num_planners = 0,
+        .planners = seen,
+    };
+    for (int i = 0; seen && i < d->num_planners; i++) {
+        const mpbd_planner *p = &d->planners[i];
+        if (p->gone)
+            continue;
+        seen[st.num_planners++] = (mpb_planner_seen_t){
+            .planner_id = (char *)p->id,
+            .name = p->name ? p->name : "",
+            .num_active = (int16_t)p->active,
+            .runs_done = p->runs_done,
+            .last_seen_s = now - p->last_seen,
+        };
+    }
+    mpb_daemon_status_t_publish(d->lcm, MPB_CHANNEL_STATUS, &st);
+    free(seen);
+    d->last_status = now;
+}

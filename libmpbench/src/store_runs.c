@@ -1,0 +1,217 @@
+/*
+ * store_runs.c - the life of a run in the database: pending, sent (with the
+ * attempt's random id), done with its stages, metrics and values.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "store_internal.h"
+
+int mpb_store_runs_unfinished(mpb_store *s, int64_t experiment_id,
+                              int (*cb)(void *ud, const mpb_run_row *row),
+                              void *ud)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT id, planner_config_id, query_id, repetition, seed, attempts,"
+        " state, run_uid FROM runs WHERE experiment_id = ? AND state != 'done'"
+        " ORDER BY id");
+    int rc, stop = 0;
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    while (!stop && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        mpb_run_row row = {
+            .id = sqlite3_column_int64(st, 0),
+            .planner_config_id = sqlite3_column_int64(st, 1),
+            .query_id = sqlite3_column_int64(st, 2),
+            .repetition = sqlite3_column_int(st, 3),
+            .seed = sqlite3_column_int64(st, 4),
+            .attempts = sqlite3_column_int(st, 5),
+            .sent = strcmp((const char *)sqlite3_column_text(st, 6), "sent") == 0,
+            .run_uid = (const char *)sqlite3_column_text(st, 7),
+        };
+        stop = cb(ud, &row);
+    }
+    sqlite3_finalize(st);
+    if (stop)
+        return stop;
+    return rc == SQLITE_DONE ? MPB_OK : mpb__store_db_fail(s, "list runs");
+}
+
+int mpb_store_run_counts(mpb_store *s, int64_t experiment_id,
+                         mpb_run_counts *out)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT count(*), count(*) FILTER (WHERE state = 'done'),"
+        " count(*) FILTER (WHERE success = 1),"
+        " count(*) FILTER (WHERE status = 'crash')"
+        " FROM runs WHERE experiment_id = ?");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    int rc = sqlite3_step(st);
+    if (rc == SQLITE_ROW) {
+        out->total = sqlite3_column_int(st, 0);
+        out->done = sqlite3_column_int(st, 1);
+        out->succeeded = sqlite3_column_int(st, 2);
+        out->crashed = sqlite3_column_int(st, 3);
+    }
+    sqlite3_finalize(st);
+    return rc == SQLITE_ROW ? MPB_OK : mpb__store_db_fail(s, "count runs");
+}
+
+int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
+                       const char *planner_id)
+{
+    sqlite3_stmt *st = mpb__store_stmt(s, MPB__ST_RUN_SENT);
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, run_id);
+    sqlite3_bind_text(st, 2, run_uid, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 3, planner_id, -1, SQLITE_STATIC);
+    int rc = sqlite3_step(st);
+    sqlite3_reset(st);
+    if (rc != SQLITE_DONE)
+        return mpb__store_db_fail(s, "mark run sent");
+    return sqlite3_changes(s->db) ? MPB_OK
+        : mpb__store_fail(s, MPB_EEXISTS, "run %lld is already done",
+                          (long long)run_id);
+}
+
+static int write_stage(mpb_store *s, int64_t run_id, int idx,
+                       const mpb_stage_record *sg)
+{
+    sqlite3_stmt *st = mpb__store_stmt(s, MPB__ST_STAGE_INSERT);
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, run_id);
+    sqlite3_bind_int(st, 2, idx);
+    sqlite3_bind_text(st, 3, sg->name, -1, SQLITE_STATIC);
+    sqlite3_bind_double(st, 4, sg->time);
+    sqlite3_bind_int(st, 5, sg->num_waypoints);
+    sqlite3_bind_int(st, 6, sg->num_joints);
+    /* Waypoints as raw float64 (this machine's order, little-endian on
+     * every platform mpbench runs on): compact and exact. */
+    if (sg->waypoints != NULL && sg->num_waypoints > 0)
+        sqlite3_bind_blob(st, 7, sg->waypoints,
+                          (int)(sizeof(double) * (size_t)sg->num_waypoints *
+                                (size_t)sg->num_joints), SQLITE_STATIC);
+    sqlite3_bind_int(st, 8, sg->valid);
+    sqlite3_bind_text(st, 9, sg->verdict ? sg->verdict : "", -1, SQLITE_STATIC);
+    if (sg->verdict_detail)
+        sqlite3_bind_text(st, 10, sg->verdict_detail, -1, SQLITE_STATIC);
+    sqlite3_bind_int(st, 11, sg->verdict_segment);
+    if (sqlite3_step(st) != SQLITE_DONE)
+        return mpb__store_db_fail(s, "store stage");
+
+    for (int i = 0; i < sg->num_metrics; i++) {
+        sqlite3_stmt *m = mpb__store_stmt(s, MPB__ST_METRIC_INSERT);
+        if (m == NULL)
+            return MPB_EDB;
+        sqlite3_bind_int64(m, 1, run_id);
+        sqlite3_bind_text(m, 2, sg->name, -1, SQLITE_STATIC);
+        sqlite3_bind_text(m, 3, sg->metrics[i].name, -1, SQLITE_STATIC);
+        sqlite3_bind_double(m, 4, sg->metrics[i].value);
+        if (sqlite3_step(m) != SQLITE_DONE)
+            return mpb__store_db_fail(s, "store metric");
+    }
+    return MPB_OK;
+}
+
+static int write_values(mpb_store *s, const mpb_run_record *r)
+{
+    for (int i = 0; i < r->num_values; i++) {
+        sqlite3_stmt *st = mpb__store_stmt(s, MPB__ST_VALUE_INSERT);
+        if (st == NULL)
+            return MPB_EDB;
+        sqlite3_bind_int64(st, 1, r->run_id);
+        sqlite3_bind_text(st, 2, r->values[i].name, -1, SQLITE_STATIC);
+        sqlite3_bind_double(st, 3, r->values[i].value);
+        if (sqlite3_step(st) != SQLITE_DONE)
+            return mpb__store_db_fail(s, "store planner value");
+    }
+    for (int i = 0; i < r->num_progress; i++) {
+        sqlite3_stmt *st = mpb__store_stmt(s, MPB__ST_PROGRESS_INSERT);
+        if (st == NULL)
+            return MPB_EDB;
+        sqlite3_bind_int64(st, 1, r->run_id);
+        sqlite3_bind_int(st, 2, i);
+        sqlite3_bind_double(st, 3, r->progress[i].time);
+        sqlite3_bind_text(st, 4, r->progress[i].name, -1, SQLITE_STATIC);
+        sqlite3_bind_double(st, 5, r->progress[i].value);
+        if (sqlite3_step(st) != SQLITE_DONE)
+            return mpb__store_db_fail(s, "store progress");
+    }
+    return MPB_OK;
+}
+
+/* The body of mpb_store_run_finish, inside a transaction. */
+static int finish_run(mpb_store *s, const mpb_run_record *r)
+{
+    sqlite3_stmt *st = mpb__store_stmt(s, MPB__ST_RUN_FINISH);
+    const mpb_stage_record *last =
+        r->num_stages > 0 ? &r->stages[r->num_stages - 1] : NULL;
+    int rc;
+
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, r->run_id);
+    sqlite3_bind_text(st, 2, r->run_uid, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 3, r->planner_id, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 4, r->status, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 5, r->message ? r->message : "", -1, SQLITE_STATIC);
+    sqlite3_bind_int(st, 6, r->claimed_success);
+    if (last) {
+        sqlite3_bind_int(st, 7, last->valid);
+        sqlite3_bind_text(st, 8, last->verdict, -1, SQLITE_STATIC);
+        sqlite3_bind_text(st, 14, last->name, -1, SQLITE_STATIC);
+    }
+    sqlite3_bind_int(st, 9, r->success);
+    sqlite3_bind_double(st, 10, r->time_total);
+    sqlite3_bind_double(st, 11, r->time_raw);
+    sqlite3_bind_double(st, 12, r->time_other);
+    sqlite3_bind_double(st, 13, r->wall_time);
+    if (sqlite3_step(st) != SQLITE_DONE)
+        return mpb__store_db_fail(s, "finish run");
+    if (sqlite3_changes(s->db) == 0) {
+        /* Either already done (a repeated result) or not this attempt. */
+        sqlite3_stmt *q = mpb__store_prepare(s,
+            "SELECT state = 'done' FROM runs WHERE id = ? AND run_uid = ?");
+        if (q == NULL)
+            return MPB_EDB;
+        sqlite3_bind_int64(q, 1, r->run_id);
+        sqlite3_bind_text(q, 2, r->run_uid, -1, SQLITE_STATIC);
+        rc = sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int(q, 0)
+                 ? mpb__store_fail(s, MPB_EEXISTS, "run %lld is already done",
+                                   (long long)r->run_id)
+                 : mpb__store_fail(s, MPB_ENOTFOUND,
+                                   "run %lld has no attempt %s",
+                                   (long long)r->run_id, r->run_uid);
+        sqlite3_finalize(q);
+        return rc;
+    }
+    for (int i = 0; i < r->num_stages; i++)
+        if ((rc = write_stage(s, r->run_id, i, &r->stages[i])) != MPB_OK)
+            return rc;
+    return write_values(s, r);
+}
+
+int mpb_store_run_finish(mpb_store *s, const mpb_run_record *r)
+{
+    /* Inside the caller's transaction a savepoint keeps a failed run from
+     * leaving half its rows; alone, the run is its own transaction. */
+    const char *open = s->in_tx ? "SAVEPOINT run_finish" : "BEGIN IMMEDIATE";
+    const char *ok = s->in_tx ? "RELEASE run_finish" : "COMMIT";
+    const char *undo = s->in_tx ? "ROLLBACK TO run_finish; RELEASE run_finish"
+                                : "ROLLBACK";
+    if (sqlite3_exec(s->db, open, NULL, NULL, NULL) != SQLITE_OK)
+        return mpb__store_db_fail(s, "begin run");
+    int rc = finish_run(s, r);
+    if (rc == MPB_OK) {
+        if (sqlite3_exec(s->db, ok, NULL, NULL, NULL) != SQLITE_OK)
+            rc = mpb__store_db_fail(s, "commit run");
+    }
+    if (rc != MPB_OK)
+        sqlite3_exec(s->db, undo, NULL, NULL, NULL);
+    return rc;
+}

@@ -1,0 +1,74 @@
+# lib.sh - shared by the integration tests (and tools/demo.sh): a private
+# network namespace for LCM, and starting and stopping processes.
+#
+# Sourced, not run. Expects MPB_BUILD (the build tree).
+
+# Re-run the calling script inside a new network namespace with only a
+# loopback interface and a multicast route on it, so that LCM traffic never
+# leaves this process tree. As root: `unshare -n`; otherwise a user
+# namespace (`unshare -rn`) when the kernel allows it.
+mpb_enter_netns() {
+    if [ -z "${MPB_IN_NETNS:-}" ]; then
+        export MPB_IN_NETNS=1
+        if [ "$(id -u)" -eq 0 ]; then
+            exec unshare -n sh "$@"
+        else
+            exec unshare -rn sh "$@"
+        fi
+    fi
+    ip link set lo up
+    ip route add 224.0.0.0/4 dev lo
+}
+
+MPB_PIDS=""
+
+# Start a command in the background, its output to a log file; remember it.
+mpb_spawn() {
+    log=$1; shift
+    "$@" >"$log" 2>&1 &
+    MPB_PIDS="$MPB_PIDS $!"
+}
+
+mpb_stop_all() {
+    for pid in $MPB_PIDS; do
+        kill "$pid" 2>/dev/null || true
+    done
+    for pid in $MPB_PIDS; do
+        wait "$pid" 2>/dev/null || true
+    done
+    MPB_PIDS=""
+}
+
+# Run a command with a time limit in seconds; its exit status, or 124.
+mpb_timeout() {
+    secs=$1; shift
+    timeout --kill-after=5 "$secs" "$@"
+}
+
+FAILS=0
+PASSES=0
+
+# check NAME CONDITION...: evaluate a test condition, count and report it.
+check() {
+    name=$1; shift
+    if "$@"; then
+        PASSES=$((PASSES + 1))
+        echo "ok - $name"
+    else
+        FAILS=$((FAILS + 1))
+        echo "not ok - $name"
+    fi
+}
+
+# Compare two integers: eq A B
+eq() { [ "$1" -eq "$2" ]; }
+ge() { [ "$1" -ge "$2" ]; }
+
+# One value from the database.
+q() { sqlite3 "$DB" "$1"; }
+
+mpb_finish() {
+    mpb_stop_all
+    echo "$PASSES passed, $FAILS failed"
+    [ "$FAILS" -eq 0 ]
+}

@@ -1,0 +1,80 @@
+#!/bin/sh
+# A malformed experiment file: one line naming the file and what is wrong,
+# a non-zero exit, and a database left exactly as it was.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+DB=$work/test.db
+daemon=$MPB_BUILD/daemon/mpbenchd
+
+# A database with something in it already.
+sqlite3 "$DB" "CREATE TABLE keep(x); INSERT INTO keep VALUES (42);"
+sum_before=$(md5sum <"$DB")
+
+# bad_case FILE EXPECTED_MESSAGE_PART: the file must be refused like this.
+bad_case() {
+    file=$work/$1
+    out=$("$daemon" -d "$DB" "$file" 2>&1)
+    rc=$?
+    check "$1: exits non-zero" test "$rc" -ne 0
+    check "$1: one line" eq "$(printf '%s\n' "$out" | wc -l)" 1
+    check "$1: names the file and says '$2'" \
+        sh -c "printf '%s' \"\$1\" | grep -q \"^mpbenchd: $file:.*$2\"" _ "$out"
+    check "$1: database untouched" test "$(md5sum <"$DB")" = "$sum_before"
+}
+
+base=$MPB_SOURCE/scenes/planar
+cat >"$work/yaml_syntax.yaml" <<EOT
+experiment: {name: x, time_limit: 1
+EOT
+bad_case yaml_syntax.yaml "YAML"
+
+cat >"$work/wrong_size.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, file: $base/arm3.robot}
+scenes:
+  - name: s
+    format: planar
+    file: $base/pillars.scene
+    queries:
+      - {name: q, start: [0, 0], goal: [1, 0, 0]}
+planners:
+  - {planner: null, algorithms: [straight_line]}
+EOT
+bad_case wrong_size.yaml ":8:.*start has 2 values, the robot has 3 joints"
+
+cat >"$work/typo.yaml" <<EOT
+experiment: {name: x, time_limt: 1}
+EOT
+bad_case typo.yaml "unknown key 'time_limt'"
+
+cat >"$work/bad_runs.yaml" <<EOT
+experiment: {name: x, runs: -3, time_limit: 1}
+EOT
+bad_case bad_runs.yaml "runs must be a positive integer"
+
+cat >"$work/missing_file.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, file: nosuch.robot}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case missing_file.yaml "cannot read robot file"
+
+cat >"$work/bad_robot.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, text: "joint a 0 1\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case bad_robot.yaml "robot line 1"
+
+out=$("$daemon" -d "$DB" "$work/nosuch.yaml" 2>&1)
+check "a missing experiment file is refused" test $? -ne 0
+check "... with a message naming it" \
+    sh -c "printf '%s' \"\$1\" | grep -q 'nosuch.yaml: cannot read'" _ "$out"
+check "database still untouched" test "$(md5sum <"$DB")" = "$sum_before"
+
+mpb_finish

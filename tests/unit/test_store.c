@@ -1,0 +1,246 @@
+/* test_store.c - the SQLite store: schema, idempotent writes, the life of a
+ * run, and refusing what it must refuse. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+#include <sqlite3.h>
+
+#include "mpbench/mpbench.h"
+
+typedef struct fixture {
+    char path[64];
+    mpb_store *s;
+    int64_t exp, cfg, scene, query;
+} fixture;
+
+static const char *const joint_names[] = {"a", "b"};
+static const double start[] = {0.0, 0.5};
+static const double goal[] = {1.0, -0.25};
+
+static int setup(void **state)
+{
+    fixture *f = calloc(1, sizeof *f);
+    strcpy(f->path, "/tmp/mpb_test_store_XXXXXX");
+    int fd = mkstemp(f->path);
+    close(fd);
+    unlink(f->path);
+    assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
+
+    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 2, 1.5};
+    assert_int_equal(mpb_store_experiment_create(f->s, &e, &f->exp), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(f->s, f->exp, "p/A", "p", "A",
+                                                  "", &f->cfg), MPB_OK);
+    mpb_scene_info sc = {"scene", "planar", "rh", "robot", "planar", "sh", "s"};
+    assert_int_equal(mpb_store_scene_add(f->s, f->exp, &sc, &f->scene), MPB_OK);
+    mpb_query_info q = {"q", 2, joint_names, start, MPB_GOAL_JOINTS, goal, 0.01};
+    assert_int_equal(mpb_store_query_add(f->s, f->scene, &q, &f->query), MPB_OK);
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    fixture *f = *state;
+    char wal[80];
+    mpb_store_close(f->s);
+    unlink(f->path);
+    snprintf(wal, sizeof wal, "%s-wal", f->path);
+    unlink(wal);
+    snprintf(wal, sizeof wal, "%s-shm", f->path);
+    unlink(wal);
+    free(f);
+    return 0;
+}
+
+/* One integer from the database through a separate connection, as a user
+ * at the sqlite3 prompt would see it. */
+static long long peek(const fixture *f, const char *sql)
+{
+    sqlite3 *db;
+    sqlite3_stmt *st;
+    long long v = -1;
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_prepare_v2(db, sql, -1, &st, NULL), SQLITE_OK);
+    if (sqlite3_step(st) == SQLITE_ROW)
+        v = sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+    return v;
+}
+
+static void adding_twice_returns_the_same_row(void **state)
+{
+    fixture *f = *state;
+    int64_t id;
+    assert_int_equal(mpb_store_planner_config_add(f->s, f->exp, "p/A", "p", "A",
+                                                  "", &id), MPB_OK);
+    assert_true(id == f->cfg);
+    mpb_query_info q = {"q", 2, joint_names, start, MPB_GOAL_JOINTS, goal, 0.01};
+    assert_int_equal(mpb_store_query_add(f->s, f->scene, &q, &id), MPB_OK);
+    assert_true(id == f->query);
+    for (int i = 0; i < 2; i++)
+        assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 0, 9),
+                         MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM runs"), 1);
+    assert_int_equal(peek(f, "SELECT count(*) FROM planner_configs"), 1);
+}
+
+static void queries_are_stored_exactly_and_readably(void **state)
+{
+    fixture *f = *state;
+    assert_int_equal(peek(f, "SELECT start = '0 0.5' AND goal_joints = '1 -0.25'"
+                             " AND joint_names = 'a b' FROM queries"), 1);
+}
+
+static int collect(void *ud, const mpb_run_row *row)
+{
+    mpb_run_row *out = ud;
+    out[out[0].attempts++ + 1] = *row;
+    out[out[0].attempts].run_uid = NULL;
+    return 0;
+}
+
+static void a_run_is_finished_once(void **state)
+{
+    fixture *f = *state;
+    mpb_run_row rows[4] = {{0}};
+    double wp[] = {0.0, 0.5, 1.0, -0.25};
+    mpb_named metrics[] = {{"path_length", 1.25}, {"smoothness", 0.0}};
+    mpb_stage_record stage = {"raw", 0.01, 2, 2, wp, 1, "valid", "", -1,
+                              2, metrics};
+    mpb_named values[] = {{"graph states", 17}};
+    mpb_run_record r = {
+        .run_id = 0, .run_uid = "0123456789abcdef0123456789abcdef",
+        .planner_id = "p@h:1", .status = "solved", .message = "",
+        .claimed_success = 1, .success = 1, .time_total = 0.02,
+        .time_raw = 0.015, .time_other = 0.005, .wall_time = 0.03,
+        .num_stages = 1, .stages = &stage, .num_values = 1, .values = values,
+    };
+    mpb_run_counts c;
+
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 0, 9), MPB_OK);
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 1, 10), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows), MPB_OK);
+    assert_int_equal(rows[0].attempts, 2);
+    assert_int_equal(rows[1].repetition, 0);
+    assert_true(rows[1].seed == 9);
+    assert_int_equal(rows[1].sent, 0);
+    r.run_id = rows[1].id;
+
+    /* Not sent yet: no attempt has this id. */
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_ENOTFOUND);
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, r.run_uid, "p@h:1"), MPB_OK);
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_OK);
+    /* The same result again: nothing written. */
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_EEXISTS);
+    /* A run that is done cannot be sent again. */
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, "ffffffffffffffffffffffffffffffff",
+                                        "p@h:1"), MPB_EEXISTS);
+
+    assert_int_equal(peek(f, "SELECT count(*) FROM stages"), 1);
+    assert_int_equal(peek(f, "SELECT count(*) FROM metrics"), 2);
+    assert_int_equal(peek(f, "SELECT count(*) FROM planner_values"), 1);
+    assert_int_equal(peek(f, "SELECT length(waypoints) FROM stages"), 32);
+    assert_int_equal(peek(f, "SELECT attempts FROM runs WHERE state = 'done'"), 1);
+    assert_int_equal(peek(f, "SELECT path_length * 100 FROM results"), 125);
+
+    assert_int_equal(mpb_store_run_counts(f->s, f->exp, &c), MPB_OK);
+    assert_int_equal(c.total, 2);
+    assert_int_equal(c.done, 1);
+    assert_int_equal(c.succeeded, 1);
+
+    rows[0].attempts = 0;
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows), MPB_OK);
+    assert_int_equal(rows[0].attempts, 1);
+    assert_int_equal(rows[1].repetition, 1);
+}
+
+static void a_failed_write_leaves_no_half_run(void **state)
+{
+    fixture *f = *state;
+    mpb_named metrics[] = {{"path_length", 1.0}, {NULL, 2.0}}; /* NULL name: NOT NULL fails */
+    mpb_stage_record stage = {"raw", 0.01, 0, 2, NULL, 0, "empty", "", -1,
+                              2, metrics};
+    mpb_run_record r = {
+        .run_uid = "00000000000000000000000000000001", .planner_id = "p",
+        .status = "solved", .num_stages = 1, .stages = &stage,
+    };
+    mpb_run_row rows[2] = {{0}};
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 0, 1), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows), MPB_OK);
+    r.run_id = rows[1].id;
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, r.run_uid, "p"), MPB_OK);
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_EDB);
+    assert_non_null(strstr(mpb_store_errmsg(f->s), "metric"));
+    assert_int_equal(peek(f, "SELECT count(*) FROM stages"), 0);
+    assert_int_equal(peek(f, "SELECT count(*) FROM metrics"), 0);
+    assert_int_equal(peek(f, "SELECT state = 'sent' FROM runs"), 1);
+}
+
+static void resuming_finds_the_unfinished_experiment(void **state)
+{
+    fixture *f = *state;
+    int64_t id;
+    assert_int_equal(mpb_store_experiment_find_unfinished(f->s, "exp", "h1", &id), MPB_OK);
+    assert_true(id == f->exp);
+    assert_int_equal(mpb_store_experiment_find_unfinished(f->s, "exp", "h2", &id),
+                     MPB_ENOTFOUND);
+    assert_int_equal(mpb_store_experiment_finish(f->s, f->exp), MPB_OK);
+    assert_int_equal(mpb_store_experiment_find_unfinished(f->s, "exp", "h1", &id),
+                     MPB_ENOTFOUND);
+    assert_int_equal(mpb_store_experiment_latest(f->s, &id), MPB_OK);
+    assert_true(id == f->exp);
+}
+
+static void refuses_what_is_not_its_database(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/mpb_test_other_XXXXXX";
+    int fd = mkstemp(path);
+    mpb_store *s;
+    assert_int_equal(write(fd, "not a database at all, just some text", 37), 37);
+    close(fd);
+    assert_int_not_equal(mpb_store_open(path, 1, &s), MPB_OK);
+    assert_non_null(strstr(mpb_store_errmsg(s), path));
+    mpb_store_close(s);
+    assert_int_not_equal(mpb_store_open("/nonexistent/dir/x.db", 0, &s), MPB_OK);
+    assert_non_null(strstr(mpb_store_errmsg(s), "/nonexistent/dir/x.db"));
+    mpb_store_close(s);
+    mpb_store_close(NULL); /* harmless */
+    unlink(path);
+}
+
+static void refuses_a_newer_schema(void **state)
+{
+    fixture *f = *state;
+    sqlite3 *db;
+    mpb_store *s;
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "UPDATE meta SET value = '99' WHERE key ="
+                                      " 'schema_version'", NULL, NULL, NULL),
+                     SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(mpb_store_open(f->path, 0, &s), MPB_EUNSUPPORTED);
+    assert_non_null(strstr(mpb_store_errmsg(s), "99"));
+    mpb_store_close(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(adding_twice_returns_the_same_row, setup, teardown),
+        cmocka_unit_test_setup_teardown(queries_are_stored_exactly_and_readably, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_run_is_finished_once, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_failed_write_leaves_no_half_run, setup, teardown),
+        cmocka_unit_test_setup_teardown(resuming_finds_the_unfinished_experiment, setup, teardown),
+        cmocka_unit_test(refuses_what_is_not_its_database),
+        cmocka_unit_test_setup_teardown(refuses_a_newer_schema, setup, teardown),
+    };
+    return cmocka_run_group_tests_name("store", tests, NULL, NULL);
+}
