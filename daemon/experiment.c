@@ -307,6 +307,25 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
     return 0;
 }
 
+/* A start or goal must be a state the robot can be in: within its joint
+ * limits and free of collision. Otherwise no planner can succeed. */
+static int check_state(loader *L, const mpbd_experiment *e, int scene,
+                       const double *q, const char *what, yaml_node_t *where)
+{
+    mpb_world *w = e->scenes[scene].world;
+    for (int j = 0; j < e->num_joints; j++) {
+        double lo, hi;
+        mpb_world_joint_limits(w, j, &lo, &hi);
+        if (!mpb_world_joint_is_continuous(w, j) && (q[j] < lo || q[j] > hi))
+            return fail_at(L, where, "%s: joint %s = %g is outside its limits "
+                           "[%g, %g]", what, e->joint_names[j], q[j], lo, hi);
+    }
+    if (mpb_world_in_collision(w, q))
+        return fail_at(L, where, "%s is in collision in scene '%s'", what,
+                       e->scenes[scene].name);
+    return 0;
+}
+
 static int load_queries(loader *L, mpbd_experiment *e, int scene,
                         yaml_node_t *list)
 {
@@ -338,6 +357,9 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
             return -1;
         if ((q->goal = parse_vector(L, get(L, m, "goal") ? get(L, m, "goal") : m,
                                     "goal", e->num_joints)) == NULL)
+            return -1;
+        if (check_state(L, e, scene, q->start, "start", get(L, m, "start")) != 0 ||
+            check_state(L, e, scene, q->goal, "goal", get(L, m, "goal")) != 0)
             return -1;
         if ((n = get(L, m, "tolerance")) != NULL &&
             (parse_double(L, n, "tolerance", &q->tolerance) != 0 ||

@@ -71,6 +71,20 @@ planners: [{planner: null, algorithms: [a]}]
 EOT
 bad_case bad_robot.yaml "robot line 1"
 
+cat >"$work/goal_in_collision.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, file: $base/arm3.robot}
+scenes:
+  - name: s
+    format: planar
+    file: $base/pillars.scene
+    queries:
+      - {name: up, start: [0, 0, 0], goal: [1.5708, 0, 0]}
+planners:
+  - {planner: null, algorithms: [straight_line]}
+EOT
+bad_case goal_in_collision.yaml ":8:.*goal is in collision in scene 's'"
+
 out=$("$daemon" -d "$DB" "$work/nosuch.yaml" 2>&1)
 check "a missing experiment file is refused" test $? -ne 0
 check "... with a message naming it" \

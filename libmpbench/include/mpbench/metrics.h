@@ -19,24 +19,41 @@ extern "C" {
  */
 typedef const unsigned char *mpb_joint_wrap;
 
-/* Joint-space difference b - a of one joint, the short way round if it wraps. */
+/*
+ * Joint-space difference b - a of one joint; if it wraps, the short way
+ * round, in (-pi, pi] (so a difference of exactly pi is +pi).
+ */
 double mpb_joint_delta(double a, double b, int wraps);
 
 /*
  * l_p: the sum of the Euclidean joint-space lengths of the segments (rad,
- * or m for prismatic joints). 0 for fewer than two waypoints.
+ * or m for prismatic joints). 0 for fewer than two waypoints; NaN if a
+ * value is NaN.
  */
 double mpb_path_length(const double *wp, int num_waypoints, int num_joints,
                        mpb_joint_wrap continuous);
 
 /*
  * kappa': (1/n) * sum over i = 2..n of alpha_i^2, where alpha_i is the angle
- * (rad) between segments i-1 and i of the path's n segments. Zero-length
- * segments have no direction: they are dropped first, and n counts the
- * segments that remain. 0 for a path of fewer than two segments.
+ * (rad, in [0, pi]) between segments i-1 and i of the path's n segments,
+ * taken as joint-space vectors (continuous joints the short way round).
+ * Zero-length segments (joint-space norm <= 1e-12) have no direction: they
+ * are dropped first, and n counts the segments that remain. 0 for a path of
+ * fewer than two such segments; NaN if a value is NaN.
  */
 double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
                       mpb_joint_wrap continuous);
+
+struct mpb_world;
+
+/*
+ * d_n: the mean over the waypoints of mpb_world_clearance() (m), the
+ * smallest distance from the robot to the environment at each waypoint.
+ * NaN when w or wp is NULL, num_waypoints < 1 or num_joints is not the
+ * world's; +INFINITY in an empty scene.
+ */
+double mpb_path_clearance(struct mpb_world *w, const double *wp,
+                          int num_waypoints, int num_joints);
 
 #ifdef __cplusplus
 }

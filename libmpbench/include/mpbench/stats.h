@@ -23,15 +23,22 @@ typedef struct mpb_summary {
 
 /*
  * Summarise n samples. x is not modified (a sorted copy is made). With n == 0
- * every field but n is NaN. Returns MPB_OK or MPB_ENOMEM.
+ * every field but n is NaN. Returns MPB_OK, MPB_ENOMEM, or MPB_EINVAL (out
+ * NULL, n < 0, x NULL with n > 0, or a sample is NaN: leave failed runs out
+ * rather than pass NaN).
  */
 int mpb_summarize(const double *x, int n, mpb_summary *out);
 
 /*
  * Accumulates samples group by group (a group is a query) and gives the
  * scene-level mean over all samples and the mean of the per-group standard
- * deviations, as the paper reports them. Groups with fewer than two samples
- * contribute a standard deviation of 0, as one deterministic run does.
+ * deviations, as the paper reports them. A group's standard deviation is
+ * the sample one (n - 1). Groups with one sample contribute a standard
+ * deviation of 0, as one deterministic run does; groups with none (ended
+ * with no sample added, e.g. a query with no successful run) do not count.
+ * Use: init; then per group, add each sample and end_group. A group still
+ * open when mean/stddev are read counts as if it had been ended. A NaN
+ * sample makes both results NaN.
  */
 typedef struct mpb_grouped {
     double sum;        /* over all samples */

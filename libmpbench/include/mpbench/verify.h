@@ -50,20 +50,47 @@ typedef enum mpb_verdict_code {
 
 typedef struct mpb_verdict {
     mpb_verdict_code code;
-    int  segment;          /* first failing segment (or waypoint), -1 if none */
-    char detail[160];      /* one line, e.g. "segment 3 collides at s=0.42" */
+    int  segment;          /* COLLISION: the first colliding segment, 0-based,
+                              segment i joining waypoints i and i+1;
+                              NOT_FINITE, START, GOAL, JOINT_LIMIT: the
+                              waypoint, 0-based; -1 otherwise */
+    char detail[160];      /* one line, e.g. "segment 3 collides at s=0.42
+                              (waypoints 3-4)"; names the joint where one is
+                              at fault */
 } mpb_verdict;
 
 /* Lower-case name of a verdict code ("collision"); never NULL. */
 const char *mpb_verdict_name(mpb_verdict_code code);
 
 /*
- * Check a path against its query in world w: non-empty and finite, starts
- * at start (within start_tolerance per joint), ends in goal, every waypoint
- * inside the joint limits, and collision-free when each segment is
- * interpolated with steps of at most resolution (joint-space, Euclidean).
- * Fills *out and returns MPB_OK, whatever the verdict; a negative code only
- * for bad arguments.
+ * Check a path against its query in world w, in the order of the verdict
+ * list, the first failure winning:
+ *   EMPTY        num_waypoints == 0;
+ *   WRONG_SIZE   num_joints is not the world's;
+ *   NOT_FINITE   a value is NaN or infinite;
+ *   START        some joint of waypoint 0 is more than start_tolerance from
+ *                start;
+ *   GOAL         MPB_GOAL_JOINTS: some joint of the last waypoint is more
+ *                than goal->joint_tolerance from goal->joints;
+ *   JOINT_LIMIT  a waypoint value outside [lo, hi] (continuous joints have
+ *                no limits);
+ *   COLLISION    waypoint 0 collides, or a sample inside a segment does:
+ *                segment a->b of joint-space length L is sampled at
+ *                a + (s/k)(b - a), s = 1..k, k = max(1, ceil(L/resolution)),
+ *                so steps are at most resolution (Euclidean, rad or m);
+ *   UNSUPPORTED  the goal kind cannot be checked in this world. This is the
+ *                case of MPB_GOAL_POSE_REGION for now (no world computes
+ *                link poses yet): its GOAL check is skipped, the others run,
+ *                and a path that passes them all gets UNSUPPORTED.
+ * Differences of continuous joints (start, goal, interpolation) are taken
+ * the short way round (mpb_joint_delta). Comparisons are <= tolerance.
+ *
+ * Fills *out and returns MPB_OK, whatever the verdict. A negative code for
+ * bad arguments (MPB_EINVAL: NULL w/start/goal/out, NULL wp with waypoints,
+ * resolution not finite and > 0, a tolerance < 0 or NaN, a joint goal
+ * without joints, a resolution so fine a segment needs over 1e9 samples) or
+ * MPB_ENOMEM; *out (if not NULL) is then UNSUPPORTED with the reason in
+ * detail, never VALID.
  */
 int mpb_verify_path(struct mpb_world *w, const double *start,
                     double start_tolerance, const mpb_goal *goal,

@@ -8,13 +8,19 @@
  *             walking skeleton and of fast tests. Robot text, one item a line,
  *             '#' starts a comment:
  *                 base <x> <y>                 (m, optional, default 0 0)
- *                 link_radius <r>              (m, every link is a capsule)
- *                 joint <name> <lo> <hi> <length>
- *                 joint <name> continuous <length>
- *             Joint i is revolute about z, at the end of link i-1; link i
- *             runs from joint i to joint i+1 (or the tip). Scene text:
- *                 circle <cx> <cy> <r>
- *                 box <cx> <cy> <half_x> <half_y>      (axis-aligned)
+ *                 link_radius <r>              (m, required, >= 0; every
+ *                                               link is a capsule)
+ *                 joint <name> <lo> <hi> <length>  (rad, lo <= hi; m, > 0)
+ *                 joint <name> continuous <length>  (wraps; m, > 0)
+ *             At least one joint; names unique. Joint i is revolute about z,
+ *             at the end of link i-1 (joint 0 at the base); its angle adds to
+ *             the ones before it (q = 0 everywhere: the arm lies along +x);
+ *             link i runs from joint i to joint i+1 (or the tip). Scene text
+ *             (may be empty or NULL):
+ *                 circle <cx> <cy> <r>                 (r >= 0)
+ *                 box <cx> <cy> <half_x> <half_y>      (axis-aligned, >= 0)
+ *             Distances are exact (capsule to circle, capsule to box). The
+ *             planar arm has NO self-collision: links may cross each other.
  *   "urdf" + "moveit-scene" are to come (FCL, urdfdom, assimp).
  *
  * A world is not thread-safe; use one per thread.
@@ -33,8 +39,11 @@ typedef struct mpb_world mpb_world;
 /*
  * Build a world from the robot and scene texts. On success *out is a new
  * world, freed with mpb_world_close(). On failure *out is NULL, the return
- * is MPB_EPARSE / MPB_EUNSUPPORTED / MPB_ENOMEM, and err (if not NULL)
- * holds one line naming what is wrong and where ("robot line 3: ...").
+ * is MPB_EPARSE / MPB_EUNSUPPORTED / MPB_ENOMEM (MPB_EINVAL for a NULL
+ * format, robot text or out), and err (if not NULL) holds one line naming
+ * what is wrong and where ("robot line 3: joint needs ...", "scene line 2:
+ * ..."; lines count from 1). A robot_format / scene_format pair that no
+ * provider reads gives MPB_EUNSUPPORTED.
  */
 int mpb_world_open(const char *robot_format, const char *robot_text,
                    const char *scene_format, const char *scene_text,
@@ -42,7 +51,9 @@ int mpb_world_open(const char *robot_format, const char *robot_text,
 
 void mpb_world_close(mpb_world *w);
 
+/* Accessors; a joint out of range gives NULL / NaN limits / 0. */
 int         mpb_world_num_joints(const mpb_world *w);
+/* Owned by the world. */
 const char *mpb_world_joint_name(const mpb_world *w, int joint);
 /* Limits of a joint; a continuous joint reports -pi .. pi and wraps. */
 void        mpb_world_joint_limits(const mpb_world *w, int joint,
@@ -51,12 +62,18 @@ int         mpb_world_joint_is_continuous(const mpb_world *w, int joint);
 /* One byte per joint, nonzero where the joint wraps; owned by the world. */
 const unsigned char *mpb_world_joint_wraps(const mpb_world *w);
 
-/* 1 if the robot at q touches an obstacle (or itself), 0 if free. */
+/*
+ * 1 if the robot at q (num_joints values) touches an obstacle (or itself,
+ * where the format models that), 0 if free. Touching counts: in collision
+ * exactly when mpb_world_clearance() <= 0. A non-finite q counts as in
+ * collision; NULL w or q gives MPB_EINVAL (nonzero, so still "not free").
+ */
 int mpb_world_in_collision(mpb_world *w, const double *q);
 
 /*
  * Smallest distance (m) from the robot at q to any obstacle; 0 or less when
- * in collision, +INFINITY in an empty scene.
+ * in collision, +INFINITY in an empty scene, NaN for a non-finite q (or NULL
+ * w or q).
  */
 double mpb_world_clearance(mpb_world *w, const double *q);
 

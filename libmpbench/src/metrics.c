@@ -1,0 +1,108 @@
+/* metrics.c - path length, smoothness and clearance of one joint-space path. */
+#include "mpbench/mpbench.h"
+
+#include <math.h>
+#include <stddef.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* A segment at most this long (joint-space norm) has no direction. */
+#define MPB__ZERO_SEGMENT 1e-12
+
+double mpb_joint_delta(double a, double b, int wraps)
+{
+    double d = b - a;
+    if (!wraps)
+        return d;
+    /* remainder() gives [-pi, pi]; the short way round is (-pi, pi]. */
+    d = remainder(d, 2.0 * M_PI);
+    if (d <= -M_PI)
+        d += 2.0 * M_PI;
+    return d;
+}
+
+/* Joint-space length of the segment from waypoint i to i + 1. */
+static double segment(const double *wp, int i, int num_joints,
+                      mpb_joint_wrap continuous)
+{
+    const double *a = wp + (size_t)i * (size_t)num_joints;
+    const double *b = a + num_joints;
+    double sq = 0.0;
+    for (int j = 0; j < num_joints; j++) {
+        double d = mpb_joint_delta(a[j], b[j], continuous && continuous[j]);
+        sq += d * d;
+    }
+    return sqrt(sq);
+}
+
+double mpb_path_length(const double *wp, int num_waypoints, int num_joints,
+                       mpb_joint_wrap continuous)
+{
+    if (!wp || num_waypoints < 2 || num_joints < 1)
+        return 0.0;
+    double len = 0.0;
+    for (int i = 0; i + 1 < num_waypoints; i++)
+        len += segment(wp, i, num_joints, continuous);
+    return len;
+}
+
+/*
+ * The angle (rad) between segments a and b of lengths la, lb > 0, by Kahan's
+ * formula 2 atan2(|u - v|, |u + v|) on the unit vectors u = a/la, v = b/lb:
+ * accurate near 0 and pi, where acos of the dot product is not.
+ */
+static double segment_angle(const double *wp, int a, double la, int b,
+                            double lb, int num_joints,
+                            mpb_joint_wrap continuous)
+{
+    const double *a0 = wp + (size_t)a * (size_t)num_joints;
+    const double *b0 = wp + (size_t)b * (size_t)num_joints;
+    double dm = 0.0, dp = 0.0;
+    for (int j = 0; j < num_joints; j++) {
+        int wraps = continuous && continuous[j];
+        double u = mpb_joint_delta(a0[j], a0[j + num_joints], wraps) / la;
+        double v = mpb_joint_delta(b0[j], b0[j + num_joints], wraps) / lb;
+        dm += (u - v) * (u - v);
+        dp += (u + v) * (u + v);
+    }
+    return 2.0 * atan2(sqrt(dm), sqrt(dp));
+}
+
+double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
+                      mpb_joint_wrap continuous)
+{
+    if (!wp || num_waypoints < 3 || num_joints < 1)
+        return 0.0;
+    int n = 0;              /* segments longer than MPB__ZERO_SEGMENT */
+    int prev = -1;          /* the last of them */
+    double prev_len = 0.0, sum = 0.0;
+    for (int i = 0; i + 1 < num_waypoints; i++) {
+        double len = segment(wp, i, num_joints, continuous);
+        if (isnan(len))
+            return NAN;
+        if (!(len > MPB__ZERO_SEGMENT))
+            continue;
+        if (prev >= 0) {
+            double a = segment_angle(wp, prev, prev_len, i, len, num_joints,
+                                     continuous);
+            sum += a * a;
+        }
+        prev = i;
+        prev_len = len;
+        n++;
+    }
+    return n < 2 ? 0.0 : sum / n;
+}
+
+double mpb_path_clearance(mpb_world *w, const double *wp,
+                          int num_waypoints, int num_joints)
+{
+    if (!w || !wp || num_waypoints < 1 || num_joints != mpb_world_num_joints(w))
+        return NAN;
+    double sum = 0.0;
+    for (int i = 0; i < num_waypoints; i++)
+        sum += mpb_world_clearance(w, wp + (size_t)i * (size_t)num_joints);
+    return sum / num_waypoints;
+}

@@ -1,0 +1,110 @@
+/* stats.c - summaries of samples and the paper's per-query standard deviation. */
+#include "mpbench/mpbench.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int cmp_double(const void *pa, const void *pb)
+{
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return (a > b) - (a < b);
+}
+
+/* Quantile p of sorted x[0..n), type 7: x[h] interpolated, h = (n - 1) p. */
+static double quantile7(const double *x, int n, double p)
+{
+    double h = (n - 1) * p;
+    int lo = (int)floor(h);
+    if (lo >= n - 1)
+        return x[n - 1];
+    return x[lo] + (h - lo) * (x[lo + 1] - x[lo]);
+}
+
+int mpb_summarize(const double *x, int n, mpb_summary *out)
+{
+    if (!out || n < 0 || (n > 0 && !x))
+        return MPB_EINVAL;
+    for (int i = 0; i < n; i++)
+        if (isnan(x[i]))
+            return MPB_EINVAL;
+    out->n = n;
+    if (n == 0) {
+        out->mean = out->stddev = out->min = out->q1 = NAN;
+        out->median = out->q3 = out->max = NAN;
+        return MPB_OK;
+    }
+    double *s = malloc((size_t)n * sizeof *s);
+    if (!s)
+        return MPB_ENOMEM;
+    memcpy(s, x, (size_t)n * sizeof *s);
+    qsort(s, (size_t)n, sizeof *s, cmp_double);
+
+    double sum = 0.0;
+    for (int i = 0; i < n; i++)
+        sum += s[i];
+    double mean = sum / n;
+    double m2 = 0.0;            /* second pass: no cancellation */
+    for (int i = 0; i < n; i++)
+        m2 += (s[i] - mean) * (s[i] - mean);
+
+    out->mean = mean;
+    out->stddev = n < 2 ? 0.0 : sqrt(m2 / (n - 1));
+    out->min = s[0];
+    out->q1 = quantile7(s, n, 0.25);
+    out->median = quantile7(s, n, 0.5);
+    out->q3 = quantile7(s, n, 0.75);
+    out->max = s[n - 1];
+    free(s);
+    return MPB_OK;
+}
+
+void mpb_grouped_init(mpb_grouped *g)
+{
+    memset(g, 0, sizeof *g);
+}
+
+void mpb_grouped_add(mpb_grouped *g, double x)
+{
+    g->sum += x;
+    g->n++;
+    /* Welford: running mean and sum of squared deviations of the group. */
+    g->g_n++;
+    double d = x - g->g_mean;
+    g->g_mean += d / (double)g->g_n;
+    g->g_m2 += d * (x - g->g_mean);
+}
+
+/* Sample standard deviation of the open group; 0 below two samples. */
+static double group_sd(const mpb_grouped *g)
+{
+    return g->g_n < 2 ? 0.0 : sqrt(g->g_m2 / (double)(g->g_n - 1));
+}
+
+void mpb_grouped_end_group(mpb_grouped *g)
+{
+    if (g->g_n > 0) {
+        g->sd_sum += group_sd(g);
+        g->groups++;
+    }
+    g->g_n = 0;
+    g->g_mean = 0.0;
+    g->g_m2 = 0.0;
+}
+
+double mpb_grouped_mean(const mpb_grouped *g)
+{
+    return g->n > 0 ? g->sum / (double)g->n : NAN;
+}
+
+double mpb_grouped_stddev(const mpb_grouped *g)
+{
+    /* A group still open counts as if it had been ended. */
+    double sd_sum = g->sd_sum;
+    int groups = g->groups;
+    if (g->g_n > 0) {
+        sd_sum += group_sd(g);
+        groups++;
+    }
+    return groups > 0 ? sd_sum / groups : NAN;
+}

@@ -1,0 +1,187 @@
+/* world.c - the mpb_world handle: picks a provider by format, forwards to it. */
+#include "mpbench/mpbench.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "world_provider.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static const mpb__world_provider *const providers[] = {
+    &mpb__world_planar,
+};
+#define NUM_PROVIDERS ((int)(sizeof providers / sizeof providers[0]))
+
+void mpb__world_err(char *err, size_t errlen, const char *fmt, ...)
+{
+    if (!err || errlen == 0)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+}
+
+int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
+                         double lo, double hi, int continuous)
+{
+    if (w->num_joints == w->cap) {
+        int cap = w->cap ? 2 * w->cap : 8;
+        char **names = realloc(w->joint_names, (size_t)cap * sizeof *names);
+        if (!names)
+            return MPB_ENOMEM;
+        w->joint_names = names;
+        double *l = realloc(w->lo, (size_t)cap * sizeof *l);
+        if (!l)
+            return MPB_ENOMEM;
+        w->lo = l;
+        double *h = realloc(w->hi, (size_t)cap * sizeof *h);
+        if (!h)
+            return MPB_ENOMEM;
+        w->hi = h;
+        unsigned char *c = realloc(w->wraps, (size_t)cap);
+        if (!c)
+            return MPB_ENOMEM;
+        w->wraps = c;
+        w->cap = cap;
+    }
+    char *copy = malloc(namelen + 1);
+    if (!copy)
+        return MPB_ENOMEM;
+    memcpy(copy, name, namelen);
+    copy[namelen] = '\0';
+    int i = w->num_joints++;
+    w->joint_names[i] = copy;
+    w->wraps[i] = continuous ? 1 : 0;
+    w->lo[i] = continuous ? -M_PI : lo;
+    w->hi[i] = continuous ? M_PI : hi;
+    return MPB_OK;
+}
+
+int mpb_world_open(const char *robot_format, const char *robot_text,
+                   const char *scene_format, const char *scene_text,
+                   mpb_world **out, char *err, size_t errlen)
+{
+    mpb__world_err(err, errlen, "%s", "");
+    if (!out)
+        return MPB_EINVAL;
+    *out = NULL;
+    if (!robot_format || !robot_text || !scene_format) {
+        mpb__world_err(err, errlen, "world: robot format, robot text and "
+                       "scene format are required");
+        return MPB_EINVAL;
+    }
+    const mpb__world_provider *p = NULL;
+    for (int i = 0; i < NUM_PROVIDERS; i++)
+        if (strcmp(providers[i]->robot_format, robot_format) == 0)
+            p = providers[i];
+    if (!p) {
+        mpb__world_err(err, errlen, "world: robot format '%.40s' is not "
+                       "supported", robot_format);
+        return MPB_EUNSUPPORTED;
+    }
+    if (strcmp(p->scene_format, scene_format) != 0) {
+        mpb__world_err(err, errlen, "world: scene format '%.40s' does not go "
+                       "with robot format '%s' (expected '%s')", scene_format,
+                       p->robot_format, p->scene_format);
+        return MPB_EUNSUPPORTED;
+    }
+
+    mpb_world *w = calloc(1, sizeof *w);
+    if (!w) {
+        mpb__world_err(err, errlen, "world: out of memory");
+        return MPB_ENOMEM;
+    }
+    w->provider = p;
+    int rc = p->open(w, robot_text, scene_text ? scene_text : "", err, errlen);
+    if (rc == MPB_OK && w->num_joints < 1) {
+        mpb__world_err(err, errlen, "robot: no joints");
+        rc = MPB_EPARSE;
+    }
+    if (rc != MPB_OK) {
+        if (rc == MPB_ENOMEM)
+            mpb__world_err(err, errlen, "world: out of memory");
+        mpb_world_close(w);
+        return rc;
+    }
+    *out = w;
+    return MPB_OK;
+}
+
+void mpb_world_close(mpb_world *w)
+{
+    if (!w)
+        return;
+    if (w->provider && w->provider->close)
+        w->provider->close(w->impl);
+    for (int i = 0; i < w->num_joints; i++)
+        free(w->joint_names[i]);
+    free(w->joint_names);
+    free(w->lo);
+    free(w->hi);
+    free(w->wraps);
+    free(w);
+}
+
+int mpb_world_num_joints(const mpb_world *w)
+{
+    return w ? w->num_joints : 0;
+}
+
+const char *mpb_world_joint_name(const mpb_world *w, int joint)
+{
+    if (!w || joint < 0 || joint >= w->num_joints)
+        return NULL;
+    return w->joint_names[joint];
+}
+
+void mpb_world_joint_limits(const mpb_world *w, int joint,
+                            double *lo, double *hi)
+{
+    int ok = w && joint >= 0 && joint < w->num_joints;
+    if (lo)
+        *lo = ok ? w->lo[joint] : NAN;
+    if (hi)
+        *hi = ok ? w->hi[joint] : NAN;
+}
+
+int mpb_world_joint_is_continuous(const mpb_world *w, int joint)
+{
+    if (!w || joint < 0 || joint >= w->num_joints)
+        return 0;
+    return w->wraps[joint] != 0;
+}
+
+const unsigned char *mpb_world_joint_wraps(const mpb_world *w)
+{
+    return w ? w->wraps : NULL;
+}
+
+static int all_finite(const mpb_world *w, const double *q)
+{
+    for (int j = 0; j < w->num_joints; j++)
+        if (!isfinite(q[j]))
+            return 0;
+    return 1;
+}
+
+int mpb_world_in_collision(mpb_world *w, const double *q)
+{
+    if (!w || !q)
+        return MPB_EINVAL;
+    if (!all_finite(w, q))
+        return 1;
+    return w->provider->in_collision(w->impl, q) ? 1 : 0;
+}
+
+double mpb_world_clearance(mpb_world *w, const double *q)
+{
+    if (!w || !q || !all_finite(w, q))
+        return NAN;
+    return w->provider->clearance(w->impl, q);
+}

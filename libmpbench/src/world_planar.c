@@ -1,0 +1,471 @@
+/*
+ * world_planar.c - the "planar" world provider: a chain of revolute joints
+ * in the plane, capsule links, circle and axis-aligned box obstacles. Exact
+ * distances, no self-collision.
+ */
+#include "mpbench/mpbench.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "world_provider.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* ---- text: lines of whitespace-separated tokens, '#' to end of line ---- */
+
+#define MAX_TOKENS 8
+#define NAME_SHOWN 40           /* characters of a token quoted in errors */
+
+typedef struct token {
+    const char *p;
+    int         len;
+} token;
+
+typedef struct lines {
+    const char *cur;
+    int         lineno;
+} lines;
+
+static int is_space(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/*
+ * Read the next line with at least one token. Returns the number of tokens
+ * on it (only the first MAX_TOKENS are stored), 0 at the end of the text.
+ */
+static int next_line(lines *ls, token *t)
+{
+    while (*ls->cur) {
+        ls->lineno++;
+        int n = 0;
+        const char *s = ls->cur;
+        while (*s && *s != '\n' && *s != '#') {
+            while (is_space(*s))
+                s++;
+            if (!*s || *s == '\n' || *s == '#')
+                break;
+            const char *b = s;
+            while (*s && *s != '\n' && *s != '#' && !is_space(*s))
+                s++;
+            if (n < MAX_TOKENS) {
+                t[n].p = b;
+                t[n].len = (int)(s - b);
+            }
+            n++;
+        }
+        while (*s && *s != '\n')
+            s++;
+        ls->cur = *s ? s + 1 : s;
+        if (n > 0)
+            return n;
+    }
+    return 0;
+}
+
+static int tok_is(const token *t, const char *word)
+{
+    size_t n = strlen(word);
+    return (size_t)t->len == n && memcmp(t->p, word, n) == 0;
+}
+
+static int shown(const token *t)
+{
+    return t->len < NAME_SHOWN ? t->len : NAME_SHOWN;
+}
+
+/* A finite number filling the whole token. */
+static int tok_number(const token *t, double *v)
+{
+    char buf[64];
+    if (t->len <= 0 || t->len >= (int)sizeof buf)
+        return 0;
+    memcpy(buf, t->p, (size_t)t->len);
+    buf[t->len] = '\0';
+    char *end;
+    double x = strtod(buf, &end);
+    if (end != buf + t->len || !isfinite(x))
+        return 0;
+    *v = x;
+    return 1;
+}
+
+/* Parse tokens t[first..first+count) as numbers into v; 0 and a message if not. */
+static int numbers(const token *t, int first, int count, double *v,
+                   const char *what, int lineno, char *err, size_t errlen)
+{
+    for (int i = 0; i < count; i++) {
+        const token *k = &t[first + i];
+        if (!tok_number(k, &v[i])) {
+            mpb__world_err(err, errlen, "%s line %d: '%.*s' is not a number",
+                           what, lineno, shown(k), k->p);
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* ---- the planar world --------------------------------------------------- */
+
+typedef struct circle {
+    double cx, cy, r;
+} circle;
+
+typedef struct box {
+    double xmin, ymin, xmax, ymax;
+} box;
+
+typedef struct planar {
+    int     n;                  /* joints = links */
+    double  bx, by;             /* base */
+    double  radius;             /* link_radius */
+    double *length;             /* n */
+    double *xy;                 /* 2 (n + 1): scratch for forward kinematics */
+    circle *circles;
+    int     num_circles, cap_circles;
+    box    *boxes;
+    int     num_boxes, cap_boxes;
+} planar;
+
+static void planar_close(void *impl)
+{
+    planar *p = impl;
+    if (!p)
+        return;
+    free(p->length);
+    free(p->xy);
+    free(p->circles);
+    free(p->boxes);
+    free(p);
+}
+
+static int grow(void **arr, int *cap, int need, size_t size)
+{
+    if (need <= *cap)
+        return MPB_OK;
+    int c = *cap ? 2 * *cap : 8;
+    while (c < need)
+        c *= 2;
+    void *a = realloc(*arr, (size_t)c * size);
+    if (!a)
+        return MPB_ENOMEM;
+    *arr = a;
+    *cap = c;
+    return MPB_OK;
+}
+
+static int parse_robot(mpb_world *w, planar *p, const char *text,
+                       char *err, size_t errlen)
+{
+    lines ls = { text, 0 };
+    token t[MAX_TOKENS];
+    int nt, have_base = 0, have_radius = 0, cap_length = 0;
+    double v[3];
+
+    while ((nt = next_line(&ls, t)) > 0) {
+        int ln = ls.lineno;
+        if (tok_is(&t[0], "base")) {
+            if (nt != 3) {
+                mpb__world_err(err, errlen, "robot line %d: base needs <x> <y>", ln);
+                return MPB_EPARSE;
+            }
+            if (have_base) {
+                mpb__world_err(err, errlen, "robot line %d: a second base", ln);
+                return MPB_EPARSE;
+            }
+            if (!numbers(t, 1, 2, v, "robot", ln, err, errlen))
+                return MPB_EPARSE;
+            p->bx = v[0];
+            p->by = v[1];
+            have_base = 1;
+        } else if (tok_is(&t[0], "link_radius")) {
+            if (nt != 2) {
+                mpb__world_err(err, errlen, "robot line %d: link_radius needs <r>", ln);
+                return MPB_EPARSE;
+            }
+            if (have_radius) {
+                mpb__world_err(err, errlen, "robot line %d: a second link_radius", ln);
+                return MPB_EPARSE;
+            }
+            if (!numbers(t, 1, 1, v, "robot", ln, err, errlen))
+                return MPB_EPARSE;
+            if (v[0] < 0) {
+                mpb__world_err(err, errlen, "robot line %d: link_radius must be >= 0", ln);
+                return MPB_EPARSE;
+            }
+            p->radius = v[0];
+            have_radius = 1;
+        } else if (tok_is(&t[0], "joint")) {
+            int continuous = nt == 4 && tok_is(&t[2], "continuous");
+            if (!continuous && nt != 5) {
+                mpb__world_err(err, errlen, "robot line %d: joint needs <name> "
+                               "<lo> <hi> <length> (or <name> continuous "
+                               "<length>)", ln);
+                return MPB_EPARSE;
+            }
+            const token *name = &t[1];
+            for (int j = 0; j < w->num_joints; j++)
+                if (tok_is(name, w->joint_names[j])) {
+                    mpb__world_err(err, errlen, "robot line %d: joint '%.*s' "
+                                   "declared twice", ln, shown(name), name->p);
+                    return MPB_EPARSE;
+                }
+            if (continuous) {
+                if (!numbers(t, 3, 1, &v[2], "robot", ln, err, errlen))
+                    return MPB_EPARSE;
+                v[0] = -M_PI;
+                v[1] = M_PI;
+            } else {
+                if (!numbers(t, 2, 3, v, "robot", ln, err, errlen))
+                    return MPB_EPARSE;
+                if (v[0] > v[1]) {
+                    mpb__world_err(err, errlen, "robot line %d: joint '%.*s' "
+                                   "has lo > hi", ln, shown(name), name->p);
+                    return MPB_EPARSE;
+                }
+            }
+            if (!(v[2] > 0)) {
+                mpb__world_err(err, errlen, "robot line %d: joint '%.*s' "
+                               "length must be > 0", ln, shown(name), name->p);
+                return MPB_EPARSE;
+            }
+            if (grow((void **)&p->length, &cap_length, p->n + 1,
+                     sizeof *p->length) != MPB_OK)
+                return MPB_ENOMEM;
+            int rc = mpb__world_add_joint(w, name->p, (size_t)name->len,
+                                          v[0], v[1], continuous);
+            if (rc != MPB_OK)
+                return rc;
+            p->length[p->n++] = v[2];
+        } else {
+            mpb__world_err(err, errlen, "robot line %d: unknown item '%.*s' "
+                           "(expected base, link_radius or joint)", ln,
+                           shown(&t[0]), t[0].p);
+            return MPB_EPARSE;
+        }
+    }
+    if (!have_radius) {
+        mpb__world_err(err, errlen, "robot: no link_radius line");
+        return MPB_EPARSE;
+    }
+    if (p->n == 0) {
+        mpb__world_err(err, errlen, "robot: no joints");
+        return MPB_EPARSE;
+    }
+    return MPB_OK;
+}
+
+static int parse_scene(planar *p, const char *text, char *err, size_t errlen)
+{
+    lines ls = { text, 0 };
+    token t[MAX_TOKENS];
+    int nt;
+    double v[4];
+
+    while ((nt = next_line(&ls, t)) > 0) {
+        int ln = ls.lineno;
+        if (tok_is(&t[0], "circle")) {
+            if (nt != 4) {
+                mpb__world_err(err, errlen, "scene line %d: circle needs <cx> <cy> <r>", ln);
+                return MPB_EPARSE;
+            }
+            if (!numbers(t, 1, 3, v, "scene", ln, err, errlen))
+                return MPB_EPARSE;
+            if (v[2] < 0) {
+                mpb__world_err(err, errlen, "scene line %d: circle radius must be >= 0", ln);
+                return MPB_EPARSE;
+            }
+            if (grow((void **)&p->circles, &p->cap_circles, p->num_circles + 1,
+                     sizeof *p->circles) != MPB_OK)
+                return MPB_ENOMEM;
+            p->circles[p->num_circles++] = (circle){ .cx = v[0], .cy = v[1], .r = v[2] };
+        } else if (tok_is(&t[0], "box")) {
+            if (nt != 5) {
+                mpb__world_err(err, errlen, "scene line %d: box needs <cx> <cy> "
+                               "<half_x> <half_y>", ln);
+                return MPB_EPARSE;
+            }
+            if (!numbers(t, 1, 4, v, "scene", ln, err, errlen))
+                return MPB_EPARSE;
+            if (v[2] < 0 || v[3] < 0) {
+                mpb__world_err(err, errlen, "scene line %d: box half sizes must be >= 0", ln);
+                return MPB_EPARSE;
+            }
+            if (grow((void **)&p->boxes, &p->cap_boxes, p->num_boxes + 1,
+                     sizeof *p->boxes) != MPB_OK)
+                return MPB_ENOMEM;
+            p->boxes[p->num_boxes++] = (box){ .xmin = v[0] - v[2], .ymin = v[1] - v[3],
+                                              .xmax = v[0] + v[2], .ymax = v[1] + v[3] };
+        } else {
+            mpb__world_err(err, errlen, "scene line %d: unknown item '%.*s' "
+                           "(expected circle or box)", ln, shown(&t[0]), t[0].p);
+            return MPB_EPARSE;
+        }
+    }
+    return MPB_OK;
+}
+
+static int planar_open(mpb_world *w, const char *robot_text,
+                       const char *scene_text, char *err, size_t errlen)
+{
+    planar *p = calloc(1, sizeof *p);
+    if (!p)
+        return MPB_ENOMEM;
+    w->impl = p;
+    int rc = parse_robot(w, p, robot_text, err, errlen);
+    if (rc != MPB_OK)
+        return rc;
+    rc = parse_scene(p, scene_text, err, errlen);
+    if (rc != MPB_OK)
+        return rc;
+    p->xy = malloc(2 * ((size_t)p->n + 1) * sizeof *p->xy);
+    return p->xy ? MPB_OK : MPB_ENOMEM;
+}
+
+/* ---- kinematics and geometry ------------------------------------------- */
+
+/* Joint i at xy[2i], link i from joint i to i + 1; the tip is xy[2n]. */
+static void forward(const planar *p, const double *q, double *xy)
+{
+    double x = p->bx, y = p->by, theta = 0.0;
+    xy[0] = x;
+    xy[1] = y;
+    for (int i = 0; i < p->n; i++) {
+        theta += q[i];
+        x += p->length[i] * cos(theta);
+        y += p->length[i] * sin(theta);
+        xy[2 * i + 2] = x;
+        xy[2 * i + 3] = y;
+    }
+}
+
+/* Distance from point (px, py) to the segment a-b. */
+static double seg_point(double ax, double ay, double bx, double by,
+                        double px, double py)
+{
+    double dx = bx - ax, dy = by - ay;
+    double dd = dx * dx + dy * dy;
+    double t = dd > 0 ? ((px - ax) * dx + (py - ay) * dy) / dd : 0.0;
+    if (t < 0)
+        t = 0;
+    else if (t > 1)
+        t = 1;
+    return hypot(ax + t * dx - px, ay + t * dy - py);
+}
+
+/* Distance from a point to a box; 0 inside. */
+static double box_point(const box *b, double px, double py)
+{
+    double dx = fmax(fmax(b->xmin - px, px - b->xmax), 0.0);
+    double dy = fmax(fmax(b->ymin - py, py - b->ymax), 0.0);
+    return hypot(dx, dy);
+}
+
+/* Does the segment a-b meet the box? (Liang-Barsky clipping.) */
+static int seg_meets_box(double ax, double ay, double bx, double by,
+                         const box *b)
+{
+    double t0 = 0.0, t1 = 1.0;
+    double pq[4][2] = {
+        { -(bx - ax), ax - b->xmin },
+        {   bx - ax,  b->xmax - ax },
+        { -(by - ay), ay - b->ymin },
+        {   by - ay,  b->ymax - ay },
+    };
+    for (int k = 0; k < 4; k++) {
+        double pk = pq[k][0], qk = pq[k][1];
+        if (pk == 0) {
+            if (qk < 0)
+                return 0;       /* parallel to this side and outside it */
+        } else {
+            double r = qk / pk;
+            if (pk < 0)
+                t0 = fmax(t0, r);
+            else
+                t1 = fmin(t1, r);
+            if (t0 > t1)
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/*
+ * Distance from the segment a-b to a box; 0 if they meet. Two disjoint
+ * convex sets are nearest at a vertex of one: an end of the segment against
+ * the box, or a corner of the box against the segment.
+ */
+static double seg_box(double ax, double ay, double bx, double by,
+                      const box *b)
+{
+    if (seg_meets_box(ax, ay, bx, by, b))
+        return 0.0;
+    double d = fmin(box_point(b, ax, ay), box_point(b, bx, by));
+    d = fmin(d, seg_point(ax, ay, bx, by, b->xmin, b->ymin));
+    d = fmin(d, seg_point(ax, ay, bx, by, b->xmin, b->ymax));
+    d = fmin(d, seg_point(ax, ay, bx, by, b->xmax, b->ymin));
+    d = fmin(d, seg_point(ax, ay, bx, by, b->xmax, b->ymax));
+    return d;
+}
+
+/*
+ * Smallest signed distance from the capsule links to the obstacles; stops
+ * early, at the first value <= stop_at.
+ */
+static double min_distance(planar *p, const double *q, double stop_at)
+{
+    double best = INFINITY;
+    forward(p, q, p->xy);
+    for (int i = 0; i < p->n; i++) {
+        double ax = p->xy[2 * i], ay = p->xy[2 * i + 1];
+        double bx = p->xy[2 * i + 2], by = p->xy[2 * i + 3];
+        for (int k = 0; k < p->num_circles; k++) {
+            const circle *c = &p->circles[k];
+            double d = seg_point(ax, ay, bx, by, c->cx, c->cy) - c->r - p->radius;
+            if (d < best)
+                best = d;
+            if (best <= stop_at)
+                return best;
+        }
+        for (int k = 0; k < p->num_boxes; k++) {
+            double d = seg_box(ax, ay, bx, by, &p->boxes[k]) - p->radius;
+            if (d < best)
+                best = d;
+            if (best <= stop_at)
+                return best;
+        }
+    }
+    return best;
+}
+
+static int planar_in_collision(void *impl, const double *q)
+{
+    return min_distance(impl, q, 0.0) <= 0.0;
+}
+
+static double planar_clearance(void *impl, const double *q)
+{
+    return min_distance(impl, q, -INFINITY);
+}
+
+const mpb__world_provider mpb__world_planar = {
+    .robot_format = "planar",
+    .scene_format = "planar",
+    .open         = planar_open,
+    .close        = planar_close,
+    .in_collision = planar_in_collision,
+    .clearance    = planar_clearance,
+};
+
+int mpb__planar_points(const mpb_world *w, const double *q, double *xy)
+{
+    if (!w || !q || !xy || w->provider != &mpb__world_planar)
+        return MPB_EINVAL;
+    forward(w->impl, q, xy);
+    return MPB_OK;
+}

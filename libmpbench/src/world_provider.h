@@ -1,0 +1,71 @@
+/*
+ * world_provider.h - private: the mpb_world handle and the table of
+ * functions behind which each robot/scene format lives. One provider a file
+ * (world_planar.c, later world_fcl.cpp); world.c picks one by format names
+ * and forwards every call to it.
+ *
+ * Adding a provider: write a const mpb__world_provider filled with
+ * designated initialisers, declare it below, list it in world.c's table.
+ */
+#ifndef MPB_WORLD_PROVIDER_H
+#define MPB_WORLD_PROVIDER_H
+
+#include <stdarg.h>
+#include <stddef.h>
+
+#include "mpbench/world.h"
+
+typedef struct mpb__world_provider {
+    const char *robot_format;   /* "planar", "urdf" */
+    const char *scene_format;   /* the scene format it reads with it */
+
+    /*
+     * Parse the texts; declare the joints with mpb__world_add_joint() in
+     * order and set w->impl. On failure return MPB_EPARSE / MPB_ENOMEM with
+     * one line in err ("robot line 3: ..."); world.c then calls close on
+     * whatever w->impl holds (possibly NULL) and frees w.
+     */
+    int    (*open)(mpb_world *w, const char *robot_text,
+                   const char *scene_text, char *err, size_t errlen);
+    void   (*close)(void *impl);                 /* impl may be NULL */
+
+    /* q has w->num_joints finite values (world.c checks). */
+    int    (*in_collision)(void *impl, const double *q);
+    double (*clearance)(void *impl, const double *q);
+} mpb__world_provider;
+
+struct mpb_world {
+    const mpb__world_provider *provider;
+    void          *impl;          /* the provider's state */
+    int            num_joints;
+    int            cap;
+    char         **joint_names;
+    double        *lo, *hi;
+    unsigned char *wraps;         /* nonzero where the joint is continuous */
+};
+
+/*
+ * Append a joint (name is copied, namelen bytes). Continuous joints get the
+ * limits -pi .. pi whatever lo and hi say. MPB_OK or MPB_ENOMEM.
+ */
+int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
+                         double lo, double hi, int continuous);
+
+/* snprintf into err (if err and errlen), for the providers' messages. */
+void mpb__world_err(char *err, size_t errlen, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* The providers. */
+extern const mpb__world_provider mpb__world_planar;
+
+/*
+ * Planar only, for tests: the positions of the joints and the tip of the
+ * planar arm at q, xy[2 * i], xy[2 * i + 1] for i = 0 .. num_joints (the
+ * base first, the tip last). MPB_EINVAL if w is not a planar world.
+ */
+int mpb__planar_points(const mpb_world *w, const double *q, double *xy);
+
+#endif /* MPB_WORLD_PROVIDER_H */

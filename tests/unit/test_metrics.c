@@ -1,0 +1,185 @@
+/*
+ * test_metrics.c - path length and smoothness against values worked out by
+ * hand (each in a comment beside it).
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* cmocka 1.1.5's assert_float_equal works in float; this one in double. */
+#define assert_near(a, b, eps)                                              \
+    do {                                                                    \
+        double a_ = (a), b_ = (b);                                          \
+        if (!(fabs(a_ - b_) <= (eps)))                                      \
+            fail_msg("%s = %.17g, expected %.17g", #a, a_, b_);             \
+    } while (0)
+
+#define EPS 1e-12
+
+static void test_joint_delta(void **state)
+{
+    (void)state;
+    /* Not wrapping: plain b - a. */
+    assert_near(mpb_joint_delta(0.5, 0.25, 0), -0.25, EPS);
+    assert_near(mpb_joint_delta(3.0, -3.0, 0), -6.0, EPS);
+    /* Wrapping: -6 + 2 pi = 0.28318530717958623 (crossing +pi upwards). */
+    assert_near(mpb_joint_delta(3.0, -3.0, 1), 2 * M_PI - 6.0, EPS);
+    /* The other way: 6 - 2 pi = -0.28318530717958623. */
+    assert_near(mpb_joint_delta(-3.0, 3.0, 1), 6.0 - 2 * M_PI, EPS);
+    /* Half a turn is +pi from either side: the range is (-pi, pi]. */
+    assert_near(mpb_joint_delta(0.0, M_PI, 1), M_PI, EPS);
+    assert_near(mpb_joint_delta(0.0, -M_PI, 1), M_PI, EPS);
+    /* Whole turns vanish: (4 pi + 0.5) - 0 -> 0.5; pi vs -pi -> 0. */
+    assert_near(mpb_joint_delta(0.0, 4 * M_PI + 0.5, 1), 0.5, EPS);
+    assert_near(mpb_joint_delta(M_PI, -M_PI, 1), 0.0, EPS);
+}
+
+static void test_path_length_segments(void **state)
+{
+    (void)state;
+    /* (0,0)->(3,4)->(3,4)->(3,0): 5 + 0 (zero-length segment) + 4 = 9. */
+    const double wp[] = { 0, 0,  3, 4,  3, 4,  3, 0 };
+    assert_near(mpb_path_length(wp, 4, 2, NULL), 9.0, EPS);
+}
+
+static void test_path_length_two_waypoints(void **state)
+{
+    (void)state;
+    /* (0,0,0)->(1,2,2): sqrt(1 + 4 + 4) = 3. */
+    const double wp[] = { 0, 0, 0,  1, 2, 2 };
+    assert_near(mpb_path_length(wp, 2, 3, NULL), 3.0, EPS);
+}
+
+static void test_path_length_degenerate(void **state)
+{
+    (void)state;
+    const double wp[] = { 1, 2 };
+    assert_near(mpb_path_length(wp, 1, 2, NULL), 0.0, 0.0);  /* one waypoint */
+    assert_near(mpb_path_length(wp, 0, 2, NULL), 0.0, 0.0);  /* none */
+    assert_near(mpb_path_length(NULL, 0, 2, NULL), 0.0, 0.0);
+    const double nan_wp[] = { 0, 0,  NAN, 1 };
+    assert_true(isnan(mpb_path_length(nan_wp, 2, 2, NULL)));
+}
+
+static void test_path_length_continuous(void **state)
+{
+    (void)state;
+    /*
+     * One joint 3.0 -> -3.0 -> -2.5. Wrapping, the first step crosses +pi the
+     * short way: (2 pi - 6) + 0.5 = 2 pi - 5.5 = 0.78318530717958623.
+     * Not wrapping: 6 + 0.5 = 6.5.
+     */
+    const double wp[] = { 3.0, -3.0, -2.5 };
+    const unsigned char wraps[] = { 1 };
+    assert_near(mpb_path_length(wp, 3, 1, wraps), 2 * M_PI - 5.5, EPS);
+    assert_near(mpb_path_length(wp, 3, 1, NULL), 6.5, EPS);
+
+    /*
+     * Two joints, only joint 0 wraps: (3.0, 0) -> (-3.0, 0.3):
+     * sqrt((2 pi - 6)^2 + 0.3^2) = sqrt(0.0801939 + 0.09) = 0.41254566.
+     */
+    const double wp2[] = { 3.0, 0.0,  -3.0, 0.3 };
+    const unsigned char wraps2[] = { 1, 0 };
+    double d0 = 2 * M_PI - 6.0;
+    assert_near(mpb_path_length(wp2, 2, 2, wraps2), sqrt(d0 * d0 + 0.09), EPS);
+    assert_near(mpb_path_length(wp2, 2, 2, wraps2), 0.41254566, 1e-8);
+}
+
+static void test_smoothness_right_angles(void **state)
+{
+    (void)state;
+    /*
+     * Staircase (0,0)->(1,0)->(1,1)->(2,1): n = 3 segments, directions
+     * +x, +y, +x; alpha_2 = alpha_3 = pi/2.
+     * kappa' = (1/3) (pi^2/4 + pi^2/4) = pi^2/6 = 1.6449340668.
+     */
+    const double wp[] = { 0, 0,  1, 0,  1, 1,  2, 1 };
+    assert_near(mpb_smoothness(wp, 4, 2, NULL), M_PI * M_PI / 6, EPS);
+
+    /* The same in 3-D: +x, +y, +z, two right angles, n = 3: pi^2/6. */
+    const double wp3[] = { 0, 0, 0,  1, 0, 0,  1, 1, 0,  1, 1, 1 };
+    assert_near(mpb_smoothness(wp3, 4, 3, NULL), M_PI * M_PI / 6, EPS);
+}
+
+static void test_smoothness_zero_length_dropped(void **state)
+{
+    (void)state;
+    /*
+     * The staircase with (1,0) repeated: the zero-length segment is dropped,
+     * n = 3 remain, the angles are still pi/2, pi/2: pi^2/6. (Counting it
+     * would give n = 4 and an undefined angle.)
+     */
+    const double wp[] = { 0, 0,  1, 0,  1, 0,  1, 1,  2, 1 };
+    assert_near(mpb_smoothness(wp, 5, 2, NULL), M_PI * M_PI / 6, EPS);
+
+    /* (0,0)->(1,0)->(1,0): one segment remains, n < 2: 0. */
+    const double wp1[] = { 0, 0,  1, 0,  1, 0 };
+    assert_near(mpb_smoothness(wp1, 3, 2, NULL), 0.0, 0.0);
+}
+
+static void test_smoothness_angles(void **state)
+{
+    (void)state;
+    /* Straight line in 4 waypoints: every alpha is 0. */
+    const double line[] = { 0, 0,  1, 1,  2, 2,  3.5, 3.5 };
+    assert_near(mpb_smoothness(line, 4, 2, NULL), 0.0, 1e-15);
+
+    /* Out and back (0,0)->(1,0)->(0,0): alpha = pi, n = 2: pi^2/2. */
+    const double back[] = { 0, 0,  1, 0,  0, 0 };
+    assert_near(mpb_smoothness(back, 3, 2, NULL), M_PI * M_PI / 2, EPS);
+
+    /* (0,0)->(1,0)->(2,1): 45 degrees, n = 2: (pi/4)^2 / 2 = pi^2/32. */
+    const double turn45[] = { 0, 0,  1, 0,  2, 1 };
+    assert_near(mpb_smoothness(turn45, 3, 2, NULL), M_PI * M_PI / 32, EPS);
+
+    /*
+     * (0,0)->(1,0)->(1 + cos 60deg, sin 60deg) = (1.5, sqrt(3)/2): 60 degrees
+     * with segments of different lengths (1 and 1), n = 2:
+     * (pi/3)^2 / 2 = pi^2/18.
+     */
+    const double turn60[] = { 0, 0,  1, 0,  1.5, sqrt(3.0) / 2 };
+    assert_near(mpb_smoothness(turn60, 3, 2, NULL), M_PI * M_PI / 18, EPS);
+
+    /* Fewer than two segments: 0. */
+    assert_near(mpb_smoothness(turn45, 2, 2, NULL), 0.0, 0.0);
+    assert_near(mpb_smoothness(turn45, 1, 2, NULL), 0.0, 0.0);
+}
+
+static void test_smoothness_continuous(void **state)
+{
+    (void)state;
+    /*
+     * One joint 3.0 -> -3.0 -> -2.5. Wrapping, both steps go upwards
+     * (+0.283, +0.5): alpha = 0, kappa' = 0. Not wrapping the first goes
+     * down (-6) and the second up (+0.5): alpha = pi, n = 2: pi^2/2.
+     */
+    const double wp[] = { 3.0, -3.0, -2.5 };
+    const unsigned char wraps[] = { 1 };
+    assert_near(mpb_smoothness(wp, 3, 1, wraps), 0.0, 1e-15);
+    assert_near(mpb_smoothness(wp, 3, 1, NULL), M_PI * M_PI / 2, EPS);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_joint_delta),
+        cmocka_unit_test(test_path_length_segments),
+        cmocka_unit_test(test_path_length_two_waypoints),
+        cmocka_unit_test(test_path_length_degenerate),
+        cmocka_unit_test(test_path_length_continuous),
+        cmocka_unit_test(test_smoothness_right_angles),
+        cmocka_unit_test(test_smoothness_zero_length_dropped),
+        cmocka_unit_test(test_smoothness_angles),
+        cmocka_unit_test(test_smoothness_continuous),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
