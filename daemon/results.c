@@ -14,7 +14,7 @@
 #include "mpb_run_ack_t.h"
 
 /* Metrics per stage; keep in step with docs/metrics.md. */
-enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS, M_COUNT };
+enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS, M_CLEARANCE, M_COUNT };
 
 /* Per stage, what the store needs, owned here for the length of a result. */
 typedef struct stage_work {
@@ -90,6 +90,9 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
         w->metrics[nm++] = (mpb_named){"smoothness",
             mpb_smoothness(st->waypoints, st->num_waypoints, st->num_joints,
                            e->wraps)};
+        w->metrics[nm++] = (mpb_named){"clearance",
+            mpb_path_clearance(world, st->waypoints, st->num_waypoints,
+                               st->num_joints)};
     }
     w->rec.metrics = w->metrics;
     w->rec.num_metrics = nm;

@@ -178,8 +178,8 @@ int mpb_store_run_finish(mpb_store *s, const mpb_run_record *r);
  * Every reader walks rows through a callback, as mpb_store_runs_unfinished()
  * does: the row and its strings are valid only during the call, and a
  * nonzero return from cb stops the walk and is returned. Rows come in id
- * order unless stated. Times are Unix seconds; a number the database does
- * not have (NULL, or NaN when it was written) reads as NaN.
+ * order unless stated. Dates are Unix times in seconds; a number the
+ * database does not have (NULL, or NaN when it was written) reads as NaN.
  */
 
 typedef struct mpb_experiment_row {
@@ -243,33 +243,42 @@ typedef struct mpb_query_row {
 int mpb_store_queries(mpb_store *s, int64_t scene_id,
                       int (*cb)(void *ud, const mpb_query_row *row), void *ud);
 
-/* Counts of the runs of an experiment's queries in one scene. */
-int mpb_store_scene_run_counts(mpb_store *s, int64_t experiment_id,
-                               int64_t scene_id, mpb_run_counts *out);
+/*
+ * Call cb for each scene of the experiment that has runs not yet done, with
+ * their number, in scene id order. Reads only the unfinished runs, so it
+ * costs nothing on a finished experiment.
+ */
+int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
+                                  int (*cb)(void *ud, int64_t scene_id,
+                                            int unfinished),
+                                  void *ud);
 
 /* One finished run, as mpb_store_results() gives it. */
 typedef struct mpb_result_row {
     int64_t     run_id;
     int64_t     planner_config_id;
     int64_t     query_id;
+    int64_t     scene_id;      /* the query's scene */
     int         repetition;
     int         success;       /* solved in time and verified valid */
     const char *status;        /* the planner's status name */
     double      time_total, time_raw, time_other; /* tau_t, tau_r, tau_o, s */
-    const char *stage;         /* where the metrics come from: the chosen
-                                  stage, else the run's final stage; NULL if
-                                  the run has no stage */
+    const char *stage;         /* the stage the metrics are read from: the
+                                  one asked for, else the run's final stage
+                                  (NULL if the run has none) */
     const double *metrics;     /* one value per name asked for, in that
                                   order; NaN where the stage lacks it */
-    int         num_named;
+    int         num_named;     /* 0 if that stage has no metrics */
     const mpb_named *named;    /* every metric of that stage, by name */
 } mpb_result_row;
 
 /*
  * Walk the finished runs (failed ones included; see success) of an
- * experiment's queries in one scene, in a single pass over the database.
- * Runs come grouped by query, in query id order, and in run id order
- * within a query, so per-query statistics need no buffering.
+ * experiment's queries in one scene, or in every scene when scene_id is 0:
+ * one statement, one pass, in run id order. Runs of different queries and
+ * configurations come interleaved as they were run, so accumulate per
+ * (configuration, query), as mpb report does, for the paper's per-query
+ * standard deviations.
  *
  * Metrics are read from the stage named stage, or from each run's final
  * stage when stage is NULL. names[0..num_names) are the metrics wanted in

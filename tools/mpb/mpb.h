@@ -1,0 +1,41 @@
+/*
+ * mpb.h - what the files of the `mpb` command line share: the list of
+ * subcommands (one file each) and small helpers. Not part of libmpbench.
+ */
+#ifndef MPB_TOOL_H
+#define MPB_TOOL_H
+
+#include <stdint.h>
+
+#include "mpbench/mpbench.h"
+
+/*
+ * The subcommands: name, one-line summary. `mpb NAME ARGS...` calls
+ * cmd_NAME(argc, argv) with argv[0] = "NAME". To add one, add a line here
+ * and a file NAME.c defining cmd_NAME; main.c needs no change.
+ */
+#define MPB_TOOL_COMMANDS(X)                                                  \
+    X(report, "print an experiment's results as the paper's tables, per scene")
+
+#define MPB__TOOL_DECLARE(name, summary) int cmd_##name(int argc, char **argv);
+MPB_TOOL_COMMANDS(MPB__TOOL_DECLARE)
+#undef MPB__TOOL_DECLARE
+
+/* Exit statuses of every subcommand. */
+enum {
+    MPB_EXIT_OK = 0,
+    MPB_EXIT_ERROR = 1,     /* the command could not do its work */
+    MPB_EXIT_USAGE = 2      /* bad command line */
+};
+
+/*
+ * Open the database at path read-only. On failure print one line,
+ * "mpb CMD: cannot open PATH: why", and return NULL. Close the store with
+ * mpb_store_close().
+ */
+mpb_store *tool_open_readonly(const char *cmd, const char *path);
+
+/* Parse a whole decimal integer > 0 (an id); 0 on success, -1 if not one. */
+int tool_parse_id(const char *text, int64_t *out);
+
+#endif

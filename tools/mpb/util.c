@@ -1,0 +1,45 @@
+/* util.c - helpers the `mpb` subcommands share: opening a database, ids. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "mpb.h"
+
+mpb_store *tool_open_readonly(const char *cmd, const char *path)
+{
+    struct stat st;
+    mpb_store *s = NULL;
+
+    /* SQLite says only "unable to open database file"; the system says
+     * why. */
+    if (stat(path, &st) != 0) {
+        fprintf(stderr, "mpb %s: cannot open %s: %s\n", cmd, path,
+                strerror(errno));
+        return NULL;
+    }
+    if (S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "mpb %s: cannot open %s: %s\n", cmd, path,
+                strerror(EISDIR));
+        return NULL;
+    }
+    if (mpb_store_open(path, 1, &s) != MPB_OK) {
+        fprintf(stderr, "mpb %s: cannot open %s: %s\n", cmd, path,
+                mpb_store_errmsg(s));
+        mpb_store_close(s);
+        return NULL;
+    }
+    return s;
+}
+
+int tool_parse_id(const char *text, int64_t *out)
+{
+    char *end;
+    errno = 0;
+    long long v = strtoll(text, &end, 10);
+    if (errno != 0 || end == text || *end != '\0' || v <= 0)
+        return -1;
+    *out = (int64_t)v;
+    return 0;
+}
