@@ -11,7 +11,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 MPB_BUILD=${MPB_BUILD:-$root/build}
 . "$root/tests/integration/lib.sh"
 
-if [ -z "${MPB_IN_NETNS:-}" ] && { [ "$(id -u)" -eq 0 ] || unshare -rn true 2>/dev/null; }; then
+if [ -n "${MPB_IN_NETNS:-}" ] || [ "$(id -u)" -eq 0 ] || unshare -rn true 2>/dev/null; then
     mpb_enter_netns "$0" "$@"
 fi
 

@@ -123,6 +123,7 @@ const char mpb__schema_v1[] =
     "CREATE VIEW IF NOT EXISTS results AS\n"
     "SELECT r.id AS run, e.name AS experiment, s.name AS scene,\n"
     "       q.name AS query, c.name AS planner, r.repetition, r.status,\n"
+    "       r.claimed_success,\n"
     "       r.success, r.verdict, r.time_total, r.time_raw, r.time_other,\n"
     "       r.final_stage,\n"
     "       (SELECT value FROM metrics m WHERE m.run_id = r.id\n"

@@ -21,7 +21,7 @@ bad_case() {
     check "$1: exits non-zero" test "$rc" -ne 0
     check "$1: one line" eq "$(printf '%s\n' "$out" | wc -l)" 1
     check "$1: names the file and says '$2'" \
-        sh -c "printf '%s' \"\$1\" | grep -q \"^mpbenchd: $file:.*$2\"" _ "$out"
+        sh -c "printf '%s' \"\$1\" | grep -q \"^mpbenchd: $file.*$2\"" _ "$out"
     check "$1: database untouched" test "$(md5sum <"$DB")" = "$sum_before"
 }
 
