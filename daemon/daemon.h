@@ -17,6 +17,9 @@
 
 #include "mpbench/mpbench.h"
 #include "experiment.h"
+#include "mpb_plan_result_t.h"
+#include "mpb_planner_announce_t.h"
+#include "mpb_run_ack_t.h"
 
 /* How often and how long things are retried or waited for. */
 #define MPBD_REQUEST_RESEND_S   0.25   /* resend a request not acked by then */
@@ -64,6 +67,10 @@ typedef struct mpbd_counters {
 
 typedef struct mpbd {
     lcm_t           *lcm;
+    /* Subscriptions, released before lcm_destroy(). */
+    mpb_planner_announce_t_subscription_t *sub_announce;
+    mpb_run_ack_t_subscription_t          *sub_ack;
+    mpb_plan_result_t_subscription_t      *sub_result;
     mpb_store       *store;
     mpbd_experiment *exp;
     int64_t          experiment_id;

@@ -295,8 +295,15 @@ int main(int argc, char **argv)
         exit_code = 128 + (int)stop_signal;
     }
 out:
-    if (d.lcm)
+    if (d.lcm) {
+        if (d.sub_announce)
+            mpb_planner_announce_t_unsubscribe(d.lcm, d.sub_announce);
+        if (d.sub_ack)
+            mpb_run_ack_t_unsubscribe(d.lcm, d.sub_ack);
+        if (d.sub_result)
+            mpb_plan_result_t_unsubscribe(d.lcm, d.sub_result);
         lcm_destroy(d.lcm);
+    }
     mpbd_scheduler_free(&d);
     mpbd_planners_free(&d);
     mpb_store_close(d.store);

@@ -73,7 +73,7 @@ static void on_announce(const lcm_recv_buf_t *rbuf, const char *channel,
 
 void mpbd_planners_subscribe(mpbd *d)
 {
-    mpb_planner_announce_t_subscribe(d->lcm, MPB_CHANNEL_ANNOUNCE, on_announce, d);
+    d->sub_announce = mpb_planner_announce_t_subscribe(d->lcm, MPB_CHANNEL_ANNOUNCE, on_announce, d);
 }
 
 int mpbd_planners_expire(mpbd *d, double now)

@@ -219,7 +219,7 @@ static void on_result(const lcm_recv_buf_t *rbuf, const char *channel,
 
 void mpbd_results_subscribe(mpbd *d)
 {
-    mpb_plan_result_t_subscribe(d->lcm, MPB_CHANNEL_RESULT, on_result, d);
+    d->sub_result = mpb_plan_result_t_subscribe(d->lcm, MPB_CHANNEL_RESULT, on_result, d);
 }
 
 int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)

@@ -322,5 +322,5 @@ static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
 
 void mpbd_scheduler_subscribe(mpbd *d)
 {
-    mpb_run_ack_t_subscribe(d->lcm, MPB_CHANNEL_ACK, on_ack, d);
+    d->sub_ack = mpb_run_ack_t_subscribe(d->lcm, MPB_CHANNEL_ACK, on_ack, d);
 }

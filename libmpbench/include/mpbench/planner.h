@@ -6,8 +6,14 @@
  * a thread of its own, so a long solve does not look like a crash), takes
  * requests addressed to it, acknowledges each, calls solve() once per run id,
  * publishes the result and re-sends it until the daemon acknowledges it. A
- * request seen again is answered from the results it remembers, never solved
- * twice.
+ * request seen again is answered from the results it remembers (the last
+ * 64 runs), never solved twice.
+ *
+ * Solving is synchronous, in the thread that called mpb_planner_serve()
+ * (capacity 1): requests that arrive meanwhile wait in LCM's queue and are
+ * taken when solve() returns. solve() cannot see the stop flag; a planner
+ * that wants to stop a long solve early keeps its own pointer to the flag
+ * (in user) and checks it, as planners/ompl does.
  *
  * Include the generated message headers (mpb_plan_request_t.h,
  * mpb_plan_result_t.h) before this one, or let it include them.
@@ -30,6 +36,13 @@ extern "C" {
  * set; fill status, message and times, and add stages and values with the
  * mpb_result_add_* functions (which own what they allocate). Return 0, or a
  * negative code to report INVALID_REQUEST with res->message if set.
+ *
+ * Before solve() is called the request has been checked: a valid run id,
+ * addressed to this planner, an algorithm from def->algorithms, and for a
+ * JOINTS goal as many goal joints as start joints; a request failing these
+ * never reaches solve(). utime is set again when the result is published.
+ * A status outside SOLVED..INVALID_REQUEST (CRASH is the daemon's) is
+ * published as FAILED.
  */
 typedef int (*mpb_solve_fn)(void *user, const mpb_plan_request_t *req,
                             mpb_plan_result_t *res);
@@ -42,20 +55,33 @@ typedef struct mpb_planner_def {
     int         num_algorithms;
     mpb_solve_fn solve;
     void       *user;
-    int         heartbeat_ms;    /* 0: 500 */
+    int         heartbeat_ms;    /* 0: 500; at least 50 */
+    /*
+     * Optional: called once, in the serving thread, when LCM is joined and
+     * the planner id ("name@host:pid") is known, before the first request
+     * is taken; the id string lives until mpb_planner_serve() returns.
+     */
+    void      (*on_ready)(void *user, const char *planner_id);
 } mpb_planner_def;
 
 /*
  * Serve requests until *stop becomes nonzero (set it from a signal handler)
- * or, when max_runs > 0, after that many runs. id_out, if not NULL, receives
- * the planner id ("name@host:pid") as soon as it is known. Returns MPB_OK,
- * or MPB_ELCM if LCM cannot start (the message goes to err).
+ * or, when max_runs > 0, after that many runs have been solved and their
+ * results acknowledged (or re-sent until the re-sends ran out, ~10 s).
+ * lcm_url NULL means MPB_DEFAULT_LCM_URL. def->name must be a word of
+ * [A-Za-z0-9_.-]; the host part of the id is the host name with other
+ * characters replaced by '-'. Returns MPB_OK; MPB_EINVAL for a bad def;
+ * MPB_ELCM if LCM cannot start or fails; MPB_ENOMEM. On failure err (if not
+ * NULL) holds one line saying why.
  */
 int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
                       volatile sig_atomic_t *stop, long max_runs,
                       char *err, size_t errlen);
 
-/* Append a stage of num_waypoints x num_joints values (copied) to res. */
+/*
+ * Append a stage of num_waypoints x num_joints values (copied, row after
+ * row) to res. These four return MPB_OK, MPB_EINVAL or MPB_ENOMEM.
+ */
 int mpb_result_add_stage(mpb_plan_result_t *res, const char *name,
                          double time, const double *waypoints,
                          int num_waypoints, int num_joints);
@@ -64,13 +90,17 @@ int mpb_result_add_stage(mpb_plan_result_t *res, const char *name,
 int mpb_result_add_value(mpb_plan_result_t *res, const char *name,
                          double value);
 
-/* Set res->message (copied, printf-style). */
-int mpb_result_set_message(mpb_plan_result_t *res, const char *fmt, ...);
+/* Set res->message (copied, printf-style), replacing any message before. */
+int mpb_result_set_message(mpb_plan_result_t *res, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 
 /* Free everything res points to (not res itself) and zero it. */
 void mpb_result_clear(mpb_plan_result_t *res);
 
-/* The value of a request parameter, or NULL when absent. */
+/* The value of a request parameter (the first with that key), or NULL. */
 const char *mpb_request_param(const mpb_plan_request_t *req, const char *key);
 
 #ifdef __cplusplus

@@ -1,0 +1,685 @@
+/* planner.c - a planner process's side of the protocol: announce, answer, re-send until acked. */
+#include <errno.h>
+#include <limits.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/select.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <lcm/lcm.h>
+
+#include "mpbench/mpbench.h"
+#include "mpbench/planner.h"
+#include "mpb_planner_announce_t.h"
+#include "mpb_run_ack_t.h"
+
+/* How many finished runs are remembered, to answer a repeated request. */
+#define MPB__RESULTS_KEPT 64
+/* A result is re-sent every MPB__RESEND_S until acknowledged, at most
+ * MPB__SENDS_MAX times in all (about 10 s). */
+#define MPB__RESEND_S 0.2
+#define MPB__SENDS_MAX 50
+/* Longest wait in select(), so that *stop and re-sends are seen promptly. */
+#define MPB__POLL_S 0.05
+/* LCM queue lengths: acks are small and many (the daemon acks every
+ * planner on one channel); requests are large and few. */
+#define MPB__ACK_QUEUE 1000
+#define MPB__REQUEST_QUEUE 8
+/* Closest two announces may be (ms). */
+#define MPB__ANNOUNCE_GAP_MS 50
+
+typedef struct mpb__kept {
+    int used;
+    int acked;
+    int sends_left;
+    double next_send_s;
+    mpb_plan_result_t res;     /* owned; res.run_id names the run */
+} mpb__kept;
+
+typedef struct mpb__server {
+    const mpb_planner_def *def;
+    lcm_t *lcm;
+    char id[MPB_PLANNER_ID_MAX + 1];
+    char host[MPB_PLANNER_ID_MAX + 1];
+    char request_channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
+    int heartbeat_ms;
+
+    long solved;                /* runs answered (solve() called) */
+    long max_runs;
+    int run_error;              /* an MPB_E... code that ends the loop */
+
+    mpb__kept kept[MPB__RESULTS_KEPT];
+    int kept_next;              /* ring position of the next result */
+
+    /* Shared with the heartbeat thread, under mu. */
+    pthread_mutex_t mu;
+    pthread_cond_t cond;
+    char active[MPB_RUN_ID_SIZE];   /* run being solved, "" if idle */
+    int closed;                     /* capacity 0: max_runs reached */
+    int quit;
+    int announce_now;
+} mpb__server;
+
+/* ---- results ----------------------------------------------------------- */
+
+static char *mpb__strdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *p = malloc(n);
+    if (p != NULL)
+        memcpy(p, s, n);
+    return p;
+}
+
+int mpb_result_add_stage(mpb_plan_result_t *res, const char *name,
+                         double time, const double *waypoints,
+                         int num_waypoints, int num_joints)
+{
+    if (res == NULL || name == NULL || num_waypoints < 0 || num_joints < 0 ||
+        num_joints > INT16_MAX || res->num_stages >= INT16_MAX ||
+        (num_waypoints > 0 && num_joints > 0 && waypoints == NULL) ||
+        (num_joints > 0 && num_waypoints > INT32_MAX / num_joints))
+        return MPB_EINVAL;
+    size_t nv = (size_t)num_waypoints * (size_t)num_joints;
+    mpb_stage_t *stages = realloc(res->stages,
+                                  ((size_t)res->num_stages + 1) * sizeof *stages);
+    if (stages == NULL)
+        return MPB_ENOMEM;
+    res->stages = stages;
+    mpb_stage_t *st = &stages[res->num_stages];
+    memset(st, 0, sizeof *st);
+    st->name = mpb__strdup(name);
+    st->waypoints = nv > 0 ? malloc(nv * sizeof(double)) : NULL;
+    if (st->name == NULL || (nv > 0 && st->waypoints == NULL)) {
+        free(st->name);
+        free(st->waypoints);
+        return MPB_ENOMEM;
+    }
+    if (nv > 0)
+        memcpy(st->waypoints, waypoints, nv * sizeof(double));
+    st->time = time;
+    st->num_waypoints = num_waypoints;
+    st->num_joints = (int16_t)num_joints;
+    st->num_values = (int32_t)nv;
+    res->num_stages++;
+    return MPB_OK;
+}
+
+int mpb_result_add_value(mpb_plan_result_t *res, const char *name,
+                         double value)
+{
+    if (res == NULL || name == NULL || res->num_values >= INT16_MAX)
+        return MPB_EINVAL;
+    mpb_named_value_t *v = realloc(res->values,
+                                   ((size_t)res->num_values + 1) * sizeof *v);
+    if (v == NULL)
+        return MPB_ENOMEM;
+    res->values = v;
+    v[res->num_values].name = mpb__strdup(name);
+    if (v[res->num_values].name == NULL)
+        return MPB_ENOMEM;
+    v[res->num_values].value = value;
+    res->num_values++;
+    return MPB_OK;
+}
+
+int mpb_result_set_message(mpb_plan_result_t *res, const char *fmt, ...)
+{
+    if (res == NULL || fmt == NULL)
+        return MPB_EINVAL;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        return MPB_EINVAL;
+    char *m = malloc((size_t)n + 1);
+    if (m == NULL)
+        return MPB_ENOMEM;
+    va_start(ap, fmt);
+    vsnprintf(m, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    free(res->message);
+    res->message = m;
+    return MPB_OK;
+}
+
+void mpb_result_clear(mpb_plan_result_t *res)
+{
+    if (res == NULL)
+        return;
+    free(res->run_id);
+    free(res->planner_id);
+    free(res->message);
+    for (int i = 0; i < res->num_stages; i++) {
+        free(res->stages[i].name);
+        free(res->stages[i].waypoints);
+    }
+    free(res->stages);
+    for (int i = 0; i < res->num_values; i++)
+        free(res->values[i].name);
+    free(res->values);
+    for (int i = 0; i < res->num_progress; i++) {
+        for (int j = 0; j < res->progress[i].num_values; j++)
+            free(res->progress[i].values[j].name);
+        free(res->progress[i].values);
+    }
+    free(res->progress);
+    memset(res, 0, sizeof *res);
+}
+
+const char *mpb_request_param(const mpb_plan_request_t *req, const char *key)
+{
+    if (req == NULL || key == NULL)
+        return NULL;
+    for (int i = 0; i < req->num_params; i++)
+        if (req->params[i].key != NULL && strcmp(req->params[i].key, key) == 0)
+            return req->params[i].value != NULL ? req->params[i].value : "";
+    return NULL;
+}
+
+/* LCM cannot encode a NULL string: give every string of res a value. */
+static int mpb__result_fill_strings(mpb_plan_result_t *res)
+{
+    if (res->message == NULL && (res->message = mpb__strdup("")) == NULL)
+        return MPB_ENOMEM;
+    for (int i = 0; i < res->num_stages; i++)
+        if (res->stages[i].name == NULL &&
+            (res->stages[i].name = mpb__strdup("")) == NULL)
+            return MPB_ENOMEM;
+    for (int i = 0; i < res->num_values; i++)
+        if (res->values[i].name == NULL &&
+            (res->values[i].name = mpb__strdup("")) == NULL)
+            return MPB_ENOMEM;
+    for (int i = 0; i < res->num_progress; i++)
+        for (int j = 0; j < res->progress[i].num_values; j++)
+            if (res->progress[i].values[j].name == NULL &&
+                (res->progress[i].values[j].name = mpb__strdup("")) == NULL)
+                return MPB_ENOMEM;
+    return MPB_OK;
+}
+
+/* ---- the planner id ---------------------------------------------------- */
+
+static int mpb__name_char_ok(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+           (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-';
+}
+
+static int mpb__make_id(mpb__server *s, char *err, size_t errlen)
+{
+    const char *name = s->def->name;
+    size_t nlen = name != NULL ? strlen(name) : 0;
+    if (nlen == 0 || nlen > 32) {
+        snprintf(err, errlen, "planner name must be 1 to 32 characters");
+        return MPB_EINVAL;
+    }
+    for (size_t i = 0; i < nlen; i++)
+        if (!mpb__name_char_ok(name[i])) {
+            snprintf(err, errlen, "planner name '%s' may hold only "
+                     "letters, digits and '_' '.' '-'", name);
+            return MPB_EINVAL;
+        }
+
+    char host[256];
+    if (gethostname(host, sizeof host) != 0)
+        host[0] = '\0';
+    host[sizeof host - 1] = '\0';
+    for (char *p = host; *p != '\0'; p++)
+        if (!mpb__name_char_ok(*p))
+            *p = '-';
+    if (host[0] == '\0')
+        snprintf(host, sizeof host, "localhost");
+
+    char pid[24];
+    snprintf(pid, sizeof pid, "%ld", (long)getpid());
+    /* name '@' host ':' pid must fit: shorten the host if needed. */
+    size_t room = MPB_PLANNER_ID_MAX - nlen - 2 - strlen(pid);
+    if (strlen(host) > room)
+        host[room] = '\0';
+    int n1 = snprintf(s->host, sizeof s->host, "%s", host);
+    int n2 = snprintf(s->id, sizeof s->id, "%s@%s:%s", name, host, pid);
+    if (n1 < 0 || (size_t)n1 >= sizeof s->host || n2 < 0 ||
+        (size_t)n2 >= sizeof s->id || !mpb_planner_id_is_valid(s->id) ||
+        mpb_request_channel(s->id, s->request_channel,
+                            sizeof s->request_channel) != MPB_OK) {
+        snprintf(err, errlen, "cannot make a planner id from '%s'", s->id);
+        return MPB_EINVAL;
+    }
+    return MPB_OK;
+}
+
+/* ---- heartbeat --------------------------------------------------------- */
+
+static void mpb__announce(mpb__server *s)
+{
+    const mpb_planner_def *d = s->def;
+    char active[MPB_RUN_ID_SIZE];
+    char *active_list[1] = { active };
+    int closed;
+
+    pthread_mutex_lock(&s->mu);
+    memcpy(active, s->active, sizeof active);
+    closed = s->closed;
+    pthread_mutex_unlock(&s->mu);
+
+    mpb_planner_announce_t a;
+    memset(&a, 0, sizeof a);
+    a.utime = mpb_utime_now();
+    a.planner_id = s->id;
+    a.name = (char *)d->name;
+    a.host = s->host;
+    a.pid = (int32_t)getpid();
+    a.language = (char *)(d->language != NULL ? d->language : "");
+    a.version = (char *)(d->version != NULL ? d->version : "");
+    a.heartbeat_ms = s->heartbeat_ms;
+    a.num_algorithms = (int16_t)d->num_algorithms;
+    a.algorithms = (char **)d->algorithms;
+    a.capacity = closed ? 0 : 1;
+    a.num_active = active[0] != '\0' ? 1 : 0;
+    a.active_runs = active_list;
+    mpb_planner_announce_t_publish(s->lcm, MPB_CHANNEL_ANNOUNCE, &a);
+}
+
+static void mpb__timespec_add_ms(struct timespec *t, int ms)
+{
+    t->tv_sec += ms / 1000;
+    t->tv_nsec += (long)(ms % 1000) * 1000000L;
+    if (t->tv_nsec >= 1000000000L) {
+        t->tv_sec++;
+        t->tv_nsec -= 1000000000L;
+    }
+}
+
+/* Wait on s->cond until deadline, quit, or (if wake) announce_now. */
+static void mpb__wait_until(mpb__server *s, const struct timespec *deadline,
+                            int wake)
+{
+    while (!s->quit && !(wake && s->announce_now))
+        if (pthread_cond_timedwait(&s->cond, &s->mu, deadline) == ETIMEDOUT)
+            break;
+}
+
+/*
+ * Announce now, then every heartbeat_ms; a change of the active run
+ * (announce_now) brings the next announce forward, but never closer than
+ * MPB__ANNOUNCE_GAP_MS to the last, so a fast planner does not announce
+ * once per run.
+ */
+static void *mpb__heartbeat_main(void *arg)
+{
+    mpb__server *s = arg;
+    struct timespec now, earliest, next;
+
+    pthread_mutex_lock(&s->mu);
+    while (!s->quit) {
+        s->announce_now = 0;    /* changes from here on are announced again */
+        pthread_mutex_unlock(&s->mu);
+        mpb__announce(s);
+        pthread_mutex_lock(&s->mu);
+
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        earliest = next = now;
+        mpb__timespec_add_ms(&earliest, MPB__ANNOUNCE_GAP_MS);
+        mpb__timespec_add_ms(&next, s->heartbeat_ms);
+        mpb__wait_until(s, &earliest, 0);
+        mpb__wait_until(s, &next, 1);
+    }
+    pthread_mutex_unlock(&s->mu);
+    return NULL;
+}
+
+/* Set the run being solved ("" for none) and announce the change now. */
+static void mpb__set_active(mpb__server *s, const char *run_id, int closed)
+{
+    pthread_mutex_lock(&s->mu);
+    snprintf(s->active, sizeof s->active, "%s", run_id);
+    s->closed = closed;
+    s->announce_now = 1;
+    pthread_cond_signal(&s->cond);
+    pthread_mutex_unlock(&s->mu);
+}
+
+/* ---- messages ---------------------------------------------------------- */
+
+static void mpb__ack(mpb__server *s, const char *run_id)
+{
+    mpb_run_ack_t a;
+    memset(&a, 0, sizeof a);
+    a.utime = mpb_utime_now();
+    a.run_id = (char *)run_id;
+    a.sender_id = s->id;
+    a.kind = MPB_RUN_ACK_T_REQUEST_RECEIVED;
+    mpb_run_ack_t_publish(s->lcm, MPB_CHANNEL_ACK, &a);
+}
+
+static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
+{
+    for (int i = 0; i < MPB__RESULTS_KEPT; i++)
+        if (s->kept[i].used && strcmp(s->kept[i].res.run_id, run_id) == 0)
+            return &s->kept[i];
+    return NULL;
+}
+
+/* Publish a kept result. A failed send (the socket's buffer full, say) is
+ * not an error: it counts as a lost message, which the re-sends cover. */
+static void mpb__send(mpb__server *s, mpb__kept *k)
+{
+    mpb_plan_result_t_publish(s->lcm, MPB_CHANNEL_RESULT, &k->res);
+    k->next_send_s = mpb_monotonic_s() + MPB__RESEND_S;
+    if (k->sends_left > 0)
+        k->sends_left--;
+}
+
+/* ---- solving ----------------------------------------------------------- */
+
+/* Checks of a request that do not need the planner; NULL if it passes. */
+static const char *mpb__check_request(const mpb__server *s,
+                                      const mpb_plan_request_t *req)
+{
+    int offered = 0;
+    for (int i = 0; i < s->def->num_algorithms; i++)
+        if (strcmp(s->def->algorithms[i], req->algorithm) == 0)
+            offered = 1;
+    if (!offered)
+        return "algorithm not offered by this planner";
+    if (req->num_joints <= 0)
+        return "no joints";
+    if (req->goal.kind == MPB_GOAL_T_JOINTS &&
+        req->goal.num_joints != req->num_joints)
+        return "goal has a different number of joints than start";
+    if (req->goal.kind != MPB_GOAL_T_JOINTS &&
+        req->goal.kind != MPB_GOAL_T_POSE_REGION)
+        return "unknown goal kind";
+    return NULL;
+}
+
+/* Solve req into a new ring slot, publish the result. */
+static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
+{
+    mpb__kept *k = &s->kept[s->kept_next];
+    s->kept_next = (s->kept_next + 1) % MPB__RESULTS_KEPT;
+    if (k->used)
+        mpb_result_clear(&k->res);
+    memset(k, 0, sizeof *k);
+
+    mpb_plan_result_t *res = &k->res;
+    res->utime = mpb_utime_now();
+    res->run_id = mpb__strdup(req->run_id);
+    res->planner_id = mpb__strdup(s->id);
+    if (res->run_id == NULL || res->planner_id == NULL) {
+        mpb_result_clear(res);
+        return MPB_ENOMEM;
+    }
+
+    const char *bad = mpb__check_request(s, req);
+    if (bad != NULL) {
+        res->status = MPB_PLAN_RESULT_T_INVALID_REQUEST;
+        mpb_result_set_message(res, "%s", bad);
+    } else {
+        int rc = s->def->solve(s->def->user, req, res);
+        /* The run id and planner id are ours, whatever solve() did. */
+        if (res->run_id == NULL || strcmp(res->run_id, req->run_id) != 0) {
+            free(res->run_id);
+            res->run_id = mpb__strdup(req->run_id);
+        }
+        if (res->planner_id == NULL || strcmp(res->planner_id, s->id) != 0) {
+            free(res->planner_id);
+            res->planner_id = mpb__strdup(s->id);
+        }
+        if (rc < 0) {
+            res->status = MPB_PLAN_RESULT_T_INVALID_REQUEST;
+            if (res->message == NULL || res->message[0] == '\0')
+                mpb_result_set_message(res, "planner refused the request (%s)",
+                                       mpb_err_name(rc));
+        } else if (res->status < MPB_PLAN_RESULT_T_SOLVED ||
+                   res->status > MPB_PLAN_RESULT_T_INVALID_REQUEST) {
+            mpb_result_set_message(res, "planner set status %d; %s",
+                                   (int)res->status,
+                                   res->message != NULL ? res->message : "");
+            res->status = MPB_PLAN_RESULT_T_FAILED;
+        }
+    }
+    if (res->run_id == NULL || res->planner_id == NULL ||
+        mpb__result_fill_strings(res) != MPB_OK) {
+        mpb_result_clear(res);
+        return MPB_ENOMEM;
+    }
+    res->utime = mpb_utime_now();
+    k->used = 1;
+    k->sends_left = MPB__SENDS_MAX;
+    mpb__send(s, k);
+    return MPB_OK;
+}
+
+/* ---- LCM handlers ------------------------------------------------------ */
+
+/*
+ * A request for us: acknowledge it, then answer it from memory or solve it
+ * here and now. Solving inside the handler needs no copy of the request;
+ * meanwhile LCM queues what arrives.
+ */
+static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
+                       const mpb_plan_request_t *msg, void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    mpb__server *s = user;
+    if (!mpb_run_id_is_valid(msg->run_id) || msg->planner_id == NULL ||
+        strcmp(msg->planner_id, s->id) != 0)
+        return;                 /* not a request for us: nothing to say */
+
+    mpb__kept *k = mpb__find_kept(s, msg->run_id);
+    if (k != NULL) {
+        /* Solved already: send the result now, and re-send it until it is
+         * acknowledged (again, if it was acknowledged before). */
+        mpb__ack(s, msg->run_id);
+        if (k->acked || k->sends_left <= 0) {
+            k->acked = 0;
+            k->sends_left = MPB__SENDS_MAX;
+        }
+        mpb__send(s, k);
+        return;
+    }
+    if (s->run_error != MPB_OK ||
+        (s->max_runs > 0 && s->solved >= s->max_runs))
+        return;                 /* closing: take no new runs */
+    mpb__ack(s, msg->run_id);
+
+    int closing = s->max_runs > 0 && s->solved + 1 >= s->max_runs;
+    mpb__set_active(s, msg->run_id, closing);
+    int rc = mpb__run(s, msg);
+    s->solved++;
+    mpb__set_active(s, "", closing);
+    if (rc != MPB_OK)
+        s->run_error = rc;
+}
+
+static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
+                   const mpb_run_ack_t *msg, void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    mpb__server *s = user;
+    if (msg->kind != MPB_RUN_ACK_T_RESULT_STORED &&
+        msg->kind != MPB_RUN_ACK_T_RESULT_REJECTED)
+        return;
+    mpb__kept *k = mpb__find_kept(s, msg->run_id);
+    if (k != NULL)
+        k->acked = 1;
+}
+
+/* ---- the loop ---------------------------------------------------------- */
+
+/* Re-send due results; return the seconds until the next one is due. */
+static double mpb__resend_due(mpb__server *s, int *pending)
+{
+    double now = mpb_monotonic_s(), wait = MPB__POLL_S;
+    *pending = 0;
+    for (int i = 0; i < MPB__RESULTS_KEPT; i++) {
+        mpb__kept *k = &s->kept[i];
+        if (!k->used || k->acked || k->sends_left <= 0)
+            continue;
+        if (k->next_send_s <= now)
+            mpb__send(s, k);
+        if (k->sends_left > 0) {
+            (*pending)++;
+            double w = k->next_send_s - now;
+            if (w < wait)
+                wait = w;
+        }
+    }
+    return wait < 0 ? 0 : wait;
+}
+
+static int mpb__loop(mpb__server *s, volatile sig_atomic_t *stop,
+                     char *err, size_t errlen)
+{
+    int fd = lcm_get_fileno(s->lcm);
+    for (;;) {
+        if (stop != NULL && *stop)
+            return MPB_OK;
+
+        if (s->run_error != MPB_OK) {
+            snprintf(err, errlen, "out of memory while answering a run");
+            return s->run_error;
+        }
+
+        int pending;
+        double wait = mpb__resend_due(s, &pending);
+        if (s->max_runs > 0 && s->solved >= s->max_runs && pending == 0)
+            return MPB_OK;
+
+        fd_set fds;
+        FD_ZERO(&fds);
+        FD_SET(fd, &fds);
+        struct timeval tv;
+        tv.tv_sec = 0;
+        tv.tv_usec = (suseconds_t)(wait * 1e6);
+        int n = select(fd + 1, &fds, NULL, NULL, &tv);
+        if (n < 0) {
+            if (errno == EINTR)
+                continue;
+            snprintf(err, errlen, "select on the LCM socket: %s", strerror(errno));
+            return MPB_ELCM;
+        }
+        if (n > 0 && lcm_handle(s->lcm) != 0) {
+            snprintf(err, errlen, "lcm_handle failed");
+            return MPB_ELCM;
+        }
+    }
+}
+
+int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
+                      volatile sig_atomic_t *stop, long max_runs,
+                      char *err, size_t errlen)
+{
+    char dummy[1];
+    if (err == NULL || errlen == 0) {
+        err = dummy;
+        errlen = sizeof dummy;
+    }
+    err[0] = '\0';
+    if (def == NULL || def->solve == NULL || def->num_algorithms < 0 ||
+        def->num_algorithms > INT16_MAX ||
+        (def->num_algorithms > 0 && def->algorithms == NULL)) {
+        snprintf(err, errlen, "planner definition lacks a solve function "
+                 "or its algorithms");
+        return MPB_EINVAL;
+    }
+    for (int i = 0; i < def->num_algorithms; i++)
+        if (def->algorithms[i] == NULL) {
+            snprintf(err, errlen, "algorithm %d is NULL", i);
+            return MPB_EINVAL;
+        }
+
+    mpb__server *s = calloc(1, sizeof *s);
+    if (s == NULL) {
+        snprintf(err, errlen, "out of memory");
+        return MPB_ENOMEM;
+    }
+    s->def = def;
+    s->max_runs = max_runs;
+    s->heartbeat_ms = def->heartbeat_ms > 0 ? def->heartbeat_ms : 500;
+    if (s->heartbeat_ms < MPB__ANNOUNCE_GAP_MS)
+        s->heartbeat_ms = MPB__ANNOUNCE_GAP_MS;
+    int rc = mpb__make_id(s, err, errlen);
+    if (rc != MPB_OK) {
+        free(s);
+        return rc;
+    }
+
+    const char *url = lcm_url != NULL ? lcm_url : MPB_DEFAULT_LCM_URL;
+    s->lcm = lcm_create(url);
+    if (s->lcm == NULL) {
+        snprintf(err, errlen, "cannot join LCM at %s (udpm needs a multicast "
+                 "route, e.g. 'ip route add 224.0.0.0/4 dev lo')", url);
+        free(s);
+        return MPB_ELCM;
+    }
+
+    mpb_plan_request_t_subscription_t *rsub =
+        mpb_plan_request_t_subscribe(s->lcm, s->request_channel, mpb__on_request, s);
+    mpb_run_ack_t_subscription_t *asub =
+        mpb_run_ack_t_subscribe(s->lcm, MPB_CHANNEL_ACK, mpb__on_ack, s);
+    if (rsub == NULL || asub == NULL) {
+        snprintf(err, errlen, "cannot subscribe to LCM channels");
+        if (rsub != NULL)
+            mpb_plan_request_t_unsubscribe(s->lcm, rsub);
+        if (asub != NULL)
+            mpb_run_ack_t_unsubscribe(s->lcm, asub);
+        lcm_destroy(s->lcm);
+        free(s);
+        return MPB_ELCM;
+    }
+    mpb_plan_request_t_subscription_set_queue_capacity(rsub, MPB__REQUEST_QUEUE);
+    mpb_run_ack_t_subscription_set_queue_capacity(asub, MPB__ACK_QUEUE);
+
+    pthread_condattr_t ca;
+    pthread_condattr_init(&ca);
+    pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
+    pthread_mutex_init(&s->mu, NULL);
+    pthread_cond_init(&s->cond, &ca);
+    pthread_condattr_destroy(&ca);
+
+    /* The heartbeat thread takes no signals: they belong to the caller's
+     * thread, where they interrupt select(). */
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &old);
+    pthread_t hb;
+    int trc = pthread_create(&hb, NULL, mpb__heartbeat_main, s);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (trc != 0) {
+        snprintf(err, errlen, "cannot start the heartbeat thread: %s",
+                 strerror(trc));
+        rc = MPB_EERROR;
+    } else {
+        if (def->on_ready != NULL)
+            def->on_ready(def->user, s->id);
+        rc = mpb__loop(s, stop, err, errlen);
+
+        pthread_mutex_lock(&s->mu);
+        s->quit = 1;
+        pthread_cond_signal(&s->cond);
+        pthread_mutex_unlock(&s->mu);
+        pthread_join(hb, NULL);
+    }
+
+    for (int i = 0; i < MPB__RESULTS_KEPT; i++)
+        if (s->kept[i].used)
+            mpb_result_clear(&s->kept[i].res);
+    mpb_plan_request_t_unsubscribe(s->lcm, rsub);
+    mpb_run_ack_t_unsubscribe(s->lcm, asub);
+    lcm_destroy(s->lcm);
+    pthread_cond_destroy(&s->cond);
+    pthread_mutex_destroy(&s->mu);
+    free(s);
+    return rc;
+}

@@ -1,0 +1,138 @@
+/* null_planner.c - mpb-planner-null: the unchecked straight line, for tests and overhead. */
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mpbench/mpbench.h"
+#include "mpbench/planner.h"
+
+static volatile sig_atomic_t g_stop;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    g_stop = 1;
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+"usage: mpb-planner-null [--lcm-url URL] [--name NAME] [--max-runs N]\n"
+"\n"
+"A planner process for mpbench that does no planning. It answers every\n"
+"plan request for the algorithm \"straight_line\" with status SOLVED and one\n"
+"stage, \"raw\", of two waypoints: the start state and the goal joints. It\n"
+"checks nothing, so the path may well collide: that is the point. Use it to\n"
+"test the daemon and to measure mpbench's own overhead per run.\n"
+"Only joint-space goals are supported; a pose-region goal is answered with\n"
+"INVALID_REQUEST.\n"
+"\n"
+"It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
+"SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
+"\n"
+"options:\n"
+"  --lcm-url URL   LCM URL to join (default %s;\n"
+"                  the daemon must use the same one)\n"
+"  --name NAME     planner name used in experiment files (default \"null\")\n"
+"  --max-runs N    exit after answering N runs (default 0: no limit)\n"
+"  --help          show this text\n",
+            MPB_DEFAULT_LCM_URL);
+}
+
+static int solve_straight_line(void *user, const mpb_plan_request_t *req,
+                               mpb_plan_result_t *res)
+{
+    (void)user;
+    if (req->goal.kind != MPB_GOAL_T_JOINTS) {
+        mpb_result_set_message(res, "straight_line needs a joint-space goal");
+        return MPB_EUNSUPPORTED;
+    }
+    int n = req->num_joints;
+    double *wp = malloc(2 * (size_t)n * sizeof *wp);
+    if (wp == NULL)
+        return MPB_ENOMEM;
+    memcpy(wp, req->start, (size_t)n * sizeof *wp);
+    memcpy(wp + n, req->goal.joints, (size_t)n * sizeof *wp);
+    int rc = mpb_result_add_stage(res, "raw", 0.0, wp, 2, n);
+    free(wp);
+    if (rc != MPB_OK) {
+        res->status = MPB_PLAN_RESULT_T_FAILED;
+        mpb_result_set_message(res, "%s", mpb_strerror(rc));
+        return MPB_OK;
+    }
+    res->status = MPB_PLAN_RESULT_T_SOLVED;
+    return MPB_OK;
+}
+
+static void on_ready(void *user, const char *planner_id)
+{
+    (void)user;
+    printf("mpb-planner-null: serving as %s\n", planner_id);
+    fflush(stdout);
+}
+
+int main(int argc, char **argv)
+{
+    const char *url = NULL, *name = "null";
+    long max_runs = 0;
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        }
+        if ((strcmp(a, "--lcm-url") == 0 || strcmp(a, "--name") == 0 ||
+             strcmp(a, "--max-runs") == 0) && i + 1 >= argc) {
+            fprintf(stderr, "mpb-planner-null: %s needs a value (see --help)\n", a);
+            return 2;
+        }
+        if (strcmp(a, "--lcm-url") == 0) {
+            url = argv[++i];
+        } else if (strcmp(a, "--name") == 0) {
+            name = argv[++i];
+        } else if (strcmp(a, "--max-runs") == 0) {
+            char *end;
+            errno = 0;
+            max_runs = strtol(argv[++i], &end, 10);
+            if (errno != 0 || *end != '\0' || end == argv[i] || max_runs < 0) {
+                fprintf(stderr, "mpb-planner-null: --max-runs wants a "
+                        "number >= 0, not '%s'\n", argv[i]);
+                return 2;
+            }
+        } else {
+            fprintf(stderr, "mpb-planner-null: unknown argument '%s' "
+                    "(see --help)\n", a);
+            return 2;
+        }
+    }
+
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    static const char *const algorithms[] = { "straight_line" };
+    mpb_planner_def def = {
+        .name = name,
+        .language = "c",
+        .version = MPB_VERSION_STRING,
+        .algorithms = algorithms,
+        .num_algorithms = 1,
+        .solve = solve_straight_line,
+        .user = NULL,
+        .heartbeat_ms = 0,
+        .on_ready = on_ready,
+    };
+    char err[256];
+    int rc = mpb_planner_serve(&def, url, &g_stop, max_runs, err, sizeof err);
+    if (rc != MPB_OK) {
+        fprintf(stderr, "mpb-planner-null: %s\n", err[0] ? err : mpb_strerror(rc));
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,786 @@
+// ompl_planner.cpp - mpb-planner-ompl: OMPL's geometric planners behind the mpbench protocol.
+//
+// One request is one fresh OMPL problem: a joint space over the world's
+// joints, a validity checker that asks the mpbench world, the planner with
+// the request's parameters, a time limit, and then the raw path, a
+// shortcut copy and a B-spline-smoothed copy as three stages. Only the
+// parsed world is kept between requests (keyed by the texts' hashes).
+//
+// Everything C++ stays inside solve(): every exception is caught there and
+// becomes a FAILED result, so none crosses into the C library.
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <functional>
+#include <limits>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <ompl/base/Planner.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/config.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/PathSimplifier.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <ompl/geometric/planners/est/BiEST.h>
+#include <ompl/geometric/planners/est/EST.h>
+#include <ompl/geometric/planners/est/ProjEST.h>
+#include <ompl/geometric/planners/fmt/BFMT.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/kpiece/BKPIECE1.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/kpiece/LBKPIECE1.h>
+#include <ompl/geometric/planners/pdst/PDST.h>
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+#include <ompl/geometric/planners/prm/LazyPRMstar.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/rrt/BiTRRT.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/LBTRRT.h>
+#include <ompl/geometric/planners/rrt/LazyRRT.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/rrt/TRRT.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
+#include <ompl/geometric/planners/sst/SST.h>
+#include <ompl/geometric/planners/stride/STRIDE.h>
+
+#include "mpbench/mpbench.h"
+#include "mpbench/planner.h"
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void on_signal(int) { g_stop = 1; }
+
+#define MPB_STR2(x) #x
+#define MPB_STR(x) MPB_STR2(x)
+const char *const k_version = MPB_VERSION_STRING " (OMPL "
+    MPB_STR(OMPL_MAJOR_VERSION) "." MPB_STR(OMPL_MINOR_VERSION) "."
+    MPB_STR(OMPL_PATCH_VERSION) ")";
+
+// ---- the algorithms ------------------------------------------------------
+
+using Factory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr &)>;
+
+struct Algorithm {
+    const char *name;
+    Factory make;
+};
+
+template <class P> Algorithm alg(const char *name)
+{
+    return {name, [](const ob::SpaceInformationPtr &si) -> ob::PlannerPtr {
+                return std::make_shared<P>(si);
+            }};
+}
+
+const std::vector<Algorithm> &algorithms()
+{
+    static const std::vector<Algorithm> list = {
+        alg<og::RRTConnect>("RRTConnect"),
+        alg<og::RRT>("RRT"),
+        alg<og::RRTstar>("RRTstar"),
+        alg<og::InformedRRTstar>("InformedRRTstar"),
+        alg<og::LazyRRT>("LazyRRT"),
+        alg<og::TRRT>("TRRT"),
+        alg<og::BiTRRT>("BiTRRT"),
+        alg<og::LBTRRT>("LBTRRT"),
+        alg<og::PRM>("PRM"),
+        alg<og::PRMstar>("PRMstar"),
+        alg<og::LazyPRM>("LazyPRM"),
+        alg<og::LazyPRMstar>("LazyPRMstar"),
+        alg<og::KPIECE1>("KPIECE1"),
+        alg<og::BKPIECE1>("BKPIECE1"),
+        alg<og::LBKPIECE1>("LBKPIECE1"),
+        alg<og::SBL>("SBL"),
+        alg<og::EST>("EST"),
+        alg<og::BiEST>("BiEST"),
+        alg<og::ProjEST>("ProjEST"),
+        alg<og::STRIDE>("STRIDE"),
+        alg<og::PDST>("PDST"),
+        alg<og::BITstar>("BITstar"),
+        alg<og::FMT>("FMT"),
+        alg<og::BFMT>("BFMT"),
+        alg<og::SST>("SST"),
+    };
+    return list;
+}
+
+const Algorithm *find_algorithm(const char *name)
+{
+    for (const Algorithm &a : algorithms())
+        if (std::strcmp(a.name, name) == 0)
+            return &a;
+    return nullptr;
+}
+
+// ---- the joint space -----------------------------------------------------
+
+// A real vector of the world's joints, in the world's order. Continuous
+// joints live in [-pi, pi] and wrap: distance and interpolation take the
+// short way round, so the metric is the one mpbench verifies and measures
+// with (Euclidean in joint space, a continuous joint's difference wrapped).
+// Keeping one RealVectorStateSpace (instead of a compound of SO2 and 1-D
+// spaces) keeps states flat double arrays and the metric Euclidean, not the
+// sum a CompoundStateSpace would make of its components' distances.
+class JointSpace : public ob::RealVectorStateSpace {
+public:
+    explicit JointSpace(const mpb_world *w)
+        : ob::RealVectorStateSpace(static_cast<unsigned int>(mpb_world_num_joints(w)))
+    {
+        unsigned int n = getDimension();
+        ob::RealVectorBounds b(n);
+        wraps_.resize(n);
+        for (unsigned int j = 0; j < n; j++) {
+            mpb_world_joint_limits(w, static_cast<int>(j), &b.low[j], &b.high[j]);
+            wraps_[j] = mpb_world_joint_is_continuous(w, static_cast<int>(j)) != 0;
+            if (wraps_[j]) {
+                b.low[j] = -M_PI;
+                b.high[j] = M_PI;
+                any_wrap_ = true;
+            }
+            setDimensionName(j, mpb_world_joint_name(w, static_cast<int>(j)));
+        }
+        setBounds(b);
+        setName("mpb_joints");
+    }
+
+    double distance(const ob::State *a, const ob::State *b) const override
+    {
+        if (!any_wrap_)
+            return ob::RealVectorStateSpace::distance(a, b);
+        const double *x = values(a), *y = values(b);
+        double sq = 0.0;
+        for (unsigned int j = 0; j < getDimension(); j++) {
+            double d = delta(j, x[j], y[j]);
+            sq += d * d;
+        }
+        return std::sqrt(sq);
+    }
+
+    void interpolate(const ob::State *from, const ob::State *to, double t,
+                     ob::State *state) const override
+    {
+        const double *x = values(from), *y = values(to);
+        double *z = state->as<StateType>()->values;
+        for (unsigned int j = 0; j < getDimension(); j++) {
+            z[j] = x[j] + t * delta(j, x[j], y[j]);
+            if (wraps_[j])
+                z[j] = std::remainder(z[j], 2.0 * M_PI);
+        }
+    }
+
+    void enforceBounds(ob::State *state) const override
+    {
+        double *z = state->as<StateType>()->values;
+        for (unsigned int j = 0; j < getDimension(); j++) {
+            if (wraps_[j])
+                z[j] = std::remainder(z[j], 2.0 * M_PI);
+            else
+                z[j] = std::min(std::max(z[j], bounds_.low[j]), bounds_.high[j]);
+        }
+    }
+
+    bool satisfiesBounds(const ob::State *state) const override
+    {
+        const double *z = values(state);
+        const double eps = std::numeric_limits<double>::epsilon();
+        for (unsigned int j = 0; j < getDimension(); j++)
+            if (!(z[j] >= bounds_.low[j] - eps && z[j] <= bounds_.high[j] + eps))
+                return false;
+        return true;
+    }
+
+    double getMaximumExtent() const override
+    {
+        double sq = 0.0;
+        for (unsigned int j = 0; j < getDimension(); j++) {
+            double e = wraps_[j] ? M_PI : bounds_.high[j] - bounds_.low[j];
+            sq += e * e;
+        }
+        return std::sqrt(sq);
+    }
+
+private:
+    static const double *values(const ob::State *s)
+    {
+        return s->as<StateType>()->values;
+    }
+
+    double delta(unsigned int j, double from, double to) const
+    {
+        double d = to - from;
+        return wraps_[j] ? std::remainder(d, 2.0 * M_PI) : d;
+    }
+
+    std::vector<bool> wraps_;
+    bool any_wrap_ = false;
+};
+
+// ---- the world cache -----------------------------------------------------
+
+struct CachedWorld {
+    std::string key;
+    mpb_world *world;
+};
+
+class WorldCache {
+public:
+    ~WorldCache()
+    {
+        for (CachedWorld &c : list_)
+            mpb_world_close(c.world);
+    }
+
+    // The world of a request, parsed once per robot and scene; nullptr
+    // with err filled when it does not parse. Owned by the cache.
+    mpb_world *get(const mpb_plan_request_t *req, std::string &err)
+    {
+        std::string key = part(req->robot_format, req->robot_hash, req->robot) +
+                          '\n' + part(req->scene_format, req->scene_hash, req->scene);
+        for (auto it = list_.begin(); it != list_.end(); ++it)
+            if (it->key == key) {
+                list_.splice(list_.begin(), list_, it);
+                return list_.front().world;
+            }
+        mpb_world *w = nullptr;
+        char msg[256] = "";
+        int rc = mpb_world_open(req->robot_format, req->robot, req->scene_format,
+                                req->scene, &w, msg, sizeof msg);
+        if (rc != MPB_OK || w == nullptr) {
+            err = msg[0] != '\0' ? msg : mpb_strerror(rc);
+            return nullptr;
+        }
+        list_.push_front(CachedWorld{key, w});
+        while (list_.size() > kSize) {
+            mpb_world_close(list_.back().world);
+            list_.pop_back();
+        }
+        return w;
+    }
+
+private:
+    static constexpr std::size_t kSize = 4;
+
+    // A hash names the text; without one, the text names itself.
+    static std::string part(const char *format, const char *hash, const char *text)
+    {
+        std::string s = format != nullptr ? format : "";
+        s += ':';
+        if (hash != nullptr && hash[0] != '\0')
+            s += hash;
+        else
+            s += std::string("text:") + (text != nullptr ? text : "");
+        return s;
+    }
+
+    std::list<CachedWorld> list_;
+};
+
+// ---- solving -------------------------------------------------------------
+
+struct Context {
+    WorldCache worlds;
+};
+
+// Thrown inside solve() for a request we cannot use (INVALID_REQUEST).
+struct InvalidRequest : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Thrown inside solve() for a problem known unsolvable before planning
+// (FAILED).
+struct Unsolvable : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// The validity checker's state. The world is not thread-safe and PRM checks
+// goal states from a second thread, hence the mutex (never contended
+// otherwise, so it costs next to nothing).
+struct Checker {
+    mpb_world *world;
+    std::mutex mu;
+    unsigned long calls = 0;
+};
+
+void check(int rc)
+{
+    if (rc == MPB_ENOMEM)
+        throw std::bad_alloc();
+    if (rc != MPB_OK)
+        throw std::runtime_error(mpb_strerror(rc));
+}
+
+bool parse_double(const char *s, double &out)
+{
+    char *end;
+    errno = 0;
+    out = std::strtod(s, &end);
+    return errno == 0 && end != s && *end == '\0' && std::isfinite(out);
+}
+
+bool parse_bool(const char *s, bool &out)
+{
+    if (!std::strcmp(s, "1") || !std::strcmp(s, "true") || !std::strcmp(s, "yes")) {
+        out = true;
+        return true;
+    }
+    if (!std::strcmp(s, "0") || !std::strcmp(s, "false") || !std::strcmp(s, "no")) {
+        out = false;
+        return true;
+    }
+    return false;
+}
+
+// OMPL's seed is 32 bits and must not be 0.
+std::uint_fast32_t ompl_seed(std::int64_t seed)
+{
+    std::uint64_t u = static_cast<std::uint64_t>(seed);
+    std::uint32_t s = static_cast<std::uint32_t>(u ^ (u >> 32));
+    return s != 0 ? s : 0x9e3779b9u;
+}
+
+// Waypoints of path, world order, into request order (row after row).
+std::vector<double> waypoints(const og::PathGeometric &path,
+                              const std::vector<int> &perm)
+{
+    std::size_t n = perm.size();
+    std::vector<double> out(path.getStateCount() * n);
+    for (std::size_t i = 0; i < path.getStateCount(); i++) {
+        const double *v = path.getState(i)->as<ob::RealVectorStateSpace::StateType>()->values;
+        for (std::size_t j = 0; j < n; j++)
+            out[i * n + j] = v[perm[j]];
+    }
+    return out;
+}
+
+void add_stage(mpb_plan_result_t *res, const char *name, double time,
+               const og::PathGeometric &path, const std::vector<int> &perm)
+{
+    std::vector<double> wp = waypoints(path, perm);
+    check(mpb_result_add_stage(res, name, time, wp.data(),
+                               static_cast<int>(path.getStateCount()),
+                               static_cast<int>(perm.size())));
+}
+
+void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t *res)
+{
+    const double t0 = mpb_monotonic_s();
+
+    // mpbench's own parameters; the others go to the OMPL planner.
+    // Motions are checked at half the step mpbenchd verifies with (0.01 rad
+    // by default): OMPL and the verifier sample a segment at different
+    // points (the simplifiers split segments checked whole), so a path
+    // checked at the same step is now and then caught grazing an obstacle
+    // between OMPL's samples.
+    double resolution = 0.005;
+    bool simplify = true, first_solution = false;
+    std::vector<const mpb_param_t *> planner_params;
+    for (int i = 0; i < req->num_params; i++) {
+        const mpb_param_t *p = &req->params[i];
+        if (!std::strcmp(p->key, "resolution")) {
+            if (!parse_double(p->value, resolution) || !(resolution > 0))
+                throw InvalidRequest("resolution must be a number > 0 (rad)");
+        } else if (!std::strcmp(p->key, "simplify")) {
+            if (!parse_bool(p->value, simplify))
+                throw InvalidRequest("simplify must be 0 or 1");
+        } else if (!std::strcmp(p->key, "first_solution")) {
+            if (!parse_bool(p->value, first_solution))
+                throw InvalidRequest("first_solution must be 0 or 1");
+        } else {
+            planner_params.push_back(p);
+        }
+    }
+    if (!(req->time_limit > 0) || !std::isfinite(req->time_limit))
+        throw InvalidRequest("time_limit must be finite and > 0");
+    if (req->goal.kind != MPB_GOAL_T_JOINTS)
+        throw InvalidRequest("only joint-space goals are supported for now "
+                             "(pose regions need IK)");
+
+    std::string err;
+    mpb_world *world = ctx->worlds.get(req, err);
+    if (world == nullptr)
+        throw InvalidRequest("world: " + err);
+
+    // perm[i]: the world joint of the request's joint i.
+    const int n = mpb_world_num_joints(world);
+    if (req->num_joints != n)
+        throw InvalidRequest("the request names " + std::to_string(req->num_joints) +
+                             " joints, the robot has " + std::to_string(n));
+    std::vector<int> perm(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; i++) {
+        const char *name = req->joint_names[i];
+        int found = -1;
+        for (int j = 0; j < n && found < 0; j++)
+            if (name == nullptr || name[0] == '\0'
+                    ? j == i
+                    : std::strcmp(name, mpb_world_joint_name(world, j)) == 0)
+                found = j;
+        if (found < 0)
+            throw InvalidRequest(std::string("the robot has no joint '") + name + "'");
+        perm[static_cast<std::size_t>(i)] = found;
+    }
+
+    // Every random generator of this run is made after this, in the same
+    // order each time: the same seed gives the same samples (OMPL 1.5
+    // re-seeds its seed generator even after generators were made).
+    ompl::RNG::setSeed(ompl_seed(req->seed));
+
+    auto space = std::make_shared<JointSpace>(world);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    auto checker = std::make_shared<Checker>();
+    checker->world = world;
+    JointSpace *sp = space.get();
+    si->setStateValidityChecker([checker, sp](const ob::State *s) {
+        if (!sp->satisfiesBounds(s))
+            return false;
+        std::lock_guard<std::mutex> lock(checker->mu);
+        checker->calls++;
+        return mpb_world_in_collision(
+                   checker->world, s->as<ob::RealVectorStateSpace::StateType>()->values) == 0;
+    });
+    // Motions are checked every `resolution` rad (joint space, Euclidean).
+    double extent = space->getMaximumExtent();
+    si->setStateValidityCheckingResolution(std::min(resolution / extent, 0.5));
+    si->setup();
+
+    // Start and goal in the world's joint order, continuous joints wrapped.
+    ob::ScopedState<> start(space), goal(space);
+    for (std::size_t i = 0; i < perm.size(); i++) {
+        auto j = static_cast<unsigned int>(perm[i]);
+        start[j] = req->start[i];
+        goal[j] = req->goal.joints[i];
+    }
+    for (unsigned int j = 0; j < static_cast<unsigned int>(n); j++)
+        if (mpb_world_joint_is_continuous(world, static_cast<int>(j))) {
+            start[j] = std::remainder(start[j], 2.0 * M_PI);
+            goal[j] = std::remainder(goal[j], 2.0 * M_PI);
+        }
+    // A joint goal is one state: if it is invalid no planner can reach it,
+    // and most would spend the whole time limit finding that out.
+    if (!si->isValid(goal.get())) {
+        res->time_other = res->time_total = mpb_monotonic_s() - t0;
+        throw Unsolvable("the goal state collides or is outside the joint limits");
+    }
+    auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+    // The goal region is a box of half size joint_tolerance; a ball of that
+    // radius lies inside it.
+    pdef->setStartAndGoalStates(start, goal,
+                                std::max(req->goal.joint_tolerance,
+                                         std::numeric_limits<double>::epsilon()));
+    if (first_solution) {
+        // Any solution satisfies an infinite cost threshold: optimizing
+        // planners (RRTstar, PRMstar, BITstar ...) stop at their first.
+        auto obj = std::make_shared<ob::PathLengthOptimizationObjective>(si);
+        obj->setCostThreshold(ob::Cost(std::numeric_limits<double>::infinity()));
+        pdef->setOptimizationObjective(obj);
+    }
+
+    const Algorithm *a = find_algorithm(req->algorithm);
+    if (a == nullptr)
+        throw InvalidRequest(std::string("unknown algorithm ") + req->algorithm);
+    ob::PlannerPtr planner = a->make(si);
+    for (const mpb_param_t *p : planner_params) {
+        if (!planner->params().hasParam(p->key)) {
+            std::vector<std::string> names;
+            planner->params().getParamNames(names);
+            std::string known;
+            for (const std::string &k : names)
+                known += (known.empty() ? "" : ", ") + k;
+            throw InvalidRequest(std::string("unknown parameter '") + p->key + "' for " +
+                                 a->name + " (known: " + known +
+                                 "; and mpbench's resolution, simplify, first_solution)");
+        }
+        bool ok;
+        try {
+            ok = planner->params().setParam(p->key, p->value);
+        } catch (const std::exception &) {
+            ok = false;     // OMPL throws when the text is not a number
+        }
+        if (!ok)
+            throw InvalidRequest(std::string("bad value '") + p->value +
+                                 "' for parameter '" + p->key + "'");
+    }
+    planner->setProblemDefinition(pdef);
+    planner->setup();
+    const double t_setup = mpb_monotonic_s();
+    res->time_other = t_setup - t0;
+
+    const double deadline = t_setup + req->time_limit;
+    bool interrupted = false;
+    ob::PlannerTerminationCondition ptc([deadline, &interrupted] {
+        if (g_stop != 0)
+            interrupted = true;
+        return interrupted || mpb_monotonic_s() >= deadline;
+    });
+    ob::PlannerStatus status = planner->solve(ptc);
+    const double t_raw = mpb_monotonic_s();
+    const unsigned long solve_checks = checker->calls;
+
+    switch (ob::PlannerStatus::StatusType(status)) {
+    case ob::PlannerStatus::EXACT_SOLUTION:
+        res->status = MPB_PLAN_RESULT_T_SOLVED;
+        break;
+    case ob::PlannerStatus::APPROXIMATE_SOLUTION:
+        res->status = MPB_PLAN_RESULT_T_APPROXIMATE;
+        mpb_result_set_message(res, "approximate solution, %g from the goal",
+                               pdef->getSolutionDifference());
+        break;
+    case ob::PlannerStatus::TIMEOUT:
+        res->status = MPB_PLAN_RESULT_T_TIMEOUT;
+        break;
+    case ob::PlannerStatus::INVALID_START:
+        res->status = MPB_PLAN_RESULT_T_FAILED;
+        mpb_result_set_message(res, "the start state collides or is outside the joint limits");
+        break;
+    case ob::PlannerStatus::INVALID_GOAL:
+        res->status = MPB_PLAN_RESULT_T_FAILED;
+        mpb_result_set_message(res, "the goal state collides or is outside the joint limits");
+        break;
+    default:
+        res->status = MPB_PLAN_RESULT_T_FAILED;
+        mpb_result_set_message(res, "OMPL: %s", status.asString().c_str());
+        break;
+    }
+    if (interrupted) {
+        // Cut short by SIGINT/SIGTERM: whatever was found is not what the
+        // request asked for (an anytime planner had less time).
+        res->status = MPB_PLAN_RESULT_T_FAILED;
+        mpb_result_set_message(res, "interrupted after %.3f s: the planner "
+                               "process is stopping", t_raw - t_setup);
+    }
+
+    ob::PlannerData data(si);
+    planner->getPlannerData(data);
+    check(mpb_result_add_value(res, "graph states", data.numVertices()));
+    check(mpb_result_add_value(res, "graph motions", data.numEdges()));
+    check(mpb_result_add_value(res, "state checks in solve", static_cast<double>(solve_checks)));
+
+    bool have_path = (status == ob::PlannerStatus::EXACT_SOLUTION ||
+                      status == ob::PlannerStatus::APPROXIMATE_SOLUTION) &&
+                     pdef->getSolutionPath() != nullptr;
+    if (have_path) {
+        og::PathGeometric raw(*pdef->getSolutionPath()->as<og::PathGeometric>());
+        add_stage(res, "raw", t_raw - t_setup, raw, perm);
+        if (simplify) {
+            og::PathSimplifier ps(si);
+            double t = mpb_monotonic_s();
+            og::PathGeometric shortcut(raw);
+            ps.reduceVertices(shortcut);
+            ps.shortcutPath(shortcut);
+            double t_shortcut = mpb_monotonic_s();
+            add_stage(res, "shortcut", t_shortcut - t, shortcut, perm);
+
+            t = mpb_monotonic_s();
+            og::PathGeometric smoothed(shortcut);
+            ps.smoothBSpline(smoothed);
+            double t_smoothed = mpb_monotonic_s();
+            add_stage(res, "smoothed", t_smoothed - t, smoothed, perm);
+        }
+    }
+    check(mpb_result_add_value(res, "state checks", static_cast<double>(checker->calls)));
+    res->time_total = mpb_monotonic_s() - t0;
+}
+
+extern "C" int solve(void *user, const mpb_plan_request_t *req, mpb_plan_result_t *res)
+{
+    const char *what = nullptr;
+    try {
+        solve_inner(static_cast<Context *>(user), req, res);
+        return MPB_OK;
+    } catch (const InvalidRequest &e) {
+        mpb_result_clear(res);
+        mpb_result_set_message(res, "%s", e.what());
+        return MPB_EINVAL;
+    } catch (const Unsolvable &e) {
+        // Keep the times and values measured so far: only the status changes.
+        res->status = MPB_PLAN_RESULT_T_FAILED;
+        mpb_result_set_message(res, "%s", e.what());
+        return MPB_OK;
+    } catch (const std::exception &e) {
+        what = e.what();
+        mpb_result_clear(res);
+        mpb_result_set_message(res, "exception: %s", what);
+    } catch (...) {
+        mpb_result_clear(res);
+        mpb_result_set_message(res, "unknown exception");
+    }
+    res->status = MPB_PLAN_RESULT_T_FAILED;
+    return MPB_OK;
+}
+
+// ---- the process ---------------------------------------------------------
+
+// OMPL's messages go to stderr with --verbose, else nowhere. Re-seeding per
+// run makes OMPL complain that "random number generation already started";
+// that is expected here and dropped.
+class LogHandler : public ompl::msg::OutputHandler {
+public:
+    void log(const std::string &text, ompl::msg::LogLevel level, const char *,
+             int) override
+    {
+        if (text.find("Random number generation already started") != std::string::npos)
+            return;
+        static const char *const names[] = {"debug", "info", "warning", "error"};
+        int i = static_cast<int>(level);
+        std::fprintf(stderr, "mpb-planner-ompl: OMPL %s: %s\n",
+                     i >= 0 && i < 4 ? names[i] : "", text.c_str());
+    }
+};
+
+void usage(std::FILE *out)
+{
+    std::fprintf(out,
+"usage: mpb-planner-ompl [--lcm-url URL] [--name NAME] [--max-runs N] [--verbose]\n"
+"\n"
+"A planner process for mpbench that plans with OMPL %d.%d.%d's geometric\n"
+"planners. For each plan request it builds the robot's joint space (continuous\n"
+"joints wrap), checks states against the request's world, runs the requested\n"
+"algorithm with its parameters until it solves or the time limit passes, and\n"
+"answers with up to three stages: \"raw\" (the path as found), \"shortcut\"\n"
+"(a shortcut copy) and \"smoothed\" (a B-spline-smoothed copy of that), each\n"
+"with its own time. The same seed gives the same samples.\n"
+"\n"
+"It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
+"SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
+"\n"
+"options:\n"
+"  --lcm-url URL   LCM URL to join (default %s;\n"
+"                  the daemon must use the same one)\n"
+"  --name NAME     planner name used in experiment files (default \"ompl\")\n"
+"  --max-runs N    exit after answering N runs (default 0: no limit)\n"
+"  --verbose       show OMPL's own log messages on stderr\n"
+"  --help          show this text\n"
+"\n"
+"parameters a request may carry, besides the algorithm's own OMPL parameters\n"
+"(e.g. range, goal_bias; an unknown one makes the request INVALID_REQUEST):\n"
+"  resolution      joint-space step (rad) for checking motions (default\n"
+"                  0.005, half the step mpbenchd verifies with by default)\n"
+"  simplify        0: report the raw path only (default 1)\n"
+"  first_solution  1: optimizing planners stop at their first solution\n"
+"                  (default 0: they use the whole time limit)\n"
+"\n"
+"algorithms:",
+        OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION,
+        MPB_DEFAULT_LCM_URL);
+    int col = 80;
+    for (const Algorithm &a : algorithms()) {
+        int len = static_cast<int>(std::strlen(a.name)) + 1;
+        if (col + len > 76) {
+            std::fprintf(out, "\n ");
+            col = 1;
+        }
+        std::fprintf(out, " %s", a.name);
+        col += len;
+    }
+    std::fprintf(out, "\n");
+}
+
+extern "C" void on_ready(void *, const char *planner_id)
+{
+    std::printf("mpb-planner-ompl: serving as %s\n", planner_id);
+    std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    const char *url = nullptr, *name = "ompl";
+    long max_runs = 0;
+    bool verbose = false;
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!std::strcmp(a, "--help") || !std::strcmp(a, "-h")) {
+            usage(stdout);
+            return 0;
+        }
+        if (!std::strcmp(a, "--verbose")) {
+            verbose = true;
+            continue;
+        }
+        if ((!std::strcmp(a, "--lcm-url") || !std::strcmp(a, "--name") ||
+             !std::strcmp(a, "--max-runs")) && i + 1 >= argc) {
+            std::fprintf(stderr, "mpb-planner-ompl: %s needs a value (see --help)\n", a);
+            return 2;
+        }
+        if (!std::strcmp(a, "--lcm-url")) {
+            url = argv[++i];
+        } else if (!std::strcmp(a, "--name")) {
+            name = argv[++i];
+        } else if (!std::strcmp(a, "--max-runs")) {
+            char *end;
+            errno = 0;
+            max_runs = std::strtol(argv[++i], &end, 10);
+            if (errno != 0 || *end != '\0' || end == argv[i] || max_runs < 0) {
+                std::fprintf(stderr, "mpb-planner-ompl: --max-runs wants a "
+                             "number >= 0, not '%s'\n", argv[i]);
+                return 2;
+            }
+        } else {
+            std::fprintf(stderr, "mpb-planner-ompl: unknown argument '%s' (see --help)\n", a);
+            return 2;
+        }
+    }
+
+    LogHandler log;
+    ompl::msg::useOutputHandler(&log);
+    ompl::msg::setLogLevel(verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_NONE);
+
+    struct sigaction sa;
+    std::memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+
+    std::vector<const char *> names;
+    for (const Algorithm &a : algorithms())
+        names.push_back(a.name);
+
+    Context ctx;
+    mpb_planner_def def;
+    std::memset(&def, 0, sizeof def);
+    def.name = name;
+    def.language = "c++";
+    def.version = k_version;
+    def.algorithms = names.data();
+    def.num_algorithms = static_cast<int>(names.size());
+    def.solve = solve;
+    def.user = &ctx;
+    def.on_ready = on_ready;
+
+    char err[256];
+    int rc = mpb_planner_serve(&def, url, &g_stop, max_runs, err, sizeof err);
+    ompl::msg::restorePreviousOutputHandler();
+    if (rc != MPB_OK) {
+        std::fprintf(stderr, "mpb-planner-ompl: %s\n", err[0] ? err : mpb_strerror(rc));
+        return 1;
+    }
+    return 0;
+}
