@@ -30,6 +30,7 @@
 
 typedef struct mpbd_planner {
     char    id[MPB_PLANNER_ID_MAX + 1];
+    char    host[64];        /* as announced; the per-host limit counts by it */
     char   *name;
     char  **algorithms;
     int     num_algorithms;
@@ -47,6 +48,7 @@ typedef struct mpbd_run {
     int     config;          /* index into experiment configs */
     int     query;           /* index into experiment queries */
     int64_t seed;
+    int     attempts;        /* requests sent so far, over all attempts */
     char    uid[MPB_RUN_ID_SIZE];   /* current attempt, "" if none yet */
 } mpbd_run;
 
@@ -62,7 +64,7 @@ typedef struct mpbd_flight {
 } mpbd_flight;
 
 typedef struct mpbd_counters {
-    long done, succeeded, failed, crashed, rejected;
+    long done, succeeded, failed, crashed, rejected, retried;
 } mpbd_counters;
 
 typedef struct mpbd {
@@ -121,6 +123,8 @@ void mpbd_planners_free(mpbd *d);
 int  mpbd_scheduler_load(mpbd *d);             /* unfinished runs from the store */
 int  mpbd_scheduler_dispatch(mpbd *d, double now);
 void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost planners */
+/* Queue a run again for a new attempt. */
+int  mpbd_requeue(mpbd *d, const mpbd_run *run);
 mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid);
 void mpbd_flight_remove(mpbd *d, mpbd_flight *f);
 int  mpbd_scheduler_done(const mpbd *d);
@@ -135,7 +139,8 @@ void mpbd_acks_flush(mpbd *d);
 
 /* results.c */
 void mpbd_results_subscribe(mpbd *d);
-/* Record a run that ended without a result (crash, lost planner). */
+/* A run ended without a result (crash, lost planner): retry it if the
+ * experiment allows, else record it as crashed. */
 int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
 
 /* status.c */

@@ -254,7 +254,7 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
 static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     static const char *const keys[] = {"name", "runs", "time_limit", "seed",
-                                       NULL};
+                                       "retries", "runs_per_host", NULL};
     yaml_node_t *m = need(L, root, "experiment", YAML_MAPPING_NODE,
                           "a mapping of name, runs, time_limit, seed");
     yaml_node_t *n;
@@ -275,6 +275,17 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
         if (parse_double(L, n, "seed", &s) != 0)
             return -1;
         e->seed = (uint64_t)(int64_t)s;
+    }
+    e->runs_per_host = 1;
+    if ((n = get(L, m, "runs_per_host")) &&
+        parse_positive_int(L, n, "runs_per_host", &e->runs_per_host))
+        return -1;
+    if ((n = get(L, m, "retries")) != NULL) {
+        /* 0 is allowed here, unlike the other counts. */
+        if (scalar(n) && strcmp(scalar(n), "0") == 0)
+            e->retries = 0;
+        else if (parse_positive_int(L, n, "retries", &e->retries) != 0)
+            return -1;
     }
     return 0;
 }

@@ -48,6 +48,8 @@ typedef struct mpbd_experiment {
     int     runs;            /* default runs per query and configuration */
     double  time_limit;      /* s */
     uint64_t seed;
+    int     retries;         /* extra attempts for a run whose planner crashed */
+    int     runs_per_host;   /* runs at once on one host (timings skew otherwise) */
 
     int     num_joints;
     char  **joint_names;

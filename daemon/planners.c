@@ -2,6 +2,7 @@
  * planners.c - the planner processes the daemon knows, learnt from their
  * announcements alone; one that stays silent too long is gone.
  */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -58,6 +59,7 @@ static void on_announce(const lcm_recv_buf_t *rbuf, const char *channel,
         p = &d->planners[d->num_planners++];
         memset(p, 0, sizeof *p);
         strcpy(p->id, m->planner_id);
+        snprintf(p->host, sizeof p->host, "%s", m->host);
         set_offer(p, m);
         mpbd_log("planner %s joined (%s, %d algorithm%s)", p->id, m->language,
                  m->num_algorithms, m->num_algorithms == 1 ? "" : "s");

@@ -224,6 +224,20 @@ void mpbd_results_subscribe(mpbd *d)
 
 int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
 {
+    if (f->run.attempts <= d->exp->retries) {
+        int rc = mpb_store_run_retry(d->store, f->run.id, f->run.uid, why);
+        if (rc == MPB_OK && mpbd_requeue(d, &f->run) == MPB_OK) {
+            mpbd_log("run %lld %s on %s: %s; retrying (attempt %d of %d)",
+                     (long long)f->run.id, d->exp->configs[f->run.config].name,
+                     d->planners[f->planner].id, why, f->run.attempts + 1,
+                     d->exp->retries + 1);
+            d->count.retried++;
+            mpbd_flight_remove(d, f);
+            return rc;
+        }
+        if (rc != MPB_OK)
+            mpbd_log("database: %s", mpb_store_errmsg(d->store));
+    }
     mpb_run_record rec = {
         .run_id = f->run.id,
         .run_uid = f->run.uid,
@@ -243,7 +257,7 @@ int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
     } else if (rc != MPB_EEXISTS) {
         mpbd_log("database: %s", mpb_store_errmsg(d->store));
     }
-    remember(d, f->run.uid);
+    /* Not remembered: a late result of this attempt is a stray now. */
     mpbd_flight_remove(d, f);
     return rc;
 }

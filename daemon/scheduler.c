@@ -48,7 +48,7 @@ static int push_pending(mpbd *d, int config, const mpbd_run *run)
 static int load_row(void *ud, const mpb_run_row *row)
 {
     mpbd *d = ud;
-    mpbd_run run = {.id = row->id, .seed = row->seed};
+    mpbd_run run = {.id = row->id, .seed = row->seed, .attempts = row->attempts};
     run.config = config_index(d, row->planner_config_id);
     run.query = query_index(d, row->query_id);
     if (run.config < 0 || run.query < 0)
@@ -159,6 +159,7 @@ static int send_next(mpbd *d, int c, int p, double now)
         return 0;
     d->pending_head[c]++;
     d->total_pending--;
+    run.attempts++;
     *f = (mpbd_flight){.run = run, .planner = p, .sent_at = now,
                        .last_send = now, .sends = 1,
                        .deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S};
@@ -190,6 +191,23 @@ static void log_waiting(mpbd *d, double now)
     }
 }
 
+/* Runs in flight on the planners of one host. */
+static int host_active(const mpbd *d, const char *host)
+{
+    int n = 0;
+    for (int p = 0; p < d->num_planners; p++)
+        if (strcmp(d->planners[p].host, host) == 0)
+            n += d->planners[p].active;
+    return n;
+}
+
+int mpbd_requeue(mpbd *d, const mpbd_run *run)
+{
+    mpbd_run again = *run;
+    again.uid[0] = '\0';
+    return push_pending(d, run->config, &again);
+}
+
 int mpbd_scheduler_dispatch(mpbd *d, double now)
 {
     int sent = 0, nc = d->exp->num_configs;
@@ -197,7 +215,8 @@ int mpbd_scheduler_dispatch(mpbd *d, double now)
         return 0;
     for (int p = 0; p < d->num_planners; p++) {
         mpbd_planner *pl = &d->planners[p];
-        while (!pl->gone && pl->active < pl->capacity) {
+        while (!pl->gone && pl->active < pl->capacity &&
+               host_active(d, pl->host) < d->exp->runs_per_host) {
             int got = 0;
             for (int k = 0; k < nc && !got; k++) {
                 int c = (d->next_config + k) % nc;

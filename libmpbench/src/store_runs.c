@@ -78,6 +78,27 @@ int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
                           (long long)run_id);
 }
 
+int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
+                        const char *why)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "UPDATE runs SET state = 'pending', run_uid = NULL, message = ?3,"
+        " crashes = crashes + 1 WHERE id = ?1 AND run_uid = ?2"
+        " AND state = 'sent'");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, run_id);
+    sqlite3_bind_text(st, 2, run_uid, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 3, why, -1, SQLITE_STATIC);
+    int rc = sqlite3_step(st);
+    sqlite3_finalize(st);
+    if (rc != SQLITE_DONE)
+        return mpb__store_db_fail(s, "retry run");
+    return sqlite3_changes(s->db) ? MPB_OK
+        : mpb__store_fail(s, MPB_ENOTFOUND, "run %lld has no attempt %s in "
+                          "flight", (long long)run_id, run_uid);
+}
+
 static int write_stage(mpb_store *s, int64_t run_id, int idx,
                        const mpb_stage_record *sg)
 {

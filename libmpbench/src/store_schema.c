@@ -66,6 +66,7 @@ const char mpb__schema_v1[] =
     "                    CHECK(state IN ('pending', 'sent', 'done')),\n"
     "  run_uid           TEXT UNIQUE,\n"
     "  attempts          INTEGER NOT NULL DEFAULT 0,\n"
+    "  crashes           INTEGER NOT NULL DEFAULT 0,\n"
     "  planner_id        TEXT,\n"
     "  sent              REAL,\n"
     "  finished          REAL,\n"

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
@@ -27,7 +28,9 @@ static void usage(FILE *out)
 "checks nothing, so the path may well collide: that is the point. Use it to\n"
 "test the daemon and to measure mpbench's own overhead per run.\n"
 "Only joint-space goals are supported; a pose-region goal is answered with\n"
-"INVALID_REQUEST.\n"
+"INVALID_REQUEST. A request parameter \"delay\" (seconds) makes it sleep that\n"
+"long before answering, as if it were planning: fault tests use it to catch\n"
+"planners in the middle of a run.\n"
 "\n"
 "It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
 "SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
@@ -44,7 +47,21 @@ static void usage(FILE *out)
 static int solve_straight_line(void *user, const mpb_plan_request_t *req,
                                mpb_plan_result_t *res)
 {
+    double t0 = mpb_monotonic_s();
+    const char *delay = mpb_request_param(req, "delay");
     (void)user;
+    if (delay != NULL) {
+        char *end;
+        double s = strtod(delay, &end);
+        if (*end != '\0' || !(s >= 0 && s <= 3600)) {
+            mpb_result_set_message(res, "delay must be seconds in [0, 3600], "
+                                        "not '%.40s'", delay);
+            return MPB_EINVAL;
+        }
+        struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
+        while (nanosleep(&ts, &ts) != 0 && errno == EINTR && !g_stop)
+            ;
+    }
     if (req->goal.kind != MPB_GOAL_T_JOINTS) {
         mpb_result_set_message(res, "straight_line needs a joint-space goal");
         return MPB_EUNSUPPORTED;
@@ -63,6 +80,8 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
         return MPB_OK;
     }
     res->status = MPB_PLAN_RESULT_T_SOLVED;
+    res->time_total = mpb_monotonic_s() - t0;
+    res->stages[0].time = res->time_total;
     return MPB_OK;
 }
 

@@ -120,6 +120,15 @@ int mpb_store_run_counts(mpb_store *s, int64_t experiment_id,
 int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
                        const char *planner_id);
 
+/*
+ * Put a sent run back to pending after its attempt run_uid ended without a
+ * result (its planner crashed or fell silent), to be sent again with a new
+ * id; why is kept in runs.message and runs.crashes counts such attempts.
+ * MPB_ENOTFOUND if run_uid is not the run's current attempt.
+ */
+int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
+                        const char *why);
+
 /* ---- results ------------------------------------------------------------- */
 
 typedef struct mpb_named {
