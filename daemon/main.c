@@ -273,6 +273,8 @@ int main(int argc, char **argv)
     signal(SIGPIPE, SIG_IGN);
 
     d.started = mpb_monotonic_s();
+    /* Planners announce within a heartbeat: say nothing of waiting before. */
+    d.last_wait_log = d.started - 4.0;
     mpbd_log("experiment '%s' (id %lld): %ld of %d runs to do, database %s",
              d.exp->name, (long long)d.experiment_id, d.total_pending,
              d.runs_total, o.db);

@@ -183,8 +183,8 @@ static void log_waiting(mpbd *d, double now)
                       mpbd_planner_offers(&d->planners[p], cf->planner,
                                           cf->algorithm);
         if (!offered) {
-            mpbd_log("waiting for a planner '%s' offering '%s' (%d runs)",
-                     cf->planner, cf->algorithm,
+            mpbd_log("%s: waiting for a planner '%s' offering '%s' "
+                     "(%d runs)", cf->name, cf->planner, cf->algorithm,
                      d->pending_len[c] - d->pending_head[c]);
             d->last_wait_log = now;
         }
