@@ -1,0 +1,94 @@
+#!/bin/sh
+# Three hosts, each a network namespace with its own host name, joined by
+# veth links on a bridge: the daemon on one, a planner on each of the two
+# others, LCM multicast with ttl=1 between them as on a LAN. The experiment
+# runs across both planner hosts; cutting one off mid-run still lets it
+# complete, its lost run retried on the other.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+if [ "$(id -u)" -ne 0 ]; then
+    echo "skipped: needs root for network namespaces joined by veth"
+    echo "0 passed, 0 failed, 1 skipped"
+    exit 0
+fi
+mpb_enter_netns "$0" "$@"
+
+work=$(mktemp -d)
+trap 'mpb_stop_all; rm -rf "$work"' EXIT
+DB=$work/test.db
+url='udpm://239.255.76.67:7667?ttl=1'
+planar=$MPB_SOURCE/scenes/planar
+
+# This namespace is the daemon's host; a bridge is its LAN. The addresses
+# exist only inside the namespaces this test made.
+ip link add lan0 type bridge
+ip link set lan0 type bridge mcast_snooping 0
+ip link set lan0 up
+ip addr add 10.213.0.1/24 dev lan0
+ip route replace 224.0.0.0/4 dev lan0
+
+# new_host NAME N: a sleeping process that holds the host's namespaces.
+new_host() {
+    unshare -n -u sh -c "hostname $1; exec sleep 600" &
+    pid=$!
+    MPB_PIDS="$MPB_PIDS $pid"
+    sleep 0.2
+    ip link add "veth$1" type veth peer name eth0 netns "$pid"
+    ip link set "veth$1" master lan0 up
+    nsenter -t "$pid" -n sh -c "ip link set lo up; ip link set eth0 up;
+        ip addr add 10.213.0.$2/24 dev eth0; ip route add 224.0.0.0/4 dev eth0"
+    eval "pid_$1=$pid"
+}
+new_host hostA 11
+new_host hostB 12
+
+nsenter -t "$pid_hostA" -n -u "$MPB_BUILD/planners/null/mpb-planner-null" \
+    --lcm-url "$url" >"$work/a.log" 2>&1 &
+MPB_PIDS="$MPB_PIDS $!"
+nsenter -t "$pid_hostB" -n -u "$MPB_BUILD/planners/null/mpb-planner-null" \
+    --lcm-url "$url" >"$work/b.log" 2>&1 &
+MPB_PIDS="$MPB_PIDS $!"
+
+cat >"$work/exp.yaml" <<EOT
+experiment: {name: lan, runs: 20, time_limit: 2, retries: 2}
+robot: {format: planar, file: $planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $planar/pillars.scene
+    queries:
+      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+      - {name: b, start: [0, 0, 0], goal: [-0.2, 0.3, 0.2], tolerance: 0.01}
+planners:
+  - {planner: null, algorithms: [straight_line], params: {delay: 0.2}}
+EOT
+"$MPB_BUILD/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
+    >"$work/daemon.log" 2>&1 &
+daemon=$!
+
+# Let both hosts work for a while, then cut hostB off the LAN.
+for i in $(seq 100); do
+    [ "$(q "SELECT count(*) FROM runs WHERE state = 'done'" 2>/dev/null || echo 0)" -ge 10 ] && break
+    sleep 0.1
+done
+ip link set vethhostB down
+
+waited=0
+while kill -0 $daemon 2>/dev/null && [ $waited -lt 600 ]; do
+    sleep 0.1; waited=$((waited + 1))
+done
+kill -KILL $daemon 2>/dev/null
+wait $daemon
+status=$?
+check "the experiment completes with a host cut off" eq $status 0
+[ $status -eq 0 ] || tail -20 "$work/daemon.log"
+check "both planner hosts did runs" \
+    eq "$(q "SELECT count(DISTINCT substr(planner_id, 1, instr(planner_id, ':'))) FROM runs WHERE planner_id LIKE 'null@host_:%'")" 2
+check "the daemon saw hostB go" grep -q "planner null@hostB:[0-9]* is gone" "$work/daemon.log"
+check "40 runs, each done once" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 40
+check "every run solved in the end" eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved'")" 40
+check "the run cut off was retried" ge "$(q 'SELECT sum(crashes) FROM runs')" 1
+check "runs after the cut went to hostA" \
+    eq "$(q "SELECT planner_id LIKE 'null@hostA:%' FROM runs ORDER BY finished DESC LIMIT 1")" 1
+
+mpb_finish
