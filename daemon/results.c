@@ -59,13 +59,9 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
     w->rec.name = st->name;
     w->rec.time = st->time;
     w->rec.verdict_segment = -1;
-    if (st->num_joints != e->num_joints || st->num_waypoints < 0 ||
-        (int64_t)st->num_waypoints * st->num_joints != st->num_values) {
+    if (!mpb_stage_sizes_ok(st, e->num_joints, w->verdict.detail,
+                            sizeof w->verdict.detail)) {
         w->verdict.code = MPB_VERDICT_WRONG_SIZE;
-        snprintf(w->verdict.detail, sizeof w->verdict.detail,
-                 "stage '%.40s' has %d waypoints of %d joints in %d values; "
-                 "the robot has %d joints", st->name, st->num_waypoints,
-                 st->num_joints, st->num_values, e->num_joints);
         w->verdict.segment = -1;
     } else {
         w->rec.num_waypoints = st->num_waypoints;

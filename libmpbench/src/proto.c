@@ -7,6 +7,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpb_plan_result_t.h"
+#include "mpb_stage_t.h"
 
 static const char hexdigits[] = "0123456789abcdef";
 
@@ -97,4 +98,18 @@ const char *mpb_status_name(int status)
     case MPB_PLAN_RESULT_T_CRASH:           return "crash";
     }
     return "unknown";
+}
+
+int mpb_stage_sizes_ok(const mpb_stage_t *st, int num_joints, char *why,
+                       size_t whylen)
+{
+    if (st->num_joints == num_joints && st->num_waypoints >= 0 &&
+        st->num_values >= 0 &&
+        (int64_t)st->num_waypoints * st->num_joints == st->num_values)
+        return 1;
+    if (why != NULL)
+        snprintf(why, whylen, "stage '%.40s' has %d waypoints of %d joints in "
+                 "%d values; the robot has %d joints", st->name ? st->name : "",
+                 st->num_waypoints, st->num_joints, st->num_values, num_joints);
+    return 0;
 }

@@ -59,6 +59,17 @@ double mpb_monotonic_s(void);
 /* Lower-case name of a plan_result_t status ("solved", "timeout", ...). */
 const char *mpb_status_name(int status);
 
+struct _mpb_stage_t;
+
+/*
+ * 1 if a received stage's sizes agree with each other (num_values ==
+ * num_waypoints * num_joints, none negative) and with a robot of num_joints
+ * joints; else 0, with a one-line reason in why (if not NULL). Only a stage
+ * that passes may be read as waypoints.
+ */
+int mpb_stage_sizes_ok(const struct _mpb_stage_t *st, int num_joints,
+                       char *why, size_t whylen);
+
 #ifdef __cplusplus
 }
 #endif
