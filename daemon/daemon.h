@@ -6,6 +6,7 @@
  *   scheduler.c  which run goes to which planner; resends and deadlines
  *   results.c    checking, verifying, measuring and storing results
  *   status.c     the MPB_STATUS message
+ *   inbox.c      checking messages before they are decoded
  *   log.c        the console log
  */
 #ifndef MPBD_DAEMON_H
@@ -70,9 +71,7 @@ typedef struct mpbd_counters {
 typedef struct mpbd {
     lcm_t           *lcm;
     /* Subscriptions, released before lcm_destroy(). */
-    mpb_planner_announce_t_subscription_t *sub_announce;
-    mpb_run_ack_t_subscription_t          *sub_ack;
-    mpb_plan_result_t_subscription_t      *sub_result;
+    lcm_subscription_t *sub_announce, *sub_ack, *sub_result;
     mpb_store       *store;
     mpbd_experiment *exp;
     int64_t          experiment_id;
@@ -142,6 +141,10 @@ void mpbd_results_subscribe(mpbd *d);
 /* A run ended without a result (crash, lost planner): retry it if the
  * experiment allows, else record it as crashed. */
 int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
+
+/* inbox.c: 1 if a received message is well-formed (else counted, logged) */
+int  mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
+                     const char *channel);
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);

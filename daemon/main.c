@@ -299,11 +299,11 @@ int main(int argc, char **argv)
 out:
     if (d.lcm) {
         if (d.sub_announce)
-            mpb_planner_announce_t_unsubscribe(d.lcm, d.sub_announce);
+            lcm_unsubscribe(d.lcm, d.sub_announce);
         if (d.sub_ack)
-            mpb_run_ack_t_unsubscribe(d.lcm, d.sub_ack);
+            lcm_unsubscribe(d.lcm, d.sub_ack);
         if (d.sub_result)
-            mpb_plan_result_t_unsubscribe(d.lcm, d.sub_result);
+            lcm_unsubscribe(d.lcm, d.sub_result);
         lcm_destroy(d.lcm);
     }
     mpbd_scheduler_free(&d);

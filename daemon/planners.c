@@ -33,14 +33,10 @@ static void set_offer(mpbd_planner *p, const mpb_planner_announce_t *m)
             p->num_algorithms++;
 }
 
-static void on_announce(const lcm_recv_buf_t *rbuf, const char *channel,
-                        const mpb_planner_announce_t *m, void *user)
+static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
 {
-    mpbd *d = user;
     mpbd_planner *p;
     double now = mpb_monotonic_s();
-    (void)rbuf;
-    (void)channel;
 
     if (!mpb_planner_id_is_valid(m->planner_id) || m->name[0] == '\0' ||
         m->num_algorithms < 0) {
@@ -73,9 +69,20 @@ static void on_announce(const lcm_recv_buf_t *rbuf, const char *channel,
     p->last_seen = now;
 }
 
+static void on_announce_raw(const lcm_recv_buf_t *rbuf, const char *channel,
+                            void *user)
+{
+    mpb_planner_announce_t m;
+    if (!mpbd_message_ok(user, MPB_WIRE_PLANNER_ANNOUNCE, rbuf, channel) ||
+        mpb_planner_announce_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+        return;
+    on_announce(user, &m);
+    mpb_planner_announce_t_decode_cleanup(&m);
+}
+
 void mpbd_planners_subscribe(mpbd *d)
 {
-    d->sub_announce = mpb_planner_announce_t_subscribe(d->lcm, MPB_CHANNEL_ANNOUNCE, on_announce, d);
+    d->sub_announce = lcm_subscribe(d->lcm, MPB_CHANNEL_ANNOUNCE, on_announce_raw, d);
 }
 
 int mpbd_planners_expire(mpbd *d, double now)

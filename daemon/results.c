@@ -171,14 +171,10 @@ done:
     return rc;
 }
 
-static void on_result(const lcm_recv_buf_t *rbuf, const char *channel,
-                      const mpb_plan_result_t *m, void *user)
+static void on_result(mpbd *d, const mpb_plan_result_t *m)
 {
-    mpbd *d = user;
     mpbd_flight *f;
     double now = mpb_monotonic_s();
-    (void)rbuf;
-    (void)channel;
 
     if (!mpb_run_id_is_valid(m->run_id)) {
         reject(d, "malformed run id", m);
@@ -213,9 +209,20 @@ static void on_result(const lcm_recv_buf_t *rbuf, const char *channel,
     }
 }
 
+static void on_result_raw(const lcm_recv_buf_t *rbuf, const char *channel,
+                          void *user)
+{
+    mpb_plan_result_t m;
+    if (!mpbd_message_ok(user, MPB_WIRE_PLAN_RESULT, rbuf, channel) ||
+        mpb_plan_result_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+        return;
+    on_result(user, &m);
+    mpb_plan_result_t_decode_cleanup(&m);
+}
+
 void mpbd_results_subscribe(mpbd *d)
 {
-    d->sub_result = mpb_plan_result_t_subscribe(d->lcm, MPB_CHANNEL_RESULT, on_result, d);
+    d->sub_result = lcm_subscribe(d->lcm, MPB_CHANNEL_RESULT, on_result_raw, d);
 }
 
 int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)

@@ -325,13 +325,9 @@ void mpbd_acks_flush(mpbd *d)
 }
 
 /* A planner acknowledged a request: stop re-sending it. */
-static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
-                   const mpb_run_ack_t *m, void *user)
+static void on_ack(mpbd *d, const mpb_run_ack_t *m)
 {
-    mpbd *d = user;
     mpbd_flight *f;
-    (void)rbuf;
-    (void)channel;
     if (m->kind != MPB_RUN_ACK_T_REQUEST_RECEIVED || !mpb_run_id_is_valid(m->run_id))
         return;
     if ((f = mpbd_flight_find(d, m->run_id)) != NULL &&
@@ -339,7 +335,18 @@ static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
         f->acked = 1;
 }
 
+static void on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
+                       void *user)
+{
+    mpb_run_ack_t m;
+    if (!mpbd_message_ok(user, MPB_WIRE_RUN_ACK, rbuf, channel) ||
+        mpb_run_ack_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+        return;
+    on_ack(user, &m);
+    mpb_run_ack_t_decode_cleanup(&m);
+}
+
 void mpbd_scheduler_subscribe(mpbd *d)
 {
-    d->sub_ack = mpb_run_ack_t_subscribe(d->lcm, MPB_CHANNEL_ACK, on_ack, d);
+    d->sub_ack = lcm_subscribe(d->lcm, MPB_CHANNEL_ACK, on_ack_raw, d);
 }

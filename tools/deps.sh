@@ -14,7 +14,7 @@ PACKAGES="
   libsqlite3-dev sqlite3 libcmocka-dev libyaml-dev libsodium-dev
   iproute2 iptables util-linux
   default-jdk-headless python3 python3-venv
-  clang libfuzzer-14-dev
+  clang libfuzzer-14-dev libclang-rt-14-dev
 "
 
 missing=""

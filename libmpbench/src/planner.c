@@ -501,6 +501,20 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         s->run_error = rc;
 }
 
+/* Raw handlers: a message is checked (wire.h) before the generated decoder
+ * sees it; a malformed one is dropped. */
+static void mpb__on_request_raw(const lcm_recv_buf_t *rbuf,
+                                const char *channel, void *user)
+{
+    mpb_plan_request_t m;
+    if (!mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, rbuf->data_size,
+                        NULL, 0) ||
+        mpb_plan_request_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+        return;
+    mpb__on_request(rbuf, channel, &m, user);
+    mpb_plan_request_t_decode_cleanup(&m);
+}
+
 static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
                    const mpb_run_ack_t *msg, void *user)
 {
@@ -513,6 +527,17 @@ static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
     mpb__kept *k = mpb__find_kept(s, msg->run_id);
     if (k != NULL)
         k->acked = 1;
+}
+
+static void mpb__on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
+                            void *user)
+{
+    mpb_run_ack_t m;
+    if (!mpb_wire_check(MPB_WIRE_RUN_ACK, rbuf->data, rbuf->data_size, NULL, 0) ||
+        mpb_run_ack_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+        return;
+    mpb__on_ack(rbuf, channel, &m, user);
+    mpb_run_ack_t_decode_cleanup(&m);
 }
 
 /* ---- the loop ---------------------------------------------------------- */
@@ -624,22 +649,22 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
         return MPB_ELCM;
     }
 
-    mpb_plan_request_t_subscription_t *rsub =
-        mpb_plan_request_t_subscribe(s->lcm, s->request_channel, mpb__on_request, s);
-    mpb_run_ack_t_subscription_t *asub =
-        mpb_run_ack_t_subscribe(s->lcm, MPB_CHANNEL_ACK, mpb__on_ack, s);
+    lcm_subscription_t *rsub =
+        lcm_subscribe(s->lcm, s->request_channel, mpb__on_request_raw, s);
+    lcm_subscription_t *asub =
+        lcm_subscribe(s->lcm, MPB_CHANNEL_ACK, mpb__on_ack_raw, s);
     if (rsub == NULL || asub == NULL) {
         snprintf(err, errlen, "cannot subscribe to LCM channels");
         if (rsub != NULL)
-            mpb_plan_request_t_unsubscribe(s->lcm, rsub);
+            lcm_unsubscribe(s->lcm, rsub);
         if (asub != NULL)
-            mpb_run_ack_t_unsubscribe(s->lcm, asub);
+            lcm_unsubscribe(s->lcm, asub);
         lcm_destroy(s->lcm);
         free(s);
         return MPB_ELCM;
     }
-    mpb_plan_request_t_subscription_set_queue_capacity(rsub, MPB__REQUEST_QUEUE);
-    mpb_run_ack_t_subscription_set_queue_capacity(asub, MPB__ACK_QUEUE);
+    lcm_subscription_set_queue_capacity(rsub, MPB__REQUEST_QUEUE);
+    lcm_subscription_set_queue_capacity(asub, MPB__ACK_QUEUE);
 
     pthread_condattr_t ca;
     pthread_condattr_init(&ca);
@@ -675,8 +700,8 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     for (int i = 0; i < MPB__RESULTS_KEPT; i++)
         if (s->kept[i].used)
             mpb_result_clear(&s->kept[i].res);
-    mpb_plan_request_t_unsubscribe(s->lcm, rsub);
-    mpb_run_ack_t_unsubscribe(s->lcm, asub);
+    lcm_unsubscribe(s->lcm, rsub);
+    lcm_unsubscribe(s->lcm, asub);
     lcm_destroy(s->lcm);
     pthread_cond_destroy(&s->cond);
     pthread_mutex_destroy(&s->mu);

@@ -66,5 +66,6 @@ const char *mpb_err_name(int code);
 #include "mpbench/proto.h"
 #include "mpbench/world.h"
 #include "mpbench/verify.h"
+#include "mpbench/wire.h"
 
 #endif /* MPBENCH_H */

@@ -1,0 +1,107 @@
+/*
+ * fuzz_messages.c - libFuzzer target: every message the daemon and the
+ * planners decode, the way they decode it (wire.h's check first, then the
+ * generated decoder), and for a result what the daemon then does with each
+ * stage: the size check, verification and metrics. The first byte picks the
+ * message type; the rest is the encoded message.
+ */
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "mpbench/mpbench.h"
+#include "mpb_daemon_status_t.h"
+#include "mpb_plan_request_t.h"
+#include "mpb_plan_result_t.h"
+#include "mpb_planner_announce_t.h"
+#include "mpb_run_ack_t.h"
+
+static mpb_world *world(void)
+{
+    static mpb_world *w;
+    if (w == NULL && mpb_world_open("planar",
+            "link_radius 0.03\njoint a -3 3 0.5\njoint b continuous 0.4\n"
+            "joint c -2 2 0.3\n", "planar", "circle 0 0.8 0.15\n"
+            "box -0.7 0 0.1 0.3\n", &w, NULL, 0) != MPB_OK)
+        abort();
+    return w;
+}
+
+static void check_result(const mpb_plan_result_t *r)
+{
+    static const double start[3] = {0, 0, 0}, goal[3] = {0.3, -0.2, 0.1};
+    mpb_goal g = {.kind = MPB_GOAL_JOINTS, .joints = goal,
+                  .joint_tolerance = 0.01};
+    mpb_world *w = world();
+    mpb_run_id_is_valid(r->run_id);
+    mpb_planner_id_is_valid(r->planner_id);
+    mpb_status_name(r->status);
+    for (int i = 0; i < r->num_stages; i++) {
+        const mpb_stage_t *st = &r->stages[i];
+        char why[200];
+        mpb_verdict v;
+        if (!mpb_stage_sizes_ok(st, 3, why, sizeof why))
+            continue;
+        mpb_verify_path(w, start, 0.01, &g, st->waypoints, st->num_waypoints,
+                        3, 0.05, &v);
+        mpb_verdict_name(v.code);
+        if (v.code != MPB_VERDICT_NOT_FINITE) {
+            mpb_path_length(st->waypoints, st->num_waypoints, 3,
+                            mpb_world_joint_wraps(w));
+            mpb_smoothness(st->waypoints, st->num_waypoints, 3,
+                           mpb_world_joint_wraps(w));
+            mpb_path_clearance(w, st->waypoints, st->num_waypoints, 3);
+        }
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (size < 1)
+        return 0;
+    const void *buf = data + 1;
+    int len = (int)(size - 1);
+    static const mpb_wire_type types[] = {
+        MPB_WIRE_PLAN_RESULT, MPB_WIRE_PLANNER_ANNOUNCE, MPB_WIRE_RUN_ACK,
+        MPB_WIRE_PLAN_REQUEST, MPB_WIRE_DAEMON_STATUS};
+    if (!mpb_wire_check(types[data[0] % 5], buf, (size_t)len, NULL, 0))
+        return 0;
+    switch (data[0] % 5) {
+    case 0: {
+        mpb_plan_result_t m;
+        if (mpb_plan_result_t_decode(buf, 0, len, &m) >= 0) {
+            check_result(&m);
+            mpb_plan_result_t_decode_cleanup(&m);
+        }
+        break;
+    }
+    case 1: {
+        mpb_planner_announce_t m;
+        if (mpb_planner_announce_t_decode(buf, 0, len, &m) >= 0) {
+            mpb_planner_id_is_valid(m.planner_id);
+            mpb_planner_announce_t_decode_cleanup(&m);
+        }
+        break;
+    }
+    case 2: {
+        mpb_run_ack_t m;
+        if (mpb_run_ack_t_decode(buf, 0, len, &m) >= 0) {
+            mpb_run_id_is_valid(m.run_id);
+            mpb_run_ack_t_decode_cleanup(&m);
+        }
+        break;
+    }
+    case 3: {
+        mpb_plan_request_t m;
+        if (mpb_plan_request_t_decode(buf, 0, len, &m) >= 0)
+            mpb_plan_request_t_decode_cleanup(&m);
+        break;
+    }
+    case 4: {
+        mpb_daemon_status_t m;
+        if (mpb_daemon_status_t_decode(buf, 0, len, &m) >= 0)
+            mpb_daemon_status_t_decode_cleanup(&m);
+        break;
+    }
+    }
+    return 0;
+}

@@ -1,0 +1,82 @@
+/*
+ * make_seeds.c - writes the encoded-message seeds of the committed fuzz
+ * corpus (tests/fuzz/corpus/messages/), so that they can be made again:
+ *   make_seeds DIR
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "mpbench/mpbench.h"
+#include "mpb_plan_request_t.h"
+#include "mpb_plan_result_t.h"
+#include "mpb_planner_announce_t.h"
+#include "mpb_run_ack_t.h"
+
+static void put(const char *dir, const char *name, unsigned char kind,
+                const unsigned char *buf, int len)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    if (f == NULL || fputc(kind, f) == EOF ||
+        fwrite(buf, 1, (size_t)len, f) != (size_t)len) {
+        perror(path);
+        exit(1);
+    }
+    fclose(f);
+}
+
+#define ENCODE(type, msg, dir, name, kind)                                   \
+    do {                                                                     \
+        int n_ = type##_encoded_size(&(msg));                                \
+        unsigned char *b_ = malloc((size_t)n_);                              \
+        type##_encode(b_, 0, n_, &(msg));                                    \
+        put(dir, name, kind, b_, n_);                                        \
+        free(b_);                                                            \
+    } while (0)
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: make_seeds DIR\n");
+        return 2;
+    }
+    const char *dir = argv[1];
+    char *names[] = {"a", "b", "c"};
+    double start[] = {0, 0, 0}, goal[] = {0.3, -0.2, 0.1};
+    double wp[] = {0, 0, 0, 0.1, 0.0, 0.05, 0.3, -0.2, 0.1};
+    double bad[] = {0, 0, 0, 0.0 / 0.0, 1, 2};
+    mpb_named_value_t val = {"graph states", 12};
+    mpb_named_value_t pv = {"best cost", 1.5};
+    mpb_progress_t prog = {0.01, 1, &pv};
+    mpb_stage_t stages[] = {
+        {"raw", 0.001, 3, 3, 9, wp},
+        {"shortcut", 0.0005, 2, 3, 6, bad},
+    };
+    mpb_plan_result_t res = {1, "0123456789abcdef0123456789abcdef", "null@h:1",
+                             0, "", 0.002, 0.0001, 2, stages, 1, &val, 1, &prog};
+    ENCODE(mpb_plan_result_t, res, dir, "result", 0);
+
+    char *algos[] = {"RRTConnect", "RRT"};
+    char *active[] = {"0123456789abcdef0123456789abcdef"};
+    mpb_planner_announce_t ann = {1, "ompl@h:2", "ompl", "h", 2, "c++", "1",
+                                  500, 2, algos, 1, 1, active};
+    ENCODE(mpb_planner_announce_t, ann, dir, "announce", 1);
+
+    mpb_run_ack_t ack = {1, "0123456789abcdef0123456789abcdef", "null@h:1", 0};
+    ENCODE(mpb_run_ack_t, ack, dir, "ack", 2);
+
+    mpb_param_t par = {"range", "0.3"};
+    mpb_plan_request_t req = {
+        .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
+        .planner_id = "null@h:1", .algorithm = "straight_line",
+        .num_params = 1, .params = &par, .time_limit = 1, .seed = 7,
+        .robot_format = "planar", .robot_hash = "", .robot = "link_radius 0.03\n",
+        .scene_format = "planar", .scene_hash = "", .scene = "",
+        .num_joints = 3, .joint_names = names, .start = start,
+        .goal = {.kind = 0, .num_joints = 3, .joints = goal,
+                 .joint_tolerance = 0.01, .link = ""},
+    };
+    ENCODE(mpb_plan_request_t, req, dir, "request", 3);
+    return 0;
+}

@@ -1,0 +1,202 @@
+/* test_wire.c - the pre-decode check of encoded messages: real encodings of
+ * every type pass; truncated, padded, mistyped and hostile ones do not; and
+ * whatever passes decodes. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+#include "mpb_daemon_status_t.h"
+#include "mpb_plan_request_t.h"
+#include "mpb_plan_result_t.h"
+#include "mpb_planner_announce_t.h"
+#include "mpb_run_ack_t.h"
+
+typedef struct sample {
+    mpb_wire_type type;
+    unsigned char *buf;
+    int len;
+} sample;
+
+static sample samples[5];
+
+#define ENCODE(i, wtype, T, msg)                                             \
+    do {                                                                     \
+        samples[i].type = wtype;                                             \
+        samples[i].len = T##_encoded_size(&(msg));                           \
+        samples[i].buf = malloc((size_t)samples[i].len);                     \
+        assert_int_equal(T##_encode(samples[i].buf, 0, samples[i].len,       \
+                                    &(msg)), samples[i].len);                \
+    } while (0)
+
+static int decodes(mpb_wire_type t, const void *buf, int len)
+{
+    int rc = -1;
+    switch (t) {
+#define TRY(wt, T)                                                           \
+    case wt: {                                                               \
+        T m;                                                                 \
+        rc = T##_decode(buf, 0, len, &m);                                    \
+        if (rc >= 0)                                                         \
+            T##_decode_cleanup(&m);                                          \
+        break;                                                               \
+    }
+    TRY(MPB_WIRE_PLANNER_ANNOUNCE, mpb_planner_announce_t)
+    TRY(MPB_WIRE_PLAN_REQUEST, mpb_plan_request_t)
+    TRY(MPB_WIRE_PLAN_RESULT, mpb_plan_result_t)
+    TRY(MPB_WIRE_RUN_ACK, mpb_run_ack_t)
+    TRY(MPB_WIRE_DAEMON_STATUS, mpb_daemon_status_t)
+#undef TRY
+    }
+    return rc >= 0;
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    char *names[] = {"a", "b"};
+    double start[] = {0, 1}, goal[] = {1, 0};
+    double wp[] = {0, 1, 0.5, 0.5, 1, 0};
+    mpb_named_value_t v = {"graph states", 3};
+    mpb_progress_t prog = {0.1, 1, &v};
+    mpb_stage_t st[] = {{"raw", 0.01, 3, 2, 6, wp}, {"empty", 0, 0, 2, 0, NULL}};
+    mpb_plan_result_t res = {1, "0123456789abcdef0123456789abcdef", "p@h:1", 0,
+                             "ok", 0.02, 0.001, 2, st, 1, &v, 1, &prog};
+    char *algos[] = {"RRT", "RRTConnect"};
+    mpb_planner_announce_t ann = {1, "p@h:1", "p", "h", 7, "c", "1", 500,
+                                  2, algos, 1, 0, NULL};
+    mpb_run_ack_t ack = {1, "0123456789abcdef0123456789abcdef", "p@h:1", 1};
+    mpb_param_t par = {"range", "0.3"};
+    mpb_plan_request_t req = {
+        .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
+        .planner_id = "p@h:1", .algorithm = "RRT", .num_params = 1,
+        .params = &par, .time_limit = 1, .seed = 2, .robot_format = "planar",
+        .robot_hash = "x", .robot = "r", .scene_format = "planar",
+        .scene_hash = "y", .scene = "s", .num_joints = 2, .joint_names = names,
+        .start = start,
+        .goal = {.kind = 0, .num_joints = 2, .joints = goal, .link = ""},
+    };
+    mpb_planner_seen_t seen = {"p@h:1", "p", 1, 10, 0.2};
+    mpb_daemon_status_t status = {1, "d@h:2", "exp", "running", 10, 5, 4, 1,
+                                  0, 1, 0, 2.0, 2.5, 1, &seen};
+    ENCODE(0, MPB_WIRE_PLANNER_ANNOUNCE, mpb_planner_announce_t, ann);
+    ENCODE(1, MPB_WIRE_PLAN_REQUEST, mpb_plan_request_t, req);
+    ENCODE(2, MPB_WIRE_PLAN_RESULT, mpb_plan_result_t, res);
+    ENCODE(3, MPB_WIRE_RUN_ACK, mpb_run_ack_t, ack);
+    ENCODE(4, MPB_WIRE_DAEMON_STATUS, mpb_daemon_status_t, status);
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    for (int i = 0; i < 5; i++)
+        free(samples[i].buf);
+    return 0;
+}
+
+static void real_encodings_pass(void **state)
+{
+    (void)state;
+    char why[128];
+    for (int i = 0; i < 5; i++) {
+        assert_true(mpb_wire_check(samples[i].type, samples[i].buf,
+                                   (size_t)samples[i].len, why, sizeof why));
+    }
+}
+
+static void each_type_is_told_apart(void **state)
+{
+    (void)state;
+    char why[128];
+    for (int i = 0; i < 5; i++)
+        for (int t = 0; t < 5; t++)
+            if (t != (int)samples[i].type) {
+                assert_false(mpb_wire_check((mpb_wire_type)t, samples[i].buf,
+                                            (size_t)samples[i].len, why,
+                                            sizeof why));
+                assert_non_null(strstr(why, "fingerprint"));
+            }
+}
+
+static void every_truncation_and_padding_fails(void **state)
+{
+    (void)state;
+    for (int i = 0; i < 5; i++) {
+        for (int n = 0; n < samples[i].len; n++)
+            assert_false(mpb_wire_check(samples[i].type, samples[i].buf,
+                                        (size_t)n, NULL, 0));
+        unsigned char *longer = calloc((size_t)samples[i].len + 1, 1);
+        memcpy(longer, samples[i].buf, (size_t)samples[i].len);
+        assert_false(mpb_wire_check(samples[i].type, longer,
+                                    (size_t)samples[i].len + 1, NULL, 0));
+        free(longer);
+    }
+}
+
+/* Byte offsets in the result sample: 8 fingerprint + 8 utime, then the
+ * run id string: its 4-byte length at 16, 33 bytes (32 hex digits + NUL). */
+static void hostile_lengths_fail(void **state)
+{
+    (void)state;
+    sample *r = &samples[2];
+    unsigned char *b = malloc((size_t)r->len);
+    char why[128];
+
+    memcpy(b, r->buf, (size_t)r->len);
+    b[16 + 4 + 32] = 'x';                                  /* no NUL */
+    assert_false(mpb_wire_check(r->type, b, (size_t)r->len, why, sizeof why));
+    assert_non_null(strstr(why, "not NUL-terminated"));
+
+    memcpy(b, r->buf, (size_t)r->len);
+    b[16] = 0xff; b[17] = 0xff; b[18] = 0xff; b[19] = 0xf0;  /* length -16 */
+    assert_false(mpb_wire_check(r->type, b, (size_t)r->len, why, sizeof why));
+    assert_non_null(strstr(why, "below 1"));
+
+    memcpy(b, r->buf, (size_t)r->len);
+    b[16] = 0x7f;                                          /* ~2 GB string */
+    assert_false(mpb_wire_check(r->type, b, (size_t)r->len, why, sizeof why));
+    assert_non_null(strstr(why, "ends early"));
+    free(b);
+}
+
+/* Whatever the check lets through, the generated decoder must read. */
+static void whatever_passes_decodes(void **state)
+{
+    (void)state;
+    unsigned seed = 12345;
+    for (int i = 0; i < 5; i++) {
+        sample *s = &samples[i];
+        unsigned char *b = malloc((size_t)s->len);
+        int passed = 0;
+        for (int k = 0; k < 20000; k++) {
+            memcpy(b, s->buf, (size_t)s->len);
+            for (int m = 0; m < 3; m++) {
+                seed = seed * 1103515245u + 12345u;
+                b[(seed >> 8) % (unsigned)s->len] = (unsigned char)(seed >> 20);
+            }
+            if (mpb_wire_check(s->type, b, (size_t)s->len, NULL, 0)) {
+                passed++;
+                assert_true(decodes(s->type, b, s->len));
+            }
+        }
+        assert_true(passed > 0); /* mutating numbers only keeps it valid */
+        free(b);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(real_encodings_pass),
+        cmocka_unit_test(each_type_is_told_apart),
+        cmocka_unit_test(every_truncation_and_padding_fails),
+        cmocka_unit_test(hostile_lengths_fail),
+        cmocka_unit_test(whatever_passes_decodes),
+    };
+    return cmocka_run_group_tests_name("wire", tests, setup, teardown);
+}
