@@ -70,6 +70,7 @@ typedef struct mpbd_counters {
 
 typedef struct mpbd {
     lcm_t           *lcm;
+    mpb_auth        *auth;           /* NULL: messages are not authenticated */
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result;
     mpb_store       *store;
@@ -142,9 +143,10 @@ void mpbd_results_subscribe(mpbd *d);
  * experiment allows, else record it as crashed. */
 int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
 
-/* inbox.c: 1 if a received message is well-formed (else counted, logged) */
-int  mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
-                     const char *channel);
+/* inbox.c: the length of a received message to decode, or 0 if it is not
+ * authentic or well-formed (then counted and logged) */
+size_t mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
+                       const char *channel);
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);

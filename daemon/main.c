@@ -36,6 +36,9 @@ static void usage(FILE *out)
 "  -u, --lcm-url URL     LCM URL (default: " MPB_DEFAULT_LCM_URL ")\n"
 "  -r, --resolution RAD  joint-space step for collision checks along each\n"
 "                        segment (default: 0.01)\n"
+"      --secret-file F   authenticate every message with the shared secret in\n"
+"                        F (planners need the same file); messages without\n"
+"                        the right tag are rejected\n"
 "      --new             start a new experiment even if one can be resumed\n"
 "      --check           check the experiment file and exit\n"
 "  -v, --verbose         log every run\n"
@@ -45,7 +48,7 @@ static void usage(FILE *out)
 }
 
 typedef struct options {
-    const char *db, *lcm_url, *experiment;
+    const char *db, *lcm_url, *experiment, *secret_file;
     double resolution;
     int fresh, check, verbose;
 } options;
@@ -57,6 +60,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"lcm-url", required_argument, NULL, 'u'},
         {"resolution", required_argument, NULL, 'r'},
         {"new", no_argument, NULL, 'N'},
+        {"secret-file", required_argument, NULL, 'S'},
         {"check", no_argument, NULL, 'C'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -79,6 +83,7 @@ static int parse_options(int argc, char **argv, options *o)
             }
             break;
         case 'N': o->fresh = 1; break;
+        case 'S': o->secret_file = optarg; break;
         case 'C': o->check = 1; break;
         case 'v': o->verbose = 1; break;
         case 'h': usage(stdout); exit(0);
@@ -238,6 +243,12 @@ int main(int argc, char **argv)
         mpbd_experiment_free(d.exp);
         return 0;
     }
+    if (o.secret_file &&
+        mpb_auth_load(o.secret_file, &d.auth, err, sizeof err) != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s\n", err);
+        mpbd_experiment_free(d.exp);
+        return 1;
+    }
     d.resolution = o.resolution;
     d.verbose = o.verbose;
     gethostname(host, sizeof host - 1);
@@ -310,5 +321,6 @@ out:
     mpbd_planners_free(&d);
     mpb_store_close(d.store);
     mpbd_experiment_free(d.exp);
+    mpb_auth_free(d.auth);
     return exit_code;
 }

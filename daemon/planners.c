@@ -73,8 +73,8 @@ static void on_announce_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                             void *user)
 {
     mpb_planner_announce_t m;
-    if (!mpbd_message_ok(user, MPB_WIRE_PLANNER_ANNOUNCE, rbuf, channel) ||
-        mpb_planner_announce_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+    size_t len = mpbd_message_ok(user, MPB_WIRE_PLANNER_ANNOUNCE, rbuf, channel);
+    if (len == 0 || mpb_planner_announce_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
     on_announce(user, &m);
     mpb_planner_announce_t_decode_cleanup(&m);

@@ -213,8 +213,8 @@ static void on_result_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                           void *user)
 {
     mpb_plan_result_t m;
-    if (!mpbd_message_ok(user, MPB_WIRE_PLAN_RESULT, rbuf, channel) ||
-        mpb_plan_result_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+    size_t len = mpbd_message_ok(user, MPB_WIRE_PLAN_RESULT, rbuf, channel);
+    if (len == 0 || mpb_plan_result_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
     on_result(user, &m);
     mpb_plan_result_t_decode_cleanup(&m);

@@ -121,8 +121,7 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
     };
     if (mpb_request_channel(p->id, channel, sizeof channel) != MPB_OK)
         return MPB_EINVAL;
-    return mpb_plan_request_t_publish(d->lcm, channel, &rq) == 0 ? MPB_OK
-                                                                  : MPB_ELCM;
+    return mpb_publish_request(d->lcm, d->auth, channel, &rq);
 }
 
 static mpbd_flight *add_flight(mpbd *d)
@@ -300,7 +299,7 @@ void mpbd_ack(mpbd *d, const char *run_uid, int kind)
         .sender_id = d->daemon_id,
         .kind = (int8_t)kind,
     };
-    mpb_run_ack_t_publish(d->lcm, MPB_CHANNEL_ACK, &ack);
+    mpb_publish_ack(d->lcm, d->auth, MPB_CHANNEL_ACK, &ack);
 }
 
 int mpbd_ack_after_commit(mpbd *d, const char *run_uid)
@@ -339,8 +338,8 @@ static void on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                        void *user)
 {
     mpb_run_ack_t m;
-    if (!mpbd_message_ok(user, MPB_WIRE_RUN_ACK, rbuf, channel) ||
-        mpb_run_ack_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+    size_t len = mpbd_message_ok(user, MPB_WIRE_RUN_ACK, rbuf, channel);
+    if (len == 0 || mpb_run_ack_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
     on_ack(user, &m);
     mpb_run_ack_t_decode_cleanup(&m);

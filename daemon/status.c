@@ -37,7 +37,7 @@ void mpbd_status_publish(mpbd *d, const char *state, double now)
             .last_seen_s = now - p->last_seen,
         };
     }
-    mpb_daemon_status_t_publish(d->lcm, MPB_CHANNEL_STATUS, &st);
+    mpb_publish_status(d->lcm, d->auth, MPB_CHANNEL_STATUS, &st);
     free(seen);
     d->last_status = now;
 }

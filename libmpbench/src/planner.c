@@ -44,6 +44,7 @@ typedef struct mpb__kept {
 typedef struct mpb__server {
     const mpb_planner_def *def;
     lcm_t *lcm;
+    mpb_auth *auth;             /* NULL: messages are not authenticated */
     char id[MPB_PLANNER_ID_MAX + 1];
     char host[MPB_PLANNER_ID_MAX + 1];
     char request_channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
@@ -284,7 +285,7 @@ static void mpb__announce(mpb__server *s)
     a.capacity = closed ? 0 : 1;
     a.num_active = active[0] != '\0' ? 1 : 0;
     a.active_runs = active_list;
-    mpb_planner_announce_t_publish(s->lcm, MPB_CHANNEL_ANNOUNCE, &a);
+    mpb_publish_announce(s->lcm, s->auth, MPB_CHANNEL_ANNOUNCE, &a);
 }
 
 static void mpb__timespec_add_ms(struct timespec *t, int ms)
@@ -356,7 +357,7 @@ static void mpb__ack(mpb__server *s, const char *run_id)
     a.run_id = (char *)run_id;
     a.sender_id = s->id;
     a.kind = MPB_RUN_ACK_T_REQUEST_RECEIVED;
-    mpb_run_ack_t_publish(s->lcm, MPB_CHANNEL_ACK, &a);
+    mpb_publish_ack(s->lcm, s->auth, MPB_CHANNEL_ACK, &a);
 }
 
 static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
@@ -371,7 +372,7 @@ static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
  * not an error: it counts as a lost message, which the re-sends cover. */
 static void mpb__send(mpb__server *s, mpb__kept *k)
 {
-    mpb_plan_result_t_publish(s->lcm, MPB_CHANNEL_RESULT, &k->res);
+    mpb_publish_result(s->lcm, s->auth, MPB_CHANNEL_RESULT, &k->res);
     k->next_send_s = mpb_monotonic_s() + MPB__RESEND_S;
     if (k->sends_left > 0)
         k->sends_left--;
@@ -506,10 +507,12 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
 static void mpb__on_request_raw(const lcm_recv_buf_t *rbuf,
                                 const char *channel, void *user)
 {
+    mpb__server *s = user;
     mpb_plan_request_t m;
-    if (!mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, rbuf->data_size,
-                        NULL, 0) ||
-        mpb_plan_request_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+    size_t len;
+    if (!mpb_auth_check(s->auth, channel, rbuf->data, rbuf->data_size, &len) ||
+        !mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, len, NULL, 0) ||
+        mpb_plan_request_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
     mpb__on_request(rbuf, channel, &m, user);
     mpb_plan_request_t_decode_cleanup(&m);
@@ -532,9 +535,12 @@ static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
 static void mpb__on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                             void *user)
 {
+    mpb__server *s = user;
     mpb_run_ack_t m;
-    if (!mpb_wire_check(MPB_WIRE_RUN_ACK, rbuf->data, rbuf->data_size, NULL, 0) ||
-        mpb_run_ack_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
+    size_t len;
+    if (!mpb_auth_check(s->auth, channel, rbuf->data, rbuf->data_size, &len) ||
+        !mpb_wire_check(MPB_WIRE_RUN_ACK, rbuf->data, len, NULL, 0) ||
+        mpb_run_ack_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
     mpb__on_ack(rbuf, channel, &m, user);
     mpb_run_ack_t_decode_cleanup(&m);
@@ -635,6 +641,8 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     if (s->heartbeat_ms < MPB__ANNOUNCE_GAP_MS)
         s->heartbeat_ms = MPB__ANNOUNCE_GAP_MS;
     int rc = mpb__make_id(s, err, errlen);
+    if (rc == MPB_OK && def->secret_file != NULL)
+        rc = mpb_auth_load(def->secret_file, &s->auth, err, errlen);
     if (rc != MPB_OK) {
         free(s);
         return rc;
@@ -645,6 +653,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     if (s->lcm == NULL) {
         snprintf(err, errlen, "cannot join LCM at %s (udpm needs a multicast "
                  "route, e.g. 'ip route add 224.0.0.0/4 dev lo')", url);
+        mpb_auth_free(s->auth);
         free(s);
         return MPB_ELCM;
     }
@@ -660,6 +669,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
         if (asub != NULL)
             lcm_unsubscribe(s->lcm, asub);
         lcm_destroy(s->lcm);
+        mpb_auth_free(s->auth);
         free(s);
         return MPB_ELCM;
     }
@@ -705,6 +715,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     lcm_destroy(s->lcm);
     pthread_cond_destroy(&s->cond);
     pthread_mutex_destroy(&s->mu);
+    mpb_auth_free(s->auth);
     free(s);
     return rc;
 }

@@ -21,6 +21,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
 "usage: mpb-planner-null [--lcm-url URL] [--name NAME] [--max-runs N]\n"
+"                        [--secret-file FILE]\n"
 "\n"
 "A planner process for mpbench that does no planning. It answers every\n"
 "plan request for the algorithm \"straight_line\" with status SOLVED and one\n"
@@ -40,6 +41,8 @@ static void usage(FILE *out)
 "                  the daemon must use the same one)\n"
 "  --name NAME     planner name used in experiment files (default \"null\")\n"
 "  --max-runs N    exit after answering N runs (default 0: no limit)\n"
+"  --secret-file F authenticate every message with the shared secret in F\n"
+"                  (the daemon must use the same file)\n"
 "  --help          show this text\n",
             MPB_DEFAULT_LCM_URL);
 }
@@ -94,7 +97,7 @@ static void on_ready(void *user, const char *planner_id)
 
 int main(int argc, char **argv)
 {
-    const char *url = NULL, *name = "null";
+    const char *url = NULL, *name = "null", *secret = NULL;
     long max_runs = 0;
 
     for (int i = 1; i < argc; i++) {
@@ -104,7 +107,8 @@ int main(int argc, char **argv)
             return 0;
         }
         if ((strcmp(a, "--lcm-url") == 0 || strcmp(a, "--name") == 0 ||
-             strcmp(a, "--max-runs") == 0) && i + 1 >= argc) {
+             strcmp(a, "--max-runs") == 0 || strcmp(a, "--secret-file") == 0) &&
+            i + 1 >= argc) {
             fprintf(stderr, "mpb-planner-null: %s needs a value (see --help)\n", a);
             return 2;
         }
@@ -112,6 +116,8 @@ int main(int argc, char **argv)
             url = argv[++i];
         } else if (strcmp(a, "--name") == 0) {
             name = argv[++i];
+        } else if (strcmp(a, "--secret-file") == 0) {
+            secret = argv[++i];
         } else if (strcmp(a, "--max-runs") == 0) {
             char *end;
             errno = 0;
@@ -146,6 +152,7 @@ int main(int argc, char **argv)
         .user = NULL,
         .heartbeat_ms = 0,
         .on_ready = on_ready,
+        .secret_file = secret,
     };
     char err[256];
     int rc = mpb_planner_serve(&def, url, &g_stop, max_runs, err, sizeof err);

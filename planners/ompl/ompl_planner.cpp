@@ -656,6 +656,7 @@ void usage(std::FILE *out)
 {
     std::fprintf(out,
 "usage: mpb-planner-ompl [--lcm-url URL] [--name NAME] [--max-runs N] [--verbose]\n"
+"                        [--secret-file FILE]\n"
 "\n"
 "A planner process for mpbench that plans with OMPL %d.%d.%d's geometric\n"
 "planners. For each plan request it builds the robot's joint space (continuous\n"
@@ -673,6 +674,8 @@ void usage(std::FILE *out)
 "                  the daemon must use the same one)\n"
 "  --name NAME     planner name used in experiment files (default \"ompl\")\n"
 "  --max-runs N    exit after answering N runs (default 0: no limit)\n"
+"  --secret-file F authenticate every message with the shared secret in F\n"
+"                  (the daemon must use the same file)\n"
 "  --verbose       show OMPL's own log messages on stderr\n"
 "  --help          show this text\n"
 "\n"
@@ -710,7 +713,7 @@ extern "C" void on_ready(void *, const char *planner_id)
 
 int main(int argc, char **argv)
 {
-    const char *url = nullptr, *name = "ompl";
+    const char *url = nullptr, *name = "ompl", *secret = nullptr;
     long max_runs = 0;
     bool verbose = false;
 
@@ -725,7 +728,8 @@ int main(int argc, char **argv)
             continue;
         }
         if ((!std::strcmp(a, "--lcm-url") || !std::strcmp(a, "--name") ||
-             !std::strcmp(a, "--max-runs")) && i + 1 >= argc) {
+             !std::strcmp(a, "--max-runs") || !std::strcmp(a, "--secret-file")) &&
+            i + 1 >= argc) {
             std::fprintf(stderr, "mpb-planner-ompl: %s needs a value (see --help)\n", a);
             return 2;
         }
@@ -733,6 +737,8 @@ int main(int argc, char **argv)
             url = argv[++i];
         } else if (!std::strcmp(a, "--name")) {
             name = argv[++i];
+        } else if (!std::strcmp(a, "--secret-file")) {
+            secret = argv[++i];
         } else if (!std::strcmp(a, "--max-runs")) {
             char *end;
             errno = 0;
@@ -774,6 +780,7 @@ int main(int argc, char **argv)
     def.solve = solve;
     def.user = &ctx;
     def.on_ready = on_ready;
+    def.secret_file = secret;
 
     char err[256];
     int rc = mpb_planner_serve(&def, url, &g_stop, max_runs, err, sizeof err);

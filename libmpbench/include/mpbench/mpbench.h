@@ -67,5 +67,6 @@ const char *mpb_err_name(int code);
 #include "mpbench/world.h"
 #include "mpbench/verify.h"
 #include "mpbench/wire.h"
+#include "mpbench/auth.h"
 
 #endif /* MPBENCH_H */

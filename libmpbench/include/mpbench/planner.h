@@ -62,6 +62,11 @@ typedef struct mpb_planner_def {
      * is taken; the id string lives until mpb_planner_serve() returns.
      */
     void      (*on_ready)(void *user, const char *planner_id);
+    /*
+     * Optional: a file holding the secret every message is authenticated
+     * with (auth.h); the daemon must use the same. NULL: no authentication.
+     */
+    const char *secret_file;
 } mpb_planner_def;
 
 /*

@@ -1,0 +1,73 @@
+#!/bin/sh
+# Shared-secret authentication (--secret-file): a planner with the right
+# secret does the runs; one with another secret cannot even join; a result
+# without a tag, even one naming the right run and planner, is rejected.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+mpb_enter_netns "$0" "$@"
+
+work=$(mktemp -d)
+trap 'mpb_stop_all; rm -rf "$work"' EXIT
+DB=$work/test.db
+null=$MPB_BUILD/planners/null/mpb-planner-null
+planar=$MPB_SOURCE/scenes/planar
+head -c 32 /dev/urandom >"$work/secret"
+head -c 32 /dev/urandom >"$work/other"
+
+cat >"$work/exp.yaml" <<EOT
+experiment: {name: auth, runs: 10, time_limit: 5, runs_per_host: 2}
+robot: {format: planar, file: $planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $planar/pillars.scene
+    queries:
+      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+planners:
+  - {planner: null, algorithms: [straight_line], params: {delay: 0.1}}
+EOT
+"$null" --secret-file "$work/secret" >"$work/good.log" 2>&1 &
+good=$!
+"$null" --secret-file "$work/other" >"$work/bad.log" 2>&1 &
+bad=$!
+MPB_PIDS="$good $bad"
+
+"$MPB_BUILD/daemon/mpbenchd" --secret-file "$work/secret" -d "$DB" \
+    "$work/exp.yaml" >"$work/daemon.log" 2>&1 &
+daemon=$!
+
+uid=""
+for i in $(seq 50); do
+    uid=$(q "SELECT run_uid FROM runs WHERE state = 'sent' LIMIT 1" 2>/dev/null)
+    [ -n "$uid" ] && break
+    sleep 0.1
+done
+# The right run id and the right planner, but no tag.
+"$MPB_BUILD/tests/mpb-test-forge-result" "$uid" "null@$(hostname):$good" >/dev/null
+
+waited=0
+while kill -0 $daemon 2>/dev/null && [ $waited -lt 300 ]; do
+    sleep 0.1; waited=$((waited + 1))
+done
+wait $daemon
+check "the experiment completes" eq $? 0
+check "every run was done by the planner holding the secret" \
+    eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND planner_id LIKE '%:$good'")" 10
+check "the planner with another secret never joined" \
+    sh -c "! grep -q 'planner null@.*:$bad joined' '$work/daemon.log'"
+check "its messages were rejected for their tag" \
+    grep -q "wrong authentication tag" "$work/daemon.log"
+check "the untagged result did not reach the database" \
+    eq "$(q "SELECT count(*) FROM stages WHERE name = 'forged'")" 0
+
+# Without the secret, the daemon hears nobody it can trust and says so.
+"$MPB_BUILD/daemon/mpbenchd" --secret-file "$work/nosuch" -d "$DB" "$work/exp.yaml" \
+    >"$work/missing.log" 2>&1
+check "a missing secret file is refused" test $? -ne 0
+check "... naming the file" grep -q "nosuch: cannot read secret" "$work/missing.log"
+head -c 5 /dev/urandom >"$work/short"
+"$MPB_BUILD/daemon/mpbenchd" --secret-file "$work/short" -d "$DB" "$work/exp.yaml" \
+    >"$work/short.log" 2>&1
+check "a secret shorter than 16 bytes is refused" grep -q "at least 16 bytes" "$work/short.log"
+
+mpb_finish
