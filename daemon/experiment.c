@@ -221,7 +221,7 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
                       char **format, char **text)
 {
     static const char *const keys[] = {"format", "file", "text", "name",
-                                       "queries", NULL};
+                                       "queries", "joints", NULL};
     yaml_node_t *file, *inline_text;
     if (m == NULL || m->type != YAML_MAPPING_NODE)
         return fail_at(L, m, "%s must be a mapping with format and file or text",
@@ -295,8 +295,9 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
                       yaml_node_t *where)
 {
     char why[256];
-    if (mpb_world_open(sc->robot_format, sc->robot, sc->scene_format, sc->scene,
-                       &sc->world, why, sizeof why) != MPB_OK)
+    if (mpb_world_open_group(sc->robot_format, sc->robot, sc->scene_format,
+                             sc->scene, (const char *const *)e->group,
+                             e->num_group, &sc->world, why, sizeof why) != MPB_OK)
         return fail_at(L, where, "scene '%s': %s", sc->name, why);
     int nj = mpb_world_num_joints(sc->world);
     if (e->joint_names == NULL) {
@@ -387,6 +388,28 @@ static size_t count_items(const yaml_node_t *n)
                : 0;
 }
 
+/* The robot's planning group, as a list of joint names (optional for
+ * planar robots, whose joints are all in the group). */
+static int load_group(loader *L, mpbd_experiment *e, yaml_node_t *n)
+{
+    if (n == NULL)
+        return 0;
+    if (n->type != YAML_SEQUENCE_NODE || count_items(n) == 0)
+        return fail_at(L, n, "joints must be a list of joint names");
+    e->group = calloc(count_items(n) + 1, sizeof *e->group);
+    if (e->group == NULL)
+        return fail_at(L, n, "out of memory");
+    for (yaml_node_item_t *it = n->data.sequence.items.start;
+         it < n->data.sequence.items.top; it++) {
+        const char *s = scalar(node(L, *it));
+        if (s == NULL || *s == '\0')
+            return fail_at(L, node(L, *it), "a joint must be a name");
+        if ((e->group[e->num_group++] = strdup(s)) == NULL)
+            return fail_at(L, n, "out of memory");
+    }
+    return 0;
+}
+
 static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     char *robot_format = NULL, *robot = NULL;
@@ -399,7 +422,8 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
         return -1;
     if (need(L, root, "robot", YAML_MAPPING_NODE,
              "a mapping of format and file or text") == NULL ||
-        load_model(L, get(L, root, "robot"), "robot", &robot_format, &robot) != 0)
+        load_model(L, get(L, root, "robot"), "robot", &robot_format, &robot) != 0 ||
+        load_group(L, e, get(L, get(L, root, "robot"), "joints")) != 0)
         goto done;
     e->num_scenes = 0;
     e->scenes = calloc(count_items(list) + 1, sizeof *e->scenes);
@@ -425,6 +449,11 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
             goto done;
         }
         e->num_scenes++;
+        if (get(L, m, "joints") != NULL) {
+            fail_at(L, get(L, m, "joints"), "joints belong to the robot, not "
+                    "to a scene");
+            goto done;
+        }
         if ((sc->name = need_string(L, m, "name")) == NULL ||
             load_model(L, m, "scene", &sc->scene_format, &sc->scene) != 0)
             goto done;
@@ -670,6 +699,9 @@ void mpbd_experiment_free(mpbd_experiment *e)
     for (int j = 0; j < e->num_joints && e->joint_names; j++)
         free(e->joint_names[j]);
     free(e->joint_names);
+    for (int j = 0; j < e->num_group; j++)
+        free(e->group[j]);
+    free(e->group);
     free(e->wraps);
     free(e->scenes);
     free(e->queries);

@@ -51,6 +51,8 @@ typedef struct mpbd_experiment {
     int     retries;         /* extra attempts for a run whose planner crashed */
     int     runs_per_host;   /* runs at once on one host (timings skew otherwise) */
 
+    char  **group;           /* robot.joints as written, or NULL */
+    int     num_group;
     int     num_joints;
     char  **joint_names;
     unsigned char *wraps;    /* per joint, nonzero for continuous joints */

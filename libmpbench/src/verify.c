@@ -174,6 +174,14 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
                                num_waypoints - 1, w->joint_names[j], e,
                                goal->joint_tolerance);
         }
+    } else {
+        char why[sizeof out->detail - 40];
+        int in = mpb_world_goal_contains(w, goal, last, why, sizeof why);
+        if (in == 0)
+            return verdict(out, MPB_VERDICT_GOAL, num_waypoints - 1,
+                           "waypoint %d (the last): %s", num_waypoints - 1, why);
+        if (in < 0 && in != MPB_EUNSUPPORTED)
+            return verdict(out, MPB_VERDICT_UNSUPPORTED, -1, "%s", why);
     }
 
     /* JOINT_LIMIT: continuous joints have none. */
@@ -191,8 +199,8 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
     if (rc != MPB_OK || out->code != MPB_VERDICT_VALID)
         return rc;
 
-    /* UNSUPPORTED */
-    if (goal->kind == MPB_GOAL_POSE_REGION)
+    /* UNSUPPORTED: a pose region the world cannot check. */
+    if (goal->kind == MPB_GOAL_POSE_REGION && !w->provider->goal_region)
         return verdict(out, MPB_VERDICT_UNSUPPORTED, -1, "pose-region goals "
                        "cannot be checked in a '%s' world",
                        w->provider->robot_format);

@@ -14,6 +14,7 @@
 
 static const mpb__world_provider *const providers[] = {
     &mpb__world_planar,
+    &mpb__world_urdf,
 };
 #define NUM_PROVIDERS ((int)(sizeof providers / sizeof providers[0]))
 
@@ -67,6 +68,15 @@ int mpb_world_open(const char *robot_format, const char *robot_text,
                    const char *scene_format, const char *scene_text,
                    mpb_world **out, char *err, size_t errlen)
 {
+    return mpb_world_open_group(robot_format, robot_text, scene_format,
+                                scene_text, NULL, 0, out, err, errlen);
+}
+
+int mpb_world_open_group(const char *robot_format, const char *robot_text,
+                         const char *scene_format, const char *scene_text,
+                         const char *const *joints, int num_joints,
+                         mpb_world **out, char *err, size_t errlen)
+{
     mpb__world_err(err, errlen, "%s", "");
     if (!out)
         return MPB_EINVAL;
@@ -98,7 +108,13 @@ int mpb_world_open(const char *robot_format, const char *robot_text,
         return MPB_ENOMEM;
     }
     w->provider = p;
-    int rc = p->open(w, robot_text, scene_text ? scene_text : "", err, errlen);
+    if (num_joints < 0 || (num_joints > 0 && joints == NULL)) {
+        free(w);
+        mpb__world_err(err, errlen, "world: bad joint list");
+        return MPB_EINVAL;
+    }
+    int rc = p->open(w, robot_text, scene_text ? scene_text : "", joints,
+                     num_joints, err, errlen);
     if (rc == MPB_OK && w->num_joints < 1) {
         mpb__world_err(err, errlen, "robot: no joints");
         rc = MPB_EPARSE;
@@ -184,4 +200,20 @@ double mpb_world_clearance(mpb_world *w, const double *q)
     if (!w || !q || !all_finite(w, q))
         return NAN;
     return w->provider->clearance(w->impl, q);
+}
+
+int mpb_world_goal_contains(mpb_world *w, const mpb_goal *g, const double *q,
+                            char *detail, size_t len)
+{
+    mpb__world_err(detail, len, "%s", "");
+    if (!w || !g || !q)
+        return MPB_EINVAL;
+    if (g->kind != MPB_GOAL_POSE_REGION || !w->provider->goal_region) {
+        mpb__world_err(detail, len, "pose-region goals cannot be checked in "
+                       "a '%s' world", w->provider->robot_format);
+        return MPB_EUNSUPPORTED;
+    }
+    if (!all_finite(w, q))
+        return 0;
+    return w->provider->goal_region(w->impl, g, q, detail, len);
 }

@@ -311,7 +311,8 @@ static int parse_scene(planar *p, const char *text, char *err, size_t errlen)
 }
 
 static int planar_open(mpb_world *w, const char *robot_text,
-                       const char *scene_text, char *err, size_t errlen)
+                       const char *scene_text, const char *const *joints,
+                       int num_joints, char *err, size_t errlen)
 {
     planar *p = calloc(1, sizeof *p);
     if (!p)
@@ -323,6 +324,15 @@ static int planar_open(mpb_world *w, const char *robot_text,
     rc = parse_scene(p, scene_text, err, errlen);
     if (rc != MPB_OK)
         return rc;
+    /* A group, if named, must be the arm's joints in order. */
+    int same = joints == NULL || num_joints == w->num_joints;
+    for (int j = 0; same && joints && j < num_joints; j++)
+        same = joints[j] && strcmp(joints[j], w->joint_names[j]) == 0;
+    if (!same) {
+        mpb__world_err(err, errlen, "robot: the group's joints must be the "
+                       "planar arm's %d joints in order", w->num_joints);
+        return MPB_EPARSE;
+    }
     p->xy = malloc(2 * ((size_t)p->n + 1) * sizeof *p->xy);
     return p->xy ? MPB_OK : MPB_ENOMEM;
 }

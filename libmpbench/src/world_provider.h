@@ -13,6 +13,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#include "mpbench/verify.h"
 #include "mpbench/world.h"
 
 typedef struct mpb__world_provider {
@@ -26,12 +27,21 @@ typedef struct mpb__world_provider {
      * whatever w->impl holds (possibly NULL) and frees w.
      */
     int    (*open)(mpb_world *w, const char *robot_text,
-                   const char *scene_text, char *err, size_t errlen);
+                   const char *scene_text, const char *const *joints,
+                   int num_joints, char *err, size_t errlen);
     void   (*close)(void *impl);                 /* impl may be NULL */
 
     /* q has w->num_joints finite values (world.c checks). */
     int    (*in_collision)(void *impl, const double *q);
     double (*clearance)(void *impl, const double *q);
+
+    /*
+     * Optional: 1 if the robot at q is inside the pose-region goal g, 0 if
+     * not (with one line in detail), negative if g cannot be checked (an
+     * unknown link, say; detail says why). NULL: pose regions unsupported.
+     */
+    int    (*goal_region)(void *impl, const mpb_goal *g, const double *q,
+                          char *detail, size_t len);
 } mpb__world_provider;
 
 struct mpb_world {
@@ -60,6 +70,7 @@ void mpb__world_err(char *err, size_t errlen, const char *fmt, ...)
 
 /* The providers. */
 extern const mpb__world_provider mpb__world_planar;
+extern const mpb__world_provider mpb__world_urdf;
 
 /*
  * Planar only, for tests: the positions of the joints and the tip of the

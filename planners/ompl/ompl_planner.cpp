@@ -262,6 +262,8 @@ public:
     {
         std::string key = part(req->robot_format, req->robot_hash, req->robot) +
                           '\n' + part(req->scene_format, req->scene_hash, req->scene);
+        for (int j = 0; j < req->num_joints; j++)
+            key += std::string("\n") + req->joint_names[j];
         for (auto it = list_.begin(); it != list_.end(); ++it)
             if (it->key == key) {
                 list_.splice(list_.begin(), list_, it);
@@ -269,8 +271,10 @@ public:
             }
         mpb_world *w = nullptr;
         char msg[256] = "";
-        int rc = mpb_world_open(req->robot_format, req->robot, req->scene_format,
-                                req->scene, &w, msg, sizeof msg);
+        int rc = mpb_world_open_group(req->robot_format, req->robot,
+                                      req->scene_format, req->scene,
+                                      req->joint_names, req->num_joints, &w,
+                                      msg, sizeof msg);
         if (rc != MPB_OK || w == nullptr) {
             err = msg[0] != '\0' ? msg : mpb_strerror(rc);
             return nullptr;

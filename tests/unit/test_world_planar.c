@@ -282,10 +282,20 @@ static void test_formats(void **state)
     (void)state;
     mpb_world *w = (mpb_world *)1;
     char err[200];
-    assert_int_equal(mpb_world_open("urdf", "<robot/>", "moveit-scene", "", &w,
+    assert_int_equal(mpb_world_open("sdf", "<robot/>", "moveit-scene", "", &w,
                                     err, sizeof err), MPB_EUNSUPPORTED);
     assert_null(w);
-    assert_non_null(strstr(err, "urdf"));
+    assert_non_null(strstr(err, "sdf"));
+    /* A urdf world needs its planning group's joints. */
+    assert_int_equal(mpb_world_open("urdf", "<robot/>", "moveit-scene", "", &w,
+                                    err, sizeof err), MPB_EINVAL);
+    assert_null(w);
+    assert_non_null(strstr(err, "joints"));
+    /* A planar group must be the arm's joints in order. */
+    static const char *const wrong[] = {"j2", "j1"};
+    assert_int_equal(mpb_world_open_group("planar", ARM2, "planar", "", wrong,
+                                          2, &w, err, sizeof err), MPB_EPARSE);
+    assert_non_null(strstr(err, "in order"));
     assert_int_equal(mpb_world_open("planar", ARM2, "moveit-scene", "", &w,
                                     err, sizeof err), MPB_EUNSUPPORTED);
     assert_non_null(strstr(err, "moveit-scene"));

@@ -49,6 +49,17 @@ int mpb_world_open(const char *robot_format, const char *robot_text,
                    const char *scene_format, const char *scene_text,
                    mpb_world **out, char *err, size_t errlen);
 
+/*
+ * As mpb_world_open(), with the planning group named by its joints, in the
+ * order their values are given (a plan request's joint_names). For "urdf"
+ * the joints must be given; for "planar" they may be NULL (all joints) or
+ * must be the robot's joints in order.
+ */
+int mpb_world_open_group(const char *robot_format, const char *robot_text,
+                         const char *scene_format, const char *scene_text,
+                         const char *const *joints, int num_joints,
+                         mpb_world **out, char *err, size_t errlen);
+
 void mpb_world_close(mpb_world *w);
 
 /* Accessors; a joint out of range gives NULL / NaN limits / 0. */
@@ -76,6 +87,17 @@ int mpb_world_in_collision(mpb_world *w, const double *q);
  * w or q).
  */
 double mpb_world_clearance(mpb_world *w, const double *q);
+
+struct mpb_goal;
+
+/*
+ * Is the robot at q inside the pose-region goal g (verify.h)? 1 if so, 0 if
+ * not, with one line in detail (may be NULL) saying how far; MPB_EUNSUPPORTED
+ * where the world cannot check pose regions (planar); another negative code
+ * when g does not fit the robot (an unknown link). A non-finite q is outside.
+ */
+int mpb_world_goal_contains(mpb_world *w, const struct mpb_goal *g,
+                            const double *q, char *detail, size_t len);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,338 @@
+/*
+ * robot_urdf.cpp - the C++ bridge to urdfdom: parses URDF text and copies
+ * the model into the plain C structs of robot_urdf.h. Catches every
+ * exception; urdfdom's console messages are captured, not printed.
+ */
+#include "robot_urdf.h"
+
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "mpbench/mpbench.h"
+
+namespace {
+
+/* Collects what urdfdom logs while a parse runs. */
+class Capture : public console_bridge::OutputHandler {
+public:
+    std::vector<std::string> errors;
+    void log(const std::string &text, console_bridge::LogLevel level,
+             const char *, int) override
+    {
+        if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR)
+            errors.push_back(text);
+    }
+};
+
+/*
+ * console_bridge keeps one global handler: swap ours in for the parse,
+ * under a lock, and put the previous one back even if the parse throws.
+ */
+std::mutex capture_lock;
+
+class CaptureScope {
+public:
+    explicit CaptureScope(Capture *c) : guard_(capture_lock)
+    {
+        level_ = console_bridge::getLogLevel();
+        if (level_ > console_bridge::CONSOLE_BRIDGE_LOG_ERROR)
+            console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_ERROR);
+        console_bridge::useOutputHandler(c);
+    }
+    ~CaptureScope()
+    {
+        console_bridge::restorePreviousOutputHandler();
+        console_bridge::setLogLevel(level_);
+    }
+    CaptureScope(const CaptureScope &) = delete;
+    CaptureScope &operator=(const CaptureScope &) = delete;
+
+private:
+    std::lock_guard<std::mutex> guard_;
+    console_bridge::LogLevel level_;
+};
+
+void set_err(char *err, size_t errlen, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+void set_err(char *err, size_t errlen, const char *fmt, ...)
+{
+    if (!err || errlen == 0)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+}
+
+/* One line: the messages joined with "; ", newlines and tabs as spaces. */
+std::string join_one_line(const std::vector<std::string> &msgs)
+{
+    std::string s;
+    for (const std::string &m : msgs) {
+        if (!s.empty())
+            s += "; ";
+        s += m;
+    }
+    for (char &c : s)
+        if (c == '\n' || c == '\r' || c == '\t')
+            c = ' ';
+    while (!s.empty() && s.back() == ' ')
+        s.pop_back();
+    return s;
+}
+
+char *dup_string(const std::string &s)
+{
+    char *p = static_cast<char *>(std::malloc(s.size() + 1));
+    if (!p)
+        throw std::bad_alloc();
+    std::memcpy(p, s.c_str(), s.size() + 1);
+    return p;
+}
+
+void to_pose(const urdf::Pose &in, mpb_pose *out)
+{
+    mpb_pose_identity(out);
+    mpb_pose_set_quat(out, in.rotation.x, in.rotation.y, in.rotation.z,
+                      in.rotation.w);
+    out->t[0] = in.position.x;
+    out->t[1] = in.position.y;
+    out->t[2] = in.position.z;
+}
+
+mpb_joint_type to_type(int t)
+{
+    switch (t) {
+    case urdf::Joint::REVOLUTE:   return MPB_JOINT_REVOLUTE;
+    case urdf::Joint::CONTINUOUS: return MPB_JOINT_CONTINUOUS;
+    case urdf::Joint::PRISMATIC:  return MPB_JOINT_PRISMATIC;
+    case urdf::Joint::FLOATING:   return MPB_JOINT_FLOATING;
+    case urdf::Joint::PLANAR:     return MPB_JOINT_PLANAR;
+    default:                      return MPB_JOINT_FIXED;
+    }
+}
+
+/* Copy one geometry; false (with err) for one urdfdom should not produce. */
+bool to_geom(const urdf::Collision &c, const std::string &link,
+             mpb__urdf_geom *g, char *err, size_t errlen)
+{
+    std::memset(g, 0, sizeof *g);
+    to_pose(c.origin, &g->origin);
+    g->mesh_scale[0] = g->mesh_scale[1] = g->mesh_scale[2] = 1.0;
+    if (!c.name.empty())
+        g->name = dup_string(c.name);
+    const urdf::Geometry *geo = c.geometry.get();
+    if (!geo) {
+        set_err(err, errlen, "link '%.80s': collision without geometry",
+                link.c_str());
+        return false;
+    }
+    switch (geo->type) {
+    case urdf::Geometry::BOX: {
+        const urdf::Box *b = static_cast<const urdf::Box *>(geo);
+        g->type = MPB_SHAPE_BOX;
+        g->dims[0] = b->dim.x;
+        g->dims[1] = b->dim.y;
+        g->dims[2] = b->dim.z;
+        break;
+    }
+    case urdf::Geometry::SPHERE:
+        g->type = MPB_SHAPE_SPHERE;
+        g->dims[0] = static_cast<const urdf::Sphere *>(geo)->radius;
+        break;
+    case urdf::Geometry::CYLINDER: {
+        const urdf::Cylinder *cy = static_cast<const urdf::Cylinder *>(geo);
+        g->type = MPB_SHAPE_CYLINDER;
+        g->dims[0] = cy->radius;
+        g->dims[1] = cy->length;
+        break;
+    }
+    case urdf::Geometry::MESH: {
+        const urdf::Mesh *m = static_cast<const urdf::Mesh *>(geo);
+        g->type = MPB_SHAPE_MESH;
+        g->mesh_uri = dup_string(m->filename);
+        g->mesh_scale[0] = m->scale.x;
+        g->mesh_scale[1] = m->scale.y;
+        g->mesh_scale[2] = m->scale.z;
+        break;
+    }
+    default:
+        set_err(err, errlen, "link '%.80s': unknown collision geometry",
+                link.c_str());
+        return false;
+    }
+    return true;
+}
+
+/* Depth-first from the root, parents before children. */
+void collect(const urdf::LinkConstSharedPtr &link, int parent,
+             std::vector<urdf::LinkConstSharedPtr> &order,
+             std::vector<int> &parents)
+{
+    int me = static_cast<int>(order.size());
+    order.push_back(link);
+    parents.push_back(parent);
+    for (const urdf::LinkSharedPtr &child : link->child_links)
+        collect(child, me, order, parents);
+}
+
+int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
+         size_t errlen)
+{
+    urdf::LinkConstSharedPtr root = model.getRoot();
+    if (!root) {
+        set_err(err, errlen, "no root link");
+        return MPB_EPARSE;
+    }
+    std::vector<urdf::LinkConstSharedPtr> order;
+    std::vector<int> parents;
+    collect(root, -1, order, parents);
+
+    m->name = dup_string(model.getName());
+    m->links = static_cast<mpb__urdf_link *>(
+        std::calloc(order.size(), sizeof *m->links));
+    if (!m->links)
+        throw std::bad_alloc();
+    m->num_links = static_cast<int>(order.size());
+
+    for (size_t i = 0; i < order.size(); i++) {
+        const urdf::Link &ul = *order[i];
+        mpb__urdf_link *l = &m->links[i];
+        l->name = dup_string(ul.name);
+        l->parent = parents[i];
+        mpb_pose_identity(&l->origin);
+        l->type = MPB_JOINT_FIXED;
+        l->axis[0] = 1.0;
+        if (ul.parent_joint) {
+            const urdf::Joint &j = *ul.parent_joint;
+            l->joint = dup_string(j.name);
+            l->type = to_type(j.type);
+            to_pose(j.parent_to_joint_origin_transform, &l->origin);
+            l->axis[0] = j.axis.x;
+            l->axis[1] = j.axis.y;
+            l->axis[2] = j.axis.z;
+            if (j.limits) {
+                l->has_limits = 1;
+                l->lo = j.limits->lower;
+                l->hi = j.limits->upper;
+                l->max_velocity = j.limits->velocity;
+            }
+        }
+        std::vector<urdf::CollisionSharedPtr> cs = ul.collision_array;
+        if (cs.empty() && ul.collision)
+            cs.push_back(ul.collision);
+        if (!cs.empty()) {
+            l->geoms = static_cast<mpb__urdf_geom *>(
+                std::calloc(cs.size(), sizeof *l->geoms));
+            if (!l->geoms)
+                throw std::bad_alloc();
+            for (size_t k = 0; k < cs.size(); k++) {
+                l->num_geoms = static_cast<int>(k + 1);
+                if (!cs[k] || !to_geom(*cs[k], ul.name, &l->geoms[k], err,
+                                       errlen)) {
+                    if (!cs[k])
+                        set_err(err, errlen, "link '%.80s': empty collision",
+                                ul.name.c_str());
+                    return MPB_EPARSE;
+                }
+            }
+        }
+    }
+    return MPB_OK;
+}
+
+} // namespace
+
+extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
+                               char *err, size_t errlen)
+{
+    set_err(err, errlen, "%s", "");
+    if (!m)
+        return MPB_EINVAL;
+    std::memset(m, 0, sizeof *m);
+    if (!text)
+        return MPB_EINVAL;
+    const char *s = text;
+    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
+        s++;
+    if (*s == '\0') {
+        set_err(err, errlen, "empty document");
+        return MPB_EPARSE;
+    }
+    if (*s != '<') {
+        set_err(err, errlen, "not XML (the text does not begin with '<')");
+        return MPB_EPARSE;
+    }
+
+    int rc = MPB_OK;
+    try {
+        Capture cap;
+        urdf::ModelInterfaceSharedPtr model;
+        {
+            CaptureScope scope(&cap);
+            try {
+                model = urdf::parseURDF(text);
+            } catch (const std::bad_alloc &) {
+                throw;
+            } catch (const std::exception &e) {
+                cap.errors.push_back(e.what());
+            }
+        }
+        if (!cap.errors.empty() || !model) {
+            std::string msg = join_one_line(cap.errors);
+            if (msg.empty())
+                msg = "urdfdom could not parse it";
+            /* tinyxml's own messages all begin "Error ": say it is XML. */
+            if (msg.compare(0, 6, "Error ") == 0)
+                msg = "not well-formed XML: " + msg;
+            set_err(err, errlen, "%s", msg.c_str());
+            return MPB_EPARSE;
+        }
+        rc = fill(*model, m, err, errlen);
+    } catch (const std::bad_alloc &) {
+        set_err(err, errlen, "out of memory");
+        rc = MPB_ENOMEM;
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s", e.what());
+        rc = MPB_EPARSE;
+    } catch (...) {
+        set_err(err, errlen, "unknown exception from urdfdom");
+        rc = MPB_EPARSE;
+    }
+    if (rc != MPB_OK)
+        mpb__urdf_model_clear(m);
+    return rc;
+}
+
+extern "C" void mpb__urdf_model_clear(mpb__urdf_model *m)
+{
+    if (!m)
+        return;
+    for (int i = 0; i < m->num_links && m->links; i++) {
+        mpb__urdf_link *l = &m->links[i];
+        std::free(l->name);
+        std::free(l->joint);
+        for (int k = 0; k < l->num_geoms; k++) {
+            std::free(l->geoms[k].mesh_uri);
+            std::free(l->geoms[k].name);
+        }
+        std::free(l->geoms);
+    }
+    std::free(m->links);
+    std::free(m->name);
+    std::memset(m, 0, sizeof *m);
+}

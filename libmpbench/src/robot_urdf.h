@@ -1,0 +1,62 @@
+/*
+ * robot_urdf.h - private: the URDF model as plain C structs, filled by the
+ * C++ bridge robot_urdf.cpp (urdfdom) and turned into an mpb_robot by
+ * robot.c. Every pointer here is malloc'd; mpb__urdf_model_clear() frees
+ * them all.
+ */
+#ifndef MPB_ROBOT_URDF_H
+#define MPB_ROBOT_URDF_H
+
+#include <stddef.h>
+
+#include "mpbench/robot.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mpb__urdf_geom {
+    mpb_shape_type type;        /* BOX, SPHERE, CYLINDER, MESH */
+    double         dims[4];
+    char          *mesh_uri;    /* MESH only */
+    double         mesh_scale[3];
+    mpb_pose       origin;
+    char          *name;        /* NULL if none */
+} mpb__urdf_geom;
+
+typedef struct mpb__urdf_link {
+    char          *name;
+    int            parent;      /* link index, -1 for the root */
+    /* The joint from the parent (unused at the root). */
+    char          *joint;
+    mpb_joint_type type;
+    mpb_pose       origin;      /* parent frame -> joint frame */
+    double         axis[3];     /* as written (urdfdom's default 1 0 0) */
+    int            has_limits;
+    double         lo, hi, max_velocity;
+    int            num_geoms;
+    mpb__urdf_geom *geoms;
+} mpb__urdf_link;
+
+typedef struct mpb__urdf_model {
+    char           *name;
+    int             num_links;  /* depth-first from the root: parents first */
+    mpb__urdf_link *links;
+} mpb__urdf_model;
+
+/*
+ * Parse URDF text into *m (zeroed first). MPB_OK; MPB_EPARSE with one line
+ * in err (no prefix: "link 'a' is not unique"); MPB_ENOMEM. On failure *m
+ * holds nothing to free.
+ */
+int mpb__urdf_parse(const char *text, mpb__urdf_model *m, char *err,
+                    size_t errlen);
+
+/* Free everything *m holds and zero it. */
+void mpb__urdf_model_clear(mpb__urdf_model *m);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPB_ROBOT_URDF_H */

@@ -1,0 +1,232 @@
+/*
+ * test_world_urdf.c - the "urdf" + "moveit-scene" world: the PR2 right arm
+ * (tests/unit/data/pr2_right_arm.urdf, kinematics of shared/DESIGN.md)
+ * beside a box, collision, clearance, pose-region goals, and verification of
+ * a planted invalid trajectory.
+ *
+ * Geometry at q = 0 (torso at 0): the shoulder pan axis is at x = -0.05,
+ * y = -0.188, z = 0.7397; the arm points along +x, elbow at x = 0.45,
+ * wrist at x = 0.771. A 0.1 m box centred at (0.6, -0.188, 0.74) sits on
+ * the forearm. With the shoulder panned to -1.2 rad or +0.5 rad the arm
+ * points away from it (its line passes > 0.25 m from the box), but the
+ * straight joint-space segment between the two passes pan = 0.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+#include "mpbench/robot.h"
+
+static const char *const joints[] = {
+    "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",
+    "r_elbow_flex_joint", "r_forearm_roll_joint", "r_wrist_flex_joint",
+    "r_wrist_roll_joint"};
+
+static const char box_scene[] =
+    "box beside the arm\n"
+    "* box\n"
+    "0.6 -0.188 0.74\n"
+    "0 0 0 1\n"
+    "1\n"
+    "box\n"
+    "0.1 0.1 0.1\n"
+    "0 0 0\n"
+    "0 0 0 1\n"
+    "0 0 0 0\n"
+    "0\n"
+    ".\n";
+
+static char *urdf;
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = calloc((size_t)n + 1, 1);
+    assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+    return s;
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    urdf = slurp(MPB_TEST_DATA "/pr2_right_arm.urdf");
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    free(urdf);
+    return 0;
+}
+
+static mpb_world *open_world(const char *scene)
+{
+    mpb_world *w = NULL;
+    char err[256];
+    int rc = mpb_world_open_group("urdf", urdf, "moveit-scene", scene, joints,
+                                  7, &w, err, sizeof err);
+    if (rc != MPB_OK)
+        fail_msg("open: %s", err);
+    return w;
+}
+
+static void joints_and_limits_come_from_the_urdf(void **state)
+{
+    (void)state;
+    mpb_world *w = open_world(box_scene);
+    double lo, hi;
+    assert_int_equal(mpb_world_num_joints(w), 7);
+    assert_string_equal(mpb_world_joint_name(w, 0), "r_shoulder_pan_joint");
+    mpb_world_joint_limits(w, 0, &lo, &hi);
+    assert_float_equal(lo, -2.2854, 1e-9);
+    assert_float_equal(hi, 0.7146, 1e-9);
+    assert_true(mpb_world_joint_is_continuous(w, 4));   /* forearm roll */
+    assert_false(mpb_world_joint_is_continuous(w, 3));
+    mpb_world_close(w);
+}
+
+static void the_box_collides_with_the_forearm_only_at_pan_zero(void **state)
+{
+    (void)state;
+    mpb_world *w = open_world(box_scene);
+    double q0[7] = {0}, qa[7] = {-1.2}, qb[7] = {0.5};
+    assert_int_equal(mpb_world_in_collision(w, q0), 1);
+    assert_int_equal(mpb_world_in_collision(w, qa), 0);
+    assert_int_equal(mpb_world_in_collision(w, qb), 0);
+    /* Clearance: 0 when touching, positive and finite when free. */
+    assert_true(mpb_world_clearance(w, q0) <= 0.0);
+    double ca = mpb_world_clearance(w, qa);
+    assert_true(ca > 0.1 && ca < 1.0);
+    mpb_world_close(w);
+
+    /* Without the box nothing collides: no self-collision at rest. */
+    w = open_world("empty\n.\n");
+    assert_int_equal(mpb_world_in_collision(w, q0), 0);
+    assert_true(isinf(mpb_world_clearance(w, q0)));
+    mpb_world_close(w);
+}
+
+static void a_segment_through_the_box_is_rejected_at_that_segment(void **state)
+{
+    (void)state;
+    mpb_world *w = open_world(box_scene);
+    double path[3 * 7] = {0};
+    path[0] = -1.2;          /* waypoint 0: pan -1.2 */
+    path[7] = -1.2;          /* waypoint 1: pan -1.2, elbow -0.3 */
+    path[10] = -0.3;
+    path[14] = 0.5;          /* waypoint 2: pan 0.5, elbow 0: the segment
+                                crosses pan 0 with the elbow at about -0.12,
+                                the forearm still through the box */
+    mpb_goal goal = {.kind = MPB_GOAL_JOINTS, .joints = path + 14,
+                     .joint_tolerance = 0.01};
+    mpb_verdict v;
+    assert_int_equal(mpb_world_in_collision(w, path + 7), 0);
+    assert_int_equal(mpb_verify_path(w, path, 0.01, &goal, path, 3, 7, 0.01, &v),
+                     MPB_OK);
+    assert_int_equal(v.code, MPB_VERDICT_COLLISION);
+    assert_int_equal(v.segment, 1);          /* 0 is free: pan stays at -1.2 */
+    mpb_world_close(w);
+}
+
+static void pose_region_goals_are_checked(void **state)
+{
+    (void)state;
+    mpb_world *w = open_world(box_scene);
+    mpb_robot *r;
+    char err[200];
+    assert_int_equal(mpb_robot_load_urdf_joints(urdf, joints, 7, &r, err, sizeof err),
+                     MPB_OK);
+    double qb[7] = {0.5, 0.3, 0, -0.5, 0, -0.4, 0};
+    mpb_pose tool;
+    int link = mpb_robot_link_index(r, "r_gripper_tool_frame");
+    assert_true(link >= 0);
+    assert_int_equal(mpb_robot_link_pose(r, qb, link, &tool), MPB_OK);
+    double rpy[3];
+    mpb_pose_get_rpy(&tool, rpy);
+
+    /* The paper's goal: a 2 cm cube, roll/pitch/yaw within 0.05 rad. */
+    mpb_goal g = {.kind = MPB_GOAL_POSE_REGION, .link = "r_gripper_tool_frame"};
+    for (int i = 0; i < 3; i++) {
+        g.position[i] = tool.t[i];
+        g.position_tolerance[i] = 0.01;
+        g.orientation_rpy[i] = rpy[i];
+        g.orientation_tolerance[i] = 0.05;
+    }
+    char why[160];
+    assert_int_equal(mpb_world_goal_contains(w, &g, qb, why, sizeof why), 1);
+    double qa[7] = {-1.2};
+    assert_int_equal(mpb_world_goal_contains(w, &g, qa, why, sizeof why), 0);
+    assert_non_null(strstr(why, "outside the goal box"));
+
+    /* A path ending at qb reaches the goal; one ending at qa does not.
+     * (Both start at pan 0.7, on qb's side of the box.) */
+    double path[2 * 7] = {0.7, 0.3, 0, -0.5, 0, -0.4, 0};
+    memcpy(path + 7, qb, sizeof qb);
+    mpb_verdict v;
+    mpb_verify_path(w, path, 0.01, &g, path, 2, 7, 0.01, &v);
+    assert_int_equal(v.code, MPB_VERDICT_VALID);
+    double qc[7] = {0.7, 0.3, 0, -0.5, 0, -0.4, 0.3};  /* wrist rolled */
+    memcpy(path + 7, qc, sizeof qc);
+    mpb_verify_path(w, path, 0.01, &g, path, 2, 7, 0.01, &v);
+    assert_int_equal(v.code, MPB_VERDICT_GOAL);
+    assert_int_equal(v.segment, 1);
+
+    g.link = "no_such_link";
+    assert_true(mpb_world_goal_contains(w, &g, qb, why, sizeof why) < 0);
+    assert_non_null(strstr(why, "no_such_link"));
+    mpb_robot_free(r);
+    mpb_world_close(w);
+}
+
+static void bad_input_gets_one_line_naming_where(void **state)
+{
+    (void)state;
+    mpb_world *w;
+    char err[256];
+    assert_int_equal(mpb_world_open_group("urdf", "<robot name='x'><link",
+                                          "moveit-scene", "", joints, 7, &w,
+                                          err, sizeof err), MPB_EPARSE);
+    assert_null(w);
+    assert_non_null(strstr(err, "urdf"));
+    assert_null(strchr(err, '\n'));
+    assert_int_equal(mpb_world_open_group("urdf", urdf, "moveit-scene",
+                                          "s\n* box\n0 0 0\n0 0 0 1\n1\nbox\n"
+                                          "0.1 oops 0.1\n", joints, 7, &w,
+                                          err, sizeof err), MPB_EPARSE);
+    assert_non_null(strstr(err, "line 7"));
+    assert_null(strchr(err, '\n'));
+    assert_int_not_equal(mpb_world_open_group("urdf", urdf, "moveit-scene", "",
+                                              NULL, 0, &w, err, sizeof err),
+                         MPB_OK);
+    assert_non_null(strstr(err, "joints"));
+    const char *bad[] = {"r_shoulder_pan_joint", "nope"};
+    assert_int_not_equal(mpb_world_open_group("urdf", urdf, "moveit-scene", "",
+                                              bad, 2, &w, err, sizeof err),
+                         MPB_OK);
+    assert_non_null(strstr(err, "nope"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(joints_and_limits_come_from_the_urdf),
+        cmocka_unit_test(the_box_collides_with_the_forearm_only_at_pan_zero),
+        cmocka_unit_test(a_segment_through_the_box_is_rejected_at_that_segment),
+        cmocka_unit_test(pose_region_goals_are_checked),
+        cmocka_unit_test(bad_input_gets_one_line_naming_where),
+    };
+    return cmocka_run_group_tests_name("world_urdf", tests, setup, teardown);
+}
