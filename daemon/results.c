@@ -14,7 +14,8 @@
 #include "mpb_run_ack_t.h"
 
 /* Metrics per stage; keep in step with docs/metrics.md. */
-enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS, M_CLEARANCE, M_COUNT };
+enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS, M_CLEARANCE,
+       M_MIN_CLEARANCE, M_EE_PATH_LENGTH, M_COUNT };
 
 /* Per stage, what the store needs, owned here for the length of a result. */
 typedef struct stage_work {
@@ -89,6 +90,12 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
         w->metrics[nm++] = (mpb_named){"clearance",
             mpb_path_clearance(world, st->waypoints, st->num_waypoints,
                                st->num_joints)};
+        w->metrics[nm++] = (mpb_named){"min_clearance",
+            mpb_path_min_clearance(world, st->waypoints, st->num_waypoints,
+                                   st->num_joints)};
+        w->metrics[nm++] = (mpb_named){"ee_path_length",
+            mpb_ee_path_length(world, st->waypoints, st->num_waypoints,
+                               st->num_joints, d->resolution)};
     }
     w->rec.metrics = w->metrics;
     w->rec.num_metrics = nm;

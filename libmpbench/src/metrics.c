@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -105,4 +106,56 @@ double mpb_path_clearance(mpb_world *w, const double *wp,
     for (int i = 0; i < num_waypoints; i++)
         sum += mpb_world_clearance(w, wp + (size_t)i * (size_t)num_joints);
     return sum / num_waypoints;
+}
+
+double mpb_path_min_clearance(mpb_world *w, const double *wp,
+                              int num_waypoints, int num_joints)
+{
+    if (!w || !wp || num_waypoints < 1 || num_joints != mpb_world_num_joints(w))
+        return NAN;
+    double least = INFINITY;
+    for (int i = 0; i < num_waypoints; i++) {
+        double c = mpb_world_clearance(w, wp + (size_t)i * (size_t)num_joints);
+        if (isnan(c))
+            return NAN;
+        if (c < least)
+            least = c;
+    }
+    return least;
+}
+
+double mpb_ee_path_length(mpb_world *w, const double *wp, int num_waypoints,
+                          int num_joints, double resolution)
+{
+    if (!w || !wp || num_waypoints < 1 || !(resolution > 0) ||
+        num_joints != mpb_world_num_joints(w) || num_joints > 64)
+        return NAN;
+    const unsigned char *wraps = mpb_world_joint_wraps(w);
+    double q[64], prev[3], cur[3], total = 0.0;
+    if (mpb_world_ee_position(w, wp, prev) != MPB_OK)
+        return NAN;
+    for (int i = 0; i + 1 < num_waypoints; i++) {
+        const double *a = wp + (size_t)i * (size_t)num_joints;
+        const double *b = a + num_joints;
+        double d[64], len2 = 0.0;
+        for (int j = 0; j < num_joints; j++) {
+            d[j] = mpb_joint_delta(a[j], b[j], wraps && wraps[j]);
+            len2 += d[j] * d[j];
+        }
+        int steps = (int)ceil(sqrt(len2) / resolution);
+        if (steps < 1)
+            steps = 1;
+        for (int k = 1; k <= steps; k++) {
+            double s = (double)k / steps;
+            for (int j = 0; j < num_joints; j++)
+                q[j] = a[j] + s * d[j];
+            if (mpb_world_ee_position(w, q, cur) != MPB_OK)
+                return NAN;
+            total += sqrt((cur[0] - prev[0]) * (cur[0] - prev[0]) +
+                          (cur[1] - prev[1]) * (cur[1] - prev[1]) +
+                          (cur[2] - prev[2]) * (cur[2] - prev[2]));
+            memcpy(prev, cur, sizeof prev);
+        }
+    }
+    return total;
 }

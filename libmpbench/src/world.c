@@ -202,6 +202,16 @@ double mpb_world_clearance(mpb_world *w, const double *q)
     return w->provider->clearance(w->impl, q);
 }
 
+int mpb_world_ee_position(mpb_world *w, const double *q, double xyz[3])
+{
+    if (!w || !q || !xyz)
+        return MPB_EINVAL;
+    if (!all_finite(w, q))
+        return MPB_EINVAL;
+    w->provider->ee_position(w->impl, q, xyz);
+    return MPB_OK;
+}
+
 int mpb_world_goal_contains(mpb_world *w, const mpb_goal *g, const double *q,
                             char *detail, size_t len)
 {

@@ -463,6 +463,15 @@ static double planar_clearance(void *impl, const double *q)
     return min_distance(impl, q, -INFINITY);
 }
 
+static void planar_ee_position(void *impl, const double *q, double xyz[3])
+{
+    planar *p = impl;
+    forward(p, q, p->xy);
+    xyz[0] = p->xy[2 * p->n];
+    xyz[1] = p->xy[2 * p->n + 1];
+    xyz[2] = 0.0;
+}
+
 const mpb__world_provider mpb__world_planar = {
     .robot_format = "planar",
     .scene_format = "planar",
@@ -470,6 +479,7 @@ const mpb__world_provider mpb__world_planar = {
     .close        = planar_close,
     .in_collision = planar_in_collision,
     .clearance    = planar_clearance,
+    .ee_position  = planar_ee_position,
 };
 
 int mpb__planar_points(const mpb_world *w, const double *q, double *xy)

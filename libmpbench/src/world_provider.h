@@ -42,6 +42,9 @@ typedef struct mpb__world_provider {
      */
     int    (*goal_region)(void *impl, const mpb_goal *g, const double *q,
                           char *detail, size_t len);
+
+    /* Where the end effector is at q, in the robot's frame (m). */
+    void   (*ee_position)(void *impl, const double *q, double xyz[3]);
 } mpb__world_provider;
 
 struct mpb_world {

@@ -43,7 +43,7 @@ typedef struct urdf_world {
     int            num_attached;
     mpb_mesh     **meshes;       /* loaded for the robot's mesh shapes */
     int            num_meshes;
-    int            self_check;   /* 0 when fewer than two bodies move */
+    int            ee_link;      /* see mpb_world_ee_position() */
 } urdf_world;
 
 static void urdf_close(void *impl)
@@ -239,6 +239,25 @@ static int allow_default_pairs(urdf_world *u, const double *ref)
     return rc < 0 ? rc : MPB_OK;
 }
 
+/* The chain's tip, followed down fixed joints while there is one child. */
+static int find_ee_link(const mpb_robot *r)
+{
+    int l = mpb_robot_tip_link(r), n = mpb_robot_num_links(r);
+    for (;;) {
+        int child = -1, count = 0;
+        for (int k = 0; k < n; k++) {
+            const mpb_robot_link *c = mpb_robot_get_link(r, k);
+            if (c->parent == l) {
+                count++;
+                child = c->joint_type == MPB_JOINT_FIXED ? k : -1;
+            }
+        }
+        if (count != 1 || child < 0)
+            return l;
+        l = child;
+    }
+}
+
 static int urdf_open(mpb_world *w, const char *robot_text,
                      const char *scene_text, const char *const *joints,
                      int num_joints, char *err, size_t errlen)
@@ -261,6 +280,7 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     if ((rc = mpb_collision_create(&u->coll)) != MPB_OK)
         return rc;
     u->num_links = mpb_robot_num_links(u->robot);
+    u->ee_link = find_ee_link(u->robot);
     u->poses = calloc((size_t)u->num_links + 1, sizeof *u->poses);
     double *ref = calloc((size_t)num_joints, sizeof *ref);
     if (!u->poses || !ref) {
@@ -342,6 +362,14 @@ static int urdf_goal_region(void *impl, const mpb_goal *g, const double *q,
     return 0;
 }
 
+static void urdf_ee_position(void *impl, const double *q, double xyz[3])
+{
+    urdf_world *u = impl;
+    mpb_pose p;
+    mpb_robot_link_pose(u->robot, q, u->ee_link, &p);
+    memcpy(xyz, p.t, sizeof p.t);
+}
+
 const mpb__world_provider mpb__world_urdf = {
     .robot_format = "urdf",
     .scene_format = "moveit-scene",
@@ -350,4 +378,5 @@ const mpb__world_provider mpb__world_urdf = {
     .in_collision = urdf_in_collision,
     .clearance    = urdf_clearance,
     .goal_region  = urdf_goal_region,
+    .ee_position  = urdf_ee_position,
 };

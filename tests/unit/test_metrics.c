@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
@@ -168,6 +169,54 @@ static void test_smoothness_continuous(void **state)
     assert_near(mpb_smoothness(wp, 3, 1, NULL), M_PI * M_PI / 2, EPS);
 }
 
+/* A one-link planar arm of length 1 at the origin, link radius 0.1, and a
+ * circle of radius 0.5 at (0, 2). */
+static mpb_world *one_link(const char *joint)
+{
+    mpb_world *w = NULL;
+    char robot[128];
+    snprintf(robot, sizeof robot, "link_radius 0.1\njoint a %s 1\n", joint);
+    assert_int_equal(mpb_world_open("planar", robot, "planar",
+                                    "circle 0 2 0.5\n", &w, NULL, 0), MPB_OK);
+    return w;
+}
+
+static void test_clearance_mean_and_min(void **state)
+{
+    (void)state;
+    mpb_world *w = one_link("-4 4");
+    /* q = 0: the link lies on (0,0)-(1,0), 2 from the centre: 2 - 0.5 - 0.1
+     * = 1.4. q = pi/2: it reaches (0,1), 1 from the centre: 0.4. */
+    double wp[] = {0.0, M_PI / 2};
+    assert_float_equal(mpb_path_min_clearance(w, wp, 2, 1), 0.4, 1e-9);
+    assert_float_equal(mpb_path_clearance(w, wp, 2, 1), 0.9, 1e-9);
+    assert_true(isnan(mpb_path_min_clearance(w, wp, 2, 2)));  /* wrong size */
+    mpb_world_close(w);
+}
+
+static void test_ee_path_length_follows_the_arc(void **state)
+{
+    (void)state;
+    mpb_world *w = one_link("-4 4");
+    /* The tip of a unit link turning by pi/2 travels a quarter circle,
+     * pi/2 m, though the straight line between the ends is sqrt(2). */
+    double wp[] = {0.0, M_PI / 2};
+    assert_float_equal(mpb_ee_path_length(w, wp, 2, 1, 1e-3), M_PI / 2, 1e-6);
+    /* Steps as coarse as the whole segment give the chord. */
+    assert_float_equal(mpb_ee_path_length(w, wp, 2, 1, 10.0), sqrt(2.0), 1e-12);
+    double there_and_back[] = {0.0, 1.0, 0.0};
+    assert_float_equal(mpb_ee_path_length(w, there_and_back, 3, 1, 1e-3), 2.0, 1e-6);
+    assert_true(isnan(mpb_ee_path_length(w, wp, 2, 1, 0.0)));
+    mpb_world_close(w);
+
+    /* A continuous joint from 3 to -3 turns 2 pi - 6 = 0.2832 rad the
+     * short way: an arc of that length. */
+    w = one_link("continuous");
+    double wrap[] = {3.0, -3.0};
+    assert_float_equal(mpb_ee_path_length(w, wrap, 2, 1, 1e-3), 2 * M_PI - 6.0, 1e-6);
+    mpb_world_close(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -180,6 +229,8 @@ int main(void)
         cmocka_unit_test(test_smoothness_zero_length_dropped),
         cmocka_unit_test(test_smoothness_angles),
         cmocka_unit_test(test_smoothness_continuous),
+        cmocka_unit_test(test_clearance_mean_and_min),
+        cmocka_unit_test(test_ee_path_length_follows_the_arc),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

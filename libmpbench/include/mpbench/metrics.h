@@ -55,6 +55,23 @@ struct mpb_world;
 double mpb_path_clearance(struct mpb_world *w, const double *wp,
                           int num_waypoints, int num_joints);
 
+/*
+ * The smallest of those per-waypoint clearances (m): how close the path
+ * comes to the environment at its waypoints. NaN as above.
+ */
+double mpb_path_min_clearance(struct mpb_world *w, const double *wp,
+                              int num_waypoints, int num_joints);
+
+/*
+ * l_e: the distance the end effector travels (m, mpb_world_ee_position()),
+ * each segment followed in straight joint-space steps of at most resolution
+ * (continuous joints the short way), since the end effector moves along a
+ * curve between waypoints. NaN as above or for a resolution <= 0.
+ */
+double mpb_ee_path_length(struct mpb_world *w, const double *wp,
+                          int num_waypoints, int num_joints,
+                          double resolution);
+
 #ifdef __cplusplus
 }
 #endif

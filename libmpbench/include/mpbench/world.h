@@ -88,6 +88,15 @@ int mpb_world_in_collision(mpb_world *w, const double *q);
  */
 double mpb_world_clearance(mpb_world *w, const double *q);
 
+/*
+ * The end effector's position at q, in the robot's frame (m): the planar
+ * arm's tip (z = 0); for a URDF group, the last link of the chain, followed
+ * down through fixed joints while there is exactly one (the PR2's
+ * r_wrist_roll_link leads to r_gripper_tool_frame). MPB_OK, or MPB_EINVAL
+ * for NULL arguments or a non-finite q.
+ */
+int mpb_world_ee_position(mpb_world *w, const double *q, double xyz[3]);
+
 struct mpb_goal;
 
 /*
