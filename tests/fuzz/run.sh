@@ -10,14 +10,15 @@ secs=${1:-20}
 build=$root/build-fuzz
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DMPB_FUZZ=ON \
     -DCMAKE_BUILD_TYPE=Debug >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_messages fuzz_planar fuzz_experiment
+cmake --build "$build" -j "$(nproc)" --target fuzz_messages fuzz_planar fuzz_experiment fuzz_scene fuzz_urdf
 cd "$build"
 status=0
-for target in messages planar experiment; do
+for target in messages planar experiment scene urdf; do
     mkdir -p "corpus/$target"
     echo "== fuzz_$target, $secs s"
     if ! UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
          ASAN_OPTIONS=detect_leaks=1 \
+         LSAN_OPTIONS=suppressions="$root/tests/fuzz/lsan.supp" \
          "./tests/fuzz/fuzz_$target" -max_total_time="$secs" -timeout=10 \
              -rss_limit_mb=2048 -print_final_stats=1 \
              "corpus/$target" "$root/tests/fuzz/corpus/$target" 2>"fuzz_$target.log"; then
