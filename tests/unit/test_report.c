@@ -55,6 +55,8 @@ typedef struct fixture {
     char    db[96];             /* the two experiments */
     char    empty[96];          /* a database with no experiment */
     char    text[96];           /* not a database */
+    char    odd[96];            /* names that need escaping in every format */
+    char    out[96];            /* a report written to a file */
     int64_t run_id[NUM_RUNS];
     int64_t cfg[2], query[3];
 } fixture;
@@ -160,6 +162,29 @@ static void write_newer(mpb_store *s)
     finish(s, run, &r);
 }
 
+/* One experiment whose names hold what CSV, LaTeX, Markdown and JSON must
+ * escape; one successful run of 2 s. */
+static void write_odd(mpb_store *s)
+{
+    int64_t exp, cfg, scene, query, run = 0;
+    mpb_experiment_info e = {"odd \"one\"", "odd.yaml", "h3", "text", 1, 10.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "x/a,b|c*d",
+                                                  "x", "a,b|c*d", "k=v",
+                                                  &cfg), MPB_OK);
+    mpb_scene_info sc = {"S_1 & 50% {#}", "planar", "r", "r", "planar", "n",
+                         "n"};
+    assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    mpb_query_info q = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 1), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &run), 1);
+    run_spec r = {0, 0, 0, 1, 1, 2.0, 1.5, 0.5, -1.0, 1.0, 0.0, 2, -1};
+    finish(s, run, &r);
+}
+
 static int setup(void **state)
 {
     fixture *f = calloc(1, sizeof *f);
@@ -169,6 +194,8 @@ static int setup(void **state)
     snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
     snprintf(f->empty, sizeof f->empty, "%s/empty.db", f->dir);
     snprintf(f->text, sizeof f->text, "%s/notes.txt", f->dir);
+    snprintf(f->odd, sizeof f->odd, "%s/odd.db", f->dir);
+    snprintf(f->out, sizeof f->out, "%s/report.out", f->dir);
 
     assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
     write_paper(f, s);
@@ -176,6 +203,10 @@ static int setup(void **state)
     mpb_store_close(s);
 
     assert_int_equal(mpb_store_open(f->empty, 0, &s), MPB_OK);
+    mpb_store_close(s);
+
+    assert_int_equal(mpb_store_open(f->odd, 0, &s), MPB_OK);
+    write_odd(s);
     mpb_store_close(s);
 
     FILE *t = fopen(f->text, "w");
@@ -204,6 +235,8 @@ typedef struct output {
 } output;
 
 /* Run `mpb ARGS` with the shell; keep stdout, stderr or both (which). */
+static void run(output *o, const char *which, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 static void run(output *o, const char *which, const char *fmt, ...)
 {
     char args[1024], cmd[6144];
@@ -375,6 +408,278 @@ static void the_newest_experiment_is_the_default(void **state)
                         "0.000400");
 }
 
+/* ---- the other formats -------------------------------------------------------- */
+
+/* The part of o's text from the first occurrence of from up to (not
+ * including) the first occurrence of to after it, or to the end. */
+static const char *section(const output *o, const char *from, const char *to)
+{
+    static char buf[16384];
+    const char *a = strstr(o->text, from);
+    assert_non_null(a);
+    const char *b = to ? strstr(a + 1, to) : NULL;
+    size_t n = b ? (size_t)(b - a) : strlen(a);
+    memcpy(buf, a, n);
+    buf[n] = '\0';
+    return buf;
+}
+
+static int count(const char *text, const char *what)
+{
+    int n = 0;
+    for (const char *p = strstr(text, what); p; p = strstr(p + 1, what))
+        n++;
+    return n;
+}
+
+/*
+ * Write the report `mpb report ARGS` to f->out, then run python3 on script
+ * (read from a file) with f->out as its argument; its stdout in o.
+ */
+static void python_on_report(fixture *f, output *o, const char *script,
+                             const char *args_fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void python_on_report(fixture *f, output *o, const char *script,
+                             const char *args_fmt, ...)
+{
+    char args[512], path[128], cmd[512];
+    va_list ap;
+    va_start(ap, args_fmt);
+    vsnprintf(args, sizeof args, args_fmt, ap);
+    va_end(ap);
+    output w;
+    run(&w, "stdout", "%s >'%s'", args, f->out);
+    assert_int_equal(w.status, 0);
+
+    snprintf(path, sizeof path, "%s/check.py", f->dir);
+    FILE *py = fopen(path, "w");
+    assert_non_null(py);
+    fputs(script, py);
+    fclose(py);
+    snprintf(cmd, sizeof cmd, "python3 '%s' '%s' 2>&1", path, f->out);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(o->text, 1, sizeof o->text - 1, p);
+    o->text[n] = '\0';
+    int st = pclose(p);
+    assert_true(WIFEXITED(st));
+    o->status = WEXITSTATUS(st);
+}
+
+static void markdown_has_the_same_tables(void **state)
+{
+    fixture *f = *state;
+    output o;
+    run(&o, "stdout", "report --format markdown -e 1 '%s'", f->db);
+    assert_int_equal(o.status, 0);
+    assert_non_null(strstr(o.text, "# Experiment paper (1)\n\n"));
+    assert_non_null(strstr(o.text, "Path metrics of each run's final stage."));
+
+    /* The hand-worked values of the text table, in a pipe table. */
+    const char *k = section(&o, "## Scene KITCHEN", "## Scene TABLETOP");
+    assert_non_null(strstr(k,
+        "## Scene KITCHEN: 8 runs\n\n"
+        "| Metric | ompl/RRTConnect | ara/ARAstar |\n"
+        "|:---|---:|---:|\n"
+        "| tau_t (Mean, s) | 3.200 | 0.500 |\n"
+        "| tau_t (sigma, s) | 1.207 | 0.000 |\n"
+        "| tau_r (Mean, s) | 2.880 | 0.300 |\n"));
+    assert_non_null(strstr(k, "| l_p (Mean, rad) | 4.400 | 3.000 |\n"
+                              "| l_p (sigma, rad) | 1.000 | 0.000 |\n"));
+    assert_non_null(strstr(k, "| kappa' (Mean, rad^2) | 0.360 | 1.500 |\n"));
+    assert_non_null(strstr(k, "| waypoints (Mean) | 30.0 | 8.0 |\n"
+                              "| s_r (%) | 83.3 | 50.0 |\n"));
+    assert_null(strstr(k, "d_n"));      /* nothing measured it there */
+    assert_non_null(strstr(k, "\n1 more run not finished yet, not counted "
+                              "above.\n"));
+    const char *t = section(&o, "## Scene TABLETOP", NULL);
+    assert_non_null(strstr(t, "## Scene TABLETOP: 1 run\n"));
+    assert_non_null(strstr(t, "| d_n (Mean, m) | 0.0500 | - |\n"));
+    assert_non_null(strstr(t, "| s_r (%) | 100.0 | - |\n"));
+    assert_null(strstr(t, "not finished"));
+    /* The header, the rule and 14 rows (no l_e: nothing measured it). */
+    assert_int_equal(count(t, "\n|"), 16);
+
+    /* Names cannot break the table or turn into emphasis. */
+    run(&o, "stdout", "report -f markdown '%s'", f->odd);
+    assert_int_equal(o.status, 0);
+    assert_non_null(strstr(o.text, "# Experiment odd \"one\" (1)\n"));
+    assert_non_null(strstr(o.text, "## Scene S_1 & 50% {#}: 1 run\n"));
+    assert_non_null(strstr(o.text, "| Metric | x/a,b\\|c\\*d |\n"));
+    assert_non_null(strstr(o.text, "| tau_t (Mean, s) | 2.000 |\n"));
+}
+
+static void csv_has_a_row_per_scene_planner_and_metric(void **state)
+{
+    fixture *f = *state;
+    output o;
+    run(&o, "stdout", "report --format=csv -e 1 '%s'", f->db);
+    assert_int_equal(o.status, 0);
+    const char *header =
+        "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n\n";
+    assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
+    /* 2 scenes x 2 configurations x (8 metrics + the success rate), and
+     * the header: always the same rows, empty where nothing was measured. */
+    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 9);
+    /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
+                                   "time_total,s,3.2,1.20710678118655,5\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
+                                   "path_length,rad,4.4,1,5\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
+                                   "waypoints,,30,"));
+    /* 5 of 6 finished runs; B: 1 of 2. */
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
+                                   "success_rate,,0.833333333333333,,6\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
+                                   "success_rate,,0.5,,2\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
+                                   "time_total,s,0.5,0,1\n"));
+    /* Not measured, never run: empty values, n = 0. */
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
+                                   "clearance,m,,,0\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ompl/RRTConnect,"
+                                   "clearance,m,0.05,0,1\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
+                                   "time_total,s,,,0\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
+                                   "success_rate,,,,0\n"));
+    /* --stage changes the path metrics only. */
+    run(&o, "stdout", "report -f csv -e 1 --stage raw '%s'", f->db);
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
+                                   "path_length,rad,32,12.0710678118655,5\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
+                                   "time_total,s,3.2,1.20710678118655,5\n"));
+
+    /* A CSV reader gets the names back whole. */
+    python_on_report(f, &o,
+        "import csv, sys\n"
+        "rows = list(csv.DictReader(open(sys.argv[1], newline='')))\n"
+        "print(len(rows))\n"
+        "r = rows[0]\n"
+        "print('|'.join([r['experiment'], r['scene'], r['planner'],\n"
+        "                r['metric'], r['mean'], r['n']]))\n",
+        "report -f csv '%s'", f->odd);
+    assert_int_equal(o.status, 0);
+    assert_string_equal(o.text, "9\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
+                                "time_total|2|1\n");
+}
+
+static void latex_has_a_tabular_per_scene(void **state)
+{
+    fixture *f = *state;
+    output o;
+    run(&o, "stdout", "report -f latex -e 1 '%s'", f->db);
+    assert_int_equal(o.status, 0);
+    assert_int_equal(count(o.text, "\\begin{table}[htbp]"), 2);
+    assert_int_equal(count(o.text, "\\end{table}"), 2);
+    assert_int_equal(count(o.text, "\\begin{tabular}{l|rr}"), 2);
+    const char *k = section(&o, "\\caption{KITCHEN", "\\end{table}");
+    assert_non_null(strstr(k, "\\caption{KITCHEN: experiment paper, 8 runs "
+                              "(1 more not finished yet, not counted). "));
+    assert_non_null(strstr(k, "\\label{tab:mpb-paper-KITCHEN}\n"));
+    assert_non_null(strstr(k,
+        "    Metric & ompl/RRTConnect & ara/ARAstar \\\\\n"
+        "    \\hline\n"
+        "    $\\tau_t$ (Mean, s) & 3.200 & 0.500 \\\\\n"
+        "    $\\tau_t$ ($\\sigma$, s) & 1.207 & 0.000 \\\\\n"));
+    assert_non_null(strstr(k, "    $\\kappa'$ (Mean, rad$^2$) & 0.360 & "
+                              "1.500 \\\\\n"));
+    assert_non_null(strstr(k, "    $s_r$ (\\%) & 83.3 & 50.0 \\\\\n"
+                              "    \\hline\n  \\end{tabular}\n"));
+    assert_null(strstr(k, "$d_n$"));
+    const char *t = section(&o, "\\caption{TABLETOP", "\\end{table}");
+    assert_non_null(strstr(t, "\\caption{TABLETOP: experiment paper, 1 run. "));
+    assert_non_null(strstr(t, "    $d_n$ (Mean, m) & 0.0500 & -- \\\\\n"));
+    assert_non_null(strstr(t, "    $s_r$ (\\%) & 100.0 & -- \\\\\n"));
+
+    /* TeX's specials in names are escaped; the label keeps to [A-Za-z0-9-]. */
+    run(&o, "stdout", "report -f latex '%s'", f->odd);
+    assert_int_equal(o.status, 0);
+    assert_non_null(strstr(o.text, "\\caption{S\\_1 \\& 50\\% \\{\\#\\}: "
+                                   "experiment odd \"one\", 1 run. "));
+    assert_non_null(strstr(o.text, "\\label{tab:mpb-odd--one--S-1---50-----}"));
+    assert_non_null(strstr(o.text, "    Metric & x/a,b\\textbar{}c*d \\\\\n"));
+}
+
+static void json_holds_every_number_by_name(void **state)
+{
+    fixture *f = *state;
+    output o;
+    python_on_report(f, &o,
+        "import json, sys\n"
+        "d = json.load(open(sys.argv[1]))\n"
+        "e = d['experiment']\n"
+        "print(d['mpbench_report'], e['id'], e['name'], e['runs_per_query'],\n"
+        "      float(e['time_limit']), d['stage'], d['units']['smoothness'])\n"
+        "for s in d['scenes']:\n"
+        "    print(s['name'], s['runs'], s['unfinished'])\n"
+        "    for p in s['planners']:\n"
+        "        print(' ', p['name'], p['planner'], p['algorithm'],\n"
+        "              p['params'], p['runs'], p['successes'],\n"
+        "              None if p['success_rate'] is None\n"
+        "              else round(float(p['success_rate']), 6))\n"
+        "        for k, m in p['metrics'].items():\n"
+        "            f = lambda x: None if x is None else round(float(x), 6)\n"
+        "            print('   ', k, f(m['mean']), f(m['sigma']), m['n'])\n",
+        "report --format json --experiment 1 '%s'", f->db);
+    assert_int_equal(o.status, 0);
+    /* The values of the text tables above, unrounded; never-run and
+     * unmeasured metrics are null with n = 0. */
+    assert_string_equal(o.text,
+        "1 1 paper 3 60.0 None rad^2\n"
+        "KITCHEN 8 1\n"
+        "  ompl/RRTConnect ompl RRTConnect  6 5 0.833333\n"
+        "    time_total 3.2 1.207107 5\n"
+        "    time_raw 2.88 1.086396 5\n"
+        "    time_other 0.32 0.120711 5\n"
+        "    clearance None None 0\n"
+        "    path_length 4.4 1.0 5\n"
+        "    ee_path_length None None 0\n"
+        "    smoothness 0.36 0.120711 5\n"
+        "    waypoints 30.0 8.535534 5\n"
+        "  ara/ARAstar ara ARAstar eps=100 2 1 0.5\n"
+        "    time_total 0.5 0.0 1\n"
+        "    time_raw 0.3 0.0 1\n"
+        "    time_other 0.2 0.0 1\n"
+        "    clearance None None 0\n"
+        "    path_length 3.0 0.0 1\n"
+        "    ee_path_length None None 0\n"
+        "    smoothness 1.5 0.0 1\n"
+        "    waypoints 8.0 0.0 1\n"
+        "TABLETOP 1 0\n"
+        "  ompl/RRTConnect ompl RRTConnect  1 1 1.0\n"
+        "    time_total 7.0 0.0 1\n"
+        "    time_raw 6.0 0.0 1\n"
+        "    time_other 1.0 0.0 1\n"
+        "    clearance 0.05 0.0 1\n"
+        "    path_length 8.0 0.0 1\n"
+        "    ee_path_length None None 0\n"
+        "    smoothness 0.4 0.0 1\n"
+        "    waypoints 12.0 0.0 1\n"
+        "  ara/ARAstar ara ARAstar eps=100 0 0 None\n"
+        "    time_total None None 0\n"
+        "    time_raw None None 0\n"
+        "    time_other None None 0\n"
+        "    clearance None None 0\n"
+        "    path_length None None 0\n"
+        "    ee_path_length None None 0\n"
+        "    smoothness None None 0\n"
+        "    waypoints None None 0\n");
+
+    /* A stage asked for is named; strings are escaped. */
+    python_on_report(f, &o,
+        "import json, sys\n"
+        "d = json.load(open(sys.argv[1]))\n"
+        "p = d['scenes'][0]['planners'][0]\n"
+        "print(d['stage'], d['experiment']['name'], d['scenes'][0]['name'],\n"
+        "      p['name'], float(p['metrics']['time_total']['mean']))\n",
+        "report -f json --stage 'raw\"\\' '%s'", f->odd);
+    assert_int_equal(o.status, 0);
+    assert_string_equal(o.text, "raw\"\\ odd \"one\" S_1 & 50% {#} "
+                                "x/a,b|c*d 2.0\n");
+}
+
 /* ---- errors and help --------------------------------------------------------- */
 
 static void a_missing_file_is_one_line_and_exit_1(void **state)
@@ -430,10 +735,16 @@ static void bad_command_lines_exit_2(void **state)
     assert_int_equal(o.status, 2);
     run(&o, "stderr", "report '%s' '%s'", f->db, f->db);
     assert_int_equal(o.status, 2);
+    run(&o, "stderr", "report --format html '%s'", f->db);
+    assert_int_equal(o.status, 2);
+    assert_string_equal(o.text, "mpb report: unknown format 'html' (text, "
+                                "markdown, csv, latex or json)\n");
+    run(&o, "stderr", "report --format");
+    assert_int_equal(o.status, 2);
     run(&o, "stderr", "nosuchcommand");
     assert_int_equal(o.status, 2);
     assert_non_null(strstr(o.text, "unknown command 'nosuchcommand'"));
-    run(&o, "stderr", "");
+    run(&o, "stderr", "%s", "");
     assert_int_equal(o.status, 2);
 }
 
@@ -449,7 +760,8 @@ static void help_is_clear(void **state)
     run(&o, "stdout", "report --help");
     assert_int_equal(o.status, 0);
     assert_non_null(strstr(o.text, "usage: mpb report [--experiment ID] "
-                                   "[--stage NAME] DB"));
+                                   "[--stage NAME] [--format FORMAT] DB"));
+    assert_non_null(strstr(o.text, "--format FORMAT"));
     assert_non_null(strstr(o.text, "--stage NAME"));
 
     output h;
@@ -485,6 +797,10 @@ int main(void)
         cmocka_unit_test(a_second_scene_has_its_own_table),
         cmocka_unit_test(a_chosen_stage_gives_its_own_metrics),
         cmocka_unit_test(the_newest_experiment_is_the_default),
+        cmocka_unit_test(markdown_has_the_same_tables),
+        cmocka_unit_test(csv_has_a_row_per_scene_planner_and_metric),
+        cmocka_unit_test(latex_has_a_tabular_per_scene),
+        cmocka_unit_test(json_holds_every_number_by_name),
         cmocka_unit_test(a_missing_file_is_one_line_and_exit_1),
         cmocka_unit_test(what_is_not_a_report_says_so),
         cmocka_unit_test(bad_command_lines_exit_2),

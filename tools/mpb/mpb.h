@@ -15,7 +15,9 @@
  * and a file NAME.c defining cmd_NAME; main.c needs no change.
  */
 #define MPB_TOOL_COMMANDS(X)                                                  \
-    X(report, "print an experiment's results as the paper's tables, per scene")
+    X(report, "print an experiment's results as the paper's tables, per scene") \
+    X(status, "follow a running experiment: progress, rate, time left, planners") \
+    X(export, "write results for Planner Arena (and OMPL's tools)")
 
 #define MPB__TOOL_DECLARE(name, summary) int cmd_##name(int argc, char **argv);
 MPB_TOOL_COMMANDS(MPB__TOOL_DECLARE)

@@ -6,7 +6,9 @@
  * and averaged over the scene's queries.
  *
  * One pass over the experiment's finished runs fills a cell per
- * (configuration, query); a scene's column folds its queries' cells.
+ * (configuration, query); a scene's column folds its queries' cells. This
+ * file gathers and prints the text tables; report_formats.c writes the
+ * same numbers as Markdown, CSV, LaTeX and JSON (docs/reports.md).
  */
 #include <getopt.h>
 #include <math.h>
@@ -14,87 +16,65 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mpb.h"
+#include "report.h"
 
 #define CMD "report"
 
-/* What is averaged: the run's times, then the stage metrics it reads. */
-enum { M_TT, M_TR, M_TO, M_DN, M_LP, M_LE, M_KAPPA, M_WP, M_COUNT };
-#define FIRST_STORED M_DN
+const metric_info report_metrics[M_COUNT] = {
+    [M_TT] = {"time_total", "s"},
+    [M_TR] = {"time_raw", "s"},
+    [M_TO] = {"time_other", "s"},
+    [M_DN] = {"clearance", "m"},
+    [M_LP] = {"path_length", "rad"},
+    [M_LE] = {"ee_path_length", "m"},
+    [M_KAPPA] = {"smoothness", "rad^2"},
+    [M_WP] = {"waypoints", ""},
+};
+
+const table_row report_rows[] = {
+    {"tau_t (Mean, s)",       "$\\tau_t$ (Mean, s)",            M_TT,    SHOW_MEAN,  0, -1},
+    {"tau_t (sigma, s)",      "$\\tau_t$ ($\\sigma$, s)",       M_TT,    SHOW_SIGMA, 0, -1},
+    {"tau_r (Mean, s)",       "$\\tau_r$ (Mean, s)",            M_TR,    SHOW_MEAN,  0, -1},
+    {"tau_r (sigma, s)",      "$\\tau_r$ ($\\sigma$, s)",       M_TR,    SHOW_SIGMA, 0, -1},
+    {"tau_o (Mean, s)",       "$\\tau_o$ (Mean, s)",            M_TO,    SHOW_MEAN,  0, -1},
+    {"tau_o (sigma, s)",      "$\\tau_o$ ($\\sigma$, s)",       M_TO,    SHOW_SIGMA, 0, -1},
+    {"d_n (Mean, m)",         "$d_n$ (Mean, m)",                M_DN,    SHOW_MEAN,  1, -1},
+    {"d_n (sigma, m)",        "$d_n$ ($\\sigma$, m)",           M_DN,    SHOW_SIGMA, 1, -1},
+    {"l_p (Mean, rad)",       "$l_p$ (Mean, rad)",              M_LP,    SHOW_MEAN,  0, -1},
+    {"l_p (sigma, rad)",      "$l_p$ ($\\sigma$, rad)",         M_LP,    SHOW_SIGMA, 0, -1},
+    {"l_e (Mean, m)",         "$l_e$ (Mean, m)",                M_LE,    SHOW_MEAN,  1, -1},
+    {"l_e (sigma, m)",        "$l_e$ ($\\sigma$, m)",           M_LE,    SHOW_SIGMA, 1, -1},
+    {"kappa' (Mean, rad^2)",  "$\\kappa'$ (Mean, rad$^2$)",     M_KAPPA, SHOW_MEAN,  0, -1},
+    {"kappa' (sigma, rad^2)", "$\\kappa'$ ($\\sigma$, rad$^2$)", M_KAPPA, SHOW_SIGMA, 0, -1},
+    {"waypoints (Mean)",      "waypoints (Mean)",               M_WP,    SHOW_MEAN,  0, 1},
+    {"s_r (%)",               "$s_r$ (\\%)",                    0,       SHOW_RATE,  0, 1},
+};
+const int report_num_rows = (int)(sizeof report_rows / sizeof report_rows[0]);
+
 static const char *const stored_names[M_COUNT - FIRST_STORED] = {
     "clearance", "path_length", "ee_path_length", "smoothness", "waypoints",
 };
 
-typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE } show;
+typedef enum {
+    FORMAT_TEXT, FORMAT_MARKDOWN, FORMAT_CSV, FORMAT_LATEX, FORMAT_JSON
+} format;
 
-typedef struct table_row {
-    const char *label;
-    int         metric;     /* M_..., unused for SHOW_RATE */
-    show        what;
-    int         optional;   /* printed only if some column has a value */
-    int         decimals;   /* fixed decimals, or -1: the general format */
-} table_row;
-
-/* The paper's rows, in its order, and the number of waypoints. */
-static const table_row table_rows[] = {
-    {"tau_t (Mean, s)",       M_TT,    SHOW_MEAN,  0, -1},
-    {"tau_t (sigma, s)",      M_TT,    SHOW_SIGMA, 0, -1},
-    {"tau_r (Mean, s)",       M_TR,    SHOW_MEAN,  0, -1},
-    {"tau_r (sigma, s)",      M_TR,    SHOW_SIGMA, 0, -1},
-    {"tau_o (Mean, s)",       M_TO,    SHOW_MEAN,  0, -1},
-    {"tau_o (sigma, s)",      M_TO,    SHOW_SIGMA, 0, -1},
-    {"d_n (Mean, m)",         M_DN,    SHOW_MEAN,  1, -1},
-    {"d_n (sigma, m)",        M_DN,    SHOW_SIGMA, 1, -1},
-    {"l_p (Mean, rad)",       M_LP,    SHOW_MEAN,  0, -1},
-    {"l_p (sigma, rad)",      M_LP,    SHOW_SIGMA, 0, -1},
-    {"l_e (Mean, m)",         M_LE,    SHOW_MEAN,  1, -1},
-    {"l_e (sigma, m)",        M_LE,    SHOW_SIGMA, 1, -1},
-    {"kappa' (Mean, rad^2)",  M_KAPPA, SHOW_MEAN,  0, -1},
-    {"kappa' (sigma, rad^2)", M_KAPPA, SHOW_SIGMA, 0, -1},
-    {"waypoints (Mean)",      M_WP,    SHOW_MEAN,  0, 1},
-    {"s_r (%)",               0,       SHOW_RATE,  0, 1},
+static const struct {
+    const char *name;
+    int (*write)(const report *r, FILE *out);
+} formats[] = {
+    [FORMAT_TEXT] = {"text", report_write_text},
+    [FORMAT_MARKDOWN] = {"markdown", report_write_markdown},
+    [FORMAT_CSV] = {"csv", report_write_csv},
+    [FORMAT_LATEX] = {"latex", report_write_latex},
+    [FORMAT_JSON] = {"json", report_write_json},
 };
-#define NUM_TABLE_ROWS ((int)(sizeof table_rows / sizeof table_rows[0]))
-
-/* One planner configuration on one query. */
-typedef struct cell {
-    long        finished, succeeded;
-    mpb_grouped m[M_COUNT];     /* successful runs; one group (the query) */
-} cell;
-
-typedef struct id_name {
-    int64_t id;
-    char   *name;
-    int     unfinished;         /* scenes: runs not done yet */
-} id_name;
-
-typedef struct query_ref {
-    int64_t id;
-    int     scene;              /* index into scenes */
-} query_ref;
-
-typedef struct id_list {
-    id_name *v;
-    int      n, cap;
-} id_list;
-
-typedef struct report {
-    const char *stage;          /* --stage, or NULL: each run's final one */
-    int64_t     experiment_id;
-    char       *experiment_name;
-    id_list     configs, scenes;    /* in id order */
-    query_ref  *queries;            /* sorted by id */
-    int         num_queries, queries_cap;
-    int         scene_index;        /* scene whose queries are being listed */
-    cell       *cells;              /* configs.n x num_queries */
-    long        staged;             /* successful runs with stage metrics */
-    int         nomem;
-} report;
+#define NUM_FORMATS ((int)(sizeof formats / sizeof formats[0]))
 
 static void usage(FILE *out)
 {
     fprintf(out,
-        "usage: mpb report [--experiment ID] [--stage NAME] DB\n"
+        "usage: mpb report [--experiment ID] [--stage NAME] [--format FORMAT] DB\n"
         "\n"
         "Print the results of an experiment in the database DB as the tables\n"
         "of Cohen, Sucan and Chitta, \"A Generic Infrastructure for\n"
@@ -116,6 +96,9 @@ static void usage(FILE *out)
         "  -s, --stage NAME     path metrics of stage NAME (raw, shortcut,\n"
         "                       smoothed, ...) instead of each run's final\n"
         "                       stage\n"
+        "  -f, --format FORMAT  text (the default), markdown, csv (one row per\n"
+        "                       scene, planner and metric), latex (a table per\n"
+        "                       scene) or json; docs/reports.md describes each\n"
         "  -h, --help           print this help\n"
         "\n"
         "The database is opened read-only; a running mpbenchd may go on\n"
@@ -125,62 +108,77 @@ static void usage(FILE *out)
 
 /* ---- gathering ----------------------------------------------------------- */
 
-static int list_add(report *r, id_list *l, int64_t id, const char *name)
+static int grow(report *r, void **v, int *cap, int n, size_t size)
 {
-    if (l->n == l->cap) {
-        int cap = l->cap ? 2 * l->cap : 16;
-        id_name *v = realloc(l->v, sizeof *v * (size_t)cap);
-        if (v == NULL)
-            return r->nomem = 1;
-        l->v = v;
-        l->cap = cap;
-    }
-    if ((l->v[l->n].name = strdup(name ? name : "?")) == NULL)
+    if (n < *cap)
+        return 0;
+    int ncap = *cap ? 2 * *cap : 16;
+    void *nv = realloc(*v, size * (size_t)ncap);
+    if (nv == NULL)
         return r->nomem = 1;
-    l->v[l->n].unfinished = 0;
-    l->v[l->n++].id = id;
+    *v = nv;
+    *cap = ncap;
     return 0;
 }
 
-static void list_free(id_list *l)
+static char *dup_or(report *r, const char *s, const char *fallback)
 {
-    for (int i = 0; i < l->n; i++)
-        free(l->v[i].name);
-    free(l->v);
+    char *d = strdup(s ? s : fallback);
+    if (d == NULL)
+        r->nomem = 1;
+    return d;
 }
 
 static int on_experiment(void *ud, const mpb_experiment_row *e)
 {
     report *r = ud;
     r->experiment_id = e->id;
-    if ((r->experiment_name = strdup(e->name)) == NULL)
-        return r->nomem = 1;
+    r->runs_per_query = e->runs_per_query;
+    r->time_limit = e->time_limit;
+    r->created = e->created;
+    r->finished = e->finished;
+    if ((r->experiment_name = dup_or(r, e->name, "?")) == NULL ||
+        (r->host = dup_or(r, e->host, "")) == NULL ||
+        (r->version = dup_or(r, e->version, "")) == NULL)
+        return 1;
     return 0;
 }
 
 static int on_config(void *ud, const mpb_planner_config_row *c)
 {
     report *r = ud;
-    return list_add(r, &r->configs, c->id, c->name);
+    if (grow(r, (void **)&r->configs, &r->configs_cap, r->num_configs,
+             sizeof *r->configs))
+        return 1;
+    config_ref *cf = &r->configs[r->num_configs];
+    *cf = (config_ref){.id = c->id};
+    r->num_configs++;
+    if ((cf->name = dup_or(r, c->name, "?")) == NULL ||
+        (cf->planner = dup_or(r, c->planner, "")) == NULL ||
+        (cf->algorithm = dup_or(r, c->algorithm, "")) == NULL ||
+        (cf->params = dup_or(r, c->params, "")) == NULL)
+        return 1;
+    return 0;
 }
 
 static int on_scene(void *ud, const mpb_scene_row *sc)
 {
     report *r = ud;
-    return list_add(r, &r->scenes, sc->id, sc->name);
+    if (grow(r, (void **)&r->scenes, &r->scenes_cap, r->num_scenes,
+             sizeof *r->scenes))
+        return 1;
+    scene_ref *s = &r->scenes[r->num_scenes];
+    *s = (scene_ref){.id = sc->id};
+    r->num_scenes++;
+    return (s->name = dup_or(r, sc->name, "?")) == NULL;
 }
 
 static int on_query(void *ud, const mpb_query_row *q)
 {
     report *r = ud;
-    if (r->num_queries == r->queries_cap) {
-        int cap = r->queries_cap ? 2 * r->queries_cap : 64;
-        query_ref *v = realloc(r->queries, sizeof *v * (size_t)cap);
-        if (v == NULL)
-            return r->nomem = 1;
-        r->queries = v;
-        r->queries_cap = cap;
-    }
+    if (grow(r, (void **)&r->queries, &r->queries_cap, r->num_queries,
+             sizeof *r->queries))
+        return 1;
     r->queries[r->num_queries++] = (query_ref){q->id, r->scene_index};
     return 0;
 }
@@ -188,9 +186,9 @@ static int on_query(void *ud, const mpb_query_row *q)
 static int on_unfinished(void *ud, int64_t scene_id, int unfinished)
 {
     report *r = ud;
-    for (int i = 0; i < r->scenes.n; i++)
-        if (r->scenes.v[i].id == scene_id)
-            r->scenes.v[i].unfinished = unfinished;
+    for (int i = 0; i < r->num_scenes; i++)
+        if (r->scenes[i].id == scene_id)
+            r->scenes[i].unfinished = unfinished;
     return 0;
 }
 
@@ -202,12 +200,12 @@ static int cmp_query(const void *a, const void *b)
 
 static int find_config(const report *r, int64_t id)
 {
-    int lo = 0, hi = r->configs.n - 1;
+    int lo = 0, hi = r->num_configs - 1;
     while (lo <= hi) {
         int mid = lo + (hi - lo) / 2;
-        if (r->configs.v[mid].id == id)
+        if (r->configs[mid].id == id)
             return mid;
-        if (r->configs.v[mid].id < id)
+        if (r->configs[mid].id < id)
             lo = mid + 1;
         else
             hi = mid - 1;
@@ -236,7 +234,7 @@ static int on_result(void *ud, const mpb_result_row *row)
     int qi = find_query(r, row->query_id);
     if (ci < 0 || qi < 0)
         return 0;   /* cannot happen: the database's keys forbid it */
-    cell *c = &r->cells[(size_t)ci * (size_t)r->num_queries + (size_t)qi];
+    column *c = &r->cells[(size_t)ci * (size_t)r->num_queries + (size_t)qi];
     c->finished++;
     if (!row->success)
         return 0;
@@ -259,9 +257,9 @@ static int gather(report *r, mpb_store *s)
     if ((rc = mpb_store_planner_configs(s, r->experiment_id, on_config, r)) ||
         (rc = mpb_store_scenes(s, r->experiment_id, on_scene, r)))
         return rc;
-    for (int i = 0; i < r->scenes.n; i++) {
+    for (int i = 0; i < r->num_scenes; i++) {
         r->scene_index = i;
-        if ((rc = mpb_store_queries(s, r->scenes.v[i].id, on_query, r)))
+        if ((rc = mpb_store_queries(s, r->scenes[i].id, on_query, r)))
             return rc;
     }
     qsort(r->queries, (size_t)r->num_queries, sizeof *r->queries, cmp_query);
@@ -269,7 +267,7 @@ static int gather(report *r, mpb_store *s)
                                             on_unfinished, r)))
         return rc;
 
-    size_t n = (size_t)r->configs.n * (size_t)r->num_queries;
+    size_t n = (size_t)r->num_configs * (size_t)r->num_queries;
     if (n > 0 && (r->cells = calloc(n, sizeof *r->cells)) == NULL)
         return r->nomem = 1;
     for (size_t i = 0; i < n; i++)
@@ -287,7 +285,26 @@ static int gather(report *r, mpb_store *s)
     return 0;
 }
 
-/* ---- printing ------------------------------------------------------------ */
+static void report_free(report *r)
+{
+    for (int i = 0; i < r->num_configs; i++) {
+        free(r->configs[i].name);
+        free(r->configs[i].planner);
+        free(r->configs[i].algorithm);
+        free(r->configs[i].params);
+    }
+    for (int i = 0; i < r->num_scenes; i++)
+        free(r->scenes[i].name);
+    free(r->configs);
+    free(r->scenes);
+    free(r->queries);
+    free(r->cells);
+    free(r->experiment_name);
+    free(r->host);
+    free(r->version);
+}
+
+/* ---- what every format shows ---------------------------------------------- */
 
 /*
  * Fold one query's statistics (a single ended group) into a scene's. The
@@ -302,12 +319,42 @@ static void grouped_merge(mpb_grouped *into, const mpb_grouped *g)
     into->groups += g->groups;
 }
 
-typedef struct column {
-    long        finished, succeeded;
-    mpb_grouped m[M_COUNT];
-} column;
+long report_scene_columns(const report *r, int si, column *cols)
+{
+    long finished = 0;
+    for (int c = 0; c < r->num_configs; c++) {
+        cols[c].finished = cols[c].succeeded = 0;
+        for (int k = 0; k < M_COUNT; k++)
+            mpb_grouped_init(&cols[c].m[k]);
+        for (int q = 0; q < r->num_queries; q++) {
+            if (r->queries[q].scene != si)
+                continue;
+            const column *cl = &r->cells[(size_t)c * (size_t)r->num_queries +
+                                         (size_t)q];
+            cols[c].finished += cl->finished;
+            cols[c].succeeded += cl->succeeded;
+            for (int k = 0; k < M_COUNT; k++)
+                grouped_merge(&cols[c].m[k], &cl->m[k]);
+        }
+        finished += cols[c].finished;
+    }
+    return finished;
+}
 
-#define CELL_TEXT 32
+double report_row_value(const table_row *tr, const column *c)
+{
+    switch (tr->what) {
+    case SHOW_MEAN:
+        return mpb_grouped_mean(&c->m[tr->metric]);
+    case SHOW_SIGMA:
+        return mpb_grouped_stddev(&c->m[tr->metric]);
+    case SHOW_RATE:
+        return c->finished > 0 ? 100.0 * (double)c->succeeded /
+                                     (double)c->finished
+                               : NAN;
+    }
+    return NAN;
+}
 
 /*
  * Decimals for a row of the general format: 3, as the paper's 2 would
@@ -315,13 +362,14 @@ typedef struct column {
  * smallest nonzero value keeps 3 significant digits. One count per row
  * keeps a row's numbers aligned on the point.
  */
-static int row_decimals(const double *v, int n)
+static int row_decimals(const column *cols, int n, const table_row *tr)
 {
     int decimals = 3;
     for (int i = 0; i < n; i++) {
-        if (isnan(v[i]) || v[i] == 0.0 || isinf(v[i]))
+        double v = report_row_value(tr, &cols[i]);
+        if (isnan(v) || v == 0.0 || isinf(v))
             continue;
-        int d = 2 - (int)floor(log10(fabs(v[i])));
+        int d = 2 - (int)floor(log10(fabs(v)));
         if (d > decimals)
             decimals = d;
     }
@@ -338,114 +386,114 @@ static void format_value(char *buf, int decimals, double v)
         snprintf(buf, CELL_TEXT, "%.*f", decimals, v);
 }
 
-static double row_value(const table_row *tr, const column *c)
+void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
+                  int *visible)
 {
-    switch (tr->what) {
-    case SHOW_MEAN:
-        return mpb_grouped_mean(&c->m[tr->metric]);
-    case SHOW_SIGMA:
-        return mpb_grouped_stddev(&c->m[tr->metric]);
-    case SHOW_RATE:
-        return c->finished > 0 ? 100.0 * (double)c->succeeded /
-                                     (double)c->finished
-                               : NAN;
+    int nc = r->num_configs;
+    for (int i = 0; i < report_num_rows; i++) {
+        const table_row *tr = &report_rows[i];
+        int decimals = tr->decimals >= 0 ? tr->decimals
+                                         : row_decimals(cols, nc, tr);
+        int any = 0;
+        for (int c = 0; c < nc; c++) {
+            double v = report_row_value(tr, &cols[c]);
+            format_value(text[i * nc + c], decimals, v);
+            any |= !isnan(v);
+        }
+        visible[i] = !tr->optional || any;
     }
-    return NAN;
 }
+
+/* ---- text ------------------------------------------------------------------ */
 
 static int print_scene(const report *r, int si, FILE *out)
 {
-    int nc = r->configs.n;
-    column *cols = calloc((size_t)(nc > 0 ? nc : 1), sizeof *cols);
-    char (*text)[CELL_TEXT] =
-        calloc((size_t)NUM_TABLE_ROWS * (size_t)(nc > 0 ? nc : 1),
-               sizeof *text);
-    int *width = calloc((size_t)(nc > 0 ? nc : 1), sizeof *width);
-    double *value = calloc((size_t)(nc > 0 ? nc : 1), sizeof *value);
-    long finished = 0;
+    int nc = r->num_configs;
+    size_t ncols = (size_t)(nc > 0 ? nc : 1);
+    column *cols = calloc(ncols, sizeof *cols);
+    char (*text)[CELL_TEXT] = calloc((size_t)report_num_rows * ncols,
+                                     sizeof *text);
+    int *width = calloc(ncols, sizeof *width);
+    int *visible = calloc((size_t)report_num_rows, sizeof *visible);
     int rc = MPB_OK;
 
-    if (cols == NULL || text == NULL || width == NULL || value == NULL) {
+    if (cols == NULL || text == NULL || width == NULL || visible == NULL) {
         rc = MPB_ENOMEM;
         goto done;
     }
-    for (int c = 0; c < nc; c++) {
-        for (int k = 0; k < M_COUNT; k++)
-            mpb_grouped_init(&cols[c].m[k]);
-        for (int q = 0; q < r->num_queries; q++) {
-            if (r->queries[q].scene != si)
-                continue;
-            const cell *cl = &r->cells[(size_t)c * (size_t)r->num_queries +
-                                       (size_t)q];
-            cols[c].finished += cl->finished;
-            cols[c].succeeded += cl->succeeded;
-            for (int k = 0; k < M_COUNT; k++)
-                grouped_merge(&cols[c].m[k], &cl->m[k]);
-        }
-        finished += cols[c].finished;
-    }
+    long finished = report_scene_columns(r, si, cols);
+    report_cells(r, cols, text, visible);
 
-    /* Every cell's text first, for the column widths. */
     int label_width = (int)strlen("Metric");
-    for (int i = 0; i < NUM_TABLE_ROWS; i++) {
-        int len = (int)strlen(table_rows[i].label);
+    for (int i = 0; i < report_num_rows; i++) {
+        int len = (int)strlen(report_rows[i].label);
         if (len > label_width)
             label_width = len;
     }
     for (int c = 0; c < nc; c++) {
-        width[c] = (int)strlen(r->configs.v[c].name);
+        width[c] = (int)strlen(r->configs[c].name);
         if (width[c] < 8)
             width[c] = 8;
-    }
-    for (int i = 0; i < NUM_TABLE_ROWS; i++) {
-        for (int c = 0; c < nc; c++)
-            value[c] = row_value(&table_rows[i], &cols[c]);
-        int decimals = table_rows[i].decimals >= 0 ? table_rows[i].decimals
-                                                   : row_decimals(value, nc);
-        for (int c = 0; c < nc; c++) {
-            char *t = text[i * nc + c];
-            format_value(t, decimals, value[c]);
-            if ((int)strlen(t) > width[c])
-                width[c] = (int)strlen(t);
-        }
+        for (int i = 0; i < report_num_rows; i++)
+            if ((int)strlen(text[i * nc + c]) > width[c])
+                width[c] = (int)strlen(text[i * nc + c]);
     }
 
     fprintf(out, "Scene %s - experiment %s (%lld), %ld run%s\n",
-            r->scenes.v[si].name, r->experiment_name,
+            r->scenes[si].name, r->experiment_name,
             (long long)r->experiment_id, finished, finished == 1 ? "" : "s");
     int rule = label_width;
     fprintf(out, "%-*s", label_width, "Metric");
     for (int c = 0; c < nc; c++) {
-        fprintf(out, "  %*s", width[c], r->configs.v[c].name);
+        fprintf(out, "  %*s", width[c], r->configs[c].name);
         rule += 2 + width[c];
     }
     fputc('\n', out);
     for (int i = 0; i < rule; i++)
         fputc('-', out);
     fputc('\n', out);
-    for (int i = 0; i < NUM_TABLE_ROWS; i++) {
-        if (table_rows[i].optional) {
-            int any = 0;
-            for (int c = 0; c < nc; c++)
-                any |= strcmp(text[i * nc + c], "-") != 0;
-            if (!any)
-                continue;
-        }
-        fprintf(out, "%-*s", label_width, table_rows[i].label);
+    for (int i = 0; i < report_num_rows; i++) {
+        if (!visible[i])
+            continue;
+        fprintf(out, "%-*s", label_width, report_rows[i].label);
         for (int c = 0; c < nc; c++)
             fprintf(out, "  %*s", width[c], text[i * nc + c]);
         fputc('\n', out);
     }
-    if (r->scenes.v[si].unfinished > 0)
+    if (r->scenes[si].unfinished > 0)
         fprintf(out, "%d more run%s not finished yet, not counted above\n",
-                r->scenes.v[si].unfinished,
-                r->scenes.v[si].unfinished == 1 ? "" : "s");
+                r->scenes[si].unfinished,
+                r->scenes[si].unfinished == 1 ? "" : "s");
 done:
     free(cols);
     free(text);
     free(width);
-    free(value);
+    free(visible);
     return rc;
+}
+
+int report_write_text(const report *r, FILE *out)
+{
+    int rc;
+    if (r->num_configs == 0 || r->num_scenes == 0) {
+        fprintf(out, "Experiment %s (%lld) has no %s.\n", r->experiment_name,
+                (long long)r->experiment_id,
+                r->num_configs == 0 ? "planner configurations" : "scenes");
+        return MPB_OK;
+    }
+    fprintf(out, "Means over successful runs; sigma: standard deviation per "
+            "query, averaged\nover the scene's queries. Path metrics of "
+            "%s%s%s.\n", r->stage ? "stage '" : "each run's final stage",
+            r->stage ? r->stage : "", r->stage ? "'" : "");
+    if (r->stage != NULL && r->staged == 0)
+        fprintf(out, "No successful run has metrics for a stage '%s'.\n",
+                r->stage);
+    for (int i = 0; i < r->num_scenes; i++) {
+        fputc('\n', out);
+        if ((rc = print_scene(r, i, out)) != MPB_OK)
+            return rc;
+    }
+    return MPB_OK;
 }
 
 /* ---- the command --------------------------------------------------------- */
@@ -455,24 +503,35 @@ int cmd_report(int argc, char **argv)
     static const struct option longopts[] = {
         {"experiment", required_argument, NULL, 'e'},
         {"stage", required_argument, NULL, 's'},
+        {"format", required_argument, NULL, 'f'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     report r = {0};
     const char *experiment = NULL, *path;
     int64_t experiment_id = 0;
-    int opt, rc, status = MPB_EXIT_ERROR;
+    int opt, rc, status = MPB_EXIT_ERROR, fmt = FORMAT_TEXT;
     mpb_store *s = NULL;
 
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":e:s:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":e:s:f:h", longopts, NULL)) != -1) {
         switch (opt) {
         case 'e':
             experiment = optarg;
             break;
         case 's':
             r.stage = optarg;
+            break;
+        case 'f':
+            for (fmt = 0; fmt < NUM_FORMATS; fmt++)
+                if (strcmp(optarg, formats[fmt].name) == 0)
+                    break;
+            if (fmt == NUM_FORMATS) {
+                fprintf(stderr, "mpb " CMD ": unknown format '%s' (text, "
+                        "markdown, csv, latex or json)\n", optarg);
+                return MPB_EXIT_USAGE;
+            }
             break;
         case 'h':
             usage(stdout);
@@ -526,24 +585,8 @@ int cmd_report(int argc, char **argv)
         goto done;
     }
 
-    if (r.configs.n == 0 || r.scenes.n == 0) {
-        printf("Experiment %s (%lld) has no %s.\n", r.experiment_name,
-               (long long)r.experiment_id,
-               r.configs.n == 0 ? "planner configurations" : "scenes");
-        status = MPB_EXIT_OK;
-        goto done;
-    }
-    printf("Means over successful runs; sigma: standard deviation per query, "
-           "averaged\nover the scene's queries. Path metrics of %s%s%s.\n",
-           r.stage ? "stage '" : "each run's final stage",
-           r.stage ? r.stage : "", r.stage ? "'" : "");
-    if (r.stage != NULL && r.staged == 0)
-        printf("No successful run has metrics for a stage '%s'.\n", r.stage);
-    for (int i = 0; i < r.scenes.n; i++) {
-        putchar('\n');
-        if ((rc = print_scene(&r, i, stdout)) != MPB_OK)
-            goto fail;
-    }
+    if ((rc = formats[fmt].write(&r, stdout)) != MPB_OK)
+        goto fail;
     if (fflush(stdout) != 0 || ferror(stdout)) {
         fprintf(stderr, "mpb " CMD ": cannot write the report\n");
         goto done;
@@ -555,10 +598,6 @@ fail:
             rc == MPB_ENOMEM ? "out of memory" : mpb_store_errmsg(s));
 done:
     mpb_store_close(s);
-    list_free(&r.configs);
-    list_free(&r.scenes);
-    free(r.queries);
-    free(r.cells);
-    free(r.experiment_name);
+    report_free(&r);
     return status;
 }

@@ -300,6 +300,54 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
                       int (*cb)(void *ud, const mpb_result_row *row),
                       void *ud);
 
+/* ---- exporting: Planner Arena and OMPL (store_export.c) -----------------
+ *
+ * An experiment's finished runs as OMPL's benchmark tools and Planner Arena
+ * read them; docs/planner-arena.md gives the mapping. Each query of an
+ * experiment becomes one Planner Arena experiment named
+ * "<experiment>/<scene>" with the query's name as its "query" parameter, so
+ * Planner Arena shows a scene's queries one by one, side by side or pooled.
+ */
+
+/* What an export wrote. */
+typedef struct mpb_export_counts {
+    int  experiments;       /* Planner Arena experiments (= OMPL logs) */
+    int  planner_configs;   /* plannerConfigs rows added */
+    long runs;
+    long progress;          /* progress rows (samples) */
+} mpb_export_counts;
+
+/* Flags of the exports. */
+#define MPB_EXPORT_APPEND  1 /* add to an existing Planner Arena database */
+#define MPB_EXPORT_REPLACE 2 /* overwrite log files that exist */
+
+/*
+ * Write the finished runs of the experiments ids[0..num_ids) (every
+ * experiment in s when num_ids is 0) into a Planner Arena database at path,
+ * in one transaction: the tables and the bestPlannerConfigs views of OMPL's
+ * ompl_benchmark_statistics.py. path must not exist (MPB_EEXISTS) unless
+ * flags has MPB_EXPORT_APPEND, which adds to a database that script (or
+ * this function) wrote. On failure nothing changes: a new file is removed.
+ * counts (may be NULL) says what was written. MPB_ENOTFOUND if an id is no
+ * experiment or s holds none.
+ */
+int mpb_store_export_planner_arena(mpb_store *s, const char *path,
+                                   const int64_t *ids, int num_ids, int flags,
+                                   mpb_export_counts *counts);
+
+/*
+ * Write the same as OMPL benchmark logs, one per query (OMPL's one
+ * experiment per file), into the directory dir (created if missing), named
+ * EXPERIMENT.ID.SCENE.QUERY.log. ompl_benchmark_statistics.py turns them
+ * into the database mpb_store_export_planner_arena() writes (no seed,
+ * memory limit 0). A file that exists is an error (MPB_EEXISTS; the files
+ * written before it stay) unless flags has MPB_EXPORT_REPLACE. counts
+ * (may be NULL): experiments = files written.
+ */
+int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
+                               const int64_t *ids, int num_ids, int flags,
+                               mpb_export_counts *counts);
+
 #ifdef __cplusplus
 }
 #endif

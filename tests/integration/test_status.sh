@@ -1,0 +1,148 @@
+#!/bin/sh
+# mpb status follows a real experiment: mpbenchd and two null planners over
+# LCM in a private network namespace. It must see the runs progress, exit 0
+# on "done" with the counts the database holds, redraw one line on a
+# terminal, print plain lines otherwise, and give up (exit 1) when no
+# daemon talks or the daemon stops early.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+mpb_enter_netns "$0" "$@"
+
+work=$(mktemp -d)
+trap 'mpb_stop_all; rm -rf "$work"' EXIT
+DB=$work/test.db
+mpb=$MPB_BUILD/tools/mpb
+null=$MPB_BUILD/planners/null/mpb-planner-null
+planar=$MPB_SOURCE/scenes/planar
+
+# small.yaml's scene with the null planner only and more runs: 2 queries x
+# 40 runs of 0.08 s. The straight line through the pillar fails
+# verification, the small move succeeds: both counts are nonzero.
+write_experiment() {
+    cat >"$1" <<EOT
+experiment: {name: $2, runs: 40, time_limit: 2.0, seed: 7}
+robot: {format: planar, file: $planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $planar/pillars.scene
+    queries:
+      - {name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+      - {name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+planners:
+  - {planner: null, algorithms: [straight_line], params: {delay: 0.08}}
+EOT
+}
+write_experiment "$work/follow.yaml" follow
+write_experiment "$work/stopped.yaml" stopped
+
+# ---- nobody talking --------------------------------------------------------
+start=$(date +%s)
+"$mpb" status --timeout 1 >"$work/none.out" 2>"$work/none.err"
+check "with no daemon, --timeout 1 exits 1" eq $? 1
+check "... within a few seconds" ge $((start + 4)) "$(date +%s)"
+check "... saying what it waited for" \
+    grep -q '^mpb status: no status from mpbenchd on udpm://.* for 1 s' "$work/none.err"
+check "... and prints nothing on stdout" test ! -s "$work/none.out"
+
+"$mpb" status --timeout soon >/dev/null 2>&1
+check "a timeout that is not a number is a usage error" eq $? 2
+"$mpb" status extra >/dev/null 2>&1
+check "an argument is a usage error" eq $? 2
+"$mpb" status --help | grep -q '^usage: mpb status \[--lcm-url URL\]'
+check "--help shows the usage" eq $? 0
+
+# ---- following an experiment to the end ----------------------------------
+mpb_spawn "$work/null1.log" "$null"
+mpb_spawn "$work/null2.log" "$null"
+
+# Followers start first: a plain one (stdout is a file), one on a terminal
+# (script(1) gives it a pseudo-terminal), one for another experiment.
+"$mpb" status --timeout 30 >"$work/plain.out" 2>"$work/plain.err" &
+plain=$!
+script -qfec "'$mpb' status --timeout 30" "$work/tty.out" >/dev/null 2>&1 &
+tty=$!
+"$mpb" status --experiment nosuch --timeout 3 >"$work/other.out" 2>"$work/other.err" &
+other=$!
+sleep 0.3
+
+mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/follow.yaml" \
+    >"$work/daemon.log" 2>&1 &
+daemon=$!
+# Halfway, a snapshot.
+sleep 2
+"$mpb" status --once >"$work/once.out" 2>"$work/once.err"
+once=$?
+wait $daemon
+check "mpbenchd completes the experiment" eq $? 0
+
+wait $plain
+check "mpb status exits 0 when the experiment is done" eq $? 0
+wait $tty
+check "... on a terminal too" eq $? 0
+wait $other
+check "following another experiment's name times out (exit 1)" eq $? 1
+check "... naming it" grep -q 'for experiment nosuch' "$work/other.err"
+
+total=$(q "SELECT count(*) FROM runs")
+succeeded=$(q "SELECT count(*) FROM runs WHERE success = 1")
+crashed=$(q "SELECT count(*) FROM runs WHERE status = 'crash'")
+failed=$(q "SELECT count(*) FROM runs WHERE state = 'done' AND success = 0 AND status != 'crash'")
+check "the experiment has 80 runs" eq "$total" 80
+check "... some succeeded, some failed" sh -c "[ $succeeded -gt 0 ] && [ $failed -gt 0 ]"
+
+last=$(tail -n 1 "$work/plain.out")
+echo "# last line: $last"
+check "the plain output ends with the done line" \
+    sh -c "echo '$last' | grep -q '^follow: done, 80/80 runs (100%), '"
+check "... whose counts are the database's" \
+    sh -c "echo '$last' | grep -q ', $succeeded succeeded, $failed failed, $crashed crashed, 0 in flight, '"
+check "... with the time taken and the planners seen" \
+    sh -c "echo '$last' | grep -q 'took [0-9.]* s, planners: null x2$'"
+check "plain lines only: no carriage return, no escape sequence" \
+    sh -c "! grep -q \"\$(printf '[\r\033]')\" '$work/plain.out'"
+check "nothing on stderr" test ! -s "$work/plain.err"
+
+# Progress was seen on the way: a running line strictly between 0 and 80,
+# with a rate and a time left; runs done never go back.
+check "a line shows runs in progress" \
+    grep -Eq '^follow: running, ([1-9]|[1-7][0-9])/80 runs \([0-9]+%\), [0-9]+ succeeded, [0-9]+ failed, [0-9]+ crashed, [0-9]+ in flight, [0-9.]+ runs/s, [0-9]+ s left, planners: null x2$' "$work/plain.out"
+check "runs done never decrease" sh -c "
+    sed -n 's|^follow: [a-z]*, \([0-9]*\)/80 runs.*|\1|p' '$work/plain.out' |
+    awk 'NR > 1 && \$1 < prev { bad = 1 } { prev = \$1 } END { exit bad }'"
+check "a line is printed only when the numbers change" \
+    sh -c "[ \$(sort '$work/plain.out' | uniq -d | wc -l) -eq 0 ]"
+
+check "on a terminal the line is redrawn in place" \
+    sh -c "[ \$(tr -cd '\r' <'$work/tty.out' | wc -c) -ge 3 ]"
+check "... under a line naming the experiment and the daemon" \
+    grep -q 'experiment follow (mpbenchd@' "$work/tty.out"
+check "... with a progress bar that fills up" \
+    grep -Eq "\[#+\] 80/80 100%  $succeeded ok  $failed failed  $crashed crashed  [0-9.]+/s  in [0-9.]+ s  null x2" "$work/tty.out"
+check "... and a partly filled one on the way" \
+    grep -Eq '\[#+-+\] [0-9]+/80 [0-9]+%  [0-9]+ ok  [0-9]+ failed  [0-9]+ crashed  [0-9.]+/s  [0-9]+ s left  null x2' "$work/tty.out"
+check "... no line longer than 80 columns" \
+    sh -c "tr '\r' '\n' <'$work/tty.out' | sed 's/\x1b\[K//g' | awk 'length > 79 && !/^Script/ { bad = 1 } END { exit bad }'"
+
+check "--once during the run exits 0" eq "$once" 0
+check "... with the status line" grep -q '^follow: running, ' "$work/once.out"
+check "... and a line per planner process" \
+    sh -c "[ \$(grep -c '^  null@[^ ]* (null): [0-9]* runs done, [0-9]* active, last heard' '$work/once.out') -eq 2 ]"
+
+# ---- a daemon stopped before the end ---------------------------------------
+"$mpb" status --timeout 30 >"$work/stopped.out" 2>"$work/stopped.err" &
+follower=$!
+sleep 0.3
+"$MPB_BUILD/daemon/mpbenchd" -d "$work/stopped.db" "$work/stopped.yaml" \
+    >"$work/daemon2.log" 2>&1 &
+daemon=$!
+sleep 1.5
+kill -TERM $daemon
+wait $daemon
+wait $follower
+check "a daemon stopped mid-experiment makes mpb status exit 1" eq $? 1
+check "... saying so" \
+    grep -q 'mpbenchd stopped before the experiment was done' "$work/stopped.err"
+check "... after its last line" grep -q '^stopped: stopped, ' "$work/stopped.out"
+
+mpb_finish

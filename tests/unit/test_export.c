@@ -1,0 +1,784 @@
+/* test_export.c - the Planner Arena export (store_export.c, `mpb export`):
+ * a database written through the store, exported, and read back with
+ * SQLite as Planner Arena and OMPL's script read it: the tables, their
+ * columns and order, the status enum, booleans as 0/1, values worked out
+ * by hand, appending, and failures that leave nothing behind. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <libgen.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+#include <sqlite3.h>
+
+#include "mpbench/mpbench.h"
+
+static char mpb_tool[4096];     /* the built mpb */
+
+/*
+ * Experiment 1, "paper": A = ompl/RRTConnect (range=0.5), B = ara/ARAstar
+ * (eps=100); scenes KITCHEN (k1, k2) and TABLETOP (t1).
+ */
+enum { A, B };
+enum { K1, K2, T1 };
+
+typedef struct stage_spec {
+    const char *name;
+    double      time, length, smooth, clearance;   /* clearance < 0: none */
+    int         waypoints, valid;
+} stage_spec;
+
+typedef struct run_spec {
+    int         cfg, query, rep, done;
+    const char *status;
+    int         claimed, success;
+    double      total, wall;
+    int         num_stages;
+    stage_spec  stages[3];
+} run_spec;
+
+static const run_spec runs[] = {
+    /* 0: three stages, planner values, progress */
+    {A, K1, 0, 1, "solved", 1, 1, 1.5, 1.0, 3, {
+        {"raw", 0.5, 10.0, 0.4, 0.02, 11, 1},
+        {"shortcut", 0.1, 6.0, 0.3, 0.03, 5, 1},
+        {"smoothed", 0.2, 5.0, 0.1, 0.05, 50, 1}}},
+    /* 1: approximate, one stage (first = final), invalid */
+    {A, K1, 1, 1, "approximate", 0, 0, 2.0, 2.0, 1, {
+        {"raw", 1.9, 3.0, 0.2, -1, 4, 0}}},
+    /* 2: timeout, no stage */
+    {A, K2, 0, 1, "timeout", 0, 0, 4.0, 4.0, 0, {{0}}},
+    /* 3: failed */
+    {B, K1, 0, 1, "failed", 0, 0, 0.5, 0.5, 0, {{0}}},
+    /* 4: crash */
+    {B, K2, 0, 1, "crash", 0, 0, NAN, 0.25, 0, {{0}}},
+    /* 5: invalid request */
+    {B, T1, 0, 1, "invalid_request", 0, 0, 0.0, 0.125, 0, {{0}}},
+    /* 6: two stages, no shortcut */
+    {A, T1, 0, 1, "solved", 1, 1, 7.0, 8.0, 2, {
+        {"raw", 6.0, 9.0, 0.5, 0.1, 10, 1},
+        {"smoothed", 0.5, 8.0, 0.2, 0.2, 20, 1}}},
+    /* 7: not finished: never exported */
+    {B, K1, 1, 0, NULL, 0, 0, 0, 0, 0, {{0}}},
+};
+#define NUM_RUNS ((int)(sizeof runs / sizeof runs[0]))
+
+typedef struct fixture {
+    char    dir[64];
+    char    db[96];
+    char    out[96];
+    int64_t run_id[NUM_RUNS];
+    int64_t cfg[2], query[3];
+} fixture;
+
+static int find_ids(void *ud, const mpb_run_row *row)
+{
+    fixture *f = ud;
+    for (int i = 0; i < NUM_RUNS; i++)
+        if (f->cfg[runs[i].cfg] == row->planner_config_id &&
+            f->query[runs[i].query] == row->query_id &&
+            runs[i].rep == row->repetition)
+            f->run_id[i] = row->id;
+    return 0;
+}
+
+static void finish(mpb_store *s, int64_t run_id, const run_spec *r, int index)
+{
+    char uid[32];
+    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
+    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "planner-1"), MPB_OK);
+    mpb_named m[3][5];
+    mpb_stage_record st[3];
+    for (int i = 0; i < r->num_stages; i++) {
+        const stage_spec *sp = &r->stages[i];
+        int n = 0;
+        m[i][n++] = (mpb_named){"path_length", sp->length};
+        m[i][n++] = (mpb_named){"smoothness", sp->smooth};
+        m[i][n++] = (mpb_named){"waypoints", sp->waypoints};
+        m[i][n++] = (mpb_named){"time", sp->time};
+        if (sp->clearance >= 0)
+            m[i][n++] = (mpb_named){"clearance", sp->clearance};
+        st[i] = (mpb_stage_record){
+            .name = sp->name, .time = sp->time,
+            .num_waypoints = sp->waypoints, .num_joints = 0,
+            .valid = sp->valid, .verdict = sp->valid ? "valid" : "collision",
+            .verdict_segment = -1, .num_metrics = n, .metrics = m[i]};
+    }
+    /* Run 0's planner numbers: "solved" and "time" are taken by the
+     * export's own properties and must come out renamed. */
+    static const mpb_named values[] = {
+        {"graph states", 24}, {"solved", 1}, {"time", 9}, {"cost(best)", 5}};
+    /* Two samples of two values, a third of one. */
+    static const mpb_progress_record progress[] = {
+        {0.1, "best cost", 12.0}, {0.1, "iterations", 10},
+        {0.2, "best cost", 11.0}, {0.2, "iterations", 20},
+        {0.3, "iterations", 30},
+    };
+    mpb_run_record rec = {
+        .run_id = run_id, .run_uid = uid, .planner_id = "planner-1",
+        .status = r->status, .message = "", .claimed_success = r->claimed,
+        .success = r->success, .time_total = r->total,
+        .time_raw = r->total - 0.25, .time_other = 0.25,
+        .wall_time = r->wall, .num_stages = r->num_stages, .stages = st,
+        .num_values = index == 0 ? 4 : 0, .values = values,
+        .num_progress = index == 0 ? 5 : 0, .progress = progress,
+    };
+    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+}
+
+static int first_id(void *ud, const mpb_run_row *row)
+{
+    *(int64_t *)ud = row->id;
+    return 1;
+}
+
+static int setup(void **state)
+{
+    fixture *f = calloc(1, sizeof *f);
+    mpb_store *s;
+    int64_t exp, scene[2];
+    strcpy(f->dir, "/tmp/mpb_test_export_XXXXXX");
+    assert_non_null(mkdtemp(f->dir));
+    snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
+    snprintf(f->out, sizeof f->out, "%s/arena.db", f->dir);
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+
+    mpb_experiment_info e = {"paper", "paper.yaml", "h1",
+                             "experiment: {name: paper}\n", 3, 60.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRTConnect",
+                                                  "ompl", "RRTConnect",
+                                                  "range=0.5", &f->cfg[A]),
+                     MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "ara/ARAstar", "ara",
+                                                  "ARAstar", "eps=100",
+                                                  &f->cfg[B]), MPB_OK);
+    mpb_scene_info kitchen = {"KITCHEN", "planar", "r", "r", "planar", "k", "k"};
+    mpb_scene_info table = {"TABLE TOP", "planar", "r", "r", "planar", "t", "t"};
+    assert_int_equal(mpb_store_scene_add(s, exp, &kitchen, &scene[0]), MPB_OK);
+    assert_int_equal(mpb_store_scene_add(s, exp, &table, &scene[1]), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    const char *qname[] = {"k1", "k2", "t1"};
+    for (int i = 0; i < 3; i++) {
+        mpb_query_info q = {qname[i], 1, joints, zero, MPB_GOAL_JOINTS, one,
+                            0.01};
+        assert_int_equal(mpb_store_query_add(s, scene[i == T1], &q,
+                                             &f->query[i]), MPB_OK);
+    }
+    for (int i = 0; i < NUM_RUNS; i++)
+        assert_int_equal(mpb_store_run_add(s, exp, f->cfg[runs[i].cfg],
+                                           f->query[runs[i].query],
+                                           runs[i].rep, i), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(s, exp, find_ids, f), MPB_OK);
+    for (int i = 0; i < NUM_RUNS; i++)
+        if (runs[i].done)
+            finish(s, f->run_id[i], &runs[i], i);
+
+    /* Experiment 2, "second": the same configuration A, one run. */
+    int64_t exp2, cfg2, scene2, query2, run2 = 0;
+    mpb_experiment_info e2 = {"second", "second.yaml", "h2", "x", 1, 10.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e2, &exp2), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp2, "ompl/RRTConnect",
+                                                  "ompl", "RRTConnect",
+                                                  "range=0.5", &cfg2), MPB_OK);
+    assert_int_equal(mpb_store_scene_add(s, exp2, &kitchen, &scene2), MPB_OK);
+    mpb_query_info q2 = {"k9", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01};
+    assert_int_equal(mpb_store_query_add(s, scene2, &q2, &query2), MPB_OK);
+    assert_int_equal(mpb_store_run_add(s, exp2, cfg2, query2, 0, 1), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(s, exp2, first_id, &run2), 1);
+    run_spec r2 = {A, 0, 0, 1, "solved", 1, 1, 0.75, 1.0, 1,
+                   {{"raw", 0.7, 2.0, 0.0, -1, 2, 1}}};
+    finish(s, run2, &r2, 1);
+    mpb_store_close(s);
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    fixture *f = *state;
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", f->dir);
+    assert_int_equal(system(cmd), 0);
+    free(f);
+    return 0;
+}
+
+/* Export experiment ids (all when n == 0) to a fresh f->out. */
+static void export_fresh(fixture *f, const int64_t *ids, int n,
+                         mpb_export_counts *counts)
+{
+    mpb_store *s;
+    unlink(f->out);
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    int rc = mpb_store_export_planner_arena(s, f->out, ids, n, 0, counts);
+    if (rc != MPB_OK)
+        fprintf(stderr, "export: %s\n", mpb_store_errmsg(s));
+    assert_int_equal(rc, MPB_OK);
+    mpb_store_close(s);
+}
+
+/* ---- reading the export back ------------------------------------------------ */
+
+static sqlite3 *open_out(const fixture *f)
+{
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open_v2(f->out, &db, SQLITE_OPEN_READONLY, NULL),
+                     SQLITE_OK);
+    return db;
+}
+
+/* The rows of sql, columns joined by '|', rows by '\n' (NULL as ""). */
+static const char *rows(sqlite3 *db, const char *sql)
+{
+    static char buf[8192];
+    sqlite3_stmt *st;
+    size_t len = 0;
+    buf[0] = '\0';
+    if (sqlite3_prepare_v2(db, sql, -1, &st, NULL) != SQLITE_OK) {
+        fprintf(stderr, "%s: %s\n", sql, sqlite3_errmsg(db));
+        fail();
+    }
+    while (sqlite3_step(st) == SQLITE_ROW) {
+        for (int i = 0; i < sqlite3_column_count(st); i++) {
+            const char *t = (const char *)sqlite3_column_text(st, i);
+            len += (size_t)snprintf(buf + len, sizeof buf - len, "%s%s",
+                                    i ? "|" : "", t ? t : "");
+        }
+        len += (size_t)snprintf(buf + len, sizeof buf - len, "\n");
+    }
+    sqlite3_finalize(st);
+    return buf;
+}
+
+/* The column names of a table, joined by ' '; with their types if typed. */
+static const char *columns(sqlite3 *db, const char *table, int typed)
+{
+    char sql[128];
+    static char buf[4096];
+    snprintf(sql, sizeof sql, "SELECT name%s FROM pragma_table_info('%s')",
+             typed ? " || ':' || type" : "", table);
+    const char *r = rows(db, sql);
+    snprintf(buf, sizeof buf, "%s", r);
+    for (char *p = buf; *p; p++)
+        if (*p == '\n')
+            *p = p[1] ? ' ' : '\0';
+    return buf;
+}
+
+static double number(sqlite3 *db, const char *sql)
+{
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_prepare_v2(db, sql, -1, &st, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+    double v = sqlite3_column_type(st, 0) == SQLITE_NULL
+                   ? NAN : sqlite3_column_double(st, 0);
+    sqlite3_finalize(st);
+    return v;
+}
+
+/* ---- the tests ------------------------------------------------------------ */
+
+static void experiments_keep_planner_arenas_twelve_columns(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1;
+    mpb_export_counts c;
+    export_fresh(f, &one, 1, &c);
+    /* k1, k2 and t1 have finished runs: three Planner Arena experiments;
+     * 7 finished runs; both configurations; the 2 kept samples of run 0. */
+    assert_int_equal(c.experiments, 3);
+    assert_int_equal(c.runs, 7);
+    assert_int_equal(c.planner_configs, 2);
+    assert_int_equal(c.progress, 3);
+
+    sqlite3 *db = open_out(f);
+    assert_string_equal(columns(db, "experiments", 0),
+        "id name totaltime timelimit memorylimit runcount version hostname "
+        "cpuinfo date seed setup query mpbench_experiment");
+    /* One per query, named by experiment and scene (one word), the query
+     * a parameter; totaltime the runs' wall time; version never empty. */
+    assert_string_equal(rows(db,
+        "SELECT id, name, totaltime, timelimit, memorylimit IS NULL, runcount,"
+        " version, length(hostname) > 0, cpuinfo IS NULL, seed IS NULL, query,"
+        " mpbench_experiment FROM experiments ORDER BY id"),
+        "1|paper/KITCHEN|3.5|60.0|1|3|mpbench " MPB_VERSION_STRING
+        "|1|1|1|k1|1\n"
+        "2|paper/KITCHEN|4.25|60.0|1|3|mpbench " MPB_VERSION_STRING
+        "|1|1|1|k2|1\n"
+        "3|paper/TABLE_TOP|8.125|60.0|1|3|mpbench " MPB_VERSION_STRING
+        "|1|1|1|t1|1\n");
+    /* A date SQLite reads; the setup holds the experiment file and query. */
+    assert_true(number(db, "SELECT count(*) FROM experiments"
+                           " WHERE julianday(date) IS NOT NULL") == 3);
+    assert_string_equal(rows(db, "SELECT setup FROM experiments WHERE id = 2"),
+        "experiment: {name: paper}\n\n"
+        "mpbench experiment 1, query k2\n"
+        "joints: j\nstart: 0\ngoal (joints): 1\ntolerance: 0.01\n\n");
+    sqlite3_close(db);
+}
+
+static void planner_configs_and_the_status_enum(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1;
+    export_fresh(f, &one, 1, NULL);
+    sqlite3 *db = open_out(f);
+    assert_string_equal(columns(db, "plannerConfigs", 0), "id name settings");
+    /* Settings as OMPL's script keeps a log's sorted "name = value" lines:
+     * each followed by "\n;". */
+    assert_string_equal(rows(db, "SELECT id, name, replace(settings, char(10),"
+                                 " '/') FROM plannerConfigs ORDER BY id"),
+        "1|ompl/RRTConnect|algorithm = RRTConnect/;planner = ompl/;"
+        "range = 0.5/;\n"
+        "2|ara/ARAstar|algorithm = ARAstar/;eps = 100/;planner = ara/;\n");
+    assert_string_equal(columns(db, "enums", 0), "name value description");
+    assert_string_equal(rows(db, "SELECT name, value, description FROM enums"
+                                 " ORDER BY value"),
+        "status|0|Unknown status\n"
+        "status|1|Invalid start\n"
+        "status|2|Invalid goal\n"
+        "status|3|Unrecognized goal type\n"
+        "status|4|Timeout\n"
+        "status|5|Approximate solution\n"
+        "status|6|Exact solution\n"
+        "status|7|Crash\n"
+        "status|8|Abort\n"
+        "status|9|Infeasible\n"
+        "status|10|Invalid request\n");
+    sqlite3_close(db);
+}
+
+static void runs_carry_attributes_from_the_fourth_column(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1;
+    export_fresh(f, &one, 1, NULL);
+    sqlite3 *db = open_out(f);
+    assert_string_equal(columns(db, "runs", 1),
+        "id:INTEGER experimentid:INTEGER plannerid:INTEGER "
+        "time:REAL time_raw:REAL time_other:REAL wall_time:REAL "
+        "solved:BOOLEAN claimed_success:BOOLEAN approximate_solution:BOOLEAN "
+        "status:ENUM "
+        "solution_time:REAL solution_length:REAL solution_smoothness:REAL "
+        "solution_clearance:REAL solution_segments:INTEGER "
+        "correct_solution:BOOLEAN "
+        "shortcut_solution_time:REAL shortcut_solution_length:REAL "
+        "shortcut_solution_smoothness:REAL shortcut_solution_clearance:REAL "
+        "shortcut_solution_segments:INTEGER shortcut_correct_solution:BOOLEAN "
+        "simplified_solution_time:REAL simplified_solution_length:REAL "
+        "simplified_solution_smoothness:REAL "
+        "simplified_solution_clearance:REAL "
+        "simplified_solution_segments:INTEGER "
+        "simplified_correct_solution:BOOLEAN "
+        "cost_best:REAL graph_states:REAL planner_solved:REAL "
+        "planner_time:REAL");
+    /* Every "X" with a "simplified X" beside it: Planner Arena's overlay. */
+    assert_true(number(db,
+        "SELECT count(*) FROM pragma_table_info('runs') a"
+        " JOIN pragma_table_info('runs') b ON b.name = 'simplified_' || a.name"
+        ) == 6);
+    sqlite3_close(db);
+}
+
+static void booleans_are_0_or_1_and_status_is_the_enum(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1;
+    export_fresh(f, &one, 1, NULL);
+    sqlite3 *db = open_out(f);
+    static const char *const booleans[] = {
+        "solved", "claimed_success", "approximate_solution",
+        "correct_solution", "simplified_correct_solution",
+        "shortcut_correct_solution"};
+    for (size_t i = 0; i < sizeof booleans / sizeof booleans[0]; i++) {
+        char sql[256];
+        snprintf(sql, sizeof sql, "SELECT count(*) FROM runs WHERE %s IS NOT"
+                 " NULL AND (typeof(%s) != 'integer' OR %s NOT IN (0, 1))",
+                 booleans[i], booleans[i], booleans[i]);
+        assert_true(number(db, sql) == 0);
+    }
+    /* One row per finished run, in the order of the runs above; the
+     * statuses mapped onto the enum, every enum value described. */
+    assert_string_equal(rows(db,
+        "SELECT e.query, p.name, r.status, r.solved, r.claimed_success,"
+        " r.approximate_solution FROM runs r JOIN experiments e"
+        " ON e.id = r.experimentid JOIN plannerConfigs p ON p.id = r.plannerid"
+        " ORDER BY r.id"),
+        "k1|ompl/RRTConnect|6|1|1|0\n"      /* solved */
+        "k1|ompl/RRTConnect|5|0|0|1\n"      /* approximate */
+        "k1|ara/ARAstar|8|0|0|0\n"          /* failed: Abort */
+        "k2|ompl/RRTConnect|4|0|0|0\n"      /* timeout */
+        "k2|ara/ARAstar|7|0|0|0\n"          /* crash */
+        "t1|ompl/RRTConnect|6|1|1|0\n"
+        "t1|ara/ARAstar|10|0|0|0\n");       /* invalid request */
+    assert_true(number(db, "SELECT count(*) FROM runs r LEFT JOIN enums e"
+                           " ON e.name = 'status' AND e.value = r.status"
+                           " WHERE e.description IS NULL") == 0);
+    sqlite3_close(db);
+}
+
+static void stage_values_by_hand(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1;
+    export_fresh(f, &one, 1, NULL);
+    sqlite3 *db = open_out(f);
+    /* Run 0: raw (0.5 s, l 10, 11 waypoints), shortcut (l 6, 5),
+     * smoothed (l 5, 50 waypoints, clearance 0.05); times 1.5 = 1.25 +
+     * 0.25; wall 1.0; the planner's numbers. */
+    assert_string_equal(rows(db,
+        "SELECT time, time_raw, time_other, wall_time, solution_time,"
+        " solution_length, solution_smoothness, solution_clearance,"
+        " solution_segments, correct_solution, shortcut_solution_time,"
+        " shortcut_solution_length, shortcut_solution_segments,"
+        " simplified_solution_time, simplified_solution_length,"
+        " simplified_solution_smoothness, simplified_solution_clearance,"
+        " simplified_solution_segments, simplified_correct_solution,"
+        " graph_states, planner_solved, planner_time, cost_best"
+        " FROM runs WHERE id = 1"),
+        "1.5|1.25|0.25|1.0|0.5|10.0|0.4|0.02|10|1|0.1|6.0|4|"
+        "0.2|5.0|0.1|0.05|49|1|24.0|1.0|9.0|5.0\n");
+    /* Run 1: one stage, invalid, no clearance: first and final alike. */
+    assert_string_equal(rows(db,
+        "SELECT solution_length, simplified_solution_length,"
+        " solution_segments, correct_solution, simplified_correct_solution,"
+        " solution_clearance IS NULL, shortcut_solution_length IS NULL,"
+        " graph_states IS NULL FROM runs WHERE id = 2"),
+        "3.0|3.0|3|0|0|1|1|1\n");
+    /* No stage (timeout), no time (crash): NULLs, not zeros. */
+    assert_string_equal(rows(db,
+        "SELECT id, time IS NULL, solution_length IS NULL,"
+        " simplified_correct_solution IS NULL FROM runs WHERE id IN (4, 5)"
+        " ORDER BY id"),
+        "4|0|1|1\n5|1|1|1\n");
+    /* Run 6 (t1): raw and smoothed, no shortcut. */
+    assert_string_equal(rows(db,
+        "SELECT solution_length, shortcut_solution_length IS NULL,"
+        " simplified_solution_length, simplified_solution_segments"
+        " FROM runs WHERE id = 6"),
+        "9.0|1|8.0|19\n");
+    sqlite3_close(db);
+}
+
+static void progress_samples_and_the_views(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1;
+    export_fresh(f, &one, 1, NULL);
+    sqlite3 *db = open_out(f);
+    /* runid, time, then the attributes; one row per sample. */
+    assert_string_equal(columns(db, "progress", 0),
+                        "runid time best_cost iterations");
+    assert_string_equal(rows(db, "SELECT * FROM progress ORDER BY time"),
+                        "1|0.1|12.0|10.0\n1|0.2|11.0|20.0\n1|0.3||30.0\n");
+    /* OMPL's views: by average solved, then average time. A solved 2 of
+     * 4 (times 1.5, 2, 4, 7: 3.625), B 0 of 3. */
+    assert_string_equal(rows(db, "SELECT plannerid, avg_solved,"
+                                 " avg_total_time FROM bestPlannerConfigs"),
+                        "1|0.5|3.625\n2|0.0|0.25\n");
+    assert_string_equal(rows(db,
+        "SELECT plannerid, experimentid, avg_solved"
+        " FROM bestPlannerConfigsPerExperiment ORDER BY experimentid,"
+        " plannerid"),
+        "1|1|0.5\n2|1|0.0\n1|2|0.0\n2|2|0.0\n1|3|1.0\n2|3|0.0\n");
+    sqlite3_close(db);
+}
+
+static void append_adds_and_reuses_configurations(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1, two = 2;
+    mpb_store *s;
+    mpb_export_counts c;
+    export_fresh(f, &one, 1, NULL);
+
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    /* Without the flag an existing file is left alone. */
+    assert_int_equal(mpb_store_export_planner_arena(s, f->out, &two, 1, 0, &c),
+                     MPB_EEXISTS);
+    assert_non_null(strstr(mpb_store_errmsg(s), "exists"));
+    assert_int_equal(mpb_store_export_planner_arena(s, f->out, &two, 1,
+                                                    MPB_EXPORT_APPEND, &c),
+                     MPB_OK);
+    mpb_store_close(s);
+    /* Its one query, its one run; A has the same name and settings: no new
+     * configuration. */
+    assert_int_equal(c.experiments, 1);
+    assert_int_equal(c.runs, 1);
+    assert_int_equal(c.planner_configs, 0);
+    sqlite3 *db = open_out(f);
+    assert_string_equal(rows(db, "SELECT count(*) FROM plannerConfigs"), "2\n");
+    assert_string_equal(rows(db, "SELECT e.name, e.query, r.plannerid,"
+                                 " r.solution_length FROM runs r JOIN"
+                                 " experiments e ON e.id = r.experimentid"
+                                 " WHERE e.mpbench_experiment = 2"),
+                        "second/KITCHEN|k9|1|2.0\n");
+    assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
+    sqlite3_close(db);
+
+    /* Everything at once gives the same. */
+    export_fresh(f, NULL, 0, &c);
+    assert_int_equal(c.experiments, 4);
+    assert_int_equal(c.runs, 8);
+}
+
+static void failures_leave_nothing_behind(void **state)
+{
+    fixture *f = *state;
+    int64_t nine = 9;
+    mpb_store *s;
+    struct stat sb;
+    unlink(f->out);
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_planner_arena(s, f->out, &nine, 1, 0,
+                                                    NULL), MPB_ENOTFOUND);
+    assert_string_equal(mpb_store_errmsg(s), "no experiment 9");
+    assert_int_equal(stat(f->out, &sb), -1);
+    char bad[160];
+    snprintf(bad, sizeof bad, "%s/no/such/dir/out.db", f->dir);
+    assert_int_not_equal(mpb_store_export_planner_arena(s, bad, NULL, 0, 0,
+                                                        NULL), MPB_OK);
+    mpb_store_close(s);
+}
+
+/* ---- OMPL logs ------------------------------------------------------------------ */
+
+static int count_lines_starting(const char *text, const char *start)
+{
+    int n = 0;
+    size_t len = strlen(start);
+    for (const char *p = text; p && *p; p = strchr(p, '\n'), p = p ? p + 1 : p)
+        if (strncmp(p, start, len) == 0 && p[len] == '\n')
+            n++;
+    return n;
+}
+
+static char *slurp(const char *path)
+{
+    FILE *in = fopen(path, "r");
+    assert_non_null(in);
+    static char buf[65536];
+    size_t n = fread(buf, 1, sizeof buf - 1, in);
+    buf[n] = '\0';
+    fclose(in);
+    return buf;
+}
+
+static void ompl_logs_one_per_query(void **state)
+{
+    fixture *f = *state;
+    int64_t one = 1;
+    mpb_store *s;
+    mpb_export_counts c;
+    char dir[128], path[256];
+    snprintf(dir, sizeof dir, "%s/logs", f->dir);
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, &one, 1, 0, &c),
+                     MPB_OK);
+    assert_int_equal(c.experiments, 3);
+    assert_int_equal(c.runs, 7);
+
+    snprintf(path, sizeof path, "%s/paper.1.KITCHEN.k1.log", dir);
+    const char *log = slurp(path);
+    /* OMPL's header; the version as "NAME version X" makes the script's
+     * version column "mpbench X". */
+    assert_non_null(strstr(log,
+        "mpbench version " MPB_VERSION_STRING "\n"
+        "Experiment paper/KITCHEN\n"
+        "2 experiment properties\n"
+        "query VARCHAR(512) = k1\n"
+        "mpbench_experiment INTEGER = 1\n"
+        "Running on "));
+    assert_non_null(strstr(log, "\n<<<|\nexperiment: {name: paper}\n\n"
+                                "mpbench experiment 1, query k1\n"));
+    assert_non_null(strstr(log,
+        "|>>>\n"
+        "0 is the random seed\n"
+        "60 seconds per run\n"
+        "0 MB per run\n"
+        "3 runs per planner\n"
+        "3.5 seconds spent to collect the data\n"
+        "1 enum type\n"
+        "status|Unknown status|Invalid start|Invalid goal|"
+        "Unrecognized goal type|Timeout|Approximate solution|Exact solution|"
+        "Crash|Abort|Infeasible|Invalid request\n"
+        "2 planners\n"
+        "ompl/RRTConnect\n"
+        "3 common properties\n"
+        "algorithm = RRTConnect\n"
+        "planner = ompl\n"
+        "range = 0.5\n"
+        "30 properties for each run\n"
+        "time REAL\n"
+        "time raw REAL\n"));
+    assert_non_null(strstr(log, "\nsimplified correct solution BOOLEAN\n"
+                                "cost best REAL\n"
+                                "graph states REAL\n"
+                                "planner solved REAL\n"
+                                "planner time REAL\n"
+                                "2 runs\n"));
+    /* Run 1 (approximate, one stage): "v; " each, empty for NULL, REALs
+     * exact. */
+    assert_non_null(strstr(log,
+        "\n2; 1.75; 0.25; 2; 0; 0; 1; 5; 1.8999999999999999; 3; "
+        "0.20000000000000001; ; 3; 0; ; ; ; ; ; ; 1.8999999999999999; 3; "
+        "0.20000000000000001; ; 3; 0; ; ; ; ; \n"));
+    /* Run 0's progress, then none for run 1; B's block has an empty line. */
+    assert_non_null(strstr(log,
+        "3 progress properties for each run\n"
+        "time REAL\n"
+        "best cost REAL\n"
+        "iterations REAL\n"
+        "2 runs\n"
+        "0.10000000000000001,12,10,;0.20000000000000001,11,20,;"
+        "0.29999999999999999,,30,;\n"
+        "\n"
+        ".\n"
+        "ara/ARAstar\n"));
+    assert_non_null(strstr(log, "1 runs\n\n.\n"));
+    assert_int_equal(count_lines_starting(log, "."), 2);
+
+    snprintf(path, sizeof path, "%s/paper.1.TABLE_TOP.t1.log", dir);
+    assert_non_null(strstr(slurp(path), "Experiment paper/TABLE_TOP\n"));
+
+    /* Logs are not overwritten unless asked. */
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, &one, 1, 0, &c),
+                     MPB_EEXISTS);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, &one, 1,
+                                                MPB_EXPORT_REPLACE, &c),
+                     MPB_OK);
+    mpb_store_close(s);
+}
+
+/* ---- the command line --------------------------------------------------------- */
+
+typedef struct output {
+    char text[8192];
+    int  status;
+} output;
+
+static void run(output *o, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+static void run(output *o, const char *fmt, ...)
+{
+    char args[1024], cmd[6144];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", mpb_tool, args);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(o->text, 1, sizeof o->text - 1, p);
+    o->text[n] = '\0';
+    int st = pclose(p);
+    assert_true(WIFEXITED(st));
+    o->status = WEXITSTATUS(st);
+}
+
+static void mpb_export_writes_and_refuses_to_overwrite(void **state)
+{
+    fixture *f = *state;
+    output o;
+    char want[256];
+    unlink(f->out);
+    run(&o, "export --planner-arena '%s' '%s'", f->db, f->out);
+    assert_int_equal(o.status, 0);
+    snprintf(want, sizeof want, "%s: 4 Planner Arena experiments, 8 runs, "
+             "2 planner configurations added, 3 progress samples\n", f->out);
+    assert_string_equal(o.text, want);
+
+    run(&o, "export --planner-arena '%s' '%s'", f->db, f->out);
+    assert_int_equal(o.status, 1);
+    snprintf(want, sizeof want, "mpb export: %s exists (--append adds to it, "
+             "--force replaces it)\n", f->out);
+    assert_string_equal(o.text, want);
+
+    run(&o, "export --planner-arena --force -e 2 '%s' '%s'", f->db, f->out);
+    assert_int_equal(o.status, 0);
+    sqlite3 *db = open_out(f);
+    assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "1\n");
+    sqlite3_close(db);
+    run(&o, "export --planner-arena --append -e 1 '%s' '%s'", f->db, f->out);
+    assert_int_equal(o.status, 0);
+    db = open_out(f);
+    assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
+    sqlite3_close(db);
+
+    run(&o, "export --planner-arena -e 5 '%s' '%s.new'", f->db, f->out);
+    assert_int_equal(o.status, 1);
+    assert_string_equal(o.text, "mpb export: no experiment 5\n");
+
+    run(&o, "export '%s' '%s'", f->db, f->out);
+    assert_int_equal(o.status, 2);
+    run(&o, "export --planner-arena '%s'", f->db);
+    assert_int_equal(o.status, 2);
+    run(&o, "export --planner-arena --append --force '%s' '%s'", f->db, f->out);
+    assert_int_equal(o.status, 2);
+    run(&o, "export --planner-arena -e x '%s' '%s'", f->db, f->out);
+    assert_int_equal(o.status, 2);
+    run(&o, "export --help");
+    assert_int_equal(o.status, 0);
+    assert_non_null(strstr(o.text, "usage: mpb export --planner-arena"));
+    assert_non_null(strstr(o.text, "mpb export --ompl-log"));
+
+    char dir[128];
+    snprintf(dir, sizeof dir, "%s/cli-logs", f->dir);
+    run(&o, "export --ompl-log '%s' '%s'", f->db, dir);
+    assert_int_equal(o.status, 0);
+    snprintf(want, sizeof want, "%s: 4 OMPL logs, 8 runs\n", dir);
+    assert_string_equal(o.text, want);
+    run(&o, "export --ompl-log '%s' '%s'", f->db, dir);
+    assert_int_equal(o.status, 1);
+    assert_non_null(strstr(o.text, "exists (--force replaces it)"));
+    run(&o, "export --ompl-log --force '%s' '%s'", f->db, dir);
+    assert_int_equal(o.status, 0);
+    run(&o, "export --ompl-log --append '%s' '%s'", f->db, dir);
+    assert_int_equal(o.status, 2);
+    run(&o, "export --ompl-log --planner-arena '%s' '%s'", f->db, dir);
+    assert_int_equal(o.status, 2);
+}
+
+int main(void)
+{
+    const char *build = getenv("MPB_BUILD");
+    if (build != NULL) {
+        snprintf(mpb_tool, sizeof mpb_tool, "%s/tools/mpb", build);
+    } else {
+        char self[2048];
+        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+        if (n <= 0) {
+            fprintf(stderr, "test_export: cannot find myself; set MPB_BUILD\n");
+            return 1;
+        }
+        self[n] = '\0';
+        snprintf(mpb_tool, sizeof mpb_tool, "%s/../tools/mpb", dirname(self));
+    }
+    if (access(mpb_tool, X_OK) != 0) {
+        fprintf(stderr, "test_export: no mpb at %s (build it first)\n",
+                mpb_tool);
+        return 1;
+    }
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(experiments_keep_planner_arenas_twelve_columns),
+        cmocka_unit_test(planner_configs_and_the_status_enum),
+        cmocka_unit_test(runs_carry_attributes_from_the_fourth_column),
+        cmocka_unit_test(booleans_are_0_or_1_and_status_is_the_enum),
+        cmocka_unit_test(stage_values_by_hand),
+        cmocka_unit_test(progress_samples_and_the_views),
+        cmocka_unit_test(append_adds_and_reuses_configurations),
+        cmocka_unit_test(failures_leave_nothing_behind),
+        cmocka_unit_test(ompl_logs_one_per_query),
+        cmocka_unit_test(mpb_export_writes_and_refuses_to_overwrite),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

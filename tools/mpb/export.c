@@ -1,0 +1,187 @@
+/*
+ * export.c - `mpb export`: an mpbench database as other tools read it: a
+ * Planner Arena database (--planner-arena) or OMPL benchmark logs
+ * (--ompl-log). The work is the store's (store_export.c); this is the
+ * command line. docs/planner-arena.md describes what is written.
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "mpb.h"
+
+#define CMD "export"
+
+#define MAX_EXPERIMENTS 256
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+        "usage: mpb export --planner-arena [--experiment ID]... [--append|--force]\n"
+        "                  DB OUT.db\n"
+        "       mpb export --ompl-log [--experiment ID]... [--force] DB DIR\n"
+        "\n"
+        "Write the finished runs of the database DB as another tool reads them.\n"
+        "\n"
+        "  --planner-arena  OUT.db is a database that Planner Arena\n"
+        "                   (plannerarena.org) opens, as OMPL's\n"
+        "                   ompl_benchmark_statistics.py would write it. Each\n"
+        "                   query becomes a Planner Arena experiment named\n"
+        "                   EXPERIMENT/SCENE with the query as a parameter; runs\n"
+        "                   carry time, solved (mpbench's verified success),\n"
+        "                   status, the path metrics of the first stage\n"
+        "                   (\"solution ...\"), of the final one (\"simplified\n"
+        "                   solution ...\") and of those between, and the\n"
+        "                   planner's own numbers; progress samples go to the\n"
+        "                   progress table. See docs/planner-arena.md.\n"
+        "  --ompl-log       the same as OMPL benchmark logs in the directory DIR\n"
+        "                   (made if missing), one per query, named\n"
+        "                   EXPERIMENT.ID.SCENE.QUERY.log; OMPL's\n"
+        "                   ompl_benchmark_statistics.py reads them.\n"
+        "\n"
+        "Options:\n"
+        "  -e, --experiment ID  export experiment ID (repeat for more; default:\n"
+        "                       every experiment in DB)\n"
+        "  -a, --append         add to OUT.db, an existing Planner Arena\n"
+        "                       database (one of OMPL's, or an earlier export)\n"
+        "  -f, --force          replace OUT.db (or the logs) if it exists\n"
+        "  -h, --help           print this help\n"
+        "\n"
+        "Without --append or --force an existing OUT.db or log is left alone\n"
+        "(exit 1).\n"
+        "DB is opened read-only. Exit status: 0 on success, 1 on an error, 2 on\n"
+        "a bad command line.\n");
+}
+
+int cmd_export(int argc, char **argv)
+{
+    enum { OPT_PLANNER_ARENA = 256, OPT_OMPL_LOG };
+    static const struct option longopts[] = {
+        {"planner-arena", no_argument, NULL, OPT_PLANNER_ARENA},
+        {"ompl-log", no_argument, NULL, OPT_OMPL_LOG},
+        {"experiment", required_argument, NULL, 'e'},
+        {"append", no_argument, NULL, 'a'},
+        {"force", no_argument, NULL, 'f'},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    int64_t ids[MAX_EXPERIMENTS];
+    int num_ids = 0, planner_arena = 0, ompl_log = 0, append = 0, force = 0;
+    int opt, rc;
+    mpb_store *s = NULL;
+
+    optind = 1;
+    opterr = 0;
+    while ((opt = getopt_long(argc, argv, ":e:afh", longopts, NULL)) != -1) {
+        switch (opt) {
+        case OPT_PLANNER_ARENA:
+            planner_arena = 1;
+            break;
+        case OPT_OMPL_LOG:
+            ompl_log = 1;
+            break;
+        case 'e':
+            if (num_ids == MAX_EXPERIMENTS) {
+                fprintf(stderr, "mpb " CMD ": at most %d experiments at a "
+                        "time\n", MAX_EXPERIMENTS);
+                return MPB_EXIT_USAGE;
+            }
+            if (tool_parse_id(optarg, &ids[num_ids]) != 0) {
+                fprintf(stderr, "mpb " CMD ": --experiment wants an "
+                        "experiment id (a number), not '%s'\n", optarg);
+                return MPB_EXIT_USAGE;
+            }
+            num_ids++;
+            break;
+        case 'a':
+            append = 1;
+            break;
+        case 'f':
+            force = 1;
+            break;
+        case 'h':
+            usage(stdout);
+            return MPB_EXIT_OK;
+        case ':':
+            fprintf(stderr, "mpb " CMD ": %s needs a value (try 'mpb " CMD
+                    " --help')\n", argv[optind - 1]);
+            return MPB_EXIT_USAGE;
+        default:
+            fprintf(stderr, "mpb " CMD ": unknown option '%s' (try 'mpb " CMD
+                    " --help')\n", argv[optind - 1]);
+            return MPB_EXIT_USAGE;
+        }
+    }
+    if (planner_arena + ompl_log != 1) {
+        fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",
+                planner_arena ? "--planner-arena or --ompl-log, not both"
+                              : "which format? --planner-arena or --ompl-log");
+        return MPB_EXIT_USAGE;
+    }
+    if (ompl_log && append) {
+        fprintf(stderr, "mpb " CMD ": --append is for --planner-arena\n");
+        return MPB_EXIT_USAGE;
+    }
+    if (append && force) {
+        fprintf(stderr, "mpb " CMD ": --append or --force, not both\n");
+        return MPB_EXIT_USAGE;
+    }
+    if (argc - optind != 2) {
+        fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",
+                argc - optind < 2 ? (ompl_log ? "wants a database and a "
+                                                "directory"
+                                              : "wants a database and an "
+                                                "output file")
+                                  : "too many arguments");
+        return MPB_EXIT_USAGE;
+    }
+    const char *path = argv[optind], *out = argv[optind + 1];
+
+    if ((s = tool_open_readonly(CMD, path)) == NULL)
+        return MPB_EXIT_ERROR;
+    mpb_export_counts counts;
+    if (ompl_log) {
+        rc = mpb_store_export_ompl_logs(s, out, ids, num_ids,
+                                        force ? MPB_EXPORT_REPLACE : 0,
+                                        &counts);
+        if (rc == MPB_EEXISTS)
+            fprintf(stderr, "mpb " CMD ": %s (--force replaces it)\n",
+                    mpb_store_errmsg(s));
+        else if (rc != MPB_OK)
+            fprintf(stderr, "mpb " CMD ": %s\n", mpb_store_errmsg(s));
+        else
+            printf("%s: %d OMPL log%s, %ld run%s\n", out, counts.experiments,
+                   counts.experiments == 1 ? "" : "s", counts.runs,
+                   counts.runs == 1 ? "" : "s");
+        mpb_store_close(s);
+        return rc == MPB_OK ? MPB_EXIT_OK : MPB_EXIT_ERROR;
+    }
+    if (force && unlink(out) != 0 && errno != ENOENT) {
+        fprintf(stderr, "mpb " CMD ": cannot replace %s: %s\n", out,
+                strerror(errno));
+        mpb_store_close(s);
+        return MPB_EXIT_ERROR;
+    }
+    rc = mpb_store_export_planner_arena(s, out, ids, num_ids,
+                                        append ? MPB_EXPORT_APPEND : 0,
+                                        &counts);
+    if (rc == MPB_EEXISTS) {
+        fprintf(stderr, "mpb " CMD ": %s exists (--append adds to it, "
+                "--force replaces it)\n", out);
+    } else if (rc != MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": %s\n", mpb_store_errmsg(s));
+    } else {
+        printf("%s: %d Planner Arena experiment%s, %ld run%s, %d planner "
+               "configuration%s added, %ld progress sample%s\n", out,
+               counts.experiments, counts.experiments == 1 ? "" : "s",
+               counts.runs, counts.runs == 1 ? "" : "s",
+               counts.planner_configs,
+               counts.planner_configs == 1 ? "" : "s", counts.progress,
+               counts.progress == 1 ? "" : "s");
+    }
+    mpb_store_close(s);
+    return rc == MPB_OK ? MPB_EXIT_OK : MPB_EXIT_ERROR;
+}

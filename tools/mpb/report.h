@@ -1,0 +1,109 @@
+/*
+ * report.h - what `mpb report`'s files share: an experiment's results
+ * gathered per (planner configuration, query) and folded per scene, the
+ * paper's table rows, and one writer per output format (report.c: text;
+ * report_formats.c: Markdown, CSV, LaTeX, JSON). Not part of libmpbench.
+ */
+#ifndef MPB_TOOL_REPORT_H
+#define MPB_TOOL_REPORT_H
+
+#include <stdio.h>
+
+#include "mpb.h"
+
+/* What is averaged: the run's times, then the stage metrics it reads. */
+enum { M_TT, M_TR, M_TO, M_DN, M_LP, M_LE, M_KAPPA, M_WP, M_COUNT };
+#define FIRST_STORED M_DN
+
+/* A metric's name in the machine-readable formats (its name in the
+ * database for the stored ones) and its unit ("" for counts). */
+typedef struct metric_info {
+    const char *key;
+    const char *unit;
+} metric_info;
+extern const metric_info report_metrics[M_COUNT];
+
+typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE } show;
+
+typedef struct table_row {
+    const char *label;      /* text and Markdown */
+    const char *latex;      /* LaTeX (math mode where the paper has it) */
+    int         metric;     /* M_..., unused for SHOW_RATE */
+    show        what;
+    int         optional;   /* printed only if some column has a value */
+    int         decimals;   /* fixed decimals, or -1: the general format */
+} table_row;
+
+/* The paper's rows, in its order, and the number of waypoints. */
+extern const table_row report_rows[];
+extern const int report_num_rows;
+
+/* One planner configuration on one query, or (folded) on one scene. */
+typedef struct column {
+    long        finished, succeeded;
+    mpb_grouped m[M_COUNT];     /* successful runs */
+} column;
+
+typedef struct config_ref {
+    int64_t id;
+    char   *name, *planner, *algorithm, *params;
+} config_ref;
+
+typedef struct scene_ref {
+    int64_t id;
+    char   *name;
+    int     unfinished;         /* runs not done yet */
+} scene_ref;
+
+typedef struct query_ref {
+    int64_t id;
+    int     scene;              /* index into scenes */
+} query_ref;
+
+typedef struct report {
+    const char *stage;          /* --stage, or NULL: each run's final one */
+    int64_t     experiment_id;
+    char       *experiment_name, *host, *version;
+    int         runs_per_query;
+    double      time_limit, created, finished;
+    config_ref *configs;        /* in id order */
+    int         num_configs, configs_cap;
+    scene_ref  *scenes;         /* in id order */
+    int         num_scenes, scenes_cap;
+    query_ref  *queries;        /* sorted by id */
+    int         num_queries, queries_cap;
+    int         scene_index;    /* scene whose queries are being listed */
+    column     *cells;          /* num_configs x num_queries */
+    long        staged;         /* successful runs with stage metrics */
+    int         nomem;
+} report;
+
+/* The value a row shows for a column; NaN when there is nothing. */
+double report_row_value(const table_row *tr, const column *c);
+
+/*
+ * Fold the cells of scene si into one column per configuration:
+ * cols[num_configs], filled in. Returns the scene's finished runs.
+ */
+long report_scene_columns(const report *r, int si, column *cols);
+
+#define CELL_TEXT 32
+
+/*
+ * Every row's text for the columns cols (num_configs of them), as the text
+ * table prints it: text[row * num_configs + c]; "-" where there is nothing.
+ * visible[row] says whether the row is printed (optional rows with no
+ * value are not).
+ */
+void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
+                  int *visible);
+
+/* The writers. Each returns MPB_OK or MPB_ENOMEM; output errors are found
+ * by the caller with ferror(). */
+int report_write_text(const report *r, FILE *out);
+int report_write_markdown(const report *r, FILE *out);
+int report_write_csv(const report *r, FILE *out);
+int report_write_latex(const report *r, FILE *out);
+int report_write_json(const report *r, FILE *out);
+
+#endif

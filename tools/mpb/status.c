@@ -1,0 +1,467 @@
+/*
+ * status.c - `mpb status`: follows a running experiment from the daemon's
+ * status messages (daemon_status_t on MPB_STATUS, once a second): runs
+ * done of the total, successes, failures, crashes, rate, time left and the
+ * planners the daemon sees. On a terminal one line is redrawn in place;
+ * otherwise a plain line is printed whenever the numbers change. Exits when
+ * the daemon says the experiment is done.
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <lcm/lcm.h>
+
+#include "mpb.h"
+#include "mpb_daemon_status_t.h"
+
+#define CMD "status"
+
+#define LINE_MAX_LEN 1024
+
+static volatile sig_atomic_t stop_signal;
+
+static void on_signal(int sig)
+{
+    stop_signal = sig;
+}
+
+typedef struct follower {
+    const char *experiment;     /* --experiment, or NULL: any */
+    int         tty;            /* stdout is a terminal: redraw in place */
+    int         once;
+    int         seen;           /* messages taken */
+    int         line_open;      /* a redrawn line is on the screen */
+    int         ended;          /* "done" (1) or "stopped" (2) seen */
+    int         waiting;        /* the "waiting for" line is on the screen */
+    char        following[256]; /* the experiment the header names */
+    char        last_key[LINE_MAX_LEN]; /* the numbers printed last */
+    char        detail[8192];   /* --once: a line per planner */
+} follower;
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+        "usage: mpb status [--lcm-url URL] [--experiment NAME] [--once]\n"
+        "                  [--timeout S]\n"
+        "\n"
+        "Follow a running experiment from mpbenchd's status messages (LCM\n"
+        "channel MPB_STATUS, once a second): runs done of the total, how many\n"
+        "succeeded, failed (finished without a valid solution) and crashed,\n"
+        "runs in flight, the rate, the time left, and the planners the daemon\n"
+        "sees (name, and how many processes when more than one). On a\n"
+        "terminal a progress bar is redrawn in place; otherwise a plain line\n"
+        "is printed each time the numbers change. It exits when the daemon\n"
+        "reports the experiment done.\n"
+        "\n"
+        "Options:\n"
+        "  -u, --lcm-url URL      LCM URL (default: " MPB_DEFAULT_LCM_URL ");\n"
+        "                         the daemon's\n"
+        "  -e, --experiment NAME  follow only the experiment NAME (when several\n"
+        "                         daemons share the URL)\n"
+        "  -1, --once             print the current status, one line per\n"
+        "                         planner, and exit\n"
+        "  -t, --timeout S        give up after S seconds without a status\n"
+        "                         message (default: wait for ever; with --once,\n"
+        "                         5)\n"
+        "  -h, --help             print this help\n"
+        "\n"
+        "Exit status: 0 when the experiment is done (or, with --once, a status\n"
+        "was printed), 1 on a timeout, an LCM error or a daemon stopped before\n"
+        "the end, 2 on a bad command line, 128+N on signal N.\n");
+}
+
+/* ---- one line of status ----------------------------------------------------- */
+
+/* Append to buf (size n, holding a string) like printf. */
+static void append(char *buf, size_t n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static void append(char *buf, size_t n, const char *fmt, ...)
+{
+    size_t len = strlen(buf);
+    if (len + 1 >= n)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf + len, n - len, fmt, ap);
+    va_end(ap);
+}
+
+/* "7 s", "4:05" or "1:04:05"; with decimals, "7.3 s" below a minute. */
+static void format_duration(char *buf, size_t n, double s, int decimals)
+{
+    if (!(s >= 0) || s > 99 * 3600.0) {
+        snprintf(buf, n, "?");
+        return;
+    }
+    if (s < 59.5) {
+        snprintf(buf, n, "%.*f s", decimals, s);
+        return;
+    }
+    long t = (long)(s + 0.5);
+    if (t >= 3600)
+        snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+    else
+        snprintf(buf, n, "%ld:%02ld", t / 60, t % 60);
+}
+
+/* The planners, by family name: "planners: null, ompl x2" ("null, ompl x2"
+ * without label). */
+static void describe_planners(const mpb_daemon_status_t *st, char *buf,
+                              size_t n, int label)
+{
+    int np = st->num_planners > 0 ? st->num_planners : 0;
+    if (np == 0) {
+        append(buf, n, "no planners");
+        return;
+    }
+    if (label)
+        append(buf, n, "planners: ");
+    int listed = 0;
+    for (int i = 0; i < np; i++) {
+        const char *name = st->planners[i].name;
+        if (name == NULL || name[0] == '\0')
+            name = st->planners[i].planner_id;
+        int first = 1, count = 0;
+        for (int j = 0; j < np; j++) {
+            const char *other = st->planners[j].name;
+            if (other == NULL || other[0] == '\0')
+                other = st->planners[j].planner_id;
+            if (strcmp(other, name) != 0)
+                continue;
+            if (j < i)
+                first = 0;
+            count++;
+        }
+        if (!first)
+            continue;
+        append(buf, n, "%s%s", listed++ ? ", " : "", name);
+        if (count > 1)
+            append(buf, n, " x%d", count);
+    }
+}
+
+/*
+ * The status in one line:
+ *   demo: running, 21/42 runs (50%), 18 succeeded, 3 failed, 0 crashed,
+ *   2 in flight, 4.20 runs/s, 0:05 left, planners: null, ompl x2
+ * (one line; wrapped here). Done, the time taken replaces the time left.
+ */
+static void describe(const mpb_daemon_status_t *st, char *buf, size_t n)
+{
+    char t[32];
+    int total = st->runs_total, done = st->runs_done;
+    int percent = total > 0 ? (int)floor(100.0 * done / total) : 0;
+    int finished = strcmp(st->state, "done") == 0;
+
+    buf[0] = '\0';
+    append(buf, n, "%s: %s, %d/%d runs (%d%%), %d succeeded, %d failed, "
+           "%d crashed, %d in flight, %.2f runs/s, ", st->experiment,
+           st->state, done, total, percent, st->runs_succeeded,
+           st->runs_failed, st->runs_crashed, st->runs_in_flight,
+           st->runs_per_s);
+    if (finished) {
+        format_duration(t, sizeof t, st->elapsed_s, 1);
+        append(buf, n, "took %s, ", t);
+    } else {
+        double left = st->runs_per_s > 0
+                          ? (double)(total - done) / st->runs_per_s : -1.0;
+        format_duration(t, sizeof t, left, 0);
+        append(buf, n, "%s left, ", t);
+    }
+    if (st->rejected_messages > 0)
+        append(buf, n, "%d rejected messages, ", st->rejected_messages);
+    describe_planners(st, buf, n, 1);
+}
+
+static int terminal_width(void)
+{
+    struct winsize ws;
+    if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0)
+        return ws.ws_col;
+    const char *cols = getenv("COLUMNS");
+    int c = cols ? atoi(cols) : 0;
+    return c > 0 ? c : 80;
+}
+
+/*
+ * The terminal's line: a bar (10 wide in 80 columns, up to 30 in wider
+ * ones), then the numbers, short enough for 80 columns:
+ *   [####------] 24/60 40%  12 ok  12 failed  0 crashed  8.0/s  5 s left
+ *   null x2
+ * (one line; wrapped here). The experiment's name is on the line above.
+ */
+static void describe_tty(const mpb_daemon_status_t *st, int width, char *buf,
+                         size_t n)
+{
+    char rest[LINE_MAX_LEN], t[32];
+    int total = st->runs_total, done = st->runs_done;
+    rest[0] = '\0';
+    append(rest, sizeof rest, "%d/%d %d%%  %d ok  %d failed  %d crashed  "
+           "%.1f/s  ", done, total,
+           total > 0 ? (int)floor(100.0 * done / total) : 0,
+           st->runs_succeeded, st->runs_failed, st->runs_crashed,
+           st->runs_per_s);
+    if (strcmp(st->state, "done") == 0) {
+        format_duration(t, sizeof t, st->elapsed_s, 1);
+        append(rest, sizeof rest, "in %s  ", t);
+    } else if (strcmp(st->state, "running") == 0) {
+        format_duration(t, sizeof t, st->runs_per_s > 0
+                        ? (double)(total - done) / st->runs_per_s : -1.0, 0);
+        append(rest, sizeof rest, "%s left  ", t);
+    } else {
+        append(rest, sizeof rest, "%s  ", st->state);
+    }
+    describe_planners(st, rest, sizeof rest, 0);
+
+    int bar = width - 70;   /* the same width all along, 10 in 80 columns */
+    bar = bar < 10 ? 10 : bar > 30 ? 30 : bar;
+    int fill = total > 0 ? (int)((double)bar * done / total) : 0;
+    fill = fill < 0 ? 0 : fill > bar ? bar : fill;
+    char b[32];
+    memset(b, '#', (size_t)fill);
+    memset(b + fill, '-', (size_t)(bar - fill));
+    b[bar] = '\0';
+    snprintf(buf, n, "[%s] %s", b, rest);
+}
+
+/* Redraw the line on the terminal, cut to its width. */
+static void redraw(follower *f, const char *text)
+{
+    int width = terminal_width() - 1;
+    if (width < 10)
+        width = 10;
+    printf("\r%.*s\033[K", width, text);
+    fflush(stdout);
+    f->line_open = 1;
+}
+
+/* End a redrawn line so that what follows starts on a line of its own. */
+static void close_line(follower *f)
+{
+    if (f->waiting) {
+        printf("\r\033[K");
+        f->waiting = 0;
+    }
+    if (f->line_open) {
+        putchar('\n');
+        fflush(stdout);
+        f->line_open = 0;
+    }
+}
+
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel,
+                      const mpb_daemon_status_t *st, void *ud)
+{
+    follower *f = ud;
+    char line[LINE_MAX_LEN];
+    (void)rbuf;
+    (void)channel;
+
+    if (f->ended || st->experiment == NULL || st->state == NULL)
+        return;
+    if (f->experiment != NULL && strcmp(st->experiment, f->experiment) != 0)
+        return;
+    f->seen++;
+    describe(st, line, sizeof line);
+
+    if (f->once) {
+        printf("%s\n", line);
+        f->detail[0] = '\0';
+        for (int i = 0; i < st->num_planners; i++) {
+            const mpb_planner_seen_t *p = &st->planners[i];
+            append(f->detail, sizeof f->detail, "  %s (%s): %d runs done, "
+                   "%d active, last heard %.1f s ago\n", p->planner_id,
+                   p->name, p->runs_done, p->num_active, p->last_seen_s);
+        }
+        fputs(f->detail, stdout);
+        fflush(stdout);
+        f->ended = strcmp(st->state, "done") == 0 ? 1 : 3;
+        return;
+    }
+    if (f->tty) {
+        char full[LINE_MAX_LEN + 40];
+        if (strcmp(st->experiment, f->following) != 0) {
+            /* A header line per experiment; the numbers redrawn below. */
+            close_line(f);
+            if (f->waiting) {
+                printf("\r\033[K");
+                f->waiting = 0;
+            }
+            printf("experiment %s (%s)\n", st->experiment,
+                   st->daemon_id ? st->daemon_id : "?");
+            snprintf(f->following, sizeof f->following, "%s", st->experiment);
+        }
+        describe_tty(st, terminal_width(), full, sizeof full);
+        redraw(f, full);
+    } else {
+        /* A plain line when something other than the clock moved. */
+        char key[LINE_MAX_LEN];
+        snprintf(key, sizeof key, "%s|%s|%d|%d|%d|%d|%d|%d|%d|", st->experiment,
+                 st->state, st->runs_total, st->runs_done, st->runs_succeeded,
+                 st->runs_failed, st->runs_crashed, st->runs_in_flight,
+                 st->rejected_messages);
+        describe_planners(st, key, sizeof key, 1);
+        if (strcmp(key, f->last_key) != 0) {
+            printf("%s\n", line);
+            fflush(stdout);
+            snprintf(f->last_key, sizeof f->last_key, "%s", key);
+        }
+    }
+    if (strcmp(st->state, "done") == 0)
+        f->ended = 1;
+    else if (strcmp(st->state, "stopped") == 0)
+        f->ended = 2;
+}
+
+/* ---- the command --------------------------------------------------------- */
+
+int cmd_status(int argc, char **argv)
+{
+    static const struct option longopts[] = {
+        {"lcm-url", required_argument, NULL, 'u'},
+        {"experiment", required_argument, NULL, 'e'},
+        {"once", no_argument, NULL, '1'},
+        {"timeout", required_argument, NULL, 't'},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    follower f = {0};
+    const char *url = MPB_DEFAULT_LCM_URL;
+    double timeout = -1.0;
+    int opt, status = MPB_EXIT_ERROR;
+
+    optind = 1;
+    opterr = 0;
+    while ((opt = getopt_long(argc, argv, ":u:e:1t:h", longopts, NULL)) != -1) {
+        switch (opt) {
+        case 'u':
+            url = optarg;
+            break;
+        case 'e':
+            f.experiment = optarg;
+            break;
+        case '1':
+            f.once = 1;
+            break;
+        case 't': {
+            char *end;
+            errno = 0;
+            timeout = strtod(optarg, &end);
+            if (errno != 0 || end == optarg || *end != '\0' ||
+                !(timeout > 0) || isinf(timeout)) {
+                fprintf(stderr, "mpb " CMD ": --timeout wants a number of "
+                        "seconds > 0, not '%s'\n", optarg);
+                return MPB_EXIT_USAGE;
+            }
+            break;
+        }
+        case 'h':
+            usage(stdout);
+            return MPB_EXIT_OK;
+        case ':':
+            fprintf(stderr, "mpb " CMD ": %s needs a value (try 'mpb " CMD
+                    " --help')\n", argv[optind - 1]);
+            return MPB_EXIT_USAGE;
+        default:
+            fprintf(stderr, "mpb " CMD ": unknown option '%s' (try 'mpb " CMD
+                    " --help')\n", argv[optind - 1]);
+            return MPB_EXIT_USAGE;
+        }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "mpb " CMD ": unexpected argument '%s' (try 'mpb " CMD
+                " --help')\n", argv[optind]);
+        return MPB_EXIT_USAGE;
+    }
+    if (timeout < 0 && f.once)
+        timeout = 5.0;
+    f.tty = isatty(STDOUT_FILENO);
+
+    lcm_t *lcm = lcm_create(url);
+    if (lcm == NULL) {
+        fprintf(stderr, "mpb " CMD ": cannot start LCM on %s (no multicast "
+                "route? see README)\n", url);
+        return MPB_EXIT_ERROR;
+    }
+    mpb_daemon_status_t_subscription_t *sub =
+        mpb_daemon_status_t_subscribe(lcm, MPB_CHANNEL_STATUS, on_status, &f);
+    if (sub == NULL) {
+        fprintf(stderr, "mpb " CMD ": cannot subscribe to " MPB_CHANNEL_STATUS
+                " on %s\n", url);
+        lcm_destroy(lcm);
+        return MPB_EXIT_ERROR;
+    }
+
+    struct sigaction sa = {.sa_handler = on_signal};
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    if (f.tty && !f.once) {
+        char wait[LINE_MAX_LEN];
+        snprintf(wait, sizeof wait, "waiting for mpbenchd's status on %s%s%s "
+                 "...", url, f.experiment ? " for experiment " : "",
+                 f.experiment ? f.experiment : "");
+        redraw(&f, wait);
+        f.line_open = 0;
+        f.waiting = 1;
+    }
+
+    int fd = lcm_get_fileno(lcm);
+    double last_heard = mpb_monotonic_s();
+    while (!f.ended && !stop_signal) {
+        struct pollfd pfd = {.fd = fd, .events = POLLIN};
+        int n = poll(&pfd, 1, 200);
+        if (n < 0 && errno != EINTR) {
+            close_line(&f);
+            fprintf(stderr, "mpb " CMD ": %s\n", strerror(errno));
+            goto done;
+        }
+        if (n > 0 && (pfd.revents & POLLIN)) {
+            int before = f.seen;
+            if (lcm_handle(lcm) != 0) {
+                close_line(&f);
+                fprintf(stderr, "mpb " CMD ": LCM stopped receiving on %s\n",
+                        url);
+                goto done;
+            }
+            if (f.seen != before)
+                last_heard = mpb_monotonic_s();
+        }
+        if (timeout > 0 && !f.ended &&
+            mpb_monotonic_s() - last_heard >= timeout) {
+            close_line(&f);
+            fprintf(stderr, "mpb " CMD ": no status from mpbenchd%s%s on %s "
+                    "for %g s (is it running, on the same LCM URL?)\n",
+                    f.experiment ? " for experiment " : "",
+                    f.experiment ? f.experiment : "", url, timeout);
+            goto done;
+        }
+    }
+    close_line(&f);
+    if (stop_signal) {
+        status = 128 + (int)stop_signal;
+    } else if (f.ended == 2) {
+        fprintf(stderr, "mpb " CMD ": mpbenchd stopped before the experiment "
+                "was done (run it again to resume)\n");
+    } else {
+        status = MPB_EXIT_OK;
+    }
+done:
+    mpb_daemon_status_t_unsubscribe(lcm, sub);
+    lcm_destroy(lcm);
+    return status;
+}
