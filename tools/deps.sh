@@ -10,7 +10,7 @@ PACKAGES="
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
   libfcl-dev libccd-dev
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
-  liburdfdom-dev libassimp-dev libeigen3-dev
+  liburdfdom-dev libtinyxml-dev libassimp-dev libeigen3-dev
   libsqlite3-dev sqlite3 libcmocka-dev libyaml-dev libsodium-dev
   iproute2 iptables util-linux
   default-jdk-headless python3 python3-venv

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <console_bridge/console.h>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "mpbench/mpbench.h"
@@ -280,6 +281,15 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
 
     int rc = MPB_OK;
     try {
+        /* urdfdom parses with TinyXML but passes on only its message;
+         * parse once more ourselves for the line and column. */
+        TiXmlDocument xml;
+        xml.Parse(text, nullptr, TIXML_ENCODING_UTF8);
+        if (xml.Error()) {
+            set_err(err, errlen, "line %d, column %d: not well-formed XML: %s",
+                    xml.ErrorRow(), xml.ErrorCol(), xml.ErrorDesc());
+            return MPB_EPARSE;
+        }
         Capture cap;
         urdf::ModelInterfaceSharedPtr model;
         {

@@ -202,6 +202,13 @@ static void bad_input_gets_one_line_naming_where(void **state)
     assert_null(w);
     assert_non_null(strstr(err, "urdf"));
     assert_null(strchr(err, '\n'));
+    /* XML errors name their line. */
+    assert_int_equal(mpb_world_open_group("urdf", "<robot name='x'>\n"
+                                          "<link name='a'>\n<link name='b'/>\n"
+                                          "</robot>\n", "moveit-scene", "",
+                                          joints, 7, &w, err, sizeof err),
+                     MPB_EPARSE);
+    assert_non_null(strstr(err, "urdf: line "));
     assert_int_equal(mpb_world_open_group("urdf", urdf, "moveit-scene",
                                           "s\n* box\n0 0 0\n0 0 0 1\n1\nbox\n"
                                           "0.1 oops 0.1\n", joints, 7, &w,
