@@ -12,7 +12,12 @@
  *     below 5e-7 m against closed forms and fine meshes, for ~30% more time;
  *   - the independent GJK solver is wrong for cones: libccd is used;
  *   - nearest points of a sphere and a mesh come in the two local frames,
- *     and those of (shape, mesh) pairs in swapped order: both are undone.
+ *     and those of (shape, mesh) pairs in swapped order: both are undone;
+ *   - computeAABB() bounds a rotated shape by its bounding sphere: exact
+ *     AABBs are set instead (TightObj), a cheap win for long links;
+ *   - libccd's MPR loops forever on degenerate shapes (zero radius, flat
+ *     boxes, aspect ratios ~1e14) and the AABB tree crashes on coordinates
+ *     ~1e306: sizes and coordinates are bounded (collision.h).
  */
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
@@ -40,6 +45,9 @@
 #include <memory>
 #include <new>
 #include <vector>
+
+#define MPB__STR2(x) #x
+#define MPB__STR(x) MPB__STR2(x)
 
 namespace {
 
@@ -642,13 +650,17 @@ int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen)
             put_err(err, errlen, "%s: dimension %d is not finite", name, i + 1);
             return MPB_EINVAL;
         }
-        if (type != MPB_SHAPE_PLANE && g->dims[i] < 0) {
-            put_err(err, errlen, "%s: dimension %d is negative", name, i + 1);
+        if (std::fabs(g->dims[i]) > MPB_COLLISION_MAX_COORD) {
+            put_err(err, errlen, "%s: dimension %d (%g) is beyond %g m", name,
+                    i + 1, g->dims[i], MPB_COLLISION_MAX_COORD);
             return MPB_EINVAL;
         }
-        if (std::fabs(g->dims[i]) > MPB_COLLISION_MAX_COORD) {
-            put_err(err, errlen, "%s: dimension %d is beyond %g m", name, i + 1,
-                    MPB_COLLISION_MAX_COORD);
+        /* a capsule's radius gives it volume whatever its length */
+        double least = type == MPB_SHAPE_CAPSULE && i == 1 ? 0.0 : MPB_COLLISION_MIN_SIZE;
+        if (type != MPB_SHAPE_PLANE && !(g->dims[i] >= least)) {
+            put_err(err, errlen, "%s: dimension %d (%g) is %s", name, i + 1,
+                    g->dims[i], g->dims[i] < 0 ? "negative" :
+                    "below " MPB__STR(MPB_COLLISION_MIN_SIZE) " m");
             return MPB_EINVAL;
         }
     }

@@ -208,6 +208,10 @@ static int read_pose(parser *ps, mpb_pose *pose, const char *what)
     int rc = read_nums(ps, v, 3, expected);
     if (rc != MPB_OK)
         return rc;
+    for (int i = 0; i < 3; i++)
+        if (fabs(v[i]) > MPB_COLLISION_MAX_COORD)
+            return fail(ps, ps->last_line, "%s position: %g is beyond %g m", what,
+                        v[i], MPB_COLLISION_MAX_COORD);
     snprintf(expected, sizeof expected, "%s orientation needs <qx> <qy> <qz> <qw>", what);
     rc = read_nums(ps, v + 3, 4, expected);
     if (rc != MPB_OK)
@@ -391,28 +395,19 @@ static int parse_shape(parser *ps, mpb_scene_shape *sh)
     sh->line = t.line;
     mpb_geometry *g = &sh->geometry;
     double *d = g->dims;
-    int rc, n = 0;
-    const char *names = NULL;
+    int rc;
     if (tok_is(&t, "box")) {
         g->type = MPB_SHAPE_BOX;
-        n = 3;
         rc = read_nums(ps, d, 3, "box needs <x> <y> <z> (side lengths)");
-        names = "side lengths";
     } else if (tok_is(&t, "sphere")) {
         g->type = MPB_SHAPE_SPHERE;
-        n = 1;
         rc = read_nums(ps, d, 1, "sphere needs <radius>");
-        names = "radius";
     } else if (tok_is(&t, "cylinder")) {
         g->type = MPB_SHAPE_CYLINDER;
-        n = 2;
         rc = read_nums(ps, d, 2, "cylinder needs <radius> <length>");
-        names = "radius and length";
     } else if (tok_is(&t, "cone")) {
         g->type = MPB_SHAPE_CONE;
-        n = 2;
         rc = read_nums(ps, d, 2, "cone needs <radius> <length>");
-        names = "radius and length";
     } else if (tok_is(&t, "plane")) {
         g->type = MPB_SHAPE_PLANE;
         rc = read_nums(ps, d, 4, "plane needs <a> <b> <c> <d>");
@@ -426,10 +421,10 @@ static int parse_shape(parser *ps, mpb_scene_shape *sh)
     }
     if (rc != MPB_OK)
         return rc;
-    for (int i = 0; i < n; i++)
-        if (d[i] < 0)
-            return fail(ps, sh->line, "%s: %s must be >= 0",
-                        mpb_shape_type_name(g->type), names);
+    /* the collision world's rules (collision.h), checked here with a line */
+    char why[160];
+    if (mpb_geometry_check(g, why, sizeof why) != MPB_OK)
+        return fail(ps, sh->line, "%s", why);
     rc = read_pose(ps, &sh->pose, "shape");
     if (rc != MPB_OK)
         return rc;

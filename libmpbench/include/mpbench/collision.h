@@ -61,11 +61,11 @@ extern "C" {
 #endif
 
 typedef enum mpb_shape_type {
-    MPB_SHAPE_BOX = 0,      /* dims: x y z side lengths (m, >= 0) */
-    MPB_SHAPE_SPHERE = 1,   /* dims: radius (m, >= 0) */
-    MPB_SHAPE_CYLINDER = 2, /* dims: radius, length (m, >= 0); along z */
-    MPB_SHAPE_CONE = 3,     /* dims: radius, length (m, >= 0); apex at +z */
-    MPB_SHAPE_CAPSULE = 4,  /* dims: radius, length (m, >= 0); along z */
+    MPB_SHAPE_BOX = 0,      /* dims: x y z side lengths (m) */
+    MPB_SHAPE_SPHERE = 1,   /* dims: radius (m) */
+    MPB_SHAPE_CYLINDER = 2, /* dims: radius, length (m); along z */
+    MPB_SHAPE_CONE = 3,     /* dims: radius, length (m); apex at +z */
+    MPB_SHAPE_CAPSULE = 4,  /* dims: radius, length (m, may be 0); along z */
     MPB_SHAPE_PLANE = 5,    /* dims: a b c d, a x + b y + c z = d, (a,b,c) != 0;
                                static only */
     MPB_SHAPE_MESH = 6      /* mesh: the triangles */
@@ -81,21 +81,25 @@ typedef struct mpb_geometry {
 } mpb_geometry;
 
 /*
- * MPB_OK if g is well formed (dims finite and in range, at most
- * MPB_COLLISION_MAX_COORD; a mesh that passes mpb_mesh_check(), its
- * vertices within MPB_COLLISION_MAX_COORD); MPB_EINVAL and one line in err
- * (if not NULL) if not.
+ * The sizes a world accepts (m). Every dimension of a primitive is at least
+ * MPB_COLLISION_MIN_SIZE (a capsule's length may be anything from 0; a
+ * plane's coefficients are free) and at most MPB_COLLISION_MAX_COORD, as is every
+ * mesh vertex coordinate and every pose's translation. Degenerate shapes (a
+ * sphere of radius 0, a flat box) and aspect ratios near 1e14 send libccd's
+ * MPR into an endless loop, and coordinates near 1e306 crash FCL's tree;
+ * these bounds, fuzzed with 10^6 random pairs, keep well clear of both.
+ */
+#define MPB_COLLISION_MIN_SIZE  1e-6
+#define MPB_COLLISION_MAX_COORD 1e5
+
+/*
+ * MPB_OK if g is well formed (dims finite and within the bounds above, a
+ * mesh that passes mpb_mesh_check() with its vertices within bounds);
+ * MPB_EINVAL and one line in err (if not NULL) if not.
  */
 int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen);
 
 #define MPB_COLLISION_MAX_ID 1000000
-
-/*
- * The largest coordinate or size (m) a world accepts: a dimension, a mesh
- * vertex, a pose's translation. Far beyond any robot's world, and far below
- * where FCL's bounding-volume arithmetic overflows (it crashes there).
- */
-#define MPB_COLLISION_MAX_COORD 1e9
 
 typedef struct mpb_collision mpb_collision;
 

@@ -68,5 +68,10 @@ const char *mpb_err_name(int code);
 #include "mpbench/verify.h"
 #include "mpbench/wire.h"
 #include "mpbench/auth.h"
+#include "mpbench/pose.h"
+#include "mpbench/mesh.h"
+#include "mpbench/collision.h"
+#include "mpbench/scene.h"
+#include "mpbench/robot.h"
 
 #endif /* MPBENCH_H */
