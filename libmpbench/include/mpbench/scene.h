@@ -19,6 +19,9 @@
  * decided as MoveIt decides it: the line after the first object's '*' line
  * holds a pose (more than one number) in the newer variant, a shape count
  * in the older one. Quaternions are normalised; a zero one is an error.
+ * Shapes and positions must also fit the collision world's bounds
+ * (MPB_COLLISION_MIN_SIZE, MPB_COLLISION_MAX_COORD in collision.h), so
+ * that a bad size is reported with its line.
  *
  * mpbench's extension, after the '.' line (MoveIt stops reading at '.', so
  * such a file still loads in MoveIt): blank lines, '#' comments, and
