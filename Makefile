@@ -9,7 +9,7 @@ BUILD ?= build
 CMAKE_FLAGS ?=
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: all deps configure test demo clean
+.PHONY: all deps configure test demo clean bench
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -30,3 +30,6 @@ demo: deps
 
 clean:
 	rm -rf $(BUILD)
+
+bench:
+	MPB_BUILD=$(BUILD) sh bench/run.sh $(BENCH_FLAGS)

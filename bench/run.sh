@@ -1,0 +1,392 @@
+#!/bin/sh
+# bench/run.sh - the benchmark of the benchmark (docs/performance.md).
+#
+#   bench/run.sh [--quick] [--runs N] [--report-runs N] [--million] [--keep]
+#
+# Builds the bench programs, then, inside a private network namespace that
+# it creates (only a loopback interface, with a multicast route), measures:
+#   1. the LCM round-trip floor (mpb-bench-floor),
+#   2. per-run latency end to end: real mpbenchd + one null planner, each
+#      run timed from the daemon's own request and RESULT_STORED timestamps
+#      (mpb-bench-watch),
+#   3. throughput with 1 and 2 null planners, the daemon's RSS sampled,
+#   4. verification + metrics, waypoints per second (mpb-bench-verify),
+#   5. the store's write cost per run, and `mpb report` over a database of
+#      a million runs (mpb-bench-mkdb).
+# Prints a table and writes it, with the machine and the raw results, to
+# bench/results/<date>.md. Every step has a count and a time limit.
+#
+#   --quick          small counts (about a minute in all)
+#   --runs N         runs per throughput experiment (default 100000)
+#   --report-runs N  runs in the report database (default 1000000)
+#   --million        throughput with 1 planner over 1,000,000 runs too
+#   --keep           keep the work directory (databases, logs)
+set -u
+
+src=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=${MPB_BUILD:-$src/build}
+case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
+WORK=$BUILD/bench-run/work     # databases and logs of one run
+SNAP=$BUILD/bench-run/bin      # the binaries measured, copied at the start
+
+QUICK=0 MILLION=0 KEEP=0 TPUT_N="" REPORT_N="" IN_NETNS=0
+while [ $# -gt 0 ]; do
+    case $1 in
+    --quick) QUICK=1 ;;
+    --million) MILLION=1 ;;
+    --keep) KEEP=1 ;;
+    --runs) TPUT_N=$2; shift ;;
+    --report-runs) REPORT_N=$2; shift ;;
+    --in-netns) IN_NETNS=1 ;;
+    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "bench/run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    esac
+    shift
+done
+
+if [ "$QUICK" -eq 1 ]; then
+    FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000
+    : "${TPUT_N:=10000}" "${REPORT_N:=100000}"
+else
+    FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000
+    : "${TPUT_N:=100000}" "${REPORT_N:=1000000}"
+fi
+
+# ---- outside the namespace: build, snapshot the binaries, re-enter --------
+if [ "$IN_NETNS" -eq 0 ]; then
+    [ "$(id -u)" -eq 0 ] || { echo "bench/run.sh: needs root (unshare -n)" >&2; exit 1; }
+    echo "== building"
+    [ -f "$BUILD/CMakeCache.txt" ] || cmake -S "$src" -B "$BUILD" >/dev/null || exit 1
+    cmake --build "$BUILD" -j "$(nproc)" --target mpbenchd mpb-planner-null \
+        >"$BUILD/bench-build.log" 2>&1 || {
+        tail -20 "$BUILD/bench-build.log"; echo "bench/run.sh: build failed" >&2; exit 1; }
+    # mpb is needed for item 5 only: a broken tools/ build skips that item.
+    cmake --build "$BUILD" -j "$(nproc)" --target mpb >>"$BUILD/bench-build.log" 2>&1 ||
+        echo "bench/run.sh: mpb does not build; the report timing is skipped"
+    # The bench programs: part of the main build if the top-level
+    # CMakeLists.txt adds bench/, else a project of their own beside it.
+    if grep -q '^[[:space:]]*add_subdirectory(bench)' "$src/CMakeLists.txt"; then
+        BENCH_BIN=$BUILD/bench
+        cmake --build "$BUILD" -j "$(nproc)" --target mpb-bench-floor \
+            mpb-bench-watch mpb-bench-verify mpb-bench-mkdb >>"$BUILD/bench-build.log" 2>&1
+    else
+        BENCH_BIN=$BUILD/bench-standalone
+        cmake -S "$src/bench" -B "$BENCH_BIN" -DMPB_BUILD="$BUILD" >/dev/null &&
+            cmake --build "$BENCH_BIN" -j "$(nproc)" >>"$BUILD/bench-build.log" 2>&1
+    fi || { tail -20 "$BUILD/bench-build.log"; echo "bench/run.sh: bench build failed" >&2; exit 1; }
+    # Others may rebuild the tree meanwhile: measure one consistent set.
+    rm -rf "$SNAP" && mkdir -p "$SNAP"
+    cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/null/mpb-planner-null" \
+       "$BENCH_BIN"/mpb-bench-* "$SNAP/" || exit 1
+    [ -x "$BUILD/tools/mpb" ] && cp "$BUILD/tools/mpb" "$SNAP/"
+    set -- --in-netns
+    [ "$QUICK" -eq 1 ] && set -- "$@" --quick
+    [ "$MILLION" -eq 1 ] && set -- "$@" --million
+    [ "$KEEP" -eq 1 ] && set -- "$@" --keep
+    exec unshare -n sh "$0" "$@" --runs "$TPUT_N" --report-runs "$REPORT_N"
+fi
+
+# ---- inside the private network namespace ----------------------------------
+ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 1
+if [ "$(ip -o link show | wc -l)" -ne 1 ]; then
+    echo "bench/run.sh: not in a private network namespace; refusing" >&2
+    exit 1
+fi
+
+rm -rf "$WORK" && mkdir -p "$WORK" || exit 1
+RAW=$WORK/results.txt
+: >"$RAW"
+PIDS=""
+cleanup() {
+    for p in $PIDS; do kill "$p" 2>/dev/null; done
+    for p in $PIDS; do wait "$p" 2>/dev/null; done
+    PIDS=""
+}
+trap 'cleanup; [ "$KEEP" -eq 1 ] || rm -rf "$WORK"' EXIT
+trap 'exit 130' INT TERM
+
+ROBOT=$src/scenes/planar/arm3.robot
+SCENE=$src/scenes/planar/pillars.scene
+
+# RESULT lines of the bench programs go to $RAW; get KEY FIELD reads one.
+collect() { grep '^RESULT ' "$1" >>"$RAW"; }
+get() {
+    awk -v k="$1" -v f="$2" '$1 == "RESULT" && $2 == k {
+        for (i = 3; i <= NF; i++) { split($i, kv, "="); if (kv[1] == f) v = kv[2] } }
+        END { print (v == "" ? "nan" : v) }' "$RAW"
+}
+put() { echo "RESULT $*" >>"$RAW"; }
+calc() { awk "BEGIN { v = $1; if (v != v) print \"nan\"; else printf \"%.${2:-1}f\", v }"; }
+now() { date +%s.%N; }
+
+# An experiment on the planar arm, query small_move (a free straight line).
+experiment() { # name runs runs_per_host file
+    cat >"$4" <<EOF
+experiment:
+  name: $1
+  runs: $2
+  time_limit: 1.0
+  seed: 1
+  runs_per_host: $3
+robot:
+  format: planar
+  file: $ROBOT
+scenes:
+  - name: pillars
+    format: planar
+    file: $SCENE
+    queries:
+      - name: small_move
+        start: [0.0, 0.0, 0.0]
+        goal: [0.3, -0.2, 0.1]
+        tolerance: 0.01
+planners:
+  - planner: null
+    algorithms: [straight_line]
+EOF
+}
+
+planners() { # count logprefix
+    i=0
+    while [ "$i" -lt "$1" ]; do
+        "$SNAP/mpb-planner-null" >"$2.$i.log" 2>&1 &
+        PIDS="$PIDS $!"
+        i=$((i + 1))
+    done
+    sleep 0.5   # one announce before the daemon starts
+}
+
+# The p-quantile of a column of done runs, from the database.
+db_quantile() { # db expr p
+    sqlite3 "$1" "SELECT $2 FROM runs WHERE state = 'done' ORDER BY $2
+        LIMIT 1 OFFSET (SELECT CAST((count(*) - 1) * $3 AS INTEGER)
+                        FROM runs WHERE state = 'done')"
+}
+
+load() { cut -d' ' -f1-3 /proc/loadavg; }
+LOAD_START=$(load)
+STARTED=$(date '+%Y-%m-%d %H:%M:%S %z')
+
+# ---- 1. floor ---------------------------------------------------------------
+echo "== 1. LCM round-trip floor ($FLOOR_N exchanges)"
+timeout -k 5 300 "$SNAP/mpb-bench-floor" --robot "$ROBOT" --scene "$SCENE" \
+    --count "$FLOOR_N" >"$WORK/floor.log" 2>&1
+cat "$WORK/floor.log"; collect "$WORK/floor.log"
+FLOOR=$(get floor median_us)
+
+# ---- 2. per-run latency -----------------------------------------------------
+echo "== 2. per-run latency, mpbenchd + 1 null planner ($LAT_N runs after $LAT_SKIP)"
+experiment bench-latency $((LAT_N + LAT_SKIP)) 1 "$WORK/latency.yaml"
+planners 1 "$WORK/latency-null"
+"$SNAP/mpb-bench-watch" --runs "$LAT_N" --skip "$LAT_SKIP" --timeout 600 \
+    >"$WORK/watch.log" 2>&1 &
+WATCH=$!
+sleep 0.3
+timeout -k 5 600 "$SNAP/mpbenchd" -d "$WORK/latency.db" "$WORK/latency.yaml" \
+    >"$WORK/latency-daemon.log" 2>&1 || echo "mpbenchd failed: see $WORK/latency-daemon.log"
+wait "$WATCH"
+cleanup
+cat "$WORK/watch.log"; collect "$WORK/watch.log"
+put "db_wall_time median_us=$(calc "$(db_quantile "$WORK/latency.db" wall_time 0.5) * 1e6") \
+p99_us=$(calc "$(db_quantile "$WORK/latency.db" wall_time 0.99) * 1e6")"
+
+# ---- 3. throughput and memory -----------------------------------------------
+# Sample a process every half second until it exits: seconds, VmRSS (kB),
+# CPU time so far (user + system, clock ticks).
+rss_sampler() { # pid out
+    t0=$(now)
+    while [ -r "/proc/$1/status" ]; do
+        rss="" cpu=""
+        while read -r k v _; do
+            [ "$k" = "VmRSS:" ] && rss=$v
+        done <"/proc/$1/status"
+        # The command name (field 2) has no spaces here: utime, stime are
+        # fields 14 and 15.
+        read -r _ _ _ _ _ _ _ _ _ _ _ _ _ ut st _ <"/proc/$1/stat" && cpu=$((ut + st))
+        [ -n "$rss" ] && echo "$(calc "$(now) - $t0" 2) $rss ${cpu:-0}"
+        sleep 0.5
+    done >"$2"
+}
+
+throughput() { # planners runs key
+    np=$1 runs=$2 key=$3
+    experiment "bench-throughput-$np" "$runs" "$np" "$WORK/$key.yaml"
+    planners "$np" "$WORK/$key-null"
+    limit=$((runs / 200 + 120))
+    timeout -k 5 "$limit" "$SNAP/mpbenchd" -d "$WORK/$key.db" "$WORK/$key.yaml" \
+        >"$WORK/$key-daemon.log" 2>&1 &
+    guard=$!
+    # The daemon is timeout's child: sample its memory, not timeout's.
+    daemon=""
+    for _ in 1 2 3 4 5 6 7 8 9 10; do
+        daemon=$(pgrep -P "$guard") && break
+        sleep 0.05
+    done
+    rss_sampler "${daemon:-$guard}" "$WORK/$key-rss.txt" &
+    sampler=$!
+    wait "$guard" || echo "mpbenchd failed or timed out: see $WORK/$key-daemon.log"
+    wait "$sampler"
+    cleanup
+    stats=$(sqlite3 -separator ' ' "$WORK/$key.db" "SELECT count(*),
+        max(finished) - min(sent), sum(attempts > 1), sum(status = 'crash'),
+        sum(success) FROM runs WHERE state = 'done'")
+    # RSS after a tenth and half of the run, at the end, the largest; the
+    # growth counted is over the second half (SQLite's page cache, 2 MB,
+    # fills during the first thousands of runs).
+    rss=$(awk '{ t[NR] = $1; r[NR] = $2; c = $3; if ($2 > m) m = $2 }
+        END { if (NR == 0) { print "nan nan nan nan nan"; exit }
+              for (i = 1; i < NR && t[i] < t[NR] / 10; i++) ;
+              for (h = 1; h < NR && t[h] < t[NR] / 2; h++) ;
+              print r[i], r[h], r[NR], m, c }' "$WORK/$key-rss.txt")
+    hz=$(getconf CLK_TCK)
+    echo "$stats $rss" | {
+        read -r n span retried crashed ok early half end max ticks
+        put "$key runs=$n seconds=$span runs_per_s=$(calc "$n / $span" 0) \
+retried=$retried crashed=$crashed succeeded=$ok rss_early_kb=$early \
+rss_half_kb=$half rss_end_kb=$end rss_max_kb=$max \
+rss_growth_kb=$(calc "$end - $half" 0) \
+daemon_cpu_us_per_run=$(calc "$ticks / $hz / $n * 1e6" 1)"
+    }
+    grep "^RESULT $key " "$RAW" | sed 's/^RESULT /  /'
+}
+
+echo "== 3. throughput, 1 null planner ($TPUT_N runs)"
+throughput 1 "$TPUT_N" tput1
+echo "== 3. throughput, 2 null planners ($TPUT_N runs)"
+throughput 2 "$TPUT_N" tput2
+if [ "$MILLION" -eq 1 ]; then
+    echo "== 3. throughput, 1 null planner (1000000 runs)"
+    throughput 1 1000000 tputM
+fi
+
+# The floor again: how much did the machine drift meanwhile?
+timeout -k 5 300 "$SNAP/mpb-bench-floor" --robot "$ROBOT" --scene "$SCENE" \
+    --count "$FLOOR_N" >"$WORK/floor2.log" 2>&1
+sed 's/^RESULT floor /RESULT floor_again /' "$WORK/floor2.log" >"$WORK/floor2.res"
+collect "$WORK/floor2.res"
+echo "== 1. floor again: median $(get floor_again median_us) us"
+
+# ---- 4. verification + metrics ----------------------------------------------
+echo "== 4. verification + metrics (planar world)"
+for sp in 0.01 0.1; do
+    "$SNAP/mpb-bench-verify" --robot "$ROBOT" --scene "$SCENE" --spacing "$sp" \
+        --seconds "$VERIFY_S" >"$WORK/verify-$sp.log" 2>&1
+    cat "$WORK/verify-$sp.log"
+    sed "s/^RESULT verify /RESULT verify_$sp /" "$WORK/verify-$sp.log" >"$WORK/verify-$sp.res"
+    collect "$WORK/verify-$sp.res"
+done
+
+# ---- 5. store and reports at scale ------------------------------------------
+echo "== 5. store: one transaction per run, as the daemon commits ($STORE_N runs)"
+"$SNAP/mpb-bench-mkdb" --db "$WORK/store.db" --robot "$ROBOT" --scene "$SCENE" \
+    --runs "$STORE_N" --configs 1 --queries 1 --stages 1 --waypoints 2 \
+    --batch 1 >"$WORK/store.log" 2>&1
+cat "$WORK/store.log"
+sed 's/^RESULT mkdb /RESULT store_tx1 /' "$WORK/store.log" >"$WORK/store.res"
+collect "$WORK/store.res"
+rm -f "$WORK"/store.db*
+
+echo "== 5. mpb report over $REPORT_N runs"
+timeout -k 5 1800 "$SNAP/mpb-bench-mkdb" --db "$WORK/report.db" --robot "$ROBOT" \
+    --scene "$SCENE" --runs "$REPORT_N" >"$WORK/mkdb.log" 2>&1
+cat "$WORK/mkdb.log"; collect "$WORK/mkdb.log"
+if [ -x "$SNAP/mpb" ]; then
+    times=""
+    for i in 1 2 3; do
+        t0=$(now)
+        timeout -k 5 300 "$SNAP/mpb" report "$WORK/report.db" >"$WORK/report.txt" 2>&1
+        rc=$?
+        times="$times $(calc "$(now) - $t0" 3)"
+        [ "$rc" -eq 0 ] || { echo "mpb report failed ($rc):"; tail -5 "$WORK/report.txt"; }
+    done
+    med=$(echo "$times" | tr ' ' '\n' | grep . | sort -n | sed -n 2p)
+    put "report runs=$(get mkdb runs) seconds=$med all=$(echo $times | tr ' ' ,) rc=$rc"
+    echo "  mpb report: $times s (median $med s)"
+else
+    put "report runs=$(get mkdb runs) seconds=nan rc=missing"
+fi
+db_mb=$(du -m "$WORK/report.db" | cut -f1)
+
+# ---- the table ----------------------------------------------------------------
+LOAD_END=$(load)
+ratio() { calc "$1 / $FLOOR" 1; }
+verdict() { # value op target
+    awk -v v="$1" -v t="$3" -v op="$2" 'BEGIN {
+        if (v != v + 0 || v == "nan") { print "not measured"; exit }
+        ok = (op == "<=") ? v <= t : v >= t; print ok ? "met" : "**missed**" }'
+}
+# Flat: less than 1 MB more at the end than half way through.
+flat() { # growth_kb runs
+    awk -v g="$1" -v n="$2" 'BEGIN {
+        if (g != g + 0) { print "not measured"; exit }
+        printf "%s (%+d kB over the second half, %.2f B per run)",
+               g <= 1024 ? "flat" : "**grows**", g, g * 1024 / (n * 0.5) }'
+}
+lat=$(get run_latency median_us) lat99=$(get run_latency p99_us)
+cyc=$(get run_cycle median_us) cyc99=$(get run_cycle p99_us)
+t1=$(get tput1 runs_per_s) t2=$(get tput2 runs_per_s)
+grow=$(get tput1 rss_growth_kb)
+mgrow=nan
+[ "$MILLION" -eq 1 ] && mgrow=$(get tputM rss_growth_kb)
+rep=$(get report seconds)
+vw=$(get verify_0.01 wps) vs=$(get verify_0.1 wps)
+st=$(get store_tx1 finish_us_per_run)
+
+table() {
+cat <<EOF
+| # | measurement | result | per floor | target | status |
+|---|---|---|---|---|---|
+| 1 | LCM round trip, plan request $(get floor request_bytes) B out, result $(get floor result_bytes) B back: median / p99 | $(calc "$FLOOR") / $(calc "$(get floor p99_us)") us | 1 | the floor | (again at the end: $(calc "$(get floor_again median_us)") us) |
+| 2 | per-run latency, request to result stored, committed and acknowledged, 1 null planner: median / p99 | $(calc "$lat") / $(calc "$lat99") us | $(ratio "$lat") / $(ratio "$lat99") | median <= 3x floor | $(verdict "$(calc "$lat / $FLOOR" 3)" "<=" 3) |
+| 2a | ... of which request to result published (network out, planner, network back) | $(calc "$(get run_out_back median_us)") / $(calc "$(get run_out_back p99_us)") us | $(ratio "$(get run_out_back median_us)") | | |
+| 2b | ... of which result published to acknowledged (network in, verify, metrics, store, commit) | $(calc "$(get run_daemon median_us)") / $(calc "$(get run_daemon p99_us)") us | $(ratio "$(get run_daemon median_us)") | | |
+| 2c | a run as the planner sees it: request to its next request, 1 null planner | $(calc "$cyc") / $(calc "$cyc99") us | $(ratio "$cyc") / $(ratio "$cyc99") | | |
+| 3 | throughput, 1 null planner, $(get tput1 runs) runs | $t1 runs/s | $(calc "1e6 / $t1 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t1" ">=" 10000) |
+| 3 | throughput, 2 null planners, $(get tput2 runs) runs | $t2 runs/s | $(calc "1e6 / $t2 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t2" ">=" 10000) |
+| 3 | mpbenchd CPU time (user + system) per run, 1 / 2 planners | $(get tput1 daemon_cpu_us_per_run) / $(get tput2 daemon_cpu_us_per_run) us | $(ratio "$(get tput1 daemon_cpu_us_per_run)") / $(ratio "$(get tput2 daemon_cpu_us_per_run)") | | |
+| 3 | mpbenchd RSS over $(get tput1 runs) runs (1 planner): at 10 % / 50 % / end / max | $(get tput1 rss_early_kb) / $(get tput1 rss_half_kb) / $(get tput1 rss_end_kb) / $(get tput1 rss_max_kb) kB | | flat | $(flat "$grow" "$(get tput1 runs)") |
+| 3 | mpbenchd RSS over 1,000,000 runs (1 planner): at 10 % / 50 % / end / max | $( [ "$MILLION" -eq 1 ] && echo "$(get tputM rss_early_kb) / $(get tputM rss_half_kb) / $(get tputM rss_end_kb) / $(get tputM rss_max_kb) kB, at $(get tputM runs_per_s) runs/s" || echo "not run (--million)") | | flat | $( [ "$MILLION" -eq 1 ] && flat "$mgrow" "$(get tputM runs)" || echo "not measured") |
+| 4 | verification + metrics, planar arm, waypoints at the resolution ($(get verify_0.01 checks_per_waypoint) checks each) | $vw waypoints/s | | >= 50,000 (PR2 kitchen) | planar only |
+| 4 | verification + metrics, planar arm, waypoints 0.1 rad apart ($(get verify_0.1 checks_per_waypoint) checks each) | $vs waypoints/s | | | planar only |
+| 4 | timing fidelity vs OMPL's own Benchmark (issue item 4) | not yet measured | | within 3 % | not measured |
+| 5 | store, one transaction per run as mpbenchd commits (no network) | $(calc "$st") us per run | $(ratio "$st") | | |
+| 5 | store, $(get mkdb batch) runs per transaction, 15 metric rows per run | $(calc "$(get mkdb finish_us_per_run)") us per run | | | |
+| 5 | \`mpb report\` over $(get report runs) runs ($db_mb MB database) | $rep s | | < 2 s | $(verdict "$rep" "<=" 2) |
+| 6 | import vs ompl_benchmark_statistics.py (issue item 6) | not yet measured | | >= 4x faster | not measured |
+EOF
+}
+
+describe() {
+    cat <<EOF
+- date: $STARTED
+- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(awk '/MemTotal/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo) memory, kernel $(uname -r)
+- load average (1, 5, 15 min): $LOAD_START at the start, $LOAD_END at the end
+- commit: $(cd "$src" && git rev-parse --short HEAD 2>/dev/null) ($(cd "$src" && GIT_OPTIONAL_LOCKS=0 git status --porcelain 2>/dev/null | wc -l) paths changed in the work tree)
+- software: LCM $(pkg-config --modversion lcm 2>/dev/null), SQLite $(sqlite3 --version | cut -d' ' -f1), $(cc --version | head -1), build type $(bt=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$BUILD/CMakeCache.txt"); echo "${bt:-RelWithDebInfo (the default)}")
+- counts: floor $FLOOR_N exchanges, latency $LAT_N runs (after $LAT_SKIP warm-up), throughput $TPUT_N runs, report $REPORT_N runs$( [ "$QUICK" -eq 1 ] && echo " (--quick)")
+EOF
+}
+
+echo
+echo "== results"
+describe
+echo
+table
+
+mkdir -p "$src/bench/results"
+out=$src/bench/results/$(date +%Y-%m-%d_%H%M).md
+{
+    echo "# mpbench benchmark, $STARTED"
+    echo
+    describe
+    echo
+    table
+    echo
+    echo "Raw results (bench/run.sh):"
+    echo
+    echo '```'
+    cat "$RAW"
+    echo '```'
+} >"$out"
+echo
+echo "written to ${out#"$src"/}"
