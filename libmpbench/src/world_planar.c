@@ -365,7 +365,10 @@ static double seg_point(double ax, double ay, double bx, double by,
         t = 0;
     else if (t > 1)
         t = 1;
-    return hypot(ax + t * dx - px, ay + t * dy - py);
+    /* sqrt, not hypot: planar distances are far from overflow, and hypot's
+     * care costs a third of verification (bench/verify.c, callgrind). */
+    double ex = ax + t * dx - px, ey = ay + t * dy - py;
+    return sqrt(ex * ex + ey * ey);
 }
 
 /* Distance from a point to a box; 0 inside. */
@@ -373,7 +376,7 @@ static double box_point(const box *b, double px, double py)
 {
     double dx = fmax(fmax(b->xmin - px, px - b->xmax), 0.0);
     double dy = fmax(fmax(b->ymin - py, py - b->ymax), 0.0);
-    return hypot(dx, dy);
+    return sqrt(dx * dx + dy * dy);
 }
 
 /* Does the segment a-b meet the box? (Liang-Barsky clipping.) */
