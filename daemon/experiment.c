@@ -218,7 +218,7 @@ static char *slurp(const char *path, size_t *len)
  * file, plus its `format:`.
  */
 static int load_model(loader *L, yaml_node_t *m, const char *what,
-                      char **format, char **text)
+                      char **format, char **text, char **file_path)
 {
     static const char *const keys[] = {"format", "file", "text", "name",
                                        "queries", "joints", NULL};
@@ -245,6 +245,8 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
     char path[4096];
     const char *f = scalar(file);
     snprintf(path, sizeof path, "%s%s", f[0] == '/' ? "" : L->dir, f);
+    if ((*file_path = strdup(path)) == NULL)
+        return fail_at(L, file, "out of memory");
     if ((*text = slurp(path, NULL)) == NULL)
         return fail_at(L, file, "cannot read %s file %s: %s", what, path,
                        strerror(errno));
@@ -297,8 +299,14 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
     char why[256];
     if (mpb_world_open_group(sc->robot_format, sc->robot, sc->scene_format,
                              sc->scene, (const char *const *)e->group,
-                             e->num_group, &sc->world, why, sizeof why) != MPB_OK)
+                             e->num_group, &sc->world, why, sizeof why) != MPB_OK) {
+        /* Name the file the fault is in, when it came from one. */
+        const char *file = strncmp(why, "scene", 5) == 0 ? sc->scene_file
+                                                         : e->robot_file;
+        if (file != NULL)
+            return fail_at(L, where, "scene '%s': %s: %s", sc->name, file, why);
         return fail_at(L, where, "scene '%s': %s", sc->name, why);
+    }
     int nj = mpb_world_num_joints(sc->world);
     if (e->joint_names == NULL) {
         e->num_joints = nj;
@@ -422,7 +430,8 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
         return -1;
     if (need(L, root, "robot", YAML_MAPPING_NODE,
              "a mapping of format and file or text") == NULL ||
-        load_model(L, get(L, root, "robot"), "robot", &robot_format, &robot) != 0 ||
+        load_model(L, get(L, root, "robot"), "robot", &robot_format, &robot,
+                   &e->robot_file) != 0 ||
         load_group(L, e, get(L, get(L, root, "robot"), "joints")) != 0)
         goto done;
     e->num_scenes = 0;
@@ -455,7 +464,8 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
             goto done;
         }
         if ((sc->name = need_string(L, m, "name")) == NULL ||
-            load_model(L, m, "scene", &sc->scene_format, &sc->scene) != 0)
+            load_model(L, m, "scene", &sc->scene_format, &sc->scene,
+                       &sc->scene_file) != 0)
             goto done;
         for (mpbd_scene *o = e->scenes; o < sc; o++)
             if (strcmp(o->name, sc->name) == 0) {
@@ -677,6 +687,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
         free(s->robot);
         free(s->scene_format);
         free(s->scene);
+        free(s->scene_file);
         mpb_world_close(s->world);
     }
     for (int i = 0; i < e->num_queries; i++) {
@@ -703,6 +714,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
         free(e->group[j]);
     free(e->group);
     free(e->wraps);
+    free(e->robot_file);
     free(e->scenes);
     free(e->queries);
     free(e->configs);

@@ -27,6 +27,7 @@ typedef struct mpbd_scene {
     char      *name;
     char      *robot_format, *robot, robot_hash[MPB_HASH_SIZE];
     char      *scene_format, *scene, scene_hash[MPB_HASH_SIZE];
+    char      *scene_file;   /* where the scene was read from, or NULL */
     mpb_world *world;        /* for verification */
     int64_t    db_id;
 } mpbd_scene;
@@ -51,6 +52,7 @@ typedef struct mpbd_experiment {
     int     retries;         /* extra attempts for a run whose planner crashed */
     int     runs_per_host;   /* runs at once on one host (timings skew otherwise) */
 
+    char   *robot_file;      /* where the robot was read from, or NULL */
     char  **group;           /* robot.joints as written, or NULL */
     int     num_group;
     int     num_joints;

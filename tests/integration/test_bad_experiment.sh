@@ -85,6 +85,25 @@ planners:
 EOT
 bad_case goal_in_collision.yaml ":8:.*goal is in collision in scene 's'"
 
+printf '<robot name="r">\n  <link name="a">\n</robot>\n' >"$work/broken.urdf"
+printf 'empty\n.\n' >"$work/empty.scene"
+cat >"$work/bad_urdf.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: urdf, file: broken.urdf, joints: [j]}
+scenes: [{name: s, format: moveit-scene, file: empty.scene, queries: [{name: q, start: [0], goal: [0]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case bad_urdf.yaml "broken.urdf: urdf: line 3, column .*not well-formed XML"
+
+printf 'bad\n* box\n0 0 0\n0 0 0 1\n1\nbox\n1 x 1\n' >"$work/broken.scene"
+cat >"$work/bad_scene.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: urdf, file: $MPB_SOURCE/tests/unit/data/pr2_right_arm.urdf, joints: [r_shoulder_pan_joint]}
+scenes: [{name: s, format: moveit-scene, file: broken.scene, queries: [{name: q, start: [0], goal: [0]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case bad_scene.yaml "broken.scene: scene line 7"
+
 out=$("$daemon" -d "$DB" "$work/nosuch.yaml" 2>&1)
 check "a missing experiment file is refused" test $? -ne 0
 check "... with a message naming it" \
