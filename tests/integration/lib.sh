@@ -39,6 +39,19 @@ mpb_stop_all() {
     MPB_PIDS=""
 }
 
+# Wait at most SECONDS for the background process PID to end by itself,
+# then kill it; returns its exit status (137 if it had to be killed).
+mpb_wait() {
+    pid=$1
+    tenths=$(($2 * 10))
+    while kill -0 "$pid" 2>/dev/null && [ "$tenths" -gt 0 ]; do
+        sleep 0.1
+        tenths=$((tenths - 1))
+    done
+    kill -KILL "$pid" 2>/dev/null
+    wait "$pid"
+}
+
 # Run a command with a time limit in seconds; its exit status, or 124.
 mpb_timeout() {
     secs=$1; shift

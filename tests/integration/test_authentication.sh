@@ -45,11 +45,7 @@ done
 # The right run id and the right planner, but no tag.
 "$MPB_BUILD/tests/mpb-test-forge-result" "$uid" "null@$(hostname):$good" >/dev/null
 
-waited=0
-while kill -0 $daemon 2>/dev/null && [ $waited -lt 300 ]; do
-    sleep 0.1; waited=$((waited + 1))
-done
-wait $daemon
+mpb_wait $daemon 30
 check "the experiment completes" eq $? 0
 check "every run was done by the planner holding the secret" \
     eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND planner_id LIKE '%:$good'")" 10

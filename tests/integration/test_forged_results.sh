@@ -45,11 +45,7 @@ check "a result for an unknown run id is refused" test "$out" = "acked rejected"
 out=$("$forge" "not-a-run-id" "null@elsewhere:1")
 check "a malformed run id gets no acknowledgement" test "$out" = "no ack"
 
-waited=0
-while kill -0 $daemon 2>/dev/null && [ $waited -lt 300 ]; do
-    sleep 0.1; waited=$((waited + 1))
-done
-wait $daemon
+mpb_wait $daemon 30
 check "the experiment completes" eq $? 0
 check "the daemon counted three rejected messages" \
     grep -q "(3 rejected messages)" "$work/daemon.log"

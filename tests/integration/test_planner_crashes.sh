@@ -49,12 +49,7 @@ done
 MPB_PIDS="$p1 $p2"
 
 # The daemon must finish by itself, within a bound.
-waited=0
-while kill -0 $daemon 2>/dev/null && [ $waited -lt 900 ]; do
-    sleep 0.1; waited=$((waited + 1))
-done
-kill -KILL $daemon 2>/dev/null
-wait $daemon
+mpb_wait $daemon 90
 status=$?
 check "planners were killed 20 times" eq $kills 20
 check "mpbenchd completes the experiment" eq $status 0

@@ -73,12 +73,7 @@ for i in $(seq 100); do
 done
 ip link set vethhostB down
 
-waited=0
-while kill -0 $daemon 2>/dev/null && [ $waited -lt 600 ]; do
-    sleep 0.1; waited=$((waited + 1))
-done
-kill -KILL $daemon 2>/dev/null
-wait $daemon
+mpb_wait $daemon 60
 status=$?
 check "the experiment completes with a host cut off" eq $status 0
 [ $status -eq 0 ] || tail -20 "$work/daemon.log"
