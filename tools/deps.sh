@@ -14,6 +14,7 @@ PACKAGES="
   libsqlite3-dev sqlite3 libcmocka-dev libyaml-dev libsodium-dev
   iproute2 iptables util-linux
   default-jdk-headless python3 python3-venv
+  xvfb gnuplot-nox libjchart2d-java
   clang libfuzzer-14-dev libclang-rt-14-dev
 "
 
