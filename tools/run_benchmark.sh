@@ -1,0 +1,136 @@
+#!/bin/sh
+# run_benchmark.sh - run one or more experiment files end to end: start the
+# planner processes and the daemon, run each experiment in turn, print each
+# report, stop everything. Results accumulate in one database; running the
+# same command again resumes whatever was left unfinished.
+#
+# LCM traffic stays on this machine: as root (or where user namespaces are
+# allowed) in a private network namespace; otherwise on the host's loopback
+# with ttl=0, which needs a multicast route (see README).
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+MPB_BUILD=${MPB_BUILD:-$root/build}
+
+usage() {
+    cat <<EOF
+usage: tools/run_benchmark.sh [OPTIONS] EXPERIMENT.yaml...
+
+Start the planners and mpbenchd, run each experiment file in turn, and
+print its report. Stop with Ctrl-C; the same command resumes.
+
+Options:
+  -d, --db FILE        the results database (default: ./mpbench.db)
+  -p, --planners LIST  planner processes to start, comma-separated, from
+                       null, ompl, arastar, python (default: every one that
+                       is built)
+  -n, --copies N       processes of each planner (default 1; more than one
+                       per core skews timings)
+  -f, --format FORMAT  the report's format: text, markdown, csv, latex, json
+  -r, --record FILE    also record all LCM traffic with lcm-logger into
+                       FILE (mpbenchd --replay rebuilds a database from it)
+  -l, --logs DIR       planner and daemon logs (default: BUILD/run-logs)
+  -h, --help           print this help
+
+Environment: MPB_BUILD, the build tree (default: build/).
+EOF
+}
+
+db=$PWD/mpbench.db
+planners=""
+copies=1
+format=text
+record=""
+logs=$MPB_BUILD/run-logs
+while [ $# -gt 0 ]; do
+    case $1 in
+        -d|--db) db=$2; shift 2 ;;
+        -p|--planners) planners=$(echo "$2" | tr ',' ' '); shift 2 ;;
+        -n|--copies) copies=$2; shift 2 ;;
+        -f|--format) format=$2; shift 2 ;;
+        -r|--record) record=$2; shift 2 ;;
+        -l|--logs) logs=$2; shift 2 ;;
+        -h|--help) usage; exit 0 ;;
+        --) shift; break ;;
+        -*) echo "run_benchmark: unknown option '$1' (try --help)" >&2; exit 2 ;;
+        *) break ;;
+    esac
+done
+if [ $# -eq 0 ]; then
+    usage >&2
+    exit 2
+fi
+case $copies in
+    ''|*[!0-9]*|0) echo "run_benchmark: --copies wants a whole number > 0" >&2; exit 2 ;;
+esac
+
+# Absolute paths: the namespace re-runs this script from the same directory,
+# but the daemon resolves nothing relative to it.
+abspath() { case $1 in /*) echo "$1" ;; *) echo "$PWD/$1" ;; esac; }
+db=$(abspath "$db")
+[ -z "$record" ] || record=$(abspath "$record")
+for f in "$@"; do
+    [ -f "$f" ] || { echo "run_benchmark: $f: no such experiment file" >&2; exit 2; }
+done
+
+. "$root/tests/integration/lib.sh"
+
+planner_program() {
+    case $1 in
+        null|ompl|arastar|python) echo "$MPB_BUILD/planners/$1/mpb-planner-$1" ;;
+        *) return 1 ;;
+    esac
+}
+
+if [ -z "$planners" ]; then
+    for p in null ompl arastar python; do
+        [ -x "$(planner_program $p)" ] && planners="$planners $p"
+    done
+fi
+for p in $planners; do
+    prog=$(planner_program "$p") || {
+        echo "run_benchmark: unknown planner '$p' (null, ompl, arastar, python)" >&2
+        exit 2
+    }
+    [ -x "$prog" ] || {
+        echo "run_benchmark: $prog is not built (run make)" >&2
+        exit 1
+    }
+done
+
+if [ -n "${MPB_IN_NETNS:-}" ] || [ "$(id -u)" -eq 0 ] || unshare -rn true 2>/dev/null; then
+    mpb_enter_netns "$0" -d "$db" -p "$(echo $planners | tr ' ' ',')" \
+        -n "$copies" -f "$format" ${record:+-r "$record"} -l "$logs" -- "$@"
+fi
+
+mkdir -p "$logs"
+trap mpb_stop_all EXIT INT TERM
+
+if [ -n "$record" ]; then
+    echo "run_benchmark: recording LCM traffic into $record"
+    mpb_spawn "$logs/lcm-logger.log" lcm-logger --quiet --force "$record"
+    sleep 0.5   # subscribed before the first request goes out
+fi
+echo "run_benchmark: starting planners:$planners (logs in $logs)"
+for p in $planners; do
+    i=1
+    while [ "$i" -le "$copies" ]; do
+        mpb_spawn "$logs/$p-$i.log" "$(planner_program "$p")"
+        i=$((i + 1))
+    done
+done
+
+status=0
+for experiment in "$@"; do
+    echo "run_benchmark: running $experiment"
+    if ! "$MPB_BUILD/daemon/mpbenchd" -d "$db" "$experiment"; then
+        echo "run_benchmark: mpbenchd failed on $experiment" >&2
+        status=1
+        continue
+    fi
+    echo
+    "$MPB_BUILD/tools/mpb" report --format "$format" "$db" || status=1
+    echo
+done
+mpb_stop_all
+echo "run_benchmark: results are in $db"
+exit "$status"
