@@ -99,6 +99,11 @@ static void usage(FILE *out)
         "  -f, --format FORMAT  text (the default), markdown, csv (one row per\n"
         "                       scene, planner and metric), latex (a table per\n"
         "                       scene) or json; docs/reports.md describes each\n"
+        "  -F, --findings       after the tables, what they say: per scene the\n"
+        "                       fastest planner, the shortest and the steadiest\n"
+        "                       paths, the hardest scene, and whether the\n"
+        "                       paper's findings hold (ARA* paths, RRTConnect's\n"
+        "                       speed, the narrow passage)\n"
         "  -h, --help           print this help\n"
         "\n"
         "The database is opened read-only; a running mpbenchd may go on\n"
@@ -504,18 +509,19 @@ int cmd_report(int argc, char **argv)
         {"experiment", required_argument, NULL, 'e'},
         {"stage", required_argument, NULL, 's'},
         {"format", required_argument, NULL, 'f'},
+        {"findings", no_argument, NULL, 'F'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     report r = {0};
     const char *experiment = NULL, *path;
     int64_t experiment_id = 0;
-    int opt, rc, status = MPB_EXIT_ERROR, fmt = FORMAT_TEXT;
+    int opt, rc, status = MPB_EXIT_ERROR, fmt = FORMAT_TEXT, findings = 0;
     mpb_store *s = NULL;
 
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":e:s:f:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":e:s:f:Fh", longopts, NULL)) != -1) {
         switch (opt) {
         case 'e':
             experiment = optarg;
@@ -532,6 +538,9 @@ int cmd_report(int argc, char **argv)
                         "markdown, csv, latex or json)\n", optarg);
                 return MPB_EXIT_USAGE;
             }
+            break;
+        case 'F':
+            findings = 1;
             break;
         case 'h':
             usage(stdout);
@@ -585,7 +594,8 @@ int cmd_report(int argc, char **argv)
         goto done;
     }
 
-    if ((rc = formats[fmt].write(&r, stdout)) != MPB_OK)
+    if ((rc = formats[fmt].write(&r, stdout)) != MPB_OK ||
+        (findings && (rc = report_write_findings(&r, stdout)) != MPB_OK))
         goto fail;
     if (fflush(stdout) != 0 || ferror(stdout)) {
         fprintf(stderr, "mpb " CMD ": cannot write the report\n");

@@ -106,4 +106,8 @@ int report_write_csv(const report *r, FILE *out);
 int report_write_latex(const report *r, FILE *out);
 int report_write_json(const report *r, FILE *out);
 
+/* `--findings`: what the tables say, and whether the paper's qualitative
+ * findings hold (report_findings.c). */
+int report_write_findings(const report *r, FILE *out);
+
 #endif

@@ -1,0 +1,206 @@
+/* test_report_findings.c - `mpb report --findings` on a database written
+ * through the store, with numbers chosen so that each of the paper's
+ * findings holds, holds in part, or cannot be checked; the built tool's
+ * verdicts are compared with those worked out by hand. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <libgen.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+
+static char mpb_tool[4096];     /* the built mpb */
+static char dir[64], db[96];
+
+enum { RRTC, RRT, ARA, NUM_CONFIGS };
+enum { KITCHEN, TABLETOP, NARROW, NUM_SCENES };
+
+/* One query per scene; a run's total time and final path length. */
+typedef struct run_spec {
+    int    cfg, scene, rep, success;
+    double time, length;
+} run_spec;
+
+/*
+ * kitchen:  ARA* shortest (8) with no spread; RRTConnect fastest.
+ * tabletop: ARA* shortest; RRT (0.5 s) faster than RRTConnect (1.5 s).
+ * narrow:   RRTConnect's path (20) beats ARA*'s (25); 2 of 5 runs succeed,
+ *           and the successful ones are the slowest of the experiment.
+ */
+static const run_spec runs[] = {
+    {RRTC, KITCHEN, 0, 1, 1.0, 10.0},  {RRTC, KITCHEN, 1, 1, 2.0, 12.0},
+    {RRT, KITCHEN, 0, 1, 3.0, 9.0},    {RRT, KITCHEN, 1, 1, 5.0, 11.0},
+    {ARA, KITCHEN, 0, 1, 4.0, 8.0},
+    {RRTC, TABLETOP, 0, 1, 1.5, 10.0}, {RRTC, TABLETOP, 1, 1, 1.5, 14.0},
+    {RRT, TABLETOP, 0, 1, 0.5, 12.0},  {RRT, TABLETOP, 1, 1, 0.5, 12.0},
+    {ARA, TABLETOP, 0, 1, 3.0, 7.0},
+    {RRTC, NARROW, 0, 1, 10.0, 20.0},  {RRTC, NARROW, 1, 0, 60.0, 0.0},
+    {RRT, NARROW, 0, 0, 60.0, 0.0},    {RRT, NARROW, 1, 0, 60.0, 0.0},
+    {ARA, NARROW, 0, 1, 6.0, 25.0},
+};
+#define NUM_RUNS ((int)(sizeof runs / sizeof runs[0]))
+
+static int64_t cfg_id[NUM_CONFIGS], query_id[NUM_SCENES], run_id[NUM_RUNS];
+
+static int find_ids(void *ud, const mpb_run_row *row)
+{
+    (void)ud;
+    for (int i = 0; i < NUM_RUNS; i++)
+        if (cfg_id[runs[i].cfg] == row->planner_config_id &&
+            query_id[runs[i].scene] == row->query_id &&
+            runs[i].rep == row->repetition)
+            run_id[i] = row->id;
+    return 0;
+}
+
+static void finish(mpb_store *s, int i)
+{
+    const run_spec *r = &runs[i];
+    char uid[32];
+    snprintf(uid, sizeof uid, "uid-%d", i);
+    assert_int_equal(mpb_store_run_sent(s, run_id[i], uid, "p"), MPB_OK);
+    mpb_named m[] = {{"path_length", r->length}};
+    mpb_stage_record st = {.name = "raw", .valid = r->success,
+                           .verdict = r->success ? "valid" : "collision",
+                           .verdict_segment = -1, .num_metrics = 1,
+                           .metrics = m};
+    mpb_run_record rec = {
+        .run_id = run_id[i], .run_uid = uid, .planner_id = "p",
+        .status = r->success ? "solved" : "timeout",
+        .claimed_success = r->success, .success = r->success,
+        .time_total = r->time, .time_raw = r->time,
+        .num_stages = r->success, .stages = &st,
+    };
+    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    mpb_store *s;
+    int64_t exp, scene;
+    strcpy(dir, "/tmp/mpb_test_findings_XXXXXX");
+    assert_non_null(mkdtemp(dir));
+    snprintf(db, sizeof db, "%s/results.db", dir);
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+
+    mpb_experiment_info e = {"paper", "paper.yaml", "h", "text", 2, 60.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    static const char *const cfg[NUM_CONFIGS][3] = {
+        {"ompl/RRTConnect", "ompl", "RRTConnect"},
+        {"ompl/RRT", "ompl", "RRT"},
+        {"arastar/ARAstar", "arastar", "ARAstar"},
+    };
+    for (int c = 0; c < NUM_CONFIGS; c++)
+        assert_int_equal(mpb_store_planner_config_add(s, exp, cfg[c][0],
+                         cfg[c][1], cfg[c][2], "", &cfg_id[c]), MPB_OK);
+    static const char *const scene_name[NUM_SCENES] = {"kitchen", "tabletop",
+                                                       "narrow_passage"};
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    for (int k = 0; k < NUM_SCENES; k++) {
+        mpb_scene_info si = {scene_name[k], "planar", "r", "r", "planar",
+                             scene_name[k], scene_name[k]};
+        assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
+        mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01};
+        assert_int_equal(mpb_store_query_add(s, scene, &q, &query_id[k]),
+                         MPB_OK);
+    }
+    for (int i = 0; i < NUM_RUNS; i++)
+        assert_int_equal(mpb_store_run_add(s, exp, cfg_id[runs[i].cfg],
+                                           query_id[runs[i].scene],
+                                           runs[i].rep, i), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(s, exp, find_ids, NULL), MPB_OK);
+    for (int i = 0; i < NUM_RUNS; i++)
+        finish(s, i);
+    mpb_store_close(s);
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+    return 0;
+}
+
+static char out[16384];
+
+static int run_tool(const char *args)
+{
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' report %s '%s' 2>&1", mpb_tool, args, db);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(out, 1, sizeof out - 1, p);
+    out[n] = '\0';
+    int st = pclose(p);
+    assert_true(WIFEXITED(st));
+    return WEXITSTATUS(st);
+}
+
+static void assert_says(const char *line)
+{
+    if (strstr(out, line) == NULL)
+        fail_msg("expected \"%s\" in:\n%s", line, out);
+}
+
+static void test_paper_findings(void **state)
+{
+    (void)state;
+    assert_int_equal(run_tool("--findings"), 0);
+    assert_says("[holds] ARA* has zero spread in path length (3 of 3 scenes)");
+    assert_says("[holds in part] ARA* has the shortest paths (2 of 3 scenes)");
+    assert_says("narrow_passage: sigma(l_p) 0 rad; l_p 25 rad, beaten by "
+                "ompl/RRTConnect (20 rad)");
+    assert_says("[holds in part] RRTConnect is the fastest sampling-based "
+                "planner outside the narrow passage (1 of 2 scenes)");
+    assert_says("tabletop: ompl/RRTConnect 1.5 s, but ompl/RRT is faster");
+    assert_says("[holds] the narrow passage is the hardest environment "
+                "(2 of 2 measures)");
+    assert_says("lowest success rate: narrow_passage (40%; narrow_passage 40%)");
+}
+
+static void test_scene_lines(void **state)
+{
+    (void)state;
+    assert_int_equal(run_tool("--findings"), 0);
+    /* kitchen: mean times 1.5 (RRTC), 4 (RRT), 4 (ARA*). */
+    assert_says("kitchen: success 100%; fastest ompl/RRTConnect (tau_t 1.5 s); "
+                "shortest paths arastar/ARAstar (l_p 8 rad)");
+}
+
+static void test_tables_alone_without_option(void **state)
+{
+    (void)state;
+    assert_int_equal(run_tool(""), 0);
+    assert_null(strstr(out, "Findings"));
+    assert_non_null(strstr(out, "Scene kitchen"));
+}
+
+int main(int argc, char **argv)
+{
+    (void)argc;
+    char self[4096];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n <= 0)
+        return 1;
+    self[n] = '\0';
+    snprintf(mpb_tool, sizeof mpb_tool, "%s/../tools/mpb", dirname(self));
+    (void)argv;
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_paper_findings),
+        cmocka_unit_test(test_scene_lines),
+        cmocka_unit_test(test_tables_alone_without_option),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

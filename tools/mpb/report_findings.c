@@ -1,0 +1,275 @@
+/*
+ * report_findings.c - `mpb report --findings`: after the tables, what they
+ * say, in sentences. Per scene the fastest planner, the shortest paths and
+ * the least spread; over the experiment the hardest scene; then the
+ * qualitative findings of the paper (section V), each marked as holding or
+ * not here, with the numbers that decide it.
+ *
+ * The paper's planners are recognised by name: the search-based planner is
+ * the `arastar` family, the sampling-based ones the `ompl` family, RRTConnect
+ * the algorithm of that name, and the narrow passage the scene whose name
+ * contains "narrow". A finding whose planners or scene are absent is
+ * reported as not checked.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "report.h"
+
+#define SEARCH_FAMILY   "arastar"
+#define SAMPLING_FAMILY "ompl"
+#define FASTEST_ALGO    "RRTConnect"
+#define HARD_SCENE_PART "narrow"
+
+/* Zero spread, allowing for the rounding of a sum of squares. */
+#define ZERO_SPREAD 1e-9
+
+static double mean_of(const column *c, int metric)
+{
+    return mpb_grouped_mean(&c->m[metric]);
+}
+
+static double sigma_of(const column *c, int metric)
+{
+    return mpb_grouped_stddev(&c->m[metric]);
+}
+
+static int is_family(const config_ref *cf, const char *family)
+{
+    return strcmp(cf->planner, family) == 0;
+}
+
+/* The configuration with the smallest value of f among those where select
+ * holds and f is a number; -1 if none. */
+static int argmin(const report *r, const column *cols,
+                  double (*f)(const column *, int), int metric,
+                  int (*select)(const config_ref *, const char *),
+                  const char *arg)
+{
+    int best = -1;
+    for (int c = 0; c < r->num_configs; c++) {
+        if (select != NULL && !select(&r->configs[c], arg))
+            continue;
+        double v = f(&cols[c], metric);
+        if (isnan(v))
+            continue;
+        if (best < 0 || v < f(&cols[best], metric))
+            best = c;
+    }
+    return best;
+}
+
+static int not_family(const config_ref *cf, const char *family)
+{
+    return !is_family(cf, family);
+}
+
+static int is_hard_scene(const report *r, int s)
+{
+    return strstr(r->scenes[s].name, HARD_SCENE_PART) != NULL;
+}
+
+/* What the experiment's scenes look like, folded once. */
+typedef struct scene_summary {
+    column *cols;               /* num_configs */
+    double  success;            /* over every configuration's runs */
+    double  time;               /* mean tau_t over successful runs */
+} scene_summary;
+
+static void summarise(const report *r, int s, scene_summary *out)
+{
+    long finished = 0, succeeded = 0;
+    double tsum = 0.0;
+    long tn = 0;
+    report_scene_columns(r, s, out->cols);
+    for (int c = 0; c < r->num_configs; c++) {
+        finished += out->cols[c].finished;
+        succeeded += out->cols[c].succeeded;
+        tsum += out->cols[c].m[M_TT].sum;
+        tn += out->cols[c].m[M_TT].n;
+    }
+    out->success = finished > 0 ? (double)succeeded / (double)finished : NAN;
+    out->time = tn > 0 ? tsum / (double)tn : NAN;
+}
+
+static void print_scene_findings(const report *r, int s,
+                                 const scene_summary *sum, FILE *out)
+{
+    const column *cols = sum->cols;
+    int fast = argmin(r, cols, mean_of, M_TT, NULL, NULL);
+    int shortest = argmin(r, cols, mean_of, M_LP, NULL, NULL);
+    int steady = argmin(r, cols, sigma_of, M_LP, NULL, NULL);
+    fprintf(out, "  %s: success %.0f%%", r->scenes[s].name,
+            100.0 * sum->success);
+    if (fast >= 0)
+        fprintf(out, "; fastest %s (tau_t %.3g s)", r->configs[fast].name,
+                mean_of(&cols[fast], M_TT));
+    if (shortest >= 0)
+        fprintf(out, "; shortest paths %s (l_p %.3g rad)",
+                r->configs[shortest].name, mean_of(&cols[shortest], M_LP));
+    if (steady >= 0)
+        fprintf(out, "; least spread in l_p %s (sigma %.3g rad)",
+                r->configs[steady].name, sigma_of(&cols[steady], M_LP));
+    fputs(".\n", out);
+}
+
+static const char *verdict(int held, int checked)
+{
+    if (checked == 0)
+        return "not checked";
+    if (held == checked)
+        return "holds";
+    return held == 0 ? "does not hold" : "holds in part";
+}
+
+/* "ARA* has zero spread in path length" and "ARA* has the shortest
+ * paths", per scene where the search-based planner succeeded. */
+static void check_search_planner(const report *r, const scene_summary *sums,
+                                 FILE *out)
+{
+    int spread_held = 0, short_held = 0, checked = 0;
+    char detail[2048] = "";
+    size_t used = 0;
+    for (int s = 0; s < r->num_scenes; s++) {
+        const column *cols = sums[s].cols;
+        int ara = argmin(r, cols, mean_of, M_LP, is_family, SEARCH_FAMILY);
+        if (ara < 0)
+            continue;
+        checked++;
+        double sd = sigma_of(&cols[ara], M_LP);
+        spread_held += !isnan(sd) && sd <= ZERO_SPREAD;
+        int other = argmin(r, cols, mean_of, M_LP, not_family, SEARCH_FAMILY);
+        int shortest = other < 0 || mean_of(&cols[ara], M_LP) <=
+                                        mean_of(&cols[other], M_LP);
+        short_held += shortest;
+        if (used < sizeof detail)
+            used += (size_t)snprintf(detail + used, sizeof detail - used,
+                "      %s: sigma(l_p) %.3g rad; l_p %.3g rad%s%s (%.3g rad)\n",
+                r->scenes[s].name, sd, mean_of(&cols[ara], M_LP),
+                other < 0 ? "" : shortest ? ", next " : ", beaten by ",
+                other < 0 ? "" : r->configs[other].name,
+                other < 0 ? NAN : mean_of(&cols[other], M_LP));
+    }
+    fprintf(out, "  [%s] ARA* has zero spread in path length (%d of %d scenes)\n",
+            verdict(spread_held, checked), spread_held, checked);
+    fprintf(out, "  [%s] ARA* has the shortest paths (%d of %d scenes)\n",
+            verdict(short_held, checked), short_held, checked);
+    fputs(detail, out);
+}
+
+static int is_sampling(const config_ref *cf, const char *unused)
+{
+    (void)unused;
+    return is_family(cf, SAMPLING_FAMILY);
+}
+
+/* "RRTConnect is the fastest sampling-based planner" outside the narrow
+ * passage. */
+static void check_fastest(const report *r, const scene_summary *sums,
+                          FILE *out)
+{
+    int held = 0, checked = 0;
+    char detail[2048] = "";
+    size_t used = 0;
+    for (int s = 0; s < r->num_scenes; s++) {
+        if (is_hard_scene(r, s))
+            continue;
+        const column *cols = sums[s].cols;
+        int fast = argmin(r, cols, mean_of, M_TT, is_sampling, NULL);
+        int rrtc = -1;
+        for (int c = 0; c < r->num_configs; c++)
+            if (is_sampling(&r->configs[c], NULL) &&
+                strcmp(r->configs[c].algorithm, FASTEST_ALGO) == 0 &&
+                !isnan(mean_of(&cols[c], M_TT)))
+                rrtc = c;
+        if (fast < 0 || rrtc < 0)
+            continue;
+        checked++;
+        held += fast == rrtc;
+        if (used < sizeof detail)
+            used += (size_t)snprintf(detail + used, sizeof detail - used,
+                "      %s: %s %.3g s%s%s%s\n", r->scenes[s].name,
+                r->configs[rrtc].name, mean_of(&cols[rrtc], M_TT),
+                fast == rrtc ? "" : ", but ",
+                fast == rrtc ? "" : r->configs[fast].name,
+                fast == rrtc ? "" : " is faster");
+    }
+    fprintf(out, "  [%s] RRTConnect is the fastest sampling-based planner "
+            "outside the narrow passage (%d of %d scenes)\n",
+            verdict(held, checked), held, checked);
+    fputs(detail, out);
+}
+
+/* "The narrow passage is the hardest environment": the lowest success
+ * rate over all planners, and the longest mean planning time. */
+static void check_hardest(const report *r, const scene_summary *sums,
+                          FILE *out)
+{
+    int hard = -1, least_success = -1, slowest = -1;
+    for (int s = 0; s < r->num_scenes; s++) {
+        if (is_hard_scene(r, s) && hard < 0)
+            hard = s;
+        if (!isnan(sums[s].success) &&
+            (least_success < 0 || sums[s].success < sums[least_success].success))
+            least_success = s;
+        if (!isnan(sums[s].time) &&
+            (slowest < 0 || sums[s].time > sums[slowest].time))
+            slowest = s;
+    }
+    if (hard < 0 || r->num_scenes < 2) {
+        fprintf(out, "  [not checked] the narrow passage is the hardest "
+                "environment (no second scene or no '%s' scene)\n",
+                HARD_SCENE_PART);
+        return;
+    }
+    /* A measure on which every scene is alike decides nothing. */
+    int by_success = sums[least_success].success < sums[hard].success ||
+                     least_success == hard;
+    int success_differs = 0;
+    for (int s = 0; s < r->num_scenes; s++)
+        success_differs |= sums[s].success != sums[hard].success;
+    int checked = success_differs + (slowest >= 0);
+    int held = (success_differs && by_success && sums[hard].success ==
+                sums[least_success].success) + (slowest == hard);
+    fprintf(out, "  [%s] the narrow passage is the hardest environment "
+            "(%d of %d measures)\n", verdict(held, checked), held, checked);
+    fprintf(out, "      lowest success rate: %s (%.0f%%; %s %.0f%%)\n",
+            r->scenes[least_success].name,
+            100.0 * sums[least_success].success, r->scenes[hard].name,
+            100.0 * sums[hard].success);
+    if (slowest >= 0)
+        fprintf(out, "      longest mean planning time: %s (%.3g s; %s %.3g s)\n",
+                r->scenes[slowest].name, sums[slowest].time,
+                r->scenes[hard].name, sums[hard].time);
+}
+
+int report_write_findings(const report *r, FILE *out)
+{
+    if (r->num_configs == 0 || r->num_scenes == 0)
+        return MPB_OK;
+    scene_summary *sums = calloc((size_t)r->num_scenes, sizeof *sums);
+    column *cols = calloc((size_t)r->num_scenes * (size_t)r->num_configs,
+                          sizeof *cols);
+    if (sums == NULL || cols == NULL) {
+        free(sums);
+        free(cols);
+        return MPB_ENOMEM;
+    }
+    for (int s = 0; s < r->num_scenes; s++) {
+        sums[s].cols = cols + (size_t)s * (size_t)r->num_configs;
+        summarise(r, s, &sums[s]);
+    }
+    fputs("\nFindings (means over successful runs of each run's final stage):\n",
+          out);
+    for (int s = 0; s < r->num_scenes; s++)
+        print_scene_findings(r, s, &sums[s], out);
+    fputs("\nThe paper's findings, checked here:\n", out);
+    check_search_planner(r, sums, out);
+    check_fastest(r, sums, out);
+    check_hardest(r, sums, out);
+    free(cols);
+    free(sums);
+    return MPB_OK;
+}
