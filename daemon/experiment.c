@@ -176,6 +176,13 @@ static double *parse_vector(loader *L, yaml_node_t *n, const char *what, int len
     return v;
 }
 
+static size_t count_items(const yaml_node_t *n)
+{
+    return n && n->type == YAML_SEQUENCE_NODE
+               ? (size_t)(n->data.sequence.items.top - n->data.sequence.items.start)
+               : 0;
+}
+
 /* Read a file whole; NULL with errno set on failure. */
 static char *slurp(const char *path, size_t *len)
 {
@@ -346,6 +353,97 @@ static int check_state(loader *L, const mpbd_experiment *e, int scene,
     return 0;
 }
 
+/*
+ * Three numbers: a list of 3, or, where one_for_all, a single number for
+ * all three ("position_tolerance: 0.01").
+ */
+static int parse_triple(loader *L, yaml_node_t *m, const char *key,
+                        int one_for_all, double out[3])
+{
+    yaml_node_t *n = get(L, m, key);
+    if (n == NULL)
+        return fail_at(L, m, "goal: missing '%s'", key);
+    if (one_for_all && n->type == YAML_SCALAR_NODE) {
+        if (parse_double(L, n, key, &out[0]) != 0)
+            return -1;
+        out[1] = out[2] = out[0];
+        return 0;
+    }
+    if (n->type != YAML_SEQUENCE_NODE || count_items(n) != 3)
+        return fail_at(L, n, "%s must be a list of 3 numbers%s", key,
+                       one_for_all ? " (or one number for all three)" : "");
+    for (int i = 0; i < 3; i++)
+        if (parse_double(L, node(L, n->data.sequence.items.start[i]), key,
+                         &out[i]) != 0)
+            return -1;
+    return 0;
+}
+
+static int parse_tolerance(loader *L, yaml_node_t *m, const char *key,
+                           double out[3])
+{
+    if (parse_triple(L, m, key, 1, out) != 0)
+        return -1;
+    for (int i = 0; i < 3; i++)
+        if (out[i] < 0)
+            return fail_at(L, get(L, m, key), "%s must not be negative (%g)",
+                           key, out[i]);
+    return 0;
+}
+
+/*
+ * A pose-region goal: `goal: {link, position, position_tolerance, rpy,
+ * rpy_tolerance}`. Without rpy the orientation is free. The link must be
+ * one of the robot's, which the world checks.
+ */
+static int load_region_goal(loader *L, const mpbd_experiment *e, int scene,
+                            mpbd_query *q, yaml_node_t *m)
+{
+    static const char *const keys[] = {"link", "position",
+                                       "position_tolerance", "rpy",
+                                       "rpy_tolerance", NULL};
+    if (only_keys(L, m, keys) != 0 ||
+        (q->goal_link = need_string(L, m, "link")) == NULL ||
+        parse_triple(L, m, "position", 0, q->position) != 0 ||
+        parse_tolerance(L, m, "position_tolerance", q->position_tolerance) != 0)
+        return -1;
+    q->goal_kind = MPB_GOAL_POSE_REGION;
+    if (get(L, m, "rpy") == NULL) {
+        if (get(L, m, "rpy_tolerance") != NULL)
+            return fail_at(L, get(L, m, "rpy_tolerance"),
+                           "rpy_tolerance without rpy");
+        for (int i = 0; i < 3; i++)
+            q->rpy_tolerance[i] = M_PI;
+    } else if (parse_triple(L, m, "rpy", 0, q->rpy) != 0 ||
+               parse_tolerance(L, m, "rpy_tolerance", q->rpy_tolerance) != 0) {
+        return -1;
+    }
+    /* Asking the world whether the start is inside checks the link and the
+     * numbers, and whether this world can check regions at all. */
+    char why[256];
+    mpb_goal g = mpbd_query_goal(q);
+    int in = mpb_world_goal_contains(e->scenes[scene].world, &g, q->start, why,
+                                     sizeof why);
+    if (in == MPB_EUNSUPPORTED)
+        return fail_at(L, m, "%s (a region goal needs a urdf robot)", why);
+    if (in < 0)
+        return fail_at(L, get(L, m, "link"), "%s", why);
+    return 0;
+}
+
+/* `goal:` is a configuration (a list) or a region for a link (a mapping). */
+static int load_goal(loader *L, mpbd_experiment *e, int scene, mpbd_query *q,
+                     yaml_node_t *query)
+{
+    yaml_node_t *n = get(L, query, "goal");
+    if (n != NULL && n->type == YAML_MAPPING_NODE)
+        return load_region_goal(L, e, scene, q, n);
+    q->goal_kind = MPB_GOAL_JOINTS;
+    if ((q->goal = parse_vector(L, n ? n : query, "goal", e->num_joints)) == NULL)
+        return -1;
+    return check_state(L, e, scene, q->goal, "goal", n);
+}
+
 static int load_queries(loader *L, mpbd_experiment *e, int scene,
                         yaml_node_t *list)
 {
@@ -375,11 +473,8 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
         if ((q->start = parse_vector(L, get(L, m, "start") ? get(L, m, "start") : m,
                                      "start", e->num_joints)) == NULL)
             return -1;
-        if ((q->goal = parse_vector(L, get(L, m, "goal") ? get(L, m, "goal") : m,
-                                    "goal", e->num_joints)) == NULL)
-            return -1;
         if (check_state(L, e, scene, q->start, "start", get(L, m, "start")) != 0 ||
-            check_state(L, e, scene, q->goal, "goal", get(L, m, "goal")) != 0)
+            load_goal(L, e, scene, q, m) != 0)
             return -1;
         if ((n = get(L, m, "tolerance")) != NULL &&
             (parse_double(L, n, "tolerance", &q->tolerance) != 0 ||
@@ -387,13 +482,6 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
             return -1;
     }
     return 0;
-}
-
-static size_t count_items(const yaml_node_t *n)
-{
-    return n && n->type == YAML_SEQUENCE_NODE
-               ? (size_t)(n->data.sequence.items.top - n->data.sequence.items.start)
-               : 0;
 }
 
 /* The robot's planning group, as a list of joint names (optional for
@@ -694,6 +782,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
         free(e->queries[i].name);
         free(e->queries[i].start);
         free(e->queries[i].goal);
+        free(e->queries[i].goal_link);
     }
     for (int i = 0; i < e->num_configs; i++) {
         mpbd_config *c = &e->configs[i];
@@ -722,6 +811,19 @@ void mpbd_experiment_free(mpbd_experiment *e)
     free(e->file);
     free(e->text);
     free(e);
+}
+
+mpb_goal mpbd_query_goal(const mpbd_query *q)
+{
+    mpb_goal g = {.kind = q->goal_kind, .joints = q->goal,
+                  .joint_tolerance = q->tolerance, .link = q->goal_link};
+    for (int i = 0; i < 3; i++) {
+        g.position[i] = q->position[i];
+        g.position_tolerance[i] = q->position_tolerance[i];
+        g.orientation_rpy[i] = q->rpy[i];
+        g.orientation_tolerance[i] = q->rpy_tolerance[i];
+    }
+    return g;
 }
 
 /* splitmix64: a well-mixed 64-bit function of the run's place. */

@@ -32,12 +32,19 @@ typedef struct mpbd_scene {
     int64_t    db_id;
 } mpbd_scene;
 
+/* Where a query must end: a configuration, or a region for one link (the
+ * paper's goals: a box for its position, roll/pitch/yaw tolerances). */
 typedef struct mpbd_query {
     char   *name;
     int     scene;           /* index into scenes */
     double *start;           /* num_joints values */
-    double *goal;            /* num_joints values (joint-space goal) */
-    double  tolerance;
+    mpb_goal_kind goal_kind;
+    double *goal;            /* MPB_GOAL_JOINTS: num_joints values; else NULL */
+    double  tolerance;       /* per joint, at the start and a joint goal */
+    char   *goal_link;       /* MPB_GOAL_POSE_REGION: the link, else NULL */
+    double  position[3], position_tolerance[3];  /* box centre, half sizes (m) */
+    double  rpy[3], rpy_tolerance[3];            /* rad; a tolerance >= pi
+                                                    leaves that angle free */
     int64_t db_id;
 } mpbd_query;
 
@@ -75,6 +82,12 @@ typedef struct mpbd_experiment {
 mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen);
 
 void mpbd_experiment_free(mpbd_experiment *e);
+
+/*
+ * The goal of q as verify.h describes goals, for mpb_verify_path(). The
+ * result points into q: it lives as long as q does.
+ */
+mpb_goal mpbd_query_goal(const mpbd_query *q);
 
 /* The seed of one run, derived from the experiment seed and the run's place. */
 int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,

@@ -254,8 +254,8 @@ static void write_header(FILE *out, const suite *s, int quick)
         "  file: ../%s\n"
         "  joints: [",
         quick ? "Quick variant: 3 runs per sampling planner and query,\n"
-                "# 10 s limit, the paper's planners only (under 30 minutes on "
-                "2 cores)."
+                "# 10 s limit, no planners beyond the paper's (meant to take\n"
+                "# under 30 minutes on 2 cores)."
               : "The paper's protocol: 30 runs per sampling planner and\n"
                 "# query, 1 for deterministic ones, 60 s limit.",
         quick ? "paper-quick" : "paper", quick ? 3 : 30, quick ? 10.0 : 60.0,

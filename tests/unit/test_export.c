@@ -169,7 +169,7 @@ static int setup(void **state)
     const char *qname[] = {"k1", "k2", "t1"};
     for (int i = 0; i < 3; i++) {
         mpb_query_info q = {qname[i], 1, joints, zero, MPB_GOAL_JOINTS, one,
-                            0.01};
+                            0.01, NULL, NULL};
         assert_int_equal(mpb_store_query_add(s, scene[i == T1], &q,
                                              &f->query[i]), MPB_OK);
     }
@@ -190,7 +190,8 @@ static int setup(void **state)
                                                   "ompl", "RRTConnect",
                                                   "range=0.5", &cfg2), MPB_OK);
     assert_int_equal(mpb_store_scene_add(s, exp2, &kitchen, &scene2), MPB_OK);
-    mpb_query_info q2 = {"k9", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01};
+    mpb_query_info q2 = {"k9", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                         NULL, NULL};
     assert_int_equal(mpb_store_query_add(s, scene2, &q2, &query2), MPB_OK);
     assert_int_equal(mpb_store_run_add(s, exp2, cfg2, query2, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(s, exp2, first_id, &run2), 1);

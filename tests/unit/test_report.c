@@ -120,7 +120,7 @@ static void write_paper(fixture *f, mpb_store *s)
     const char *qname[] = {"k1", "k2", "t1"};
     for (int i = 0; i < 3; i++) {
         mpb_query_info q = {qname[i], 1, joints, zero, MPB_GOAL_JOINTS, one,
-                            0.01};
+                            0.01, NULL, NULL};
         assert_int_equal(mpb_store_query_add(s, scene[i == T1], &q,
                                              &f->query[i]), MPB_OK);
     }
@@ -154,7 +154,8 @@ static void write_newer(mpb_store *s)
     assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
     static const char *const joints[] = {"j"};
     static const double zero[] = {0.0}, one[] = {1.0};
-    mpb_query_info q = {"n1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01};
+    mpb_query_info q = {"n1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
     assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
     assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &run), 1);
@@ -177,7 +178,8 @@ static void write_odd(mpb_store *s)
     assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
     static const char *const joints[] = {"j"};
     static const double zero[] = {0.0}, one[] = {1.0};
-    mpb_query_info q = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01};
+    mpb_query_info q = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
     assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
     assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &run), 1);

@@ -109,7 +109,8 @@ static int setup(void **state)
         mpb_scene_info si = {scene_name[k], "planar", "r", "r", "planar",
                              scene_name[k], scene_name[k]};
         assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
-        mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01};
+        mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                            NULL, NULL};
         assert_int_equal(mpb_store_query_add(s, scene, &q, &query_id[k]),
                          MPB_OK);
     }

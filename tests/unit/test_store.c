@@ -38,7 +38,8 @@ static int setup(void **state)
                                                   "", &f->cfg), MPB_OK);
     mpb_scene_info sc = {"scene", "planar", "rh", "robot", "planar", "sh", "s"};
     assert_int_equal(mpb_store_scene_add(f->s, f->exp, &sc, &f->scene), MPB_OK);
-    mpb_query_info q = {"q", 2, joint_names, start, MPB_GOAL_JOINTS, goal, 0.01};
+    mpb_query_info q = {"q", 2, joint_names, start, MPB_GOAL_JOINTS, goal, 0.01,
+                        NULL, NULL};
     assert_int_equal(mpb_store_query_add(f->s, f->scene, &q, &f->query), MPB_OK);
     *state = f;
     return 0;
@@ -81,7 +82,8 @@ static void adding_twice_returns_the_same_row(void **state)
     assert_int_equal(mpb_store_planner_config_add(f->s, f->exp, "p/A", "p", "A",
                                                   "", &id), MPB_OK);
     assert_true(id == f->cfg);
-    mpb_query_info q = {"q", 2, joint_names, start, MPB_GOAL_JOINTS, goal, 0.01};
+    mpb_query_info q = {"q", 2, joint_names, start, MPB_GOAL_JOINTS, goal, 0.01,
+                        NULL, NULL};
     assert_int_equal(mpb_store_query_add(f->s, f->scene, &q, &id), MPB_OK);
     assert_true(id == f->query);
     for (int i = 0; i < 2; i++)

@@ -134,7 +134,7 @@ static int setup(void **state)
     const char *qname[] = {"q1", "q2", "q3"};
     for (int i = 0; i < 3; i++) {
         mpb_query_info q = {qname[i], 2, joint_names, start, MPB_GOAL_JOINTS,
-                            goal, 0.01 * (i + 1)};
+                            goal, 0.01 * (i + 1), NULL, NULL};
         assert_int_equal(mpb_store_query_add(f->w, f->scene[i < 2 ? 0 : 1], &q,
                                              &f->query[i]), MPB_OK);
     }
@@ -152,7 +152,7 @@ static int setup(void **state)
     assert_int_equal(mpb_store_scene_add(f->w, f->other, &s1, &f->other_scene),
                      MPB_OK);
     mpb_query_info oq = {"q1", 2, joint_names, start, MPB_GOAL_JOINTS, goal,
-                         0.01};
+                         0.01, NULL, NULL};
     assert_int_equal(mpb_store_query_add(f->w, f->other_scene, &oq, &oquery),
                      MPB_OK);
     assert_int_equal(mpb_store_run_add(f->w, f->other, ocfg, oquery, 0, 7),
