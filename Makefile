@@ -5,11 +5,16 @@
 #   make test   deps, build, run every test (unit and integration)
 #   make demo   deps, build, run the demo benchmark, print its report
 #   make clean  remove build/
+#   make install  build, then install into PREFIX (default /usr/local; DESTDIR
+#               for staging): libmpbench, headers, pkg-config and CMake
+#               files, mpbenchd, the planners, mpb, mpb_types.jar, man pages
 BUILD ?= build
 CMAKE_FLAGS ?=
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+PREFIX ?= /usr/local
+DESTDIR ?=
 
-.PHONY: all deps configure test demo clean bench
+.PHONY: all deps configure test demo clean bench install
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -33,3 +38,10 @@ clean:
 
 bench:
 	MPB_BUILD=$(BUILD) sh bench/run.sh $(BENCH_FLAGS)
+
+# The prefix goes into the build too (CMAKE_INSTALL_PREFIX), so that what
+# is built and what is installed agree.
+install:
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DCMAKE_INSTALL_PREFIX=$(PREFIX)
+	cmake --build $(BUILD) -j $(JOBS)
+	DESTDIR="$(DESTDIR)" cmake --install $(BUILD) --prefix $(PREFIX)

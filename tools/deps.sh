@@ -13,8 +13,8 @@ PACKAGES="
   liburdfdom-dev libtinyxml-dev libassimp-dev libeigen3-dev
   libsqlite3-dev sqlite3 libcmocka-dev libyaml-dev libsodium-dev
   iproute2 iptables util-linux
-  default-jdk-headless python3 python3-venv
-  xvfb gnuplot-nox libjchart2d-java
+  default-jdk-headless default-jre python3 python3-venv
+  xvfb gnuplot-nox libjchart2d-java x11-apps netpbm
   clang libfuzzer-14-dev libclang-rt-14-dev
 "
 
