@@ -7,6 +7,7 @@
  *   results.c    checking, verifying, measuring and storing results
  *   status.c     the MPB_STATUS message
  *   inbox.c      checking messages before they are decoded
+ *   replay.c     --replay: results from an LCM log instead of the network
  *   log.c        the console log
  */
 #ifndef MPBD_DAEMON_H
@@ -150,6 +151,11 @@ size_t mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);
+
+/* replay.c: rebuild the experiment's results from an lcm-logger log
+ * (docs/record-and-replay.md); 0 if the whole log was read, 1 if it is
+ * missing, damaged or of another experiment (what came before is stored). */
+int  mpbd_replay(mpbd *d, const char *log_path);
 
 /* log.c */
 void mpbd_log(const char *fmt, ...)

@@ -41,6 +41,10 @@ static void usage(FILE *out)
 "                        the right tag are rejected\n"
 "      --new             start a new experiment even if one can be resumed\n"
 "      --check           check the experiment file and exit\n"
+"      --replay LOG      rebuild the experiment's results from LOG, an\n"
+"                        lcm-logger log of a live run, into a new experiment\n"
+"                        in the database; plans nothing, sends nothing\n"
+"                        (docs/record-and-replay.md)\n"
 "  -v, --verbose         log every run\n"
 "  -h, --help            show this help\n"
 "\n"
@@ -49,6 +53,7 @@ static void usage(FILE *out)
 
 typedef struct options {
     const char *db, *lcm_url, *experiment, *secret_file;
+    const char *replay;              /* --replay LOG, or NULL */
     double resolution;
     int fresh, check, verbose;
 } options;
@@ -62,6 +67,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"new", no_argument, NULL, 'N'},
         {"secret-file", required_argument, NULL, 'S'},
         {"check", no_argument, NULL, 'C'},
+        {"replay", required_argument, NULL, 'R'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
@@ -70,7 +76,8 @@ static int parse_options(int argc, char **argv, options *o)
     char *end;
     *o = (options){.db = "mpbench.db", .lcm_url = MPB_DEFAULT_LCM_URL,
                    .resolution = 0.01};
-    while ((c = getopt_long(argc, argv, "d:u:r:vh", longopts, NULL)) != -1) {
+    opterr = 0;     /* one line of our own for a bad option, below */
+    while ((c = getopt_long(argc, argv, ":d:u:r:vh", longopts, NULL)) != -1) {
         switch (c) {
         case 'd': o->db = optarg; break;
         case 'u': o->lcm_url = optarg; break;
@@ -85,9 +92,17 @@ static int parse_options(int argc, char **argv, options *o)
         case 'N': o->fresh = 1; break;
         case 'S': o->secret_file = optarg; break;
         case 'C': o->check = 1; break;
+        case 'R': o->replay = optarg; break;
         case 'v': o->verbose = 1; break;
         case 'h': usage(stdout); exit(0);
-        default: usage(stderr); return -1;
+        case ':':
+            fprintf(stderr, "mpbenchd: %s needs a value (try 'mpbenchd "
+                            "--help')\n", argv[optind - 1]);
+            return -1;
+        default:
+            fprintf(stderr, "mpbenchd: unknown option '%s' (try 'mpbenchd "
+                            "--help')\n", argv[optind - 1]);
+            return -1;
         }
     }
     if (optind != argc - 1) {
@@ -150,11 +165,21 @@ static int setup_experiment(mpbd *d, int fresh)
     }
     for (int i = 0; rc == MPB_OK && i < e->num_queries; i++) {
         mpbd_query *q = &e->queries[i];
+        /* A region as the store keeps it: centre, half sizes, rpy, tolerances. */
+        double region[12];
+        for (int k = 0; k < 3; k++) {
+            region[k] = q->position[k];
+            region[3 + k] = q->position_tolerance[k];
+            region[6 + k] = q->rpy[k];
+            region[9 + k] = q->rpy_tolerance[k];
+        }
+        int is_region = q->goal_kind == MPB_GOAL_POSE_REGION;
         mpb_query_info qi = {
             .name = q->name, .num_joints = e->num_joints,
             .joint_names = (const char *const *)e->joint_names,
-            .start = q->start, .goal_kind = MPB_GOAL_JOINTS,
+            .start = q->start, .goal_kind = q->goal_kind,
             .goal_joints = q->goal, .goal_tolerance = q->tolerance,
+            .goal_link = q->goal_link, .goal_region = is_region ? region : NULL,
         };
         rc = mpb_store_query_add(s, e->scenes[q->scene].db_id, &qi, &q->db_id);
     }
@@ -259,13 +284,18 @@ int main(int argc, char **argv)
         fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
         goto out;
     }
-    if ((rc = setup_experiment(&d, o.fresh)) != MPB_OK) {
+    /* A replay always fills a new experiment of its own. */
+    if ((rc = setup_experiment(&d, o.fresh || o.replay)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s: %s\n", o.db, mpb_store_errmsg(d.store));
         goto out;
     }
     if ((rc = mpbd_scheduler_load(&d)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s: cannot load runs: %s\n", o.db,
                 mpb_store_errmsg(d.store));
+        goto out;
+    }
+    if (o.replay) {
+        exit_code = mpbd_replay(&d, o.replay) == 0 ? 0 : 1;
         goto out;
     }
     if ((d.lcm = lcm_create(o.lcm_url)) == NULL) {

@@ -16,7 +16,9 @@
  */
 #define MPB_TOOL_COMMANDS(X)                                                  \
     X(report, "print an experiment's results as the paper's tables, per scene") \
+    X(plot,   "draw box plots per metric and success-rate bars, per scene (gnuplot)") \
     X(status, "follow a running experiment: progress, rate, time left, planners") \
+    X(spy,    "start lcm-spy with mpbench's message types, to watch the traffic") \
     X(export, "write results for Planner Arena (and OMPL's tools)")
 
 #define MPB__TOOL_DECLARE(name, summary) int cmd_##name(int argc, char **argv);

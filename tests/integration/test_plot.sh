@@ -1,0 +1,110 @@
+#!/bin/sh
+# mpb plot on a real benchmark's database (the demo's scene, OMPL and null
+# planners, 3 runs per query, run over LCM in a private network namespace):
+# the expected images, each a real PNG or a well-formed SVG that names the
+# planners and says what the database says; and one-line errors for an
+# unknown scene, an experiment without finished runs, a missing database
+# and a missing gnuplot.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+mpb_enter_netns "$0" "$@"
+
+work=$(mktemp -d)
+trap 'mpb_stop_all; rm -rf "$work"' EXIT
+DB=$work/demo.db
+mpb=$MPB_BUILD/tools/mpb
+planar=$MPB_SOURCE/scenes/planar
+
+sed -e "s|runs: 10 |runs: 3 |" -e "s|\.\./planar/|$planar/|" \
+    "$MPB_SOURCE/scenes/experiments/demo.yaml" >"$work/demo.yaml"
+mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
+mpb_spawn "$work/ompl.log" "$MPB_BUILD/planners/ompl/mpb-planner-ompl"
+mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/demo.yaml" \
+    >"$work/daemon.log" 2>&1
+check "the benchmark completes" eq $? 0
+mpb_stop_all
+
+# ---- PNG (the default) ------------------------------------------------------
+"$mpb" plot -o "$work/png" "$DB" >"$work/png.out" 2>"$work/png.err"
+check "mpb plot exits 0" eq $? 0
+cat "$work/png.err"
+kinds="time success path_length smoothness clearance ee_path_length"
+for k in $kinds; do
+    f=$work/png/plot-pillars-$k.png
+    check "it writes and names plot-pillars-$k.png" grep -qx "$f" "$work/png.out"
+    check "... a PNG file" \
+        test "$(head -c 8 "$f" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a
+    check "... of a real picture's size" test "$(stat -c %s "$f")" -gt 8000
+done
+check "it writes nothing else" eq "$(ls "$work/png" | wc -l)" 6
+check "... and names nothing else" eq "$(wc -l <"$work/png.out")" 6
+
+# ---- SVG ----------------------------------------------------------------------
+"$mpb" plot --format svg --scene pillars -o "$work/svg" "$DB" >"$work/svg.out"
+check "--format svg exits 0" eq $? 0
+check "... writes six SVG files and no PNG" \
+    test "$(ls "$work/svg" | grep -c '\.svg$'):$(ls "$work/svg" | grep -c '\.png$')" = 6:0
+for f in "$work"/svg/*.svg; do
+    check "$(basename "$f") is well-formed XML" \
+        python3 -c "import sys, xml.etree.ElementTree as E; E.parse(sys.argv[1])" "$f"
+done
+svg_text() {
+    python3 -c "import sys, xml.etree.ElementTree as E
+print('\n'.join(''.join(t.itertext()) for t in E.parse(sys.argv[1]).iter() if t.tag.endswith('text')))" "$1"
+}
+svg_text "$work/svg/plot-pillars-success.svg" >"$work/success.txt"
+svg_text "$work/svg/plot-pillars-time.svg" >"$work/time.txt"
+svg_text "$work/svg/plot-pillars-path_length.svg" >"$work/length.txt"
+for c in $(sqlite3 "$DB" "SELECT name FROM planner_configs"); do
+    check "the success chart names $c" grep -qx "$c" "$work/success.txt"
+    n=$(sqlite3 "$DB" "SELECT count(*) FROM results WHERE planner = '$c'")
+    ok=$(sqlite3 "$DB" "SELECT sum(success) FROM results WHERE planner = '$c'")
+    check "... with its $ok of $n successes" grep -qx "$ok of $n" "$work/success.txt"
+    check "the time plot counts its $n runs" grep -qx "$n runs" "$work/time.txt"
+    check "the path length plot counts its $ok successful runs" \
+        grep -qx "$ok successful runs" "$work/length.txt"
+done
+check "the path length plot keys the OMPL stages" \
+    sh -c "grep -qx raw '$work/length.txt' && grep -qx shortcut '$work/length.txt' && grep -qx smoothed '$work/length.txt'"
+check "the time plot says its unit" grep -q "planning time .*(s" "$work/time.txt"
+check "... and draws the experiment's time limit" \
+    grep -qx "time limit $(printf %g "$(sqlite3 "$DB" 'SELECT time_limit FROM experiments')") s" "$work/time.txt"
+check "the titles name the scene and the experiment" \
+    grep -q "scene pillars, 2 queries pooled (experiment demo)" "$work/success.txt"
+
+# ---- errors -------------------------------------------------------------------
+"$mpb" plot --scene kitchen -o "$work/none" "$DB" >/dev/null 2>"$work/scene.err"
+check "an unknown scene exits 1" eq $? 1
+check "... naming it and the scenes there are" \
+    grep -qx "mpb plot: experiment 'demo' in $DB has no scene 'kitchen' (its scenes: pillars)" "$work/scene.err"
+
+# An experiment whose runs never finished: the daemon stopped before any
+# planner came.
+"$MPB_BUILD/daemon/mpbenchd" -d "$work/empty.db" "$work/demo.yaml" >/dev/null 2>&1 &
+daemon=$!
+for i in $(seq 100); do
+    [ "$(sqlite3 "$work/empty.db" 'SELECT count(*) FROM runs' 2>/dev/null)" -gt 0 ] 2>/dev/null && break
+    sleep 0.1
+done
+kill -TERM $daemon
+wait $daemon
+"$mpb" plot -o "$work/none" "$work/empty.db" >"$work/empty.out" 2>"$work/empty.err"
+check "a database without finished runs exits 1" eq $? 1
+check "... saying so in one line" \
+    grep -qx "mpb plot: experiment 'demo' (id 1) in $work/empty.db has no finished runs to plot" "$work/empty.err"
+check "... writing nothing" test ! -e "$work/none"
+
+"$mpb" plot "$work/missing.db" >/dev/null 2>"$work/missing.err"
+check "a missing database exits 1 naming it" \
+    grep -qx "mpb plot: cannot open $work/missing.db: No such file or directory" "$work/missing.err"
+
+PATH=/nonexistent "$mpb" plot -o "$work/nognuplot" "$DB" >/dev/null 2>"$work/nognuplot.err"
+check "without gnuplot it exits 1" eq $? 1
+check "... saying what to install" grep -q "^mpb plot: gnuplot not found on PATH" "$work/nognuplot.err"
+
+"$mpb" plot --format gif "$DB" >/dev/null 2>&1
+check "an unknown format is a usage error" eq $? 2
+"$mpb" plot --help | grep -q "box plot"
+check "--help describes the plots" eq $? 0
+
+mpb_finish

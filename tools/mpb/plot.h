@@ -1,0 +1,66 @@
+/*
+ * plot.h - what `mpb plot` gathers for one scene (plot.c) and hands to the
+ * gnuplot writer (plot_gnuplot.c).
+ */
+#ifndef MPB_PLOT_H
+#define MPB_PLOT_H
+
+#include <stdio.h>
+
+/* The path metrics plotted per stage, in the order of plot_metrics[]. */
+enum { PM_PATH_LENGTH, PM_SMOOTHNESS, PM_CLEARANCE, PM_EE_PATH_LENGTH,
+       PM_COUNT };
+
+typedef struct plot_metric_info {
+    const char *name;      /* as stored: "path_length" */
+    const char *title;     /* for a reader: "Joint-space path length" */
+    const char *axis;      /* the y axis, with the unit */
+    const char *note;      /* what a better value is: "shorter is better" */
+} plot_metric_info;
+
+extern const plot_metric_info plot_metrics[PM_COUNT];
+
+/* Values of one box, grown as rows come. */
+typedef struct plot_series {
+    double *v;
+    int     n, cap;
+} plot_series;
+
+typedef struct plot_scene {
+    const char *experiment;  /* name */
+    const char *scene;       /* name */
+    int         num_queries; /* the scene's queries, pooled in every plot */
+    double      time_limit;  /* s */
+    int         num_configs;
+    char      **configs;     /* names, "ompl/RRTConnect" */
+    int         num_stages;
+    char      **stages;      /* "raw", "shortcut", "smoothed", ... */
+    int        *finished;    /* per config: finished runs */
+    int        *succeeded;   /* per config */
+    plot_series *time;       /* per config: time_total of finished runs */
+    plot_series *metric;     /* [metric][stage][config], successful runs */
+} plot_scene;
+
+static inline plot_series *plot_metric_series(const plot_scene *sc, int m,
+                                              int stage, int config)
+{
+    return &sc->metric[((size_t)m * (size_t)sc->num_stages + (size_t)stage)
+                       * (size_t)sc->num_configs + (size_t)config];
+}
+
+/*
+ * Write to gp the gnuplot commands that draw one scene's plots into dir,
+ * as plot-SCENE-WHAT.EXT (EXT "png" or "svg"): planning time, success
+ * rate, and each path metric that has values. wrote(ud, path) is called
+ * for each file the commands make. Returns the number of plots.
+ */
+int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
+                       const char *ext,
+                       void (*wrote)(void *ud, const char *path), void *ud);
+
+/* The scene's name as it goes into file names: [A-Za-z0-9_.-] kept, other
+ * characters as '_'. */
+void plot_file_name(char *out, size_t size, const char *dir,
+                    const char *scene, const char *what, const char *ext);
+
+#endif
