@@ -53,8 +53,7 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
 {
     const mpbd_experiment *e = d->exp;
     mpb_world *world = e->scenes[q->scene].world;
-    mpb_goal goal = {.kind = MPB_GOAL_JOINTS, .joints = q->goal,
-                     .joint_tolerance = q->tolerance};
+    mpb_goal goal = mpbd_query_goal(q);
     int nm = 0;
 
     w->rec.name = st->name;

@@ -119,6 +119,16 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
             .link = "",
         },
     };
+    if (q->goal_kind == MPB_GOAL_POSE_REGION) {
+        rq.goal = (mpb_goal_t){.kind = MPB_GOAL_T_POSE_REGION,
+                               .link = q->goal_link};
+        memcpy(rq.goal.position, q->position, sizeof q->position);
+        memcpy(rq.goal.position_tolerance, q->position_tolerance,
+               sizeof q->position_tolerance);
+        memcpy(rq.goal.orientation_rpy, q->rpy, sizeof q->rpy);
+        memcpy(rq.goal.orientation_tolerance, q->rpy_tolerance,
+               sizeof q->rpy_tolerance);
+    }
     if (mpb_request_channel(p->id, channel, sizeof channel) != MPB_OK)
         return MPB_EINVAL;
     return mpb_publish_request(d->lcm, d->auth, channel, &rq);

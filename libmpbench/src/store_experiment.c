@@ -202,15 +202,18 @@ int mpb_store_query_add(mpb_store *s, int64_t scene_id,
     char *start = numbers_text(q->start, q->num_joints);
     char *goal = q->goal_joints ? numbers_text(q->goal_joints, q->num_joints)
                                 : NULL;
+    char *region = q->goal_region ? numbers_text(q->goal_region, 12) : NULL;
     sqlite3_stmt *ins = NULL, *sel = NULL;
     int rc = MPB_ENOMEM;
 
-    if (names == NULL || start == NULL || (q->goal_joints && goal == NULL))
+    if (names == NULL || start == NULL || (q->goal_joints && goal == NULL) ||
+        (q->goal_region && region == NULL))
         goto done;
     rc = MPB_EDB;
     ins = mpb__store_prepare(s,
         "INSERT OR IGNORE INTO queries(scene_id, name, joint_names, start,"
-        " goal_kind, goal_joints, goal_tolerance) VALUES (?, ?, ?, ?, ?, ?, ?)");
+        " goal_kind, goal_joints, goal_tolerance, goal_link, goal_region)"
+        " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
     sel = mpb__store_prepare(s,
         "SELECT id FROM queries WHERE scene_id = ? AND name = ?");
     if (ins == NULL || sel == NULL) {
@@ -228,6 +231,10 @@ int mpb_store_query_add(mpb_store *s, int64_t scene_id,
     if (goal)
         sqlite3_bind_text(ins, 6, goal, -1, SQLITE_STATIC);
     sqlite3_bind_double(ins, 7, q->goal_tolerance);
+    if (q->goal_link)
+        sqlite3_bind_text(ins, 8, q->goal_link, -1, SQLITE_STATIC);
+    if (region)
+        sqlite3_bind_text(ins, 9, region, -1, SQLITE_STATIC);
     sqlite3_bind_int64(sel, 1, scene_id);
     sqlite3_bind_text(sel, 2, q->name, -1, SQLITE_STATIC);
     rc = insert_or_get(s, ins, sel, "add query", id);
@@ -237,6 +244,7 @@ done:
     free(names);
     free(start);
     free(goal);
+    free(region);
     return rc;
 }
 

@@ -77,6 +77,11 @@ typedef struct mpb_query_info {
     int           goal_kind;          /* mpb_goal_kind */
     const double *goal_joints;        /* num_joints values, or NULL */
     double        goal_tolerance;
+    /* MPB_GOAL_POSE_REGION: the link, and 12 numbers: box centre (m), half
+     * extents (m), reference roll pitch yaw (rad), their tolerances (rad).
+     * NULL for joint goals. */
+    const char   *goal_link;
+    const double *goal_region;
 } mpb_query_info;
 
 int mpb_store_query_add(mpb_store *s, int64_t scene_id,
@@ -246,6 +251,8 @@ typedef struct mpb_query_row {
     int         goal_kind;     /* mpb_goal_kind */
     const char *goal_joints;   /* space-separated numbers, or NULL */
     double      goal_tolerance;
+    const char *goal_link;     /* pose-region goals: the link, else NULL */
+    const char *goal_region;   /* and its 12 numbers, as in mpb_query_info */
 } mpb_query_row;
 
 /* The queries of a scene. */
