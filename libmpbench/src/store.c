@@ -1,8 +1,12 @@
-/* store.c - opening the database, its schema version, transactions, errors. */
+/* store.c - opening the database, its schema version, transactions, errors,
+ * and the WAL checkpoints, kept out of the writer's commits. */
+#include <errno.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "store_internal.h"
 
@@ -22,8 +26,8 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
         "UPDATE runs SET state = 'done', finished = " NOW_SQL ","
         " planner_id = ?3, status = ?4, message = ?5, claimed_success = ?6,"
         " valid = ?7, verdict = ?8, success = ?9, time_total = ?10,"
-        " time_raw = ?11, time_other = ?12, wall_time = ?13, final_stage = ?14"
-        " WHERE id = ?1 AND run_uid = ?2 AND state != 'done'",
+        " time_raw = ?11, time_other = ?12, wall_time = ?13, final_stage = ?14,"
+        " final_metrics = ?15 WHERE id = ?1 AND run_uid = ?2 AND state != 'done'",
     [MPB__ST_STAGE_INSERT] =
         "INSERT OR REPLACE INTO stages(run_id, idx, name, time, num_waypoints,"
         " num_joints, waypoints, valid, verdict, verdict_detail,"
@@ -40,6 +44,9 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
     [MPB__ST_RUN_ADD] =
         "INSERT OR IGNORE INTO runs(experiment_id, planner_config_id,"
         " query_id, repetition, seed) VALUES (?1, ?2, ?3, ?4, ?5)",
+    [MPB__ST_SAVEPOINT] = "SAVEPOINT mpb_run",
+    [MPB__ST_RELEASE] = "RELEASE mpb_run",
+    [MPB__ST_ROLLBACK_TO] = "ROLLBACK TO mpb_run",
 };
 
 int mpb__store_fail(mpb_store *s, int code, const char *fmt, ...)
@@ -56,7 +63,9 @@ int mpb__store_db_fail(mpb_store *s, const char *what)
     return mpb__store_fail(s, MPB_EDB, "%s: %s", what, sqlite3_errmsg(s->db));
 }
 
-sqlite3_stmt *mpb__store_prepare(mpb_store *s, const char *sql)
+static int tx_open(mpb_store *s);
+
+static sqlite3_stmt *prepare(mpb_store *s, const char *sql)
 {
     sqlite3_stmt *st = NULL;
     if (sqlite3_prepare_v2(s->db, sql, -1, &st, NULL) != SQLITE_OK) {
@@ -66,10 +75,18 @@ sqlite3_stmt *mpb__store_prepare(mpb_store *s, const char *sql)
     return st;
 }
 
+sqlite3_stmt *mpb__store_prepare(mpb_store *s, const char *sql)
+{
+    return tx_open(s) == MPB_OK ? prepare(s, sql) : NULL;
+}
+
 sqlite3_stmt *mpb__store_stmt(mpb_store *s, mpb__stmt_id id)
 {
+    if (id != MPB__ST_BEGIN && id != MPB__ST_COMMIT &&
+        id != MPB__ST_ROLLBACK && tx_open(s) != MPB_OK)
+        return NULL;
     if (s->stmt[id] == NULL)
-        s->stmt[id] = mpb__store_prepare(s, stmt_sql[id]);
+        s->stmt[id] = prepare(s, stmt_sql[id]);
     else
         sqlite3_reset(s->stmt[id]);
     if (s->stmt[id] != NULL)
@@ -101,12 +118,36 @@ static int schema_version(mpb_store *s, int *version)
     return MPB_OK;
 }
 
+/* Add a column that a database made by an earlier mpbench lacks. */
+static int add_missing_column(mpb_store *s, const char *table,
+                              const char *column, const char *type)
+{
+    char sql[160], what[96];
+    sqlite3_stmt *probe = NULL;
+    snprintf(sql, sizeof sql, "SELECT %s FROM %s LIMIT 0", column, table);
+    int present = sqlite3_prepare_v2(s->db, sql, -1, &probe, NULL) == SQLITE_OK;
+    sqlite3_finalize(probe);
+    if (present)
+        return MPB_OK;
+    snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", table,
+             column, type);
+    snprintf(what, sizeof what, "add %s.%s", table, column);
+    return exec(s, sql, what);
+}
+
 static int create_schema(mpb_store *s)
 {
     int version, rc;
     if ((rc = exec(s, "BEGIN IMMEDIATE", "begin")) != MPB_OK)
         return rc;
     if ((rc = exec(s, mpb__schema_v1, "create schema")) != MPB_OK)
+        goto fail;
+    /* A database made before runs.final_metrics gets the column, NULL for
+     * its runs: reports read their metrics from the metrics table. One made
+     * before pose-region goals gets their columns, NULL for its queries. */
+    if ((rc = add_missing_column(s, "runs", "final_metrics", "BLOB")) != MPB_OK ||
+        (rc = add_missing_column(s, "queries", "goal_link", "TEXT")) != MPB_OK ||
+        (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK)
         goto fail;
     if ((rc = schema_version(s, &version)) != MPB_OK)
         goto fail;
@@ -126,11 +167,193 @@ fail:
     return rc;
 }
 
+/* ---- locks and checkpoints -------------------------------------------------
+ *
+ * SQLite's automatic checkpoint runs inside the commit that takes the WAL
+ * past 1000 pages: that commit copies the WAL into the database and syncs
+ * both, and a run's latency goes from a few hundred microseconds to several
+ * milliseconds once every hundred runs (docs/performance.md). Instead, a
+ * writable handle turns the automatic checkpoint off, and a thread of its
+ * own, on a connection of its own, checkpoints:
+ *
+ * - every CKPT_PERIOD_MS after a commit, PASSIVE: it copies what the WAL
+ *   holds into the database without ever waiting for or blocking the
+ *   writer;
+ * - once the WAL has grown past CKPT_FRAMES, RESTART as well. A writer that
+ *   never pauses never lets a PASSIVE checkpoint reach the end of the WAL,
+ *   and the WAL only starts again from its beginning once one has: without
+ *   this it grows by every page of every commit. RESTART holds the writer
+ *   off for as long as it takes to copy what came after the PASSIVE pass
+ *   and sync: about a millisecond, once per CKPT_FRAMES pages, instead of
+ *   the copy of the whole WAL once per 1000.
+ *
+ * Durability is unchanged: with synchronous=NORMAL a commit in WAL mode is
+ * not synced; the checkpoints sync, as before.
+ */
+#define CKPT_PERIOD_MS 200
+#define CKPT_FRAMES 4096            /* 16 MiB of 4 KiB pages */
+#define BUSY_WAIT_US 5000000L       /* how long a handle waits for a lock */
+#define CKPT_BUSY_WAIT_US 2000L     /* ... the checkpointer, for RESTART */
+
+/* The busy handler: wait for a lock in short steps first (the daemon's
+ * transactions and a RESTART checkpoint last about a millisecond), longer
+ * ones later, at most *(long *)ud microseconds in all. */
+static int store_busy(void *ud, int n)
+{
+    long limit = *(const long *)ud;
+    long waited = n < 20 ? n * 100L
+                : n < 38 ? 2000L + (n - 20) * 1000L
+                         : 20000L + (n - 38) * 10000L;
+    long step = n < 20 ? 100L : n < 38 ? 1000L : 10000L;
+    struct timespec ts = {0, step * 1000L};
+    if (waited >= limit)
+        return 0;
+    nanosleep(&ts, NULL);
+    return 1;
+}
+
+static const long busy_wait_us = BUSY_WAIT_US;
+static const long ckpt_busy_wait_us = CKPT_BUSY_WAIT_US;
+
+struct mpb__checkpointer {
+    sqlite3        *db;         /* used by the thread only */
+    pthread_t       thread;
+    pthread_mutex_t mu;
+    pthread_cond_t  cond;
+    int             dirty;      /* a commit since the last checkpoint */
+    int             frames;     /* WAL frames after the last commit */
+    int             kicked;     /* woken for a long WAL, not yet served */
+    int             quit;
+};
+
+/* sqlite3_wal_hook: after every commit of the writer, in its thread. */
+static int ckpt_on_commit(void *ud, sqlite3 *db, const char *name, int frames)
+{
+    mpb__checkpointer *c = ud;
+    (void)db;
+    (void)name;
+    pthread_mutex_lock(&c->mu);
+    c->dirty = 1;
+    c->frames = frames;
+    if (frames >= CKPT_FRAMES && !c->kicked) {
+        c->kicked = 1;
+        pthread_cond_signal(&c->cond);
+    }
+    pthread_mutex_unlock(&c->mu);
+    return SQLITE_OK;
+}
+
+static void *ckpt_main(void *arg)
+{
+    mpb__checkpointer *c = arg;
+    struct timespec due;
+    int held_off = 0;           /* the last RESTART could not finish */
+
+    pthread_mutex_lock(&c->mu);
+    while (!c->quit) {
+        clock_gettime(CLOCK_MONOTONIC, &due);
+        due.tv_nsec += CKPT_PERIOD_MS * 1000000L;
+        if (due.tv_nsec >= 1000000000L) {
+            due.tv_sec++;
+            due.tv_nsec -= 1000000000L;
+        }
+        /* A long WAL cuts the wait short, unless a reader kept the last
+         * RESTART from finishing: then try again only a period later, not
+         * after every commit. */
+        while (!c->quit && (held_off || c->frames < CKPT_FRAMES) &&
+               pthread_cond_timedwait(&c->cond, &c->mu, &due) != ETIMEDOUT)
+            ;
+        if (c->quit || !c->dirty)
+            continue;
+        c->dirty = 0;
+        c->frames = 0;
+        c->kicked = 0;
+        pthread_mutex_unlock(&c->mu);
+        /* Best effort: what cannot be done now (a reader holds an older
+         * snapshot, the writer holds its lock) is done next time. */
+        int wal_frames = 0;
+        held_off = 0;
+        int restarted = 0;
+        if (sqlite3_wal_checkpoint_v2(c->db, NULL, SQLITE_CHECKPOINT_PASSIVE,
+                                      &wal_frames, NULL) == SQLITE_OK &&
+            wal_frames >= CKPT_FRAMES) {
+            restarted = sqlite3_wal_checkpoint_v2(c->db, NULL,
+                                                  SQLITE_CHECKPOINT_RESTART,
+                                                  NULL, NULL) == SQLITE_OK;
+            held_off = !restarted;
+        }
+        pthread_mutex_lock(&c->mu);
+        if (held_off)
+            c->dirty = 1;
+        /* Commits before the RESTART reported the long WAL; the next one
+         * starts it again. */
+        if (restarted)
+            c->frames = 0;
+    }
+    pthread_mutex_unlock(&c->mu);
+    return NULL;
+}
+
+static void ckpt_stop(mpb_store *s)
+{
+    mpb__checkpointer *c = s->ckpt;
+    if (c == NULL)
+        return;
+    sqlite3_wal_hook(s->db, NULL, NULL);
+    pthread_mutex_lock(&c->mu);
+    c->quit = 1;
+    pthread_cond_signal(&c->cond);
+    pthread_mutex_unlock(&c->mu);
+    pthread_join(c->thread, NULL);
+    sqlite3_close(c->db);
+    pthread_cond_destroy(&c->cond);
+    pthread_mutex_destroy(&c->mu);
+    free(c);
+    s->ckpt = NULL;
+}
+
+/* Start the checkpointer of s; if it cannot start, SQLite's automatic
+ * checkpoint stays on, which is slower but just as correct. */
+static void ckpt_start(mpb_store *s, const char *path)
+{
+    mpb__checkpointer *c = calloc(1, sizeof *c);
+    pthread_condattr_t ca;
+    if (c == NULL)
+        return;
+    /* The connection finds the WAL when it first reads the database. */
+    if (sqlite3_open_v2(path, &c->db, SQLITE_OPEN_READWRITE |
+                        SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK ||
+        sqlite3_exec(c->db, "SELECT count(*) FROM sqlite_master", NULL, NULL,
+                     NULL) != SQLITE_OK) {
+        sqlite3_close(c->db);
+        free(c);
+        return;
+    }
+    sqlite3_busy_handler(c->db, store_busy, (void *)&ckpt_busy_wait_us);
+    pthread_condattr_init(&ca);
+    pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
+    pthread_mutex_init(&c->mu, NULL);
+    pthread_cond_init(&c->cond, &ca);
+    pthread_condattr_destroy(&ca);
+    if (pthread_create(&c->thread, NULL, ckpt_main, c) != 0) {
+        sqlite3_close(c->db);
+        pthread_cond_destroy(&c->cond);
+        pthread_mutex_destroy(&c->mu);
+        free(c);
+        return;
+    }
+    s->ckpt = c;
+    /* The hook replaces SQLite's automatic checkpoint (itself a WAL hook). */
+    sqlite3_wal_hook(s->db, ckpt_on_commit, c);
+}
+
 int mpb_store_open(const char *path, int readonly, mpb_store **out)
 {
     mpb_store *s = calloc(1, sizeof *s);
-    int flags = readonly ? SQLITE_OPEN_READONLY
-                         : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+    /* A handle is used by one thread at a time: no mutex per call. */
+    int flags = SQLITE_OPEN_NOMUTEX |
+                (readonly ? SQLITE_OPEN_READONLY
+                          : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
     int rc;
 
     *out = s;
@@ -143,7 +366,7 @@ int mpb_store_open(const char *path, int readonly, mpb_store **out)
     }
     /* Several processes (the daemon, `mpb report`, sqlite3) share the file;
      * wait for a lock rather than fail. */
-    sqlite3_busy_timeout(s->db, 5000);
+    sqlite3_busy_handler(s->db, store_busy, (void *)&busy_wait_us);
     if (readonly) {
         int version;
         if ((rc = schema_version(s, &version)) != MPB_OK)
@@ -165,16 +388,23 @@ int mpb_store_open(const char *path, int readonly, mpb_store **out)
                       " PRAGMA foreign_keys=ON; PRAGMA temp_store=MEMORY;"
                       " PRAGMA cache_size=-16384;", "configure")) != MPB_OK)
         return rc;
-    return create_schema(s);
+    if ((rc = create_schema(s)) != MPB_OK)
+        return rc;
+    ckpt_start(s, path);
+    return MPB_OK;
 }
 
 void mpb_store_close(mpb_store *s)
 {
     if (s == NULL)
         return;
+    ckpt_stop(s);
     for (int i = 0; i < MPB__ST_COUNT; i++)
         sqlite3_finalize(s->stmt[i]);
+    for (int i = 0; i < MPB__METRIC_ROWS_MAX; i++)
+        sqlite3_finalize(s->metric_rows[i]);
     sqlite3_close(s->db);
+    free(s->pack);
     free(s);
 }
 
@@ -185,7 +415,7 @@ const char *mpb_store_errmsg(const mpb_store *s)
     return s->errmsg[0] ? s->errmsg : "no error";
 }
 
-static int step_done(mpb_store *s, mpb__stmt_id id, const char *what)
+int mpb__store_step(mpb_store *s, mpb__stmt_id id, const char *what)
 {
     sqlite3_stmt *st = mpb__store_stmt(s, id);
     if (st == NULL)
@@ -195,24 +425,54 @@ static int step_done(mpb_store *s, mpb__stmt_id id, const char *what)
     return rc == SQLITE_DONE ? MPB_OK : mpb__store_db_fail(s, what);
 }
 
+/* Open the wanted transaction, if there is one. A failure sticks until the
+ * commit, which reports it: nothing of that transaction runs outside it. */
+static int tx_open(mpb_store *s)
+{
+    if (s->in_tx != MPB__TX_WANTED)
+        return MPB_OK;
+    if (s->tx_failed)
+        return MPB_EDB;
+    int rc = mpb__store_step(s, MPB__ST_BEGIN, "begin");
+    if (rc == MPB_OK)
+        s->in_tx = MPB__TX_OPEN;
+    else
+        s->tx_failed = 1;
+    return rc;
+}
+
+int mpb__store_tx_open(mpb_store *s)
+{
+    return tx_open(s);
+}
+
 int mpb_store_begin(mpb_store *s)
 {
-    int rc = step_done(s, MPB__ST_BEGIN, "begin");
-    if (rc == MPB_OK)
-        s->in_tx = 1;
-    return rc;
+    if (s->in_tx != MPB__TX_NONE)
+        return mpb__store_fail(s, MPB_EDB, "begin: a transaction is already "
+                               "open");
+    s->in_tx = MPB__TX_WANTED;
+    s->tx_failed = 0;
+    return MPB_OK;
 }
 
 int mpb_store_commit(mpb_store *s)
 {
-    int rc = step_done(s, MPB__ST_COMMIT, "commit");
+    if (s->in_tx == MPB__TX_WANTED) {
+        /* Nothing ran: nothing to commit (or the failure to open it). */
+        s->in_tx = MPB__TX_NONE;
+        return s->tx_failed ? MPB_EDB : MPB_OK;
+    }
+    int rc = mpb__store_step(s, MPB__ST_COMMIT, "commit");
     if (rc == MPB_OK)
-        s->in_tx = 0;
+        s->in_tx = MPB__TX_NONE;
     return rc;
 }
 
 int mpb_store_rollback(mpb_store *s)
 {
-    s->in_tx = 0;
-    return step_done(s, MPB__ST_ROLLBACK, "rollback");
+    int was = s->in_tx;
+    s->in_tx = MPB__TX_NONE;
+    return was == MPB__TX_WANTED ? MPB_OK
+                                 : mpb__store_step(s, MPB__ST_ROLLBACK, "rollback");
 }

@@ -23,14 +23,36 @@ typedef enum mpb__stmt_id {
     MPB__ST_VALUE_INSERT,
     MPB__ST_PROGRESS_INSERT,
     MPB__ST_RUN_ADD,
+    MPB__ST_SAVEPOINT,
+    MPB__ST_RELEASE,
+    MPB__ST_ROLLBACK_TO,
     MPB__ST_COUNT
 } mpb__stmt_id;
+
+/* mpb_store.in_tx: mpb_store_begin() only marks the transaction wanted; it
+ * is opened (BEGIN IMMEDIATE) just before the first statement that needs
+ * it, so that the daemon's loop, which begins and commits at every wake-up,
+ * touches no lock when a wake-up writes nothing. */
+enum { MPB__TX_NONE, MPB__TX_WANTED, MPB__TX_OPEN };
+
+/* Most metric rows one INSERT writes (a stage has about seven). */
+#define MPB__METRIC_ROWS_MAX 8
+
+/* The WAL checkpointer of a writable handle (store.c). */
+typedef struct mpb__checkpointer mpb__checkpointer;
 
 struct mpb_store {
     sqlite3      *db;
     int           readonly;
-    int           in_tx;
+    int           in_tx;        /* MPB__TX_... */
+    int           tx_failed;    /* opening the wanted transaction failed */
     sqlite3_stmt *stmt[MPB__ST_COUNT];
+    mpb__checkpointer *ckpt;    /* NULL: SQLite checkpoints in commits */
+    /* INSERT of k metric rows in one statement, [k - 1], made on first
+     * use (store_runs.c). */
+    sqlite3_stmt *metric_rows[MPB__METRIC_ROWS_MAX];
+    unsigned char *pack;        /* mpb__metrics_pack's buffer */
+    size_t        pack_cap;
     char          errmsg[256];
 };
 
@@ -44,10 +66,35 @@ int mpb__store_fail(mpb_store *s, int code, const char *fmt, ...)
 /* Record SQLite's error for what was being done and return MPB_EDB. */
 int mpb__store_db_fail(mpb_store *s, const char *what);
 
-/* The statement id, prepared on first use; NULL on failure (error set). */
+/* The statement id, prepared on first use; NULL on failure (error set).
+ * Opens the wanted transaction first. */
 sqlite3_stmt *mpb__store_stmt(mpb_store *s, mpb__stmt_id id);
 
-/* Prepare a one-off statement; NULL on failure (error set). */
+/* Prepare a one-off statement; NULL on failure (error set). Opens the
+ * wanted transaction first. */
 sqlite3_stmt *mpb__store_prepare(mpb_store *s, const char *sql);
+
+/*
+ * runs.final_metrics: every metric of the run's final stage, packed, so
+ * that a report reads one row per run instead of joining the metrics table
+ * (docs/schema.md). Each metric is its name's length in one byte, the name
+ * (no NUL), then the value as an 8-byte IEEE double in little-endian order.
+ * The metrics table stays the reference; NULL means "look there" (a run
+ * finished before the column existed, or a name longer than 255 bytes).
+ */
+#define MPB__PACK_NAME_MAX 255
+
+/* Pack m[0..n) into s->pack; *out NULL (and MPB_OK) if it cannot be
+ * packed, so the column stays NULL. */
+int mpb__metrics_pack(mpb_store *s, const mpb_named *m, int n,
+                      const unsigned char **out, int *len);
+
+/* Open the transaction mpb_store_begin() asked for, if not yet open (the
+ * statement functions above do it themselves). */
+int mpb__store_tx_open(mpb_store *s);
+
+/* Step statement id, which returns no row, and reset it; MPB_OK or the
+ * error (what says what was being done). */
+int mpb__store_step(mpb_store *s, mpb__stmt_id id, const char *what);
 
 #endif

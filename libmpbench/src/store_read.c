@@ -4,6 +4,7 @@
  * finished runs of a scene with the metrics of one stage of each.
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -143,10 +144,23 @@ int mpb_store_planner_configs(mpb_store *s, int64_t experiment_id,
 int mpb_store_queries(mpb_store *s, int64_t scene_id,
                       int (*cb)(void *ud, const mpb_query_row *row), void *ud)
 {
+    /* A database made before pose-region goals, opened read-only, has no
+     * columns for them (a writer adds them): read NULLs instead. */
     sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT id, scene_id, name, joint_names, start, goal_kind = 'joints',"
-        " goal_joints, goal_tolerance FROM queries WHERE scene_id = ?"
-        " ORDER BY id");
+        "SELECT count(*) FROM pragma_table_info('queries')"
+        " WHERE name = 'goal_region'");
+    if (st == NULL)
+        return MPB_EDB;
+    int has_region = sqlite3_step(st) == SQLITE_ROW &&
+                     sqlite3_column_int(st, 0) == 1;
+    sqlite3_finalize(st);
+    st = mpb__store_prepare(s, has_region
+        ? "SELECT id, scene_id, name, joint_names, start, goal_kind = 'joints',"
+          " goal_joints, goal_tolerance, goal_link, goal_region"
+          " FROM queries WHERE scene_id = ? ORDER BY id"
+        : "SELECT id, scene_id, name, joint_names, start, goal_kind = 'joints',"
+          " goal_joints, goal_tolerance, NULL, NULL"
+          " FROM queries WHERE scene_id = ? ORDER BY id");
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, scene_id);
@@ -162,6 +176,8 @@ int mpb_store_queries(mpb_store *s, int64_t scene_id,
                                                     : MPB_GOAL_POSE_REGION,
             .goal_joints = col_text(st, 6),
             .goal_tolerance = col_double(st, 7),
+            .goal_link = col_text(st, 8),
+            .goal_region = col_text(st, 9),
         };
         stop = cb(ud, &row);
     }
@@ -213,14 +229,10 @@ typedef struct result_walk {
 
 #define NO_TEXT ((size_t)-1)
 
-/* Copy str (may be NULL) into w->text; its offset, or NO_TEXT. */
-static int keep_text(result_walk *w, const char *str, size_t *off)
+/* Copy the n bytes of str into w->text, NUL-terminated; their offset. */
+static int keep_textn(result_walk *w, const char *str, size_t len, size_t *off)
 {
-    if (str == NULL) {
-        *off = NO_TEXT;
-        return MPB_OK;
-    }
-    size_t n = strlen(str) + 1;
+    size_t n = len + 1;
     if (w->text_len + n > w->text_cap) {
         size_t cap = w->text_cap ? w->text_cap : 256;
         while (cap < w->text_len + n)
@@ -231,21 +243,33 @@ static int keep_text(result_walk *w, const char *str, size_t *off)
         w->text = t;
         w->text_cap = cap;
     }
-    memcpy(w->text + w->text_len, str, n);
+    memcpy(w->text + w->text_len, str, len);
+    w->text[w->text_len + len] = '\0';
     *off = w->text_len;
     w->text_len += n;
     return MPB_OK;
 }
 
-/* Start gathering the run in the statement's current row. */
-static int begin_run(result_walk *w, sqlite3_stmt *st)
+/* Copy str (may be NULL) into w->text; its offset, or NO_TEXT. */
+static int keep_text(result_walk *w, const char *str, size_t *off)
+{
+    if (str == NULL) {
+        *off = NO_TEXT;
+        return MPB_OK;
+    }
+    return keep_textn(w, str, strlen(str), off);
+}
+
+/* Start gathering the run in the statement's current row (columns 0-9 of
+ * either results statement). */
+static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
 {
     w->text_len = 0;
     w->row = (mpb_result_row){
         .run_id = sqlite3_column_int64(st, 0),
         .planner_config_id = sqlite3_column_int64(st, 1),
         .query_id = sqlite3_column_int64(st, 2),
-        .scene_id = sqlite3_column_int64(st, 12),
+        .scene_id = scene_id,
         .repetition = sqlite3_column_int(st, 3),
         .success = sqlite3_column_int(st, 4) != 0,
         .time_total = col_double(st, 6),
@@ -261,15 +285,12 @@ static int begin_run(result_walk *w, sqlite3_stmt *st)
     return MPB_OK;
 }
 
-/* Add the metric in the statement's current row, if any, to the run. */
-static int add_metric(result_walk *w, sqlite3_stmt *st)
+/* Add a metric (its name len bytes long) to the run. */
+static int add_named(result_walk *w, const char *name, size_t len,
+                     double value)
 {
-    const char *name = col_text(st, 10);
-    if (name == NULL)
-        return MPB_OK;      /* the run's stage has no metrics */
-    double value = col_double(st, 11);
     for (int i = 0; i < w->num_names; i++)
-        if (strcmp(w->names[i], name) == 0)
+        if (strncmp(w->names[i], name, len) == 0 && w->names[i][len] == '\0')
             w->metrics[i] = value;
     if (w->row.num_named == w->named_cap) {
         int cap = w->named_cap ? 2 * w->named_cap : 16;
@@ -284,10 +305,39 @@ static int add_metric(result_walk *w, sqlite3_stmt *st)
         w->named_cap = cap;
     }
     int k = w->row.num_named;
-    if (keep_text(w, name, &w->name_off[k]) != MPB_OK)
+    if (keep_textn(w, name, len, &w->name_off[k]) != MPB_OK)
         return MPB_ENOMEM;
     w->named[k].value = value;
     w->row.num_named = k + 1;
+    return MPB_OK;
+}
+
+/* Add the metric in columns 10 (name) and 11 (value) of st, if any. */
+static int add_metric(result_walk *w, sqlite3_stmt *st)
+{
+    const char *name = col_text(st, 10);
+    if (name == NULL)
+        return MPB_OK;      /* the run's stage has no metrics */
+    return add_named(w, name, strlen(name), col_double(st, 11));
+}
+
+/* Add the metrics packed in runs.final_metrics (store_internal.h). */
+static int add_packed(result_walk *w, const unsigned char *p, int len)
+{
+    const unsigned char *end = p + len;
+    while (end - p >= 1 && (size_t)(end - p - 1) >= (size_t)p[0] + 8) {
+        size_t k = *p++;
+        const char *name = (const char *)p;
+        uint64_t bits = 0;
+        double value;
+        p += k;
+        for (int b = 0; b < 8; b++)
+            bits |= (uint64_t)p[b] << (8 * b);
+        p += 8;
+        memcpy(&value, &bits, sizeof value);
+        if (add_named(w, name, k, value) != MPB_OK)
+            return MPB_ENOMEM;
+    }
     return MPB_OK;
 }
 
@@ -304,13 +354,143 @@ static int emit_run(result_walk *w,
     return cb(ud, &w->row);
 }
 
+/* Which scene each query of an experiment is in, for the results walk. */
+typedef struct query_scenes {
+    int64_t *query, *scene;
+    int      n, last;
+} query_scenes;
+
+static int query_scenes_load(mpb_store *s, int64_t experiment_id,
+                             query_scenes *qs)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT q.id, q.scene_id FROM queries q JOIN scenes sc"
+        " ON sc.id = q.scene_id WHERE sc.experiment_id = ?1");
+    int step, cap = 0;
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
+        if (qs->n == cap) {
+            cap = cap ? 2 * cap : 64;
+            int64_t *q = realloc(qs->query, sizeof *q * (size_t)cap);
+            if (q != NULL)
+                qs->query = q;
+            int64_t *sc = realloc(qs->scene, sizeof *sc * (size_t)cap);
+            if (sc != NULL)
+                qs->scene = sc;
+            if (q == NULL || sc == NULL) {
+                sqlite3_finalize(st);
+                return mpb__store_fail(s, MPB_ENOMEM,
+                                       "read results: out of memory");
+            }
+        }
+        qs->query[qs->n] = sqlite3_column_int64(st, 0);
+        qs->scene[qs->n++] = sqlite3_column_int64(st, 1);
+    }
+    return walk_end(s, st, 0, step, "read queries");
+}
+
+static int64_t query_scene(query_scenes *qs, int64_t query_id)
+{
+    if (qs->last < qs->n && qs->query[qs->last] == query_id)
+        return qs->scene[qs->last];
+    for (int i = 0; i < qs->n; i++)
+        if (qs->query[i] == query_id) {
+            qs->last = i;
+            return qs->scene[i];
+        }
+    return 0;
+}
+
+/*
+ * The results walk over the final stages' packed metrics: one row per run,
+ * no join. *absent is set if the database has no runs.final_metrics column
+ * (opened read-only, made before it): then the caller joins the metrics
+ * table.
+ */
+static int results_packed(mpb_store *s, int64_t experiment_id,
+                          int64_t scene_id, result_walk *w,
+                          int (*cb)(void *ud, const mpb_result_row *row),
+                          void *ud, int *absent)
+{
+#define PACKED_SQL(scene_where)                                             \
+    "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
+    " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
+    " r.final_stage, r.final_metrics"                                      \
+    " FROM runs r WHERE r.experiment_id = ?1 AND r.state = 'done'"         \
+    scene_where " ORDER BY r.id"
+    static const char one_scene[] = PACKED_SQL(
+        " AND r.query_id IN (SELECT id FROM queries WHERE scene_id = ?2)");
+    static const char all_scenes[] = PACKED_SQL("");
+#undef PACKED_SQL
+    query_scenes qs = {0};
+    sqlite3_stmt *st = NULL, *old = NULL;
+    int rc, step = SQLITE_DONE, stop = 0;
+
+    if (sqlite3_prepare_v2(s->db, scene_id > 0 ? one_scene : all_scenes, -1,
+                           &st, NULL) != SQLITE_OK) {
+        sqlite3_finalize(st);
+        *absent = 1;
+        return MPB_OK;
+    }
+    if ((rc = query_scenes_load(s, experiment_id, &qs)) != MPB_OK)
+        goto done;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    if (scene_id > 0)
+        sqlite3_bind_int64(st, 2, scene_id);
+    while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
+        int64_t query_id = sqlite3_column_int64(st, 2);
+        if ((rc = begin_run(w, st, query_scene(&qs, query_id))) != MPB_OK)
+            goto done;
+        if (sqlite3_column_type(st, 10) != SQLITE_NULL) {
+            rc = add_packed(w, sqlite3_column_blob(st, 10),
+                            sqlite3_column_bytes(st, 10));
+        } else if (sqlite3_column_type(st, 9) != SQLITE_NULL) {
+            /* Finished before the column existed: the metrics table. */
+            if (old == NULL && (old = mpb__store_prepare(s,
+                    "SELECT NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,"
+                    " NULL, NULL, name, value FROM metrics"
+                    " WHERE run_id = ?1 AND stage = ?2")) == NULL) {
+                rc = MPB_EDB;
+                goto done;
+            }
+            sqlite3_reset(old);
+            sqlite3_bind_int64(old, 1, w->row.run_id);
+            sqlite3_bind_text(old, 2, w->text + w->stage_off, -1,
+                              SQLITE_STATIC);
+            int ostep = SQLITE_DONE;
+            while (rc == MPB_OK && (ostep = sqlite3_step(old)) == SQLITE_ROW)
+                rc = add_metric(w, old);
+            if (rc == MPB_OK && ostep != SQLITE_DONE) {
+                rc = mpb__store_db_fail(s, "read results");
+                goto done;
+            }
+        }
+        if (rc != MPB_OK)
+            goto done;
+        stop = emit_run(w, cb, ud);
+    }
+    if (!stop && step != SQLITE_DONE)
+        rc = mpb__store_db_fail(s, "read results");
+done:
+    sqlite3_finalize(st);
+    sqlite3_finalize(old);
+    free(qs.query);
+    free(qs.scene);
+    return stop ? stop : rc;
+}
+
 int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
                       const char *stage, const char *const *names,
                       int num_names,
                       int (*cb)(void *ud, const mpb_result_row *row),
                       void *ud)
 {
-    /* One statement for a scene, or for the whole experiment. Runs are
+    /* The metrics of each run's final stage are packed on its row (see
+     * results_packed); those of another stage, or of a database made
+     * before runs.final_metrics, come from this statement. Its history:
+     * one statement for a scene, or for the whole experiment. Runs are
      * read in id order, the order of the runs_by_state index, so nothing
      * is sorted; the metrics are joined by their primary key (run_id,
      * stage, name), one index seek per run. Measured on a million runs
@@ -339,6 +519,15 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
         rc = MPB_ENOMEM;
         goto done;
     }
+    if (stage == NULL) {
+        int absent = 0;
+        rc = results_packed(s, experiment_id, scene_id, &w, cb, ud, &absent);
+        if (!absent) {
+            if (rc == MPB_ENOMEM)
+                mpb__store_fail(s, rc, "read results: out of memory");
+            goto done_packed;
+        }
+    }
     if ((st = mpb__store_prepare(s, scene_id > 0 ? one_scene
                                                  : all_scenes)) == NULL) {
         rc = MPB_EDB;
@@ -355,7 +544,8 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
         if (!have_run || run_id != w.row.run_id) {
             if (have_run && (stop = emit_run(&w, cb, ud)) != 0)
                 goto done;
-            if ((rc = begin_run(&w, st)) != MPB_OK)
+            if ((rc = begin_run(&w, st, sqlite3_column_int64(st, 12)))
+                != MPB_OK)
                 goto done;
             have_run = 1;
         }
@@ -372,6 +562,7 @@ done:
     if (rc == MPB_ENOMEM)
         mpb__store_fail(s, rc, "read results: out of memory");
     sqlite3_finalize(st);
+done_packed:
     free(w.metrics);
     free(w.text);
     free(w.name_off);

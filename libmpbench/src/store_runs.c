@@ -2,6 +2,7 @@
  * store_runs.c - the life of a run in the database: pending, sent (with the
  * attempt's random id), done with its stages, metrics and values.
  */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -99,6 +100,90 @@ int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
                           "flight", (long long)run_id, run_uid);
 }
 
+int mpb__metrics_pack(mpb_store *s, const mpb_named *m, int n,
+                      const unsigned char **out, int *len)
+{
+    /* The buffer: the sort order (n ints), then the packed metrics, and one
+     * byte more, so that it exists even for no metrics: an empty list is a
+     * zero-length blob, not NULL. */
+    size_t need = 1 + (size_t)(n > 0 ? n : 0) * sizeof(int);
+    int *order;
+    *out = NULL;
+    *len = 0;
+    for (int i = 0; i < n; i++) {
+        if (m[i].name == NULL)
+            return MPB_OK;      /* the metrics table refuses it anyway */
+        size_t k = strlen(m[i].name);
+        if (k > MPB__PACK_NAME_MAX)
+            return MPB_OK;
+        need += 1 + k + 8;
+    }
+    if (need > (size_t)INT32_MAX)
+        return MPB_OK;
+    if (need > s->pack_cap) {
+        unsigned char *p = realloc(s->pack, need);
+        if (p == NULL)
+            return mpb__store_fail(s, MPB_ENOMEM, "finish run: out of memory");
+        s->pack = p;
+        s->pack_cap = need;
+    }
+    /* In name order, the last of equal names only: as the metrics table
+     * (primary key run, stage, name; INSERT OR REPLACE) gives them back. A
+     * stage has a handful of metrics: insertion sort, stable. */
+    order = (int *)(void *)s->pack;
+    for (int i = 0; i < n; i++) {
+        int j = i;
+        while (j > 0 && strcmp(m[order[j - 1]].name, m[i].name) > 0) {
+            order[j] = order[j - 1];
+            j--;
+        }
+        order[j] = i;
+    }
+    unsigned char *start = s->pack + (size_t)(n > 0 ? n : 0) * sizeof(int);
+    unsigned char *p = start;
+    for (int r = 0; r < n; r++) {
+        const mpb_named *x = &m[order[r]];
+        if (r + 1 < n && strcmp(x->name, m[order[r + 1]].name) == 0)
+            continue;
+        size_t k = strlen(x->name);
+        uint64_t bits;
+        memcpy(&bits, &x->value, 8);
+        *p++ = (unsigned char)k;
+        memcpy(p, x->name, k);
+        p += k;
+        for (int b = 0; b < 8; b++)
+            *p++ = (unsigned char)(bits >> (8 * b));
+    }
+    *out = start;
+    *len = (int)(p - start);
+    return MPB_OK;
+}
+
+/* The INSERT of k (1..MPB__METRIC_ROWS_MAX) metric rows, prepared once. */
+static sqlite3_stmt *metric_rows(mpb_store *s, int k)
+{
+    sqlite3_stmt **st = &s->metric_rows[k - 1];
+    if (*st == NULL) {
+        static const char head[] =
+            "INSERT OR REPLACE INTO metrics(run_id, stage, name, value) VALUES ";
+        char sql[sizeof head + MPB__METRIC_ROWS_MAX * 12];
+        size_t n = sizeof head - 1;
+        memcpy(sql, head, n);
+        for (int r = 0; r < k; r++) {
+            memcpy(sql + n, r ? ",(?,?,?,?)" : "(?,?,?,?)", r ? 10 : 9);
+            n += r ? 10 : 9;
+        }
+        sql[n] = '\0';
+        *st = mpb__store_prepare(s, sql);
+        return *st;
+    }
+    /* The transaction is opened as by mpb__store_stmt(). */
+    if (mpb__store_tx_open(s) != MPB_OK)
+        return NULL;
+    sqlite3_clear_bindings(*st);
+    return *st;
+}
+
 static int write_stage(mpb_store *s, int64_t run_id, int idx,
                        const mpb_stage_record *sg)
 {
@@ -125,15 +210,27 @@ static int write_stage(mpb_store *s, int64_t run_id, int idx,
     if (sqlite3_step(st) != SQLITE_DONE)
         return mpb__store_db_fail(s, "store stage");
 
-    for (int i = 0; i < sg->num_metrics; i++) {
-        sqlite3_stmt *m = mpb__store_stmt(s, MPB__ST_METRIC_INSERT);
+    /* Up to MPB__METRIC_ROWS_MAX rows per statement: one statement's
+     * overhead (reset, bind, step, its journal) instead of one per metric
+     * (callgrind, docs/performance.md). Rows in order, so that a repeated
+     * name ends with its last value, as one INSERT OR REPLACE each did. */
+    for (int i = 0; i < sg->num_metrics;) {
+        int k = sg->num_metrics - i;
+        if (k > MPB__METRIC_ROWS_MAX)
+            k = MPB__METRIC_ROWS_MAX;
+        sqlite3_stmt *m = metric_rows(s, k);
         if (m == NULL)
             return MPB_EDB;
-        sqlite3_bind_int64(m, 1, run_id);
-        sqlite3_bind_text(m, 2, sg->name, -1, SQLITE_STATIC);
-        sqlite3_bind_text(m, 3, sg->metrics[i].name, -1, SQLITE_STATIC);
-        sqlite3_bind_double(m, 4, sg->metrics[i].value);
-        if (sqlite3_step(m) != SQLITE_DONE)
+        for (int r = 0; r < k; r++, i++) {
+            sqlite3_bind_int64(m, 4 * r + 1, run_id);
+            sqlite3_bind_text(m, 4 * r + 2, sg->name, -1, SQLITE_STATIC);
+            sqlite3_bind_text(m, 4 * r + 3, sg->metrics[i].name, -1,
+                              SQLITE_STATIC);
+            sqlite3_bind_double(m, 4 * r + 4, sg->metrics[i].value);
+        }
+        int rc = sqlite3_step(m);
+        sqlite3_reset(m);
+        if (rc != SQLITE_DONE)
             return mpb__store_db_fail(s, "store metric");
     }
     return MPB_OK;
@@ -186,6 +283,13 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
         sqlite3_bind_int(st, 7, last->valid);
         sqlite3_bind_text(st, 8, last->verdict, -1, SQLITE_STATIC);
         sqlite3_bind_text(st, 14, last->name, -1, SQLITE_STATIC);
+        const unsigned char *packed;
+        int len;
+        if ((rc = mpb__metrics_pack(s, last->metrics, last->num_metrics,
+                                    &packed, &len)) != MPB_OK)
+            return rc;
+        if (packed != NULL)
+            sqlite3_bind_blob(st, 15, packed, len, SQLITE_STATIC);
     }
     sqlite3_bind_int(st, 9, r->success);
     sqlite3_bind_double(st, 10, r->time_total);
@@ -221,18 +325,27 @@ int mpb_store_run_finish(mpb_store *s, const mpb_run_record *r)
 {
     /* Inside the caller's transaction a savepoint keeps a failed run from
      * leaving half its rows; alone, the run is its own transaction. */
-    const char *open = s->in_tx ? "SAVEPOINT run_finish" : "BEGIN IMMEDIATE";
-    const char *ok = s->in_tx ? "RELEASE run_finish" : "COMMIT";
-    const char *undo = s->in_tx ? "ROLLBACK TO run_finish; RELEASE run_finish"
-                                : "ROLLBACK";
-    if (sqlite3_exec(s->db, open, NULL, NULL, NULL) != SQLITE_OK)
-        return mpb__store_db_fail(s, "begin run");
-    int rc = finish_run(s, r);
-    if (rc == MPB_OK) {
-        if (sqlite3_exec(s->db, ok, NULL, NULL, NULL) != SQLITE_OK)
-            rc = mpb__store_db_fail(s, "commit run");
-    }
+    int nested = s->in_tx != MPB__TX_NONE;
+    int rc = nested ? mpb__store_step(s, MPB__ST_SAVEPOINT, "begin run")
+                    : mpb__store_step(s, MPB__ST_BEGIN, "begin run");
     if (rc != MPB_OK)
-        sqlite3_exec(s->db, undo, NULL, NULL, NULL);
+        return rc;
+    rc = finish_run(s, r);
+    if (rc == MPB_OK)
+        rc = nested ? mpb__store_step(s, MPB__ST_RELEASE, "commit run")
+                    : mpb__store_step(s, MPB__ST_COMMIT, "commit run");
+    if (rc != MPB_OK) {
+        /* Keep the error of what failed, not of the undoing. */
+        sqlite3_stmt *undo = mpb__store_stmt(s, nested ? MPB__ST_ROLLBACK_TO
+                                                       : MPB__ST_ROLLBACK);
+        if (undo != NULL) {
+            sqlite3_step(undo);
+            sqlite3_reset(undo);
+        }
+        if (nested && (undo = mpb__store_stmt(s, MPB__ST_RELEASE)) != NULL) {
+            sqlite3_step(undo);
+            sqlite3_reset(undo);
+        }
+    }
     return rc;
 }

@@ -53,6 +53,8 @@ const char mpb__schema_v1[] =
     "  goal_kind      TEXT NOT NULL,\n"
     "  goal_joints    TEXT,\n"
     "  goal_tolerance REAL,\n"
+    "  goal_link      TEXT,\n"
+    "  goal_region    TEXT,\n"
     "  UNIQUE(scene_id, name));\n"
 
     "CREATE TABLE IF NOT EXISTS runs(\n"
@@ -63,7 +65,10 @@ const char mpb__schema_v1[] =
     "  repetition        INTEGER NOT NULL,\n"
     "  seed              INTEGER NOT NULL,\n"
     "  state             TEXT NOT NULL DEFAULT 'pending'\n"
-    "                    CHECK(state IN ('pending', 'sent', 'done')),\n"
+    /* Not "state IN (...)": SQLite builds a temporary index of the list
+     * for every row it checks, twice per run (docs/performance.md). */
+    "                    CHECK(state = 'pending' OR state = 'sent'\n"
+    "                          OR state = 'done'),\n"
     "  run_uid           TEXT UNIQUE,\n"
     "  attempts          INTEGER NOT NULL DEFAULT 0,\n"
     "  crashes           INTEGER NOT NULL DEFAULT 0,\n"
@@ -81,6 +86,7 @@ const char mpb__schema_v1[] =
     "  time_other        REAL,\n"
     "  wall_time         REAL,\n"
     "  final_stage       TEXT,\n"
+    "  final_metrics     BLOB,\n"
     "  UNIQUE(experiment_id, planner_config_id, query_id, repetition));\n"
     "CREATE INDEX IF NOT EXISTS runs_by_state ON runs(experiment_id, state);\n"
 
