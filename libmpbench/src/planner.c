@@ -32,6 +32,10 @@
 #define MPB__REQUEST_QUEUE 8
 /* Closest two announces may be (ms). */
 #define MPB__ANNOUNCE_GAP_MS 50
+/* A request is acknowledged (REQUEST_RECEIVED) only if its solve is still
+ * running this long after it began; a quicker result acknowledges its own
+ * request. Well below the daemon's re-send interval (250 ms). */
+#define MPB__ACK_AFTER_S 0.05
 
 typedef struct mpb__kept {
     int used;
@@ -61,9 +65,12 @@ typedef struct mpb__server {
     pthread_mutex_t mu;
     pthread_cond_t cond;
     char active[MPB_RUN_ID_SIZE];   /* run being solved, "" if idle */
+    double active_since;            /* monotonic s, when its solve began */
+    int active_acked;               /* REQUEST_RECEIVED sent for it */
     int closed;                     /* capacity 0: max_runs reached */
     int quit;
     int announce_now;
+    double waiting_until;           /* the thread sleeps until; 0: awake */
 } mpb__server;
 
 /* ---- results ----------------------------------------------------------- */
@@ -288,62 +295,77 @@ static void mpb__announce(mpb__server *s)
     mpb_publish_announce(s->lcm, s->auth, MPB_CHANNEL_ANNOUNCE, &a);
 }
 
-static void mpb__timespec_add_ms(struct timespec *t, int ms)
-{
-    t->tv_sec += ms / 1000;
-    t->tv_nsec += (long)(ms % 1000) * 1000000L;
-    if (t->tv_nsec >= 1000000000L) {
-        t->tv_sec++;
-        t->tv_nsec -= 1000000000L;
-    }
-}
-
-/* Wait on s->cond until deadline, quit, or (if wake) announce_now. */
-static void mpb__wait_until(mpb__server *s, const struct timespec *deadline,
-                            int wake)
-{
-    while (!s->quit && !(wake && s->announce_now))
-        if (pthread_cond_timedwait(&s->cond, &s->mu, deadline) == ETIMEDOUT)
-            break;
-}
+static void mpb__ack(mpb__server *s, const char *run_id);
 
 /*
- * Announce now, then every heartbeat_ms; a change of the active run
- * (announce_now) brings the next announce forward, but never closer than
- * MPB__ANNOUNCE_GAP_MS to the last, so a fast planner does not announce
- * once per run.
+ * The heartbeat thread: announce at once, then every heartbeat_ms; a change
+ * of the active run (announce_now) brings the next announce forward, but
+ * never closer than MPB__ANNOUNCE_GAP_MS to the last, so a fast planner
+ * does not announce once per run. It also acknowledges the request being
+ * solved once the solve has lasted MPB__ACK_AFTER_S: a planner that answers
+ * sooner sends one message per run instead of two.
  */
 static void *mpb__heartbeat_main(void *arg)
 {
     mpb__server *s = arg;
-    struct timespec now, earliest, next;
+    const double gap = MPB__ANNOUNCE_GAP_MS / 1000.0;
+    double last_announce = -1e9, next_announce = 0;
 
     pthread_mutex_lock(&s->mu);
     while (!s->quit) {
-        s->announce_now = 0;    /* changes from here on are announced again */
-        pthread_mutex_unlock(&s->mu);
-        mpb__announce(s);
-        pthread_mutex_lock(&s->mu);
+        double now = mpb_monotonic_s();
+        double ack_due = s->active[0] != '\0' && !s->active_acked
+                             ? s->active_since + MPB__ACK_AFTER_S : 1e300;
+        double announce_due = next_announce;
+        if (s->announce_now && last_announce + gap < announce_due)
+            announce_due = last_announce + gap;
 
-        clock_gettime(CLOCK_MONOTONIC, &now);
-        earliest = next = now;
-        mpb__timespec_add_ms(&earliest, MPB__ANNOUNCE_GAP_MS);
-        mpb__timespec_add_ms(&next, s->heartbeat_ms);
-        mpb__wait_until(s, &earliest, 0);
-        mpb__wait_until(s, &next, 1);
+        if (now >= ack_due) {
+            char run[MPB_RUN_ID_SIZE];
+            memcpy(run, s->active, sizeof run);
+            s->active_acked = 1;
+            pthread_mutex_unlock(&s->mu);
+            mpb__ack(s, run);
+            pthread_mutex_lock(&s->mu);
+        } else if (now >= announce_due) {
+            s->announce_now = 0;    /* changes from here on: announce again */
+            pthread_mutex_unlock(&s->mu);
+            mpb__announce(s);
+            pthread_mutex_lock(&s->mu);
+            last_announce = now;
+            next_announce = now + s->heartbeat_ms / 1000.0;
+        } else {
+            double due = ack_due < announce_due ? ack_due : announce_due;
+            struct timespec ts;
+            ts.tv_sec = (time_t)due;
+            ts.tv_nsec = (long)((due - (double)ts.tv_sec) * 1e9);
+            if (ts.tv_nsec >= 1000000000L)
+                ts.tv_nsec = 999999999L;
+            s->waiting_until = due;
+            pthread_cond_timedwait(&s->cond, &s->mu, &ts);
+            s->waiting_until = 0;
+        }
     }
     pthread_mutex_unlock(&s->mu);
     return NULL;
 }
 
-/* Set the run being solved ("" for none) and announce the change now. */
+/* Set the run being solved ("" for none) and have it announced soon (and
+ * acknowledged, if its solve lasts). The heartbeat thread is woken only if
+ * it would otherwise sleep past that: a planner answering thousands of
+ * runs a second wakes it about every MPB__ANNOUNCE_GAP_MS, not twice a run. */
 static void mpb__set_active(mpb__server *s, const char *run_id, int closed)
 {
+    double now = mpb_monotonic_s();
     pthread_mutex_lock(&s->mu);
     snprintf(s->active, sizeof s->active, "%s", run_id);
+    s->active_since = now;
+    s->active_acked = 0;
     s->closed = closed;
     s->announce_now = 1;
-    pthread_cond_signal(&s->cond);
+    if (s->waiting_until > now + MPB__ACK_AFTER_S ||
+        s->waiting_until > now + MPB__ANNOUNCE_GAP_MS / 1000.0)
+        pthread_cond_signal(&s->cond);
     pthread_mutex_unlock(&s->mu);
 }
 
@@ -462,8 +484,9 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
 /* ---- LCM handlers ------------------------------------------------------ */
 
 /*
- * A request for us: acknowledge it, then answer it from memory or solve it
- * here and now. Solving inside the handler needs no copy of the request;
+ * A request for us: answer it from memory (acknowledging it), or solve it
+ * here and now (acknowledged by its result, or by the heartbeat thread if
+ * the solve lasts). Solving inside the handler needs no copy of the request;
  * meanwhile LCM queues what arrives.
  */
 static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
@@ -491,7 +514,8 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
     if (s->run_error != MPB_OK ||
         (s->max_runs > 0 && s->solved >= s->max_runs))
         return;                 /* closing: take no new runs */
-    mpb__ack(s, msg->run_id);
+    /* No REQUEST_RECEIVED yet: the result acknowledges the request, unless
+     * the solve lasts MPB__ACK_AFTER_S, when the heartbeat thread sends it. */
 
     int closing = s->max_runs > 0 && s->solved + 1 >= s->max_runs;
     mpb__set_active(s, msg->run_id, closing);
