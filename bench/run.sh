@@ -1,7 +1,8 @@
 #!/bin/sh
 # bench/run.sh - the benchmark of the benchmark (docs/performance.md).
 #
-#   bench/run.sh [--quick] [--runs N] [--report-runs N] [--million] [--keep]
+#   bench/run.sh [--quick] [--runs N] [--report-runs N] [--fidelity-runs N]
+#                [--million] [--keep]
 #
 # Builds the bench programs, then, inside a private network namespace that
 # it creates (only a loopback interface, with a multicast route), measures:
@@ -10,7 +11,11 @@
 #      run timed from the daemon's own request and RESULT_STORED timestamps
 #      (mpb-bench-watch),
 #   3. throughput with 1 and 2 null planners, the daemon's RSS sampled,
-#   4. verification + metrics, waypoints per second (mpb-bench-verify),
+#   4. verification + metrics, waypoints per second (mpb-bench-verify), for
+#      the planar demo arm and for the PR2 right arm in the kitchen (or,
+#      until that scene exists, the tabletop of the unit tests), and timing
+#      fidelity: RRTConnect on a kitchen query through mpbenchd and
+#      mpb-planner-ompl vs OMPL's own Benchmark (mpb-bench-fidelity),
 #   5. the store's write cost per run, and `mpb report` over a database of
 #      a million runs (mpb-bench-mkdb).
 # Prints a table and writes it, with the machine and the raw results, to
@@ -19,6 +24,9 @@
 #   --quick          small counts (about a minute in all)
 #   --runs N         runs per throughput experiment (default 100000)
 #   --report-runs N  runs in the report database (default 1000000)
+#   --fidelity-runs N  RRTConnect runs each way for the timing fidelity
+#                    (default 1000; the median of so spread a time needs
+#                    many runs to tell 3 % apart)
 #   --million        throughput with 1 planner over 1,000,000 runs too
 #   --keep           keep the work directory (databases, logs)
 set -u
@@ -29,7 +37,7 @@ case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 WORK=$BUILD/bench-run/work     # databases and logs of one run
 SNAP=$BUILD/bench-run/bin      # the binaries measured, copied at the start
 
-QUICK=0 MILLION=0 KEEP=0 TPUT_N="" REPORT_N="" IN_NETNS=0
+QUICK=0 MILLION=0 KEEP=0 TPUT_N="" REPORT_N="" FID_N="" IN_NETNS=0
 while [ $# -gt 0 ]; do
     case $1 in
     --quick) QUICK=1 ;;
@@ -37,8 +45,9 @@ while [ $# -gt 0 ]; do
     --keep) KEEP=1 ;;
     --runs) TPUT_N=$2; shift ;;
     --report-runs) REPORT_N=$2; shift ;;
+    --fidelity-runs) FID_N=$2; shift ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,31p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
@@ -46,9 +55,11 @@ done
 
 if [ "$QUICK" -eq 1 ]; then
     FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000
+    : "${FID_N:=100}"
     : "${TPUT_N:=10000}" "${REPORT_N:=100000}"
 else
     FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000
+    : "${FID_N:=1000}"
     : "${TPUT_N:=100000}" "${REPORT_N:=1000000}"
 fi
 
@@ -63,27 +74,40 @@ if [ "$IN_NETNS" -eq 0 ]; then
     # mpb is needed for item 5 only: a broken tools/ build skips that item.
     cmake --build "$BUILD" -j "$(nproc)" --target mpb >>"$BUILD/bench-build.log" 2>&1 ||
         echo "bench/run.sh: mpb does not build; the report timing is skipped"
+    # The OMPL planner, for the timing fidelity only.
+    cmake --build "$BUILD" -j "$(nproc)" --target mpb-planner-ompl >>"$BUILD/bench-build.log" 2>&1 ||
+        echo "bench/run.sh: mpb-planner-ompl does not build; timing fidelity is skipped"
     # The bench programs: part of the main build if the top-level
     # CMakeLists.txt adds bench/, else a project of their own beside it.
     if grep -q '^[[:space:]]*add_subdirectory(bench)' "$src/CMakeLists.txt"; then
         BENCH_BIN=$BUILD/bench
         cmake --build "$BUILD" -j "$(nproc)" --target mpb-bench-floor \
-            mpb-bench-watch mpb-bench-verify mpb-bench-mkdb >>"$BUILD/bench-build.log" 2>&1
+            mpb-bench-watch mpb-bench-verify mpb-bench-mkdb >>"$BUILD/bench-build.log" 2>&1 &&
+        { cmake --build "$BUILD" -j "$(nproc)" --target mpb-bench-fidelity \
+            >>"$BUILD/bench-build.log" 2>&1 || true; }
     else
         BENCH_BIN=$BUILD/bench-standalone
         cmake -S "$src/bench" -B "$BENCH_BIN" -DMPB_BUILD="$BUILD" >/dev/null &&
-            cmake --build "$BENCH_BIN" -j "$(nproc)" >>"$BUILD/bench-build.log" 2>&1
+            cmake --build "$BENCH_BIN" -j "$(nproc)" --target mpb-bench-floor \
+                mpb-bench-watch mpb-bench-verify mpb-bench-mkdb \
+                >>"$BUILD/bench-build.log" 2>&1 &&
+            { cmake --build "$BENCH_BIN" -j "$(nproc)" --target mpb-bench-fidelity \
+                >>"$BUILD/bench-build.log" 2>&1 ||
+              echo "bench/run.sh: mpb-bench-fidelity does not build; timing fidelity is skipped"; }
     fi || { tail -20 "$BUILD/bench-build.log"; echo "bench/run.sh: bench build failed" >&2; exit 1; }
     # Others may rebuild the tree meanwhile: measure one consistent set.
     rm -rf "$SNAP" && mkdir -p "$SNAP"
     cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/null/mpb-planner-null" \
        "$BENCH_BIN"/mpb-bench-* "$SNAP/" || exit 1
     [ -x "$BUILD/tools/mpb" ] && cp "$BUILD/tools/mpb" "$SNAP/"
+    [ -x "$BUILD/planners/ompl/mpb-planner-ompl" ] &&
+        cp "$BUILD/planners/ompl/mpb-planner-ompl" "$SNAP/"
     set -- --in-netns
     [ "$QUICK" -eq 1 ] && set -- "$@" --quick
     [ "$MILLION" -eq 1 ] && set -- "$@" --million
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
-    exec unshare -n sh "$0" "$@" --runs "$TPUT_N" --report-runs "$REPORT_N"
+    exec unshare -n sh "$0" "$@" --runs "$TPUT_N" --report-runs "$REPORT_N" \
+        --fidelity-runs "$FID_N"
 fi
 
 # ---- inside the private network namespace ----------------------------------
@@ -226,6 +250,13 @@ throughput() { # planners runs key
     sampler=$!
     wait "$guard" || echo "mpbenchd failed or timed out: see $WORK/$key-daemon.log"
     wait "$sampler"
+    # The planners' CPU time (clock ticks), all of them together: is the
+    # planner side (the null planner and the planner kit) a bottleneck?
+    pticks=0
+    for p in $PIDS; do
+        read -r _ _ _ _ _ _ _ _ _ _ _ _ _ ut st _ 2>/dev/null <"/proc/$p/stat" &&
+            pticks=$((pticks + ut + st))
+    done
     cleanup
     stats=$(sqlite3 -separator ' ' "$WORK/$key.db" "SELECT count(*),
         max(finished) - min(sent), sum(attempts > 1), sum(status = 'crash'),
@@ -239,13 +270,14 @@ throughput() { # planners runs key
               for (h = 1; h < NR && t[h] < t[NR] / 2; h++) ;
               print r[i], r[h], r[NR], m, c }' "$WORK/$key-rss.txt")
     hz=$(getconf CLK_TCK)
-    echo "$stats $rss" | {
-        read -r n span retried crashed ok early half end max ticks
+    echo "$stats $rss $pticks" | {
+        read -r n span retried crashed ok early half end max ticks pticks
         put "$key runs=$n seconds=$span runs_per_s=$(calc "$n / $span" 0) \
 retried=$retried crashed=$crashed succeeded=$ok rss_early_kb=$early \
 rss_half_kb=$half rss_end_kb=$end rss_max_kb=$max \
 rss_growth_kb=$(calc "$end - $half" 0) \
-daemon_cpu_us_per_run=$(calc "$ticks / $hz / $n * 1e6" 1)"
+daemon_cpu_us_per_run=$(calc "$ticks / $hz / $n * 1e6" 1) \
+planners_cpu_us_per_run=$(calc "$pticks / $hz / $n * 1e6" 1)"
     }
     grep "^RESULT $key " "$RAW" | sed 's/^RESULT /  /'
 }
@@ -275,6 +307,110 @@ for sp in 0.01 0.1; do
     sed "s/^RESULT verify /RESULT verify_$sp /" "$WORK/verify-$sp.log" >"$WORK/verify-$sp.res"
     collect "$WORK/verify-$sp.res"
 done
+
+# The PR2 right arm (7 joints, FCL): in the paper's kitchen once
+# scenes/paper/kitchen.scene exists, else in the unit tests' tabletop.
+PR2_JOINTS=r_shoulder_pan_joint,r_shoulder_lift_joint,r_upper_arm_roll_joint,r_elbow_flex_joint,r_forearm_roll_joint,r_wrist_flex_joint,r_wrist_roll_joint
+PR2_URDF=$src/scenes/robots/pr2_right_arm.urdf
+[ -f "$PR2_URDF" ] || PR2_URDF=$src/tests/unit/data/pr2_right_arm.urdf
+if [ -f "$src/scenes/paper/kitchen.scene" ]; then
+    PR2_SCENE=$src/scenes/paper/kitchen.scene PR2_WHERE=kitchen
+else
+    PR2_SCENE=$src/tests/unit/data/scene_tabletop.scene PR2_WHERE=tabletop
+fi
+echo "== 4. verification + metrics (PR2 right arm, $PR2_WHERE)"
+for sp in 0.01 0.1; do
+    timeout -k 5 120 "$SNAP/mpb-bench-verify" --robot "$PR2_URDF" \
+        --scene "$PR2_SCENE" --robot-format urdf --scene-format moveit-scene \
+        --joints "$PR2_JOINTS" --waypoints 2000 --spacing "$sp" \
+        --seconds "$VERIFY_S" --label "PR2 right arm, $PR2_WHERE" \
+        >"$WORK/verify-pr2-$sp.log" 2>&1
+    cat "$WORK/verify-pr2-$sp.log"
+    sed "s/^RESULT verify /RESULT verify_pr2_$sp /" "$WORK/verify-pr2-$sp.log" \
+        >"$WORK/verify-pr2-$sp.res"
+    collect "$WORK/verify-pr2-$sp.res"
+done
+
+# ---- 4. timing fidelity ------------------------------------------------------
+# RRTConnect on the first query of the paper's kitchen (start and goal as
+# in scenes/experiments/paper.yaml: the goal configuration is the IK
+# solution the suite starts its second query from), FID_N runs through
+# mpbenchd + mpb-planner-ompl, then the same runs, with the same seeds, in
+# OMPL's own Benchmark (mpb-bench-fidelity). Compared: the median time of
+# the solve (the "raw" stage; Benchmark's "time") over solved runs, and how
+# many runs the planner solved. Also timed: the same runs in process
+# without Benchmark's threads (its per-run overhead is not the planner's).
+# The seeds are nominal: OMPL 1.5 does not re-seed generators that exist,
+# so runs are not paired; medians of many runs are compared.
+FID_START=-1.2,1.1,-1.5,-1.9,0,-0.6,0
+FID_GOAL=-0.261284,-0.420386,-1.523717,-1.031201,-1.236424,-1.761224,-2.299770
+if [ -x "$SNAP/mpb-planner-ompl" ] && [ -x "$SNAP/mpb-bench-fidelity" ] &&
+   [ -f "$src/scenes/paper/kitchen.scene" ]; then
+    echo "== 4. timing fidelity: RRTConnect, PR2 kitchen, $FID_N runs, mpbench vs OMPL's Benchmark"
+    list() { echo "[$1]" | sed 's/,/, /g'; }
+    cat >"$WORK/fidelity.yaml" <<EOF
+experiment:
+  name: bench-fidelity
+  runs: $FID_N
+  time_limit: 10.0
+  seed: 7
+robot:
+  format: urdf
+  file: $PR2_URDF
+  joints: $(list "$PR2_JOINTS")
+scenes:
+  - name: kitchen
+    format: moveit-scene
+    file: $src/scenes/paper/kitchen.scene
+    queries:
+      - name: counter_cup
+        start: $(list "$FID_START")
+        goal: $(list "$FID_GOAL")
+        tolerance: 0.01
+planners:
+  - planner: ompl
+    algorithms: [RRTConnect]
+    params: {simplify: 0}
+EOF
+    # Two rounds, mpbench then OMPL each time: the machine's drift shows
+    # as the difference between the rounds, and the ratio is of the sums.
+    for round in 1 2; do
+        rm -f "$WORK"/fidelity.db*
+        "$SNAP/mpb-planner-ompl" >"$WORK/fidelity-ompl.log" 2>&1 &
+        PIDS="$PIDS $!"
+        sleep 0.5
+        timeout -k 5 $((FID_N * 12 + 60)) "$SNAP/mpbenchd" -d "$WORK/fidelity.db" \
+            "$WORK/fidelity.yaml" >"$WORK/fidelity-daemon.log" 2>&1 ||
+            echo "mpbenchd failed: see $WORK/fidelity-daemon.log"
+        cleanup
+        seeds=$(sqlite3 "$WORK/fidelity.db" "SELECT group_concat(seed) FROM
+            (SELECT seed FROM runs ORDER BY repetition)")
+        mpb_med=$(sqlite3 "$WORK/fidelity.db" "SELECT s.time FROM stages s
+            JOIN runs r ON r.id = s.run_id WHERE s.name = 'raw'
+            AND r.status = 'solved' ORDER BY s.time LIMIT 1 OFFSET
+            (SELECT (count(*) - 1) / 2 FROM stages s JOIN runs r
+             ON r.id = s.run_id WHERE s.name = 'raw' AND r.status = 'solved')")
+        mpb_ok=$(sqlite3 -separator ' ' "$WORK/fidelity.db" "SELECT
+            sum(status = 'solved'), sum(success), count(*) FROM runs
+            WHERE state = 'done'")
+        echo "$mpb_ok" | {
+            read -r solved verified n
+            put "fidelity_mpbench_$round runs=$n median_s=${mpb_med:-nan} solved=$solved verified=$verified"
+        }
+        grep "^RESULT fidelity_mpbench_$round " "$RAW" | sed 's/^RESULT /  /'
+        timeout -k 5 $((FID_N * 12 + 60)) "$SNAP/mpb-bench-fidelity" \
+            --robot "$PR2_URDF" --scene "$src/scenes/paper/kitchen.scene" \
+            --joints "$PR2_JOINTS" --start "$FID_START" --goal "$FID_GOAL" \
+            --seeds "$seeds" --time-limit 10 >"$WORK/fidelity-$round.log" 2>&1
+        cat "$WORK/fidelity-$round.log"
+        sed -e "s/^RESULT fidelity_ompl /RESULT fidelity_ompl_$round /" \
+            -e "s/^RESULT fidelity_plain /RESULT fidelity_plain_$round /" \
+            "$WORK/fidelity-$round.log" >"$WORK/fidelity-$round.res"
+        collect "$WORK/fidelity-$round.res"
+    done
+else
+    echo "== 4. timing fidelity: skipped (needs mpb-planner-ompl, mpb-bench-fidelity, the kitchen)"
+fi
 
 # ---- 5. store and reports at scale ------------------------------------------
 echo "== 5. store: one transaction per run, as the daemon commits ($STORE_N runs)"
@@ -330,6 +466,12 @@ mgrow=nan
 [ "$MILLION" -eq 1 ] && mgrow=$(get tputM rss_growth_kb)
 rep=$(get report seconds)
 vw=$(get verify_0.01 wps) vs=$(get verify_0.1 wps)
+pw=$(get verify_pr2_0.01 wps) ps=$(get verify_pr2_0.1 wps)
+fm1=$(get fidelity_mpbench_1 median_s) fm2=$(get fidelity_mpbench_2 median_s)
+fo1=$(get fidelity_ompl_1 median_s) fo2=$(get fidelity_ompl_2 median_s)
+fid=$(calc "($fm1 + $fm2) / ($fo1 + $fo2)" 3)
+fp1=$(get fidelity_plain_1 median_s) fp2=$(get fidelity_plain_2 median_s)
+fidp=$(calc "($fm1 + $fm2) / ($fp1 + $fp2)" 3)
 st=$(get store_tx1 finish_us_per_run)
 
 table() {
@@ -344,11 +486,16 @@ cat <<EOF
 | 3 | throughput, 1 null planner, $(get tput1 runs) runs | $t1 runs/s | $(calc "1e6 / $t1 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t1" ">=" 10000) |
 | 3 | throughput, 2 null planners, $(get tput2 runs) runs | $t2 runs/s | $(calc "1e6 / $t2 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t2" ">=" 10000) |
 | 3 | mpbenchd CPU time (user + system) per run, 1 / 2 planners | $(get tput1 daemon_cpu_us_per_run) / $(get tput2 daemon_cpu_us_per_run) us | $(ratio "$(get tput1 daemon_cpu_us_per_run)") / $(ratio "$(get tput2 daemon_cpu_us_per_run)") | | |
+| 3 | null planners' CPU time per run (all of them, planner kit included), 1 / 2 planners | $(get tput1 planners_cpu_us_per_run) / $(get tput2 planners_cpu_us_per_run) us | $(ratio "$(get tput1 planners_cpu_us_per_run)") / $(ratio "$(get tput2 planners_cpu_us_per_run)") | | |
 | 3 | mpbenchd RSS over $(get tput1 runs) runs (1 planner): at 10 % / 50 % / end / max | $(get tput1 rss_early_kb) / $(get tput1 rss_half_kb) / $(get tput1 rss_end_kb) / $(get tput1 rss_max_kb) kB | | flat | $(flat "$grow" "$(get tput1 runs)") |
 | 3 | mpbenchd RSS over 1,000,000 runs (1 planner): at 10 % / 50 % / end / max | $( [ "$MILLION" -eq 1 ] && echo "$(get tputM rss_early_kb) / $(get tputM rss_half_kb) / $(get tputM rss_end_kb) / $(get tputM rss_max_kb) kB, at $(get tputM runs_per_s) runs/s" || echo "not run (--million)") | | flat | $( [ "$MILLION" -eq 1 ] && flat "$mgrow" "$(get tputM runs)" || echo "not measured") |
-| 4 | verification + metrics, planar arm, waypoints at the resolution ($(get verify_0.01 checks_per_waypoint) checks each) | $vw waypoints/s | | >= 50,000 (PR2 kitchen) | planar only |
-| 4 | verification + metrics, planar arm, waypoints 0.1 rad apart ($(get verify_0.1 checks_per_waypoint) checks each) | $vs waypoints/s | | | planar only |
-| 4 | timing fidelity vs OMPL's own Benchmark (issue item 4) | not yet measured | | within 3 % | not measured |
+| 4 | verification + metrics, PR2 right arm in the $PR2_WHERE, waypoints at the resolution ($(get verify_pr2_0.01 checks_per_waypoint) checks each) | $pw waypoints/s | | >= 50,000 | $(verdict "$pw" ">=" 50000)$( [ "$PR2_WHERE" = kitchen ] || echo " (not the kitchen)") |
+| 4 | verification + metrics, PR2 right arm in the $PR2_WHERE, waypoints 0.1 rad apart ($(get verify_pr2_0.1 checks_per_waypoint) checks each) | $ps waypoints/s | | >= 50,000 | $(verdict "$ps" ">=" 50000) |
+| 4 | verification + metrics, planar arm, waypoints at the resolution ($(get verify_0.01 checks_per_waypoint) checks each) | $vw waypoints/s | | | |
+| 4 | verification + metrics, planar arm, waypoints 0.1 rad apart ($(get verify_0.1 checks_per_waypoint) checks each) | $vs waypoints/s | | | |
+| 4 | timing fidelity, RRTConnect, PR2 kitchen, 2 rounds of $(get fidelity_mpbench_1 runs) runs: median solve time through mpbench / in OMPL's Benchmark (solved runs), round 1; round 2 | $(calc "$fm1 * 1000" 2) / $(calc "$fo1 * 1000" 2); $(calc "$fm2 * 1000" 2) / $(calc "$fo2 * 1000" 2) ms: ratio $fid | | within 3 % | $(awk -v r="$fid" 'BEGIN { if (r != r + 0) print "not measured"; else print (r >= 0.97 && r <= 1.03) ? "met" : "**missed**" }') |
+| 4 | ... the same against OMPL in process without Benchmark (a new planner per run, solve() alone timed, as mpb-planner-ompl does) | $(calc "$fp1 * 1000" 2); $(calc "$fp2 * 1000" 2) ms: ratio $fidp | | | |
+| 4 | ... runs solved, round 1: through mpbench (verified valid) / in OMPL's Benchmark | $(get fidelity_mpbench_1 solved) ($(get fidelity_mpbench_1 verified)) / $(get fidelity_ompl_1 solved) of $(get fidelity_ompl_1 runs) | | same within noise | |
 | 5 | store, one transaction per run as mpbenchd commits (no network) | $(calc "$st") us per run | $(ratio "$st") | | |
 | 5 | store, $(get mkdb batch) runs per transaction, 15 metric rows per run | $(calc "$(get mkdb finish_us_per_run)") us per run | | | |
 | 5 | \`mpb report\` over $(get report runs) runs ($db_mb MB database) | $rep s | | < 2 s | $(verdict "$rep" "<=" 2) |
