@@ -86,12 +86,11 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
         w->metrics[nm++] = (mpb_named){"smoothness",
             mpb_smoothness(st->waypoints, st->num_waypoints, st->num_joints,
                            e->wraps)};
-        w->metrics[nm++] = (mpb_named){"clearance",
-            mpb_path_clearance(world, st->waypoints, st->num_waypoints,
-                               st->num_joints)};
-        w->metrics[nm++] = (mpb_named){"min_clearance",
-            mpb_path_min_clearance(world, st->waypoints, st->num_waypoints,
-                                   st->num_joints)};
+        double mean, least;
+        mpb_path_clearances(world, st->waypoints, st->num_waypoints,
+                            st->num_joints, &mean, &least);
+        w->metrics[nm++] = (mpb_named){"clearance", mean};
+        w->metrics[nm++] = (mpb_named){"min_clearance", least};
         w->metrics[nm++] = (mpb_named){"ee_path_length",
             mpb_ee_path_length(world, st->waypoints, st->num_waypoints,
                                st->num_joints, d->resolution)};

@@ -97,30 +97,42 @@ double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
     return n < 2 ? 0.0 : sum / n;
 }
 
+void mpb_path_clearances(mpb_world *w, const double *wp, int num_waypoints,
+                         int num_joints, double *mean, double *least)
+{
+    double sum = 0.0, low = INFINITY;
+    if (!w || !wp || num_waypoints < 1 || num_joints != mpb_world_num_joints(w)) {
+        sum = low = NAN;
+    } else {
+        for (int i = 0; i < num_waypoints; i++) {
+            double c = mpb_world_clearance(w, wp + (size_t)i * (size_t)num_joints);
+            sum += c;
+            if (isnan(c))
+                low = NAN;
+            else if (c < low)
+                low = c;
+        }
+        sum /= num_waypoints;
+    }
+    if (mean)
+        *mean = sum;
+    if (least)
+        *least = low;
+}
+
 double mpb_path_clearance(mpb_world *w, const double *wp,
                           int num_waypoints, int num_joints)
 {
-    if (!w || !wp || num_waypoints < 1 || num_joints != mpb_world_num_joints(w))
-        return NAN;
-    double sum = 0.0;
-    for (int i = 0; i < num_waypoints; i++)
-        sum += mpb_world_clearance(w, wp + (size_t)i * (size_t)num_joints);
-    return sum / num_waypoints;
+    double mean;
+    mpb_path_clearances(w, wp, num_waypoints, num_joints, &mean, NULL);
+    return mean;
 }
 
 double mpb_path_min_clearance(mpb_world *w, const double *wp,
                               int num_waypoints, int num_joints)
 {
-    if (!w || !wp || num_waypoints < 1 || num_joints != mpb_world_num_joints(w))
-        return NAN;
-    double least = INFINITY;
-    for (int i = 0; i < num_waypoints; i++) {
-        double c = mpb_world_clearance(w, wp + (size_t)i * (size_t)num_joints);
-        if (isnan(c))
-            return NAN;
-        if (c < least)
-            least = c;
-    }
+    double least;
+    mpb_path_clearances(w, wp, num_waypoints, num_joints, NULL, &least);
     return least;
 }
 

@@ -190,6 +190,12 @@ static void test_clearance_mean_and_min(void **state)
     double wp[] = {0.0, M_PI / 2};
     assert_float_equal(mpb_path_min_clearance(w, wp, 2, 1), 0.4, 1e-9);
     assert_float_equal(mpb_path_clearance(w, wp, 2, 1), 0.9, 1e-9);
+    double mean = 0, least = 0;
+    mpb_path_clearances(w, wp, 2, 1, &mean, &least);
+    assert_float_equal(mean, 0.9, 1e-9);
+    assert_float_equal(least, 0.4, 1e-9);
+    mpb_path_clearances(w, wp, 2, 2, &mean, &least);
+    assert_true(isnan(mean) && isnan(least));
     assert_true(isnan(mpb_path_min_clearance(w, wp, 2, 2)));  /* wrong size */
     mpb_world_close(w);
 }

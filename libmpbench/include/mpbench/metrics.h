@@ -63,6 +63,15 @@ double mpb_path_min_clearance(struct mpb_world *w, const double *wp,
                               int num_waypoints, int num_joints);
 
 /*
+ * Both at once, for the price of one: each waypoint's clearance is a
+ * distance query to the collision world, the dearest part of measuring a
+ * path. *mean and *least (either may be NULL) get NaN as above.
+ */
+void mpb_path_clearances(struct mpb_world *w, const double *wp,
+                         int num_waypoints, int num_joints, double *mean,
+                         double *least);
+
+/*
  * l_e: the distance the end effector travels (m, mpb_world_ee_position()),
  * each segment followed in straight joint-space steps of at most resolution
  * (continuous joints the short way), since the end effector moves along a
