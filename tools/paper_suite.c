@@ -233,7 +233,38 @@ static void put_vector(FILE *out, const double *v, int n)
     fputc(']', out);
 }
 
-static void write_header(FILE *out, const suite *s, int quick)
+/* The experiment files made from one suite: the paper's protocol, a
+ * quick variant, and the slice `make demo` runs. */
+typedef struct variant {
+    const char *name;           /* --variant NAME, the experiment's name */
+    const char *about;          /* the header's description */
+    int         runs;           /* per sampling planner and query */
+    double      time_limit;     /* s */
+    int         goals;          /* goals per environment, 0: all */
+    const char *ompl;           /* OMPL algorithms */
+} variant;
+
+static const variant variants[] = {
+    {"paper",
+     "The paper's protocol: 30 runs per sampling planner and\n"
+     "# query, 1 for deterministic ones, 60 s limit.",
+     30, 60.0, 0,
+     "KPIECE1, LBKPIECE1, SBL, RRT, RRTConnect, RRTstar, BKPIECE1, PRM, EST, "
+     "BITstar"},
+    {"paper-quick",
+     "Quick variant: 3 runs per sampling planner and query,\n"
+     "# 10 s limit, no planners beyond the paper's (meant to take\n"
+     "# under 30 minutes on 2 cores).",
+     3, 10.0, 0, "KPIECE1, LBKPIECE1, SBL, RRT, RRTConnect, RRTstar"},
+    {"paper-demo",
+     "The slice `make demo` runs: the first two goals of each\n"
+     "# environment, 3 runs per sampling planner and query, 5 s limit,\n"
+     "# two OMPL planners (a few minutes at most on 2 cores).",
+     3, 5.0, 2, "RRTConnect, RRT"},
+};
+#define NUM_VARIANTS ((int)(sizeof variants / sizeof variants[0]))
+
+static void write_header(FILE *out, const suite *s, const variant *v)
 {
     fprintf(out,
         "# The benchmark of Cohen, Sucan and Chitta, section IV: the PR2's right\n"
@@ -253,31 +284,26 @@ static void write_header(FILE *out, const suite *s, int quick)
         "  format: urdf\n"
         "  file: ../%s\n"
         "  joints: [",
-        quick ? "Quick variant: 3 runs per sampling planner and query,\n"
-                "# 10 s limit, no planners beyond the paper's (meant to take\n"
-                "# under 30 minutes on 2 cores)."
-              : "The paper's protocol: 30 runs per sampling planner and\n"
-                "# query, 1 for deterministic ones, 60 s limit.",
-        quick ? "paper-quick" : "paper", quick ? 3 : 30, quick ? 10.0 : 60.0,
+        v->about, v->name, v->runs, v->time_limit,
         s->robot + (strncmp(s->robot, "../", 3) == 0 ? 3 : 0));
     for (int j = 0; j < NUM_JOINTS; j++)
         fprintf(out, "%s%s", j ? ", " : "", arm_joints[j]);
     fputs("]\n\nscenes:\n", out);
 }
 
-static void write_planners(FILE *out, int quick)
+static void write_planners(FILE *out, const variant *v)
 {
     fprintf(out,
         "\n"
         "planners:\n"
         "  - planner: ompl\n"
-        "    algorithms: [KPIECE1, LBKPIECE1, SBL, RRT, RRTConnect, RRTstar%s]\n"
+        "    algorithms: [%s]\n"
         "  - planner: arastar\n"
         "    algorithms: [ARAstar]\n"
         "    runs: 1             # deterministic\n"
         "  - planner: python\n"
         "    algorithms: [RRTConnect]\n",
-        quick ? "" : ", BKPIECE1, PRM, EST, BITstar");
+        v->ompl);
 }
 
 static void write_goal(FILE *out, const goal *g)
@@ -291,7 +317,7 @@ static void write_goal(FILE *out, const goal *g)
             RPY_TOLERANCE, RPY_TOLERANCE, RPY_TOLERANCE);
 }
 
-static int write_suite(FILE *out, const suite *s, int quick)
+static int write_suite(FILE *out, const suite *s, const variant *v)
 {
     char path[1024], err[512];
     snprintf(path, sizeof path, "%s/%s", s->dir, s->robot);
@@ -303,7 +329,7 @@ static int write_suite(FILE *out, const suite *s, int quick)
     if (mpb_robot_link_index(robot, EE_LINK) < 0)
         die("%s: no link " EE_LINK, path);
     int unreachable = 0;
-    write_header(out, s, quick);
+    write_header(out, s, v);
     for (int e = 0; e < s->num_envs; e++) {
         const env *en = &s->envs[e];
         snprintf(path, sizeof path, "%s/%s", s->dir, en->scene);
@@ -319,7 +345,9 @@ static int write_suite(FILE *out, const suite *s, int quick)
                 "    file: ../paper/%s\n    queries:\n", en->name, en->scene);
         double prev[NUM_JOINTS];
         memcpy(prev, s->start, sizeof prev);
-        for (int k = 0; k < en->num_goals; k++) {
+        int goals = v->goals > 0 && v->goals < en->num_goals ? v->goals
+                                                           : en->num_goals;
+        for (int k = 0; k < goals; k++) {
             const goal *g = &en->goals[k];
             double q[NUM_JOINTS];
             clock_t t0 = clock();
@@ -346,7 +374,7 @@ static int write_suite(FILE *out, const suite *s, int quick)
         mpb_world_close(w);
         free(scene);
     }
-    write_planners(out, quick);
+    write_planners(out, v);
     mpb_robot_free(robot);
     free(urdf);
     return unreachable;
@@ -355,7 +383,7 @@ static int write_suite(FILE *out, const suite *s, int quick)
 static void usage(FILE *out)
 {
     fprintf(out,
-        "usage: mpb-paper-suite [--quick] [--check FILE] [-v] SUITE\n"
+        "usage: mpb-paper-suite [--variant NAME | --quick] [--check FILE] [-v] SUITE\n"
         "\n"
         "Write the experiment file of the paper's benchmark from SUITE\n"
         "(scenes/paper/suite.txt): each environment's queries between\n"
@@ -363,27 +391,43 @@ static void usage(FILE *out)
         "solution inside the previous goal's region (the first query starts\n"
         "at the start state).\n"
         "\n"
-        "  -q, --quick       the quick variant (3 runs, 10 s, six planners)\n"
-        "  -c, --check FILE  compare with FILE instead of writing; exit 1 if\n"
-        "                    they differ\n"
-        "  -v, --verbose     print each goal's IK search to stderr\n"
-        "  -h, --help        print this help\n");
+        "  -V, --variant NAME  paper (the default: 30 runs, 60 s, ten OMPL\n"
+        "                      planners), paper-quick (3 runs, 10 s, the\n"
+        "                      paper's six) or paper-demo (two goals per\n"
+        "                      environment, 3 runs, 5 s, two OMPL planners)\n"
+        "  -q, --quick         the same as --variant paper-quick\n"
+        "  -c, --check FILE    compare with FILE instead of writing; exit 1 if\n"
+        "                      they differ\n"
+        "  -v, --verbose       print each goal's IK search to stderr\n"
+        "  -h, --help          print this help\n");
 }
 
 int main(int argc, char **argv)
 {
     static const struct option longopts[] = {
+        {"variant", required_argument, NULL, 'V'},
         {"quick", no_argument, NULL, 'q'},
         {"check", required_argument, NULL, 'c'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
-    int quick = 0, opt;
+    const variant *v = &variants[0];
+    int opt;
     const char *check = NULL;
-    while ((opt = getopt_long(argc, argv, "qc:vh", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, "V:qc:vh", longopts, NULL)) != -1) {
         switch (opt) {
-        case 'q': quick = 1; break;
+        case 'V':
+            for (v = variants; v < variants + NUM_VARIANTS; v++)
+                if (strcmp(v->name, optarg) == 0)
+                    break;
+            if (v == variants + NUM_VARIANTS) {
+                fprintf(stderr, "mpb-paper-suite: unknown variant '%s' "
+                        "(paper, paper-quick, paper-demo)\n", optarg);
+                return 2;
+            }
+            break;
+        case 'q': v = &variants[1]; break;
         case 'c': check = optarg; break;
         case 'v': verbose = 1; break;
         case 'h': usage(stdout); return 0;
@@ -402,7 +446,7 @@ int main(int argc, char **argv)
     FILE *out = check ? open_memstream(&text, &len) : stdout;
     if (out == NULL)
         die("out of memory");
-    int unreachable = write_suite(out, &s, quick);
+    int unreachable = write_suite(out, &s, v);
     if (check == NULL)
         return unreachable ? 1 : 0;
     fclose(out);

@@ -1,6 +1,6 @@
 #!/bin/sh
 # paper_suite.sh - regenerate the paper's experiment files,
-# scenes/experiments/paper.yaml and paper-quick.yaml, from
+# scenes/experiments/paper.yaml, paper-quick.yaml and paper-demo.yaml, from
 # scenes/paper/suite.txt (goals, start state, scenes) with mpb-paper-suite.
 # Run it after editing suite.txt, a scene or the robot, and commit the
 # result: the test suite checks that the committed files are what this
@@ -17,9 +17,12 @@ out=$root/scenes/experiments
 
 # Into a temporary file first: a goal without an IK solution fails the
 # generator, and must not leave a half-written experiment file behind.
-trap 'rm -f "$out/paper.yaml.new" "$out/paper-quick.yaml.new"' EXIT
-"$gen" -v "$suite" >"$out/paper.yaml.new"
-"$gen" --quick "$suite" >"$out/paper-quick.yaml.new"
-mv "$out/paper.yaml.new" "$out/paper.yaml"
-mv "$out/paper-quick.yaml.new" "$out/paper-quick.yaml"
-echo "wrote $out/paper.yaml and $out/paper-quick.yaml"
+variants="paper paper-quick paper-demo"
+trap 'for v in $variants; do rm -f "$out/$v.yaml.new"; done' EXIT
+for v in $variants; do
+    "$gen" --variant "$v" "$suite" >"$out/$v.yaml.new"
+done
+for v in $variants; do
+    mv "$out/$v.yaml.new" "$out/$v.yaml"
+    echo "wrote $out/$v.yaml"
+done

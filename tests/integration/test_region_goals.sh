@@ -71,13 +71,12 @@ bad_case planar.yaml "10:15: .*a region goal needs a urdf robot"
 
 # The paper's experiment files are valid as committed, and are what
 # tools/paper_suite.sh makes of scenes/paper/suite.txt today.
-for f in paper paper-quick; do
+for f in paper paper-quick paper-demo; do
     yaml=$MPB_SOURCE/scenes/experiments/$f.yaml
     out=$("$daemon" --check "$yaml" 2>&1)
     check "mpbenchd --check accepts $f.yaml" eq $? 0
     echo "# $out"
-    quick=$([ "$f" = paper-quick ] && echo --quick || true)
-    out=$("$MPB_BUILD/tools/mpb-paper-suite" $quick --check "$yaml" \
+    out=$("$MPB_BUILD/tools/mpb-paper-suite" --variant "$f" --check "$yaml" \
           "$MPB_SOURCE/scenes/paper/suite.txt" 2>&1)
     check "$f.yaml is what mpb-paper-suite generates" eq $? 0
     [ -z "$out" ] || echo "# $out"
