@@ -105,14 +105,8 @@ int cmd_export(int argc, char **argv)
         case 'h':
             usage(stdout);
             return MPB_EXIT_OK;
-        case ':':
-            fprintf(stderr, "mpb " CMD ": %s needs a value (try 'mpb " CMD
-                    " --help')\n", argv[optind - 1]);
-            return MPB_EXIT_USAGE;
-        default:
-            fprintf(stderr, "mpb " CMD ": unknown option '%s' (try 'mpb " CMD
-                    " --help')\n", argv[optind - 1]);
-            return MPB_EXIT_USAGE;
+        default:    /* ':' a missing value, '?' an unknown option */
+            return tool_option_error(CMD, opt, argv);
         }
     }
     if (planner_arena + ompl_log != 1) {

@@ -42,4 +42,13 @@ mpb_store *tool_open_readonly(const char *cmd, const char *path);
 /* Parse a whole decimal integer > 0 (an id); 0 on success, -1 if not one. */
 int tool_parse_id(const char *text, int64_t *out);
 
+/*
+ * For getopt_long run with opterr = 0 and an option string that starts
+ * with ':': say in one line what was wrong with the option just read (opt
+ * ':' a missing value, anything else an unknown option) or with an
+ * argument left over, and return MPB_EXIT_USAGE.
+ */
+int tool_option_error(const char *cmd, int opt, char **argv);
+int tool_extra_argument(const char *cmd, const char *arg);
+
 #endif

@@ -446,14 +446,8 @@ static int parse(int argc, char **argv, options *o)
             }
             break;
         case 'h': usage(stdout); return -1;
-        case ':':
-            fprintf(stderr, "mpb " CMD ": %s needs a value (try 'mpb " CMD
-                    " --help')\n", argv[optind - 1]);
-            return MPB_EXIT_USAGE;
-        default:
-            fprintf(stderr, "mpb " CMD ": unknown option '%s' (try 'mpb " CMD
-                    " --help')\n", argv[optind - 1]);
-            return MPB_EXIT_USAGE;
+        default:    /* ':' a missing value, '?' an unknown option */
+            return tool_option_error(CMD, c, argv);
         }
     }
     if (optind != argc - 1) {

@@ -173,21 +173,12 @@ int cmd_spy(int argc, char **argv)
         case 'h':
             usage(stdout);
             return MPB_EXIT_OK;
-        case ':':
-            fprintf(stderr, "mpb " CMD ": %s needs a value (try 'mpb " CMD
-                    " --help')\n", argv[optind - 1]);
-            return MPB_EXIT_USAGE;
-        default:
-            fprintf(stderr, "mpb " CMD ": unknown option '%s' (try 'mpb " CMD
-                    " --help')\n", argv[optind - 1]);
-            return MPB_EXIT_USAGE;
+        default:    /* ':' a missing value, '?' an unknown option */
+            return tool_option_error(CMD, opt, argv);
         }
     }
-    if (optind < argc) {
-        fprintf(stderr, "mpb " CMD ": unexpected argument '%s' (try 'mpb " CMD
-                " --help')\n", argv[optind]);
-        return MPB_EXIT_USAGE;
-    }
+    if (optind < argc)
+        return tool_extra_argument(CMD, argv[optind]);
 
     char java[PATH_MAX], types[PATH_MAX];
     if (find_java(java, sizeof java) != 0) {

@@ -1,5 +1,7 @@
-/* util.c - helpers the `mpb` subcommands share: opening a database, ids. */
+/* util.c - helpers the `mpb` subcommands share: opening a database, ids,
+ * command-line errors. */
 #include <errno.h>
+#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,4 +44,20 @@ int tool_parse_id(const char *text, int64_t *out)
         return -1;
     *out = (int64_t)v;
     return 0;
+}
+
+int tool_option_error(const char *cmd, int opt, char **argv)
+{
+    /* getopt_long leaves optind past the word it could not use. */
+    fprintf(stderr, opt == ':' ? "mpb %s: %s needs a value (try 'mpb %s --help')\n"
+                               : "mpb %s: unknown option '%s' (try 'mpb %s --help')\n",
+            cmd, argv[optind - 1], cmd);
+    return MPB_EXIT_USAGE;
+}
+
+int tool_extra_argument(const char *cmd, const char *arg)
+{
+    fprintf(stderr, "mpb %s: unexpected argument '%s' (try 'mpb %s --help')\n",
+            cmd, arg, cmd);
+    return MPB_EXIT_USAGE;
 }
