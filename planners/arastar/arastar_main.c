@@ -1,0 +1,109 @@
+/* arastar_main.c - mpb-planner-arastar: command line, signals, serving. */
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "mpbench/mpbench.h"
+#include "mpbench/planner.h"
+#include "solve.h"
+
+static volatile sig_atomic_t g_stop;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    g_stop = 1;
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+"usage: mpb-planner-arastar [--lcm-url URL] [--secret-file FILE] [-v]\n"
+"\n"
+"A search-based planner process for mpbench: ARA* over joint-space motion\n"
+"primitives, with a heuristic from a 3-D breadth-first search of the\n"
+"end-effector over a voxel grid of the scene (as in Cohen, Sucan and\n"
+"Chitta's benchmark). Algorithm \"ARAstar\"; pose-region and joint goals;\n"
+"URDF robots with MoveIt scenes. It returns the first solution (epsilon\n"
+"100) unless the request sets improve=1. Parameters: docs/planners.md.\n"
+"\n"
+"It announces itself on LCM as arastar@host:pid and serves until SIGINT\n"
+"or SIGTERM.\n"
+"\n"
+"options:\n"
+"  --lcm-url URL   LCM URL to join (default %s;\n"
+"                  the daemon must use the same one)\n"
+"  --secret-file F authenticate every message with the shared secret in F\n"
+"  -v              one line per run on stderr\n"
+"  --help          show this text\n",
+            MPB_DEFAULT_LCM_URL);
+}
+
+static void on_ready(void *user, const char *planner_id)
+{
+    (void)user;
+    printf("mpb-planner-arastar: serving as %s\n", planner_id);
+    fflush(stdout);
+}
+
+int main(int argc, char **argv)
+{
+    const char *url = NULL, *secret = NULL;
+    ara_context ctx = {&g_stop, 0};
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        }
+        if (strcmp(a, "-v") == 0) {
+            ctx.verbose = 1;
+            continue;
+        }
+        if ((strcmp(a, "--lcm-url") == 0 || strcmp(a, "--secret-file") == 0) &&
+            i + 1 >= argc) {
+            fprintf(stderr, "mpb-planner-arastar: %s needs a value "
+                    "(see --help)\n", a);
+            return 2;
+        }
+        if (strcmp(a, "--lcm-url") == 0) {
+            url = argv[++i];
+        } else if (strcmp(a, "--secret-file") == 0) {
+            secret = argv[++i];
+        } else {
+            fprintf(stderr, "mpb-planner-arastar: unknown argument '%s' "
+                    "(see --help)\n", a);
+            return 2;
+        }
+    }
+
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    static const char *const algorithms[] = { "ARAstar" };
+    mpb_planner_def def = {
+        .name = "arastar",
+        .language = "c",
+        .version = MPB_VERSION_STRING,
+        .algorithms = algorithms,
+        .num_algorithms = 1,
+        .solve = ara_solve,
+        .user = &ctx,
+        .on_ready = on_ready,
+        .secret_file = secret,
+    };
+    char err[256] = "";
+    int rc = mpb_planner_serve(&def, url, &g_stop, 0, err, sizeof err);
+    if (rc != MPB_OK) {
+        fprintf(stderr, "mpb-planner-arastar: %s\n",
+                err[0] ? err : mpb_strerror(rc));
+        return 1;
+    }
+    return 0;
+}
