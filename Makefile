@@ -1,6 +1,7 @@
 # mpbench - the front door. CMake does the building; this file names the
 # everyday commands:
-#   make deps   install the Debian packages mpbench needs (idempotent)
+#   make deps   install the Debian packages mpbench needs, and the PyPI lcm
+#               package into .venv for the Python planner (idempotent)
 #   make        build everything into build/
 #   make test   deps, build, run every test (unit and integration)
 #   make demo   deps, build, run the demo benchmark, print its report
@@ -24,6 +25,7 @@ configure:
 
 deps:
 	@sh tools/deps.sh
+	@sh tools/python_env.sh
 
 test: deps
 	$(MAKE) all

@@ -1,0 +1,1 @@
+"""mpbplanner - the Python planner of mpbench (see __main__.py)."""

@@ -1,0 +1,57 @@
+"""mpb-planner-python: an mpbench planner written in Python.
+
+RRT-Connect in joint space with a shortcut stage, collision checks by
+libmpbench (through ctypes), messages by the PyPI `lcm` package. A worked
+example for docs/writing-a-planner.md as much as a planner.
+"""
+import argparse
+import signal
+import sys
+
+from .node import Auth, Node
+from .solve import WorldCache, solve
+
+ALGORITHMS = ["RRTConnect"]
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(
+        prog="mpb-planner-python",
+        description="An mpbench planner in Python: answers plan requests "
+                    "from mpbenchd with RRT-Connect (stages raw and "
+                    "shortcut). Params: range (rad, default 0.5), "
+                    "resolution (rad, default 0.005).",
+        epilog="Stops on SIGINT or SIGTERM. Protocol: docs/protocol.md; "
+               "how it is written: docs/writing-a-planner.md.")
+    ap.add_argument("-u", "--lcm-url", default="",
+                    help="LCM URL (default: LCM's, udpm://239.255.76.67:7667?ttl=0)")
+    ap.add_argument("-s", "--secret-file", metavar="FILE",
+                    help="sign and check every message with this shared "
+                         "secret, as mpbenchd --secret-file does")
+    ap.add_argument("-n", "--name", default="python",
+                    help="planner family announced (default: python)")
+    ap.add_argument("-v", "--verbose", action="store_true",
+                    help="log each run to stderr")
+    args = ap.parse_args(argv)
+
+    try:
+        auth = Auth(args.secret_file) if args.secret_file else None
+    except OSError as e:
+        print(f"mpb-planner-python: cannot read {args.secret_file}: "
+              f"{e.strerror}", file=sys.stderr)
+        return 1
+    try:
+        node = Node(args.name, ALGORITHMS, args.lcm_url, auth, args.verbose)
+    except Exception as e:
+        print(f"mpb-planner-python: cannot start LCM: {e}", file=sys.stderr)
+        return 1
+    signal.signal(signal.SIGTERM, lambda *_: node.stop())
+    signal.signal(signal.SIGINT, lambda *_: node.stop())
+    cache = WorldCache()
+    node.log(f"{node.planner_id} ready: {', '.join(ALGORITHMS)}")
+    node.serve(lambda req: solve(req, cache))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

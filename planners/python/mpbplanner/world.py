@@ -1,0 +1,146 @@
+"""world.py - libmpbench's world model from Python, through ctypes.
+
+The Python planner checks collisions and samples goal regions with the same
+C code the daemon verifies with (libmpbench/include/mpbench/world.h and
+robot.h), so a path it accepts is judged by the same geometry. The library
+is found through MPB_LIBMPBENCH (the launcher sets it to the build tree's
+libmpbench.so) or the loader's path.
+"""
+import ctypes
+import os
+from ctypes import (POINTER, Structure, byref, c_char_p, c_double, c_int,
+                    c_size_t, c_uint64, c_void_p)
+
+
+class WorldError(Exception):
+    """A robot or scene the library refused; the message names where."""
+
+
+def _load_library():
+    path = os.environ.get("MPB_LIBMPBENCH", "libmpbench.so.0")
+    try:
+        return ctypes.CDLL(path)
+    except OSError as e:
+        raise WorldError(f"cannot load libmpbench ({path}): {e}") from e
+
+
+_lib = _load_library()
+_doubles = POINTER(c_double)
+
+
+def _declare(name, restype, *argtypes):
+    f = getattr(_lib, name)
+    f.restype = restype
+    f.argtypes = list(argtypes)
+    return f
+
+
+class _GoalRegion(Structure):
+    """robot.h's mpb_goal_region."""
+    _fields_ = [("link", c_int), ("offset", c_double * 3),
+                ("center", c_double * 3), ("half_extents", c_double * 3),
+                ("ref_rpy", c_double * 3), ("rpy_tolerance", c_double * 3)]
+
+
+_world_open = _declare("mpb_world_open_group", c_int, c_char_p, c_char_p,
+                       c_char_p, c_char_p, POINTER(c_char_p), c_int,
+                       POINTER(c_void_p), c_char_p, c_size_t)
+_world_close = _declare("mpb_world_close", None, c_void_p)
+_num_joints = _declare("mpb_world_num_joints", c_int, c_void_p)
+_limits = _declare("mpb_world_joint_limits", None, c_void_p, c_int, _doubles,
+                   _doubles)
+_continuous = _declare("mpb_world_joint_is_continuous", c_int, c_void_p, c_int)
+_in_collision = _declare("mpb_world_in_collision", c_int, c_void_p, _doubles)
+_robot_load = _declare("mpb_robot_load_urdf_joints", c_int, c_char_p,
+                       POINTER(c_char_p), c_int, POINTER(c_void_p), c_char_p,
+                       c_size_t)
+_robot_free = _declare("mpb_robot_free", None, c_void_p)
+_link_index = _declare("mpb_robot_link_index", c_int, c_void_p, c_char_p)
+_region_sample = _declare("mpb_goal_region_sample", c_int, c_void_p,
+                          POINTER(_GoalRegion), _doubles, c_void_p, c_int,
+                          POINTER(c_uint64), _doubles)
+_region_contains = _declare("mpb_goal_region_contains", c_int, c_void_p,
+                            POINTER(_GoalRegion), _doubles)
+
+
+def _names(names):
+    return (c_char_p * len(names))(*[n.encode() for n in names])
+
+
+class World:
+    """A robot in a scene, its planning group given by joint names."""
+
+    def __init__(self, robot_format, robot, scene_format, scene, joints):
+        err = ctypes.create_string_buffer(512)
+        handle = c_void_p()
+        rc = _world_open(robot_format.encode(), robot.encode(),
+                         scene_format.encode(), scene.encode(), _names(joints),
+                         len(joints), byref(handle), err, len(err))
+        if rc != 0:
+            raise WorldError(err.value.decode(errors="replace"))
+        self._w = handle
+        self._robot = None
+        self._format, self._urdf, self._joints = robot_format, robot, joints
+        n = _num_joints(handle)
+        self.num_joints = n
+        self.lower, self.upper, self.wraps = [], [], []
+        lo, hi = c_double(), c_double()
+        for j in range(n):
+            _limits(handle, j, byref(lo), byref(hi))
+            self.lower.append(lo.value)
+            self.upper.append(hi.value)
+            self.wraps.append(bool(_continuous(handle, j)))
+        self._q = (c_double * n)()
+
+    def close(self):
+        if self._robot:
+            _robot_free(self._robot)
+            self._robot = None
+        if self._w:
+            _world_close(self._w)
+            self._w = None
+
+    def free(self, q):
+        """True when the robot at q touches nothing."""
+        self._q[:] = q
+        return _in_collision(self._w, self._q) == 0
+
+    def _robot_handle(self):
+        """The kinematic model for goal regions (URDF robots only)."""
+        if self._robot is None:
+            if self._format != "urdf":
+                raise WorldError(f"pose-region goals need a urdf robot, not "
+                                 f"'{self._format}'")
+            err = ctypes.create_string_buffer(512)
+            handle = c_void_p()
+            if _robot_load(self._urdf.encode(), _names(self._joints),
+                           len(self._joints), byref(handle), err,
+                           len(err)) != 0:
+                raise WorldError(err.value.decode(errors="replace"))
+            self._robot = handle
+        return self._robot
+
+    def goal_region(self, link, center, half_extents, rpy, rpy_tolerance):
+        """A pose region for `link`, as robot.h describes it."""
+        robot = self._robot_handle()
+        index = _link_index(robot, link.encode())
+        if index < 0:
+            raise WorldError(f"goal link '{link}' is not a link of the robot")
+        return _GoalRegion(index, (c_double * 3)(0, 0, 0),
+                           (c_double * 3)(*center), (c_double * 3)(*half_extents),
+                           (c_double * 3)(*rpy), (c_double * 3)(*rpy_tolerance))
+
+    def sample_goal(self, region, seed_q, rng_state):
+        """A configuration inside the region by IK, or None. rng_state is a
+        one-element list holding the 64-bit generator state; it advances."""
+        rng = c_uint64(rng_state[0])
+        seed = (c_double * self.num_joints)(*seed_q)
+        out = (c_double * self.num_joints)()
+        rc = _region_sample(self._robot_handle(), byref(region), seed, None,
+                            0, byref(rng), out)
+        rng_state[0] = rng.value
+        return list(out) if rc == 0 else None
+
+    def in_region(self, region, q):
+        self._q[:] = q
+        return _region_contains(self._robot_handle(), byref(region), self._q) == 1

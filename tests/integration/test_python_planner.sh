@@ -1,0 +1,144 @@
+#!/bin/sh
+# The planner written in Python (planners/python) against the real daemon:
+# its runs on the planar arm and on the PR2 with a pose-region goal are
+# stored and verified valid; the same seed gives the same path; a request
+# it cannot use gets INVALID_REQUEST and a malformed message changes
+# nothing; with a shared secret it takes part as the C planners do.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+mpb_enter_netns "$0" "$@"
+
+work=$(mktemp -d)
+trap 'mpb_stop_all; rm -rf "$work"' EXIT
+planner=$MPB_BUILD/planners/python/mpb-planner-python
+daemon=$MPB_BUILD/daemon/mpbenchd
+scenes=$MPB_SOURCE/scenes
+python=$MPB_SOURCE/.venv/bin/python3
+
+cat >"$work/planar.yaml" <<EOT
+experiment: {name: planar, runs: 5, time_limit: 5, seed: 7}
+robot: {format: planar, file: $scenes/planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $scenes/planar/pillars.scene
+    queries:
+      - {name: over, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+      - {name: fold, start: [0, 0, 0], goal: [-1.2, 1.5, 1.0], tolerance: 0.01}
+planners:
+  - {planner: python, algorithms: [RRTConnect]}
+EOT
+
+# The PR2 in the kitchen, from the paper's first goal region.
+sed -n '/^experiment:/,/^      - name: counter_front/p' \
+    "$scenes/experiments/paper-demo.yaml" | sed '$d' |
+    sed -e 's#file: \.\./#file: '"$scenes"'/#' -e 's/runs: 3/runs: 2/' >"$work/pr2.yaml"
+cat >>"$work/pr2.yaml" <<EOT
+
+planners:
+  - {planner: python, algorithms: [RRTConnect]}
+EOT
+
+# run_experiment NAME YAML [PLANNER ARGS]: one daemon, one Python planner.
+run_experiment() {
+    name=$1; yaml=$2; shift 2
+    mpb_spawn "$work/$name-planner.log" "$planner" -v "$@"
+    "$daemon" -d "$work/$name.db" "$@" "$yaml" >"$work/$name-daemon.log" 2>&1 &
+    mpb_wait $! 60
+    rc=$?
+    mpb_stop_all
+    return $rc
+}
+
+DB=$work/planar.db
+run_experiment planar "$work/planar.yaml"
+check "planar: the experiment completes" eq $? 0
+check "planar: 10 runs stored" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 10
+check "planar: every run verified valid" \
+    eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 10
+check "planar: raw and shortcut stages" \
+    eq "$(q "SELECT count(DISTINCT name) FROM stages WHERE name IN ('raw', 'shortcut')")" 2
+check "planar: the shortcut stage is never longer" \
+    eq "$(q "SELECT count(*) FROM metrics r JOIN metrics s ON s.run_id = r.run_id
+             AND s.name = 'path_length' AND s.stage = 'shortcut'
+             WHERE r.name = 'path_length' AND r.stage = 'raw'
+               AND s.value > r.value + 1e-9")" 0
+
+DB=$work/again.db
+run_experiment again "$work/planar.yaml"
+check "planar again: completes" eq $? 0
+same=$(sqlite3 "$work/planar.db" "ATTACH '$work/again.db' AS b;
+    SELECT count(*) FROM runs r JOIN stages s ON s.run_id = r.id
+      JOIN b.runs r2 ON r2.seed = r.seed
+      JOIN b.stages s2 ON s2.run_id = r2.id AND s2.name = s.name
+     WHERE s.name = 'raw' AND s.waypoints = s2.waypoints")
+check "the same seed gives the same raw path (10 of 10)" eq "$same" 10
+differ=$(q "SELECT count(DISTINCT s.waypoints) FROM stages s JOIN runs r ON r.id = s.run_id
+           JOIN queries qu ON qu.id = r.query_id WHERE s.name = 'raw' AND qu.name = 'fold'")
+check "different seeds give different paths" ge "$differ" 2
+
+DB=$work/pr2.db
+run_experiment pr2 "$work/pr2.yaml"
+check "PR2 region goal: completes" eq $? 0
+check "PR2 region goal: both runs verified valid" \
+    eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 2
+check "PR2 region goal: the goal was a region" \
+    eq "$(q "SELECT count(*) FROM queries WHERE goal_kind = 'pose_region'")" 1
+
+# A request naming joints the robot does not have, and bytes that are no message,
+# sent straight to the planner: it answers the first with INVALID_REQUEST
+# and goes on announcing itself after the second.
+mpb_spawn "$work/forged-planner.log" "$planner" -v
+cat >"$work/forge.py" <<'EOT'
+import os, sys, time
+import lcm
+from mpb import plan_request_t, plan_result_t, planner_announce_t
+lc = lcm.LCM()
+seen = {}
+def on_announce(channel, data):
+    a = planner_announce_t.decode(data)
+    if a.name == "python":
+        seen["id"] = a.planner_id
+        seen["announces"] = seen.get("announces", 0) + 1
+def on_result(channel, data):
+    seen["status"] = plan_result_t.decode(data).status
+lc.subscribe("MPB_ANNOUNCE", on_announce)
+lc.subscribe("MPB_RESULT", on_result)
+end = time.time() + 10
+while "id" not in seen and time.time() < end:
+    lc.handle_timeout(100)
+robot = open(sys.argv[1]).read()
+r = plan_request_t()
+r.run_id, r.planner_id, r.algorithm = "f" * 32, seen["id"], "RRTConnect"
+r.time_limit, r.seed = 1.0, 1
+r.robot_format, r.robot, r.scene_format, r.scene = "planar", robot, "planar", ""
+r.robot_hash = r.scene_hash = ""
+r.num_joints, r.joint_names, r.start = 2, ["a", "b"], [0.0, 0.0]
+r.goal.kind, r.goal.link = 0, ""
+r.goal.num_joints, r.goal.joints = 2, [0.1, 0.1]
+lc.publish("MPB_REQUEST_" + seen["id"], b"\x00garbage")
+lc.publish("MPB_REQUEST_" + seen["id"], r.encode())
+seen["announces"] = 0
+end = time.time() + 3
+while time.time() < end:
+    lc.handle_timeout(100)
+print(seen.get("status", "none"), seen["announces"])
+EOT
+out=$(PYTHONPATH="$MPB_BUILD/lcmtypes/python" "$python" "$work/forge.py" \
+      "$scenes/planar/arm3.robot" 2>&1)
+echo "# forged request: $out"
+check "a request naming joints the robot lacks gets INVALID_REQUEST (4)" \
+    test "${out%% *}" = 4
+check "after a malformed message the planner goes on announcing" \
+    test "${out##* }" -ge 3
+mpb_stop_all
+
+# With a shared secret the planner signs and checks, as the daemon does.
+head -c 32 /dev/urandom >"$work/secret"
+DB=$work/secret.db
+run_experiment secret "$work/planar.yaml" --secret-file "$work/secret"
+check "with --secret-file: completes" eq $? 0
+check "with --secret-file: 10 runs verified valid" \
+    eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 10
+
+mpb_finish
