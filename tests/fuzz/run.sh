@@ -10,10 +10,10 @@ secs=${1:-20}
 build=$root/build-fuzz
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DMPB_FUZZ=ON \
     -DCMAKE_BUILD_TYPE=Debug >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_messages fuzz_planar fuzz_experiment fuzz_scene fuzz_urdf
+cmake --build "$build" -j "$(nproc)" --target fuzz_messages fuzz_planar fuzz_experiment fuzz_scene fuzz_urdf fuzz_ompl_log
 cd "$build"
 status=0
-for target in messages planar experiment scene urdf; do
+for target in messages planar experiment scene urdf ompl_log; do
     mkdir -p "corpus/$target"
     echo "== fuzz_$target, $secs s"
     if ! UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \

@@ -19,7 +19,8 @@
     X(plot,   "draw box plots per metric and success-rate bars, per scene (gnuplot)") \
     X(status, "follow a running experiment: progress, rate, time left, planners") \
     X(spy,    "start lcm-spy with mpbench's message types, to watch the traffic") \
-    X(export, "write results for Planner Arena (and OMPL's tools)")
+    X(export, "write results for Planner Arena (and OMPL's tools)")          \
+    X(import, "read OMPL and MoveIt benchmark logs into a database")
 
 #define MPB__TOOL_DECLARE(name, summary) int cmd_##name(int argc, char **argv);
 MPB_TOOL_COMMANDS(MPB__TOOL_DECLARE)

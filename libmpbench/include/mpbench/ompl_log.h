@@ -1,0 +1,89 @@
+/*
+ * ompl_log.h - reading the benchmark logs that OMPL's ompl::tools::Benchmark
+ * (and MoveIt's benchmark executor, in the same format) write, so that
+ * their results can be imported into an mpbench database (`mpb import`)
+ * and reported, plotted and exported beside mpbench's own.
+ *
+ * The format (one experiment per file; shared/reference/ describes it):
+ *
+ *   OMPL version 1.5.2
+ *   Experiment NAME
+ *   K experiment properties          K lines "name TYPE = value"
+ *   Running on HOST
+ *   Starting at DATE
+ *   <<<| setup |>>>   [<<<| cpuinfo |>>>]
+ *   SEED is the random seed
+ *   T seconds per run
+ *   M MB per run
+ *   [N runs per planner]
+ *   S seconds spent to collect the data
+ *   [E enum type(s)                  E lines "name|value0|value1|..."]
+ *   P planners
+ *   then per planner: its name; C common properties ("name = value"); R
+ *   properties for each run ("name TYPE"); N runs, one line each of R
+ *   values "v1; v2; ...; "; optionally Q progress properties and N lines
+ *   of samples "a,b,;a,b,;"; and a line ".".
+ *
+ * Values that are empty, "nan" or "inf" read as NaN; BOOLEAN values are
+ * 0 or 1 (also written "true"/"false").
+ */
+#ifndef MPBENCH_OMPL_LOG_H
+#define MPBENCH_OMPL_LOG_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mpb_ompl_property {
+    char *name;                 /* "time", "solution length", ... */
+    char *type;                 /* "REAL", "BOOLEAN", "INTEGER", "ENUM", ... */
+} mpb_ompl_property;
+
+typedef struct mpb_ompl_planner {
+    char  *name;                /* "geometric_RRTConnect" */
+    char  *settings;            /* common properties, "k = v" joined by ';' */
+    int    num_properties;
+    mpb_ompl_property *properties;
+    long   num_runs;
+    double *values;             /* num_runs x num_properties, row-major */
+    int    num_progress_properties;   /* the first is the sample's time */
+    mpb_ompl_property *progress_properties;
+    long  *progress_start;      /* num_runs + 1 offsets into progress, in
+                                   samples */
+    double *progress;           /* samples x num_progress_properties */
+} mpb_ompl_planner;
+
+typedef struct mpb_ompl_log {
+    char  *version;             /* "OMPL 1.5.2", "MoveIt 1.1.9", ... */
+    char  *experiment;          /* the experiment's name */
+    char  *host, *date, *setup, *cpuinfo;
+    char  *seed;                /* as written */
+    double time_limit;          /* s per run */
+    double memory_limit;        /* MB per run */
+    double total_time;          /* s spent collecting the data */
+    long   runs_per_planner;    /* -1 when not written */
+    int    num_planners;
+    mpb_ompl_planner *planners;
+} mpb_ompl_log;
+
+/*
+ * Parse a log held in text[0..len) (it need not end in NUL). On success
+ * *out is a new log, freed with mpb_ompl_log_free(). On failure returns
+ * MPB_EPARSE (or MPB_ENOMEM, MPB_EINVAL for NULL arguments) with one line
+ * in err: "line N: what was expected" (lines count from 1).
+ */
+int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
+                       char *err, size_t errlen);
+
+void mpb_ompl_log_free(mpb_ompl_log *log);
+
+/* The index of the run property of that name, or -1. */
+int mpb_ompl_planner_property(const mpb_ompl_planner *p, const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPBENCH_OMPL_LOG_H */

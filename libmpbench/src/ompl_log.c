@@ -1,0 +1,550 @@
+/*
+ * ompl_log.c - the reader of OMPL's (and MoveIt's) benchmark logs
+ * (ompl_log.h). A cursor walks the text line by line; every line the
+ * grammar expects is read by one function that says, on failure, which
+ * line and what it wanted.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mpbench/mpbench.h"
+
+/* Counts above these are taken for damage, not data. */
+#define MAX_COUNT 100000000L
+#define MAX_PROPERTIES 10000
+
+typedef struct reader {
+    const char *p, *end;
+    long line;                  /* of the line last read */
+    char *buf;                  /* that line, NUL-terminated, trimmed */
+    size_t cap;
+    char *err;
+    size_t errlen;
+    int failed;
+} reader;
+
+static int fail(reader *r, const char *fmt, ...)
+{
+    if (!r->failed && r->err && r->errlen) {
+        int n = snprintf(r->err, r->errlen, "line %ld: ", r->line);
+        va_list ap;
+        va_start(ap, fmt);
+        if (n >= 0 && (size_t)n < r->errlen)
+            vsnprintf(r->err + n, r->errlen - (size_t)n, fmt, ap);
+        va_end(ap);
+    }
+    r->failed = 1;
+    return MPB_EPARSE;
+}
+
+/* The next line, without its end and surrounding blanks; NULL at the end
+ * of the text. */
+static char *next_line(reader *r)
+{
+    if (r->p >= r->end)
+        return NULL;
+    const char *nl = memchr(r->p, '\n', (size_t)(r->end - r->p));
+    const char *stop = nl ? nl : r->end;
+    size_t n = (size_t)(stop - r->p);
+    if (n + 1 > r->cap) {
+        size_t cap = n + 1 > 2 * r->cap ? n + 1 : 2 * r->cap;
+        char *b = realloc(r->buf, cap);
+        if (b == NULL)
+            return NULL;
+        r->buf = b;
+        r->cap = cap;
+    }
+    memcpy(r->buf, r->p, n);
+    r->buf[n] = '\0';
+    r->p = nl ? nl + 1 : r->end;
+    r->line++;
+    char *s = r->buf;
+    while (*s && isspace((unsigned char)*s))
+        s++;
+    char *e = s + strlen(s);
+    while (e > s && isspace((unsigned char)e[-1]))
+        *--e = '\0';
+    return s;
+}
+
+static char *need_line(reader *r, const char *what)
+{
+    char *s = next_line(r);
+    if (s == NULL) {
+        r->line++;
+        fail(r, "the log ends where %s was expected", what);
+    }
+    return s;
+}
+
+static char *dup(reader *r, const char *s)
+{
+    char *d = strdup(s);
+    if (d == NULL)
+        fail(r, "out of memory");
+    return d;
+}
+
+/* "N words...": the count, with the rest of the line checked to be words. */
+static int count_line(reader *r, const char *words, long *out)
+{
+    char *s = need_line(r, words);
+    if (s == NULL)
+        return -1;
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    while (*end == ' ')
+        end++;
+    if (end == s || errno || v < 0 || v > MAX_COUNT || strcmp(end, words) != 0)
+        return fail(r, "expected 'N %s', found '%.60s'", words, s);
+    *out = v;
+    return 0;
+}
+
+/* "X words": the number in front. */
+static int number_line(reader *r, const char *words, double *out)
+{
+    char *s = need_line(r, words);
+    if (s == NULL)
+        return -1;
+    char *end;
+    double v = strtod(s, &end);
+    while (*end == ' ')
+        end++;
+    if (end == s || strcmp(end, words) != 0)
+        return fail(r, "expected 'X %s', found '%.60s'", words, s);
+    *out = v;
+    return 0;
+}
+
+/* "<<<|" text "|>>>", kept with its line ends. */
+static int block(reader *r, char **out)
+{
+    char *s = need_line(r, "'<<<|'");
+    if (s == NULL)
+        return -1;
+    if (strcmp(s, "<<<|") != 0)
+        return fail(r, "expected '<<<|', found '%.60s'", s);
+    size_t len = 0, cap = 64;
+    char *text = malloc(cap);
+    if (text == NULL)
+        return fail(r, "out of memory");
+    text[0] = '\0';
+    for (;;) {
+        s = need_line(r, "'|>>>'");
+        if (s == NULL) {
+            free(text);
+            return -1;
+        }
+        if (strcmp(s, "|>>>") == 0)
+            break;
+        size_t n = strlen(s);
+        if (len + n + 2 > cap) {
+            cap = 2 * (len + n + 2);
+            char *t = realloc(text, cap);
+            if (t == NULL) {
+                free(text);
+                return fail(r, "out of memory");
+            }
+            text = t;
+        }
+        memcpy(text + len, s, n);
+        len += n;
+        text[len++] = '\n';
+        text[len] = '\0';
+    }
+    *out = text;
+    return 0;
+}
+
+/* A value of a run line; NaN for "", nan, inf. */
+static double value_of(const char *s)
+{
+    if (*s == '\0')
+        return NAN;
+    if (strcmp(s, "true") == 0)
+        return 1.0;
+    if (strcmp(s, "false") == 0)
+        return 0.0;
+    char *end;
+    double v = strtod(s, &end);
+    if (end == s || !isfinite(v))
+        return NAN;
+    return v;
+}
+
+/* Split s at sep into at most n trimmed fields; the count found. */
+static int split(char *s, char sep, char **fields, int n)
+{
+    int k = 0;
+    while (*s && k < n) {
+        char *next = strchr(s, sep);
+        if (next)
+            *next = '\0';
+        while (*s == ' ')
+            s++;
+        char *e = s + strlen(s);
+        while (e > s && e[-1] == ' ')
+            *--e = '\0';
+        fields[k++] = s;
+        if (!next)
+            break;
+        s = next + 1;
+    }
+    return k;
+}
+
+/* "name TYPE" lines (the type is the last word) into *out; *count says
+ * how many are filled, for freeing after a failure. */
+static int property_lines(reader *r, long n, mpb_ompl_property **out,
+                          int *count)
+{
+    if (n > MAX_PROPERTIES)
+        return fail(r, "%ld properties is more than a log holds", n);
+    mpb_ompl_property *p = calloc(n ? (size_t)n : 1, sizeof *p);
+    if (p == NULL)
+        return fail(r, "out of memory");
+    *out = p;
+    *count = (int)n;    /* unfilled entries are NULL: freeing them is fine */
+    for (long i = 0; i < n; i++) {
+        char *s = need_line(r, "a property 'name TYPE'");
+        if (s == NULL)
+            return -1;
+        char *sp = strrchr(s, ' ');
+        if (sp == NULL || sp == s)
+            return fail(r, "expected a property 'name TYPE', found '%.60s'", s);
+        *sp = '\0';
+        if ((p[i].name = dup(r, s)) == NULL || (p[i].type = dup(r, sp + 1)) == NULL)
+            return -1;
+    }
+    return 0;
+}
+
+static int planner_block(reader *r, mpb_ompl_planner *pl)
+{
+    long n;
+    char *s = need_line(r, "a planner's name");
+    if (s == NULL || (pl->name = dup(r, s)) == NULL)
+        return -1;
+    if (count_line(r, "common properties", &n) != 0)
+        return -1;
+    size_t len = 0;
+    pl->settings = calloc(1, 1);
+    if (pl->settings == NULL)
+        return fail(r, "out of memory");
+    for (long i = 0; i < n; i++) {
+        if ((s = need_line(r, "a common property")) == NULL)
+            return -1;
+        size_t k = strlen(s);
+        char *t = realloc(pl->settings, len + k + 2);
+        if (t == NULL)
+            return fail(r, "out of memory");
+        pl->settings = t;
+        if (len)
+            t[len++] = ';';
+        memcpy(t + len, s, k + 1);
+        len += k;
+    }
+    long np;
+    if (count_line(r, "properties for each run", &np) != 0 ||
+        property_lines(r, np, &pl->properties, &pl->num_properties) != 0)
+        return -1;
+    if (count_line(r, "runs", &pl->num_runs) != 0)
+        return -1;
+    size_t cells = (size_t)pl->num_runs * (size_t)(np ? np : 1);
+    pl->values = malloc(cells * sizeof *pl->values);
+    char **fields = calloc((size_t)np + 1, sizeof *fields);
+    if (pl->values == NULL || fields == NULL) {
+        free(fields);
+        return fail(r, "out of memory");
+    }
+    for (long i = 0; i < pl->num_runs; i++) {
+        if ((s = need_line(r, "a run's values")) == NULL) {
+            free(fields);
+            return -1;
+        }
+        int k = split(s, ';', fields, (int)np + 1);
+        /* The trailing "; " leaves one empty field more. */
+        if (k == (int)np + 1 && fields[np][0] == '\0')
+            k--;
+        if (k != (int)np) {
+            free(fields);
+            return fail(r, "run %ld of %s has %d values, not %ld", i + 1,
+                        pl->name, k, np);
+        }
+        for (long j = 0; j < np; j++)
+            pl->values[(size_t)i * (size_t)np + (size_t)j] = value_of(fields[j]);
+    }
+    free(fields);
+
+    if ((s = need_line(r, "'.' or progress properties")) == NULL)
+        return -1;
+    if (strcmp(s, ".") == 0)
+        return 0;
+    /* Progress: "Q progress properties for each run", Q lines, "N runs",
+     * N lines of samples "a,b,;a,b,;". */
+    char *end;
+    long q = strtol(s, &end, 10);
+    while (*end == ' ')
+        end++;
+    if (end == s || q < 1 || q > MAX_PROPERTIES ||
+        strcmp(end, "progress properties for each run") != 0)
+        return fail(r, "expected '.' or 'N progress properties for each run', "
+                    "found '%.60s'", s);
+    if (property_lines(r, q, &pl->progress_properties,
+                       &pl->num_progress_properties) != 0)
+        return -1;
+    long nr;
+    if (count_line(r, "runs", &nr) != 0)
+        return -1;
+    if (nr != pl->num_runs)
+        return fail(r, "%ld runs of progress for %ld runs", nr, pl->num_runs);
+    pl->progress_start = calloc((size_t)nr + 1, sizeof *pl->progress_start);
+    if (pl->progress_start == NULL)
+        return fail(r, "out of memory");
+    size_t used = 0, cap = 0;
+    char **vals = calloc((size_t)q + 1, sizeof *vals);
+    if (vals == NULL)
+        return fail(r, "out of memory");
+    for (long i = 0; i < nr; i++) {
+        if ((s = need_line(r, "a run's progress")) == NULL) {
+            free(vals);
+            return -1;
+        }
+        pl->progress_start[i] = (long)(used / (size_t)q);
+        char *sample = s;
+        while (*sample) {
+            char *semi = strchr(sample, ';');
+            if (semi)
+                *semi = '\0';
+            if (*sample) {
+                int k = split(sample, ',', vals, (int)q + 1);
+                if (k == (int)q + 1 && vals[q][0] == '\0')
+                    k--;
+                if (k != (int)q) {
+                    free(vals);
+                    return fail(r, "a progress sample of %s has %d values, "
+                                "not %ld", pl->name, k, q);
+                }
+                if (used + (size_t)q > cap) {
+                    cap = cap ? 2 * cap : 64 * (size_t)q;
+                    double *t = realloc(pl->progress, cap * sizeof *t);
+                    if (t == NULL) {
+                        free(vals);
+                        return fail(r, "out of memory");
+                    }
+                    pl->progress = t;
+                }
+                for (long j = 0; j < q; j++)
+                    pl->progress[used++] = value_of(vals[j]);
+            }
+            if (!semi)
+                break;
+            sample = semi + 1;
+        }
+    }
+    free(vals);
+    pl->progress_start[nr] = (long)(used / (size_t)q);
+    if ((s = need_line(r, "'.'")) == NULL)
+        return -1;
+    if (strcmp(s, ".") != 0)
+        return fail(r, "expected '.' after %s's runs, found '%.60s'", pl->name, s);
+    return 0;
+}
+
+/* "WORD rest": rest, when the line starts with WORD and a space. */
+static const char *after(const char *s, const char *word)
+{
+    size_t n = strlen(word);
+    return strncmp(s, word, n) == 0 && s[n] == ' ' ? s + n + 1 : NULL;
+}
+
+static int header(reader *r, mpb_ompl_log *log)
+{
+    char *s = need_line(r, "'OMPL version ...'");
+    if (s == NULL)
+        return -1;
+    /* "OMPL version 1.5.2", "MoveIt version 1.1.9", "MoveIt! version ...";
+     * Debian's OMPL 1.5 writes "OMPL version " with no number. */
+    char *v = strstr(s, " version");
+    if (v == NULL || v == s || (v[8] != ' ' && v[8] != '\0'))
+        return fail(r, "expected 'OMPL version X' (or MoveIt's), found '%.60s'", s);
+    *v = '\0';
+    const char *number = v[8] ? v + 9 : "";
+    char version[256];
+    snprintf(version, sizeof version, "%s%s%s", s, *number ? " " : "", number);
+    if ((log->version = dup(r, version)) == NULL)
+        return -1;
+    if ((s = need_line(r, "'Experiment NAME'")) == NULL)
+        return -1;
+    const char *name = after(s, "Experiment");
+    if (name == NULL)
+        return fail(r, "expected 'Experiment NAME', found '%.60s'", s);
+    if ((log->experiment = dup(r, name)) == NULL)
+        return -1;
+    /* Experiment properties (OMPL 1.5), then the host. */
+    if ((s = need_line(r, "'Running on HOST'")) == NULL)
+        return -1;
+    char *end;
+    long k = strtol(s, &end, 10);
+    if (end != s && strcmp(end, " experiment properties") == 0) {
+        if (k < 0 || k > MAX_PROPERTIES)
+            return fail(r, "%ld experiment properties is more than a log holds", k);
+        for (long i = 0; i < k; i++)
+            if (need_line(r, "an experiment property") == NULL)
+                return -1;
+        if ((s = need_line(r, "'Running on HOST'")) == NULL)
+            return -1;
+    }
+    const char *host = after(s, "Running on");
+    if (host == NULL)
+        return fail(r, "expected 'Running on HOST', found '%.60s'", s);
+    if ((log->host = dup(r, host)) == NULL)
+        return -1;
+    if ((s = need_line(r, "'Starting at DATE'")) == NULL)
+        return -1;
+    const char *date = after(s, "Starting at");
+    if (date == NULL)
+        return fail(r, "expected 'Starting at DATE', found '%.60s'", s);
+    if ((log->date = dup(r, date)) == NULL || block(r, &log->setup) != 0)
+        return -1;
+    /* cpuinfo is optional: another block, or the seed line. */
+    const char *mark = r->p;
+    long line = r->line;
+    if ((s = need_line(r, "'SEED is the random seed'")) == NULL)
+        return -1;
+    if (strcmp(s, "<<<|") == 0) {
+        r->p = mark;
+        r->line = line;
+        if (block(r, &log->cpuinfo) != 0 ||
+            (s = need_line(r, "'SEED is the random seed'")) == NULL)
+            return -1;
+    }
+    char *seed_end = strstr(s, " is the random seed");
+    if (seed_end == NULL || seed_end[19] != '\0')
+        return fail(r, "expected 'SEED is the random seed', found '%.60s'", s);
+    *seed_end = '\0';
+    if ((log->seed = dup(r, s)) == NULL)
+        return -1;
+    if (number_line(r, "seconds per run", &log->time_limit) != 0 ||
+        number_line(r, "MB per run", &log->memory_limit) != 0)
+        return -1;
+    /* Optional "N runs per planner"; then the time spent. */
+    log->runs_per_planner = -1;
+    if ((s = need_line(r, "'S seconds spent to collect the data'")) == NULL)
+        return -1;
+    double t = strtod(s, &end);
+    if (end != s && strcmp(end, " runs per planner") == 0) {
+        log->runs_per_planner = (long)t;
+        if ((s = need_line(r, "'S seconds spent to collect the data'")) == NULL)
+            return -1;
+        t = strtod(s, &end);
+    }
+    if (end == s || strcmp(end, " seconds spent to collect the data") != 0)
+        return fail(r, "expected 'S seconds spent to collect the data', "
+                    "found '%.60s'", s);
+    log->total_time = t;
+    /* Optional enums, then the planner count. */
+    if ((s = need_line(r, "'P planners'")) == NULL)
+        return -1;
+    long n = strtol(s, &end, 10);
+    if (end != s && (strcmp(end, " enum types") == 0 ||
+                     strcmp(end, " enum type") == 0)) {
+        if (n < 0 || n > MAX_PROPERTIES)
+            return fail(r, "%ld enum types is more than a log holds", n);
+        for (long i = 0; i < n; i++)
+            if (need_line(r, "an enum 'name|value|...'") == NULL)
+                return -1;
+        if ((s = need_line(r, "'P planners'")) == NULL)
+            return -1;
+        n = strtol(s, &end, 10);
+    }
+    if (end == s || n < 0 || n > MAX_PROPERTIES || strcmp(end, " planners") != 0)
+        return fail(r, "expected 'P planners', found '%.60s'", s);
+    log->num_planners = (int)n;
+    return 0;
+}
+
+int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
+                       char *err, size_t errlen)
+{
+    if (out)
+        *out = NULL;
+    if (text == NULL || out == NULL)
+        return MPB_EINVAL;
+    if (err && errlen)
+        err[0] = '\0';
+    reader r = {.p = text, .end = text + len, .err = err, .errlen = errlen};
+    mpb_ompl_log *log = calloc(1, sizeof *log);
+    int rc = MPB_ENOMEM;
+    if (log == NULL)
+        goto done;
+    if (header(&r, log) != 0)
+        goto fail;
+    log->planners = calloc(log->num_planners ? (size_t)log->num_planners : 1,
+                           sizeof *log->planners);
+    if (log->planners == NULL) {
+        fail(&r, "out of memory");
+        goto fail;
+    }
+    for (int i = 0; i < log->num_planners; i++)
+        if (planner_block(&r, &log->planners[i]) != 0)
+            goto fail;
+    free(r.buf);
+    *out = log;
+    return MPB_OK;
+fail:
+    rc = r.err && strstr(r.err, "out of memory") ? MPB_ENOMEM : MPB_EPARSE;
+    mpb_ompl_log_free(log);
+done:
+    free(r.buf);
+    return rc;
+}
+
+static void free_properties(mpb_ompl_property *p, int n)
+{
+    for (int i = 0; p && i < n; i++) {
+        free(p[i].name);
+        free(p[i].type);
+    }
+    free(p);
+}
+
+void mpb_ompl_log_free(mpb_ompl_log *log)
+{
+    if (log == NULL)
+        return;
+    for (int i = 0; log->planners && i < log->num_planners; i++) {
+        mpb_ompl_planner *p = &log->planners[i];
+        free(p->name);
+        free(p->settings);
+        free_properties(p->properties, p->num_properties);
+        free(p->values);
+        free_properties(p->progress_properties, p->num_progress_properties);
+        free(p->progress_start);
+        free(p->progress);
+    }
+    free(log->planners);
+    free(log->version);
+    free(log->experiment);
+    free(log->host);
+    free(log->date);
+    free(log->setup);
+    free(log->cpuinfo);
+    free(log->seed);
+    free(log);
+}
+
+int mpb_ompl_planner_property(const mpb_ompl_planner *p, const char *name)
+{
+    for (int i = 0; p && i < p->num_properties; i++)
+        if (strcmp(p->properties[i].name, name) == 0)
+            return i;
+    return -1;
+}

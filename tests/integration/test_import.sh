@@ -1,0 +1,106 @@
+#!/bin/sh
+# `mpb import` on a log written by OMPL 1.5's own ompl::tools::Benchmark:
+# the runs arrive, reports read them, and exported again for Planner Arena
+# they keep OMPL's conventions: the experiments and runs columns where
+# Planner Arena looks, the status enum, booleans as 0/1, and per planner
+# the same run count and the same averages as the log itself says (worked
+# out here from the log's text, not through mpbench). A broken log adds
+# nothing and says where it broke.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mpb=$MPB_BUILD/tools/mpb
+DB=$work/imported.db
+
+"$MPB_BUILD/tests/mpb-test-ompl-log" "$work/wall.log" 6 0.05
+check "OMPL's Benchmark wrote a log" test -s "$work/wall.log"
+
+out=$("$mpb" import -d "$DB" "$work/wall.log")
+check "mpb import succeeds" eq $? 0
+echo "# $out"
+
+# Per planner: runs, mean time, mean solved, read from the log's text.
+cat >"$work/means.py" <<'EOT'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+i = next(k for k, l in enumerate(lines) if l.endswith(" planners"))
+n = int(lines[i].split()[0]); i += 1
+for _ in range(n):
+    name = lines[i]; i += 1
+    c = int(lines[i].split()[0]); i += 1 + c
+    p = int(lines[i].split()[0]); i += 1
+    props = [lines[i + k].rsplit(" ", 1)[0] for k in range(p)]; i += p
+    r = int(lines[i].split()[0]); i += 1
+    rows = [[v.strip() for v in lines[i + k].split(";")][:p] for k in range(r)]
+    i += r
+    while lines[i] != ".":
+        i += 1
+    i += 1
+    col = lambda key: [float(row[props.index(key)]) for row in rows]
+    t, s = col("time"), col("solved")
+    print("%s|%d|%.9g|%.9g" % (name.replace("geometric_", ""), r,
+                               sum(t) / r, sum(s) / r))
+EOT
+python3 "$work/means.py" "$work/wall.log" | sort >"$work/log.means"
+check "the log has three planners" eq "$(wc -l <"$work/log.means")" 3
+
+check "every run is in the database" \
+    eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" \
+       "$(awk -F'|' '{n += $2} END {print n}' "$work/log.means")"
+check "mpb report reads the imported experiment" \
+    sh -c "'$mpb' report '$DB' | grep -q 'ompl/RRTConnect'"
+
+"$mpb" export --planner-arena "$DB" "$work/arena.db" >/dev/null
+check "export for Planner Arena succeeds" eq $? 0
+A=$work/arena.db
+check "experiments: the first twelve columns, in Planner Arena's order" \
+    test "$(sqlite3 "$A" "SELECT group_concat(name, ',') FROM
+              (SELECT name FROM pragma_table_info('experiments') ORDER BY cid LIMIT 12)")" \
+    = "id,name,totaltime,timelimit,memorylimit,runcount,version,hostname,cpuinfo,date,seed,setup"
+check "runs: id, experimentid, plannerid, then the attributes from column four" \
+    test "$(sqlite3 "$A" "SELECT group_concat(name, ',') FROM
+              (SELECT name FROM pragma_table_info('runs') ORDER BY cid LIMIT 4)")" \
+    = "id,experimentid,plannerid,time"
+check "the status enum is there" \
+    ge "$(sqlite3 "$A" "SELECT count(*) FROM enums WHERE name = 'status'")" 7
+check "booleans are the integers 0 and 1" \
+    eq "$(sqlite3 "$A" "SELECT count(*) FROM runs WHERE typeof(solved) != 'integer'
+                        OR solved NOT IN (0, 1)")" 0
+sqlite3 "$A" "SELECT p.name, count(*), printf('%.9g', avg(r.time)),
+                     printf('%.9g', avg(r.solved))
+                FROM runs r JOIN plannerConfigs p ON p.id = r.plannerid
+               GROUP BY p.name" | sed 's/^ompl\///' | sort >"$work/arena.means"
+check "per planner, the same runs and averages as the log" \
+    cmp -s "$work/log.means" "$work/arena.means"
+[ $FAILS -eq 0 ] || { echo "# log:"; cat "$work/log.means"; echo "# arena:"; cat "$work/arena.means"; }
+
+# Round trip through OMPL's format: the exported log imports to the same.
+"$mpb" export --ompl-log "$DB" "$work/logs" >/dev/null
+"$mpb" import -d "$work/again.db" "$work"/logs/*.log >/dev/null
+check "the exported OMPL log imports again" eq $? 0
+sqlite3 "$work/again.db" "SELECT c.name, count(*), printf('%.9g', avg(r.time_total)),
+                                 printf('%.9g', avg(r.success))
+                            FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
+                           GROUP BY c.name" | sed 's/^[^/]*\///' | sort >"$work/again.means"
+check "... with the same runs and averages" cmp -s "$work/log.means" "$work/again.means"
+
+# A log cut short, and a file that is no log: one line naming where, and
+# nothing added to the database.
+before=$(q "SELECT count(*) FROM experiments")
+head -n "$(( $(wc -l <"$work/wall.log") - 4 ))" "$work/wall.log" >"$work/cut.log"
+err=$("$mpb" import -d "$DB" "$work/cut.log" 2>&1)
+check "a truncated log fails" test $? -eq 1
+check "... in one line naming the file and line" \
+    sh -c "printf '%s\n' \"\$1\" | grep -Eq '^mpb import: .*cut.log:[0-9]+: '" _ "$err"
+echo "# $err"
+printf 'OMPL version 1.5.2\nExperiment x\nRunning on h\nStarting at d\n<<<|\n' >"$work/bad.log"
+err=$("$mpb" import -d "$DB" "$work/bad.log" 2>&1)
+check "a log without its block end fails in one line" \
+    eq "$(printf '%s\n' "$err" | wc -l)" 1
+echo "# $err"
+check "nothing was added by the broken logs" \
+    eq "$(q "SELECT count(*) FROM experiments")" "$before"
+
+mpb_finish

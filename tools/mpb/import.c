@@ -1,0 +1,385 @@
+/*
+ * import.c - `mpb import`: OMPL and MoveIt benchmark logs into an mpbench
+ * database, so that `mpb report`, `mpb plot` and `mpb export` treat their
+ * results as they treat mpbench's own.
+ *
+ * One log is one experiment, with one scene and one query (both named
+ * after the log's experiment) and a planner configuration per planner
+ * block ("ompl/RRTConnect"). Each run keeps OMPL's time as tau_t, its
+ * `solved` as the claim, and as mpbench's success `solved` and not
+ * approximate and (where the log says) a correct solution: nothing can be
+ * verified again, since OMPL logs hold no paths. The path properties
+ * become stages without waypoints: `raw` from "solution ...", `simplified`
+ * from "simplified solution ..."; every other number is kept as the
+ * planner's own value, progress samples as progress. docs/planner-arena.md.
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mpb.h"
+
+#define CMD "import"
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+        "usage: mpb import -d DB LOG...\n"
+        "\n"
+        "Read benchmark logs written by OMPL's ompl::tools::Benchmark (or\n"
+        "MoveIt's benchmark executor, in the same format) into the mpbench\n"
+        "database DB (created if missing): each log becomes an experiment\n"
+        "that mpb report, mpb plot and mpb export read like mpbench's own.\n"
+        "Each log is imported in one transaction: a log with an error adds\n"
+        "nothing, and the logs before it stay.\n"
+        "\n"
+        "Options:\n"
+        "  -d, --db DB   the database to add to\n"
+        "  -h, --help    print this help\n"
+        "\n"
+        "Exit status: 0 when every log was imported, 1 on an error, 2 on a\n"
+        "bad command line.\n");
+}
+
+static char *read_all(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return NULL;
+    size_t cap = 1 << 16, n = 0, got;
+    char *buf = malloc(cap + 1);
+    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
+        n += got;
+        if (n == cap) {
+            char *b = realloc(buf, (cap *= 2) + 1);
+            if (b == NULL) {
+                free(buf);
+                buf = NULL;
+            } else {
+                buf = b;
+            }
+        }
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(buf);
+        return NULL;
+    }
+    if (buf)
+        buf[n] = '\0';     /* the text is used as a string too */
+    *len = n;
+    return buf;
+}
+
+/* ---- one planner's runs --------------------------------------------------- */
+
+/* Where a planner's properties are, looked up once per planner. */
+typedef struct columns {
+    int time, solved, approximate, correct, status;
+    int length, smoothness, clearance, segments;
+    int s_time, s_length, s_smoothness, s_clearance, s_segments, s_correct;
+} columns;
+
+static columns find_columns(const mpb_ompl_planner *p)
+{
+    return (columns){
+        .time = mpb_ompl_planner_property(p, "time"),
+        .solved = mpb_ompl_planner_property(p, "solved"),
+        .approximate = mpb_ompl_planner_property(p, "approximate solution"),
+        .correct = mpb_ompl_planner_property(p, "correct solution"),
+        .status = mpb_ompl_planner_property(p, "status"),
+        .length = mpb_ompl_planner_property(p, "solution length"),
+        .smoothness = mpb_ompl_planner_property(p, "solution smoothness"),
+        .clearance = mpb_ompl_planner_property(p, "solution clearance"),
+        .segments = mpb_ompl_planner_property(p, "solution segments"),
+        .s_time = mpb_ompl_planner_property(p, "simplification time"),
+        .s_length = mpb_ompl_planner_property(p, "simplified solution length"),
+        .s_smoothness = mpb_ompl_planner_property(p, "simplified solution smoothness"),
+        .s_clearance = mpb_ompl_planner_property(p, "simplified solution clearance"),
+        .s_segments = mpb_ompl_planner_property(p, "simplified solution segments"),
+        .s_correct = mpb_ompl_planner_property(p, "simplified correct solution"),
+    };
+}
+
+/* Properties that become run fields or stage metrics, not planner values. */
+static int is_mapped(const char *name)
+{
+    static const char *const mapped[] = {
+        "time", "solved", "approximate solution", "correct solution", "status",
+        "simplification time", NULL};
+    for (int i = 0; mapped[i]; i++)
+        if (strcmp(name, mapped[i]) == 0)
+            return 1;
+    return strncmp(name, "solution ", 9) == 0 ||
+           strncmp(name, "simplified ", 11) == 0;
+}
+
+static double cell(const mpb_ompl_planner *p, long run, int col)
+{
+    return col < 0 ? NAN : p->values[(size_t)run * (size_t)p->num_properties + (size_t)col];
+}
+
+/* OMPL's status enum (Benchmark.cpp's order) as mpbench's status names. */
+static const char *status_of(double v, int solved)
+{
+    switch (isnan(v) ? -1 : (int)v) {
+    case 1: case 2: case 3: return "invalid_request";
+    case 4: return "timeout";
+    case 5: return "approximate";
+    case 6: return "solved";
+    case 7: return "crash";
+    case 0: return "failed";
+    }
+    return solved ? "solved" : "timeout";
+}
+
+/* Append a metric if the log has it. */
+static void metric(mpb_named *m, int *n, const char *name, double v)
+{
+    if (!isnan(v))
+        m[(*n)++] = (mpb_named){name, v};
+}
+
+typedef struct run_ids {
+    int64_t  config;
+    int64_t *ids;               /* by repetition */
+    long     n;
+} run_ids;
+
+static int collect_id(void *ud, const mpb_run_row *row)
+{
+    run_ids *r = ud;
+    if (row->planner_config_id == r->config && row->repetition >= 0 &&
+        row->repetition < r->n)
+        r->ids[row->repetition] = row->id;
+    return 0;
+}
+
+static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
+                      long run, int64_t run_id, mpb_named *values,
+                      mpb_progress_record *progress)
+{
+    char uid[64];
+    snprintf(uid, sizeof uid, "imported-%lld", (long long)run_id);
+    int rc = mpb_store_run_sent(s, run_id, uid, "imported");
+    if (rc != MPB_OK)
+        return rc;
+    int solved = cell(p, run, c->solved) == 1.0;
+    int approximate = cell(p, run, c->approximate) == 1.0;
+    double correct = cell(p, run, c->correct);
+    int success = solved && !approximate && (isnan(correct) || correct == 1.0);
+
+    mpb_named raw[5], simplified[5];
+    int nraw = 0, nsimp = 0;
+    metric(raw, &nraw, "path_length", cell(p, run, c->length));
+    metric(raw, &nraw, "smoothness", cell(p, run, c->smoothness));
+    metric(raw, &nraw, "clearance", cell(p, run, c->clearance));
+    metric(raw, &nraw, "waypoints", cell(p, run, c->segments) + 1.0);
+    metric(simplified, &nsimp, "path_length", cell(p, run, c->s_length));
+    metric(simplified, &nsimp, "smoothness", cell(p, run, c->s_smoothness));
+    metric(simplified, &nsimp, "clearance", cell(p, run, c->s_clearance));
+    metric(simplified, &nsimp, "waypoints", cell(p, run, c->s_segments) + 1.0);
+    double s_correct = cell(p, run, c->s_correct);
+    mpb_stage_record st[2] = {
+        {.name = "raw", .time = cell(p, run, c->time), .valid = success,
+         .verdict = success ? "valid" : "imported", .verdict_segment = -1,
+         .num_metrics = nraw, .metrics = raw},
+        {.name = "simplified", .time = cell(p, run, c->s_time),
+         .valid = success && (isnan(s_correct) || s_correct == 1.0),
+         .verdict = success ? "valid" : "imported", .verdict_segment = -1,
+         .num_metrics = nsimp, .metrics = simplified},
+    };
+    int nstages = solved ? (nsimp > 0 ? 2 : 1) : 0;
+
+    int nv = 0;
+    for (int k = 0; k < p->num_properties; k++)
+        if (!is_mapped(p->properties[k].name) && !isnan(cell(p, run, k)))
+            values[nv++] = (mpb_named){p->properties[k].name, cell(p, run, k)};
+    int np = 0;
+    if (p->progress_start != NULL) {
+        int q = p->num_progress_properties;
+        for (long i = p->progress_start[run]; i < p->progress_start[run + 1]; i++) {
+            const double *sample = p->progress + (size_t)i * (size_t)q;
+            for (int k = 1; k < q; k++)
+                if (!isnan(sample[k]))
+                    progress[np++] = (mpb_progress_record){
+                        sample[0], p->progress_properties[k].name, sample[k]};
+        }
+    }
+    double t = cell(p, run, c->time);
+    mpb_run_record rec = {
+        .run_id = run_id, .run_uid = uid, .planner_id = "imported",
+        .status = status_of(cell(p, run, c->status), solved), .message = "",
+        .claimed_success = solved, .success = success,
+        .time_total = t, .time_raw = t, .time_other = 0.0, .wall_time = NAN,
+        .num_stages = nstages, .stages = st,
+        .num_values = nv, .values = values,
+        .num_progress = np, .progress = progress,
+    };
+    return mpb_store_run_finish(s, &rec);
+}
+
+/* ---- one log ---------------------------------------------------------------- */
+
+static int import_log(mpb_store *s, const char *path, const char *text,
+                      const mpb_ompl_log *log, long *runs_out)
+{
+    char hash[MPB_HASH_SIZE], family[32];
+    mpb_hash_hex(text, strlen(text), hash);
+    /* "OMPL 1.5.2" -> "ompl", "MoveIt 1.1" -> "moveit". */
+    size_t k = 0;
+    for (const char *c = log->version; *c && *c != ' ' && k + 1 < sizeof family; c++)
+        if ((*c >= 'A' && *c <= 'Z') || (*c >= 'a' && *c <= 'z'))
+            family[k++] = (char)(*c | 0x20);
+    family[k] = '\0';
+    if (k == 0)
+        strcpy(family, "ompl");
+
+    long most = 0;
+    for (int i = 0; i < log->num_planners; i++)
+        if (log->planners[i].num_runs > most)
+            most = log->planners[i].num_runs;
+    int64_t exp, scene, query;
+    mpb_experiment_info e = {log->experiment, path, hash, text,
+                             (int)(log->runs_per_planner > 0 ? log->runs_per_planner
+                                                             : most),
+                             log->time_limit};
+    mpb_scene_info sc = {log->experiment, "ompl-log", hash,
+                         log->setup ? log->setup : "", "ompl-log", hash, ""};
+    static const double none[1] = {0.0};
+    mpb_query_info q = {.name = log->experiment, .num_joints = 0,
+                        .joint_names = NULL, .start = none,
+                        .goal_kind = MPB_GOAL_JOINTS, .goal_joints = NULL,
+                        .goal_tolerance = 0.0};
+    int rc;
+    if ((rc = mpb_store_experiment_create(s, &e, &exp)) != MPB_OK ||
+        (rc = mpb_store_scene_add(s, exp, &sc, &scene)) != MPB_OK ||
+        (rc = mpb_store_query_add(s, scene, &q, &query)) != MPB_OK)
+        return rc;
+
+    long runs = 0;
+    for (int i = 0; i < log->num_planners; i++) {
+        const mpb_ompl_planner *p = &log->planners[i];
+        /* Planner Arena strips these prefixes too. */
+        const char *algo = p->name;
+        if (strncmp(algo, "geometric_", 10) == 0)
+            algo += 10;
+        else if (strncmp(algo, "control_", 8) == 0)
+            algo += 8;
+        char name[600];
+        snprintf(name, sizeof name, "%s/%s", family, algo);
+        int64_t config;
+        if ((rc = mpb_store_planner_config_add(s, exp, name, family, algo,
+                                               p->settings, &config)) != MPB_OK)
+            return rc;
+        for (long r = 0; r < p->num_runs; r++)
+            if ((rc = mpb_store_run_add(s, exp, config, query, (int)r, 0)) != MPB_OK)
+                return rc;
+        run_ids ids = {config, calloc((size_t)p->num_runs + 1, sizeof(int64_t)),
+                       p->num_runs};
+        long samples = p->progress_start ? p->progress_start[p->num_runs] : 0;
+        long most_progress = 0;
+        for (long r = 0; p->progress_start && r < p->num_runs; r++)
+            if (p->progress_start[r + 1] - p->progress_start[r] > most_progress)
+                most_progress = p->progress_start[r + 1] - p->progress_start[r];
+        (void)samples;
+        mpb_named *values = calloc((size_t)p->num_properties + 1, sizeof *values);
+        mpb_progress_record *progress =
+            calloc((size_t)most_progress * (size_t)(p->num_progress_properties + 1) + 1,
+                   sizeof *progress);
+        if (ids.ids == NULL || values == NULL || progress == NULL)
+            rc = MPB_ENOMEM;
+        else
+            rc = mpb_store_runs_unfinished(s, exp, collect_id, &ids);
+        columns c = find_columns(p);
+        for (long r = 0; rc == MPB_OK && r < p->num_runs; r++)
+            rc = import_run(s, p, &c, r, ids.ids[r], values, progress);
+        free(ids.ids);
+        free(values);
+        free(progress);
+        if (rc != MPB_OK)
+            return rc;
+        runs += p->num_runs;
+    }
+    *runs_out = runs;
+    return mpb_store_experiment_finish(s, exp);
+}
+
+int cmd_import(int argc, char **argv)
+{
+    static const struct option longopts[] = {
+        {"db", required_argument, NULL, 'd'},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    const char *db = NULL;
+    int opt;
+    optind = 1;
+    opterr = 0;
+    while ((opt = getopt_long(argc, argv, ":d:h", longopts, NULL)) != -1) {
+        switch (opt) {
+        case 'd':
+            db = optarg;
+            break;
+        case 'h':
+            usage(stdout);
+            return MPB_EXIT_OK;
+        default:    /* ':' a missing value, '?' an unknown option */
+            return tool_option_error(CMD, opt, argv);
+        }
+    }
+    if (db == NULL || optind == argc) {
+        fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",
+                db == NULL ? "which database? (-d DB)" : "which logs?");
+        return MPB_EXIT_USAGE;
+    }
+    mpb_store *s = NULL;
+    if (mpb_store_open(db, 0, &s) != MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": cannot open %s: %s\n", db,
+                mpb_store_errmsg(s));
+        mpb_store_close(s);
+        return MPB_EXIT_ERROR;
+    }
+    int status = MPB_EXIT_OK;
+    for (int i = optind; i < argc; i++) {
+        const char *path = argv[i];
+        size_t len = 0;
+        char *text = read_all(path, &len), err[256];
+        mpb_ompl_log *log = NULL;
+        long runs = 0;
+        int rc;
+        if (text == NULL) {
+            perror(path);
+            fprintf(stderr, "mpb " CMD ": cannot read %s\n", path);
+            status = MPB_EXIT_ERROR;
+            continue;
+        }
+        if ((rc = mpb_ompl_log_parse(text, len, &log, err, sizeof err)) != MPB_OK) {
+            /* "line N: what" -> "PATH:N: what", as compilers say it. */
+            fprintf(stderr, "mpb " CMD ": %s:%s\n", path,
+                    rc == MPB_ENOMEM ? " out of memory"
+                    : strncmp(err, "line ", 5) == 0 ? err + 5 : err);
+            status = MPB_EXIT_ERROR;
+        } else if (memchr(text, '\0', len) != NULL) {
+            fprintf(stderr, "mpb " CMD ": %s: a NUL byte: not a benchmark log\n",
+                    path);
+            status = MPB_EXIT_ERROR;
+        } else if ((rc = mpb_store_begin(s)) != MPB_OK ||
+                   (rc = import_log(s, path, text, log, &runs)) != MPB_OK ||
+                   (rc = mpb_store_commit(s)) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": %s: %s\n", path, mpb_store_errmsg(s));
+            mpb_store_rollback(s);
+            status = MPB_EXIT_ERROR;
+        } else {
+            printf("%s: experiment '%s', %d planners, %ld runs\n", path,
+                   log->experiment, log->num_planners, runs);
+        }
+        mpb_ompl_log_free(log);
+        free(text);
+    }
+    mpb_store_close(s);
+    return status;
+}
