@@ -1,0 +1,105 @@
+#!/bin/sh
+# bench/import.sh - issue 7, item 6: an OMPL benchmark log of at least
+# 50,000 runs into a Planner Arena database, `mpb import` + `mpb export
+# --planner-arena` against OMPL's own ompl_benchmark_statistics.py, on the
+# same log, on this machine, in the same run. Prints the time of each (the
+# median of 3), their ratio, and whether both databases hold the same runs
+# (per planner: count, mean time, mean solved).
+#
+#   bench/import.sh [RUNS]            (default 50000)
+#
+# The log is written by OMPL 1.5's ompl::tools::Benchmark (the test helper
+# mpb-test-ompl-log), its runs repeated until there are RUNS of them.
+# OMPL's script is not part of mpbench: give its path in OMPL_STATS (e.g.
+# scripts/ompl_benchmark_statistics.py of OMPL 1.5.2's sources); without
+# it only mpbench's side is timed. MPB_BUILD is the build tree.
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=${MPB_BUILD:-$root/build}
+RUNS=${1:-50000}
+mpb=$BUILD/tools/mpb
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+cmake --build "$BUILD" --target mpb mpb-test-ompl-log >/dev/null
+"$BUILD/tests/mpb-test-ompl-log" "$work/base.log" 100 0.01
+
+# Repeat each planner's run lines (and progress lines) k times.
+python3 - "$work/base.log" "$work/big.log" "$RUNS" <<'EOF'
+import math, sys
+lines = open(sys.argv[1]).read().split("\n")
+i = next(k for k, l in enumerate(lines) if l.endswith(" planners"))
+planners = int(lines[i].split()[0])
+out, j, blocks = lines[:i + 1], i + 1, []
+for _ in range(planners):
+    b = {"head": [lines[j]]}; j += 1
+    c = int(lines[j].split()[0]); b["head"] += lines[j:j + 1 + c]; j += 1 + c
+    p = int(lines[j].split()[0]); b["head"] += lines[j:j + 1 + p]; j += 1 + p
+    n = int(lines[j].split()[0]); b["runs"] = lines[j + 1:j + 1 + n]; j += 1 + n
+    b["prog_head"], b["prog"] = [], []
+    if lines[j] != ".":
+        q = int(lines[j].split()[0]); b["prog_head"] = lines[j:j + 1 + q]; j += 1 + q
+        j += 1; b["prog"] = lines[j:j + n]; j += n
+    j += 1
+    blocks.append(b)
+total = sum(len(b["runs"]) for b in blocks)
+k = math.ceil(int(sys.argv[3]) / total)
+for b in blocks:
+    n = len(b["runs"]) * k
+    out += b["head"] + ["%d runs" % n] + b["runs"] * k
+    if b["prog_head"]:
+        out += b["prog_head"] + ["%d runs" % n] + b["prog"] * k
+    out.append(".")
+open(sys.argv[2], "w").write("\n".join(out) + "\n")
+print("log: %d runs (%d written by OMPL's Benchmark, x%d), %.1f MB"
+      % (total * k, total, k, sum(len(l) + 1 for l in out) / 1e6))
+EOF
+
+now() { date +%s.%N; }
+median3() { printf '%s\n' "$@" | sort -g | sed -n 2p; }
+
+time_mpb() {
+    rm -f "$work/mpb.db"* "$work/arena.db"
+    t0=$(now)
+    "$mpb" import -d "$work/mpb.db" "$work/big.log" >/dev/null
+    "$mpb" export --planner-arena "$work/mpb.db" "$work/arena.db" >/dev/null
+    t1=$(now)
+    echo "$t1 - $t0" | bc
+}
+time_ompl() {
+    rm -f "$work/ompl.db"
+    t0=$(now)
+    python3 "$OMPL_STATS" -d "$work/ompl.db" "$work/big.log" >/dev/null 2>&1
+    t1=$(now)
+    echo "$t1 - $t0" | bc
+}
+
+m=$(median3 "$(time_mpb)" "$(time_mpb)" "$(time_mpb)")
+echo "mpb import + export --planner-arena: $m s"
+if [ -z "${OMPL_STATS:-}" ] || [ ! -f "$OMPL_STATS" ]; then
+    echo "OMPL_STATS not set: ompl_benchmark_statistics.py not timed"
+    echo "RESULT import runs=$RUNS mpb_s=$m"
+    exit 0
+fi
+o=$(median3 "$(time_ompl)" "$(time_ompl)" "$(time_ompl)")
+echo "ompl_benchmark_statistics.py:          $o s"
+ratio=$(echo "scale=2; $o / $m" | bc)
+echo "ratio (OMPL's script / mpbench):       ${ratio}x"
+
+# The same rows: per planner, the run count, mean time and mean solved.
+rows() {
+    sqlite3 "$1" "SELECT replace(p.name, 'geometric_', ''), count(*),
+                         printf('%.9g', avg(r.time)), printf('%.9g', avg(r.solved))
+                    FROM runs r JOIN plannerConfigs p ON p.id = r.plannerid
+                   GROUP BY 1 ORDER BY 1" | sed 's/^[a-z]*\///'
+}
+rows "$work/arena.db" >"$work/mpb.rows"
+rows "$work/ompl.db" >"$work/ompl.rows"
+if cmp -s "$work/mpb.rows" "$work/ompl.rows"; then
+    same=yes
+    echo "same rows: yes ($(wc -l <"$work/mpb.rows") planners)"
+else
+    same=no
+    echo "same rows: NO"; diff "$work/mpb.rows" "$work/ompl.rows" || true
+fi
+echo "RESULT import runs=$RUNS mpb_s=$m ompl_s=$o ratio=$ratio same_rows=$same"
