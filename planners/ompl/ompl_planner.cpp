@@ -1,15 +1,18 @@
 // ompl_planner.cpp - mpb-planner-ompl: OMPL's geometric planners behind the mpbench protocol.
 //
 // One request is one fresh OMPL problem: a joint space over the world's
-// joints, a validity checker that asks the mpbench world, the planner with
-// the request's parameters, a time limit, and then the raw path, a
+// joints, a validity checker that asks the mpbench world, a goal (a joint
+// configuration, or a pose region answered with IK samples), the planner
+// with the request's parameters, a time limit, and then the raw path, a
 // shortcut copy and a B-spline-smoothed copy as three stages. Only the
-// parsed world is kept between requests (keyed by the texts' hashes).
+// parsed world (and robot, for IK) is kept between requests, keyed by the
+// texts' hashes.
 //
 // Everything C++ stays inside solve(): every exception is caught there and
 // becomes a FAILED result, so none crosses into the C library.
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -66,6 +69,10 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
+#include "mpbench/robot.h"
+
+#include "pose_region_goal.h"
+#include "progress_log.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -246,19 +253,40 @@ private:
 struct CachedWorld {
     std::string key;
     mpb_world *world;
+    mpb_robot *robot;       // for IK; loaded at the first pose-region goal
 };
+
+// The robot of a urdf world in the request's joint order, for IK and goal
+// regions. The world keeps its own robot private (its format may have
+// none); parsing the URDF once more per cached world costs milliseconds.
+mpb_robot *cached_robot(CachedWorld &c, const mpb_plan_request_t *req, std::string &err)
+{
+    if (c.robot != nullptr)
+        return c.robot;
+    if (req->robot_format == nullptr || std::strcmp(req->robot_format, "urdf") != 0) {
+        err = "pose-region goals need a urdf robot";
+        return nullptr;
+    }
+    char msg[256] = "";
+    if (mpb_robot_load_urdf_joints(req->robot, req->joint_names, req->num_joints,
+                                   &c.robot, msg, sizeof msg) != MPB_OK) {
+        err = msg;
+        return nullptr;
+    }
+    return c.robot;
+}
 
 class WorldCache {
 public:
     ~WorldCache()
     {
         for (CachedWorld &c : list_)
-            mpb_world_close(c.world);
+            close(c);
     }
 
     // The world of a request, parsed once per robot and scene; nullptr
     // with err filled when it does not parse. Owned by the cache.
-    mpb_world *get(const mpb_plan_request_t *req, std::string &err)
+    CachedWorld *get(const mpb_plan_request_t *req, std::string &err)
     {
         std::string key = part(req->robot_format, req->robot_hash, req->robot) +
                           '\n' + part(req->scene_format, req->scene_hash, req->scene);
@@ -267,7 +295,7 @@ public:
         for (auto it = list_.begin(); it != list_.end(); ++it)
             if (it->key == key) {
                 list_.splice(list_.begin(), list_, it);
-                return list_.front().world;
+                return &list_.front();
             }
         mpb_world *w = nullptr;
         char msg[256] = "";
@@ -279,16 +307,22 @@ public:
             err = msg[0] != '\0' ? msg : mpb_strerror(rc);
             return nullptr;
         }
-        list_.push_front(CachedWorld{key, w});
+        list_.push_front(CachedWorld{key, w, nullptr});
         while (list_.size() > kSize) {
-            mpb_world_close(list_.back().world);
+            close(list_.back());
             list_.pop_back();
         }
-        return w;
+        return &list_.front();
     }
 
 private:
     static constexpr std::size_t kSize = 4;
+
+    static void close(CachedWorld &c)
+    {
+        mpb_world_close(c.world);
+        mpb_robot_free(c.robot);
+    }
 
     // A hash names the text; without one, the text names itself.
     static std::string part(const char *format, const char *hash, const char *text)
@@ -391,6 +425,36 @@ void add_stage(mpb_plan_result_t *res, const char *name, double time,
                                static_cast<int>(perm.size())));
 }
 
+// The request's pose region as an OMPL goal, its IK seeded by the start
+// state and its random state by the request's seed.
+std::shared_ptr<PoseRegionGoal> region_goal_of(CachedWorld *cached, const mpb_plan_request_t *req,
+                                               const ob::SpaceInformationPtr &si,
+                                               const std::vector<int> &perm)
+{
+    std::string err;
+    const mpb_robot *robot = cached_robot(*cached, req, err);
+    if (robot == nullptr)
+        throw InvalidRequest("goal region: " + err);
+    const mpb_goal_t &g = req->goal;
+    mpb_goal_region region{};
+    region.link = g.link != nullptr ? mpb_robot_link_index(robot, g.link) : -1;
+    if (region.link < 0)
+        throw InvalidRequest(std::string("goal region: the robot has no link '") +
+                             (g.link != nullptr ? g.link : "") + "'");
+    for (int i = 0; i < 3; i++) {
+        region.center[i] = g.position[i];
+        region.half_extents[i] = g.position_tolerance[i];
+        region.ref_rpy[i] = g.orientation_rpy[i];
+        region.rpy_tolerance[i] = g.orientation_tolerance[i];
+    }
+    char why[160] = "";
+    if (mpb_goal_region_check(robot, &region, why, sizeof why) != MPB_OK)
+        throw InvalidRequest(std::string("goal region: ") + why);
+    std::vector<double> seed_q(req->start, req->start + req->num_joints);
+    return std::make_shared<PoseRegionGoal>(si, robot, region, perm, std::move(seed_q),
+                                            static_cast<std::uint64_t>(req->seed));
+}
+
 void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t *res)
 {
     const double t0 = mpb_monotonic_s();
@@ -401,8 +465,12 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
     // points (the simplifiers split segments checked whole), so a path
     // checked at the same step is now and then caught grazing an obstacle
     // between OMPL's samples.
-    double resolution = 0.005;
-    bool simplify = true, first_solution = false;
+    double resolution = 0.005, progress_period = 0.05;
+    // The paper's planners stop at their first solution; first_solution=0
+    // lets optimizing ones (RRTstar, BITstar, PRMstar ...) use the time
+    // limit, reporting their progress.
+    bool simplify = true, first_solution = true;
+    int goal_targets = 200;
     std::vector<const mpb_param_t *> planner_params;
     for (int i = 0; i < req->num_params; i++) {
         const mpb_param_t *p = &req->params[i];
@@ -415,20 +483,29 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
         } else if (!std::strcmp(p->key, "first_solution")) {
             if (!parse_bool(p->value, first_solution))
                 throw InvalidRequest("first_solution must be 0 or 1");
+        } else if (!std::strcmp(p->key, "progress_period")) {
+            if (!parse_double(p->value, progress_period) || !(progress_period > 0))
+                throw InvalidRequest("progress_period must be a number > 0 (s)");
+        } else if (!std::strcmp(p->key, "goal_targets")) {
+            double v;
+            if (!parse_double(p->value, v) || !(v >= 1 && v <= 1e6) || v != std::floor(v))
+                throw InvalidRequest("goal_targets must be a whole number >= 1");
+            goal_targets = static_cast<int>(v);
         } else {
             planner_params.push_back(p);
         }
     }
     if (!(req->time_limit > 0) || !std::isfinite(req->time_limit))
         throw InvalidRequest("time_limit must be finite and > 0");
-    if (req->goal.kind != MPB_GOAL_T_JOINTS)
-        throw InvalidRequest("only joint-space goals are supported for now "
-                             "(pose regions need IK)");
+    const bool region_goal = req->goal.kind == MPB_GOAL_T_POSE_REGION;
+    if (!region_goal && req->goal.kind != MPB_GOAL_T_JOINTS)
+        throw InvalidRequest("unknown goal kind " + std::to_string(req->goal.kind));
 
     std::string err;
-    mpb_world *world = ctx->worlds.get(req, err);
-    if (world == nullptr)
+    CachedWorld *cached = ctx->worlds.get(req, err);
+    if (cached == nullptr)
         throw InvalidRequest("world: " + err);
+    mpb_world *world = cached->world;
 
     // perm[i]: the world joint of the request's joint i.
     const int n = mpb_world_num_joints(world);
@@ -477,25 +554,43 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
     for (std::size_t i = 0; i < perm.size(); i++) {
         auto j = static_cast<unsigned int>(perm[i]);
         start[j] = req->start[i];
-        goal[j] = req->goal.joints[i];
+        goal[j] = region_goal ? 0.0 : req->goal.joints[i];
     }
     for (unsigned int j = 0; j < static_cast<unsigned int>(n); j++)
         if (mpb_world_joint_is_continuous(world, static_cast<int>(j))) {
             start[j] = std::remainder(start[j], 2.0 * M_PI);
             goal[j] = std::remainder(goal[j], 2.0 * M_PI);
         }
-    // A joint goal is one state: if it is invalid no planner can reach it,
-    // and most would spend the whole time limit finding that out.
-    if (!si->isValid(goal.get())) {
-        res->time_other = res->time_total = mpb_monotonic_s() - t0;
-        throw Unsolvable("the goal state collides or is outside the joint limits");
-    }
     auto pdef = std::make_shared<ob::ProblemDefinition>(si);
-    // The goal region is a box of half size joint_tolerance; a ball of that
-    // radius lies inside it.
-    pdef->setStartAndGoalStates(start, goal,
-                                std::max(req->goal.joint_tolerance,
-                                         std::numeric_limits<double>::epsilon()));
+    if (region_goal) {
+        auto g = region_goal_of(cached, req, si, perm);
+        // Setting up the goal is finding a first goal state (tau_other):
+        // without one no planner can start a goal tree, nor succeed.
+        const double t_goal = mpb_monotonic_s();
+        bool primed = g->prime(goal_targets);
+        check(mpb_result_add_value(res, "goal sampling time", mpb_monotonic_s() - t_goal));
+        if (!primed) {
+            check(mpb_result_add_value(res, "goal ik calls", static_cast<double>(g->ikCalls())));
+            res->time_other = res->time_total = mpb_monotonic_s() - t0;
+            throw Unsolvable("no collision-free IK solution found inside the goal "
+                             "region of '" + std::string(req->goal.link) + "' in " +
+                             std::to_string(goal_targets) + " tries (goal_targets)");
+        }
+        pdef->addStartState(start);
+        pdef->setGoal(g);
+    } else {
+        // A joint goal is one state: if it is invalid no planner can reach
+        // it, and most would spend the whole time limit finding that out.
+        if (!si->isValid(goal.get())) {
+            res->time_other = res->time_total = mpb_monotonic_s() - t0;
+            throw Unsolvable("the goal state collides or is outside the joint limits");
+        }
+        // The goal region is a box of half size joint_tolerance; a ball of
+        // that radius lies inside it.
+        pdef->setStartAndGoalStates(start, goal,
+                                    std::max(req->goal.joint_tolerance,
+                                             std::numeric_limits<double>::epsilon()));
+    }
     if (first_solution) {
         // Any solution satisfies an infinite cost threshold: optimizing
         // planners (RRTstar, PRMstar, BITstar ...) stop at their first.
@@ -534,15 +629,31 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
     const double t_setup = mpb_monotonic_s();
     res->time_other = t_setup - t0;
 
-    const double deadline = t_setup + req->time_limit;
-    bool interrupted = false;
-    ob::PlannerTerminationCondition ptc([deadline, &interrupted] {
+    // The time limit bounds solve(), as in ompl::tools::Benchmark. An
+    // anytime run would spend all of it, though, and mpbenchd counts a run
+    // in time by its total: it stops early enough for setup and the
+    // simplifiers to fit (10% of the limit, at most 2 s, for these).
+    const bool log_progress = !first_solution;
+    const double deadline =
+        log_progress ? t0 + req->time_limit - std::min(0.1 * req->time_limit, 2.0)
+                     : t_setup + req->time_limit;
+    std::atomic<bool> interrupted{false};
+    ProgressLog progress(*planner, progress_period, t_setup);
+    ob::PlannerTerminationCondition ptc([deadline, &interrupted, &progress, log_progress] {
         if (g_stop != 0)
             interrupted = true;
-        return interrupted || mpb_monotonic_s() >= deadline;
+        double now = mpb_monotonic_s();
+        if (log_progress)
+            progress.poll(now);
+        return interrupted || now >= deadline;
     });
+    // Timed as ompl::tools::Benchmark times a run: solve() alone.
     ob::PlannerStatus status = planner->solve(ptc);
     const double t_raw = mpb_monotonic_s();
+    if (log_progress) {
+        progress.finish(t_raw);
+        check(progress.addTo(res));
+    }
     const unsigned long solve_checks = checker->calls;
 
     switch (ob::PlannerStatus::StatusType(status)) {
@@ -563,7 +674,9 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
         break;
     case ob::PlannerStatus::INVALID_GOAL:
         res->status = MPB_PLAN_RESULT_T_FAILED;
-        mpb_result_set_message(res, "the goal state collides or is outside the joint limits");
+        mpb_result_set_message(res, region_goal ? "no valid goal state in the goal region"
+                                                : "the goal state collides or is outside "
+                                                  "the joint limits");
         break;
     default:
         res->status = MPB_PLAN_RESULT_T_FAILED;
@@ -583,6 +696,11 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
     check(mpb_result_add_value(res, "graph states", data.numVertices()));
     check(mpb_result_add_value(res, "graph motions", data.numEdges()));
     check(mpb_result_add_value(res, "state checks in solve", static_cast<double>(solve_checks)));
+    if (region_goal) {
+        auto g = std::static_pointer_cast<PoseRegionGoal>(pdef->getGoal());
+        check(mpb_result_add_value(res, "goal states", static_cast<double>(g->numGoalStates())));
+        check(mpb_result_add_value(res, "goal ik calls", static_cast<double>(g->ikCalls())));
+    }
 
     bool have_path = (status == ob::PlannerStatus::EXACT_SOLUTION ||
                       status == ob::PlannerStatus::APPROXIMATE_SOLUTION) &&
@@ -664,11 +782,13 @@ void usage(std::FILE *out)
 "\n"
 "A planner process for mpbench that plans with OMPL %d.%d.%d's geometric\n"
 "planners. For each plan request it builds the robot's joint space (continuous\n"
-"joints wrap), checks states against the request's world, runs the requested\n"
-"algorithm with its parameters until it solves or the time limit passes, and\n"
-"answers with up to three stages: \"raw\" (the path as found), \"shortcut\"\n"
-"(a shortcut copy) and \"smoothed\" (a B-spline-smoothed copy of that), each\n"
-"with its own time. The same seed gives the same samples.\n"
+"joints wrap), checks states against the request's world, reaches a joint\n"
+"goal or a pose region (IK samples inside it, seeded by the request), runs the\n"
+"requested algorithm with its parameters until it solves or the time limit\n"
+"passes, and answers with up to three stages: \"raw\" (the path as found),\n"
+"\"shortcut\" (a shortcut copy) and \"smoothed\" (a B-spline-smoothed copy\n"
+"of that), each with its own time. The same seed gives the same samples and\n"
+"goal states, so the same raw path.\n"
 "\n"
 "It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
 "SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
@@ -688,8 +808,14 @@ void usage(std::FILE *out)
 "  resolution      joint-space step (rad) for checking motions (default\n"
 "                  0.005, half the step mpbenchd verifies with by default)\n"
 "  simplify        0: report the raw path only (default 1)\n"
-"  first_solution  1: optimizing planners stop at their first solution\n"
-"                  (default 0: they use the whole time limit)\n"
+"  first_solution  0: optimizing planners (RRTstar, BITstar, PRMstar ...)\n"
+"                  use the whole time limit and report their progress\n"
+"                  (best cost, iterations ...) every progress_period s\n"
+"                  (default 1: they stop at their first solution, as in\n"
+"                  the paper)\n"
+"  progress_period seconds between progress samples (default 0.05)\n"
+"  goal_targets    region poses tried for IK before a pose-region goal is\n"
+"                  given up as FAILED (default 200)\n"
 "\n"
 "algorithms:",
         OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION,
