@@ -48,7 +48,11 @@ bool PoseRegionGoal::grow(int max_targets) const
     bool found = false;
     for (int t = 0; t < max_targets && !found; t++) {
         ik_calls_++;
-        if (mpb_goal_region_sample(robot_, &region_, seed_q_.data(), nullptr, 1, &rng_,
+        // Seeded by the start, IK lands near it, which is where the path is
+        // short, but every answer near a colliding one collides too: mostly
+        // start IK from random configurations (the rng's, so runs repeat).
+        const double *seed = ik_calls_ % 8 == 1 ? seed_q_.data() : nullptr;
+        if (mpb_goal_region_sample(robot_, &region_, seed, nullptr, 1, &rng_,
                                    q.data()) != MPB_OK)
             continue;
         for (std::size_t i = 0; i < n; i++)

@@ -131,10 +131,11 @@ class World:
                            (c_double * 3)(*rpy), (c_double * 3)(*rpy_tolerance))
 
     def sample_goal(self, region, seed_q, rng_state):
-        """A configuration inside the region by IK, or None. rng_state is a
-        one-element list holding the 64-bit generator state; it advances."""
+        """A configuration inside the region by IK (started from seed_q, or
+        from random configurations when it is None), or None. rng_state is
+        a one-element list holding the 64-bit generator state; it advances."""
         rng = c_uint64(rng_state[0])
-        seed = (c_double * self.num_joints)(*seed_q)
+        seed = (c_double * self.num_joints)(*seed_q) if seed_q else None
         out = (c_double * self.num_joints)()
         rc = _region_sample(self._robot_handle(), byref(region), seed, None,
                             0, byref(rng), out)
