@@ -168,7 +168,9 @@ static void test_paper_findings(void **state)
     assert_says("tabletop: ompl/RRTConnect 1.5 s, but ompl/RRT is faster");
     assert_says("[holds] the narrow passage is the hardest environment "
                 "(2 of 2 measures)");
-    assert_says("lowest success rate: narrow_passage (40%; narrow_passage 40%)");
+    assert_says("lowest success rate: narrow_passage (40%; next kitchen 100%)");
+    /* narrow: (10 + 6) / 2; next, kitchen: (1 + 2 + 3 + 5 + 4) / 5. */
+    assert_says("longest mean planning time: narrow_passage (8 s; next kitchen 3 s)");
 }
 
 static void test_scene_lines(void **state)

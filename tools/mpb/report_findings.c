@@ -235,14 +235,30 @@ static void check_hardest(const report *r, const scene_summary *sums,
                 sums[least_success].success) + (slowest == hard);
     fprintf(out, "  [%s] the narrow passage is the hardest environment "
             "(%d of %d measures)\n", verdict(held, checked), held, checked);
-    fprintf(out, "      lowest success rate: %s (%.0f%%; %s %.0f%%)\n",
-            r->scenes[least_success].name,
-            100.0 * sums[least_success].success, r->scenes[hard].name,
-            100.0 * sums[hard].success);
-    if (slowest >= 0)
-        fprintf(out, "      longest mean planning time: %s (%.3g s; %s %.3g s)\n",
+    /* Each measure beside the next scene's, to show by how much. */
+    int next_success = -1, next_time = -1;
+    for (int s = 0; s < r->num_scenes; s++)
+        if (s != least_success && !isnan(sums[s].success) &&
+            (next_success < 0 || sums[s].success < sums[next_success].success))
+            next_success = s;
+    for (int s = 0; s < r->num_scenes; s++)
+        if (s != slowest && !isnan(sums[s].time) &&
+            (next_time < 0 || sums[s].time > sums[next_time].time))
+            next_time = s;
+    int other = least_success == hard ? next_success : hard;
+    fprintf(out, "      lowest success rate: %s (%.0f%%; %s %s %.0f%%)\n",
+            r->scenes[least_success].name, 100.0 * sums[least_success].success,
+            least_success == hard ? "next" : "the narrow passage",
+            other >= 0 ? r->scenes[other].name : "-",
+            other >= 0 ? 100.0 * sums[other].success : NAN);
+    if (slowest >= 0) {
+        other = slowest == hard ? next_time : hard;
+        fprintf(out, "      longest mean planning time: %s (%.3g s; %s %s %.3g s)\n",
                 r->scenes[slowest].name, sums[slowest].time,
-                r->scenes[hard].name, sums[hard].time);
+                slowest == hard ? "next" : "the narrow passage",
+                other >= 0 ? r->scenes[other].name : "-",
+                other >= 0 ? sums[other].time : NAN);
+    }
 }
 
 int report_write_findings(const report *r, FILE *out)
