@@ -29,6 +29,11 @@ typedef struct reader {
 } reader;
 
 static int fail(reader *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static int fail(reader *r, const char *fmt, ...)
 {
     if (!r->failed && r->err && r->errlen) {
         int n = snprintf(r->err, r->errlen, "line %ld: ", r->line);
@@ -441,6 +446,8 @@ static int header(reader *r, mpb_ompl_log *log)
         return -1;
     double t = strtod(s, &end);
     if (end != s && strcmp(end, " runs per planner") == 0) {
+        if (!(t >= 0 && t <= MAX_COUNT))
+            return fail(r, "%.60s: not a run count", s);
         log->runs_per_planner = (long)t;
         if ((s = need_line(r, "'S seconds spent to collect the data'")) == NULL)
             return -1;

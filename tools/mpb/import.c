@@ -125,7 +125,8 @@ static double cell(const mpb_ompl_planner *p, long run, int col)
 /* OMPL's status enum (Benchmark.cpp's order) as mpbench's status names. */
 static const char *status_of(double v, int solved)
 {
-    switch (isnan(v) ? -1 : (int)v) {
+    /* Only the enum's own values are names; anything else (NaN, huge) is not. */
+    switch (v >= 0 && v <= 7 ? (int)v : -1) {
     case 1: case 2: case 3: return "invalid_request";
     case 4: return "timeout";
     case 5: return "approximate";
