@@ -1,10 +1,11 @@
 #!/bin/sh
 # bench/import.sh - issue 7, item 6: an OMPL benchmark log of at least
-# 50,000 runs into a Planner Arena database, `mpb import` + `mpb export
-# --planner-arena` against OMPL's own ompl_benchmark_statistics.py, on the
-# same log, on this machine, in the same run. Prints the time of each (the
-# median of 3), their ratio, and whether both databases hold the same runs
-# (per planner: count, mean time, mean solved).
+# 50,000 runs into a Planner Arena database: `mpb import -p` (straight
+# into it), and `mpb import -d` + `mpb export --planner-arena` (through an
+# mpbench database), against OMPL's own ompl_benchmark_statistics.py, on
+# the same log, on this machine, in the same run. Prints the time of each
+# (the median of 3), the ratios, and whether the databases hold the same
+# runs (per planner: count, mean time, mean solved).
 #
 #   bench/import.sh [RUNS]            (default 50000)
 #
@@ -66,6 +67,13 @@ time_mpb() {
     t1=$(now)
     echo "$t1 - $t0" | bc
 }
+time_direct() {
+    rm -f "$work/direct.db"
+    t0=$(now)
+    "$mpb" import -p "$work/direct.db" "$work/big.log" >/dev/null
+    t1=$(now)
+    echo "$t1 - $t0" | bc
+}
 time_ompl() {
     rm -f "$work/ompl.db"
     t0=$(now)
@@ -74,17 +82,21 @@ time_ompl() {
     echo "$t1 - $t0" | bc
 }
 
+d=$(median3 "$(time_direct)" "$(time_direct)" "$(time_direct)")
+echo "mpb import -p (straight into Planner Arena): $d s"
 m=$(median3 "$(time_mpb)" "$(time_mpb)" "$(time_mpb)")
-echo "mpb import + export --planner-arena: $m s"
+echo "mpb import -d + export --planner-arena: $m s"
 if [ -z "${OMPL_STATS:-}" ] || [ ! -f "$OMPL_STATS" ]; then
     echo "OMPL_STATS not set: ompl_benchmark_statistics.py not timed"
-    echo "RESULT import runs=$RUNS mpb_s=$m"
+    echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m"
     exit 0
 fi
 o=$(median3 "$(time_ompl)" "$(time_ompl)" "$(time_ompl)")
 echo "ompl_benchmark_statistics.py:          $o s"
-ratio=$(echo "scale=2; $o / $m" | bc)
-echo "ratio (OMPL's script / mpbench):       ${ratio}x"
+ratio=$(echo "scale=2; $o / $d" | bc)
+ratio_db=$(echo "scale=2; $o / $m" | bc)
+echo "ratio (OMPL's script / mpb import -p): ${ratio}x"
+echo "ratio (OMPL's script / mpb import -d + export): ${ratio_db}x"
 
 # The same rows: per planner, the run count, mean time and mean solved.
 rows() {
@@ -94,12 +106,13 @@ rows() {
                    GROUP BY 1 ORDER BY 1" | sed 's/^[a-z]*\///'
 }
 rows "$work/arena.db" >"$work/mpb.rows"
+rows "$work/direct.db" >"$work/direct.rows"
 rows "$work/ompl.db" >"$work/ompl.rows"
-if cmp -s "$work/mpb.rows" "$work/ompl.rows"; then
+if cmp -s "$work/mpb.rows" "$work/ompl.rows" && cmp -s "$work/direct.rows" "$work/ompl.rows"; then
     same=yes
     echo "same rows: yes ($(wc -l <"$work/mpb.rows") planners)"
 else
     same=no
     echo "same rows: NO"; diff "$work/mpb.rows" "$work/ompl.rows" || true
 fi
-echo "RESULT import runs=$RUNS mpb_s=$m ompl_s=$o ratio=$ratio same_rows=$same"
+echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m ompl_s=$o ratio=$ratio ratio_via_db=$ratio_db same_rows=$same"

@@ -1472,6 +1472,192 @@ done:
     return rc;
 }
 
+/* ---- an OMPL log straight into a Planner Arena database --------------------- */
+
+/* One planner block's runs (and progress) as OMPL's script writes them. */
+static int write_log_planner(pa_out *o, int64_t experiment_id,
+                             const mpb_ompl_planner *p)
+{
+    sqlite3_stmt *st = NULL, *pr = NULL;
+    prop_list props = {0}, prog = {0};
+    int64_t planner = 0;
+    int rc = MPB_ENOMEM;
+    props.v = calloc((size_t)p->num_properties + 1, sizeof *props.v);
+    prog.v = calloc((size_t)p->num_progress_properties + 1, sizeof *prog.v);
+    if (props.v == NULL || prog.v == NULL)
+        goto done;
+    /* The props borrow the log's names; nothing of them is freed here. */
+    for (int k = 0; k < p->num_properties; k++)
+        props.v[props.n++] = (prop){.name = p->properties[k].name,
+                                    .type = p->properties[k].type};
+    for (int k = 1; k < p->num_progress_properties; k++)
+        prog.v[prog.n++] = (prop){.name = p->progress_properties[k].name,
+                                  .type = p->progress_properties[k].type};
+    if (sqlite3_prepare_v2(o->db, "INSERT INTO plannerConfigs (name, settings)"
+                           " VALUES (?, ?)", -1, &st, NULL) != SQLITE_OK) {
+        rc = out_fail(o, "prepare plannerConfigs");
+        goto done;
+    }
+    sqlite3_bind_text(st, 1, p->name, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 2, p->settings, -1, SQLITE_STATIC);
+    if (sqlite3_step(st) != SQLITE_DONE) {
+        rc = out_fail(o, "add a planner configuration");
+        goto done;
+    }
+    planner = sqlite3_last_insert_rowid(o->db);
+    o->counts.planner_configs++;
+    sqlite3_finalize(st);
+    st = NULL;
+    if ((rc = ensure_columns(o, "runs", &props, 0)) != MPB_OK ||
+        (rc = prepare_insert(o, "INSERT", "runs", "experimentid, plannerid", 2,
+                             &props, 0, &st)) != MPB_OK)
+        goto done;
+    if (prog.n > 0 &&
+        ((rc = ensure_columns(o, "progress", &prog, 0)) != MPB_OK ||
+         (rc = prepare_insert(o, "INSERT OR IGNORE", "progress", "runid, time",
+                              2, &prog, 0, &pr)) != MPB_OK))
+        goto done;
+    for (long r = 0; r < p->num_runs && rc == MPB_OK; r++) {
+        const double *v = p->values + (size_t)r * (size_t)p->num_properties;
+        sqlite3_reset(st);
+        sqlite3_bind_int64(st, 1, experiment_id);
+        sqlite3_bind_int64(st, 2, planner);
+        for (int k = 0; k < props.n; k++)
+            bind_value(st, 3 + k, &props.v[k], v[k]);
+        if (sqlite3_step(st) != SQLITE_DONE) {
+            rc = out_fail(o, "add a run");
+            break;
+        }
+        o->counts.runs++;
+        if (pr == NULL || p->progress_start == NULL)
+            continue;
+        int64_t run = sqlite3_last_insert_rowid(o->db);
+        int q = p->num_progress_properties;
+        for (long i = p->progress_start[r]; i < p->progress_start[r + 1]; i++) {
+            const double *sample = p->progress + (size_t)i * (size_t)q;
+            sqlite3_reset(pr);
+            sqlite3_bind_int64(pr, 1, run);
+            bind_value(pr, 2, &(prop){.type = "REAL"}, sample[0]);
+            for (int k = 0; k < prog.n; k++)
+                bind_value(pr, 3 + k, &prog.v[k], sample[k + 1]);
+            if (sqlite3_step(pr) != SQLITE_DONE) {
+                rc = out_fail(o, "add a progress sample");
+                break;
+            }
+            o->counts.progress++;
+        }
+    }
+done:
+    if (rc == MPB_ENOMEM)
+        mpb__store_fail(o->s, rc, "out of memory");
+    sqlite3_finalize(st);
+    sqlite3_finalize(pr);
+    free(props.v);
+    free(prog.v);
+    return rc;
+}
+
+int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
+                                  int flags, mpb_export_counts *counts,
+                                  char *err, size_t errlen)
+{
+    /* The Planner Arena writer reports through a store's message; this
+     * one has nothing else. */
+    mpb_store errs;
+    memset(&errs, 0, sizeof errs);
+    pa_out o = {.s = &errs, .path = path};
+    struct stat sb;
+    int rc, created = 0;
+    if (counts)
+        *counts = (mpb_export_counts){0};
+    if (log == NULL || path == NULL) {
+        rc = mpb__store_fail(&errs, MPB_EINVAL, "bad arguments");
+        goto out;
+    }
+    int exists = stat(path, &sb) == 0;
+    if (exists && !(flags & MPB_EXPORT_APPEND)) {
+        rc = mpb__store_fail(&errs, MPB_EEXISTS, "%s exists", path);
+        goto out;
+    }
+    if (sqlite3_open_v2(path, &o.db, SQLITE_OPEN_READWRITE |
+                        (exists ? 0 : SQLITE_OPEN_CREATE), NULL) != SQLITE_OK) {
+        rc = mpb__store_fail(&errs, MPB_EIO, "cannot open %s: %s", path,
+                             o.db ? sqlite3_errmsg(o.db) : "out of memory");
+        goto close;
+    }
+    created = !exists;
+    sqlite3_busy_timeout(o.db, 5000);
+    /* A new file, removed on any failure, needs no rollback journal on
+     * disk (it is still synced at the commit); an existing one keeps
+     * SQLite's defaults. */
+    if ((rc = out_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
+        (created && (rc = out_exec(&o, "PRAGMA journal_mode = MEMORY;"
+                                       "PRAGMA synchronous = NORMAL", "configure"))) ||
+        (rc = out_exec(&o, "BEGIN IMMEDIATE", "begin")) ||
+        (rc = out_exec(&o, pa_schema, "create the tables")))
+        goto close;
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(o.db, "INSERT OR IGNORE INTO enums (name, value,"
+                           " description) VALUES ('status', ?, ?)", -1, &st,
+                           NULL) != SQLITE_OK) {
+        rc = out_fail(&o, "prepare enums");
+        goto close;
+    }
+    for (int i = 0; i < NUM_STATUS && rc == MPB_OK; i++) {
+        sqlite3_reset(st);
+        sqlite3_bind_int(st, 1, i);
+        sqlite3_bind_text(st, 2, status_enum[i], -1, SQLITE_STATIC);
+        if (sqlite3_step(st) != SQLITE_DONE)
+            rc = out_fail(&o, "add the status enum");
+    }
+    sqlite3_finalize(st);
+    if (rc)
+        goto close;
+    if (sqlite3_prepare_v2(o.db, "INSERT INTO experiments (name, totaltime,"
+                           " timelimit, memorylimit, runcount, version,"
+                           " hostname, cpuinfo, date, seed, setup) VALUES"
+                           " (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", -1, &st,
+                           NULL) != SQLITE_OK) {
+        rc = out_fail(&o, "prepare experiments");
+        goto close;
+    }
+    sqlite3_bind_text(st, 1, log->experiment, -1, SQLITE_STATIC);
+    sqlite3_bind_double(st, 2, log->total_time);
+    sqlite3_bind_double(st, 3, log->time_limit);
+    sqlite3_bind_double(st, 4, log->memory_limit);
+    sqlite3_bind_int64(st, 5, log->runs_per_planner);
+    sqlite3_bind_text(st, 6, log->version, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 7, log->host, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 8, log->cpuinfo, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 9, log->date, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 10, log->seed, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 11, log->setup, -1, SQLITE_STATIC);
+    if (sqlite3_step(st) != SQLITE_DONE)
+        rc = out_fail(&o, "add the experiment");
+    sqlite3_finalize(st);
+    int64_t experiment = sqlite3_last_insert_rowid(o.db);
+    o.counts.experiments = 1;
+    for (int i = 0; i < log->num_planners && rc == MPB_OK; i++)
+        rc = write_log_planner(&o, experiment, &log->planners[i]);
+    if (rc == MPB_OK && (rc = create_views(&o)) == MPB_OK)
+        rc = out_exec(&o, "COMMIT", "commit");
+close:
+    if (o.db) {
+        if (rc != MPB_OK)
+            sqlite3_exec(o.db, "ROLLBACK", NULL, NULL, NULL);
+        if (sqlite3_close(o.db) != SQLITE_OK && rc == MPB_OK)
+            rc = mpb__store_fail(&errs, MPB_EIO, "cannot close %s", path);
+    }
+    if (rc != MPB_OK && created)
+        unlink(path);   /* leave nothing half-written behind */
+out:
+    if (rc == MPB_OK && counts)
+        *counts = o.counts;
+    if (rc != MPB_OK && err && errlen)
+        snprintf(err, errlen, "%s", errs.errmsg);
+    return rc;
+}
+
 /* ---- OMPL benchmark logs ---------------------------------------------------- */
 
 /* A file name part: [A-Za-z0-9._-] kept, anything else '_'. */

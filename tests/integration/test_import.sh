@@ -76,6 +76,31 @@ check "per planner, the same runs and averages as the log" \
     cmp -s "$work/log.means" "$work/arena.means"
 [ $FAILS -eq 0 ] || { echo "# log:"; cat "$work/log.means"; echo "# arena:"; cat "$work/arena.means"; }
 
+# Straight into Planner Arena (mpb import -p), as OMPL's script writes it:
+# the planners keep the log's names, and the rows are the log's.
+"$mpb" import -p "$work/direct.db" "$work/wall.log" >/dev/null
+check "mpb import -p succeeds" eq $? 0
+D=$work/direct.db
+check "direct: experiments' first twelve columns in Planner Arena's order" \
+    test "$(sqlite3 "$D" "SELECT group_concat(name, ',') FROM
+              (SELECT name FROM pragma_table_info('experiments') ORDER BY cid LIMIT 12)")" \
+    = "id,name,totaltime,timelimit,memorylimit,runcount,version,hostname,cpuinfo,date,seed,setup"
+check "direct: booleans are the integers 0 and 1" \
+    eq "$(sqlite3 "$D" "SELECT count(*) FROM runs WHERE typeof(solved) != 'integer'
+                        OR solved NOT IN (0, 1)")" 0
+check "direct: the status enum is there" \
+    ge "$(sqlite3 "$D" "SELECT count(*) FROM enums WHERE name = 'status'")" 7
+sqlite3 "$D" "SELECT p.name, count(*), printf('%.9g', avg(r.time)),
+                     printf('%.9g', avg(r.solved))
+                FROM runs r JOIN plannerConfigs p ON p.id = r.plannerid
+               GROUP BY p.name" | sed 's/^geometric_//' | sort >"$work/direct.means"
+check "direct: per planner, the same runs and averages as the log" \
+    cmp -s "$work/log.means" "$work/direct.means"
+"$mpb" import -p "$work/direct.db" "$work/wall.log" >/dev/null 2>&1
+check "direct: an existing Planner Arena database is not overwritten" test $? -eq 1
+check "direct: ... and still holds one experiment" \
+    eq "$(sqlite3 "$D" "SELECT count(*) FROM experiments")" 1
+
 # Round trip through OMPL's format: the exported log imports to the same.
 "$mpb" export --ompl-log "$DB" "$work/logs" >/dev/null
 "$mpb" import -d "$work/again.db" "$work"/logs/*.log >/dev/null

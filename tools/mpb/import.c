@@ -27,6 +27,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
         "usage: mpb import -d DB LOG...\n"
+        "       mpb import -p OUT.db LOG...\n"
         "\n"
         "Read benchmark logs written by OMPL's ompl::tools::Benchmark (or\n"
         "MoveIt's benchmark executor, in the same format) into the mpbench\n"
@@ -35,9 +36,15 @@ static void usage(FILE *out)
         "Each log is imported in one transaction: a log with an error adds\n"
         "nothing, and the logs before it stay.\n"
         "\n"
+        "With -p, write the logs straight into a new Planner Arena database\n"
+        "instead, as OMPL's ompl_benchmark_statistics.py does, without an\n"
+        "mpbench database in between.\n"
+        "\n"
         "Options:\n"
-        "  -d, --db DB   the database to add to\n"
-        "  -h, --help    print this help\n"
+        "  -d, --db DB               the mpbench database to add to\n"
+        "  -p, --planner-arena OUT   the Planner Arena database to write (it\n"
+        "                            must not exist)\n"
+        "  -h, --help                print this help\n"
         "\n"
         "Exit status: 0 when every log was imported, 1 on an error, 2 on a\n"
         "bad command line.\n");
@@ -309,21 +316,60 @@ static int import_log(mpb_store *s, const char *path, const char *text,
     return mpb_store_experiment_finish(s, exp);
 }
 
+/* -p: each log straight into one Planner Arena database. */
+static int to_planner_arena(const char *out, int num_logs, char **logs)
+{
+    int status = MPB_EXIT_OK, written = 0;
+    for (int i = 0; i < num_logs; i++) {
+        size_t len = 0;
+        char *text = read_all(logs[i], &len), err[256];
+        mpb_ompl_log *log = NULL;
+        mpb_export_counts n;
+        int rc;
+        if (text == NULL) {
+            fprintf(stderr, "mpb " CMD ": cannot read %s\n", logs[i]);
+            status = MPB_EXIT_ERROR;
+            continue;
+        }
+        if ((rc = mpb_ompl_log_parse(text, len, &log, err, sizeof err)) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": %s:%s\n", logs[i],
+                    rc == MPB_ENOMEM ? " out of memory"
+                    : strncmp(err, "line ", 5) == 0 ? err + 5 : err);
+            status = MPB_EXIT_ERROR;
+        } else if (mpb_ompl_log_to_planner_arena(log, out, written ? MPB_EXPORT_APPEND : 0,
+                                                 &n, err, sizeof err) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": %s: %s\n", logs[i], err);
+            status = MPB_EXIT_ERROR;
+        } else {
+            written++;
+            printf("%s: experiment '%s', %d planners, %ld runs\n", logs[i],
+                   log->experiment, n.planner_configs, n.runs);
+        }
+        mpb_ompl_log_free(log);
+        free(text);
+    }
+    return status;
+}
+
 int cmd_import(int argc, char **argv)
 {
     static const struct option longopts[] = {
         {"db", required_argument, NULL, 'd'},
+        {"planner-arena", required_argument, NULL, 'p'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
-    const char *db = NULL;
+    const char *db = NULL, *arena = NULL;
     int opt;
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":d:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":d:p:h", longopts, NULL)) != -1) {
         switch (opt) {
         case 'd':
             db = optarg;
+            break;
+        case 'p':
+            arena = optarg;
             break;
         case 'h':
             usage(stdout);
@@ -332,11 +378,14 @@ int cmd_import(int argc, char **argv)
             return tool_option_error(CMD, opt, argv);
         }
     }
-    if (db == NULL || optind == argc) {
+    if ((db == NULL) == (arena == NULL) || optind == argc) {
         fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",
-                db == NULL ? "which database? (-d DB)" : "which logs?");
+                optind == argc ? "which logs?"
+                : db ? "-d or -p, not both" : "into which database? (-d DB or -p OUT.db)");
         return MPB_EXIT_USAGE;
     }
+    if (arena != NULL)
+        return to_planner_arena(arena, argc - optind, argv + optind);
     mpb_store *s = NULL;
     if (mpb_store_open(db, 0, &s) != MPB_OK) {
         fprintf(stderr, "mpb " CMD ": cannot open %s: %s\n", db,

@@ -79,6 +79,22 @@ int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
 
 void mpb_ompl_log_free(mpb_ompl_log *log);
 
+struct mpb_export_counts;
+
+/*
+ * Write the log, as read, straight into a Planner Arena database at path,
+ * as OMPL's ompl_benchmark_statistics.py does (its tables, the status
+ * enum, one runs row per run with the log's properties as columns, the
+ * progress, its two views), in one transaction: what `mpb import
+ * --planner-arena` does without an mpbench database. path must not exist
+ * (MPB_EEXISTS) unless flags has MPB_EXPORT_APPEND (store.h). counts
+ * (may be NULL) says what was written; on failure err says why and a new
+ * file is removed.
+ */
+int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
+                                  int flags, struct mpb_export_counts *counts,
+                                  char *err, size_t errlen);
+
 /* The index of the run property of that name, or -1. */
 int mpb_ompl_planner_property(const mpb_ompl_planner *p, const char *name);
 
