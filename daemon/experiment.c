@@ -283,6 +283,9 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
         double s;
         if (parse_double(L, n, "seed", &s) != 0)
             return -1;
+        /* Beyond +-2^63 the conversion below is undefined (fuzzing found it). */
+        if (!(s >= -9.2e18 && s <= 9.2e18) || s != floor(s))
+            return fail_at(L, n, "seed must be a whole number of at most 18 digits");
         e->seed = (uint64_t)(int64_t)s;
     }
     e->runs_per_host = 1;
