@@ -1,0 +1,54 @@
+#!/bin/sh
+# tools/run_benchmark.sh, the batch script behind `make demo`: it starts the
+# planners and the daemon in a namespace of its own, runs the experiment,
+# prints the report and leaves the runs in the database; a second call on
+# a finished experiment runs it again and keeps the first; bad options and unknown planners are refused
+# in one line.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+DB=$work/batch.db
+script=$MPB_SOURCE/tools/run_benchmark.sh
+planar=$MPB_SOURCE/scenes/planar
+cat >"$work/exp.yaml" <<EOT
+experiment: {name: batch, runs: 4, time_limit: 2}
+robot: {format: planar, file: $planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $planar/pillars.scene
+    queries:
+      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+planners:
+  - {planner: null, algorithms: [straight_line]}
+  - {planner: ompl, algorithms: [RRTConnect]}
+EOT
+
+out=$(MPB_BUILD=$MPB_BUILD mpb_timeout 120 sh "$script" -d "$DB" -p null,ompl \
+      -l "$work/logs" "$work/exp.yaml" 2>&1)
+check "the batch completes" eq $? 0
+check "it prints the report's table" \
+    sh -c "printf '%s\n' \"\$1\" | grep -q 'Scene pillars'" _ "$out"
+check "all 8 runs are in the database" \
+    eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 8
+check "both planners ran" \
+    eq "$(q "SELECT count(DISTINCT planner_id) FROM runs")" 2
+
+MPB_BUILD=$MPB_BUILD mpb_timeout 120 sh "$script" -d "$DB" -p null,ompl \
+    -l "$work/logs" "$work/exp.yaml" >/dev/null 2>&1
+check "a second call runs the finished experiment again, as a new one" \
+    eq "$(q "SELECT count(*) FROM experiments WHERE name = 'batch'")" 2
+check "... and keeps the first one's runs" \
+    eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 16
+
+err=$(sh "$script" --bogus "$work/exp.yaml" 2>&1)
+check "an unknown option exits 2" eq $? 2
+check "... in one line" eq "$(printf '%s\n' "$err" | wc -l)" 1
+err=$(MPB_BUILD=$MPB_BUILD sh "$script" -p nosuch "$work/exp.yaml" 2>&1)
+check "an unknown planner exits 2" eq $? 2
+check "... naming it" sh -c "printf '%s\n' \"\$1\" | grep -q nosuch" _ "$err"
+
+echo "$PASSES passed, $FAILS failed"
+[ "$FAILS" -eq 0 ]
