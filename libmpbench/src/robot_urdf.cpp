@@ -105,6 +105,42 @@ char *dup_string(const std::string &s)
     return p;
 }
 
+/*
+ * Where the text first stops being UTF-8, or false if it never does.
+ * TinyXML 2.6 trusts a lead byte's length: a multi-byte sequence cut
+ * short by the end of the text makes it read past the terminator, so
+ * nothing reaches it unchecked.
+ */
+bool find_bad_utf8(const char *text, int *line, int *col)
+{
+    const unsigned char *p = reinterpret_cast<const unsigned char *>(text);
+    *line = 1;
+    *col = 1;
+    while (*p) {
+        int len = *p < 0x80 ? 1 : (*p & 0xE0) == 0xC0 ? 2
+                : (*p & 0xF0) == 0xE0 ? 3 : (*p & 0xF8) == 0xF0 ? 4 : 0;
+        if (len == 0 || (len == 2 && *p < 0xC2) || (len == 4 && *p > 0xF4))
+            return true;
+        for (int k = 1; k < len; k++)
+            if ((p[k] & 0xC0) != 0x80)     /* also stops at the terminator */
+                return true;
+        /* Overlong three- and four-byte forms, surrogates, past U+10FFFF. */
+        if ((len == 3 && ((*p == 0xE0 && p[1] < 0xA0)
+                          || (*p == 0xED && p[1] > 0x9F)))
+            || (len == 4 && ((*p == 0xF0 && p[1] < 0x90)
+                             || (*p == 0xF4 && p[1] > 0x8F))))
+            return true;
+        if (*p == '\n') {
+            (*line)++;
+            *col = 1;
+        } else {
+            (*col)++;
+        }
+        p += len;
+    }
+    return false;
+}
+
 void to_pose(const urdf::Pose &in, mpb_pose *out)
 {
     mpb_pose_identity(out);
@@ -276,6 +312,12 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
     }
     if (*s != '<') {
         set_err(err, errlen, "not XML (the text does not begin with '<')");
+        return MPB_EPARSE;
+    }
+
+    int line, col;
+    if (find_bad_utf8(text, &line, &col)) {
+        set_err(err, errlen, "line %d, column %d: not UTF-8", line, col);
         return MPB_EPARSE;
     }
 

@@ -1040,6 +1040,15 @@ static void test_malformed(void **state)
     expect_error("<robot name='r'><link name='a'/><link name='b'/>"
                  JOINT("j", "revolute", "a", "b", "") "</robot>",
                  NULL, "b", MPB_EPARSE, "does not specify limits");
+    /* Not UTF-8: a sequence cut short by the end of the text (TinyXML
+     * would read past it), a stray continuation byte, an overlong form. */
+    expect_error("<robot name='r'><link name='a'/>\n</robot>\n \xe9", NULL, "a",
+                 MPB_EPARSE, "line 3, column 2: not UTF-8");
+    expect_error("<robot name='\x80'/>", NULL, "a", MPB_EPARSE,
+                 "line 1, column 14: not UTF-8");
+    expect_error("<robot name='\xc0\xaf'/>", NULL, "a", MPB_EPARSE, "not UTF-8");
+    expect_error("<robot name='r\xc3\xa9'><link name='a'/></robot>", NULL, "a",
+                 MPB_EPARSE, "is not below");     /* valid UTF-8 goes on */
     /* A link twice. */
     expect_error("<robot name='r'><link name='a'/><link name='a'/></robot>",
                  NULL, "a", MPB_EPARSE, "not unique");
