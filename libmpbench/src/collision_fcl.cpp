@@ -1,8 +1,18 @@
 /*
  * collision_fcl.cpp - the collision world of collision.h over FCL 0.7:
- * static shapes in a dynamic AABB tree, movable bodies made of shapes at
- * fixed offsets, collision and distance queries that allocate nothing. The
- * C++ stays inside; every extern "C" function catches every exception.
+ * static shapes in a bounding-volume tree of their own (flat arrays of
+ * exact AABBs, inline tests), movable bodies made of shapes at fixed
+ * offsets, collision and distance queries that allocate nothing; FCL does
+ * the narrow phase. The C++ stays inside; every extern "C" function
+ * catches every exception.
+ *
+ * Why not FCL's broadphase managers: for a robot among a few dozen
+ * obstacles, walking FCL's dynamic AABB tree (an out-of-line call per node
+ * and per AABB test) cost about half of a collision check and most of a
+ * distance query, for almost no narrow-phase work (PR2 arm in the kitchen,
+ * callgrind). The tree here visits the same pairs (those whose AABBs
+ * overlap, for collision; those whose AABB distance is below the best so
+ * far, for distance) in a few instructions each.
  *
  * What FCL 0.7 gets wrong, and what is done about it (see the tests):
  *   - plane distances crash (libccd) or are wrong (independent GJK): planes
@@ -14,15 +24,16 @@
  *   - nearest points of a sphere and a mesh come in the two local frames,
  *     and those of (shape, mesh) pairs in swapped order: both are undone;
  *   - computeAABB() bounds a rotated shape by its bounding sphere: exact
- *     AABBs are set instead (TightObj), a cheap win for long links;
+ *     AABBs are computed here instead (place_shape), a cheap win for long
+ *     links;
  *   - libccd's MPR loops forever on degenerate shapes (zero radius, flat
- *     boxes, aspect ratios ~1e14) and the AABB tree crashes on coordinates
+ *     boxes, aspect ratios ~1e14) and FCL's AABB tree crashed on coordinates
  *     ~1e306: sizes and coordinates are bounded (collision.h).
  */
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
+#include "collision_internal.h"
 
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
@@ -54,20 +65,47 @@ namespace {
 using Obj = fcl::CollisionObjectd;
 using Geom = fcl::CollisionGeometryd;
 
-/*
- * A collision object whose world AABB is set here: FCL's computeAABB()
- * bounds a rotated shape by its bounding sphere, too loose for long links.
- */
-struct TightObj : public Obj {
-    using Obj::Obj;
-    void set_aabb(const fcl::AABBd &b) { aabb = b; }
+/* An axis-aligned box, world frame: plain doubles, tested inline. */
+struct Box3 {
+    double lo[3], hi[3];
 };
 
+/* Do a and b overlap (touching counts, as in FCL)? */
+inline bool overlap(const Box3 &a, const Box3 &b)
+{
+    return !(a.lo[0] > b.hi[0] || b.lo[0] > a.hi[0] ||
+             a.lo[1] > b.hi[1] || b.lo[1] > a.hi[1] ||
+             a.lo[2] > b.hi[2] || b.lo[2] > a.hi[2]);
+}
+
+/* The squared distance between a and b (0 if they overlap). */
+inline double box_dist2(const Box3 &a, const Box3 &b)
+{
+    double s = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double g = std::max(a.lo[k] - b.hi[k], b.lo[k] - a.hi[k]);
+        if (g > 0)
+            s += g * g;
+    }
+    return s;
+}
+
+void box_add(Box3 &a, const Box3 &b)
+{
+    for (int k = 0; k < 3; k++) {
+        a.lo[k] = std::min(a.lo[k], b.lo[k]);
+        a.hi[k] = std::max(a.hi[k], b.hi[k]);
+    }
+}
+
 struct Shape {
-    std::unique_ptr<TightObj> obj;
+    std::unique_ptr<Obj> obj;
     mpb_pose             offset;   /* movable: in the body's frame */
     mpb_pose             world;    /* where it is (plain doubles: cheap to
                                       keep current, even unoptimised) */
+    Box3                 box;      /* exact world AABB, kept current */
+    mutable bool         stale = false; /* obj's transform is not world's:
+                                      set only before a narrow phase */
     int                  body;     /* movable: index in movables; static: id */
     mpb_shape_type       type;
     double               dims[4];
@@ -89,7 +127,22 @@ struct Movable {
     std::vector<int>     shapes;          /* indices in mshapes */
     std::vector<int>     allowed_statics; /* static ids it may touch */
     mpb_pose             pose;
-    fcl::AABBd           aabb;            /* of its shapes, at pose */
+    Box3                 box;             /* of its shapes, at pose */
+};
+
+/* A node of the static tree: a leaf holds leaves[first .. first + count). */
+struct BNode {
+    Box3 box;
+    int  left, right;                     /* children; left < 0: a leaf */
+    int  first, count;
+};
+
+/* What the queries read of a static shape, in tree order, contiguous. */
+struct Leaf {
+    Box3   box;
+    double center[3], radius;             /* bounding sphere, world */
+    int    body;                          /* static id */
+    int    shape;                         /* index in sshapes */
 };
 
 #if defined(__GNUC__)
@@ -241,9 +294,12 @@ fcl::Vector3d support(const Shape &s, const fcl::Vector3d &u)
  * Distance from shape s (at its object's transform) to plane p: 0 when the
  * shape reaches or crosses it. The nearest points if pm and pp are given.
  */
+void sync(const Shape &s);
+
 double plane_distance(const Shape &s, const Plane &p, fcl::Vector3d *pm,
                       fcl::Vector3d *pp)
 {
+    sync(s);
     const fcl::Transform3d &tf = s.obj->getTransform();
     fcl::Vector3d u = tf.linear().transpose() * p.n;
     fcl::Vector3d hi = tf * support(s, u), lo = tf * support(s, -u);
@@ -273,7 +329,10 @@ struct mpb_collision {
     size_t               astride = 0;    /* length astride (grows x2) */
     std::vector<Shape>   sshapes;        /* static shapes in the tree */
     std::vector<Plane>   planes;         /* static planes, kept out of FCL */
-    fcl::DynamicAABBTreeCollisionManagerd tree;
+    std::vector<BNode>   nodes;          /* the static tree, root first */
+    std::vector<int>     order;          /* sshapes indices, leaf by leaf */
+    std::vector<Leaf>    leaves;         /* sshapes[order[i]], i.e. leaf i */
+    std::vector<int>     cand;           /* a query's leaves (capacity: all) */
     bool                 dirty = false;  /* sshapes changed since the build */
     int                  seed_m = -1;    /* the last nearest pair (shape */
     int                  seed_s = -1;    /* indices), tried first */
@@ -309,12 +368,10 @@ struct mpb_collision {
 
 namespace {
 
-/* Per-query state handed to the FCL callbacks. */
+/* Per-query state of a distance search. */
 struct Query {
     mpb_collision *c;
     const Movable *m;
-    const Obj     *query;
-    bool           hit;
     int            static_id;
     double         best;
     const Obj     *best_m, *best_s;
@@ -327,77 +384,6 @@ bool allowed_static(const Movable *m, int static_id)
         if (s == static_id)
             return true;
     return false;
-}
-
-const Shape &static_of(const mpb_collision *c, const Obj *o)
-{
-    return c->sshapes[(size_t)(intptr_t)o->getUserData()];
-}
-
-bool collide_cb(Obj *o1, Obj *o2, void *data)
-{
-    Query *q = static_cast<Query *>(data);
-    Obj *st = (o2 == q->query) ? o1 : o2;
-    const Shape &s = static_of(q->c, st);
-    if (allowed_static(q->m, s.body))
-        return false;
-    q->c->cres.clear();
-    fcl::collide(q->query, st, q->c->creq, q->c->cres);
-    if (q->c->cres.isCollision()) {
-        q->hit = true;
-        q->static_id = s.body;
-        return true;
-    }
-    return false;
-}
-
-/* FCL's distance of a pair, never negative. */
-double pair_distance(mpb_collision *c, const Obj *a, const Obj *b)
-{
-    c->dres.clear();
-    double d = fcl::distance(a, b, c->dreq, c->dres);
-    return d < 0 ? 0.0 : d;
-}
-
-bool distance_cb(Obj *o1, Obj *o2, void *data, double &dist)
-{
-    Query *q = static_cast<Query *>(data);
-    Obj *st = (o2 == q->query) ? o1 : o2;
-    const Shape &s = static_of(q->c, st);
-    const Shape &ms = q->c->mshapes[(size_t)(intptr_t)q->query->getUserData()];
-    /* bounding spheres first: a lower bound for almost nothing */
-    double dx = ms.wcenter[0] - s.wcenter[0], dy = ms.wcenter[1] - s.wcenter[1],
-           dz = ms.wcenter[2] - s.wcenter[2];
-    double lower = std::sqrt(dx * dx + dy * dy + dz * dz) - ms.bradius - s.bradius;
-    if (lower < q->best && !(q->query == q->seed_m && st == q->seed_s) &&
-        !allowed_static(q->m, s.body)) {
-        double d = pair_distance(q->c, q->query, st);
-        if (d < q->best) {
-            q->best = d;
-            q->best_m = q->query;
-            q->best_s = st;
-            q->static_id = s.body;
-        }
-    }
-    dist = q->best;             /* prune the rest of the tree with it */
-    return q->best <= 0.0;
-}
-
-int ensure_tree(mpb_collision *c)
-{
-    if (!c->dirty)
-        return MPB_OK;
-    c->tree.clear();
-    std::vector<Obj *> objs;
-    objs.reserve(c->sshapes.size());
-    for (size_t i = 0; i < c->sshapes.size(); i++) {
-        c->sshapes[i].obj->setUserData((void *)(intptr_t)i);
-        objs.push_back(c->sshapes[i].obj.get());
-    }
-    c->tree.registerObjects(objs);
-    c->tree.setup();
-    c->dirty = false;
-    return MPB_OK;
 }
 
 /* Write the pose p into FCL's 4x4 column-major matrix. */
@@ -413,17 +399,249 @@ void set_tf(fcl::Transform3d &tf, const mpb_pose &p)
     d[15] = 1.0;
 }
 
+/* Give s's FCL object its world pose, if it lacks it: before any use of
+ * the object by FCL or of its transform (place_shape leaves it stale). */
+void sync(const Shape &s)
+{
+    if (!s.stale)
+        return;
+    fcl::Transform3d tf;
+    set_tf(tf, s.world);
+    s.obj->setTransform(tf);
+    s.stale = false;
+}
+
+/* FCL's distance of a pair, never negative. */
+double pair_distance(mpb_collision *c, const Obj *a, const Obj *b)
+{
+    c->dres.clear();
+    double d = fcl::distance(a, b, c->dreq, c->dres);
+    return d < 0 ? 0.0 : d;
+}
+
+/* A collision check tests each movable shape against the statics near
+ * the whole robot when there are at most this many, else walks the tree
+ * for each shape. */
+#define MPB__FEW 64
+/* Leaves of at most this many statics. */
+#define MPB__LEAF 4
+/* Deep enough for any tree built below (median splits: depth ~ log2 n). */
+#define MPB__STACK 128
+
+/* Build the subtree of order[first .. first + count); its node index. */
+int build_node(mpb_collision *c, int first, int count)
+{
+    BNode n;
+    n.box = c->sshapes[(size_t)c->order[(size_t)first]].box;
+    for (int i = first + 1; i < first + count; i++)
+        box_add(n.box, c->sshapes[(size_t)c->order[(size_t)i]].box);
+    n.left = n.right = -1;
+    n.first = first;
+    n.count = count;
+    int idx = (int)c->nodes.size();
+    c->nodes.push_back(n);
+    if (count <= MPB__LEAF)
+        return idx;
+    /* split at the median centre along the longest axis of the centres */
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (int i = first; i < first + count; i++) {
+        const Box3 &b = c->sshapes[(size_t)c->order[(size_t)i]].box;
+        for (int k = 0; k < 3; k++) {
+            double m = 0.5 * (b.lo[k] + b.hi[k]);
+            lo[k] = std::min(lo[k], m);
+            hi[k] = std::max(hi[k], m);
+        }
+    }
+    int axis = 0;
+    for (int k = 1; k < 3; k++)
+        if (hi[k] - lo[k] > hi[axis] - lo[axis])
+            axis = k;
+    int mid = first + count / 2;
+    auto centre = [c, axis](int i) {
+        const Box3 &b = c->sshapes[(size_t)i].box;
+        return b.lo[axis] + b.hi[axis];
+    };
+    std::nth_element(c->order.begin() + first, c->order.begin() + mid,
+                     c->order.begin() + first + count,
+                     [&](int a, int b) { return centre(a) < centre(b); });
+    int l = build_node(c, first, mid - first);
+    int r = build_node(c, mid, first + count - mid);
+    c->nodes[(size_t)idx].left = l;
+    c->nodes[(size_t)idx].right = r;
+    return idx;
+}
+
+int ensure_tree(mpb_collision *c)
+{
+    if (!c->dirty)
+        return MPB_OK;
+    c->nodes.clear();
+    c->order.clear();
+    c->nodes.reserve(2 * c->sshapes.size() / MPB__LEAF + 2);
+    for (size_t i = 0; i < c->sshapes.size(); i++) {
+        c->sshapes[i].obj->setUserData((void *)(intptr_t)i);
+        c->order.push_back((int)i);
+    }
+    if (!c->sshapes.empty())
+        build_node(c, 0, (int)c->sshapes.size());
+    c->leaves.clear();
+    c->leaves.reserve(c->sshapes.size());
+    for (int i : c->order) {
+        const Shape &s = c->sshapes[(size_t)i];
+        Leaf l;
+        l.box = s.box;
+        for (int k = 0; k < 3; k++)
+            l.center[k] = s.wcenter[k];
+        l.radius = s.bradius;
+        l.body = s.body;
+        l.shape = i;
+        c->leaves.push_back(l);
+    }
+    c->cand.clear();
+    c->cand.reserve(c->sshapes.size());
+    c->dirty = false;
+    return MPB_OK;
+}
+
+/* The leaves whose boxes overlap b into c->cand (no allocation: its
+ * capacity is every leaf). */
+void gather(mpb_collision *c, const Box3 &b)
+{
+    c->cand.clear();
+    if (c->nodes.empty())
+        return;
+    int stack[MPB__STACK], sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const BNode &n = c->nodes[(size_t)stack[--sp]];
+        if (!overlap(n.box, b))
+            continue;
+        if (n.left >= 0) {
+            stack[sp++] = n.right;
+            stack[sp++] = n.left;
+            continue;
+        }
+        for (int i = n.first; i < n.first + n.count; i++)
+            if (overlap(c->leaves[(size_t)i].box, b))
+                c->cand.push_back(i);
+    }
+}
+
+/* Does movable shape ms (of body m) collide with the static of leaf i
+ * (allowed pairs never)? FCL's narrow phase if their boxes overlap. */
+bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
+{
+    const Leaf &l = c->leaves[(size_t)i];
+    if (!overlap(l.box, ms.box) || allowed_static(&m, l.body))
+        return false;
+    sync(ms);
+    c->cres.clear();
+    fcl::collide(ms.obj.get(), c->sshapes[(size_t)l.shape].obj.get(), c->creq,
+                 c->cres);
+    return c->cres.isCollision();
+}
+
 /*
- * Place shape s at s.world: its FCL transform, its exact world AABB (a
- * cone gets its cylinder's) and its bounding sphere's centre. Plain
- * doubles, so that it stays cheap in unoptimised builds too.
+ * The first static that movable shape ms (of body m) collides with,
+ * allowed pairs excepted: FCL's narrow phase on every static whose AABB
+ * overlaps ms's; from c->cand if `among`, else from the whole tree. Its
+ * body id, or -1 if none.
+ */
+int static_hit(mpb_collision *c, const Movable &m, const Shape &ms, bool among)
+{
+    if (among) {
+        for (int i : c->cand)
+            if (leaf_hit(c, m, ms, i))
+                return c->leaves[(size_t)i].body;
+        return -1;
+    }
+    if (c->nodes.empty())
+        return -1;
+    int stack[MPB__STACK], sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const BNode &n = c->nodes[(size_t)stack[--sp]];
+        if (!overlap(n.box, ms.box))
+            continue;
+        if (n.left >= 0) {
+            stack[sp++] = n.right;
+            stack[sp++] = n.left;
+            continue;
+        }
+        for (int i = n.first; i < n.first + n.count; i++)
+            if (leaf_hit(c, m, ms, i))
+                return c->leaves[(size_t)i].body;
+    }
+    return -1;
+}
+
+/*
+ * Lower q->best to the distance from movable shape ms (of body q->m) to
+ * the statics, allowed pairs and the seed pair excepted: FCL's distance on
+ * every static that the AABBs and the bounding spheres cannot rule out,
+ * nearer subtrees first. Stops at 0.
+ */
+void static_distance(Query *q, const Shape &ms)
+{
+    mpb_collision *c = q->c;
+    if (c->nodes.empty())
+        return;
+    int stack[MPB__STACK], sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0 && q->best > 0.0) {
+        const BNode &n = c->nodes[(size_t)stack[--sp]];
+        if (!(box_dist2(n.box, ms.box) < q->best * q->best))
+            continue;
+        if (n.left >= 0) {
+            double dl = box_dist2(c->nodes[(size_t)n.left].box, ms.box);
+            double dr = box_dist2(c->nodes[(size_t)n.right].box, ms.box);
+            stack[sp++] = dl <= dr ? n.right : n.left;   /* nearer on top */
+            stack[sp++] = dl <= dr ? n.left : n.right;
+            continue;
+        }
+        for (int i = n.first; i < n.first + n.count && q->best > 0.0; i++) {
+            const Leaf &l = c->leaves[(size_t)i];
+            /* boxes and bounding spheres: lower bounds for almost nothing */
+            double b2 = box_dist2(l.box, ms.box);
+            if (!(b2 < q->best * q->best))
+                continue;
+            double dx = ms.wcenter[0] - l.center[0],
+                   dy = ms.wcenter[1] - l.center[1],
+                   dz = ms.wcenter[2] - l.center[2];
+            double lower = std::sqrt(dx * dx + dy * dy + dz * dz) - ms.bradius -
+                           l.radius;
+            const Obj *st = c->sshapes[(size_t)l.shape].obj.get();
+            if (!(lower < q->best) ||
+                (ms.obj.get() == q->seed_m && st == q->seed_s) ||
+                allowed_static(q->m, l.body))
+                continue;
+            sync(ms);
+            double d = pair_distance(c, ms.obj.get(), st);
+            if (d < q->best) {
+                q->best = d;
+                q->best_m = ms.obj.get();
+                q->best_s = st;
+                q->static_id = l.body;
+            }
+        }
+    }
+}
+
+
+/*
+ * Place shape s at s.world: its exact world AABB (a cone gets its
+ * cylinder's) and its bounding sphere's centre; its FCL transform only
+ * when FCL needs it (sync). Plain doubles, so that it stays cheap in
+ * unoptimised builds too.
  */
 void place_shape(Shape &s)
 {
-    TightObj *o = s.obj.get();
-    fcl::Transform3d tf;
-    set_tf(tf, s.world);
-    o->setTransform(tf);
+    const Obj *o = s.obj.get();
+    s.stale = true;
     const double *R = s.world.R, *d = s.dims;
     double c[3] = { s.world.t[0], s.world.t[1], s.world.t[2] }, e[3];
     switch (s.type) {
@@ -460,8 +678,10 @@ void place_shape(Shape &s)
         break;
     }
     }
-    o->set_aabb(fcl::AABBd(fcl::Vector3d(c[0] - e[0], c[1] - e[1], c[2] - e[2]),
-                           fcl::Vector3d(c[0] + e[0], c[1] + e[1], c[2] + e[2])));
+    for (int k = 0; k < 3; k++) {
+        s.box.lo[k] = c[k] - e[k];
+        s.box.hi[k] = c[k] + e[k];
+    }
     double bc[3] = { s.bcenter[0], s.bcenter[1], s.bcenter[2] };
     mpb_pose_apply(&s.world, bc, s.wcenter);
 }
@@ -497,13 +717,12 @@ void place_body(mpb_collision *c, Movable &m)
     bool first = true;
     for (int si : m.shapes) {
         Shape &sh = c->mshapes[(size_t)si];
-        Obj *o = sh.obj.get();
         mpb_pose_mul(&m.pose, &sh.offset, &sh.world);
         place_shape(sh);
         if (first)
-            m.aabb = o->getAABB();
+            m.box = sh.box;
         else
-            m.aabb += o->getAABB();
+            box_add(m.box, sh.box);
         first = false;
     }
 }
@@ -736,7 +955,7 @@ int mpb_collision_add_static(mpb_collision *c, int id, const mpb_geometry *g,
             return MPB_EINVAL;
         }
         Shape s;
-        s.obj.reset(new TightObj(geom, tf));
+        s.obj.reset(new Obj(geom, tf));
         mpb_pose_identity(&s.offset);
         if (pose)
             s.world = *pose;
@@ -747,6 +966,7 @@ int mpb_collision_add_static(mpb_collision *c, int id, const mpb_geometry *g,
         memcpy(s.dims, g->dims, sizeof s.dims);
         bounding_sphere(s);
         place_shape(s);
+        s.stale = false;                /* tf is s.world already */
         c->sshapes.push_back(std::move(s));
         c->dirty = true;
         return MPB_OK;
@@ -805,7 +1025,7 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
         }
         room_for_one(m->shapes);
         mpb_pose_mul(&m->pose, &s.offset, &s.world);
-        s.obj.reset(new TightObj(geom, to_tf(&s.world)));
+        s.obj.reset(new Obj(geom, to_tf(&s.world)));
         bounding_sphere(s);
         s.body = c->movable_index[(size_t)id];
         s.obj->setUserData((void *)(intptr_t)c->mshapes.size());
@@ -902,30 +1122,41 @@ int mpb_collision_check(mpb_collision *c, int *movable, int *static_id)
         int rc = ensure_tree(c);
         if (rc != MPB_OK)
             return rc;
-        Query q = {};
-        q.c = c;
+        /* The statics near the robot as a whole first: for a robot among
+         * a few dozen obstacles, few are; each shape then tests those. */
+        Box3 all;
+        bool any = false;
+        for (const Movable &m : c->movables)
+            if (m.enabled && !m.shapes.empty()) {
+                if (any)
+                    box_add(all, m.box);
+                else
+                    all = m.box;
+                any = true;
+            }
+        bool among = false;
+        if (any) {
+            gather(c, all);
+            among = c->cand.size() <= MPB__FEW;
+        }
         for (const Movable &m : c->movables) {
             if (!m.enabled)
                 continue;
-            q.m = &m;
             for (int si : m.shapes) {
-                Obj *o = c->mshapes[(size_t)si].obj.get();
-                q.query = o;
-                c->tree.collide(o, &q, collide_cb);
-                for (size_t k = 0; !q.hit && k < c->planes.size(); k++) {
+                const Shape &ms = c->mshapes[(size_t)si];
+                int hit = static_hit(c, m, ms, among);
+                for (size_t k = 0; hit < 0 && k < c->planes.size(); k++) {
                     const Plane &p = c->planes[k];
                     if (allowed_static(&m, p.id))
                         continue;
-                    if (plane_distance(c->mshapes[(size_t)si], p, nullptr, nullptr) <= 0) {
-                        q.hit = true;
-                        q.static_id = p.id;
-                    }
+                    if (plane_distance(ms, p, nullptr, nullptr) <= 0)
+                        hit = p.id;
                 }
-                if (q.hit) {
+                if (hit >= 0) {
                     if (movable)
                         *movable = m.id;
                     if (static_id)
-                        *static_id = q.static_id;
+                        *static_id = hit;
                     return 1;
                 }
             }
@@ -950,16 +1181,18 @@ int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
                 continue;
             for (size_t j = i + 1; j < n; j++) {
                 const Movable &mj = c->movables[j];
-                if (!mj.enabled || c->is_allowed(i, j) || !mi.aabb.overlap(mj.aabb))
+                if (!mj.enabled || c->is_allowed(i, j) || !overlap(mi.box, mj.box))
                     continue;
                 for (int si : mi.shapes) {
-                    const Obj *oi = c->mshapes[(size_t)si].obj.get();
+                    const Shape &shi = c->mshapes[(size_t)si];
                     for (int sj : mj.shapes) {
-                        const Obj *oj = c->mshapes[(size_t)sj].obj.get();
-                        if (!oi->getAABB().overlap(oj->getAABB()))
+                        const Shape &shj = c->mshapes[(size_t)sj];
+                        if (!overlap(shi.box, shj.box))
                             continue;
+                        sync(shi);
+                        sync(shj);
                         c->cres.clear();
-                        fcl::collide(oi, oj, c->creq, c->cres);
+                        fcl::collide(shi.obj.get(), shj.obj.get(), c->creq, c->cres);
                         if (c->cres.isCollision()) {
                             int x = mi.id, y = mj.id;
                             if (a)
@@ -1007,6 +1240,7 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
             const Shape &ss = c->sshapes[(size_t)c->seed_s];
             const Movable &mv = c->movables[(size_t)ms.body];
             if (mv.enabled && !allowed_static(&mv, ss.body)) {
+                sync(ms);
                 q.best = pair_distance(c, ms.obj.get(), ss.obj.get());
                 q.best_m = q.seed_m = ms.obj.get();
                 q.best_s = q.seed_s = ss.obj.get();
@@ -1022,10 +1256,8 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
             q.m = &m;
             for (int si : m.shapes) {
                 const Shape &sh = c->mshapes[(size_t)si];
-                Obj *o = sh.obj.get();
-                q.query = o;
                 double before = q.best;
-                c->tree.distance(o, &q, distance_cb);
+                static_distance(&q, sh);
                 if (q.best < before) {
                     best_movable = m.id;
                     best_plane = nullptr;
@@ -1084,6 +1316,83 @@ int mpb_collision_num_static_shapes(const mpb_collision *c)
 int mpb_collision_num_movable_shapes(const mpb_collision *c)
 {
     return c ? (int)c->mshapes.size() : 0;
+}
+
+/*
+ * The references of collision_internal.h: every pair through FCL's narrow
+ * phase, no tree, no boxes, no bounds.
+ */
+int mpb__collision_check_brute(mpb_collision *c)
+{
+    if (!c)
+        return MPB_EINVAL;
+    return guarded(c, [&]() -> int {
+        for (const Shape &ms : c->mshapes)
+            sync(ms);
+        size_t n = c->movables.size();
+        for (size_t i = 0; i < n; i++) {
+            const Movable &m = c->movables[i];
+            if (!m.enabled)
+                continue;
+            for (int si : m.shapes) {
+                const Shape &ms = c->mshapes[(size_t)si];
+                for (const Shape &ss : c->sshapes) {
+                    if (allowed_static(&m, ss.body))
+                        continue;
+                    c->cres.clear();
+                    fcl::collide(ms.obj.get(), ss.obj.get(), c->creq, c->cres);
+                    if (c->cres.isCollision())
+                        return 1;
+                }
+                for (const Plane &p : c->planes)
+                    if (!allowed_static(&m, p.id) &&
+                        plane_distance(ms, p, nullptr, nullptr) <= 0)
+                        return 1;
+            }
+            for (size_t j = i + 1; j < n; j++) {
+                const Movable &mj = c->movables[j];
+                if (!mj.enabled || c->is_allowed(i, j))
+                    continue;
+                for (int si : m.shapes)
+                    for (int sj : mj.shapes) {
+                        c->cres.clear();
+                        fcl::collide(c->mshapes[(size_t)si].obj.get(),
+                                     c->mshapes[(size_t)sj].obj.get(), c->creq,
+                                     c->cres);
+                        if (c->cres.isCollision())
+                            return 1;
+                    }
+            }
+        }
+        return 0;
+    });
+}
+
+double mpb__collision_distance_brute(mpb_collision *c)
+{
+    double best = std::numeric_limits<double>::infinity();
+    if (!c)
+        return std::numeric_limits<double>::quiet_NaN();
+    int rc = guarded(c, [&]() -> int {
+        for (const Movable &m : c->movables) {
+            if (!m.enabled)
+                continue;
+            for (int si : m.shapes) {
+                const Shape &ms = c->mshapes[(size_t)si];
+                sync(ms);
+                for (const Shape &ss : c->sshapes)
+                    if (!allowed_static(&m, ss.body))
+                        best = std::min(best, pair_distance(c, ms.obj.get(),
+                                                            ss.obj.get()));
+                for (const Plane &p : c->planes)
+                    if (!allowed_static(&m, p.id))
+                        best = std::min(best, plane_distance(ms, p, nullptr,
+                                                             nullptr));
+            }
+        }
+        return MPB_OK;
+    });
+    return rc == MPB_OK ? best : std::numeric_limits<double>::quiet_NaN();
 }
 
 } // extern "C"

@@ -82,4 +82,12 @@ extern const mpb__world_provider mpb__world_urdf;
  */
 int mpb__planar_points(const mpb_world *w, const double *q, double *xy);
 
+/*
+ * URDF only, for tests: the collision world behind w (owned by w), where
+ * the robot stands after the last query on w; NULL if w is not a urdf
+ * world.
+ */
+struct mpb_collision;
+struct mpb_collision *mpb__urdf_collision(mpb_world *w);
+
 #endif /* MPB_WORLD_PROVIDER_H */

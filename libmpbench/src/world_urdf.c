@@ -380,3 +380,10 @@ const mpb__world_provider mpb__world_urdf = {
     .goal_region  = urdf_goal_region,
     .ee_position  = urdf_ee_position,
 };
+
+struct mpb_collision *mpb__urdf_collision(mpb_world *w)
+{
+    if (!w || w->provider != &mpb__world_urdf || !w->impl)
+        return NULL;
+    return ((urdf_world *)w->impl)->coll;
+}

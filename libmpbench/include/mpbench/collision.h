@@ -37,9 +37,10 @@
  * touching within ~1e-9 m may be reported either way by the two queries.
  *
  * Cost: queries allocate nothing in this API (the static objects sit in a
- * FCL dynamic AABB tree, built once and reused; movable shapes get exact
- * AABBs; requests and results are kept in the handle; the last nearest
- * pair seeds the next distance query). FCL itself allocates two small
+ * bounding-volume tree of exact AABBs, built once and reused; movable
+ * shapes get exact AABBs, and their FCL transforms only when a narrow
+ * phase needs them; requests and results are kept in the handle; the last
+ * nearest pair seeds the next distance query). FCL itself allocates two small
  * objects for each narrow-phase GJK test of a pair that has no closed form
  * (e.g. a box against a cylinder). Measured (7 capsule/cylinder links among
  * 20 boxes, RelWithDebInfo): set_pose x7 + check ~1.4 us, set_pose x7 +

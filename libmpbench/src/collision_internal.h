@@ -1,0 +1,30 @@
+/*
+ * collision_internal.h - private to libmpbench and its tests: slow reference
+ * answers of the collision world (collision_fcl.cpp), every pair through
+ * FCL's narrow phase with no broad phase and no bounds, to check the fast
+ * queries of collision.h against.
+ */
+#ifndef MPB_COLLISION_INTERNAL_H
+#define MPB_COLLISION_INTERNAL_H
+
+#include "mpbench/collision.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/*
+ * 1 if any enabled movable body touches a static body or another enabled
+ * movable body (allowed pairs excepted), as mpb_collision_check() ||
+ * mpb_collision_check_self(); 0 if not; negative on error.
+ */
+int mpb__collision_check_brute(mpb_collision *c);
+
+/* The minimum distance, as mpb_collision_distance()'s (NaN on error). */
+double mpb__collision_distance_brute(mpb_collision *c);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MPB_COLLISION_INTERNAL_H */
