@@ -531,6 +531,44 @@ void gather(mpb_collision *c, const Box3 &b)
     }
 }
 
+/* The leaves whose boxes are nearer than d to b into c->cand. */
+void gather_near(mpb_collision *c, const Box3 &b, double d)
+{
+    c->cand.clear();
+    if (c->nodes.empty())
+        return;
+    int stack[MPB__STACK], sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const BNode &n = c->nodes[(size_t)stack[--sp]];
+        if (!(box_dist2(n.box, b) < d * d))
+            continue;
+        if (n.left >= 0) {
+            stack[sp++] = n.right;
+            stack[sp++] = n.left;
+            continue;
+        }
+        for (int i = n.first; i < n.first + n.count; i++)
+            if (box_dist2(c->leaves[(size_t)i].box, b) < d * d)
+                c->cand.push_back(i);
+    }
+}
+
+/* The union of the enabled movables' boxes into all; false if none. */
+bool robot_box(const mpb_collision *c, Box3 &all)
+{
+    bool any = false;
+    for (const Movable &m : c->movables)
+        if (m.enabled && !m.shapes.empty()) {
+            if (any)
+                box_add(all, m.box);
+            else
+                all = m.box;
+            any = true;
+        }
+    return any;
+}
+
 /* Does movable shape ms (of body m) collide with the static of leaf i
  * (allowed pairs never)? FCL's narrow phase if their boxes overlap. */
 bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
@@ -579,15 +617,48 @@ int static_hit(mpb_collision *c, const Movable &m, const Shape &ms, bool among)
     return -1;
 }
 
+/* Measure movable shape ms (of body q->m) against the static of leaf i,
+ * unless the boxes, the bounding spheres, the seed pair or an allowed
+ * pair rule it out; lower q->best if nearer. */
+void leaf_distance(Query *q, const Shape &ms, int i)
+{
+    mpb_collision *c = q->c;
+    const Leaf &l = c->leaves[(size_t)i];
+    /* boxes and bounding spheres: lower bounds for almost nothing */
+    if (!(box_dist2(l.box, ms.box) < q->best * q->best))
+        return;
+    double dx = ms.wcenter[0] - l.center[0], dy = ms.wcenter[1] - l.center[1],
+           dz = ms.wcenter[2] - l.center[2];
+    double lower = std::sqrt(dx * dx + dy * dy + dz * dz) - ms.bradius - l.radius;
+    const Obj *st = c->sshapes[(size_t)l.shape].obj.get();
+    if (!(lower < q->best) || (ms.obj.get() == q->seed_m && st == q->seed_s) ||
+        allowed_static(q->m, l.body))
+        return;
+    sync(ms);
+    double d = pair_distance(c, ms.obj.get(), st);
+    if (d < q->best) {
+        q->best = d;
+        q->best_m = ms.obj.get();
+        q->best_s = st;
+        q->static_id = l.body;
+    }
+}
+
 /*
  * Lower q->best to the distance from movable shape ms (of body q->m) to
  * the statics, allowed pairs and the seed pair excepted: FCL's distance on
- * every static that the AABBs and the bounding spheres cannot rule out,
- * nearer subtrees first. Stops at 0.
+ * every static that the AABBs and the bounding spheres cannot rule out;
+ * from c->cand if `among`, else from the tree, nearer subtrees first.
+ * Stops at 0.
  */
-void static_distance(Query *q, const Shape &ms)
+void static_distance(Query *q, const Shape &ms, bool among)
 {
     mpb_collision *c = q->c;
+    if (among) {
+        for (size_t k = 0; k < c->cand.size() && q->best > 0.0; k++)
+            leaf_distance(q, ms, c->cand[k]);
+        return;
+    }
     if (c->nodes.empty())
         return;
     int stack[MPB__STACK], sp = 0;
@@ -603,31 +674,8 @@ void static_distance(Query *q, const Shape &ms)
             stack[sp++] = dl <= dr ? n.left : n.right;
             continue;
         }
-        for (int i = n.first; i < n.first + n.count && q->best > 0.0; i++) {
-            const Leaf &l = c->leaves[(size_t)i];
-            /* boxes and bounding spheres: lower bounds for almost nothing */
-            double b2 = box_dist2(l.box, ms.box);
-            if (!(b2 < q->best * q->best))
-                continue;
-            double dx = ms.wcenter[0] - l.center[0],
-                   dy = ms.wcenter[1] - l.center[1],
-                   dz = ms.wcenter[2] - l.center[2];
-            double lower = std::sqrt(dx * dx + dy * dy + dz * dz) - ms.bradius -
-                           l.radius;
-            const Obj *st = c->sshapes[(size_t)l.shape].obj.get();
-            if (!(lower < q->best) ||
-                (ms.obj.get() == q->seed_m && st == q->seed_s) ||
-                allowed_static(q->m, l.body))
-                continue;
-            sync(ms);
-            double d = pair_distance(c, ms.obj.get(), st);
-            if (d < q->best) {
-                q->best = d;
-                q->best_m = ms.obj.get();
-                q->best_s = st;
-                q->static_id = l.body;
-            }
-        }
+        for (int i = n.first; i < n.first + n.count && q->best > 0.0; i++)
+            leaf_distance(q, ms, i);
     }
 }
 
@@ -1125,17 +1173,8 @@ int mpb_collision_check(mpb_collision *c, int *movable, int *static_id)
         /* The statics near the robot as a whole first: for a robot among
          * a few dozen obstacles, few are; each shape then tests those. */
         Box3 all;
-        bool any = false;
-        for (const Movable &m : c->movables)
-            if (m.enabled && !m.shapes.empty()) {
-                if (any)
-                    box_add(all, m.box);
-                else
-                    all = m.box;
-                any = true;
-            }
         bool among = false;
-        if (any) {
+        if (robot_box(c, all)) {
             gather(c, all);
             among = c->cand.size() <= MPB__FEW;
         }
@@ -1248,6 +1287,15 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                 best_movable = mv.id;
             }
         }
+        /* With a finite bound, the statics that may be nearer than it to
+           the robot as a whole: for a robot among a few dozen obstacles,
+           few are; each shape then measures those. */
+        Box3 all;
+        bool among = false;
+        if (q.best < std::numeric_limits<double>::infinity() && robot_box(c, all)) {
+            gather_near(c, all, q.best);
+            among = c->cand.size() <= MPB__FEW;
+        }
         for (const Movable &m : c->movables) {
             if (q.best <= 0.0)
                 break;
@@ -1257,7 +1305,7 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
             for (int si : m.shapes) {
                 const Shape &sh = c->mshapes[(size_t)si];
                 double before = q.best;
-                static_distance(&q, sh);
+                static_distance(&q, sh, among);
                 if (q.best < before) {
                     best_movable = m.id;
                     best_plane = nullptr;
