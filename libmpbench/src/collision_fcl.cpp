@@ -327,6 +327,9 @@ struct mpb_collision {
     std::vector<int>     movable_index;  /* id -> index in movables, or -1 */
     std::vector<unsigned char> allowed;  /* movables x movables, row */
     size_t               astride = 0;    /* length astride (grows x2) */
+    std::vector<std::pair<int, int>> self_pairs; /* movables i < j not
+                                            allowed, for check_self */
+    bool                 pairs_dirty = true;  /* self_pairs to redo */
     std::vector<Shape>   sshapes;        /* static shapes in the tree */
     std::vector<Plane>   planes;         /* static planes, kept out of FCL */
     std::vector<BNode>   nodes;          /* the static tree, root first */
@@ -567,6 +570,17 @@ bool robot_box(const mpb_collision *c, Box3 &all)
             any = true;
         }
     return any;
+}
+
+/* Are the bounding spheres of two movable shapes apart, by far more than
+ * FCL's tolerances (libccd's MPR stops at 1e-6)? Then the shapes cannot
+ * collide. */
+bool spheres_apart(const Shape &a, const Shape &b)
+{
+    double dx = a.wcenter[0] - b.wcenter[0], dy = a.wcenter[1] - b.wcenter[1],
+           dz = a.wcenter[2] - b.wcenter[2];
+    double r = a.bradius + b.bradius + 1e-4;
+    return dx * dx + dy * dy + dz * dz > r * r;
 }
 
 /* Does movable shape ms (of body m) collide with the static of leaf i
@@ -1069,6 +1083,7 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
             room_for_one(c->movables);
             c->movables.push_back(std::move(nm));
             c->movable_index[(size_t)id] = (int)n;
+            c->pairs_dirty = true;
             m = &c->movables.back();
         }
         room_for_one(m->shapes);
@@ -1134,6 +1149,7 @@ int mpb_collision_allow_pair(mpb_collision *c, int movable_a, int movable_b)
     size_t ia = (size_t)c->movable_index[(size_t)movable_a];
     size_t ib = (size_t)c->movable_index[(size_t)movable_b];
     c->allowed[ia * c->astride + ib] = c->allowed[ib * c->astride + ia] = 1;
+    c->pairs_dirty = true;
     return MPB_OK;
 }
 
@@ -1213,33 +1229,37 @@ int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
     if (!c)
         return MPB_EINVAL;
     return guarded(c, [&]() -> int {
-        size_t n = c->movables.size();
-        for (size_t i = 0; i < n; i++) {
-            const Movable &mi = c->movables[i];
-            if (!mi.enabled)
+        if (c->pairs_dirty) {
+            size_t n = c->movables.size();
+            c->self_pairs.clear();
+            for (size_t i = 0; i < n; i++)
+                for (size_t j = i + 1; j < n; j++)
+                    if (!c->is_allowed(i, j))
+                        c->self_pairs.emplace_back((int)i, (int)j);
+            c->pairs_dirty = false;
+        }
+        for (const auto &pr : c->self_pairs) {
+            const Movable &mi = c->movables[(size_t)pr.first];
+            const Movable &mj = c->movables[(size_t)pr.second];
+            if (!mi.enabled || !mj.enabled || !overlap(mi.box, mj.box))
                 continue;
-            for (size_t j = i + 1; j < n; j++) {
-                const Movable &mj = c->movables[j];
-                if (!mj.enabled || c->is_allowed(i, j) || !overlap(mi.box, mj.box))
-                    continue;
-                for (int si : mi.shapes) {
-                    const Shape &shi = c->mshapes[(size_t)si];
-                    for (int sj : mj.shapes) {
-                        const Shape &shj = c->mshapes[(size_t)sj];
-                        if (!overlap(shi.box, shj.box))
-                            continue;
-                        sync(shi);
-                        sync(shj);
-                        c->cres.clear();
-                        fcl::collide(shi.obj.get(), shj.obj.get(), c->creq, c->cres);
-                        if (c->cres.isCollision()) {
-                            int x = mi.id, y = mj.id;
-                            if (a)
-                                *a = x < y ? x : y;
-                            if (b)
-                                *b = x < y ? y : x;
-                            return 1;
-                        }
+            for (int si : mi.shapes) {
+                const Shape &shi = c->mshapes[(size_t)si];
+                for (int sj : mj.shapes) {
+                    const Shape &shj = c->mshapes[(size_t)sj];
+                    if (!overlap(shi.box, shj.box) || spheres_apart(shi, shj))
+                        continue;
+                    sync(shi);
+                    sync(shj);
+                    c->cres.clear();
+                    fcl::collide(shi.obj.get(), shj.obj.get(), c->creq, c->cres);
+                    if (c->cres.isCollision()) {
+                        int x = mi.id, y = mj.id;
+                        if (a)
+                            *a = x < y ? x : y;
+                        if (b)
+                            *b = x < y ? y : x;
+                        return 1;
                     }
                 }
             }
