@@ -6,8 +6,10 @@
  */
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -168,20 +170,123 @@ static int block(reader *r, char **out)
     return 0;
 }
 
-/* A value of a run line; NaN for "", nan, inf. */
-static double value_of(const char *s)
+/*
+ * A decimal "[+-]digits[.digits][(e|E)[+-]digits]" taking all of [s, e),
+ * with at most 19 digits, into *out; 0 when the text is not that simple.
+ * Clinger's fast path: when the digits as an integer m are at most 2^53
+ * and the exponent k is within +-22, m and 10^|k| are exact doubles and
+ * m * 10^k (or m / 10^-k) is one correctly rounded operation, the very
+ * double strtod returns. Anything else is left to strtod.
+ */
+static int fast_decimal(const char *s, const char *e, double *out)
 {
-    if (*s == '\0')
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
+    static const double p10[] = {
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
+        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const char *p = s, *d;
+    int neg = 0;
+    long k = 0, digits;
+    uint64_t m = 0;     /* wraps beyond 19 digits: then unused */
+    if (p < e && (*p == '-' || *p == '+'))
+        neg = *p++ == '-';
+    for (d = p; p < e && (unsigned)(*p - '0') < 10; p++)
+        m = 10 * m + (uint64_t)(*p - '0');
+    digits = p - d;
+    if (p < e && *p == '.') {
+        for (d = ++p; p < e && (unsigned)(*p - '0') < 10; p++)
+            m = 10 * m + (uint64_t)(*p - '0');
+        k = -(p - d);
+        digits += p - d;
+    }
+    if (digits == 0 || digits > 19)
+        return 0;
+    if (p < e && (*p == 'e' || *p == 'E')) {
+        int eneg = 0;
+        long x = 0;
+        if (++p < e && (*p == '-' || *p == '+'))
+            eneg = *p++ == '-';
+        if (p == e || (unsigned)(*p - '0') >= 10)
+            return 0;
+        for (; p < e && (unsigned)(*p - '0') < 10; p++)
+            if (x < 100000)
+                x = 10 * x + (*p - '0');
+        k += eneg ? -x : x;
+    }
+    if (p != e || m > (UINT64_C(1) << 53))
+        return 0;
+    double v = (double)m;
+    if (m != 0) {
+        if (k < -22 || k > 22)
+            return 0;
+        v = k < 0 ? v / p10[-k] : v * p10[k];
+    }
+    *out = neg ? -v : v;
+    return 1;
+#else
+    (void)s;
+    (void)e;
+    (void)out;
+    return 0;   /* double rounding: only strtod is exact */
+#endif
+}
+
+/* A value of a run line, the text [s, e) (*e may be overwritten); NaN for
+ * "", nan, inf. */
+static double value_in(char *s, char *e)
+{
+    double v;
+    if (s == e)
         return NAN;
+    if (fast_decimal(s, e, &v))
+        return v;
+    *e = '\0';
     if (strcmp(s, "true") == 0)
         return 1.0;
     if (strcmp(s, "false") == 0)
         return 0.0;
     char *end;
-    double v = strtod(s, &end);
+    v = strtod(s, &end);
     if (end == s || !isfinite(v))
         return NAN;
     return v;
+}
+
+static double value_of(char *s)
+{
+    return value_in(s, s + strlen(s));
+}
+
+/*
+ * A run line's values, "v1; v2; ...; " (trimmed), into out[0..n): as
+ * split(s, ';', fields, n + 1) and value_of each field, without copying
+ * the fields. The count of fields found; *extra_empty says whether an
+ * (n+1)-th was found, and empty.
+ */
+static int run_values(char *s, double *out, int n, int *extra_empty)
+{
+    int k = 0;
+    *extra_empty = 0;
+    while (*s && k <= n) {
+        char *next = s;
+        while (*next && *next != ';')
+            next++;
+        int last = *next == '\0';
+        char *b = s, *e = next;
+        while (*b == ' ')
+            b++;
+        while (e > b && e[-1] == ' ')
+            e--;
+        if (k < n)
+            out[k] = value_in(b, e);    /* may write a NUL at e */
+        else
+            *extra_empty = b == e;
+        k++;
+        if (last)
+            break;
+        s = next + 1;
+    }
+    return k;
 }
 
 /* Split s at sep into at most n trimmed fields; the count found. */
@@ -264,29 +369,21 @@ static int planner_block(reader *r, mpb_ompl_planner *pl)
         return -1;
     size_t cells = (size_t)pl->num_runs * (size_t)(np ? np : 1);
     pl->values = malloc(cells * sizeof *pl->values);
-    char **fields = calloc((size_t)np + 1, sizeof *fields);
-    if (pl->values == NULL || fields == NULL) {
-        free(fields);
+    if (pl->values == NULL)
         return fail(r, "out of memory");
-    }
     for (long i = 0; i < pl->num_runs; i++) {
-        if ((s = need_line(r, "a run's values")) == NULL) {
-            free(fields);
+        if ((s = need_line(r, "a run's values")) == NULL)
             return -1;
-        }
-        int k = split(s, ';', fields, (int)np + 1);
+        int extra_empty;
+        int k = run_values(s, pl->values + (size_t)i * (size_t)np, (int)np,
+                           &extra_empty);
         /* The trailing "; " leaves one empty field more. */
-        if (k == (int)np + 1 && fields[np][0] == '\0')
+        if (k == (int)np + 1 && extra_empty)
             k--;
-        if (k != (int)np) {
-            free(fields);
+        if (k != (int)np)
             return fail(r, "run %ld of %s has %d values, not %ld", i + 1,
                         pl->name, k, np);
-        }
-        for (long j = 0; j < np; j++)
-            pl->values[(size_t)i * (size_t)np + (size_t)j] = value_of(fields[j]);
     }
-    free(fields);
 
     if ((s = need_line(r, "'.' or progress properties")) == NULL)
         return -1;

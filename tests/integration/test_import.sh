@@ -96,6 +96,43 @@ sqlite3 "$D" "SELECT p.name, count(*), printf('%.9g', avg(r.time)),
                GROUP BY p.name" | sed 's/^geometric_//' | sort >"$work/direct.means"
 check "direct: per planner, the same runs and averages as the log" \
     cmp -s "$work/log.means" "$work/direct.means"
+# Every value of every run, as Python reads the log's text (correctly
+# rounded, as strtod): the reader's own decimal conversion must give the
+# very same doubles.
+cat >"$work/values.py" <<'EOT'
+import math, sqlite3, sys
+lines = open(sys.argv[1]).read().split("\n")
+db = sqlite3.connect(sys.argv[2])
+i = next(k for k, l in enumerate(lines) if l.endswith(" planners"))
+n = int(lines[i].split()[0]); i += 1
+cells = bad = 0
+for _ in range(n):
+    name = lines[i]; i += 1
+    c = int(lines[i].split()[0]); i += 1 + c
+    p = int(lines[i].split()[0]); i += 1
+    cols = [lines[i + k].rsplit(" ", 1)[0].replace(" ", "_") for k in range(p)]
+    i += p
+    r = int(lines[i].split()[0]); i += 1
+    got = db.execute("SELECT %s FROM runs JOIN plannerConfigs c ON c.id = plannerid"
+                     " WHERE c.name = ? ORDER BY runs.id"
+                     % ",".join('runs."%s"' % k for k in cols), (name,)).fetchall()
+    for k in range(r):
+        for v, x in zip([v.strip() for v in lines[i + k].split(";")][:p], got[k]):
+            want = {"true": 1.0, "false": 0.0}.get(v) if v in ("true", "false") \
+                else float(v) if v else None
+            if want is not None and not math.isfinite(want):
+                want = None
+            cells += 1
+            bad += (x is None) != (want is None) or (x is not None and float(x) != want)
+    i += r
+    while lines[i] != ".":
+        i += 1
+    i += 1
+print(cells, bad)
+EOT
+set -- $(python3 "$work/values.py" "$work/wall.log" "$D")
+check "direct: every value is the log's, to the last bit ($1 values)" \
+    test "${1:-0}" -gt 0 -a "${2:-1}" -eq 0
 "$mpb" import -p "$work/direct.db" "$work/wall.log" >/dev/null 2>&1
 check "direct: an existing Planner Arena database is not overwritten" test $? -eq 1
 check "direct: ... and still holds one experiment" \
