@@ -11,6 +11,7 @@
  * and the log writer both consume it.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -1070,14 +1071,21 @@ static int prepare_insert(pa_out *o, const char *verb, const char *table,
     return rc;
 }
 
-static void bind_value(sqlite3_stmt *st, int i, const prop *p, double v)
+/* A number as the script's text becomes in a column of that affinity:
+ * NULL, an integer (unless the column is REAL) or a real. */
+static void bind_number(sqlite3_stmt *st, int i, int real, double v)
 {
     if (isnan(v))
         sqlite3_bind_null(st, i);
-    else if (strcmp(p->type, "REAL") != 0 && v == floor(v) && fabs(v) < 9e15)
+    else if (!real && v == floor(v) && fabs(v) < 9e15)
         sqlite3_bind_int64(st, i, (sqlite3_int64)v);
     else
         sqlite3_bind_double(st, i, v);
+}
+
+static void bind_value(sqlite3_stmt *st, int i, const prop *p, double v)
+{
+    bind_number(st, i, strcmp(p->type, "REAL") == 0, v);
 }
 
 /* The plannerConfigs id of an mpbench configuration: found by (name,
@@ -1474,25 +1482,91 @@ done:
 
 /* ---- an OMPL log straight into a Planner Arena database --------------------- */
 
-/* One planner block's runs (and progress) as OMPL's script writes them. */
+/*
+ * Rows per INSERT statement of the runs and progress: one statement's own
+ * cost (its start and end, the AUTOINCREMENT counter written back) shared
+ * by that many rows instead of paid by each.
+ */
+#define PA_BATCH 64
+
+/* "INSERT [OR IGNORE] INTO table (fixed..., props...) VALUES (values,
+ * ?, ...), ...", rows times: the first columns' values written out (for
+ * those the same in every row), a parameter for each property. */
+static int prepare_rows(pa_out *o, const char *verb, const char *table,
+                        const char *fixed, const char *values,
+                        const prop_list *props, int rows, sqlite3_stmt **out)
+{
+    *out = NULL;
+    size_t cap = 256 + strlen(fixed) +
+                 (size_t)rows * (strlen(values) + 2 * (size_t)props->n + 4);
+    for (int k = 0; k < props->n; k++)
+        cap += strlen(props->v[k].name) + 8;
+    char *sql = malloc(cap);
+    if (sql == NULL)
+        return mpb__store_fail(o->s, MPB_ENOMEM, "export: out of memory");
+    size_t len = (size_t)snprintf(sql, cap, "%s INTO %s (%s", verb, table,
+                                  fixed);
+    for (int k = 0; k < props->n; k++) {
+        sql[len++] = ',';
+        sql[len++] = '"';
+        for (const char *p = props->v[k].name; *p; p++)
+            sql[len++] = *p == ' ' ? '_' : *p;
+        sql[len++] = '"';
+    }
+    len += (size_t)snprintf(sql + len, cap - len, ") VALUES ");
+    for (int r = 0; r < rows; r++) {
+        len += (size_t)snprintf(sql + len, cap - len, "%s(%s", r ? "," : "",
+                                values);
+        for (int i = 0; i < props->n; i++)
+            len += (size_t)snprintf(sql + len, cap - len, ",?");
+        sql[len++] = ')';
+    }
+    sql[len] = '\0';
+    int rc = sqlite3_prepare_v2(o->db, sql, (int)len, out, NULL) == SQLITE_OK
+                 ? MPB_OK : out_fail(o, "prepare an insert");
+    free(sql);
+    return rc;
+}
+
+/* How many rows of n values one statement may take (at least 1). */
+static int batch_rows(pa_out *o, int n)
+{
+    int vars = sqlite3_limit(o->db, SQLITE_LIMIT_VARIABLE_NUMBER, -1);
+    int rows = n > 0 ? vars / n : PA_BATCH;
+    return rows < 1 ? 1 : rows > PA_BATCH ? PA_BATCH : rows;
+}
+
+/* One planner block's runs (and progress) as OMPL's script writes them:
+ * the runs in the log's order, then their progress samples. */
 static int write_log_planner(pa_out *o, int64_t experiment_id,
                              const mpb_ompl_planner *p)
 {
-    sqlite3_stmt *st = NULL, *pr = NULL;
-    prop_list props = {0}, prog = {0};
-    int64_t planner = 0;
+    sqlite3_stmt *st = NULL, *many = NULL;
+    prop_list props = {0}, tprog = {0}, prog;
+    int64_t planner = 0, *run_ids = NULL;
+    int *real = NULL;
     int rc = MPB_ENOMEM;
-    props.v = calloc((size_t)p->num_properties + 1, sizeof *props.v);
-    prog.v = calloc((size_t)p->num_progress_properties + 1, sizeof *prog.v);
-    if (props.v == NULL || prog.v == NULL)
+    int np = p->num_properties, q = p->num_progress_properties;
+    int has_progress = q > 1 && p->progress_start != NULL &&
+                       p->progress_start[p->num_runs] > 0;
+    props.v = calloc((size_t)np + 1, sizeof *props.v);
+    tprog.v = calloc((size_t)q + 1, sizeof *tprog.v);
+    real = calloc((size_t)(np > q ? np : q) + 1, sizeof *real);
+    if (props.v == NULL || tprog.v == NULL || real == NULL)
+        goto done;
+    if (has_progress &&
+        (run_ids = malloc(((size_t)p->num_runs + 1) * sizeof *run_ids)) == NULL)
         goto done;
     /* The props borrow the log's names; nothing of them is freed here. */
-    for (int k = 0; k < p->num_properties; k++)
+    for (int k = 0; k < np; k++)
         props.v[props.n++] = (prop){.name = p->properties[k].name,
                                     .type = p->properties[k].type};
-    for (int k = 1; k < p->num_progress_properties; k++)
-        prog.v[prog.n++] = (prop){.name = p->progress_properties[k].name,
-                                  .type = p->progress_properties[k].type};
+    /* The progress columns: the sample's time, then the rest (prog). */
+    tprog.v[tprog.n++] = (prop){.name = "time", .type = "REAL"};
+    for (int k = 1; k < q; k++)
+        tprog.v[tprog.n++] = (prop){.name = p->progress_properties[k].name,
+                                    .type = p->progress_properties[k].type};
+    prog = (prop_list){.v = tprog.v + 1, .n = tprog.n - 1};
     if (sqlite3_prepare_v2(o->db, "INSERT INTO plannerConfigs (name, settings)"
                            " VALUES (?, ?)", -1, &st, NULL) != SQLITE_OK) {
         rc = out_fail(o, "prepare plannerConfigs");
@@ -1508,52 +1582,141 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
     o->counts.planner_configs++;
     sqlite3_finalize(st);
     st = NULL;
+
+    /* The runs, PA_BATCH a statement, the last few one by one. */
+    char ids[64];
+    snprintf(ids, sizeof ids, "%lld,%lld", (long long)experiment_id,
+             (long long)planner);
+    int rows = batch_rows(o, np);
     if ((rc = ensure_columns(o, "runs", &props, 0)) != MPB_OK ||
-        (rc = prepare_insert(o, "INSERT", "runs", "experimentid, plannerid", 2,
-                             &props, 0, &st)) != MPB_OK)
+        (rc = prepare_rows(o, "INSERT", "runs", "experimentid,plannerid", ids,
+                           &props, 1, &st)) != MPB_OK ||
+        (rows > 1 && p->num_runs >= rows &&
+         (rc = prepare_rows(o, "INSERT", "runs", "experimentid,plannerid", ids,
+                            &props, rows, &many)) != MPB_OK))
         goto done;
-    if (prog.n > 0 &&
-        ((rc = ensure_columns(o, "progress", &prog, 0)) != MPB_OK ||
-         (rc = prepare_insert(o, "INSERT OR IGNORE", "progress", "runid, time",
-                              2, &prog, 0, &pr)) != MPB_OK))
-        goto done;
-    for (long r = 0; r < p->num_runs && rc == MPB_OK; r++) {
-        const double *v = p->values + (size_t)r * (size_t)p->num_properties;
-        sqlite3_reset(st);
-        sqlite3_bind_int64(st, 1, experiment_id);
-        sqlite3_bind_int64(st, 2, planner);
-        for (int k = 0; k < props.n; k++)
-            bind_value(st, 3 + k, &props.v[k], v[k]);
-        if (sqlite3_step(st) != SQLITE_DONE) {
+    for (int k = 0; k < np; k++)
+        real[k] = strcmp(props.v[k].type, "REAL") == 0;
+    for (long r = 0; r < p->num_runs && rc == MPB_OK;) {
+        int k = p->num_runs - r >= rows ? rows : 1;
+        sqlite3_stmt *ins = k > 1 ? many : st;
+        const double *v = p->values + (size_t)r * (size_t)np;
+        for (int i = 0; i < k * np; i++)
+            bind_number(ins, i + 1, real[i % np], v[i]);
+        if (sqlite3_step(ins) != SQLITE_DONE) {
             rc = out_fail(o, "add a run");
             break;
         }
-        o->counts.runs++;
-        if (pr == NULL || p->progress_start == NULL)
-            continue;
-        int64_t run = sqlite3_last_insert_rowid(o->db);
-        int q = p->num_progress_properties;
-        for (long i = p->progress_start[r]; i < p->progress_start[r + 1]; i++) {
-            const double *sample = p->progress + (size_t)i * (size_t)q;
-            sqlite3_reset(pr);
-            sqlite3_bind_int64(pr, 1, run);
-            bind_value(pr, 2, &(prop){.type = "REAL"}, sample[0]);
-            for (int k = 0; k < prog.n; k++)
-                bind_value(pr, 3 + k, &prog.v[k], sample[k + 1]);
-            if (sqlite3_step(pr) != SQLITE_DONE) {
-                rc = out_fail(o, "add a progress sample");
-                break;
-            }
-            o->counts.progress++;
+        sqlite3_reset(ins);
+        /* AUTOINCREMENT ids: one more than the largest so far, so a
+         * statement's rows have consecutive ids, the last one's known. */
+        int64_t last = sqlite3_last_insert_rowid(o->db);
+        for (int i = 0; run_ids && i < k; i++)
+            run_ids[r + i] = last - (k - 1) + i;
+        o->counts.runs += k;
+        r += k;
+    }
+    sqlite3_finalize(st);
+    sqlite3_finalize(many);
+    st = many = NULL;
+    if (rc == MPB_OK && prog.n > 0)
+        rc = ensure_columns(o, "progress", &prog, 0);
+    if (rc != MPB_OK || !has_progress)
+        goto done;
+
+    /* The progress samples, in the log's order (a repeated time keeps the
+     * first, as the script does), PA_BATCH a statement. */
+    int n = 1 + q;
+    rows = batch_rows(o, n);
+    long total = p->progress_start[p->num_runs];
+    if ((rc = prepare_rows(o, "INSERT OR IGNORE", "progress", "runid", "?",
+                           &tprog, 1, &st)) != MPB_OK ||
+        (rows > 1 && total >= rows &&
+         (rc = prepare_rows(o, "INSERT OR IGNORE", "progress", "runid", "?",
+                            &tprog, rows, &many)) != MPB_OK))
+        goto done;
+    for (int k = 0; k < q; k++)
+        real[k] = strcmp(tprog.v[k].type, "REAL") == 0;
+    long run = 0;
+    for (long i = 0; i < total && rc == MPB_OK;) {
+        int k = total - i >= rows ? rows : 1;
+        sqlite3_stmt *ins = k > 1 ? many : st;
+        for (int b = 0; b < k; b++) {
+            while (p->progress_start[run + 1] <= i + b)
+                run++;
+            const double *sample = p->progress + (size_t)(i + b) * (size_t)q;
+            sqlite3_bind_int64(ins, b * n + 1, run_ids[run]);
+            for (int j = 0; j < q; j++)
+                bind_number(ins, b * n + 2 + j, real[j], sample[j]);
         }
+        if (sqlite3_step(ins) != SQLITE_DONE) {
+            rc = out_fail(o, "add a progress sample");
+            break;
+        }
+        sqlite3_reset(ins);
+        o->counts.progress += sqlite3_changes(o->db);
+        i += k;
     }
 done:
     if (rc == MPB_ENOMEM)
         mpb__store_fail(o->s, rc, "out of memory");
     sqlite3_finalize(st);
-    sqlite3_finalize(pr);
+    sqlite3_finalize(many);
     free(props.v);
-    free(prog.v);
+    free(tprog.v);
+    free(real);
+    free(run_ids);
+    return rc;
+}
+
+/* A new empty file beside path (same directory, so that it can take
+ * path's name), mode 0644 less the umask as SQLite creates files; its
+ * name in *tmp, freed by the caller. */
+static int create_beside(const char *path, char **tmp)
+{
+    size_t n = strlen(path) + 48;
+    char *t = malloc(n);
+    if (t == NULL)
+        return MPB_ENOMEM;
+    for (int i = 0; i < 1000; i++) {
+        snprintf(t, n, "%s.tmp-%ld-%d", path, (long)getpid(), i);
+        int fd = open(t, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (fd >= 0) {
+            close(fd);
+            *tmp = t;
+            return MPB_OK;
+        }
+        if (errno != EEXIST)
+            break;
+    }
+    int e = errno;
+    free(t);
+    errno = e;
+    return MPB_EIO;
+}
+
+/* The complete file tmp on disk, then under the name path, which must
+ * not exist: link() refuses to replace a file that appeared meanwhile
+ * (rename() where links are not supported). tmp is gone either way. */
+static int publish(mpb_store *errs, const char *tmp, const char *path)
+{
+    int rc = MPB_OK, fd = open(tmp, O_RDWR | O_CLOEXEC);
+    if (fd < 0 || fdatasync(fd) != 0)
+        rc = mpb__store_fail(errs, MPB_EIO, "cannot write %s: %s", tmp,
+                             strerror(errno));
+    if (fd >= 0)
+        close(fd);
+    if (rc == MPB_OK && link(tmp, path) != 0) {
+        struct stat sb;
+        if (errno == EEXIST || stat(path, &sb) == 0)
+            rc = mpb__store_fail(errs, MPB_EEXISTS, "%s exists", path);
+        else if (rename(tmp, path) != 0)
+            rc = mpb__store_fail(errs, MPB_EIO, "cannot rename %s to %s: %s",
+                                 tmp, path, strerror(errno));
+        else
+            return MPB_OK;
+    }
+    unlink(tmp);
     return rc;
 }
 
@@ -1567,7 +1730,8 @@ int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
     memset(&errs, 0, sizeof errs);
     pa_out o = {.s = &errs, .path = path};
     struct stat sb;
-    int rc, created = 0;
+    char *tmp = NULL;
+    int rc;
     if (counts)
         *counts = (mpb_export_counts){0};
     if (log == NULL || path == NULL) {
@@ -1579,20 +1743,29 @@ int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
         rc = mpb__store_fail(&errs, MPB_EEXISTS, "%s exists", path);
         goto out;
     }
-    if (sqlite3_open_v2(path, &o.db, SQLITE_OPEN_READWRITE |
-                        (exists ? 0 : SQLITE_OPEN_CREATE), NULL) != SQLITE_OK) {
+    /* A new database is written whole into a file beside path and takes
+     * its name only once complete: until then nobody reads it, so it
+     * needs no journal, no locks and no syncs but the last (publish()).
+     * An existing one is added to in place, with SQLite's defaults. */
+    if (!exists && (rc = create_beside(path, &tmp)) != MPB_OK) {
+        rc = mpb__store_fail(&errs, rc, "cannot create a file beside %s: %s",
+                             path, rc == MPB_ENOMEM ? "out of memory"
+                                                    : strerror(errno));
+        goto out;
+    }
+    /* One thread uses the connection: no mutexes. */
+    if (sqlite3_open_v2(tmp ? tmp : path, &o.db, SQLITE_OPEN_READWRITE |
+                        SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK) {
         rc = mpb__store_fail(&errs, MPB_EIO, "cannot open %s: %s", path,
                              o.db ? sqlite3_errmsg(o.db) : "out of memory");
         goto close;
     }
-    created = !exists;
     sqlite3_busy_timeout(o.db, 5000);
-    /* A new file, removed on any failure, needs no rollback journal on
-     * disk (it is still synced at the commit); an existing one keeps
-     * SQLite's defaults. */
-    if ((rc = out_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
-        (created && (rc = out_exec(&o, "PRAGMA journal_mode = MEMORY;"
-                                       "PRAGMA synchronous = NORMAL", "configure"))) ||
+    /* No foreign key checks: every id written is one this function has
+     * just inserted (the script does not check them either). */
+    if ((tmp && (rc = out_exec(&o, "PRAGMA journal_mode = OFF;"
+                                   "PRAGMA synchronous = OFF;"
+                                   "PRAGMA locking_mode = EXCLUSIVE", "configure"))) ||
         (rc = out_exec(&o, "BEGIN IMMEDIATE", "begin")) ||
         (rc = out_exec(&o, pa_schema, "create the tables")))
         goto close;
@@ -1648,13 +1821,19 @@ close:
         if (sqlite3_close(o.db) != SQLITE_OK && rc == MPB_OK)
             rc = mpb__store_fail(&errs, MPB_EIO, "cannot close %s", path);
     }
-    if (rc != MPB_OK && created)
-        unlink(path);   /* leave nothing half-written behind */
+    if (tmp) {
+        /* Leave nothing half-written behind. */
+        if (rc == MPB_OK)
+            rc = publish(&errs, tmp, path);
+        else
+            unlink(tmp);
+    }
 out:
     if (rc == MPB_OK && counts)
         *counts = o.counts;
     if (rc != MPB_OK && err && errlen)
         snprintf(err, errlen, "%s", errs.errmsg);
+    free(tmp);
     return rc;
 }
 

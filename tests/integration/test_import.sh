@@ -137,6 +137,13 @@ check "direct: every value is the log's, to the last bit ($1 values)" \
 check "direct: an existing Planner Arena database is not overwritten" test $? -eq 1
 check "direct: ... and still holds one experiment" \
     eq "$(sqlite3 "$D" "SELECT count(*) FROM experiments")" 1
+# A write that fails half-way (a column name SQLite refuses): no
+# database, and no temporary file beside it.
+sed 's/^time REAL$/ti"me REAL/' "$work/wall.log" >"$work/badcol.log"
+"$mpb" import -p "$work/half.db" "$work/badcol.log" >/dev/null 2>&1
+check "direct: a failed write fails" test $? -eq 1
+check "direct: ... and leaves no file behind" \
+    test -z "$(ls "$work" | grep '^half\.db')"
 
 # Round trip through OMPL's format: the exported log imports to the same.
 "$mpb" export --ompl-log "$DB" "$work/logs" >/dev/null

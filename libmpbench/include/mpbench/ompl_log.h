@@ -87,9 +87,13 @@ struct mpb_export_counts;
  * enum, one runs row per run with the log's properties as columns, the
  * progress, its two views), in one transaction: what `mpb import
  * --planner-arena` does without an mpbench database. path must not exist
- * (MPB_EEXISTS) unless flags has MPB_EXPORT_APPEND (store.h). counts
- * (may be NULL) says what was written; on failure err says why and a new
- * file is removed.
+ * (MPB_EEXISTS) unless flags has MPB_EXPORT_APPEND (store.h). A new
+ * database is written into a file beside path ("PATH.tmp-PID-N") and
+ * takes the name path only once complete and on disk, never replacing a
+ * file that appeared meanwhile; an existing one (MPB_EXPORT_APPEND) is
+ * added to in one transaction. counts (may be NULL) says what was
+ * written; on failure err says why, path is as it was and no temporary
+ * file is left.
  */
 int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
                                   int flags, struct mpb_export_counts *counts,
