@@ -107,6 +107,7 @@ struct Shape {
     mutable bool         stale = false; /* obj's transform is not world's:
                                       set only before a narrow phase */
     int                  body;     /* movable: index in movables; static: id */
+    bool                 offset_pure = false; /* offset.R is the identity */
     mpb_shape_type       type;
     double               dims[4];
     fcl::Vector3d        bcenter;  /* a bounding sphere, own frame */
@@ -744,8 +745,13 @@ void place_shape(Shape &s)
         s.box.lo[k] = c[k] - e[k];
         s.box.hi[k] = c[k] + e[k];
     }
-    double bc[3] = { s.bcenter[0], s.bcenter[1], s.bcenter[2] };
-    mpb_pose_apply(&s.world, bc, s.wcenter);
+    if (s.bcenter[0] == 0 && s.bcenter[1] == 0 && s.bcenter[2] == 0) {
+        for (int k = 0; k < 3; k++)
+            s.wcenter[k] = s.world.t[k];
+    } else {
+        double bc[3] = { s.bcenter[0], s.bcenter[1], s.bcenter[2] };
+        mpb_pose_apply(&s.world, bc, s.wcenter);
+    }
 }
 
 /* Set s.bcenter and s.bradius (s.obj, s.type and s.dims set). */
@@ -779,7 +785,15 @@ void place_body(mpb_collision *c, Movable &m)
     bool first = true;
     for (int si : m.shapes) {
         Shape &sh = c->mshapes[(size_t)si];
-        mpb_pose_mul(&m.pose, &sh.offset, &sh.world);
+        if (sh.offset_pure) {       /* the same product, without the zeros */
+            const double *R = m.pose.R, *v = sh.offset.t;
+            memcpy(sh.world.R, R, sizeof sh.world.R);
+            for (int i = 0; i < 3; i++)
+                sh.world.t[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] +
+                                R[3 * i + 2] * v[2] + m.pose.t[i];
+        } else {
+            mpb_pose_mul(&m.pose, &sh.offset, &sh.world);
+        }
         place_shape(sh);
         if (first)
             m.box = sh.box;
@@ -1059,6 +1073,9 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
             mpb_pose_identity(&s.offset);
         s.type = g->type;
         memcpy(s.dims, g->dims, sizeof s.dims);
+        s.offset_pure = true;
+        for (int i = 0; i < 9; i++)
+            s.offset_pure = s.offset_pure && s.offset.R[i] == (i % 4 == 0 ? 1.0 : 0.0);
         room_for_one(c->mshapes);
         Movable *m = c->find(id);
         if (!m) {
