@@ -402,6 +402,20 @@ static int planner_block(reader *r, mpb_ompl_planner *pl)
     if (property_lines(r, q, &pl->progress_properties,
                        &pl->num_progress_properties) != 0)
         return -1;
+    /* The sample's time first: OMPL's Benchmark sorts the names, so "time"
+     * comes after "best cost", "iterations", ... Each sample's values are
+     * moved likewise (position at to 0, those before it one on). */
+    long at = 0;
+    while (at < q && strcmp(pl->progress_properties[at].name, "time") != 0)
+        at++;
+    if (at == q)
+        at = 0;      /* no "time": the first property stands for it */
+    if (at > 0) {
+        mpb_ompl_property time = pl->progress_properties[at];
+        memmove(pl->progress_properties + 1, pl->progress_properties,
+                (size_t)at * sizeof *pl->progress_properties);
+        pl->progress_properties[0] = time;
+    }
     long nr;
     if (count_line(r, "runs", &nr) != 0)
         return -1;
@@ -444,7 +458,9 @@ static int planner_block(reader *r, mpb_ompl_planner *pl)
                     pl->progress = t;
                 }
                 for (long j = 0; j < q; j++)
-                    pl->progress[used++] = value_of(vals[j]);
+                    pl->progress[used + (size_t)(j == at ? 0 : j < at ? j + 1 : j)] =
+                        value_of(vals[j]);
+                used += (size_t)q;
             }
             if (!semi)
                 break;

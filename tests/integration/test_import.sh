@@ -137,6 +137,27 @@ check "direct: every value is the log's, to the last bit ($1 values)" \
 check "direct: an existing Planner Arena database is not overwritten" test $? -eq 1
 check "direct: ... and still holds one experiment" \
     eq "$(sqlite3 "$D" "SELECT count(*) FROM experiments")" 1
+# Progress: OMPL's Benchmark lists the sample's properties sorted, "time"
+# among them; each goes to its own column, as the script puts it. Every
+# run of the log gets one sample: 0.5 for "time", 7 for the rest.
+awk '/ progress properties for each run$/ {
+         print; q = $1
+         for (k = 0; k < q; k++) {getline; print; name[k] = $0; sub(/ [A-Z]+$/, "", name[k])}
+         getline; print; n = $1
+         for (r = 0; r < n; r++) {
+             getline; s = ""
+             for (k = 0; k < q; k++) s = s (name[k] == "time" ? "0.5" : "7") ","
+             print s ";"
+         }
+         next
+     }
+     {print}' "$work/wall.log" >"$work/progress.log"
+samples=$(grep -Ec '^(7|0\.5),.*;$' "$work/progress.log")
+"$mpb" import -p "$work/progress.db" "$work/progress.log" >/dev/null
+check "direct: progress, each value in its own column ($samples samples)" \
+    test "$samples" -gt 0 -a "$(sqlite3 "$work/progress.db" \
+        "SELECT count(*), sum(time = 0.5), sum(best_cost = 7) FROM progress")" \
+        = "$samples|$samples|$samples"
 # A write that fails half-way (a column name SQLite refuses): no
 # database, and no temporary file beside it.
 sed 's/^time REAL$/ti"me REAL/' "$work/wall.log" >"$work/badcol.log"

@@ -48,7 +48,9 @@ typedef struct mpb_ompl_planner {
     mpb_ompl_property *properties;
     long   num_runs;
     double *values;             /* num_runs x num_properties, row-major */
-    int    num_progress_properties;   /* the first is the sample's time */
+    int    num_progress_properties;   /* the first is the sample's time
+                                         (the log's "time", wherever the
+                                         log lists it) */
     mpb_ompl_property *progress_properties;
     long  *progress_start;      /* num_runs + 1 offsets into progress, in
                                    samples */
