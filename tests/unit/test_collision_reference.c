@@ -5,7 +5,9 @@
  * references that put every pair through FCL's narrow phase
  * (collision_internal.h): the PR2 right arm in the paper's kitchen, at
  * random states, at states within 1e-9 rad of a contact, and along fine
- * paths. Collision verdicts must be the same; clearances the same to 1e-9 m.
+ * paths, and among a grid of 512 small boxes (more statics than a check
+ * gathers near the robot: each shape then walks the tree). Collision
+ * verdicts must be the same; clearances the same to 1e-9 m.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -43,10 +45,12 @@ static char *slurp(const char *path)
     return s;
 }
 
-static mpb_world *open_kitchen(void)
+/* The PR2 arm in scene (NULL: the kitchen). */
+static mpb_world *open_world(const char *scene_text)
 {
     char *robot = slurp(SRC "/scenes/robots/pr2_right_arm.urdf");
-    char *scene = slurp(SRC "/scenes/paper/kitchen.scene");
+    char *scene = scene_text ? strdup(scene_text)
+                             : slurp(SRC "/scenes/paper/kitchen.scene");
     mpb_world *w = NULL;
     char err[256];
     int rc = mpb_world_open_group("urdf", robot, "moveit-scene", scene, joints,
@@ -56,6 +60,30 @@ static mpb_world *open_kitchen(void)
     free(robot);
     free(scene);
     assert_int_equal(mpb_world_num_joints(w), NJ);
+    return w;
+}
+
+static mpb_world *open_kitchen(void)
+{
+    return open_world(NULL);
+}
+
+/* 8 x 8 x 8 boxes of 4 cm, 17 cm apart, in front of and around the arm. */
+static mpb_world *open_grid(void)
+{
+    size_t cap = 512 * 120 + 64, len = 0;
+    char *t = malloc(cap);
+    assert_non_null(t);
+    len += (size_t)snprintf(t + len, cap - len, "grid\n");
+    for (int i = 0; i < 512; i++)
+        len += (size_t)snprintf(t + len, cap - len,
+                                "* b%d\n%.3f %.3f %.3f\n0 0 0 1\n1\nbox\n"
+                                "0.04 0.04 0.04\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n",
+                                i, 0.1 + 0.17 * (i % 8), -1.0 + 0.17 * (i / 8 % 8),
+                                0.3 + 0.17 * (i / 64));
+    snprintf(t + len, cap - len, ".\n");
+    mpb_world *w = open_world(t);
+    free(t);
     return w;
 }
 
@@ -164,10 +192,37 @@ static void fine_paths_agree(void **state)
     mpb_world_close(w);
 }
 
+static void states_among_many_boxes_agree(void **state)
+{
+    (void)state;
+    mpb_world *w = open_grid();
+    uint64_t x = 17;
+    double a[NJ], b[NJ], q[NJ];
+    int hits = 0;
+    for (int i = 0; i < 500; i++) {
+        random_state(w, &x, q);
+        hits += agree_collision(w, q);
+        agree_clearance(w, q);
+    }
+    assert_true(hits > 50 && hits < 450);
+    for (int path = 0; path < 5; path++) {
+        random_state(w, &x, a);
+        random_state(w, &x, b);
+        for (int k = 0; k <= 100; k++) {
+            for (int j = 0; j < NJ; j++)
+                q[j] = a[j] + (k / 100.0) * (b[j] - a[j]);
+            agree_collision(w, q);
+            agree_clearance(w, q);
+        }
+    }
+    mpb_world_close(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(random_states_agree),
+        cmocka_unit_test(states_among_many_boxes_agree),
         cmocka_unit_test(states_at_contact_agree),
         cmocka_unit_test(fine_paths_agree),
     };
