@@ -4,8 +4,9 @@
 # into it), and `mpb import -d` + `mpb export --planner-arena` (through an
 # mpbench database), against OMPL's own ompl_benchmark_statistics.py, on
 # the same log, on this machine, in the same run. Prints the time of each
-# (the median of 3), the ratios, and whether the databases hold the same
-# runs (per planner: count, mean time, mean solved).
+# (-p and the script: the median of MPB_IMPORT_REPS, default 5, taken in
+# turns; through a database: of 3), the ratios, and whether the databases
+# hold the same runs (per planner: count, mean time, mean solved).
 #
 #   bench/import.sh [RUNS]            (default 50000)
 #
@@ -57,7 +58,7 @@ print("log: %d runs (%d written by OMPL's Benchmark, x%d), %.1f MB"
 EOF
 
 now() { date +%s.%N; }
-median3() { printf '%s\n' "$@" | sort -g | sed -n 2p; }
+median() { printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 
 time_mpb() {
     rm -f "$work/mpb.db"* "$work/arena.db"
@@ -82,19 +83,39 @@ time_ompl() {
     echo "$t1 - $t0" | bc
 }
 
-d=$(median3 "$(time_direct)" "$(time_direct)" "$(time_direct)")
-echo "mpb import -p (straight into Planner Arena): $d s"
-m=$(median3 "$(time_mpb)" "$(time_mpb)" "$(time_mpb)")
+# mpb import -p and the script in turns, REPS times each, so that a load
+# that comes and goes weighs on both alike: the medians, and the median of
+# the ratios of each pair.
+REPS=${MPB_IMPORT_REPS:-5}
+have_ompl=0
+[ -n "${OMPL_STATS:-}" ] && [ -f "$OMPL_STATS" ] && have_ompl=1
+ds= os= rs=
+i=0
+while [ $i -lt "$REPS" ]; do
+    x=$(time_direct)
+    ds="$ds $x"
+    if [ $have_ompl = 1 ]; then
+        y=$(time_ompl)
+        os="$os $y"
+        rs="$rs $(echo "scale=3; $y / $x" | bc)"
+    fi
+    i=$((i + 1))
+done
+d=$(median $ds)
+echo "mpb import -p (straight into Planner Arena): $d s (median of $REPS:$ds)"
+m=$(median "$(time_mpb)" "$(time_mpb)" "$(time_mpb)")
 echo "mpb import -d + export --planner-arena: $m s"
-if [ -z "${OMPL_STATS:-}" ] || [ ! -f "$OMPL_STATS" ]; then
+if [ $have_ompl = 0 ]; then
     echo "OMPL_STATS not set: ompl_benchmark_statistics.py not timed"
     echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m"
     exit 0
 fi
-o=$(median3 "$(time_ompl)" "$(time_ompl)" "$(time_ompl)")
-echo "ompl_benchmark_statistics.py:          $o s"
+o=$(median $os)
+echo "ompl_benchmark_statistics.py:          $o s (median of $REPS:$os)"
 ratio=$(echo "scale=2; $o / $d" | bc)
 ratio_db=$(echo "scale=2; $o / $m" | bc)
+paired=$(median $rs)
+echo "ratio per pair (script / mpb import -p):$rs, median ${paired}x"
 echo "ratio (OMPL's script / mpb import -p): ${ratio}x"
 echo "ratio (OMPL's script / mpb import -d + export): ${ratio_db}x"
 
@@ -115,4 +136,4 @@ else
     same=no
     echo "same rows: NO"; diff "$work/mpb.rows" "$work/ompl.rows" || true
 fi
-echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m ompl_s=$o ratio=$ratio ratio_via_db=$ratio_db same_rows=$same"
+echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m ompl_s=$o ratio=$ratio paired_ratio=$paired ratio_via_db=$ratio_db same_rows=$same"
