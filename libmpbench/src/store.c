@@ -10,20 +10,16 @@
 
 #include "store_internal.h"
 
-/* Unix time in seconds with milliseconds (unixepoch('subsec') needs
- * SQLite 3.42; Debian 12 has 3.40). */
-#define NOW_SQL "((julianday('now') - 2440587.5) * 86400.0)"
-
 static const char *const stmt_sql[MPB__ST_COUNT] = {
     [MPB__ST_BEGIN] = "BEGIN IMMEDIATE",
     [MPB__ST_COMMIT] = "COMMIT",
     [MPB__ST_ROLLBACK] = "ROLLBACK",
     [MPB__ST_RUN_SENT] =
         "UPDATE runs SET state = 'sent', run_uid = ?2, planner_id = ?3,"
-        " attempts = attempts + 1, sent = " NOW_SQL
+        " attempts = attempts + 1, sent = ?4"
         " WHERE id = ?1 AND state != 'done'",
     [MPB__ST_RUN_FINISH] =
-        "UPDATE runs SET state = 'done', finished = " NOW_SQL ","
+        "UPDATE runs SET state = 'done', finished = ?16,"
         " planner_id = ?3, status = ?4, message = ?5, claimed_success = ?6,"
         " valid = ?7, verdict = ?8, success = ?9, time_total = ?10,"
         " time_raw = ?11, time_other = ?12, wall_time = ?13, final_stage = ?14,"

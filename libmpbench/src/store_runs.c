@@ -70,6 +70,7 @@ int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
     sqlite3_bind_int64(st, 1, run_id);
     sqlite3_bind_text(st, 2, run_uid, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 3, planner_id, -1, SQLITE_STATIC);
+    sqlite3_bind_double(st, 4, mpb__store_now());
     int rc = sqlite3_step(st);
     sqlite3_reset(st);
     if (rc != SQLITE_DONE)
@@ -296,6 +297,7 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
     sqlite3_bind_double(st, 11, r->time_raw);
     sqlite3_bind_double(st, 12, r->time_other);
     sqlite3_bind_double(st, 13, r->wall_time);
+    sqlite3_bind_double(st, 16, mpb__store_now());
     if (sqlite3_step(st) != SQLITE_DONE)
         return mpb__store_db_fail(s, "finish run");
     if (sqlite3_changes(s->db) == 0) {
