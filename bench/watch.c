@@ -215,7 +215,9 @@ int main(int argc, char **argv)
     lcm_subscription_t *s1 = lcm_subscribe(lcm, MPB_CHANNEL_REQUEST_PREFIX ".*",
                                            on_request, &w);
     lcm_subscription_t *s2 = lcm_subscribe(lcm, MPB_CHANNEL_RESULT, on_result, &w);
-    lcm_subscription_t *s3 = lcm_subscribe(lcm, MPB_CHANNEL_ACK, on_ack, &w);
+    /* The daemon's acknowledgements, on MPB_ACK_<planner> (and on MPB_ACK
+     * from mpbench before they moved there, to compare versions). */
+    lcm_subscription_t *s3 = lcm_subscribe(lcm, MPB_CHANNEL_ACK ".*", on_ack, &w);
     /* A listener must not lose messages to a short queue. */
     lcm_subscription_set_queue_capacity(s1, 10000);
     lcm_subscription_set_queue_capacity(s2, 10000);

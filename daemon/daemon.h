@@ -65,6 +65,13 @@ typedef struct mpbd_flight {
     double   deadline;
 } mpbd_flight;
 
+/* A stored result to acknowledge, to its planner, once its transaction
+ * commits. */
+typedef struct mpbd_ack_due {
+    char    run_uid[MPB_RUN_ID_SIZE];
+    char    planner_id[MPB_PLANNER_ID_MAX + 1];
+} mpbd_ack_due;
+
 typedef struct mpbd_counters {
     long done, succeeded, failed, crashed, rejected, retried;
 } mpbd_counters;
@@ -97,7 +104,7 @@ typedef struct mpbd {
 
     /* Results stored in the open transaction, acknowledged only once it
      * commits: an ack is a promise that the result is on disk. */
-    char           (*acks)[MPB_RUN_ID_SIZE];
+    mpbd_ack_due    *acks;
     int              num_acks, cap_acks;
 
     /* Runs finished lately, so that a re-sent result is acknowledged
@@ -131,10 +138,11 @@ void mpbd_flight_remove(mpbd *d, mpbd_flight *f);
 int  mpbd_scheduler_done(const mpbd *d);
 void mpbd_scheduler_free(mpbd *d);
 void mpbd_scheduler_subscribe(mpbd *d);
-/* Publish an acknowledgement now. */
-void mpbd_ack(mpbd *d, const char *run_uid, int kind);
-/* Acknowledge a stored result once the transaction commits. */
-int  mpbd_ack_after_commit(mpbd *d, const char *run_uid);
+/* Publish an acknowledgement to a planner now (on its MPB_ACK_<id>). */
+void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind);
+/* Acknowledge a planner's stored result once the transaction commits. */
+int  mpbd_ack_after_commit(mpbd *d, const char *planner_id,
+                           const char *run_uid);
 /* After a commit: send the acknowledgements it made true. */
 void mpbd_acks_flush(mpbd *d);
 

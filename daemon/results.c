@@ -187,11 +187,13 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m)
     }
     if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
         if (recently_done(d, m->run_id)) {
-            mpbd_ack(d, m->run_id, MPB_RUN_ACK_T_RESULT_STORED);
+            /* Stored, perhaps in the transaction still open: acknowledged
+             * again once that commits. */
+            mpbd_ack_after_commit(d, m->planner_id, m->run_id);
             return;
         }
         reject(d, "no such run in flight", m);
-        mpbd_ack(d, m->run_id, MPB_RUN_ACK_T_RESULT_REJECTED);
+        mpbd_ack(d, m->planner_id, m->run_id, MPB_RUN_ACK_T_RESULT_REJECTED);
         return;
     }
     if (strcmp(d->planners[f->planner].id, m->planner_id) != 0) {
@@ -203,7 +205,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m)
     if (rc == MPB_OK || rc == MPB_EEXISTS) {
         d->planners[f->planner].runs_done++;
         remember(d, f->run.uid);
-        mpbd_ack_after_commit(d, f->run.uid);
+        mpbd_ack_after_commit(d, m->planner_id, f->run.uid);
         mpbd_flight_remove(d, f);
     } else if (rc == MPB_ENOTFOUND) {
         reject(d, "not the run's current attempt", m);

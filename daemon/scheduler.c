@@ -301,35 +301,43 @@ void mpbd_scheduler_free(mpbd *d)
     free(d->acks);
 }
 
-void mpbd_ack(mpbd *d, const char *run_uid, int kind)
+void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
 {
+    char channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
     mpb_run_ack_t ack = {
         .utime = mpb_utime_now(),
         .run_id = (char *)run_uid,
         .sender_id = d->daemon_id,
         .kind = (int8_t)kind,
     };
-    mpb_publish_ack(d->lcm, d->auth, MPB_CHANNEL_ACK, &ack);
+    /* A result that names no valid planner cannot be answered. */
+    if (mpb_ack_channel(planner_id, channel, sizeof channel) == MPB_OK)
+        mpb_publish_ack(d->lcm, d->auth, channel, &ack);
 }
 
-int mpbd_ack_after_commit(mpbd *d, const char *run_uid)
+int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid)
 {
+    if (!mpb_planner_id_is_valid(planner_id) || !mpb_run_id_is_valid(run_uid))
+        return MPB_EINVAL;
     if (d->num_acks == d->cap_acks) {
         int cap = d->cap_acks ? d->cap_acks * 2 : 64;
-        char (*a)[MPB_RUN_ID_SIZE] = realloc(d->acks, (size_t)cap * sizeof *a);
+        mpbd_ack_due *a = realloc(d->acks, (size_t)cap * sizeof *a);
         if (a == NULL)
             return MPB_ENOMEM;
         d->acks = a;
         d->cap_acks = cap;
     }
-    memcpy(d->acks[d->num_acks++], run_uid, MPB_RUN_ID_SIZE);
+    mpbd_ack_due *a = &d->acks[d->num_acks++];
+    memcpy(a->run_uid, run_uid, sizeof a->run_uid);
+    memcpy(a->planner_id, planner_id, strlen(planner_id) + 1);
     return MPB_OK;
 }
 
 void mpbd_acks_flush(mpbd *d)
 {
     for (int i = 0; i < d->num_acks; i++)
-        mpbd_ack(d, d->acks[i], MPB_RUN_ACK_T_RESULT_STORED);
+        mpbd_ack(d, d->acks[i].planner_id, d->acks[i].run_uid,
+                 MPB_RUN_ACK_T_RESULT_STORED);
     d->num_acks = 0;
 }
 

@@ -26,8 +26,8 @@
 #define MPB__SENDS_MAX 50
 /* Longest wait in select(), so that *stop and re-sends are seen promptly. */
 #define MPB__POLL_S 0.05
-/* LCM queue lengths: acks are small and many (the daemon acks every
- * planner on one channel); requests are large and few. */
+/* LCM queue lengths: acks are small and may come many at once (a commit
+ * of several results); requests are large and few. */
 #define MPB__ACK_QUEUE 1000
 #define MPB__REQUEST_QUEUE 8
 /* Closest two announces may be (ms). */
@@ -52,6 +52,7 @@ typedef struct mpb__server {
     char id[MPB_PLANNER_ID_MAX + 1];
     char host[MPB_PLANNER_ID_MAX + 1];
     char request_channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
+    char ack_channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
     int heartbeat_ms;
 
     long solved;                /* runs answered (solve() called) */
@@ -256,7 +257,8 @@ static int mpb__make_id(mpb__server *s, char *err, size_t errlen)
     if (n1 < 0 || (size_t)n1 >= sizeof s->host || n2 < 0 ||
         (size_t)n2 >= sizeof s->id || !mpb_planner_id_is_valid(s->id) ||
         mpb_request_channel(s->id, s->request_channel,
-                            sizeof s->request_channel) != MPB_OK) {
+                            sizeof s->request_channel) != MPB_OK ||
+        mpb_ack_channel(s->id, s->ack_channel, sizeof s->ack_channel) != MPB_OK) {
         snprintf(err, errlen, "cannot make a planner id from '%s'", s->id);
         return MPB_EINVAL;
     }
@@ -382,11 +384,16 @@ static void mpb__ack(mpb__server *s, const char *run_id)
     mpb_publish_ack(s->lcm, s->auth, MPB_CHANNEL_ACK, &a);
 }
 
+/* The kept result of run_id, or NULL. Newest first: the run asked about is
+ * nearly always the last one answered. */
 static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
 {
-    for (int i = 0; i < MPB__RESULTS_KEPT; i++)
-        if (s->kept[i].used && strcmp(s->kept[i].res.run_id, run_id) == 0)
-            return &s->kept[i];
+    for (int n = 1; n <= MPB__RESULTS_KEPT; n++) {
+        mpb__kept *k = &s->kept[(s->kept_next + MPB__RESULTS_KEPT - n) %
+                                MPB__RESULTS_KEPT];
+        if (k->used && strcmp(k->res.run_id, run_id) == 0)
+            return k;
+    }
     return NULL;
 }
 
@@ -685,7 +692,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     lcm_subscription_t *rsub =
         lcm_subscribe(s->lcm, s->request_channel, mpb__on_request_raw, s);
     lcm_subscription_t *asub =
-        lcm_subscribe(s->lcm, MPB_CHANNEL_ACK, mpb__on_ack_raw, s);
+        lcm_subscribe(s->lcm, s->ack_channel, mpb__on_ack_raw, s);
     if (rsub == NULL || asub == NULL) {
         snprintf(err, errlen, "cannot subscribe to LCM channels");
         if (rsub != NULL)

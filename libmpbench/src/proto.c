@@ -73,6 +73,14 @@ int mpb_request_channel(const char *planner_id, char *out, size_t outlen)
     return (n < 0 || (size_t)n >= outlen) ? MPB_EINVAL : MPB_OK;
 }
 
+int mpb_ack_channel(const char *planner_id, char *out, size_t outlen)
+{
+    if (!mpb_planner_id_is_valid(planner_id))
+        return MPB_EINVAL;
+    int n = snprintf(out, outlen, "%s%s", MPB_CHANNEL_ACK_PREFIX, planner_id);
+    return (n < 0 || (size_t)n >= outlen) ? MPB_EINVAL : MPB_OK;
+}
+
 int64_t mpb_utime_now(void)
 {
     struct timespec ts;

@@ -121,7 +121,7 @@ ompl=$(sed -n 's/^mpb-planner-ompl: serving as //p' "$work/ompl.log")
 echo "# planners: $planner $ompl"
 for pair in "MPB_ANNOUNCE planner_announce_t" "MPB_REQUEST_$planner plan_request_t" \
             "MPB_REQUEST_$ompl plan_request_t" \
-            "MPB_ACK run_ack_t" "MPB_RESULT plan_result_t" "MPB_STATUS daemon_status_t"; do
+            "MPB_ACK_$planner run_ack_t" "MPB_RESULT plan_result_t" "MPB_STATUS daemon_status_t"; do
     channel=${pair% *}
     type=${pair#* }
     check "lcm-spy decodes $channel as mpb.$type" \

@@ -38,8 +38,9 @@ int main(int argc, char **argv)
     lcm_t *lcm = lcm_create(argc > 3 ? argv[3] : MPB_DEFAULT_LCM_URL);
     if (lcm == NULL)
         return 1;
+    /* The daemon answers the planner the result names, on its channel. */
     mpb_run_ack_t_subscription_t *sub =
-        mpb_run_ack_t_subscribe(lcm, MPB_CHANNEL_ACK, on_ack, NULL);
+        mpb_run_ack_t_subscribe(lcm, MPB_CHANNEL_ACK_PREFIX ".*", on_ack, NULL);
 
     /* A plausible answer, marked so that the test can look for it. */
     double wp[6] = {0, 0, 0, 0.3, -0.2, 0.1};

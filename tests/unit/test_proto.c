@@ -45,6 +45,10 @@ static void planner_ids_are_channel_safe(void **state)
     assert_string_equal(ch, "MPB_REQUEST_null@h:1");
     assert_int_equal(mpb_request_channel("bad id", ch, sizeof ch), MPB_EINVAL);
     assert_int_equal(mpb_request_channel("null@h:1", ch, 10), MPB_EINVAL);
+    assert_int_equal(mpb_ack_channel("null@h:1", ch, sizeof ch), MPB_OK);
+    assert_string_equal(ch, "MPB_ACK_null@h:1");
+    assert_int_equal(mpb_ack_channel("bad id", ch, sizeof ch), MPB_EINVAL);
+    assert_int_equal(mpb_ack_channel("null@h:1", ch, 10), MPB_EINVAL);
 }
 
 static void hashes_are_blake2b_128(void **state)

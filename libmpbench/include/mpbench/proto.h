@@ -14,11 +14,16 @@
 extern "C" {
 #endif
 
-/* Channels. A request goes to one planner: MPB_CHANNEL_REQUEST_PREFIX + id. */
+/* Channels. A request goes to one planner: MPB_CHANNEL_REQUEST_PREFIX + id.
+ * Planners acknowledge requests on MPB_CHANNEL_ACK; the daemon acknowledges
+ * a planner's results to it alone, on MPB_CHANNEL_ACK_PREFIX + id, so that
+ * no other process handles them (every process in the multicast group
+ * receives every message: docs/performance.md). */
 #define MPB_CHANNEL_ANNOUNCE        "MPB_ANNOUNCE"
 #define MPB_CHANNEL_REQUEST_PREFIX  "MPB_REQUEST_"
 #define MPB_CHANNEL_RESULT          "MPB_RESULT"
 #define MPB_CHANNEL_ACK             "MPB_ACK"
+#define MPB_CHANNEL_ACK_PREFIX      "MPB_ACK_"
 #define MPB_CHANNEL_STATUS          "MPB_STATUS"
 
 /* The LCM URL used when none is given: loopback-only multicast (ttl=0). */
@@ -49,6 +54,9 @@ int mpb_planner_id_is_valid(const char *id);
 
 /* Write MPB_CHANNEL_REQUEST_PREFIX + planner_id into out (size outlen). */
 int mpb_request_channel(const char *planner_id, char *out, size_t outlen);
+
+/* Write MPB_CHANNEL_ACK_PREFIX + planner_id into out (size outlen). */
+int mpb_ack_channel(const char *planner_id, char *out, size_t outlen);
 
 /* Microseconds since the epoch (CLOCK_REALTIME), for utime fields. */
 int64_t mpb_utime_now(void);

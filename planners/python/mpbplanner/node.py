@@ -65,7 +65,8 @@ class Node:
         self.active = []
         self.stopping = False
         self.lc.subscribe("MPB_REQUEST_" + self.planner_id, self._on_request)
-        self.lc.subscribe(ACK, self._on_ack)
+        # The daemon acknowledges our results on a channel of our own.
+        self.lc.subscribe(ACK + "_" + self.planner_id, self._on_ack)
 
     def log(self, text):
         if self.verbose:
