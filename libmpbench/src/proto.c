@@ -65,20 +65,24 @@ int mpb_planner_id_is_valid(const char *id)
     return n > 0;
 }
 
-int mpb_request_channel(const char *planner_id, char *out, size_t outlen)
+/* A planner's own channel: prefix + id, for a valid id that fits. */
+static int planner_channel(const char *prefix, const char *planner_id,
+                           char *out, size_t outlen)
 {
     if (!mpb_planner_id_is_valid(planner_id))
         return MPB_EINVAL;
-    int n = snprintf(out, outlen, "%s%s", MPB_CHANNEL_REQUEST_PREFIX, planner_id);
+    int n = snprintf(out, outlen, "%s%s", prefix, planner_id);
     return (n < 0 || (size_t)n >= outlen) ? MPB_EINVAL : MPB_OK;
+}
+
+int mpb_request_channel(const char *planner_id, char *out, size_t outlen)
+{
+    return planner_channel(MPB_CHANNEL_REQUEST_PREFIX, planner_id, out, outlen);
 }
 
 int mpb_ack_channel(const char *planner_id, char *out, size_t outlen)
 {
-    if (!mpb_planner_id_is_valid(planner_id))
-        return MPB_EINVAL;
-    int n = snprintf(out, outlen, "%s%s", MPB_CHANNEL_ACK_PREFIX, planner_id);
-    return (n < 0 || (size_t)n >= outlen) ? MPB_EINVAL : MPB_OK;
+    return planner_channel(MPB_CHANNEL_ACK_PREFIX, planner_id, out, outlen);
 }
 
 int64_t mpb_utime_now(void)
