@@ -19,6 +19,7 @@
 set -u
 
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 RUNS=3000 NP=1 OUT="" STRACE=0 IN_NETNS=0
@@ -50,47 +51,11 @@ if [ "$IN_NETNS" -eq 0 ]; then
     exec unshare -n sh "$0" "$@"
 fi
 
-ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 1
-if [ "$(ip -o link show | wc -l)" -ne 1 ]; then
-    echo "bench/profile.sh: not in a private network namespace; refusing" >&2
-    exit 1
-fi
+bench_netns bench/profile.sh
 
 BIN=$OUT/bin
-PIDS=""
-cleanup() {
-    for p in $PIDS; do kill "$p" 2>/dev/null; done
-    for p in $PIDS; do wait "$p" 2>/dev/null; done
-    PIDS=""
-}
 trap cleanup EXIT
 trap 'exit 130' INT TERM
-
-experiment() { # name runs runs_per_host file
-    cat >"$4" <<EOF
-experiment:
-  name: $1
-  runs: $2
-  time_limit: 1.0
-  seed: 1
-  runs_per_host: $3
-robot:
-  format: planar
-  file: $src/scenes/planar/arm3.robot
-scenes:
-  - name: pillars
-    format: planar
-    file: $src/scenes/planar/pillars.scene
-    queries:
-      - name: small_move
-        start: [0.0, 0.0, 0.0]
-        goal: [0.3, -0.2, 0.1]
-        tolerance: 0.01
-planners:
-  - planner: null
-    algorithms: [straight_line]
-EOF
-}
 
 # Total instructions (Ir) of a callgrind profile.
 total_ir() { awk '/^(summary|totals):/ { print $2; exit }' "$1"; }

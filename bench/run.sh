@@ -32,6 +32,7 @@
 set -u
 
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 WORK=$BUILD/bench-run/work     # databases and logs of one run
@@ -111,21 +112,11 @@ if [ "$IN_NETNS" -eq 0 ]; then
 fi
 
 # ---- inside the private network namespace ----------------------------------
-ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 1
-if [ "$(ip -o link show | wc -l)" -ne 1 ]; then
-    echo "bench/run.sh: not in a private network namespace; refusing" >&2
-    exit 1
-fi
+bench_netns bench/run.sh
 
 rm -rf "$WORK" && mkdir -p "$WORK" || exit 1
 RAW=$WORK/results.txt
 : >"$RAW"
-PIDS=""
-cleanup() {
-    for p in $PIDS; do kill "$p" 2>/dev/null; done
-    for p in $PIDS; do wait "$p" 2>/dev/null; done
-    PIDS=""
-}
 trap 'cleanup; [ "$KEEP" -eq 1 ] || rm -rf "$WORK"' EXIT
 trap 'exit 130' INT TERM
 
@@ -142,33 +133,6 @@ get() {
 put() { echo "RESULT $*" >>"$RAW"; }
 calc() { awk "BEGIN { v = $1; if (v != v) print \"nan\"; else printf \"%.${2:-1}f\", v }"; }
 now() { date +%s.%N; }
-
-# An experiment on the planar arm, query small_move (a free straight line).
-experiment() { # name runs runs_per_host file
-    cat >"$4" <<EOF
-experiment:
-  name: $1
-  runs: $2
-  time_limit: 1.0
-  seed: 1
-  runs_per_host: $3
-robot:
-  format: planar
-  file: $ROBOT
-scenes:
-  - name: pillars
-    format: planar
-    file: $SCENE
-    queries:
-      - name: small_move
-        start: [0.0, 0.0, 0.0]
-        goal: [0.3, -0.2, 0.1]
-        tolerance: 0.01
-planners:
-  - planner: null
-    algorithms: [straight_line]
-EOF
-}
 
 planners() { # count logprefix
     i=0

@@ -1,0 +1,53 @@
+# bench/lib.sh - what bench/run.sh and bench/profile.sh share (POSIX sh,
+# sourced, not run). The sourcing script sets src (the source tree).
+#
+#   bench_netns NAME      inside `unshare -n`: loopback up with a multicast
+#                         route; exits, naming NAME, unless loopback is the
+#                         namespace's only interface
+#   PIDS, cleanup         background processes to stop: cleanup kills and
+#                         waits for every pid in PIDS, then empties it
+#   experiment NAME RUNS RUNS_PER_HOST FILE
+#                         writes the planar throughput experiment: the
+#                         3-joint arm among the pillars, query small_move
+#                         (a free straight line), the null planner
+
+bench_netns() { # name
+    ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 1
+    if [ "$(ip -o link show | wc -l)" -ne 1 ]; then
+        echo "$1: not in a private network namespace; refusing" >&2
+        exit 1
+    fi
+}
+
+PIDS=""
+cleanup() {
+    for p in $PIDS; do kill "$p" 2>/dev/null; done
+    for p in $PIDS; do wait "$p" 2>/dev/null; done
+    PIDS=""
+}
+
+experiment() { # name runs runs_per_host file
+    cat >"$4" <<EOF
+experiment:
+  name: $1
+  runs: $2
+  time_limit: 1.0
+  seed: 1
+  runs_per_host: $3
+robot:
+  format: planar
+  file: $src/scenes/planar/arm3.robot
+scenes:
+  - name: pillars
+    format: planar
+    file: $src/scenes/planar/pillars.scene
+    queries:
+      - name: small_move
+        start: [0.0, 0.0, 0.0]
+        goal: [0.3, -0.2, 0.1]
+        tolerance: 0.01
+planners:
+  - planner: null
+    algorithms: [straight_line]
+EOF
+}
