@@ -189,12 +189,10 @@ int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
                                             int unfinished),
                                   void *ud)
 {
-    /* state IN (...) keeps to the runs_by_state index: no finished run is
-     * read. */
     sqlite3_stmt *st = mpb__store_prepare(s,
         "SELECT q.scene_id, count(*) FROM runs r"
         " JOIN queries q ON q.id = r.query_id"
-        " WHERE r.experiment_id = ? AND r.state IN ('pending', 'sent')"
+        " WHERE r.experiment_id = ? AND r.state != 'done'"
         " GROUP BY q.scene_id ORDER BY q.scene_id");
     if (st == NULL)
         return MPB_EDB;

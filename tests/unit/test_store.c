@@ -200,6 +200,33 @@ static void resuming_finds_the_unfinished_experiment(void **state)
     assert_true(id == f->exp);
 }
 
+/* A change of a run's state writes no index entry (no index has the state
+ * column): an older database's state index is dropped when it is opened,
+ * and its unfinished runs are still found. */
+static void an_older_state_index_is_dropped(void **state)
+{
+    fixture *f = *state;
+    sqlite3 *db;
+    mpb_run_row rows[3] = {{0}};
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 0, 1), MPB_OK);
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 1, 2), MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM pragma_index_list('runs') l,"
+                             " pragma_index_info(l.name) i"
+                             " WHERE i.name IN ('state', 'run_uid')"), 0);
+    mpb_store_close(f->s);
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "CREATE INDEX runs_by_state ON"
+                                      " runs(experiment_id, state)", NULL, NULL,
+                                  NULL), SQLITE_OK);
+    sqlite3_close(db);
+
+    assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM sqlite_schema"
+                             " WHERE name = 'runs_by_state'"), 0);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows), MPB_OK);
+    assert_int_equal(rows[0].attempts, 2);
+}
+
 static void refuses_what_is_not_its_database(void **state)
 {
     (void)state;
@@ -241,6 +268,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(a_run_is_finished_once, setup, teardown),
         cmocka_unit_test_setup_teardown(a_failed_write_leaves_no_half_run, setup, teardown),
         cmocka_unit_test_setup_teardown(resuming_finds_the_unfinished_experiment, setup, teardown),
+        cmocka_unit_test_setup_teardown(an_older_state_index_is_dropped, setup, teardown),
         cmocka_unit_test(refuses_what_is_not_its_database),
         cmocka_unit_test_setup_teardown(refuses_a_newer_schema, setup, teardown),
     };
