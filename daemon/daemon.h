@@ -6,6 +6,7 @@
  *   scheduler.c  which run goes to which planner; resends and deadlines
  *   results.c    checking, verifying, measuring and storing results
  *   status.c     the MPB_STATUS message
+ *   latency.c    each run's latency, request to commit, as a histogram
  *   inbox.c      checking messages before they are decoded
  *   replay.c     --replay: results from an LCM log instead of the network
  *   log.c        the console log
@@ -70,7 +71,15 @@ typedef struct mpbd_flight {
 typedef struct mpbd_ack_due {
     char    run_uid[MPB_RUN_ID_SIZE];
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
+    double  sent_at;         /* the request's first send; < 0: not counted */
 } mpbd_ack_due;
+
+/* Runs' latency, request first sent to result committed (latency.c). */
+#define MPBD_LATENCY_MAX_US 65536
+typedef struct mpbd_latency {
+    uint32_t *count;         /* [us], the last one for all longer */
+    uint64_t  n;
+} mpbd_latency;
 
 typedef struct mpbd_counters {
     long done, succeeded, failed, crashed, rejected, retried;
@@ -106,6 +115,7 @@ typedef struct mpbd {
      * commits: an ack is a promise that the result is on disk. */
     mpbd_ack_due    *acks;
     int              num_acks, cap_acks;
+    mpbd_latency     latency;
 
     /* Runs finished lately, so that a re-sent result is acknowledged
      * again instead of being counted as a stray. */
@@ -140,11 +150,20 @@ void mpbd_scheduler_free(mpbd *d);
 void mpbd_scheduler_subscribe(mpbd *d);
 /* Publish an acknowledgement to a planner now (on its MPB_ACK_<id>). */
 void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind);
-/* Acknowledge a planner's stored result once the transaction commits. */
+/* Acknowledge a planner's stored result once the transaction commits;
+ * sent_at, the request's first send, counts the run's latency then (< 0:
+ * a result stored before, not counted again). */
 int  mpbd_ack_after_commit(mpbd *d, const char *planner_id,
-                           const char *run_uid);
-/* After a commit: send the acknowledgements it made true. */
+                           const char *run_uid, double sent_at);
+/* After a commit: count the runs' latency, send the acknowledgements it
+ * made true. */
 void mpbd_acks_flush(mpbd *d);
+
+/* latency.c */
+int  mpbd_latency_init(mpbd_latency *l);
+void mpbd_latency_add(mpbd_latency *l, double seconds);
+long mpbd_latency_quantile_us(const mpbd_latency *l, double p);
+void mpbd_latency_free(mpbd_latency *l);
 
 /* results.c */
 void mpbd_results_subscribe(mpbd *d);

@@ -244,6 +244,20 @@ static int run_loop(mpbd *d)
     return 1;
 }
 
+/* What the daemon added to its runs (with a planner that answers at once):
+ * request first sent to result committed. */
+static void log_latency(const mpbd *d)
+{
+    long med = mpbd_latency_quantile_us(&d->latency, 0.5);
+    long p99 = mpbd_latency_quantile_us(&d->latency, 0.99);
+    if (med < 0)
+        return;
+    mpbd_log("latency of a run, request sent to result committed: median %ld"
+             " us, p99 %s%ld us (%llu runs)", med,
+             p99 >= MPBD_LATENCY_MAX_US ? "over " : "", p99,
+             (unsigned long long)d->latency.n);
+}
+
 int main(int argc, char **argv)
 {
     options o;
@@ -313,6 +327,8 @@ int main(int argc, char **argv)
     sigaction(SIGTERM, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
 
+    if (mpbd_latency_init(&d.latency) != MPB_OK)
+        mpbd_log("out of memory for the latency count: not counted");
     d.started = mpb_monotonic_s();
     /* Planners announce within a heartbeat: say nothing of waiting before. */
     d.last_wait_log = d.started - 4.0;
@@ -321,6 +337,7 @@ int main(int argc, char **argv)
              d.runs_total, o.db);
     rc = run_loop(&d);
     double elapsed = mpb_monotonic_s() - d.started;
+    log_latency(&d);
     if (rc == 0) {
         mpb_run_counts counts = {0};
         mpb_store_experiment_finish(d.store, d.experiment_id);
@@ -347,6 +364,7 @@ out:
             lcm_unsubscribe(d.lcm, d.sub_result);
         lcm_destroy(d.lcm);
     }
+    mpbd_latency_free(&d.latency);
     mpbd_scheduler_free(&d);
     mpbd_planners_free(&d);
     mpb_store_close(d.store);

@@ -189,7 +189,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m)
         if (recently_done(d, m->run_id)) {
             /* Stored, perhaps in the transaction still open: acknowledged
              * again once that commits. */
-            mpbd_ack_after_commit(d, m->planner_id, m->run_id);
+            mpbd_ack_after_commit(d, m->planner_id, m->run_id, -1.0);
             return;
         }
         reject(d, "no such run in flight", m);
@@ -205,7 +205,8 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m)
     if (rc == MPB_OK || rc == MPB_EEXISTS) {
         d->planners[f->planner].runs_done++;
         remember(d, f->run.uid);
-        mpbd_ack_after_commit(d, m->planner_id, f->run.uid);
+        mpbd_ack_after_commit(d, m->planner_id, f->run.uid,
+                              rc == MPB_OK ? f->sent_at : -1.0);
         mpbd_flight_remove(d, f);
     } else if (rc == MPB_ENOTFOUND) {
         reject(d, "not the run's current attempt", m);

@@ -169,6 +169,9 @@ static int send_next(mpbd *d, int c, int p, double now)
     d->pending_head[c]++;
     d->total_pending--;
     run.attempts++;
+    /* The clock now, not the loop's wake-up: the results handled since
+     * then are not this run's time (its wall_time and latency). */
+    now = mpb_monotonic_s();
     *f = (mpbd_flight){.run = run, .planner = p, .sent_at = now,
                        .last_send = now, .sends = 1,
                        .deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S};
@@ -315,7 +318,8 @@ void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
         mpb_publish_ack(d->lcm, d->auth, channel, &ack);
 }
 
-int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid)
+int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid,
+                          double sent_at)
 {
     if (!mpb_planner_id_is_valid(planner_id) || !mpb_run_id_is_valid(run_uid))
         return MPB_EINVAL;
@@ -330,14 +334,19 @@ int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid)
     mpbd_ack_due *a = &d->acks[d->num_acks++];
     memcpy(a->run_uid, run_uid, sizeof a->run_uid);
     memcpy(a->planner_id, planner_id, strlen(planner_id) + 1);
+    a->sent_at = sent_at;
     return MPB_OK;
 }
 
 void mpbd_acks_flush(mpbd *d)
 {
-    for (int i = 0; i < d->num_acks; i++)
+    double now = d->num_acks ? mpb_monotonic_s() : 0.0;
+    for (int i = 0; i < d->num_acks; i++) {
+        if (d->acks[i].sent_at >= 0)
+            mpbd_latency_add(&d->latency, now - d->acks[i].sent_at);
         mpbd_ack(d, d->acks[i].planner_id, d->acks[i].run_uid,
                  MPB_RUN_ACK_T_RESULT_STORED);
+    }
     d->num_acks = 0;
 }
 

@@ -19,6 +19,14 @@ status=$?
 check "mpbenchd completes the experiment and exits 0" eq "$status" 0
 [ "$status" -eq 0 ] || cat "$work/daemon.log"
 
+# The daemon's own count of each run's latency, request to commit: every
+# run, and never less than the run's wall_time (request to result in).
+lat=$(sed -n 's/.*request sent to result committed: median \([0-9]*\) us.*(\([0-9]*\) runs)$/\1 \2/p' "$work/daemon.log")
+check "the daemon reports the latency of its 14 runs" eq "${lat#* }" 14
+check "... whose median is at least the runs' median wall time" \
+    eq "$(q "SELECT ${lat%% *} >= CAST(wall_time * 1e6 AS INTEGER) FROM runs
+             ORDER BY wall_time LIMIT 1 OFFSET 6")" 1
+
 # 2 queries x (RRTConnect 3 + RRT 3 + straight_line 1) = 14 runs.
 check "all 14 runs exist" eq "$(q 'SELECT count(*) FROM runs')" 14
 check "every run is done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 14
