@@ -202,7 +202,7 @@ static void resuming_finds_the_unfinished_experiment(void **state)
 
 /* A change of a run's state writes no index entry (no index has the state
  * column): an older database's state index is dropped when it is opened,
- * and its unfinished runs are still found. */
+ * the index by experiment is there, and unfinished runs are still found. */
 static void an_older_state_index_is_dropped(void **state)
 {
     fixture *f = *state;
@@ -223,6 +223,8 @@ static void an_older_state_index_is_dropped(void **state)
     assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
     assert_int_equal(peek(f, "SELECT count(*) FROM sqlite_schema"
                              " WHERE name = 'runs_by_state'"), 0);
+    assert_int_equal(peek(f, "SELECT count(*) FROM sqlite_schema"
+                             " WHERE name = 'runs_by_experiment'"), 1);
     assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows), MPB_OK);
     assert_int_equal(rows[0].attempts, 2);
 }
