@@ -354,9 +354,9 @@ static void forward(const planar *p, const double *q, double *xy)
     }
 }
 
-/* Distance from point (px, py) to the segment a-b. */
-static double seg_point(double ax, double ay, double bx, double by,
-                        double px, double py)
+/* Squared distance from point (px, py) to the segment a-b. */
+static double seg_point2(double ax, double ay, double bx, double by,
+                         double px, double py)
 {
     double dx = bx - ax, dy = by - ay;
     double dd = dx * dx + dy * dy;
@@ -365,18 +365,39 @@ static double seg_point(double ax, double ay, double bx, double by,
         t = 0;
     else if (t > 1)
         t = 1;
-    /* sqrt, not hypot: planar distances are far from overflow, and hypot's
-     * care costs a third of verification (bench/verify.c, callgrind). */
     double ex = ax + t * dx - px, ey = ay + t * dy - py;
-    return sqrt(ex * ex + ey * ey);
+    return ex * ex + ey * ey;
+}
+
+/* Distance from point (px, py) to the segment a-b. sqrt, not hypot:
+ * planar distances are far from overflow, and hypot's care costs a third
+ * of verification (bench/verify.c, callgrind). */
+static double seg_point(double ax, double ay, double bx, double by,
+                        double px, double py)
+{
+    return sqrt(seg_point2(ax, ay, bx, by, px, py));
+}
+
+/* The larger of a, b and 0; a plain comparison, not fmax(): the values are
+ * finite, and fmax is a call into libm for its NaN rules. */
+static double pos_max(double a, double b)
+{
+    double m = a > b ? a : b;
+    return m > 0.0 ? m : 0.0;
+}
+
+/* Squared distance from a point to a box; 0 inside. */
+static double box_point2(const box *b, double px, double py)
+{
+    double dx = pos_max(b->xmin - px, px - b->xmax);
+    double dy = pos_max(b->ymin - py, py - b->ymax);
+    return dx * dx + dy * dy;
 }
 
 /* Distance from a point to a box; 0 inside. */
 static double box_point(const box *b, double px, double py)
 {
-    double dx = fmax(fmax(b->xmin - px, px - b->xmax), 0.0);
-    double dy = fmax(fmax(b->ymin - py, py - b->ymax), 0.0);
-    return sqrt(dx * dx + dy * dy);
+    return sqrt(box_point2(b, px, py));
 }
 
 /* Does the segment a-b meet the box? (Liang-Barsky clipping.) */
@@ -398,9 +419,9 @@ static int seg_meets_box(double ax, double ay, double bx, double by,
         } else {
             double r = qk / pk;
             if (pk < 0)
-                t0 = fmax(t0, r);
+                t0 = r > t0 ? r : t0;
             else
-                t1 = fmin(t1, r);
+                t1 = r < t1 ? r : t1;
             if (t0 > t1)
                 return 0;
         }
@@ -456,9 +477,42 @@ static double min_distance(planar *p, const double *q, double stop_at)
     return best;
 }
 
+/*
+ * Does a capsule link (segment a-b, radius r) touch the box? The same
+ * answer as seg_box() - r <= 0, in squared distances: no square roots.
+ */
+static int capsule_box(double ax, double ay, double bx, double by, double r,
+                       const box *b)
+{
+    double r2 = r * r;
+    return seg_meets_box(ax, ay, bx, by, b) ||
+           box_point2(b, ax, ay) <= r2 || box_point2(b, bx, by) <= r2 ||
+           seg_point2(ax, ay, bx, by, b->xmin, b->ymin) <= r2 ||
+           seg_point2(ax, ay, bx, by, b->xmin, b->ymax) <= r2 ||
+           seg_point2(ax, ay, bx, by, b->xmax, b->ymin) <= r2 ||
+           seg_point2(ax, ay, bx, by, b->xmax, b->ymax) <= r2;
+}
+
+/* min_distance(q) <= 0, decided without distances: verification asks
+ * this at every step of every path, and needs no more. */
 static int planar_in_collision(void *impl, const double *q)
 {
-    return min_distance(impl, q, 0.0) <= 0.0;
+    planar *p = impl;
+    forward(p, q, p->xy);
+    for (int i = 0; i < p->n; i++) {
+        double ax = p->xy[2 * i], ay = p->xy[2 * i + 1];
+        double bx = p->xy[2 * i + 2], by = p->xy[2 * i + 3];
+        for (int k = 0; k < p->num_circles; k++) {
+            const circle *c = &p->circles[k];
+            double reach = c->r + p->radius;
+            if (seg_point2(ax, ay, bx, by, c->cx, c->cy) <= reach * reach)
+                return 1;
+        }
+        for (int k = 0; k < p->num_boxes; k++)
+            if (capsule_box(ax, ay, bx, by, p->radius, &p->boxes[k]))
+                return 1;
+    }
+    return 0;
 }
 
 static double planar_clearance(void *impl, const double *q)

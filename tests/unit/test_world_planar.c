@@ -207,6 +207,44 @@ static void test_clearance_boxes(void **state)
     mpb_world_close(w);
 }
 
+/* The collision check decides without distances (squared, no roots): it
+ * must say what the clearance says, clearance <= 0, everywhere. Random
+ * states of a three-link arm among circles and boxes, most near contact
+ * (the arm sweeps through them), from a fixed seed. */
+static void test_collision_agrees_with_clearance(void **state)
+{
+    (void)state;
+    mpb_world *w = open_ok(
+        "base 0 0\nlink_radius 0.05\n"
+        "joint a -3.14159 3.14159 0.5\njoint b -3.14159 3.14159 0.4\n"
+        "joint c -3.14159 3.14159 0.3\n",
+        "circle 0.0 0.8 0.15\ncircle 0.7 -0.5 0.12\ncircle -0.3 -0.3 0.05\n"
+        "box -0.7 0.0 0.1 0.3\nbox 0.4 0.4 0.05 0.05\n");
+    uint64_t x = 88172645463325252ull;
+    int hits = 0, misses = 0, near = 0;
+    for (int i = 0; i < 200000; i++) {
+        double q[3];
+        for (int j = 0; j < 3; j++) {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            q[j] = -3.14159 + 6.28318 * (double)(x >> 11) / 9007199254740992.0;
+        }
+        double c = mpb_world_clearance(w, q);
+        int hit = mpb_world_in_collision(w, q);
+        if (hit != (c <= 0.0))
+            fail_msg("q = (%.17g, %.17g, %.17g): in collision %d, clearance %.17g",
+                     q[0], q[1], q[2], hit, c);
+        hits += hit;
+        misses += !hit;
+        near += fabs(c) < 0.01;
+    }
+    /* Both answers, and many states within 1 cm of contact. */
+    assert_true(hits > 10000 && misses > 10000);
+    assert_true(near > 1000);
+    mpb_world_close(w);
+}
+
 static void test_empty_scene_and_bad_q(void **state)
 {
     (void)state;
@@ -318,6 +356,7 @@ int main(void)
         cmocka_unit_test(test_clearance_circles),
         cmocka_unit_test(test_touching_counts),
         cmocka_unit_test(test_clearance_boxes),
+        cmocka_unit_test(test_collision_agrees_with_clearance),
         cmocka_unit_test(test_empty_scene_and_bad_q),
         cmocka_unit_test(test_text_forms),
         cmocka_unit_test(test_robot_parse_errors),
