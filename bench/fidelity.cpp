@@ -1,18 +1,31 @@
 /*
- * fidelity.cpp - mpb-bench-fidelity: one motion-planning problem solved by
- * OMPL 1.5's own in-process ompl::tools::Benchmark, for comparison with the
- * same problem planned through mpbenchd and mpb-planner-ompl (bench/run.sh
- * runs both): does mpbench make a planner look slower or faster than it
- * is?
+ * fidelity.cpp - mpb-bench-fidelity: does mpbench make a planner look slower
+ * or faster than it is? One motion-planning problem solved in process, by
+ * OMPL 1.5's own ompl::tools::Benchmark and by a bare solve(), for
+ * comparison with the same problem planned through mpbenchd and
+ * mpb-planner-ompl; then the statistics of the comparison (bench/fidelity.sh
+ * runs the three sides in interleaved blocks).
  *
- * The problem is built as mpb-planner-ompl builds it: the world's joints as
- * a real vector space (continuous joints wrap), validity from
- * mpb_world_in_collision(), motions checked every --resolution rad, the
- * goal a joint configuration with a tolerance. Each run is seeded as the
- * planner seeds a request (ompl::RNG::setSeed with the run's seed, before
- * anything of the run draws a number); --seeds gives the runs' seeds, in
- * order, as mpbenchd drew them for the same experiment. No simplification:
- * Benchmark's "time" is the solve, as the mpbench run's "raw" stage time.
+ *   mpb-bench-fidelity run --robot URDF --scene SCENE --joints A,B,...
+ *                      --start Q --goal Q --seeds S1,S2,... [options]
+ *   mpb-bench-fidelity stats [--boot N] FILE
+ *   mpb-bench-fidelity seeds EXPERIMENT_SEED N
+ *
+ * The problem is built as mpb-planner-ompl builds it for a request: the
+ * world's joints as a real vector space (continuous joints wrap), validity
+ * from mpb_world_in_collision(), motions checked every --resolution rad,
+ * the goal a joint configuration with a tolerance, RRTConnect with its
+ * default range, no simplification. Each run is seeded as the planner seeds
+ * a request: ompl::RNG::setSeed with the run's seed, then the same objects
+ * made in the same order, so that the state sampler gets the same seed and
+ * a run of a seed is the same run on every side (its graph states, printed,
+ * show it).
+ *
+ * `run` prints one line per run:
+ *   RUN SIDE BLOCK SEED SECONDS SOLVED VERIFIED GRAPH_STATES
+ * (VERIFIED is "-" here; bench/fidelity.sh writes mpbench's runs, from the
+ * database, in the same form). `stats` reads such lines and compares the
+ * median solve times of the solved runs, side against side.
  */
 #include <algorithm>
 #include <cmath>
@@ -21,11 +34,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -42,10 +59,12 @@ namespace ot = ompl::tools;
 
 namespace {
 
+// ---- the problem, as mpb-planner-ompl builds it ----------------------------
+
 // The world's joints; continuous ones wrap (the short way round). The same
 // space as mpb-planner-ompl's JointSpace, member for member: its maximum
-// extent sets RRTConnect's default range, so a different one is a
-// different planner.
+// extent sets RRTConnect's default range and the motion checks' step, so a
+// different one is a different planner.
 class Joints : public ob::RealVectorStateSpace {
 public:
     explicit Joints(const mpb_world *w)
@@ -126,6 +145,436 @@ private:
     std::vector<bool> wraps_;
 };
 
+struct Query {
+    mpb_world *world;
+    std::vector<double> start, goal;    // the world's joint order
+    double tolerance, resolution, time_limit;
+};
+
+// One request's problem, made in mpb-planner-ompl's order: the space, its
+// information with the validity checker (bounds, then the world; the
+// planner process adds a mutex and a counter), the motion step, setup (its
+// random projection draws a seed), start and goal (continuous joints
+// wrapped), the problem definition.
+struct Problem {
+    std::shared_ptr<Joints> space;
+    ob::SpaceInformationPtr si;
+    ob::ProblemDefinitionPtr pdef;
+};
+
+Problem make_problem(const Query &q)
+{
+    Problem p;
+    p.space = std::make_shared<Joints>(q.world);
+    p.si = std::make_shared<ob::SpaceInformation>(p.space);
+    mpb_world *world = q.world;
+    Joints *sp = p.space.get();
+    p.si->setStateValidityChecker([world, sp](const ob::State *s) {
+        return sp->satisfiesBounds(s) &&
+               mpb_world_in_collision(
+                   world, s->as<ob::RealVectorStateSpace::StateType>()->values) == 0;
+    });
+    p.si->setStateValidityCheckingResolution(
+        std::min(q.resolution / p.space->getMaximumExtent(), 0.5));
+    p.si->setup();
+    ob::ScopedState<> s0(p.space), s1(p.space);
+    for (size_t j = 0; j < q.start.size(); j++) {
+        bool wraps = mpb_world_joint_is_continuous(world, static_cast<int>(j)) != 0;
+        s0[j] = wraps ? std::remainder(q.start[j], 2 * M_PI) : q.start[j];
+        s1[j] = wraps ? std::remainder(q.goal[j], 2 * M_PI) : q.goal[j];
+    }
+    p.pdef = std::make_shared<ob::ProblemDefinition>(p.si);
+    p.pdef->setStartAndGoalStates(s0, s1, q.tolerance);
+    return p;
+}
+
+// As mpb-planner-ompl seeds a request (32 bits, never 0).
+void seed_run(const std::string &seed)
+{
+    std::uint64_t u = static_cast<std::uint64_t>(std::strtoll(seed.c_str(), nullptr, 10));
+    std::uint32_t s = static_cast<std::uint32_t>(u ^ (u >> 32));
+    ompl::RNG::setSeed(s != 0 ? s : 0x9e3779b9u);
+}
+
+struct Run {
+    double secs;
+    bool solved;
+    unsigned graph_states;
+};
+
+// A bare run: the request's objects made anew, the planner set up, then
+// solve() alone timed, its time limit checked inline at each iteration (no
+// thread), as mpb-planner-ompl does.
+Run plain_run(const Query &q, const std::string &seed)
+{
+    seed_run(seed);
+    Problem p = make_problem(q);
+    auto planner = std::make_shared<og::RRTConnect>(p.si);
+    planner->setProblemDefinition(p.pdef);
+    planner->setup();
+    const double t0 = mpb_monotonic_s(), deadline = t0 + q.time_limit;
+    ob::PlannerStatus st = planner->solve(ob::PlannerTerminationCondition(
+        [deadline] { return mpb_monotonic_s() >= deadline; }));
+    const double secs = mpb_monotonic_s() - t0;
+    ob::PlannerData data(p.si);
+    planner->getPlannerData(data);
+    return {secs, st == ob::PlannerStatus::EXACT_SOLUTION, data.numVertices()};
+}
+
+// Runs of OMPL's own Benchmark, one per seed. Benchmark keeps one planner
+// and clears it between runs; before each run the pre-run event seeds OMPL
+// and makes (and drops) the objects the planner process makes before its
+// solve(), so that the sampler solve() allocates gets the same seed there
+// and here. Benchmark's "time" is what it reports: solve() and the
+// termination condition's thread around it.
+std::vector<Run> benchmark_runs(const Query &q, const std::vector<std::string> &seeds)
+{
+    Problem p = make_problem(q);
+    og::SimpleSetup ss(p.si);
+    ss.getProblemDefinition()->addStartState(p.pdef->getStartState(0));
+    ss.setGoal(p.pdef->getGoal());
+    ss.setPlanner(std::make_shared<og::RRTConnect>(p.si));
+    ss.setup();
+    ot::Benchmark b(ss, "mpbench-fidelity");
+    b.addPlanner(std::make_shared<og::RRTConnect>(p.si));
+    size_t run = 0;
+    b.setPreRunEvent([&](const ob::PlannerPtr &) {
+        seed_run(seeds[run++ % seeds.size()]);
+        Problem twin = make_problem(q);
+        og::RRTConnect draws(twin.si);
+        draws.setProblemDefinition(twin.pdef);
+        draws.setup();
+    });
+    ot::Benchmark::Request req(q.time_limit, 4096.0, static_cast<unsigned>(seeds.size()),
+                               0.05, false, false, false);
+    b.benchmark(req);
+
+    std::vector<Run> out;
+    for (const auto &pe : b.getRecordedExperimentData().planners)
+        for (const auto &r : pe.runs) {
+            auto get = [&r](const char *key) {
+                auto it = r.find(key);
+                return it != r.end() ? it->second : std::string();
+            };
+            bool exact = get("solved BOOLEAN") == "1" &&
+                         get("approximate solution BOOLEAN") != "1";
+            std::string t = get("time REAL");
+            out.push_back({t.empty() ? NAN : std::strtod(t.c_str(), nullptr), exact,
+                           static_cast<unsigned>(std::strtoul(
+                               get("graph states INTEGER").c_str(), nullptr, 10))});
+        }
+    return out;
+}
+
+// ---- statistics ------------------------------------------------------------
+
+double median(std::vector<double> v)
+{
+    if (v.empty())
+        return NAN;
+    size_t n = v.size(), h = n / 2;
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(h), v.end());
+    double hi = v[h];
+    if (n % 2)
+        return hi;
+    return 0.5 * (*std::max_element(v.begin(), v.begin() + static_cast<long>(h)) + hi);
+}
+
+// The p-quantile of sorted values (linear between order statistics).
+double quantile(const std::vector<double> &sorted, double p)
+{
+    if (sorted.empty())
+        return NAN;
+    double x = p * static_cast<double>(sorted.size() - 1);
+    size_t i = static_cast<size_t>(x);
+    if (i + 1 >= sorted.size())
+        return sorted.back();
+    return sorted[i] + (x - static_cast<double>(i)) * (sorted[i + 1] - sorted[i]);
+}
+
+struct Line {
+    std::string side;
+    int block;
+    std::string seed;
+    double secs;
+    bool solved;
+    int verified;       // -1: not known
+    long graph_states;
+};
+
+// One side's runs, by block.
+struct Side {
+    std::map<int, std::vector<double>> times;     // solved runs only
+    int runs = 0, solved = 0, verified = 0, verified_known = 0;
+    // Solved runs by block and seed: time, graph states.
+    std::map<std::pair<int, std::string>, std::pair<double, long>> by_seed;
+};
+
+std::string fmt(double v, int prec = 4)
+{
+    if (!std::isfinite(v))
+        return "nan";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", prec, v);
+    return buf;
+}
+
+std::vector<double> pooled(const Side &s)
+{
+    std::vector<double> v;
+    for (const auto &b : s.times)
+        v.insert(v.end(), b.second.begin(), b.second.end());
+    return v;
+}
+
+// A resample of a side: each block's solved times drawn with replacement,
+// as many as it has, pooled.
+void resample_within(const Side &s, std::mt19937_64 &rng, std::vector<double> &out)
+{
+    out.clear();
+    for (const auto &b : s.times) {
+        const std::vector<double> &v = b.second;
+        if (v.empty())
+            continue;
+        std::uniform_int_distribution<size_t> pick(0, v.size() - 1);
+        for (size_t i = 0; i < v.size(); i++)
+            out.push_back(v[pick(rng)]);
+    }
+}
+
+// Is the difference of two success rates within noise? Within 1.96
+// standard errors of the pooled rate (and equal rates always are).
+const char *same_rate(int s1, int n1, int s2, int n2)
+{
+    if (n1 == 0 || n2 == 0)
+        return "not measured";
+    double p1 = double(s1) / n1, p2 = double(s2) / n2, p = double(s1 + s2) / (n1 + n2);
+    double se = std::sqrt(p * (1 - p) * (1.0 / n1 + 1.0 / n2));
+    return std::fabs(p1 - p2) <= 1.96 * se ? "same" : "different";
+}
+
+// "met" when the interval lies inside [lo_ok, hi_ok], "missed" when
+// outside it, else "not_settled".
+const char *verdict(double lo, double hi, double lo_ok, double hi_ok)
+{
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+        return "not_measured";
+    if (lo >= lo_ok && hi <= hi_ok)
+        return "met";
+    if (hi < lo_ok || lo > hi_ok)
+        return "missed";
+    return "not_settled";
+}
+
+// Side a against side b: the ratio of the pooled medians of the solved
+// runs (a / b), its bootstrap 95 % interval resampling the runs within each
+// side (and block), the median of the blocks' own ratios, the interval of
+// a resampling of whole blocks (the noise that hits a block of one side at
+// once), and the runs of the same seed on both sides: how many did the same
+// work (the same graph), the median of their time ratios.
+void compare(const char *key, const char *a_name, const Side &a, const char *b_name,
+             const Side &b, int boots, double lo_ok, double hi_ok)
+{
+    std::vector<double> pa = pooled(a), pb = pooled(b);
+    double ma = median(pa), mb = median(pb), ratio = ma / mb;
+
+    std::mt19937_64 rng(20261123);
+    std::vector<double> ra, rb, boot;
+    for (int i = 0; i < boots; i++) {
+        resample_within(a, rng, ra);
+        resample_within(b, rng, rb);
+        boot.push_back(median(ra) / median(rb));
+    }
+    std::sort(boot.begin(), boot.end());
+    double lo = quantile(boot, 0.025), hi = quantile(boot, 0.975);
+
+    std::vector<int> blocks;
+    std::vector<double> block_ratios;
+    for (const auto &blk : a.times) {
+        auto it = b.times.find(blk.first);
+        if (it == b.times.end() || blk.second.empty() || it->second.empty())
+            continue;
+        blocks.push_back(blk.first);
+        block_ratios.push_back(median(blk.second) / median(it->second));
+    }
+    std::vector<double> sorted_br = block_ratios;
+    std::sort(sorted_br.begin(), sorted_br.end());
+
+    std::vector<double> bboot;
+    if (!blocks.empty()) {
+        std::uniform_int_distribution<size_t> pick(0, blocks.size() - 1);
+        for (int i = 0; i < boots; i++) {
+            ra.clear();
+            rb.clear();
+            for (size_t k = 0; k < blocks.size(); k++) {
+                int blk = blocks[pick(rng)];
+                const std::vector<double> &va = a.times.at(blk), &vb = b.times.at(blk);
+                ra.insert(ra.end(), va.begin(), va.end());
+                rb.insert(rb.end(), vb.begin(), vb.end());
+            }
+            bboot.push_back(median(ra) / median(rb));
+        }
+        std::sort(bboot.begin(), bboot.end());
+    }
+
+    // The seeds solved on both sides, by block: a's and b's times.
+    int paired = 0, same_graph = 0;
+    std::vector<double> seed_ratios;
+    std::map<int, std::vector<std::pair<double, double>>> pairs;
+    for (const auto &s : a.by_seed) {
+        auto it = b.by_seed.find(s.first);
+        if (it == b.by_seed.end())
+            continue;
+        paired++;
+        pairs[s.first.first].push_back({s.second.first, it->second.first});
+        if (s.second.second == it->second.second) {
+            same_graph++;
+            seed_ratios.push_back(s.second.first / it->second.first);
+        }
+    }
+    // The same ratio of medians, the seeds resampled within each block with
+    // both sides' runs of a seed kept together: a seed's own difficulty, the
+    // same on both sides, is then no noise of the comparison.
+    std::vector<double> pboot;
+    if (!pairs.empty()) {
+        for (int i = 0; i < boots; i++) {
+            ra.clear();
+            rb.clear();
+            for (const auto &blk : pairs) {
+                const auto &v = blk.second;
+                std::uniform_int_distribution<size_t> pick(0, v.size() - 1);
+                for (size_t k = 0; k < v.size(); k++) {
+                    const auto &ab = v[pick(rng)];
+                    ra.push_back(ab.first);
+                    rb.push_back(ab.second);
+                }
+            }
+            pboot.push_back(median(ra) / median(rb));
+        }
+        std::sort(pboot.begin(), pboot.end());
+    }
+
+    double plo = quantile(pboot, 0.025), phi = quantile(pboot, 0.975);
+    double blo = quantile(bboot, 0.025), bhi = quantile(bboot, 0.975);
+    double brmin = sorted_br.empty() ? NAN : sorted_br.front();
+    double brmax = sorted_br.empty() ? NAN : sorted_br.back();
+    const char *v = verdict(lo, hi, lo_ok, hi_ok), *pv = verdict(plo, phi, lo_ok, hi_ok);
+    std::printf("%s / %s: median solve time (solved runs) %.3f / %.3f ms, ratio %.4f\n"
+                "  95 %% CI %.4f-%.4f (runs resampled within each side and block): %s\n"
+                "  95 %% CI %.4f-%.4f (seeds resampled, both sides together): %s\n"
+                "  95 %% CI %.4f-%.4f (whole blocks resampled)\n"
+                "  the %zu blocks' own ratios: median %.4f, %.4f-%.4f\n"
+                "  %d of %d seeds solved on both sides made the same graph; the "
+                "median of their time ratios %.4f\n",
+                a_name, b_name, ma * 1e3, mb * 1e3, ratio, lo, hi, v, plo, phi, pv, blo, bhi,
+                block_ratios.size(), median(block_ratios), brmin, brmax, same_graph, paired,
+                median(seed_ratios));
+    std::printf("RESULT %s blocks=%zu runs_a=%d solved_a=%d runs_b=%d solved_b=%d "
+                "success=%s median_a_s=%s median_b_s=%s ratio=%s ci_lo=%s ci_hi=%s "
+                "verdict=%s paired_lo=%s paired_hi=%s paired_verdict=%s "
+                "blockboot_lo=%s blockboot_hi=%s block_ratio_median=%s "
+                "block_ratio_min=%s block_ratio_max=%s seeds_paired=%d "
+                "seeds_same_graph=%d seed_ratio_median=%s\n",
+                key, block_ratios.size(), a.runs, a.solved, b.runs, b.solved,
+                same_rate(a.solved, a.runs, b.solved, b.runs), fmt(ma, 6).c_str(),
+                fmt(mb, 6).c_str(), fmt(ratio).c_str(), fmt(lo).c_str(), fmt(hi).c_str(), v,
+                fmt(plo).c_str(), fmt(phi).c_str(), pv, fmt(blo).c_str(), fmt(bhi).c_str(),
+                fmt(median(block_ratios)).c_str(), fmt(brmin).c_str(), fmt(brmax).c_str(),
+                paired, same_graph, fmt(median(seed_ratios)).c_str());
+}
+
+int stats(int argc, char **argv)
+{
+    int boots = 2000;
+    const char *file = nullptr;
+    for (int i = 0; i < argc; i++) {
+        if (!std::strcmp(argv[i], "--boot") && i + 1 < argc)
+            boots = std::atoi(argv[++i]);
+        else if (file == nullptr && argv[i][0] != '-')
+            file = argv[i];
+        else
+            return 2;
+    }
+    if (file == nullptr || boots < 100)
+        return 2;
+    FILE *f = std::fopen(file, "r");
+    if (f == nullptr) {
+        std::fprintf(stderr, "mpb-bench-fidelity: cannot open %s\n", file);
+        return 1;
+    }
+    std::map<std::string, Side> sides;
+    char buf[512];
+    while (std::fgets(buf, sizeof buf, f)) {
+        char side[32], seed[32], verified[8];
+        int block, solved;
+        double secs;
+        long graph;
+        if (std::sscanf(buf, "RUN %31s %d %31s %lf %d %7s %ld", side, &block, seed, &secs,
+                        &solved, verified, &graph) != 7)
+            continue;
+        Side &s = sides[side];
+        s.runs++;
+        if (verified[0] != '-') {
+            s.verified_known++;
+            s.verified += std::atoi(verified) != 0;
+        }
+        if (solved && std::isfinite(secs)) {
+            s.solved++;
+            s.times[block].push_back(secs);
+            s.by_seed[{block, seed}] = {secs, graph};
+        } else {
+            s.times[block];     // a block with no solved run is still a block
+        }
+    }
+    std::fclose(f);
+    for (const auto &s : sides)
+        std::printf("RESULT fidelity_side_%s runs=%d solved=%d verified=%s blocks=%zu\n",
+                    s.first.c_str(), s.second.runs, s.second.solved,
+                    s.second.verified_known ? std::to_string(s.second.verified).c_str() : "-",
+                    s.second.times.size());
+    const Side &m = sides["mpbench"], &o = sides["ompl"], &p = sides["plain"];
+    compare("fidelity_ompl", "mpbench", m, "OMPL Benchmark", o, boots, 0.97, 1.03);
+    compare("fidelity_plain", "mpbench", m, "bare solve()", p, boots, 0.97, 1.03);
+    compare("fidelity_bench_plain", "OMPL Benchmark", o, "bare solve()", p, boots, 0.97, 1.03);
+    return 0;
+}
+
+// ---- seeds -----------------------------------------------------------------
+
+// The seeds mpbenchd gives the first n runs of an experiment of one planner
+// configuration and one query: daemon/experiment.c's mpbd_run_seed(), so
+// that the in-process sides can run a block's seeds before mpbenchd has
+// drawn them (bench/fidelity.sh checks them against the database after).
+std::uint64_t mix(std::uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+int seeds(int argc, char **argv)
+{
+    if (argc != 2)
+        return 2;
+    char *end;
+    long long e = std::strtoll(argv[0], &end, 10);
+    long n = std::strtol(argv[1], nullptr, 10);
+    if (*end != '\0' || n < 1)
+        return 2;
+    for (long r = 0; r < n; r++) {
+        std::uint64_t h = mix(static_cast<std::uint64_t>(e));
+        h = mix(h ^ 0);     // the configuration
+        h = mix(h ^ 0);     // the query
+        h = mix(h ^ static_cast<std::uint64_t>(r));
+        std::printf("%s%lld", r ? "," : "", static_cast<long long>(h & 0x7fffffff));
+    }
+    std::printf("\n");
+    return 0;
+}
+
+// ---- run -------------------------------------------------------------------
+
 std::vector<std::string> split(const std::string &s)
 {
     std::vector<std::string> out;
@@ -159,54 +608,46 @@ std::string slurp(const char *path)
     return out;
 }
 
-double median(std::vector<double> v)
-{
-    if (v.empty())
-        return NAN;
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 void usage(FILE *out)
 {
     std::fprintf(out,
-"usage: mpb-bench-fidelity --robot URDF --scene SCENE --joints A,B,...\n"
+"usage: mpb-bench-fidelity run --robot URDF --scene SCENE --joints A,B,...\n"
 "                          --start Q --goal Q --seeds S1,S2,... [options]\n"
+"       mpb-bench-fidelity stats [--boot N] FILE\n"
+"       mpb-bench-fidelity seeds EXPERIMENT_SEED N\n"
 "\n"
-"Plans start -> goal (joint values, comma-separated, in --joints order)\n"
-"with RRTConnect in OMPL's own Benchmark, once per seed, and prints the\n"
-"median solve time and the success rate.\n"
-"\n"
-"options:\n"
+"run: plans start -> goal (joint values, comma-separated, in --joints order)\n"
+"with RRTConnect once per seed on each side asked for, in order, and prints\n"
+"  RUN SIDE BLOCK SEED SECONDS SOLVED - GRAPH_STATES\n"
+"per run. Sides: \"ompl\" (OMPL's Benchmark, its \"time\"), \"plain\" (a bare\n"
+"solve(), timed alone, as mpb-planner-ompl times it).\n"
+"  --sides A,B      default ompl,plain\n"
+"  --block K        the block number printed (default 0)\n"
+"  --warmup N       runs of the first seeds on each side first, not printed\n"
+"                   (default 5)\n"
 "  --time-limit S   per run (default 10)\n"
 "  --tolerance RAD  goal tolerance (default 0.01)\n"
 "  --resolution RAD motion checks, as mpb-planner-ompl (default 0.005)\n"
-"  --per-run        print each run's seed, time and outcome\n");
+"\n"
+"stats: the RUN lines of FILE (sides mpbench, ompl, plain), side against\n"
+"side: the ratio of the median solve times of the solved runs, its\n"
+"bootstrap 95 %% interval (N resamples, default 2000), the blocks' own\n"
+"ratios, the success rates; RESULT lines.\n"
+"\n"
+"seeds: the seeds mpbenchd gives the first N runs of an experiment of one\n"
+"planner configuration and one query, comma-separated.\n");
 }
 
-} // namespace
-
-int main(int argc, char **argv)
+int run(int argc, char **argv)
 {
     const char *robot_file = nullptr, *scene_file = nullptr;
-    std::string joints_arg, start_arg, goal_arg, seeds_arg;
+    std::string joints_arg, start_arg, goal_arg, seeds_arg, sides_arg = "ompl,plain";
     double time_limit = 10, tolerance = 0.01, resolution = 0.005;
-    bool per_run = false;
-    for (int i = 1; i < argc; i++) {
+    int block = 0, warmup = 5;
+    for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : nullptr;
-        if (!std::strcmp(a, "--help")) {
-            usage(stdout);
-            return 0;
-        }
-        if (!std::strcmp(a, "--per-run")) {
-            per_run = true;
-            continue;
-        }
-        if (v == nullptr) {
-            usage(stderr);
+        if (v == nullptr)
             return 2;
-        }
         i++;
         if (!std::strcmp(a, "--robot")) robot_file = v;
         else if (!std::strcmp(a, "--scene")) scene_file = v;
@@ -214,135 +655,91 @@ int main(int argc, char **argv)
         else if (!std::strcmp(a, "--start")) start_arg = v;
         else if (!std::strcmp(a, "--goal")) goal_arg = v;
         else if (!std::strcmp(a, "--seeds")) seeds_arg = v;
+        else if (!std::strcmp(a, "--sides")) sides_arg = v;
+        else if (!std::strcmp(a, "--block")) block = std::atoi(v);
+        else if (!std::strcmp(a, "--warmup")) warmup = std::atoi(v);
         else if (!std::strcmp(a, "--time-limit")) time_limit = std::atof(v);
         else if (!std::strcmp(a, "--tolerance")) tolerance = std::atof(v);
         else if (!std::strcmp(a, "--resolution")) resolution = std::atof(v);
-        else {
-            usage(stderr);
-            return 2;
-        }
+        else return 2;
     }
-    std::vector<std::string> names = split(joints_arg);
-    std::vector<double> start = numbers(start_arg), goal = numbers(goal_arg);
-    std::vector<std::string> seeds = split(seeds_arg);
-    if (!robot_file || !scene_file || names.empty() || start.size() != names.size() ||
-        goal.size() != names.size() || seeds.empty() || !(time_limit > 0) ||
-        !(resolution > 0)) {
-        usage(stderr);
+    std::vector<std::string> names = split(joints_arg), seeds = split(seeds_arg),
+                             sides = split(sides_arg);
+    Query q{nullptr, numbers(start_arg), numbers(goal_arg), tolerance, resolution, time_limit};
+    bool sides_ok = !sides.empty();
+    for (const std::string &s : sides)
+        sides_ok = sides_ok && (s == "ompl" || s == "plain");
+    if (!robot_file || !scene_file || names.empty() || q.start.size() != names.size() ||
+        q.goal.size() != names.size() || seeds.empty() || !(time_limit > 0) ||
+        !(resolution > 0) || !sides_ok || warmup < 0)
         return 2;
-    }
     std::string robot = slurp(robot_file), scene = slurp(scene_file);
     std::vector<const char *> cnames;
     for (const std::string &n : names)
         cnames.push_back(n.c_str());
-    mpb_world *world = nullptr;
     char err[256] = "";
     if (robot.empty() ||
         mpb_world_open_group("urdf", robot.c_str(), "moveit-scene", scene.c_str(),
                              cnames.data(), static_cast<int>(cnames.size()),
-                             &world, err, sizeof err) != MPB_OK) {
+                             &q.world, err, sizeof err) != MPB_OK) {
         std::fprintf(stderr, "mpb-bench-fidelity: cannot open the world: %s\n",
                      robot.empty() ? "cannot read the robot" : err);
         return 1;
     }
-    // Seeds are nominal here (OMPL 1.5 warns that re-seeding after the
-    // first draw is not deterministic): compare distributions, not runs.
+    // Re-seeding after the first draw is what makes the runs repeatable
+    // (OMPL 1.5 re-seeds its seed generator); its warning is expected.
     ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
 
-    // The world's joint order is the group's (mpb_world_open_group).
-    auto space = std::make_shared<Joints>(world);
-    og::SimpleSetup ss(space);
-    const ob::SpaceInformationPtr &si = ss.getSpaceInformation();
-    Joints *sp = space.get();
-    ss.setStateValidityChecker([world, sp](const ob::State *s) {
-        return sp->satisfiesBounds(s) &&
-               mpb_world_in_collision(
-                   world, s->as<ob::RealVectorStateSpace::StateType>()->values) == 0;
-    });
-    si->setStateValidityCheckingResolution(
-        std::min(resolution / space->getMaximumExtent(), 0.5));
-    ob::ScopedState<> s0(space), s1(space);
-    for (size_t j = 0; j < names.size(); j++) {
-        bool wraps = mpb_world_joint_is_continuous(world, static_cast<int>(j)) != 0;
-        s0[j] = wraps ? std::remainder(start[j], 2 * M_PI) : start[j];
-        s1[j] = wraps ? std::remainder(goal[j], 2 * M_PI) : goal[j];
-    }
-    ss.setStartAndGoalStates(s0, s1, tolerance);
-    ss.setPlanner(std::make_shared<og::RRTConnect>(si));
-    ss.setup();
-
-    ot::Benchmark b(ss, "mpbench-fidelity");
-    b.addPlanner(std::make_shared<og::RRTConnect>(si));
-    size_t run = 0;
-    b.setPreRunEvent([&](const ob::PlannerPtr &) {
-        // As mpb-planner-ompl seeds a request (32 bits, never 0).
-        std::uint64_t u = std::strtoull(seeds[run % seeds.size()].c_str(), nullptr, 10);
-        std::uint32_t s = static_cast<std::uint32_t>(u ^ (u >> 32));
-        ompl::RNG::setSeed(s != 0 ? s : 0x9e3779b9u);
-        run++;
-    });
-    ot::Benchmark::Request req(time_limit, 4096.0,
-                               static_cast<unsigned int>(seeds.size()), 0.05,
-                               false, false, false);
-    b.benchmark(req);
-
-    const ot::Benchmark::CompleteExperiment &exp = b.getRecordedExperimentData();
-    std::vector<double> times;
-    int solved = 0, n = 0;
-    for (const auto &pe : exp.planners)
-        for (const auto &r : pe.runs) {
-            n++;
-            auto t = r.find("time REAL");
-            auto ok = r.find("solved BOOLEAN");
-            bool exact = ok != r.end() && ok->second == "1";
-            auto approx = r.find("approximate solution BOOLEAN");
-            if (approx != r.end() && approx->second == "1")
-                exact = false;
-            if (exact)
+    std::vector<std::string> warm(seeds.begin(),
+                                  seeds.begin() + std::min<size_t>(seeds.size(),
+                                                                   static_cast<size_t>(warmup)));
+    for (const std::string &side : sides) {
+        std::vector<Run> runs;
+        if (side == "ompl") {
+            if (!warm.empty())
+                benchmark_runs(q, warm);
+            runs = benchmark_runs(q, seeds);
+        } else {
+            for (const std::string &s : warm)
+                plain_run(q, s);
+            for (const std::string &s : seeds)
+                runs.push_back(plain_run(q, s));
+        }
+        int solved = 0;
+        std::vector<double> times;
+        for (size_t r = 0; r < runs.size(); r++) {
+            std::printf("RUN %s %d %s %.9f %d - %u\n", side.c_str(), block,
+                        seeds[r % seeds.size()].c_str(), runs[r].secs, runs[r].solved ? 1 : 0,
+                        runs[r].graph_states);
+            if (runs[r].solved) {
                 solved++;
-            double secs = t != r.end() ? std::strtod(t->second.c_str(), nullptr) : NAN;
-            if (exact)
-                times.push_back(secs);
-            if (per_run)
-                std::printf("  run %d seed %s: %.6f s%s\n", n - 1,
-                            seeds[static_cast<size_t>(n - 1) % seeds.size()].c_str(),
-                            secs, exact ? "" : " (not solved)");
+                times.push_back(runs[r].secs);
+            }
         }
-    double med = median(times);
-    std::printf("OMPL Benchmark, RRTConnect, %d runs: median solve time %.6f s "
-                "(solved runs), %d solved\n", n, med, solved);
-    std::printf("RESULT fidelity_ompl runs=%d median_s=%.6f solved=%d "
-                "success=%.4f\n", n, med, solved, n ? (double)solved / n : NAN);
-
-    // The same runs without Benchmark's machinery (its run thread, the
-    // thread that polls the time and memory limits, the progress
-    // collector): a new planner per run, set up, then solve() alone timed,
-    // as mpb-planner-ompl does for a request.
-    std::vector<double> plain;
-    int plain_solved = 0;
-    for (size_t r = 0; r < seeds.size(); r++) {
-        std::uint64_t u = std::strtoull(seeds[r].c_str(), nullptr, 10);
-        std::uint32_t sd = static_cast<std::uint32_t>(u ^ (u >> 32));
-        ompl::RNG::setSeed(sd != 0 ? sd : 0x9e3779b9u);
-        ss.getProblemDefinition()->clearSolutionPaths();
-        auto planner = std::make_shared<og::RRTConnect>(si);
-        planner->setProblemDefinition(ss.getProblemDefinition());
-        planner->setup();
-        const double t0 = mpb_monotonic_s(), deadline = t0 + time_limit;
-        ob::PlannerStatus st = planner->solve(ob::PlannerTerminationCondition(
-            [deadline] { return mpb_monotonic_s() >= deadline; }));
-        const double secs = mpb_monotonic_s() - t0;
-        if (st == ob::PlannerStatus::EXACT_SOLUTION) {
-            plain_solved++;
-            plain.push_back(secs);
-        }
+        std::fprintf(stderr, "mpb-bench-fidelity: block %d, %s: %zu runs, %d solved, "
+                     "median %.3f ms\n", block, side.c_str(), runs.size(), solved,
+                     median(times) * 1e3);
     }
-    double pmed = median(plain);
-    std::printf("OMPL in process, no Benchmark, RRTConnect, %zu runs: median "
-                "solve time %.6f s (solved runs), %d solved\n", seeds.size(),
-                pmed, plain_solved);
-    std::printf("RESULT fidelity_plain runs=%zu median_s=%.6f solved=%d\n",
-                seeds.size(), pmed, plain_solved);
-    mpb_world_close(world);
+    mpb_world_close(q.world);
     return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))) {
+        usage(stdout);
+        return 0;
+    }
+    int rc = 2;
+    if (argc >= 2 && !std::strcmp(argv[1], "run"))
+        rc = run(argc - 2, argv + 2);
+    else if (argc >= 2 && !std::strcmp(argv[1], "stats"))
+        rc = stats(argc - 2, argv + 2);
+    else if (argc >= 2 && !std::strcmp(argv[1], "seeds"))
+        rc = seeds(argc - 2, argv + 2);
+    if (rc == 2)
+        usage(stderr);
+    return rc;
 }
