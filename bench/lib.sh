@@ -4,6 +4,7 @@
 #   bench_netns NAME      inside `unshare -n`: loopback up with a multicast
 #                         route; exits, naming NAME, unless loopback is the
 #                         namespace's only interface
+#   bench_netns_check NAME  only the check (a namespace already set up)
 #   PIDS, cleanup         background processes to stop: cleanup kills and
 #                         waits for every pid in PIDS, then empties it
 #   experiment NAME RUNS RUNS_PER_HOST FILE
@@ -13,6 +14,10 @@
 
 bench_netns() { # name
     ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 1
+    bench_netns_check "$1"
+}
+
+bench_netns_check() { # name
     if [ "$(ip -o link show | wc -l)" -ne 1 ]; then
         echo "$1: not in a private network namespace; refusing" >&2
         exit 1

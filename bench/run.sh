@@ -15,7 +15,8 @@
 #      the planar demo arm and for the PR2 right arm in the kitchen (or,
 #      until that scene exists, the tabletop of the unit tests), and timing
 #      fidelity: RRTConnect on a kitchen query through mpbenchd and
-#      mpb-planner-ompl vs OMPL's own Benchmark (mpb-bench-fidelity),
+#      mpb-planner-ompl vs OMPL's own Benchmark and a bare solve()
+#      (bench/fidelity.sh),
 #   5. the store's write cost per run, and `mpb report` over a database of
 #      a million runs (mpb-bench-mkdb).
 # Prints a table and writes it, with the machine and the raw results, to
@@ -24,9 +25,9 @@
 #   --quick          small counts (about a minute in all)
 #   --runs N         runs per throughput experiment (default 100000)
 #   --report-runs N  runs in the report database (default 1000000)
-#   --fidelity-runs N  RRTConnect runs each way for the timing fidelity
-#                    (default 1000; the median of so spread a time needs
-#                    many runs to tell 3 % apart)
+#   --fidelity-runs N  RRTConnect runs on each side for the timing fidelity,
+#                    in 20 interleaved blocks (4 with --quick; default
+#                    5000, 200 with --quick)
 #   --million        throughput with 1 planner over 1,000,000 runs too
 #   --keep           keep the work directory (databases, logs)
 set -u
@@ -48,7 +49,7 @@ while [ $# -gt 0 ]; do
     --report-runs) REPORT_N=$2; shift ;;
     --fidelity-runs) FID_N=$2; shift ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,31p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
@@ -56,13 +57,14 @@ done
 
 if [ "$QUICK" -eq 1 ]; then
     FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000
-    : "${FID_N:=100}"
+    : "${FID_N:=200}" "${FID_BLOCKS:=4}"
     : "${TPUT_N:=10000}" "${REPORT_N:=100000}"
 else
     FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000
-    : "${FID_N:=1000}"
+    : "${FID_N:=5000}" "${FID_BLOCKS:=20}"
     : "${TPUT_N:=100000}" "${REPORT_N:=1000000}"
 fi
+[ "$FID_N" -ge 1 ] 2>/dev/null && [ "$FID_N" -lt "$FID_BLOCKS" ] && FID_BLOCKS=$FID_N
 
 # ---- outside the namespace: build, snapshot the binaries, re-enter --------
 if [ "$IN_NETNS" -eq 0 ]; then
@@ -296,82 +298,17 @@ for sp in 0.01 0.1; do
 done
 
 # ---- 4. timing fidelity ------------------------------------------------------
-# RRTConnect on the first query of the paper's kitchen (start and goal as
-# in scenes/experiments/paper.yaml: the goal configuration is the IK
-# solution the suite starts its second query from), FID_N runs through
-# mpbenchd + mpb-planner-ompl, then the same runs, with the same seeds, in
-# OMPL's own Benchmark (mpb-bench-fidelity). Compared: the median time of
-# the solve (the "raw" stage; Benchmark's "time") over solved runs, and how
-# many runs the planner solved. Also timed: the same runs in process
-# without Benchmark's threads (its per-run overhead is not the planner's).
-# The seeds are nominal: OMPL 1.5 does not re-seed generators that exist,
-# so runs are not paired; medians of many runs are compared.
-FID_START=-1.2,1.1,-1.5,-1.9,0,-0.6,0
-FID_GOAL=-0.261284,-0.420386,-1.523717,-1.031201,-1.236424,-1.761224,-2.299770
+# RRTConnect on the first query of the paper's kitchen, FID_N runs on each
+# side: through mpbenchd + mpb-planner-ompl, in OMPL's own Benchmark, as a
+# bare solve() in process; FID_BLOCKS interleaved blocks, the same seeds on
+# every side, the planning processes on the last CPU (bench/fidelity.sh).
 if [ -x "$SNAP/mpb-planner-ompl" ] && [ -x "$SNAP/mpb-bench-fidelity" ] &&
    [ -f "$src/scenes/paper/kitchen.scene" ]; then
-    echo "== 4. timing fidelity: RRTConnect, PR2 kitchen, $FID_N runs, mpbench vs OMPL's Benchmark"
-    list() { echo "[$1]" | sed 's/,/, /g'; }
-    cat >"$WORK/fidelity.yaml" <<EOF
-experiment:
-  name: bench-fidelity
-  runs: $FID_N
-  time_limit: 10.0
-  seed: 7
-robot:
-  format: urdf
-  file: $PR2_URDF
-  joints: $(list "$PR2_JOINTS")
-scenes:
-  - name: kitchen
-    format: moveit-scene
-    file: $src/scenes/paper/kitchen.scene
-    queries:
-      - name: counter_cup
-        start: $(list "$FID_START")
-        goal: $(list "$FID_GOAL")
-        tolerance: 0.01
-planners:
-  - planner: ompl
-    algorithms: [RRTConnect]
-    params: {simplify: 0}
-EOF
-    # Two rounds, mpbench then OMPL each time: the machine's drift shows
-    # as the difference between the rounds, and the ratio is of the sums.
-    for round in 1 2; do
-        rm -f "$WORK"/fidelity.db*
-        "$SNAP/mpb-planner-ompl" >"$WORK/fidelity-ompl.log" 2>&1 &
-        PIDS="$PIDS $!"
-        sleep 0.5
-        timeout -k 5 $((FID_N * 12 + 60)) "$SNAP/mpbenchd" -d "$WORK/fidelity.db" \
-            "$WORK/fidelity.yaml" >"$WORK/fidelity-daemon.log" 2>&1 ||
-            echo "mpbenchd failed: see $WORK/fidelity-daemon.log"
-        cleanup
-        seeds=$(sqlite3 "$WORK/fidelity.db" "SELECT group_concat(seed) FROM
-            (SELECT seed FROM runs ORDER BY repetition)")
-        mpb_med=$(sqlite3 "$WORK/fidelity.db" "SELECT s.time FROM stages s
-            JOIN runs r ON r.id = s.run_id WHERE s.name = 'raw'
-            AND r.status = 'solved' ORDER BY s.time LIMIT 1 OFFSET
-            (SELECT (count(*) - 1) / 2 FROM stages s JOIN runs r
-             ON r.id = s.run_id WHERE s.name = 'raw' AND r.status = 'solved')")
-        mpb_ok=$(sqlite3 -separator ' ' "$WORK/fidelity.db" "SELECT
-            sum(status = 'solved'), sum(success), count(*) FROM runs
-            WHERE state = 'done'")
-        echo "$mpb_ok" | {
-            read -r solved verified n
-            put "fidelity_mpbench_$round runs=$n median_s=${mpb_med:-nan} solved=$solved verified=$verified"
-        }
-        grep "^RESULT fidelity_mpbench_$round " "$RAW" | sed 's/^RESULT /  /'
-        timeout -k 5 $((FID_N * 12 + 60)) "$SNAP/mpb-bench-fidelity" \
-            --robot "$PR2_URDF" --scene "$src/scenes/paper/kitchen.scene" \
-            --joints "$PR2_JOINTS" --start "$FID_START" --goal "$FID_GOAL" \
-            --seeds "$seeds" --time-limit 10 >"$WORK/fidelity-$round.log" 2>&1
-        cat "$WORK/fidelity-$round.log"
-        sed -e "s/^RESULT fidelity_ompl /RESULT fidelity_ompl_$round /" \
-            -e "s/^RESULT fidelity_plain /RESULT fidelity_plain_$round /" \
-            "$WORK/fidelity-$round.log" >"$WORK/fidelity-$round.res"
-        collect "$WORK/fidelity-$round.res"
-    done
+    set -- --in-netns --bin "$SNAP" --work "$WORK/fidelity" --runs "$FID_N" \
+        --blocks "$FID_BLOCKS"
+    [ "$KEEP" -eq 1 ] && set -- "$@" --keep
+    sh "$src/bench/fidelity.sh" "$@" >"$WORK/fidelity.log" 2>&1
+    grep -v '^RESULT ' "$WORK/fidelity.log"; collect "$WORK/fidelity.log"
 else
     echo "== 4. timing fidelity: skipped (needs mpb-planner-ompl, mpb-bench-fidelity, the kitchen)"
 fi
@@ -431,11 +368,22 @@ mgrow=nan
 rep=$(get report seconds)
 vw=$(get verify_0.01 wps) vs=$(get verify_0.1 wps)
 pw=$(get verify_pr2_0.01 wps) ps=$(get verify_pr2_0.1 wps)
-fm1=$(get fidelity_mpbench_1 median_s) fm2=$(get fidelity_mpbench_2 median_s)
-fo1=$(get fidelity_ompl_1 median_s) fo2=$(get fidelity_ompl_2 median_s)
-fid=$(calc "($fm1 + $fm2) / ($fo1 + $fo2)" 3)
-fp1=$(get fidelity_plain_1 median_s) fp2=$(get fidelity_plain_2 median_s)
-fidp=$(calc "($fm1 + $fm2) / ($fp1 + $fp2)" 3)
+# A fidelity comparison: medians, ratio, its intervals; and its verdict.
+fidelity() { # key
+    echo "$(calc "$(get "$1" median_a_s) * 1000" 3) / $(calc "$(get "$1" median_b_s) * 1000" 3) ms: \
+ratio $(get "$1" ratio), 95 % CI $(get "$1" ci_lo)-$(get "$1" ci_hi) (runs resampled within \
+each side; seeds resampled, both sides together: $(get "$1" paired_lo)-$(get "$1" paired_hi)); \
+the blocks' own ratios: median $(get "$1" block_ratio_median), \
+$(get "$1" block_ratio_min)-$(get "$1" block_ratio_max); the same seed's run on both sides: \
+time ratio median $(get "$1" seed_ratio_median), the same graph $(get "$1" seeds_same_graph) \
+of $(get "$1" seeds_paired)"
+}
+fid_verdict() { # key
+    case $(get "$1" verdict) in
+    met) echo met ;; missed) echo "**missed**" ;; not_settled) echo "not settled" ;;
+    *) echo "not measured" ;;
+    esac
+}
 st=$(get store_tx1 finish_us_per_run)
 
 table() {
@@ -457,9 +405,9 @@ cat <<EOF
 | 4 | verification + metrics, PR2 right arm in the $PR2_WHERE, waypoints 0.1 rad apart ($(get verify_pr2_0.1 checks_per_waypoint) checks each) | $ps waypoints/s | | >= 50,000 | $(verdict "$ps" ">=" 50000) |
 | 4 | verification + metrics, planar arm, waypoints at the resolution ($(get verify_0.01 checks_per_waypoint) checks each) | $vw waypoints/s | | | |
 | 4 | verification + metrics, planar arm, waypoints 0.1 rad apart ($(get verify_0.1 checks_per_waypoint) checks each) | $vs waypoints/s | | | |
-| 4 | timing fidelity, RRTConnect, PR2 kitchen, 2 rounds of $(get fidelity_mpbench_1 runs) runs: median solve time through mpbench / in OMPL's Benchmark (solved runs), round 1; round 2 | $(calc "$fm1 * 1000" 2) / $(calc "$fo1 * 1000" 2); $(calc "$fm2 * 1000" 2) / $(calc "$fo2 * 1000" 2) ms: ratio $fid | | within 3 % | $(awk -v r="$fid" 'BEGIN { if (r != r + 0) print "not measured"; else print (r >= 0.97 && r <= 1.03) ? "met" : "**missed**" }') |
-| 4 | ... the same against OMPL in process without Benchmark (a new planner per run, solve() alone timed, as mpb-planner-ompl does) | $(calc "$fp1 * 1000" 2); $(calc "$fp2 * 1000" 2) ms: ratio $fidp | | | |
-| 4 | ... runs solved, round 1: through mpbench (verified valid) / in OMPL's Benchmark | $(get fidelity_mpbench_1 solved) ($(get fidelity_mpbench_1 verified)) / $(get fidelity_ompl_1 solved) of $(get fidelity_ompl_1 runs) | | same within noise | |
+| 4 | timing fidelity, RRTConnect, PR2 kitchen, $(get fidelity_setup blocks) interleaved blocks of $(get fidelity_setup block_runs) runs on each side, the same seeds, planning on CPU $(get fidelity_setup pin): median solve time through mpbench / in OMPL's Benchmark (solved runs) | $(fidelity fidelity_ompl) | | within 3 % (95 % CI inside 0.97-1.03) | $(fid_verdict fidelity_ompl) |
+| 4 | ... the same against a bare solve() in process (no Benchmark threads; timed as mpb-planner-ompl times it) | $(fidelity fidelity_plain) | | | $(fid_verdict fidelity_plain) |
+| 4 | ... runs solved: through mpbench (verified valid) / in OMPL's Benchmark / bare solve() | $(get fidelity_side_mpbench solved) ($(get fidelity_side_mpbench verified)) / $(get fidelity_side_ompl solved) / $(get fidelity_side_plain solved) of $(get fidelity_side_mpbench runs) | | same within noise | $(get fidelity_ompl success) |
 | 5 | store, one transaction per run as mpbenchd commits (no network) | $(calc "$st") us per run | $(ratio "$st") | | |
 | 5 | store, $(get mkdb batch) runs per transaction, 15 metric rows per run | $(calc "$(get mkdb finish_us_per_run)") us per run | | | |
 | 5 | \`mpb report\` over $(get report runs) runs ($db_mb MB database) | $rep s | | < 2 s | $(verdict "$rep" "<=" 2) |

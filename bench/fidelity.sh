@@ -1,0 +1,219 @@
+#!/bin/sh
+# bench/fidelity.sh - timing fidelity: does mpbench make a planner look
+# slower or faster than it is? (docs/performance.md, 4b)
+#
+#   bench/fidelity.sh [--runs N] [--blocks K] [--pin CPU|none] [--boot B]
+#                     [--keep]
+#
+# RRTConnect on the first query of the paper's kitchen (the PR2's right
+# arm; start and goal as in scenes/experiments/paper.yaml, the goal the
+# configuration the suite's IK gave), N runs on each of three sides (default
+# 5000), in K interleaved blocks (default 20) of N/K runs:
+#   mpbench  through mpbenchd and mpb-planner-ompl, the "raw" stage's time;
+#   ompl     OMPL 1.5's ompl::tools::Benchmark in process, its "time";
+#   plain    a bare solve() in process, timed as mpb-planner-ompl times it.
+# Block k runs mpbench, then ompl, then plain; the next block the other way
+# round, so a drift of the machine lands on every side alike. Each block has
+# seeds of its own (those mpbenchd draws for it), the same on the three
+# sides; a seed is the same run on every side (mpb-bench-fidelity seeds as
+# the planner process does: the graph each run made shows it). mpb-planner-ompl and mpbenchd start once
+# (mpbenchd once per block: its start is not in the times compared), and
+# mpb-bench-fidelity once per block, 5 warm-up runs first on each side (the
+# first 5 of each mpbench block are dropped alike).
+#
+# The processes that plan (mpb-planner-ompl, mpb-bench-fidelity) run on one
+# CPU (--pin, default the last; taskset), mpbenchd on the others; --pin none
+# leaves placement to the scheduler.
+#
+# Then `mpb-bench-fidelity stats`: the ratio of the pooled medians of the
+# solved runs (mpbench / Benchmark, mpbench / bare), a bootstrap 95 %
+# interval of it (B resamples, default 2000, runs resampled within each side
+# and block), the median of the blocks' own ratios, success rates; the
+# verdict is "met" when the interval lies inside 0.97-1.03, "missed" when
+# outside, "not settled" otherwise. RESULT lines; every run is kept in
+# WORK/runs.txt.
+#
+# Runs inside a private network namespace, as bench/run.sh (which calls it,
+# --in-netns, with its copies of the binaries: --bin DIR --work DIR).
+set -u
+
+src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/bench/lib.sh"
+BUILD=${MPB_BUILD:-$src/build}
+case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
+RUNS=5000 BLOCKS=20 PIN="" BOOT=2000 KEEP=0 NETNS=0 BIN="" WORK=""
+while [ $# -gt 0 ]; do
+    case $1 in
+    --runs) RUNS=$2; shift ;;
+    --blocks) BLOCKS=$2; shift ;;
+    --pin) PIN=$2; shift ;;
+    --boot) BOOT=$2; shift ;;
+    --keep) KEEP=1 ;;
+    --in-netns) NETNS=1 ;;          # a namespace bench/run.sh set up
+    --new-netns) NETNS=2 ;;         # this script's own, to set up
+    --bin) BIN=$2; shift ;;
+    --work) WORK=$2; shift ;;
+    -h|--help) sed -n '2,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "bench/fidelity.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    esac
+    shift
+done
+case $RUNS$BLOCKS$BOOT in *[!0-9]*)
+    echo "bench/fidelity.sh: --runs, --blocks and --boot want whole numbers" >&2; exit 2 ;;
+esac
+[ "$BLOCKS" -ge 1 ] && [ "$RUNS" -ge "$BLOCKS" ] || {
+    echo "bench/fidelity.sh: wants 1 <= blocks <= runs" >&2; exit 2; }
+NCPU=$(nproc)
+: "${PIN:=$((NCPU - 1))}"
+if [ "$PIN" != none ]; then
+    case $PIN in *[!0-9]*|"") echo "bench/fidelity.sh: --pin CPU or none" >&2; exit 2 ;; esac
+    [ "$PIN" -lt "$NCPU" ] || { echo "bench/fidelity.sh: no CPU $PIN" >&2; exit 2; }
+fi
+
+# ---- outside the namespace: snapshot the binaries, re-enter ---------------
+if [ "$NETNS" -eq 0 ]; then
+    [ "$(id -u)" -eq 0 ] || { echo "bench/fidelity.sh: needs root (unshare -n)" >&2; exit 1; }
+    fid=$BUILD/bench-standalone/mpb-bench-fidelity
+    [ -x "$fid" ] || fid=$BUILD/bench/mpb-bench-fidelity
+    for b in "$BUILD/daemon/mpbenchd" "$BUILD/planners/ompl/mpb-planner-ompl" "$fid"; do
+        [ -x "$b" ] || { echo "bench/fidelity.sh: $b not built (bench/run.sh builds it)" >&2; exit 1; }
+    done
+    : "${WORK:=$BUILD/bench-run/fidelity}"
+    rm -rf "$WORK" && mkdir -p "$WORK/bin" || exit 1
+    cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/ompl/mpb-planner-ompl" "$fid" \
+        "$WORK/bin/" || exit 1
+    set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
+        --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT"
+    [ "$KEEP" -eq 1 ] && set -- "$@" --keep
+    exec unshare -n sh "$0" "$@"
+fi
+
+# ---- inside the private network namespace -----------------------------------
+if [ "$NETNS" -eq 2 ]; then bench_netns bench/fidelity.sh; else bench_netns_check bench/fidelity.sh; fi
+[ -n "$BIN" ] && [ -n "$WORK" ] || { echo "bench/fidelity.sh: --bin and --work" >&2; exit 2; }
+mkdir -p "$WORK" || exit 1
+trap 'cleanup; [ "$KEEP" -eq 1 ] || rm -f "$WORK"/fid-*.db*' EXIT
+trap 'exit 130' INT TERM
+
+JOINTS=r_shoulder_pan_joint,r_shoulder_lift_joint,r_upper_arm_roll_joint,r_elbow_flex_joint,r_forearm_roll_joint,r_wrist_flex_joint,r_wrist_roll_joint
+URDF=$src/scenes/robots/pr2_right_arm.urdf
+KITCHEN=$src/scenes/paper/kitchen.scene
+START=-1.2,1.1,-1.5,-1.9,0,-0.6,0
+GOAL=-0.261284,-0.420386,-1.523717,-1.031201,-1.236424,-1.761224,-2.299770
+TIME_LIMIT=10 WARMUP=5
+PER=$((RUNS / BLOCKS))
+
+if [ "$PIN" = none ]; then
+    ON_PIN="" ON_REST=""
+else
+    rest=$(awk -v n="$NCPU" -v p="$PIN" 'BEGIN { for (c = 0; c < n; c++) if (c != p)
+        s = s (s == "" ? "" : ",") c; print s }')
+    ON_PIN="taskset -c $PIN"
+    ON_REST=${rest:+taskset -c $rest}
+fi
+
+list() { echo "[$1]" | sed 's/,/, /g'; }
+block_yaml() { # block file
+    cat >"$2" <<EOF
+experiment:
+  name: bench-fidelity-$1
+  runs: $((PER + WARMUP))
+  time_limit: $TIME_LIMIT
+  seed: $((7000 + $1))
+robot:
+  format: urdf
+  file: $URDF
+  joints: $(list "$JOINTS")
+scenes:
+  - name: kitchen
+    format: moveit-scene
+    file: $KITCHEN
+    queries:
+      - name: counter_cup
+        start: $(list "$START")
+        goal: $(list "$GOAL")
+        tolerance: 0.01
+planners:
+  - planner: ompl
+    algorithms: [RRTConnect]
+    params: {simplify: 0}
+EOF
+}
+
+RUNS_TXT=$WORK/runs.txt
+: >"$RUNS_TXT"
+LOAD_START=$(cut -d' ' -f1-3 /proc/loadavg)
+
+# mpb-planner-ompl, once for all blocks, on the planning CPU.
+$ON_PIN "$BIN/mpb-planner-ompl" >"$WORK/planner.log" 2>&1 &
+PIDS="$PIDS $!"
+sleep 0.5   # one announce before the first daemon
+
+# A block's seeds: those mpbenchd draws for its experiment, known before
+# it runs (mpb-bench-fidelity seeds); the first WARMUP are warm-up runs.
+block_seeds() { # block
+    "$BIN/mpb-bench-fidelity" seeds $((7000 + $1)) $((PER + WARMUP))
+}
+
+mpbench_block() { # block
+    db=$WORK/fid-$1.db
+    rm -f "$db"*
+    block_yaml "$1" "$WORK/fid-$1.yaml"
+    timeout -k 5 $(((PER + WARMUP) * (TIME_LIMIT + 2) + 60)) $ON_REST "$BIN/mpbenchd" \
+        -d "$db" "$WORK/fid-$1.yaml" >"$WORK/daemon-$1.log" 2>&1 ||
+        echo "mpbenchd failed: see $WORK/daemon-$1.log"
+    # The recorded runs, as mpb-bench-fidelity prints its own: seed, the
+    # raw stage's time, solved (exactly), verified (mpbench's success), the
+    # planner's graph.
+    sqlite3 -separator ' ' "$db" "SELECT 'RUN', 'mpbench', $1, r.seed,
+        coalesce(s.time, 'nan'), r.status = 'solved', coalesce(r.success, 0),
+        coalesce((SELECT CAST(v.value AS INTEGER) FROM planner_values v
+                  WHERE v.run_id = r.id AND v.name = 'graph states'), -1)
+        FROM runs r LEFT JOIN stages s ON s.run_id = r.id AND s.name = 'raw'
+        WHERE r.state = 'done' AND r.repetition >= $WARMUP
+        ORDER BY r.repetition" >>"$RUNS_TXT"
+    drawn=$(sqlite3 "$db" "SELECT group_concat(seed) FROM (SELECT seed FROM runs
+        ORDER BY repetition)")
+    [ "$drawn" = "$(block_seeds "$1")" ] ||
+        echo "  block $1: mpbenchd drew other seeds than mpb-bench-fidelity seeds gave"
+    [ "$KEEP" -eq 1 ] || rm -f "$db"*
+}
+
+inprocess_block() { # block sides
+    timeout -k 5 $((2 * (PER + WARMUP) * (TIME_LIMIT + 2) + 60)) $ON_PIN \
+        "$BIN/mpb-bench-fidelity" run --robot "$URDF" --scene "$KITCHEN" \
+        --joints "$JOINTS" --start "$START" --goal "$GOAL" --time-limit "$TIME_LIMIT" \
+        --block "$1" --sides "$2" --warmup "$WARMUP" \
+        --seeds "$(block_seeds "$1" | cut -d, -f$((WARMUP + 1))-)" \
+        >>"$RUNS_TXT" 2>"$WORK/inprocess-$1.log" ||
+        echo "mpb-bench-fidelity failed: see $WORK/inprocess-$1.log"
+}
+
+# The median of a block's solved runs of one side, in ms (for the log).
+block_median() { # side block
+    awk -v s="$1" -v b="$2" '$2 == s && $3 == b && $6 == 1 { print $5 }' "$RUNS_TXT" |
+        sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else
+            printf "%.3f", (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) * 1e3 }'
+}
+
+echo "== timing fidelity: RRTConnect, PR2 kitchen, $BLOCKS blocks of $PER runs on each side" \
+     "(mpbench, OMPL's Benchmark, bare solve()), planning on CPU $PIN"
+k=1
+while [ "$k" -le "$BLOCKS" ]; do
+    if [ $((k % 2)) -eq 1 ]; then
+        mpbench_block "$k"
+        inprocess_block "$k" ompl,plain
+    else
+        inprocess_block "$k" plain,ompl
+        mpbench_block "$k"
+    fi
+    echo "  block $k: median mpbench $(block_median mpbench "$k"), Benchmark" \
+         "$(block_median ompl "$k"), bare $(block_median plain "$k") ms"
+    k=$((k + 1))
+done
+cleanup
+LOAD_END=$(cut -d' ' -f1-3 /proc/loadavg)
+
+echo "RESULT fidelity_setup blocks=$BLOCKS block_runs=$PER warmup=$WARMUP pin=$PIN" \
+     "load_start=$(echo "$LOAD_START" | tr ' ' /) load_end=$(echo "$LOAD_END" | tr ' ' /)"
+"$BIN/mpb-bench-fidelity" stats --boot "$BOOT" "$RUNS_TXT"
