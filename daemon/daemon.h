@@ -6,6 +6,7 @@
  *   scheduler.c  which run goes to which planner; resends and deadlines
  *   results.c    checking, verifying, measuring and storing results
  *   status.c     the MPB_STATUS message
+ *   acks.c       acknowledging stored results: on requests, or alone
  *   latency.c    each run's latency, request to commit, as a histogram
  *   inbox.c      checking messages before they are decoded
  *   replay.c     --replay: results from an LCM log instead of the network
@@ -30,6 +31,8 @@
 #define MPBD_DEADLINE_GRACE_S   5.0    /* beyond the time limit, before crash */
 #define MPBD_PLANNER_MISSED     3      /* heartbeats missed = planner gone */
 #define MPBD_STATUS_PERIOD_S    1.0
+#define MPBD_ACK_HOLD_S         0.02   /* an ack waits this long for a request */
+#define MPBD_STORED_MAX         32     /* acks riding on one request */
 
 typedef struct mpbd_planner {
     char    id[MPB_PLANNER_ID_MAX + 1];
@@ -67,11 +70,14 @@ typedef struct mpbd_flight {
 } mpbd_flight;
 
 /* A stored result to acknowledge, to its planner, once its transaction
- * commits. */
+ * commits (acks.c). */
 typedef struct mpbd_ack_due {
     char    run_uid[MPB_RUN_ID_SIZE];
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
-    double  sent_at;         /* the request's first send; < 0: not counted */
+    double  sent_at;         /* the request's first send; < 0: a result
+                                sent again, answered alone and at once */
+    double  due;             /* committed: when it goes alone, unless a
+                                request to its planner takes it first */
 } mpbd_ack_due;
 
 /* Runs' latency, request first sent to result committed (latency.c). */
@@ -115,6 +121,9 @@ typedef struct mpbd {
      * commits: an ack is a promise that the result is on disk. */
     mpbd_ack_due    *acks;
     int              num_acks, cap_acks;
+    /* Committed, not yet told: for the next request to their planner. */
+    mpbd_ack_due    *owed;
+    int              num_owed, cap_owed;
     mpbd_latency     latency;
 
     /* Runs finished lately, so that a re-sent result is acknowledged
@@ -148,16 +157,22 @@ void mpbd_flight_remove(mpbd *d, mpbd_flight *f);
 int  mpbd_scheduler_done(const mpbd *d);
 void mpbd_scheduler_free(mpbd *d);
 void mpbd_scheduler_subscribe(mpbd *d);
+
+/* acks.c */
 /* Publish an acknowledgement to a planner now (on its MPB_ACK_<id>). */
 void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind);
 /* Acknowledge a planner's stored result once the transaction commits;
  * sent_at, the request's first send, counts the run's latency then (< 0:
- * a result stored before, not counted again). */
+ * a result stored before, sent again: not counted, answered at once). */
 int  mpbd_ack_after_commit(mpbd *d, const char *planner_id,
                            const char *run_uid, double sent_at);
-/* After a commit: count the runs' latency, send the acknowledgements it
- * made true. */
+/* After a commit: count the runs' latency; what it made true is now owed. */
 void mpbd_acks_flush(mpbd *d);
+/* Take up to max acknowledgements owed to a planner, for its request. */
+int  mpbd_owed_take(mpbd *d, const char *planner_id,
+                    char (*ids)[MPB_RUN_ID_SIZE], int max);
+/* Send alone those owed acknowledgements whose time is up (all: every one). */
+void mpbd_owed_send(mpbd *d, double now, int all);
 
 /* latency.c */
 int  mpbd_latency_init(mpbd_latency *l);

@@ -236,6 +236,7 @@ static int run_loop(mpbd *d)
             return -1;
         }
         mpbd_acks_flush(d);
+        mpbd_owed_send(d, now, 0);
         if (mpbd_scheduler_done(d))
             return 0;
         if (now - d->last_status >= MPBD_STATUS_PERIOD_S)
@@ -336,6 +337,7 @@ int main(int argc, char **argv)
              d.exp->name, (long long)d.experiment_id, d.total_pending,
              d.runs_total, o.db);
     rc = run_loop(&d);
+    mpbd_owed_send(&d, 0.0, 1);     /* no more requests to ride on */
     double elapsed = mpb_monotonic_s() - d.started;
     log_latency(&d);
     if (rc == 0) {

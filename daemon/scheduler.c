@@ -131,6 +131,14 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
     }
     if (mpb_request_channel(p->id, channel, sizeof channel) != MPB_OK)
         return MPB_EINVAL;
+    /* The planner's stored results ride along (acks.c). If this send
+     * fails, the planner re-sends those results and is answered again. */
+    char stored_ids[MPBD_STORED_MAX][MPB_RUN_ID_SIZE];
+    char *stored[MPBD_STORED_MAX];
+    rq.num_stored = (int16_t)mpbd_owed_take(d, p->id, stored_ids, MPBD_STORED_MAX);
+    for (int i = 0; i < rq.num_stored; i++)
+        stored[i] = stored_ids[i];
+    rq.stored = stored;
     return mpb_publish_request(d->lcm, d->auth, channel, &rq);
 }
 
@@ -302,52 +310,7 @@ void mpbd_scheduler_free(mpbd *d)
     free(d->pending_head);
     free(d->flights);
     free(d->acks);
-}
-
-void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
-{
-    char channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
-    mpb_run_ack_t ack = {
-        .utime = mpb_utime_now(),
-        .run_id = (char *)run_uid,
-        .sender_id = d->daemon_id,
-        .kind = (int8_t)kind,
-    };
-    /* A result that names no valid planner cannot be answered. */
-    if (mpb_ack_channel(planner_id, channel, sizeof channel) == MPB_OK)
-        mpb_publish_ack(d->lcm, d->auth, channel, &ack);
-}
-
-int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid,
-                          double sent_at)
-{
-    if (!mpb_planner_id_is_valid(planner_id) || !mpb_run_id_is_valid(run_uid))
-        return MPB_EINVAL;
-    if (d->num_acks == d->cap_acks) {
-        int cap = d->cap_acks ? d->cap_acks * 2 : 64;
-        mpbd_ack_due *a = realloc(d->acks, (size_t)cap * sizeof *a);
-        if (a == NULL)
-            return MPB_ENOMEM;
-        d->acks = a;
-        d->cap_acks = cap;
-    }
-    mpbd_ack_due *a = &d->acks[d->num_acks++];
-    memcpy(a->run_uid, run_uid, sizeof a->run_uid);
-    memcpy(a->planner_id, planner_id, strlen(planner_id) + 1);
-    a->sent_at = sent_at;
-    return MPB_OK;
-}
-
-void mpbd_acks_flush(mpbd *d)
-{
-    double now = d->num_acks ? mpb_monotonic_s() : 0.0;
-    for (int i = 0; i < d->num_acks; i++) {
-        if (d->acks[i].sent_at >= 0)
-            mpbd_latency_add(&d->latency, now - d->acks[i].sent_at);
-        mpbd_ack(d, d->acks[i].planner_id, d->acks[i].run_uid,
-                 MPB_RUN_ACK_T_RESULT_STORED);
-    }
-    d->num_acks = 0;
+    free(d->owed);
 }
 
 /* A planner acknowledged a request: stop re-sending it. */

@@ -506,6 +506,12 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         strcmp(msg->planner_id, s->id) != 0)
         return;                 /* not a request for us: nothing to say */
 
+    /* Earlier results the daemon has stored: each as a RESULT_STORED. */
+    for (int i = 0; i < msg->num_stored; i++) {
+        mpb__kept *done = mpb__find_kept(s, msg->stored[i]);
+        if (done != NULL)
+            done->acked = 1;
+    }
     mpb__kept *k = mpb__find_kept(s, msg->run_id);
     if (k != NULL) {
         /* Solved already: send the result now, and re-send it until it is

@@ -143,6 +143,8 @@ static void request(cursor *c)
         string(c);                         /* joint_names */
     doubles(c, nj);                        /* start */
     goal(c);
+    for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
+        string(c);                         /* stored */
 }
 
 static void stage(cursor *c)

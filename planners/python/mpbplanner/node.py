@@ -118,6 +118,9 @@ class Node:
         if req.planner_id != self.planner_id:
             return
         with self.lock:
+            # Earlier results the daemon has stored ride on the request.
+            for run_id in req.stored:
+                self.unacked.pop(run_id, None)
             known = req.run_id in self.seen
             result = self.seen.get(req.run_id)
             if not known:

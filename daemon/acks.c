@@ -1,0 +1,107 @@
+/*
+ * acks.c - acknowledging stored results. A planner keeps each result, and
+ * re-sends it, until the daemon says it is stored; the daemon says so only
+ * once the transaction that holds it has committed (an acknowledgement is
+ * a promise that the result is on disk).
+ *
+ * After the commit, an acknowledgement is owed to its planner. It rides on
+ * the next request that goes to that planner (plan_request_t.stored):
+ * with a quick planner, whose next request is already being decided when
+ * its result commits, that is one message per run fewer, for the daemon
+ * and for every process in the multicast group. One that finds no request
+ * within MPBD_ACK_HOLD_S goes out alone, on MPB_ACK_<planner_id>; so does
+ * the answer to a result the planner sent again.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon.h"
+#include "mpb_run_ack_t.h"
+
+void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
+{
+    char channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
+    mpb_run_ack_t ack = {
+        .utime = mpb_utime_now(),
+        .run_id = (char *)run_uid,
+        .sender_id = d->daemon_id,
+        .kind = (int8_t)kind,
+    };
+    /* A result that names no valid planner cannot be answered. */
+    if (mpb_ack_channel(planner_id, channel, sizeof channel) == MPB_OK)
+        mpb_publish_ack(d->lcm, d->auth, channel, &ack);
+}
+
+static mpbd_ack_due *push(mpbd_ack_due **arr, int *num, int *cap)
+{
+    if (*num == *cap) {
+        int n = *cap ? *cap * 2 : 64;
+        mpbd_ack_due *a = realloc(*arr, (size_t)n * sizeof *a);
+        if (a == NULL)
+            return NULL;
+        *arr = a;
+        *cap = n;
+    }
+    return &(*arr)[(*num)++];
+}
+
+int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid,
+                          double sent_at)
+{
+    if (!mpb_planner_id_is_valid(planner_id) || !mpb_run_id_is_valid(run_uid))
+        return MPB_EINVAL;
+    mpbd_ack_due *a = push(&d->acks, &d->num_acks, &d->cap_acks);
+    if (a == NULL)
+        return MPB_ENOMEM;
+    memcpy(a->run_uid, run_uid, sizeof a->run_uid);
+    memcpy(a->planner_id, planner_id, strlen(planner_id) + 1);
+    a->sent_at = sent_at;
+    return MPB_OK;
+}
+
+void mpbd_acks_flush(mpbd *d)
+{
+    double now = d->num_acks ? mpb_monotonic_s() : 0.0;
+    for (int i = 0; i < d->num_acks; i++) {
+        mpbd_ack_due *a = &d->acks[i], *o;
+        if (a->sent_at >= 0)
+            mpbd_latency_add(&d->latency, now - a->sent_at);
+        /* A result sent again: its planner is waiting, answer at once. */
+        if (a->sent_at < 0 ||
+            (o = push(&d->owed, &d->num_owed, &d->cap_owed)) == NULL) {
+            mpbd_ack(d, a->planner_id, a->run_uid, MPB_RUN_ACK_T_RESULT_STORED);
+            continue;
+        }
+        *o = *a;
+        o->due = now + MPBD_ACK_HOLD_S;
+    }
+    d->num_acks = 0;
+}
+
+int mpbd_owed_take(mpbd *d, const char *planner_id,
+                   char (*ids)[MPB_RUN_ID_SIZE], int max)
+{
+    int n = 0;
+    for (int i = 0; i < d->num_owed && n < max;) {
+        if (strcmp(d->owed[i].planner_id, planner_id) != 0) {
+            i++;
+            continue;
+        }
+        memcpy(ids[n++], d->owed[i].run_uid, MPB_RUN_ID_SIZE);
+        d->owed[i] = d->owed[--d->num_owed];
+    }
+    return n;
+}
+
+void mpbd_owed_send(mpbd *d, double now, int all)
+{
+    for (int i = 0; i < d->num_owed;) {
+        if (!all && d->owed[i].due > now) {
+            i++;
+            continue;
+        }
+        mpbd_ack(d, d->owed[i].planner_id, d->owed[i].run_uid,
+                 MPB_RUN_ACK_T_RESULT_STORED);
+        d->owed[i] = d->owed[--d->num_owed];
+    }
+}
