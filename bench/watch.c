@@ -3,10 +3,17 @@
  * the outside. Listens (never sends) to a running benchmark's requests,
  * results and acknowledgements and, for each run, takes the daemon's own
  * timestamps: the request's utime (first send) and the utime of the
- * RESULT_STORED acknowledgement, which mpbenchd publishes only after the
- * result is verified, measured and committed. The planner's result utime
+ * message that acknowledges the result as stored, which mpbenchd sends
+ * only after the commit: a RESULT_STORED alone, or a later request that
+ * lists the run in `stored` (docs/protocol.md). The planner's result utime
  * splits the time into "out and back" (request to result published) and
- * "daemon" (result published to stored and acknowledged).
+ * "daemon" (result published to acknowledged).
+ *
+ * With a quick planner the acknowledgement rides on the request after the
+ * next, so this is the time until the planner hears that its result is
+ * stored, a run longer than until the commit; mpbenchd counts request to
+ * commit itself (its log's last lines). And a listener is one more process
+ * woken by every message: on a small machine it slows what it watches.
  *
  * Run it only inside a private network namespace (bench/run.sh does).
  */
@@ -52,8 +59,9 @@ static void usage(FILE *out)
 "\n"
 "Listens to a running mpbench benchmark and prints, over its next N runs,\n"
 "the median and p99 of each run's time from request (first send) to the\n"
-"daemon's RESULT_STORED acknowledgement (sent after the commit), with the\n"
-"daemon's own timestamps; and its two parts, up to the planner's result\n"
+"daemon's acknowledgement of its result (sent after the commit: alone, or\n"
+"on a later request), with the daemon's own timestamps; and its two\n"
+"parts, up to the planner's result\n"
 "and after it; and the time from one run's request to the next one's (with\n"
 "one planner, what a run costs the planner). The first K runs are not\n"
 "counted (warm-up). Sends nothing. Exits after N runs or S seconds\n"
@@ -78,6 +86,27 @@ static entry *slot(watch *w, const char *id, int insert)
     }
 }
 
+/* The result of run id was acknowledged as stored at utime. */
+static void acknowledged(watch *w, const char *id, int64_t utime)
+{
+    if (w->done >= w->want || !mpb_run_id_is_valid(id))
+        return;
+    entry *e = slot(w, id, 0);
+    if (e == NULL || e->request == 0) {
+        w->unmatched++;     /* sent before we listened */
+    } else if (!e->done && w->skipped < w->skip) {
+        e->done = 1;
+        w->skipped++;
+    } else if (!e->done) {
+        e->done = 1;
+        w->total[w->done] = (double)(utime - e->request);
+        w->out_back[w->done] = e->result ? (double)(e->result - e->request)
+                                         : NAN;
+        w->daemon[w->done] = e->result ? (double)(utime - e->result) : NAN;
+        w->done++;
+    }
+}
+
 static void on_request(const lcm_recv_buf_t *rbuf, const char *channel,
                        void *user)
 {
@@ -99,6 +128,8 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel,
             w->last_request = m.utime;
         }
     }
+    for (int i = 0; i < m.num_stored; i++)
+        acknowledged(w, m.stored[i], m.utime);
     mpb_plan_request_t_decode_cleanup(&m);
 }
 
@@ -120,29 +151,13 @@ static void on_result(const lcm_recv_buf_t *rbuf, const char *channel,
 
 static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
-    watch *w = user;
     mpb_run_ack_t m;
     (void)channel;
     if (!mpb_wire_check(MPB_WIRE_RUN_ACK, rbuf->data, rbuf->data_size, NULL, 0)
         || mpb_run_ack_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
         return;
-    if (m.kind == MPB_RUN_ACK_T_RESULT_STORED && w->done < w->want &&
-        mpb_run_id_is_valid(m.run_id)) {
-        entry *e = slot(w, m.run_id, 0);
-        if (e == NULL || e->request == 0) {
-            w->unmatched++;     /* sent before we listened */
-        } else if (!e->done && w->skipped < w->skip) {
-            e->done = 1;
-            w->skipped++;
-        } else if (!e->done) {
-            e->done = 1;
-            w->total[w->done] = (double)(m.utime - e->request);
-            w->out_back[w->done] = e->result ? (double)(e->result - e->request)
-                                             : NAN;
-            w->daemon[w->done] = e->result ? (double)(m.utime - e->result) : NAN;
-            w->done++;
-        }
-    }
+    if (m.kind == MPB_RUN_ACK_T_RESULT_STORED)
+        acknowledged(user, m.run_id, m.utime);
     mpb_run_ack_t_decode_cleanup(&m);
 }
 
