@@ -204,8 +204,11 @@ struct Run {
 
 // A bare run: the request's objects made anew, the planner set up, then
 // solve() alone timed, its time limit checked inline at each iteration (no
-// thread), as mpb-planner-ompl does.
-Run plain_run(const Query &q, const std::string &seed)
+// thread), as mpb-planner-ompl does. With period > 0, the time limit is
+// checked as Benchmark has it checked (Planner::solve(fn, period)): by a
+// thread that OMPL starts, wakes every millisecond and joins inside the
+// solve() timed.
+Run plain_run(const Query &q, const std::string &seed, double period = 0)
 {
     seed_run(seed);
     Problem p = make_problem(q);
@@ -213,8 +216,10 @@ Run plain_run(const Query &q, const std::string &seed)
     planner->setProblemDefinition(p.pdef);
     planner->setup();
     const double t0 = mpb_monotonic_s(), deadline = t0 + q.time_limit;
-    ob::PlannerStatus st = planner->solve(ob::PlannerTerminationCondition(
-        [deadline] { return mpb_monotonic_s() >= deadline; }));
+    auto expired = [deadline] { return mpb_monotonic_s() >= deadline; };
+    ob::PlannerStatus st =
+        period > 0 ? static_cast<ob::Planner &>(*planner).solve(expired, period)
+                   : planner->solve(ob::PlannerTerminationCondition(expired));
     const double secs = mpb_monotonic_s() - t0;
     ob::PlannerData data(p.si);
     planner->getPlannerData(data);
@@ -536,6 +541,13 @@ int stats(int argc, char **argv)
     compare("fidelity_ompl", "mpbench", m, "OMPL Benchmark", o, boots, 0.97, 1.03);
     compare("fidelity_plain", "mpbench", m, "bare solve()", p, boots, 0.97, 1.03);
     compare("fidelity_bench_plain", "OMPL Benchmark", o, "bare solve()", p, boots, 0.97, 1.03);
+    if (sides.count("thread")) {
+        const Side &t = sides["thread"];
+        compare("fidelity_thread_plain", "solve() with Benchmark's time-limit thread", t,
+                "bare solve()", p, boots, 0.97, 1.03);
+        compare("fidelity_bench_thread", "OMPL Benchmark", o,
+                "solve() with Benchmark's time-limit thread", t, boots, 0.97, 1.03);
+    }
     return 0;
 }
 
@@ -620,7 +632,8 @@ void usage(FILE *out)
 "with RRTConnect once per seed on each side asked for, in order, and prints\n"
 "  RUN SIDE BLOCK SEED SECONDS SOLVED - GRAPH_STATES\n"
 "per run. Sides: \"ompl\" (OMPL's Benchmark, its \"time\"), \"plain\" (a bare\n"
-"solve(), timed alone, as mpb-planner-ompl times it).\n"
+"solve(), timed alone, as mpb-planner-ompl times it), \"thread\" (as plain,\n"
+"the time limit checked by OMPL's thread, every 0.1 s, as Benchmark has it).\n"
 "  --sides A,B      default ompl,plain\n"
 "  --block K        the block number printed (default 0)\n"
 "  --warmup N       runs of the first seeds on each side first, not printed\n"
@@ -668,7 +681,7 @@ int run(int argc, char **argv)
     Query q{nullptr, numbers(start_arg), numbers(goal_arg), tolerance, resolution, time_limit};
     bool sides_ok = !sides.empty();
     for (const std::string &s : sides)
-        sides_ok = sides_ok && (s == "ompl" || s == "plain");
+        sides_ok = sides_ok && (s == "ompl" || s == "plain" || s == "thread");
     if (!robot_file || !scene_file || names.empty() || q.start.size() != names.size() ||
         q.goal.size() != names.size() || seeds.empty() || !(time_limit > 0) ||
         !(resolution > 0) || !sides_ok || warmup < 0)
@@ -700,10 +713,11 @@ int run(int argc, char **argv)
                 benchmark_runs(q, warm);
             runs = benchmark_runs(q, seeds);
         } else {
+            double period = side == "thread" ? 0.1 : 0;
             for (const std::string &s : warm)
-                plain_run(q, s);
+                plain_run(q, s, period);
             for (const std::string &s : seeds)
-                runs.push_back(plain_run(q, s));
+                runs.push_back(plain_run(q, s, period));
         }
         int solved = 0;
         std::vector<double> times;

@@ -197,7 +197,8 @@ block_median() { # side block
 }
 
 echo "== timing fidelity: RRTConnect, PR2 kitchen, $BLOCKS blocks of $PER runs on each side" \
-     "(mpbench, OMPL's Benchmark, bare solve()), planning on CPU $PIN"
+     "(mpbench, OMPL's Benchmark, bare solve()), planning on" \
+     "$([ "$PIN" = none ] && echo "any CPU (no pinning)" || echo "CPU $PIN")"
 k=1
 while [ "$k" -le "$BLOCKS" ]; do
     if [ $((k % 2)) -eq 1 ]; then
