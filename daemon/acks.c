@@ -5,12 +5,12 @@
  * a promise that the result is on disk).
  *
  * After the commit, an acknowledgement is owed to its planner. It rides on
- * the next request that goes to that planner (plan_request_t.stored):
- * with a quick planner, whose next request is already being decided when
- * its result commits, that is one message per run fewer, for the daemon
- * and for every process in the multicast group. One that finds no request
- * within MPBD_ACK_HOLD_S goes out alone, on MPB_ACK_<planner_id>; so does
- * the answer to a result the planner sent again.
+ * the next request that goes to that planner (plan_request_t.stored),
+ * which the daemon sends right after that commit if the planner has more
+ * to do: one message per run fewer, for the daemon and for every process
+ * in the multicast group. One that finds no request within
+ * MPBD_ACK_HOLD_S goes out alone, on MPB_ACK_<planner_id>; so does the
+ * answer to a result the planner sent again.
  */
 #include <stdlib.h>
 #include <string.h>

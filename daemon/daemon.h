@@ -80,6 +80,14 @@ typedef struct mpbd_ack_due {
                                 request to its planner takes it first */
 } mpbd_ack_due;
 
+/* A run sent whose state is not yet written: the next transaction writes
+ * it, before the results it holds. */
+typedef struct mpbd_unrecorded {
+    int64_t run_id;
+    char    run_uid[MPB_RUN_ID_SIZE];
+    char    planner_id[MPB_PLANNER_ID_MAX + 1];
+} mpbd_unrecorded;
+
 /* Runs' latency, request first sent to result committed (latency.c). */
 #define MPBD_LATENCY_MAX_US 65536
 typedef struct mpbd_latency {
@@ -114,6 +122,8 @@ typedef struct mpbd {
 
     mpbd_flight     *flights;
     int              num_flights, cap_flights;
+    mpbd_unrecorded *unrecorded;
+    int              num_unrecorded, cap_unrecorded;
 
     int              next_config;    /* round-robin start for dispatch */
 
@@ -149,6 +159,9 @@ void mpbd_planners_free(mpbd *d);
 /* scheduler.c */
 int  mpbd_scheduler_load(mpbd *d);             /* unfinished runs from the store */
 int  mpbd_scheduler_dispatch(mpbd *d, double now);
+/* Write the runs sent since the last call as sent (attempt, run id,
+ * planner), in the open transaction. */
+int  mpbd_scheduler_record_sent(mpbd *d);
 void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost planners */
 /* Queue a run again for a new attempt. */
 int  mpbd_requeue(mpbd *d, const mpbd_run *run);

@@ -217,25 +217,29 @@ static int run_loop(mpbd *d)
     while (!stop_signal) {
         int ready = wait_readable(fd, 20);
         now = mpb_monotonic_s();
-        if (mpb_store_begin(d->store) != MPB_OK) {
+        /* One transaction: the runs sent last time, then what has arrived
+         * (bounded, so that timers still run under a flood). */
+        if (mpb_store_begin(d->store) != MPB_OK ||
+            mpbd_scheduler_record_sent(d) != MPB_OK) {
             mpbd_log("database: %s", mpb_store_errmsg(d->store));
             return -1;
         }
-        /* Drain what has arrived, in one transaction; bounded, so that
-         * timers still run under a flood. */
         for (int n = 0; ready && n < 4096; n++) {
             if (lcm_handle(d->lcm) != 0)
                 break;
             ready = wait_readable(fd, 0);
         }
         mpbd_scheduler_tick(d, now);
-        mpbd_scheduler_dispatch(d, now);
         if (mpb_store_commit(d->store) != MPB_OK) {
             mpbd_log("database: %s", mpb_store_errmsg(d->store));
             mpb_store_rollback(d->store);
             return -1;
         }
+        /* Then the next requests: a run's latency ends with its commit,
+         * not with the next run's request, and each request carries the
+         * acknowledgements this commit made true (acks.c). */
         mpbd_acks_flush(d);
+        mpbd_scheduler_dispatch(d, now);
         mpbd_owed_send(d, now, 0);
         if (mpbd_scheduler_done(d))
             return 0;
@@ -338,6 +342,12 @@ int main(int argc, char **argv)
              d.runs_total, o.db);
     rc = run_loop(&d);
     mpbd_owed_send(&d, 0.0, 1);     /* no more requests to ride on */
+    /* Runs in flight keep their ids for a resume. */
+    if (d.num_unrecorded > 0 &&
+        (mpb_store_begin(d.store) != MPB_OK ||
+         mpbd_scheduler_record_sent(&d) != MPB_OK ||
+         mpb_store_commit(d.store) != MPB_OK))
+        mpbd_log("database: %s", mpb_store_errmsg(d.store));
     double elapsed = mpb_monotonic_s() - d.started;
     log_latency(&d);
     if (rc == 0) {

@@ -167,13 +167,22 @@ static int send_next(mpbd *d, int c, int p, double now)
         mpbd_log("cannot draw a random run id");
         return 0;
     }
-    if (mpb_store_run_sent(d->store, run.id, run.uid, d->planners[p].id)
-        != MPB_OK) {
-        mpbd_log("database: %s", mpb_store_errmsg(d->store));
-        return 0;
+    if (d->num_unrecorded == d->cap_unrecorded) {
+        int cap = d->cap_unrecorded ? d->cap_unrecorded * 2 : 16;
+        mpbd_unrecorded *a = realloc(d->unrecorded, (size_t)cap * sizeof *a);
+        if (a == NULL)
+            return 0;
+        d->unrecorded = a;
+        d->cap_unrecorded = cap;
     }
     if ((f = add_flight(d)) == NULL)
         return 0;
+    /* Written by the next transaction, before the result it may hold: a
+     * request goes out as soon as a commit has made room for it. */
+    mpbd_unrecorded *u = &d->unrecorded[d->num_unrecorded++];
+    u->run_id = run.id;
+    memcpy(u->run_uid, run.uid, sizeof u->run_uid);
+    snprintf(u->planner_id, sizeof u->planner_id, "%s", d->planners[p].id);
     d->pending_head[c]++;
     d->total_pending--;
     run.attempts++;
@@ -256,6 +265,24 @@ int mpbd_scheduler_dispatch(mpbd *d, double now)
     return sent;
 }
 
+int mpbd_scheduler_record_sent(mpbd *d)
+{
+    int rc = MPB_OK;
+    for (int i = 0; i < d->num_unrecorded; i++) {
+        const mpbd_unrecorded *u = &d->unrecorded[i];
+        int r = mpb_store_run_sent(d->store, u->run_id, u->run_uid,
+                                   u->planner_id);
+        /* Done already: its result came in a transaction before (a resend
+         * after a restart). Anything else is the database failing. */
+        if (r != MPB_OK && r != MPB_EEXISTS) {
+            mpbd_log("database: %s", mpb_store_errmsg(d->store));
+            rc = r;
+        }
+    }
+    d->num_unrecorded = 0;
+    return rc;
+}
+
 mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid)
 {
     for (int i = 0; i < d->num_flights; i++)
@@ -309,6 +336,7 @@ void mpbd_scheduler_free(mpbd *d)
     free(d->pending_len);
     free(d->pending_head);
     free(d->flights);
+    free(d->unrecorded);
     free(d->acks);
     free(d->owed);
 }
