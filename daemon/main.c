@@ -317,7 +317,12 @@ int main(int argc, char **argv)
         exit_code = mpbd_replay(&d, o.replay) == 0 ? 0 : 1;
         goto out;
     }
-    if ((d.lcm = lcm_create(o.lcm_url)) == NULL) {
+    /* What it subscribes to, and nothing else: its own requests and
+     * acknowledgements and its status are dropped by the kernel, not
+     * after a wake-up of LCM's thread (lcm_filter.h). */
+    static const char *const wanted[] = {MPB_CHANNEL_ANNOUNCE,
+                                         MPB_CHANNEL_RESULT, MPB_CHANNEL_ACK};
+    if ((d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 3, NULL)) == NULL) {
         fprintf(stderr, "mpbenchd: cannot start LCM on %s (no multicast "
                         "route? see README)\n", o.lcm_url);
         goto out;

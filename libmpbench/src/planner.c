@@ -686,7 +686,12 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     }
 
     const char *url = lcm_url != NULL ? lcm_url : MPB_DEFAULT_LCM_URL;
-    s->lcm = lcm_create(url);
+    /* The other planners' requests and acknowledgements, every result,
+     * announcement and status: dropped by the kernel, not after a wake-up
+     * of LCM's thread in this process (lcm_filter.h). Without the filter
+     * the same messages arrive and are ignored. */
+    const char *mine[] = {s->request_channel, s->ack_channel};
+    s->lcm = mpb_lcm_create_keeping(url, mine, 2, NULL);
     if (s->lcm == NULL) {
         snprintf(err, errlen, "cannot join LCM at %s (udpm needs a multicast "
                  "route, e.g. 'ip route add 224.0.0.0/4 dev lo')", url);
