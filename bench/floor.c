@@ -3,7 +3,9 @@
  * beat. Two processes (this one and a forked echo) over the same LCM URL as
  * the daemon and its planners; a real plan request of the planar demo scene
  * goes out, a small result like the null planner's comes back, each checked
- * (wire.h) and decoded as the daemon and the planner kit do. Prints the
+ * (wire.h) and decoded as the daemon and the planner kit do. Each side's
+ * LCM drops in the kernel what it does not subscribe to, its own messages
+ * included, as mpbenchd's and the kit's do (lcm_filter.h). Prints the
  * round-trip median and p99 over --count exchanges.
  *
  * Run it only inside a private network namespace (bench/run.sh does).
@@ -126,7 +128,8 @@ static int run_echo(const options *o, pid_t parent)
 {
     echo e = {0};
     double deadline = mpbb_now() + o->timeout + 10;
-    if ((e.lcm = lcm_create(o->url)) == NULL) {
+    static const char *const mine[] = {REQ_CHANNEL};
+    if ((e.lcm = mpb_lcm_create_keeping(o->url, mine, 1, NULL)) == NULL) {
         fprintf(stderr, "mpb-bench-floor: echo: cannot start LCM on %s\n",
                 o->url);
         return 1;
@@ -225,7 +228,8 @@ int main(int argc, char **argv)
                  .joints = goal, .joint_tolerance = 0.01, .link = ""},
     };
 
-    lcm_t *lcm = lcm_create(o.url);
+    static const char *const mine[] = {RES_CHANNEL};
+    lcm_t *lcm = mpb_lcm_create_keeping(o.url, mine, 1, NULL);
     if (lcm == NULL) {
         fprintf(stderr, "mpb-bench-floor: cannot start LCM on %s (no multicast"
                         " route?)\n", o.url);
