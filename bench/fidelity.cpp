@@ -41,6 +41,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/SpaceInformation.h>
@@ -638,6 +640,8 @@ void usage(FILE *out)
 "  --block K        the block number printed (default 0)\n"
 "  --warmup N       runs of the first seeds on each side first, not printed\n"
 "                   (default 5)\n"
+"  --gap-us N       sleep N us after each bare run, as a planner process\n"
+"                   waits for its next request (a diagnostic; default 0)\n"
 "  --time-limit S   per run (default 10)\n"
 "  --tolerance RAD  goal tolerance (default 0.01)\n"
 "  --resolution RAD motion checks, as mpb-planner-ompl (default 0.005)\n"
@@ -656,7 +660,7 @@ int run(int argc, char **argv)
     const char *robot_file = nullptr, *scene_file = nullptr;
     std::string joints_arg, start_arg, goal_arg, seeds_arg, sides_arg = "ompl,plain";
     double time_limit = 10, tolerance = 0.01, resolution = 0.005;
-    int block = 0, warmup = 5;
+    int block = 0, warmup = 5, gap_us = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : nullptr;
         if (v == nullptr)
@@ -671,6 +675,7 @@ int run(int argc, char **argv)
         else if (!std::strcmp(a, "--sides")) sides_arg = v;
         else if (!std::strcmp(a, "--block")) block = std::atoi(v);
         else if (!std::strcmp(a, "--warmup")) warmup = std::atoi(v);
+        else if (!std::strcmp(a, "--gap-us")) gap_us = std::atoi(v);
         else if (!std::strcmp(a, "--time-limit")) time_limit = std::atof(v);
         else if (!std::strcmp(a, "--tolerance")) tolerance = std::atof(v);
         else if (!std::strcmp(a, "--resolution")) resolution = std::atof(v);
@@ -716,8 +721,13 @@ int run(int argc, char **argv)
             double period = side == "thread" ? 0.1 : 0;
             for (const std::string &s : warm)
                 plain_run(q, s, period);
-            for (const std::string &s : seeds)
+            for (const std::string &s : seeds) {
                 runs.push_back(plain_run(q, s, period));
+                // A pause between runs, as a planner process has while the
+                // daemon verifies, stores and sends the next request.
+                if (gap_us > 0)
+                    usleep(static_cast<useconds_t>(gap_us));
+            }
         }
         int solved = 0;
         std::vector<double> times;
