@@ -11,7 +11,7 @@
 #      run from its request's first send to its commit (mpbenchd's own
 #      count, nothing else listening), then its parts from the daemon's
 #      timestamps on the network (mpb-bench-watch listening),
-#   3. throughput with 1, 2 and 3 null planners, the daemon's RSS sampled,
+#   3. throughput with 1 to 4 null planners, the daemon's RSS sampled,
 #   4. verification + metrics, waypoints per second (mpb-bench-verify), for
 #      the planar demo arm and for the PR2 right arm in the kitchen (or,
 #      until that scene exists, the tabletop of the unit tests), and timing
@@ -272,6 +272,8 @@ echo "== 3. throughput, 2 null planners ($TPUT_N runs)"
 throughput 2 "$TPUT_N" tput2
 echo "== 3. throughput, 3 null planners ($TPUT_N runs)"
 throughput 3 "$TPUT_N" tput3
+echo "== 3. throughput, 4 null planners ($TPUT_N runs)"
+throughput 4 "$TPUT_N" tput4
 if [ "$MILLION" -eq 1 ]; then
     echo "== 3. throughput, 1 null planner (1000000 runs)"
     throughput 1 1000000 tputM
@@ -383,6 +385,7 @@ lat=$(get run_latency_own median_us) lat99=$(get run_latency_own p99_us)
 wlat=$(get run_latency median_us) wlat99=$(get run_latency p99_us)
 cyc=$(get run_cycle median_us) cyc99=$(get run_cycle p99_us)
 t1=$(get tput1 runs_per_s) t2=$(get tput2 runs_per_s) t3=$(get tput3 runs_per_s)
+t4=$(get tput4 runs_per_s)
 grow=$(get tput1 rss_growth_kb)
 mgrow=nan
 [ "$MILLION" -eq 1 ] && mgrow=$(get tputM rss_growth_kb)
@@ -420,8 +423,9 @@ cat <<EOF
 | 3 | throughput, 1 null planner, $(get tput1 runs) runs | $t1 runs/s | $(calc "1e6 / $t1 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t1" ">=" 10000) |
 | 3 | throughput, 2 null planners, $(get tput2 runs) runs | $t2 runs/s | $(calc "1e6 / $t2 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t2" ">=" 10000) |
 | 3 | throughput, 3 null planners, $(get tput3 runs) runs | $t3 runs/s | $(calc "1e6 / $t3 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t3" ">=" 10000) |
-| 3 | mpbenchd CPU time (user + system) per run, 1 / 2 / 3 planners | $(get tput1 daemon_cpu_us_per_run) / $(get tput2 daemon_cpu_us_per_run) / $(get tput3 daemon_cpu_us_per_run) us | $(ratio "$(get tput1 daemon_cpu_us_per_run)") / $(ratio "$(get tput2 daemon_cpu_us_per_run)") / $(ratio "$(get tput3 daemon_cpu_us_per_run)") | | |
-| 3 | null planners' CPU time per run (all of them, planner kit included), 1 / 2 / 3 planners | $(get tput1 planners_cpu_us_per_run) / $(get tput2 planners_cpu_us_per_run) / $(get tput3 planners_cpu_us_per_run) us | $(ratio "$(get tput1 planners_cpu_us_per_run)") / $(ratio "$(get tput2 planners_cpu_us_per_run)") / $(ratio "$(get tput3 planners_cpu_us_per_run)") | | |
+| 3 | throughput, 4 null planners, $(get tput4 runs) runs | $t4 runs/s | $(calc "1e6 / $t4 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t4" ">=" 10000) |
+| 3 | mpbenchd CPU time (user + system) per run, 1 / 2 / 3 / 4 planners | $(get tput1 daemon_cpu_us_per_run) / $(get tput2 daemon_cpu_us_per_run) / $(get tput3 daemon_cpu_us_per_run) / $(get tput4 daemon_cpu_us_per_run) us | $(ratio "$(get tput1 daemon_cpu_us_per_run)") / $(ratio "$(get tput2 daemon_cpu_us_per_run)") / $(ratio "$(get tput3 daemon_cpu_us_per_run)") / $(ratio "$(get tput4 daemon_cpu_us_per_run)") | | |
+| 3 | null planners' CPU time per run (all of them, planner kit included), 1 / 2 / 3 / 4 planners | $(get tput1 planners_cpu_us_per_run) / $(get tput2 planners_cpu_us_per_run) / $(get tput3 planners_cpu_us_per_run) / $(get tput4 planners_cpu_us_per_run) us | $(ratio "$(get tput1 planners_cpu_us_per_run)") / $(ratio "$(get tput2 planners_cpu_us_per_run)") / $(ratio "$(get tput3 planners_cpu_us_per_run)") / $(ratio "$(get tput4 planners_cpu_us_per_run)") | | |
 | 3 | mpbenchd RSS over $(get tput1 runs) runs (1 planner): at 10 % / 50 % / end / max | $(get tput1 rss_early_kb) / $(get tput1 rss_half_kb) / $(get tput1 rss_end_kb) / $(get tput1 rss_max_kb) kB | | flat | $(flat "$grow" "$(get tput1 runs)") |
 | 3 | mpbenchd RSS over 1,000,000 runs (1 planner): at 10 % / 50 % / end / max | $( [ "$MILLION" -eq 1 ] && echo "$(get tputM rss_early_kb) / $(get tputM rss_half_kb) / $(get tputM rss_end_kb) / $(get tputM rss_max_kb) kB, at $(get tputM runs_per_s) runs/s" || echo "not run (--million)") | | flat | $( [ "$MILLION" -eq 1 ] && flat "$mgrow" "$(get tputM runs)" || echo "not measured") |
 | 4 | verification + metrics, PR2 right arm in the $PR2_WHERE, waypoints at the resolution ($(get verify_pr2_0.01 checks_per_waypoint) checks each) | $pw waypoints/s | | >= 50,000 | $(verdict "$pw" ">=" 50000)$( [ "$PR2_WHERE" = kitchen ] || echo " (not the kitchen)") |
