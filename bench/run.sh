@@ -23,7 +23,7 @@
 # Prints a table and writes it, with the machine and the raw results, to
 # bench/results/<date>.md. Every step has a count and a time limit.
 #
-#   --quick          small counts (about a minute in all)
+#   --quick          small counts (about 2 minutes in all)
 #   --runs N         runs per throughput experiment (default 100000)
 #   --report-runs N  runs in the report database (default 1000000)
 #   --fidelity-runs N  RRTConnect runs on each side for the timing fidelity,
