@@ -53,6 +53,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "joint_space.h"
 #include "mpbench/mpbench.h"
 
 namespace ob = ompl::base;
@@ -63,89 +64,9 @@ namespace {
 
 // ---- the problem, as mpb-planner-ompl builds it ----------------------------
 
-// The world's joints; continuous ones wrap (the short way round). The same
-// space as mpb-planner-ompl's JointSpace, member for member: its maximum
-// extent sets RRTConnect's default range and the motion checks' step, so a
-// different one is a different planner.
-class Joints : public ob::RealVectorStateSpace {
-public:
-    explicit Joints(const mpb_world *w)
-        : ob::RealVectorStateSpace(static_cast<unsigned int>(mpb_world_num_joints(w)))
-    {
-        unsigned int n = getDimension();
-        ob::RealVectorBounds b(n);
-        wraps_.resize(n);
-        for (unsigned int j = 0; j < n; j++) {
-            int jj = static_cast<int>(j);
-            mpb_world_joint_limits(w, jj, &b.low[j], &b.high[j]);
-            wraps_[j] = mpb_world_joint_is_continuous(w, jj) != 0;
-            if (wraps_[j]) {
-                b.low[j] = -M_PI;
-                b.high[j] = M_PI;
-            }
-        }
-        setBounds(b);
-    }
-
-    double distance(const ob::State *a, const ob::State *b) const override
-    {
-        const double *x = a->as<StateType>()->values, *y = b->as<StateType>()->values;
-        double sq = 0;
-        for (unsigned int j = 0; j < getDimension(); j++) {
-            double d = step(j, x[j], y[j]);
-            sq += d * d;
-        }
-        return std::sqrt(sq);
-    }
-
-    void interpolate(const ob::State *from, const ob::State *to, double t,
-                     ob::State *state) const override
-    {
-        const double *x = from->as<StateType>()->values, *y = to->as<StateType>()->values;
-        double *z = state->as<StateType>()->values;
-        for (unsigned int j = 0; j < getDimension(); j++) {
-            z[j] = x[j] + t * step(j, x[j], y[j]);
-            if (wraps_[j])
-                z[j] = std::remainder(z[j], 2 * M_PI);
-        }
-    }
-
-    void enforceBounds(ob::State *state) const override
-    {
-        double *z = state->as<StateType>()->values;
-        for (unsigned int j = 0; j < getDimension(); j++)
-            z[j] = wraps_[j] ? std::remainder(z[j], 2 * M_PI)
-                             : std::min(std::max(z[j], bounds_.low[j]), bounds_.high[j]);
-    }
-
-    bool satisfiesBounds(const ob::State *state) const override
-    {
-        const double *z = state->as<StateType>()->values;
-        const double eps = std::numeric_limits<double>::epsilon();
-        for (unsigned int j = 0; j < getDimension(); j++)
-            if (!(z[j] >= bounds_.low[j] - eps && z[j] <= bounds_.high[j] + eps))
-                return false;
-        return true;
-    }
-
-    // A wrapping joint is at most pi away the short way round.
-    double getMaximumExtent() const override
-    {
-        double sq = 0;
-        for (unsigned int j = 0; j < getDimension(); j++) {
-            double e = wraps_[j] ? M_PI : bounds_.high[j] - bounds_.low[j];
-            sq += e * e;
-        }
-        return std::sqrt(sq);
-    }
-
-private:
-    double step(unsigned int j, double a, double b) const
-    {
-        return wraps_[j] ? std::remainder(b - a, 2 * M_PI) : b - a;
-    }
-    std::vector<bool> wraps_;
-};
+// The world's joints, continuous ones wrapping: mpb-planner-ompl's own
+// space (planners/ompl/joint_space.h), so that both plan in the same one.
+using Joints = mpb_ompl::JointSpace;
 
 struct Query {
     mpb_world *world;
