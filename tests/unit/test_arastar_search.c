@@ -19,6 +19,7 @@
 #include "mpbench/verify.h"
 #include "search.h"
 #include "voxelize.h"
+#include "test_files.h"
 
 #define SCENES MPB_TEST_DATA "/../../../scenes"
 
@@ -40,31 +41,12 @@ typedef struct fixture {
     ara_grid    grid;
 } fixture;
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    rewind(f);
-    char *s = malloc((size_t)n + 1);
-    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
-        free(s);
-        s = NULL;
-    }
-    if (s)
-        s[n] = '\0';
-    fclose(f);
-    return s;
-}
-
 static int setup(void **state)
 {
     fixture *fx = calloc(1, sizeof *fx);
     char err[256];
-    fx->urdf = slurp(SCENES "/robots/pr2_right_arm.urdf");
-    fx->scene_text = slurp(SCENES "/paper/kitchen.scene");
+    fx->urdf = test_read_file(SCENES "/robots/pr2_right_arm.urdf");
+    fx->scene_text = test_read_file(SCENES "/paper/kitchen.scene");
     assert_non_null(fx->urdf);
     assert_non_null(fx->scene_text);
     assert_int_equal(mpb_world_open_group("urdf", fx->urdf, "moveit-scene",

@@ -23,6 +23,7 @@
 #include "mpbench/mpbench.h"
 #include "collision_internal.h"
 #include "world_provider.h"
+#include "test_files.h"
 
 #define SRC MPB_TEST_DATA "/../../.."
 #define NJ 7
@@ -32,25 +33,12 @@ static const char *const joints[NJ] = {
     "r_elbow_flex_joint", "r_forearm_roll_joint", "r_wrist_flex_joint",
     "r_wrist_roll_joint"};
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = calloc((size_t)n + 1, 1);
-    assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
-    fclose(f);
-    return s;
-}
-
 /* The PR2 arm in scene (NULL: the kitchen). */
 static mpb_world *open_world(const char *scene_text)
 {
-    char *robot = slurp(SRC "/scenes/robots/pr2_right_arm.urdf");
+    char *robot = test_read_file(SRC "/scenes/robots/pr2_right_arm.urdf");
     char *scene = scene_text ? strdup(scene_text)
-                             : slurp(SRC "/scenes/paper/kitchen.scene");
+                             : test_read_file(SRC "/scenes/paper/kitchen.scene");
     mpb_world *w = NULL;
     char err[256];
     int rc = mpb_world_open_group("urdf", robot, "moveit-scene", scene, joints,

@@ -23,6 +23,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/robot.h"
+#include "test_files.h"
 
 static const char *const joints[] = {
     "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",
@@ -45,23 +46,10 @@ static const char box_scene[] =
 
 static char *urdf;
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = calloc((size_t)n + 1, 1);
-    assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
-    fclose(f);
-    return s;
-}
-
 static int setup(void **state)
 {
     (void)state;
-    urdf = slurp(MPB_TEST_DATA "/pr2_right_arm.urdf");
+    urdf = test_read_file(MPB_TEST_DATA "/pr2_right_arm.urdf");
     return 0;
 }
 

@@ -1,0 +1,27 @@
+/*
+ * test_files.h - a unit test's data file, read whole: NUL-terminated, the
+ * caller frees it; the test fails if the file cannot be read. Include it
+ * after <cmocka.h>.
+ */
+#ifndef MPB_TEST_FILES_H
+#define MPB_TEST_FILES_H
+
+#include <stdio.h>
+#include <stdlib.h>
+
+static char *test_read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        fail_msg("cannot open %s", path);
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = calloc((size_t)n + 1, 1);
+    assert_non_null(s);
+    assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+    return s;
+}
+
+#endif
