@@ -71,6 +71,8 @@ static int setup(void **state)
                                   2, algos, 1, 0, NULL};
     mpb_run_ack_t ack = {1, "0123456789abcdef0123456789abcdef", "p@h:1", 1};
     mpb_param_t par = {"range", "0.3"};
+    char *stored[] = {"00000000000000000000000000000001",
+                      "00000000000000000000000000000002"};
     mpb_plan_request_t req = {
         .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
         .planner_id = "p@h:1", .algorithm = "RRT", .num_params = 1,
@@ -79,6 +81,7 @@ static int setup(void **state)
         .scene_hash = "y", .scene = "s", .num_joints = 2, .joint_names = names,
         .start = start,
         .goal = {.kind = 0, .num_joints = 2, .joints = goal, .link = ""},
+        .num_stored = 2, .stored = stored,   /* acknowledgements riding along */
     };
     mpb_planner_seen_t seen = {"p@h:1", "p", 1, 10, 0.2};
     mpb_daemon_status_t status = {1, "d@h:2", "exp", "running", 10, 5, 4, 1,
