@@ -511,9 +511,9 @@ int ensure_tree(mpb_collision *c)
     return MPB_OK;
 }
 
-/* The leaves whose boxes overlap b into c->cand (no allocation: its
- * capacity is every leaf). */
-void gather(mpb_collision *c, const Box3 &b)
+/* The leaves whose boxes pass keep() into c->cand, walking only the
+ * nodes whose boxes pass it (no allocation: its capacity is every leaf). */
+template <class Keep> void gather_where(mpb_collision *c, Keep keep)
 {
     c->cand.clear();
     if (c->nodes.empty())
@@ -522,7 +522,7 @@ void gather(mpb_collision *c, const Box3 &b)
     stack[sp++] = 0;
     while (sp > 0) {
         const BNode &n = c->nodes[(size_t)stack[--sp]];
-        if (!overlap(n.box, b))
+        if (!keep(n.box))
             continue;
         if (n.left >= 0) {
             stack[sp++] = n.right;
@@ -530,32 +530,22 @@ void gather(mpb_collision *c, const Box3 &b)
             continue;
         }
         for (int i = n.first; i < n.first + n.count; i++)
-            if (overlap(c->leaves[(size_t)i].box, b))
+            if (keep(c->leaves[(size_t)i].box))
                 c->cand.push_back(i);
     }
 }
 
-/* The leaves whose boxes are nearer than d to b into c->cand. */
+/* The leaves whose boxes overlap b. */
+void gather(mpb_collision *c, const Box3 &b)
+{
+    gather_where(c, [&b](const Box3 &x) { return overlap(x, b); });
+}
+
+/* The leaves whose boxes are nearer than d to b. */
 void gather_near(mpb_collision *c, const Box3 &b, double d)
 {
-    c->cand.clear();
-    if (c->nodes.empty())
-        return;
-    int stack[MPB__STACK], sp = 0;
-    stack[sp++] = 0;
-    while (sp > 0) {
-        const BNode &n = c->nodes[(size_t)stack[--sp]];
-        if (!(box_dist2(n.box, b) < d * d))
-            continue;
-        if (n.left >= 0) {
-            stack[sp++] = n.right;
-            stack[sp++] = n.left;
-            continue;
-        }
-        for (int i = n.first; i < n.first + n.count; i++)
-            if (box_dist2(c->leaves[(size_t)i].box, b) < d * d)
-                c->cand.push_back(i);
-    }
+    const double d2 = d * d;
+    gather_where(c, [&b, d2](const Box3 &x) { return box_dist2(x, b) < d2; });
 }
 
 /* The union of the enabled movables' boxes into all; false if none. */
