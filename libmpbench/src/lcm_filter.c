@@ -45,8 +45,8 @@ static int url_port(const char *url)
                ? (int)port : 0;
 }
 
-/* This process's UDP sockets bound to port: their descriptors and inodes,
- * at most max; returns how many. */
+/* This process's UDP sockets bound to port: their inodes and, if fds is
+ * not NULL, descriptors, at most max; returns how many. */
 static int sockets_on(int port, int *fds, ino_t *inos, int max)
 {
     DIR *dir = opendir("/proc/self/fd");
@@ -69,7 +69,8 @@ static int sockets_on(int port, int *fds, ino_t *inos, int max)
             getsockname((int)fd, (struct sockaddr *)&addr, &len) != 0 ||
             addr.sin_family != AF_INET || ntohs(addr.sin_port) != port)
             continue;
-        fds[n] = (int)fd;
+        if (fds != NULL)
+            fds[n] = (int)fd;
         inos[n++] = st.st_ino;
     }
     closedir(dir);
@@ -135,14 +136,14 @@ lcm_t *mpb_lcm_create_keeping(const char *url, const char *const *channels,
                               int n, int *filtered)
 {
     int port = url_port(url ? url : MPB_DEFAULT_LCM_URL), ok = port != 0;
-    int before_fd[SOCKETS_MAX], after_fd[SOCKETS_MAX], nb = 0, na = 0;
+    int after_fd[SOCKETS_MAX], nb = 0, na = 0;
     ino_t before[SOCKETS_MAX], after[SOCKETS_MAX];
 
     ok = ok && channels != NULL && n >= 1 && n <= MPB_LCM_FILTER_CHANNELS;
     for (int i = 0; ok && i < n; i++)
         ok = channels[i] != NULL && strlen(channels[i]) <= MPB_LCM_FILTER_NAME_MAX;
     if (ok)
-        nb = sockets_on(port, before_fd, before, SOCKETS_MAX);
+        nb = sockets_on(port, NULL, before, SOCKETS_MAX);
     lcm_t *lcm = lcm_create(url);
     if (lcm == NULL) {
         if (filtered)
