@@ -2,13 +2,15 @@
 # bench/fidelity.sh - timing fidelity: does mpbench make a planner look
 # slower or faster than it is? (docs/performance.md, 4b)
 #
-#   bench/fidelity.sh [--runs N] [--blocks K] [--pin CPU|none] [--boot B]
-#                     [--keep]
+#   bench/fidelity.sh [--scene kitchen|narrow_passage] [--runs N]
+#                     [--blocks K] [--pin CPU|none] [--boot B] [--keep]
 #
-# RRTConnect on the first query of the paper's kitchen (the PR2's right
-# arm; start and goal as in scenes/experiments/paper.yaml, the goal the
-# configuration the suite's IK gave), N runs on each of three sides (default
-# 5000), in K interleaved blocks (default 20) of N/K runs:
+# RRTConnect on the first query of one of the paper's environments (the
+# PR2's right arm; start and goal as in scenes/experiments/paper.yaml, the
+# goal the configuration the suite's IK gave): the kitchen (default; about
+# 2 ms a run) or the narrow passage (about 40 ms a run). N runs on each of
+# three sides (default 5000), in K interleaved blocks (default 20) of N/K
+# runs:
 #   mpbench  through mpbenchd and mpb-planner-ompl, the "raw" stage's time;
 #   ompl     OMPL 1.5's ompl::tools::Benchmark in process, its "time";
 #   plain    a bare solve() in process, timed as mpb-planner-ompl times it.
@@ -26,12 +28,13 @@
 # leaves placement to the scheduler.
 #
 # Then `mpb-bench-fidelity stats`: the ratio of the pooled medians of the
-# solved runs (mpbench / Benchmark, mpbench / bare), a bootstrap 95 %
-# interval of it (B resamples, default 2000, runs resampled within each side
-# and block), the median of the blocks' own ratios, success rates; the
-# verdict is "met" when the interval lies inside 0.97-1.03, "missed" when
-# outside, "not settled" otherwise. RESULT lines; every run is kept in
-# WORK/runs.txt.
+# solved runs (mpbench / Benchmark, mpbench / bare), bootstrap 95 %
+# intervals of it (B resamples, default 2000), the median of the blocks' own
+# ratios, success rates. The runs are pairs (a seed makes the same graph on
+# every side), so the verdict takes the interval that resamples seeds with
+# both sides' runs of a seed together: "met" when it lies inside 0.97-1.03,
+# "missed" when outside, "not settled" otherwise. RESULT lines; every run is
+# kept in WORK/runs.txt.
 #
 # Runs inside a private network namespace, as bench/run.sh (which calls it,
 # --in-netns, with its copies of the binaries: --bin DIR --work DIR).
@@ -41,9 +44,12 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
-RUNS=5000 BLOCKS=20 PIN="" BOOT=2000 KEEP=0 NETNS=0 BIN="" WORK=""
+RUNS=5000 BLOCKS=20 PIN="" BOOT=2000 KEEP=0 NETNS=0 BIN="" WORK="" SCENE=kitchen
+KEYP=fidelity_
 while [ $# -gt 0 ]; do
     case $1 in
+    --key-prefix) KEYP=$2; shift ;;  # RESULT fidelity_* renamed, for bench/run.sh
+    --scene) SCENE=$2; shift ;;
     --runs) RUNS=$2; shift ;;
     --blocks) BLOCKS=$2; shift ;;
     --pin) PIN=$2; shift ;;
@@ -53,11 +59,14 @@ while [ $# -gt 0 ]; do
     --new-netns) NETNS=2 ;;         # this script's own, to set up
     --bin) BIN=$2; shift ;;
     --work) WORK=$2; shift ;;
-    -h|--help) sed -n '2,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,39p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/fidelity.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
 done
+case $SCENE in kitchen|narrow_passage) ;; *)
+    echo "bench/fidelity.sh: --scene kitchen or narrow_passage, not '$SCENE'" >&2; exit 2 ;;
+esac
 case $RUNS$BLOCKS$BOOT in *[!0-9]*)
     echo "bench/fidelity.sh: --runs, --blocks and --boot want whole numbers" >&2; exit 2 ;;
 esac
@@ -83,7 +92,7 @@ if [ "$NETNS" -eq 0 ]; then
     cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/ompl/mpb-planner-ompl" "$fid" \
         "$WORK/bin/" || exit 1
     set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
-        --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT"
+        --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP"
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     exec unshare -n sh "$0" "$@"
 fi
@@ -97,9 +106,18 @@ trap 'exit 130' INT TERM
 
 JOINTS=r_shoulder_pan_joint,r_shoulder_lift_joint,r_upper_arm_roll_joint,r_elbow_flex_joint,r_forearm_roll_joint,r_wrist_flex_joint,r_wrist_roll_joint
 URDF=$src/scenes/robots/pr2_right_arm.urdf
-KITCHEN=$src/scenes/paper/kitchen.scene
+SCENE_FILE=$src/scenes/paper/$SCENE.scene
 START=-1.2,1.1,-1.5,-1.9,0,-0.6,0
-GOAL=-0.261284,-0.420386,-1.523717,-1.031201,-1.236424,-1.761224,-2.299770
+# The environment's first query: its goal is the start of the second query
+# in scenes/experiments/paper.yaml.
+case $SCENE in
+kitchen)
+    QUERY=counter_cup
+    GOAL=-0.261284,-0.420386,-1.523717,-1.031201,-1.236424,-1.761224,-2.299770 ;;
+narrow_passage)
+    QUERY=through_window
+    GOAL=-0.602636,-0.372772,-1.662616,-1.158252,-2.607525,-0.583438,-1.715240 ;;
+esac
 TIME_LIMIT=10 WARMUP=5
 PER=$((RUNS / BLOCKS))
 
@@ -125,11 +143,11 @@ robot:
   file: $URDF
   joints: $(list "$JOINTS")
 scenes:
-  - name: kitchen
+  - name: $SCENE
     format: moveit-scene
-    file: $KITCHEN
+    file: $SCENE_FILE
     queries:
-      - name: counter_cup
+      - name: $QUERY
         start: $(list "$START")
         goal: $(list "$GOAL")
         tolerance: 0.01
@@ -181,7 +199,7 @@ mpbench_block() { # block
 
 inprocess_block() { # block sides
     timeout -k 5 $((2 * (PER + WARMUP) * (TIME_LIMIT + 2) + 60)) $ON_PIN \
-        "$BIN/mpb-bench-fidelity" run --robot "$URDF" --scene "$KITCHEN" \
+        "$BIN/mpb-bench-fidelity" run --robot "$URDF" --scene "$SCENE_FILE" \
         --joints "$JOINTS" --start "$START" --goal "$GOAL" --time-limit "$TIME_LIMIT" \
         --block "$1" --sides "$2" --warmup "$WARMUP" \
         --seeds "$(block_seeds "$1" | cut -d, -f$((WARMUP + 1))-)" \
@@ -196,7 +214,7 @@ block_median() { # side block
             printf "%.3f", (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) * 1e3 }'
 }
 
-echo "== timing fidelity: RRTConnect, PR2 kitchen, $BLOCKS blocks of $PER runs on each side" \
+echo "== timing fidelity: RRTConnect, PR2 $SCENE ($QUERY), $BLOCKS blocks of $PER runs on each side" \
      "(mpbench, OMPL's Benchmark, bare solve()), planning on" \
      "$([ "$PIN" = none ] && echo "any CPU (no pinning)" || echo "CPU $PIN")"
 k=1
@@ -215,6 +233,8 @@ done
 cleanup
 LOAD_END=$(cut -d' ' -f1-3 /proc/loadavg)
 
-echo "RESULT fidelity_setup blocks=$BLOCKS block_runs=$PER warmup=$WARMUP pin=$PIN" \
+{
+echo "RESULT fidelity_setup scene=$SCENE query=$QUERY blocks=$BLOCKS block_runs=$PER warmup=$WARMUP pin=$PIN" \
      "load_start=$(echo "$LOAD_START" | tr ' ' /) load_end=$(echo "$LOAD_END" | tr ' ' /)"
 "$BIN/mpb-bench-fidelity" stats --boot "$BOOT" "$RUNS_TXT"
+} | sed "s/^RESULT fidelity_/RESULT $KEYP/"

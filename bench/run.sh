@@ -2,7 +2,7 @@
 # bench/run.sh - the benchmark of the benchmark (docs/performance.md).
 #
 #   bench/run.sh [--quick] [--runs N] [--report-runs N] [--fidelity-runs N]
-#                [--million] [--keep]
+#                [--fidelity-np-runs N] [--million] [--keep]
 #
 # Builds the bench programs, then, inside a private network namespace that
 # it creates (only a loopback interface, with a multicast route), measures:
@@ -15,9 +15,10 @@
 #   4. verification + metrics, waypoints per second (mpb-bench-verify), for
 #      the planar demo arm and for the PR2 right arm in the kitchen (or,
 #      until that scene exists, the tabletop of the unit tests), and timing
-#      fidelity: RRTConnect on a kitchen query through mpbenchd and
-#      mpb-planner-ompl vs OMPL's own Benchmark and a bare solve()
-#      (bench/fidelity.sh),
+#      fidelity: RRTConnect on the first query of the paper's narrow
+#      passage (about 30 ms a run) and of its kitchen (about 2 ms) through
+#      mpbenchd and mpb-planner-ompl vs OMPL's own Benchmark and a bare
+#      solve() (bench/fidelity.sh),
 #   5. the store's write cost per run, and `mpb report` over a database of
 #      a million runs (mpb-bench-mkdb).
 # Prints a table and writes it, with the machine and the raw results, to
@@ -26,9 +27,11 @@
 #   --quick          small counts (about 2 minutes in all)
 #   --runs N         runs per throughput experiment (default 100000)
 #   --report-runs N  runs in the report database (default 1000000)
-#   --fidelity-runs N  RRTConnect runs on each side for the timing fidelity,
-#                    in 20 interleaved blocks (4 with --quick; default
-#                    5000, 200 with --quick)
+#   --fidelity-runs N  RRTConnect runs on each side for the timing fidelity
+#                    in the kitchen, in 20 interleaved blocks (4 with
+#                    --quick; default 5000, 200 with --quick)
+#   --fidelity-np-runs N  the same in the narrow passage, 20 blocks (3 with
+#                    --quick; default 2000, 60 with --quick)
 #   --million        throughput with 1 planner over 1,000,000 runs too
 #   --keep           keep the work directory (databases, logs)
 set -u
@@ -40,7 +43,7 @@ case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 WORK=$BUILD/bench-run/work     # databases and logs of one run
 SNAP=$BUILD/bench-run/bin      # the binaries measured, copied at the start
 
-QUICK=0 MILLION=0 KEEP=0 TPUT_N="" REPORT_N="" FID_N="" IN_NETNS=0
+QUICK=0 MILLION=0 KEEP=0 TPUT_N="" REPORT_N="" FID_N="" FIDNP_N="" IN_NETNS=0
 while [ $# -gt 0 ]; do
     case $1 in
     --quick) QUICK=1 ;;
@@ -49,8 +52,9 @@ while [ $# -gt 0 ]; do
     --runs) TPUT_N=$2; shift ;;
     --report-runs) REPORT_N=$2; shift ;;
     --fidelity-runs) FID_N=$2; shift ;;
+    --fidelity-np-runs) FIDNP_N=$2; shift ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,35p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
@@ -58,14 +62,15 @@ done
 
 if [ "$QUICK" -eq 1 ]; then
     FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000
-    : "${FID_N:=200}" "${FID_BLOCKS:=4}"
+    : "${FID_N:=200}" "${FID_BLOCKS:=4}" "${FIDNP_N:=60}" "${FIDNP_BLOCKS:=3}"
     : "${TPUT_N:=10000}" "${REPORT_N:=100000}"
 else
     FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000
-    : "${FID_N:=5000}" "${FID_BLOCKS:=20}"
+    : "${FID_N:=5000}" "${FID_BLOCKS:=20}" "${FIDNP_N:=2000}" "${FIDNP_BLOCKS:=20}"
     : "${TPUT_N:=100000}" "${REPORT_N:=1000000}"
 fi
 [ "$FID_N" -ge 1 ] 2>/dev/null && [ "$FID_N" -lt "$FID_BLOCKS" ] && FID_BLOCKS=$FID_N
+[ "$FIDNP_N" -ge 1 ] 2>/dev/null && [ "$FIDNP_N" -lt "$FIDNP_BLOCKS" ] && FIDNP_BLOCKS=$FIDNP_N
 
 # ---- outside the namespace: build, snapshot the binaries, re-enter --------
 if [ "$IN_NETNS" -eq 0 ]; then
@@ -111,7 +116,7 @@ if [ "$IN_NETNS" -eq 0 ]; then
     [ "$MILLION" -eq 1 ] && set -- "$@" --million
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     exec unshare -n sh "$0" "$@" --runs "$TPUT_N" --report-runs "$REPORT_N" \
-        --fidelity-runs "$FID_N"
+        --fidelity-runs "$FID_N" --fidelity-np-runs "$FIDNP_N"
 fi
 
 # ---- inside the private network namespace ----------------------------------
@@ -320,19 +325,24 @@ for sp in 0.01 0.1; do
 done
 
 # ---- 4. timing fidelity ------------------------------------------------------
-# RRTConnect on the first query of the paper's kitchen, FID_N runs on each
-# side: through mpbenchd + mpb-planner-ompl, in OMPL's own Benchmark, as a
-# bare solve() in process; FID_BLOCKS interleaved blocks, the same seeds on
-# every side, the planning processes on the last CPU (bench/fidelity.sh).
-if [ -x "$SNAP/mpb-planner-ompl" ] && [ -x "$SNAP/mpb-bench-fidelity" ] &&
-   [ -f "$src/scenes/paper/kitchen.scene" ]; then
-    set -- --in-netns --bin "$SNAP" --work "$WORK/fidelity" --runs "$FID_N" \
-        --blocks "$FID_BLOCKS"
+# RRTConnect on the first query of the paper's narrow passage (FIDNP_N runs
+# on each side; its RESULT keys renamed fidelity_np_*) and of its kitchen
+# (FID_N): through mpbenchd + mpb-planner-ompl, in OMPL's own Benchmark, as
+# a bare solve() in process; interleaved blocks, the same seeds on every
+# side, the planning processes on the last CPU (bench/fidelity.sh).
+fidelity_run() { # scene runs blocks key-prefix
+    log=$WORK/fidelity-$1.log
+    set -- --in-netns --bin "$SNAP" --work "$WORK/fidelity-$1" --scene "$1" \
+        --runs "$2" --blocks "$3" --key-prefix "$4"
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
-    sh "$src/bench/fidelity.sh" "$@" >"$WORK/fidelity.log" 2>&1
-    grep -v '^RESULT ' "$WORK/fidelity.log"; collect "$WORK/fidelity.log"
+    sh "$src/bench/fidelity.sh" "$@" >"$log" 2>&1
+    grep -v '^RESULT ' "$log"; collect "$log"
+}
+if [ -x "$SNAP/mpb-planner-ompl" ] && [ -x "$SNAP/mpb-bench-fidelity" ]; then
+    fidelity_run narrow_passage "$FIDNP_N" "$FIDNP_BLOCKS" fidelity_np_
+    fidelity_run kitchen "$FID_N" "$FID_BLOCKS" fidelity_
 else
-    echo "== 4. timing fidelity: skipped (needs mpb-planner-ompl, mpb-bench-fidelity, the kitchen)"
+    echo "== 4. timing fidelity: skipped (needs mpb-planner-ompl, mpb-bench-fidelity)"
 fi
 
 # ---- 5. store and reports at scale ------------------------------------------
@@ -395,8 +405,9 @@ pw=$(get verify_pr2_0.01 wps) ps=$(get verify_pr2_0.1 wps)
 # A fidelity comparison: medians, ratio, its intervals; and its verdict.
 fidelity() { # key
     echo "$(calc "$(get "$1" median_a_s) * 1000" 3) / $(calc "$(get "$1" median_b_s) * 1000" 3) ms: \
-ratio $(get "$1" ratio), 95 % CI $(get "$1" ci_lo)-$(get "$1" ci_hi) (runs resampled within \
-each side; seeds resampled, both sides together: $(get "$1" paired_lo)-$(get "$1" paired_hi)); \
+ratio $(get "$1" ratio), 95 % CI $(get "$1" paired_lo)-$(get "$1" paired_hi) (seeds resampled, \
+both sides' runs of a seed together; each side's runs resampled alone: \
+$(get "$1" ci_lo)-$(get "$1" ci_hi); whole blocks: $(get "$1" blockboot_lo)-$(get "$1" blockboot_hi)); \
 the blocks' own ratios: median $(get "$1" block_ratio_median), \
 $(get "$1" block_ratio_min)-$(get "$1" block_ratio_max); the same seed's run on both sides: \
 time ratio median $(get "$1" seed_ratio_median), the same graph $(get "$1" seeds_same_graph) \
@@ -432,8 +443,11 @@ cat <<EOF
 | 4 | verification + metrics, PR2 right arm in the $PR2_WHERE, waypoints 0.1 rad apart ($(get verify_pr2_0.1 checks_per_waypoint) checks each) | $ps waypoints/s | | >= 50,000 | $(verdict "$ps" ">=" 50000) |
 | 4 | verification + metrics, planar arm, waypoints at the resolution ($(get verify_0.01 checks_per_waypoint) checks each) | $vw waypoints/s | | | |
 | 4 | verification + metrics, planar arm, waypoints 0.1 rad apart ($(get verify_0.1 checks_per_waypoint) checks each) | $vs waypoints/s | | | |
-| 4 | timing fidelity, RRTConnect, PR2 kitchen, $(get fidelity_setup blocks) interleaved blocks of $(get fidelity_setup block_runs) runs on each side, the same seeds, planning on CPU $(get fidelity_setup pin): median solve time through mpbench / in OMPL's Benchmark (solved runs) | $(fidelity fidelity_ompl) | | within 3 % (95 % CI inside 0.97-1.03) | $(fid_verdict fidelity_ompl) |
-| 4 | ... the same against a bare solve() in process (no Benchmark threads; timed as mpb-planner-ompl times it) | $(fidelity fidelity_plain) | | | $(fid_verdict fidelity_plain) |
+| 4 | timing fidelity, RRTConnect, PR2 in the paper's narrow passage (its first query), $(get fidelity_np_setup blocks) interleaved blocks of $(get fidelity_np_setup block_runs) runs on each side, the same seeds, planning on CPU $(get fidelity_np_setup pin): median solve time through mpbench / in OMPL's Benchmark (solved runs) | $(fidelity fidelity_np_ompl) | | within 3 % (95 % CI inside 0.97-1.03) | $(fid_verdict fidelity_np_ompl) |
+| 4 | ... the same against a bare solve() in process (no Benchmark threads; timed as mpb-planner-ompl times it) | $(fidelity fidelity_np_plain) | | within 3 % | $(fid_verdict fidelity_np_plain) |
+| 4 | ... runs solved: through mpbench (verified valid) / in OMPL's Benchmark / bare solve() | $(get fidelity_np_side_mpbench solved) ($(get fidelity_np_side_mpbench verified)) / $(get fidelity_np_side_ompl solved) / $(get fidelity_np_side_plain solved) of $(get fidelity_np_side_mpbench runs) | | same within noise | $(get fidelity_np_ompl success) |
+| 4 | timing fidelity, the same in the paper's kitchen (its first query: a run is 1-4 ms, so Benchmark's fixed cost per run weighs more), $(get fidelity_setup blocks) blocks of $(get fidelity_setup block_runs) runs: through mpbench / in OMPL's Benchmark | $(fidelity fidelity_ompl) | | within 3 % | $(fid_verdict fidelity_ompl) |
+| 4 | ... the same against a bare solve() in process | $(fidelity fidelity_plain) | | within 3 % | $(fid_verdict fidelity_plain) |
 | 4 | ... runs solved: through mpbench (verified valid) / in OMPL's Benchmark / bare solve() | $(get fidelity_side_mpbench solved) ($(get fidelity_side_mpbench verified)) / $(get fidelity_side_ompl solved) / $(get fidelity_side_plain solved) of $(get fidelity_side_mpbench runs) | | same within noise | $(get fidelity_ompl success) |
 | 5 | store, one transaction per run as mpbenchd commits (no network) | $(calc "$st") us per run | $(ratio "$st") | | |
 | 5 | store, $(get mkdb batch) runs per transaction, 15 metric rows per run | $(calc "$(get mkdb finish_us_per_run)") us per run | | | |
