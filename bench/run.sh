@@ -20,7 +20,10 @@
 #      mpbenchd and mpb-planner-ompl vs OMPL's own Benchmark and a bare
 #      solve() (bench/fidelity.sh),
 #   5. the store's write cost per run, and `mpb report` over a database of
-#      a million runs (mpb-bench-mkdb).
+#      a million runs (mpb-bench-mkdb),
+#   6. when OMPL_STATS names OMPL's ompl_benchmark_statistics.py (not part
+#      of mpbench): an OMPL log of 50,000 runs into a Planner Arena
+#      database, `mpb import -p` against that script (bench/import.sh).
 # Prints a table and writes it, with the machine and the raw results, to
 # bench/results/<date>.md. Every step has a count and a time limit.
 #
@@ -54,18 +57,18 @@ while [ $# -gt 0 ]; do
     --fidelity-runs) FID_N=$2; shift ;;
     --fidelity-np-runs) FIDNP_N=$2; shift ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,35p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,38p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
 done
 
 if [ "$QUICK" -eq 1 ]; then
-    FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000
+    FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000 IMPORT_N=5000
     : "${FID_N:=200}" "${FID_BLOCKS:=4}" "${FIDNP_N:=60}" "${FIDNP_BLOCKS:=3}"
     : "${TPUT_N:=10000}" "${REPORT_N:=100000}"
 else
-    FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000
+    FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000 IMPORT_N=50000
     : "${FID_N:=5000}" "${FID_BLOCKS:=20}" "${FIDNP_N:=2000}" "${FIDNP_BLOCKS:=20}"
     : "${TPUT_N:=100000}" "${REPORT_N:=1000000}"
 fi
@@ -376,6 +379,18 @@ else
 fi
 db_mb=$(du -m "$WORK/report.db" | cut -f1)
 
+# ---- 6. import into a Planner Arena database ----------------------------------
+# Against OMPL's ompl_benchmark_statistics.py, which is not part of mpbench:
+# measured when OMPL_STATS names it (bench/import.sh).
+if [ -n "${OMPL_STATS:-}" ] && [ -f "$OMPL_STATS" ]; then
+    echo "== 6. import: an OMPL log of $IMPORT_N runs into a Planner Arena database"
+    MPB_BUILD=$BUILD timeout -k 5 1200 sh "$src/bench/import.sh" "$IMPORT_N" \
+        >"$WORK/import.log" 2>&1
+    grep -v '^RESULT ' "$WORK/import.log"; collect "$WORK/import.log"
+else
+    echo "== 6. import: skipped (OMPL_STATS does not name OMPL's ompl_benchmark_statistics.py)"
+fi
+
 # ---- the table ----------------------------------------------------------------
 LOAD_END=$(load)
 ratio() { calc "$1 / $FLOOR" 1; }
@@ -452,7 +467,7 @@ cat <<EOF
 | 5 | store, one transaction per run as mpbenchd commits (no network) | $(calc "$st") us per run | $(ratio "$st") | | |
 | 5 | store, $(get mkdb batch) runs per transaction, 15 metric rows per run | $(calc "$(get mkdb finish_us_per_run)") us per run | | | |
 | 5 | \`mpb report\` over $(get report runs) runs ($db_mb MB database) | $rep s | | < 2 s | $(verdict "$rep" "<=" 2) |
-| 6 | import vs ompl_benchmark_statistics.py (issue item 6) | not yet measured | | >= 4x faster | not measured |
+| 6 | import: an OMPL log of $(get import runs) runs (written by OMPL's Benchmark) into a Planner Arena database, \`mpb import -p\` / OMPL's \`ompl_benchmark_statistics.py\` (bench/import.sh; OMPL_STATS names the script) | $(calc "$(get import direct_s)" 3) / $(calc "$(get import ompl_s)" 3) s: $(get import paired_ratio)x faster (median of the pairs' ratios); the same rows: $(get import same_rows) | | >= 4x faster, the same rows | $( [ "$(get import same_rows)" = yes ] && verdict "$(get import paired_ratio)" ">=" 4 || verdict nan) |
 EOF
 }
 
