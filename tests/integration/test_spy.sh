@@ -166,5 +166,8 @@ check "... and the database's successes" \
 check "... and no rejected messages" \
     grep -q '^probe: MPB_STATUS rejected_messages=0$' "$last"
 check "the probe never failed" sh -c "! grep -q '^probe: failed' '$work/spy.log'"
+echo "# snapshots taken again (lcm-spy changing its table meanwhile):" \
+    "$(grep -c '^probe: retry' "$work/spy.log")"
+grep -E '^probe: (retry|failed)' "$work/spy.log" | sort | uniq -c | head -5 | sed 's/^/# /'
 
 mpb_finish

@@ -13,6 +13,11 @@
  * line, class=none), and MPB_STATUS whenever it changes. With
  * MPB_SPY_PROBE_VIEW=CHANNEL it also opens lcm-spy's viewer of that channel
  * (as a double-click would), beside the main window, for the screenshot.
+ *
+ * lcm-spy adds channels to its map, list and table from its LCM thread, so
+ * a snapshot taken meanwhile on the Swing thread can throw (a row the
+ * sorter does not know yet). Such a snapshot is taken again 250 ms later
+ * ("probe: retry: ..."); "probe: failed: ..." only when 20 in a row fail.
  */
 package mpbprobe;
 
@@ -36,6 +41,8 @@ public class MpbSpyProbe implements lcm.spy.SpyPlugin
     private final Map<String, String> printed = new HashMap<>();
     private final String view = System.getenv("MPB_SPY_PROBE_VIEW");
     private boolean viewOpen = false;
+    private int failedInARow = 0;
+    private static final int FAILURES_TOLERATED = 20;
 
     public MpbSpyProbe()
     {
@@ -139,8 +146,11 @@ public class MpbSpyProbe implements lcm.spy.SpyPlugin
                 if (channel.equals(view) && !viewOpen)
                     openViewer(spy, cd);
             }
+            failedInARow = 0;
         } catch (Exception e) {
-            System.out.println("probe: failed: " + e);
+            failedInARow++;
+            System.out.println((failedInARow < FAILURES_TOLERATED ? "probe: retry: "
+                                                                   : "probe: failed: ") + e);
             System.out.flush();
         }
     }
