@@ -1,6 +1,6 @@
 #!/bin/sh
 # bench/fidelity.sh - timing fidelity: does mpbench make a planner look
-# slower or faster than it is? (docs/performance.md, 4b)
+# slower or faster than it is? (docs/performance.md, 4b and 4c)
 #
 #   bench/fidelity.sh [--scene kitchen|narrow_passage] [--runs N]
 #                     [--blocks K] [--pin CPU|none] [--boot B] [--keep]
@@ -8,7 +8,7 @@
 # RRTConnect on the first query of one of the paper's environments (the
 # PR2's right arm; start and goal as in scenes/experiments/paper.yaml, the
 # goal the configuration the suite's IK gave): the kitchen (default; about
-# 2 ms a run) or the narrow passage (about 40 ms a run). N runs on each of
+# 2 ms a run) or the narrow passage (about 30 ms a run). N runs on each of
 # three sides (default 5000), in K interleaved blocks (default 20) of N/K
 # runs:
 #   mpbench  through mpbenchd and mpb-planner-ompl, the "raw" stage's time;
