@@ -561,7 +561,9 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
             progress.poll(now);
         return interrupted || now >= deadline;
     });
-    // Timed as ompl::tools::Benchmark times a run: solve() alone.
+    // solve() alone, the span ompl::tools::Benchmark times; Benchmark also
+    // counts the start and stop of a thread that checks its limit, which
+    // the inline check above does without (docs/performance.md, 4b).
     ob::PlannerStatus status = planner->solve(ptc);
     const double t_raw = mpb_monotonic_s();
     if (log_progress) {
