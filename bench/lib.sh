@@ -7,10 +7,12 @@
 #   bench_netns_check NAME  only the check (a namespace already set up)
 #   PIDS, cleanup         background processes to stop: cleanup kills and
 #                         waits for every pid in PIDS, then empties it
-#   experiment NAME RUNS RUNS_PER_HOST FILE
+#   experiment NAME RUNS RUNS_PER_HOST FILE [QUEUE_AT_PLANNER]
 #                         writes the planar throughput experiment: the
 #                         3-joint arm among the pillars, query small_move
-#                         (a free straight line), the null planner
+#                         (a free straight line), the null planner;
+#                         requests waiting at a busy planner (default 1,
+#                         the daemon's)
 
 bench_netns() { # name
     ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 1
@@ -31,7 +33,7 @@ cleanup() {
     PIDS=""
 }
 
-experiment() { # name runs runs_per_host file
+experiment() { # name runs runs_per_host file [queue_at_planner]
     cat >"$4" <<EOF
 experiment:
   name: $1
@@ -39,6 +41,7 @@ experiment:
   time_limit: 1.0
   seed: 1
   runs_per_host: $3
+  queue_at_planner: ${5:-1}
 robot:
   format: planar
   file: $src/scenes/planar/arm3.robot

@@ -178,9 +178,11 @@ FLOOR=$(get floor median_us)
 # sent to result committed (its log's last lines); the floor has no
 # listener either. Then again with mpb-bench-watch listening, for the
 # parts of a run (a listener is one more process that every message
-# wakes: on 2 cores it slows what it watches by a fifth).
+# wakes: on 2 cores it slows what it watches by a fifth). No request waits
+# at the planner (queue_at_planner 0): each run's request goes out after
+# the last run's commit, so its latency is the whole round trip.
 echo "== 2. per-run latency, mpbenchd + 1 null planner ($((LAT_N + LAT_SKIP)) runs)"
-experiment bench-latency $((LAT_N + LAT_SKIP)) 1 "$WORK/latency.yaml"
+experiment bench-latency $((LAT_N + LAT_SKIP)) 1 "$WORK/latency.yaml" 0
 planners 1 "$WORK/latency-own-null"
 timeout -k 5 600 "$SNAP/mpbenchd" -d "$WORK/latency-own.db" "$WORK/latency.yaml" \
     >"$WORK/latency-own-daemon.log" 2>&1 || echo "mpbenchd failed: see $WORK/latency-own-daemon.log"

@@ -3,7 +3,8 @@
  *   main.c       options, signals, the poll loop
  *   experiment.c reading the experiment file
  *   planners.c   the planner processes seen on MPB_ANNOUNCE
- *   scheduler.c  which run goes to which planner; resends and deadlines
+ *   scheduler.c  which run goes to which planner; resends and deadlines;
+ *                requests waiting at a busy planner
  *   results.c    checking, verifying, measuring and storing results
  *   status.c     the MPB_STATUS message
  *   acks.c       acknowledging stored results: on requests, or alone
@@ -41,7 +42,10 @@ typedef struct mpbd_planner {
     char  **algorithms;
     int     num_algorithms;
     int     capacity;
+    int     capacity_seen;   /* it announced a capacity above 0 once */
+    int     closing;         /* then 0, or declined a run: takes no more */
     int     active;          /* runs we have in flight on it */
+    int     queued;          /* requests waiting at it behind those */
     int     runs_done;
     double  heartbeat_s;
     double  last_seen;       /* monotonic s */
@@ -58,11 +62,16 @@ typedef struct mpbd_run {
     char    uid[MPB_RUN_ID_SIZE];   /* current attempt, "" if none yet */
 } mpbd_run;
 
-/* A request out on the network, waiting for its result. */
+/* A request out on the network, waiting for its result. A queued one was
+ * sent to a busy planner, to start as soon as that planner's run in flight
+ * ends; until then it is not re-sent, has no deadline, and its times (wall
+ * time, latency, deadline) start only when it does. */
 typedef struct mpbd_flight {
     mpbd_run run;
     int      planner;        /* index into planners */
-    double   sent_at;        /* monotonic s, first send */
+    int      queued;
+    double   sent_at;        /* monotonic s: first send, or when it left
+                                its planner's queue */
     double   last_send;
     int      sends;
     int      acked;          /* planner said REQUEST_RECEIVED */
@@ -126,6 +135,13 @@ typedef struct mpbd {
     int              num_unrecorded, cap_unrecorded;
 
     int              next_config;    /* round-robin start for dispatch */
+    /* --replay: the log's clock, which starts a queued run's times
+     * (mpbd_clock()); live, the monotonic clock. */
+    int              replaying;
+    double           replay_now;
+    /* Told of each run taken back (replay.c keeps its own account). */
+    void           (*on_take_back)(void *ud, const mpbd_run *run);
+    void            *take_back_ud;
 
     /* Results stored in the open transaction, acknowledged only once it
      * commits: an ack is a promise that the result is on disk. */
@@ -165,8 +181,22 @@ int  mpbd_scheduler_record_sent(mpbd *d);
 void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost planners */
 /* Queue a run again for a new attempt. */
 int  mpbd_requeue(mpbd *d, const mpbd_run *run);
+/* A request its planner never started (declined, or left waiting at a
+ * planner that closed or went away): pending again, as if never sent. */
+int  mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why);
+/* A planner that takes no more runs: take back the requests waiting at it,
+ * but for the runs it says it is working on (active_runs). */
+void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
+                          int num_active);
+/* A planner says it is working on these runs: any of them queued starts. */
+void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
+                             int num_active);
 mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid);
+/* Remove an ended flight; the next request waiting at its planner, if
+ * any, starts now. */
 void mpbd_flight_remove(mpbd *d, mpbd_flight *f);
+/* Now, by the clock flights are timed with: monotonic, or the log's. */
+double mpbd_clock(const mpbd *d);
 int  mpbd_scheduler_done(const mpbd *d);
 void mpbd_scheduler_free(mpbd *d);
 void mpbd_scheduler_subscribe(mpbd *d);

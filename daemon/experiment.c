@@ -263,7 +263,8 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
 static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     static const char *const keys[] = {"name", "runs", "time_limit", "seed",
-                                       "retries", "runs_per_host", NULL};
+                                       "retries", "runs_per_host",
+                                       "queue_at_planner", NULL};
     yaml_node_t *m = need(L, root, "experiment", YAML_MAPPING_NODE,
                           "a mapping of name, runs, time_limit, seed");
     yaml_node_t *n;
@@ -298,6 +299,17 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
             e->retries = 0;
         else if (parse_positive_int(L, n, "retries", &e->retries) != 0)
             return -1;
+    }
+    e->queue_at_planner = 1;
+    if ((n = get(L, m, "queue_at_planner")) != NULL) {
+        if (scalar(n) && strcmp(scalar(n), "0") == 0)
+            e->queue_at_planner = 0;
+        else if (parse_positive_int(L, n, "queue_at_planner",
+                                    &e->queue_at_planner) != 0)
+            return -1;
+        else if (e->queue_at_planner > MPBD_QUEUE_AT_PLANNER_MAX)
+            return fail_at(L, n, "queue_at_planner must be 0 to %d",
+                           MPBD_QUEUE_AT_PLANNER_MAX);
     }
     return 0;
 }

@@ -12,6 +12,10 @@
 #include "mpbench/mpbench.h"
 #include "mpb_param_t.h"
 
+/* Most requests that may wait at one planner: the C planner kit's LCM
+ * queue holds 8, and the request in flight may be re-sent meanwhile. */
+#define MPBD_QUEUE_AT_PLANNER_MAX 4
+
 typedef struct mpbd_config {
     char       *name;        /* "ompl/RRTConnect", unique in the experiment */
     char       *planner;     /* planner family, as planners announce it */
@@ -58,6 +62,7 @@ typedef struct mpbd_experiment {
     uint64_t seed;
     int     retries;         /* extra attempts for a run whose planner crashed */
     int     runs_per_host;   /* runs at once on one host (timings skew otherwise) */
+    int     queue_at_planner;/* requests waiting at each busy planner */
 
     char   *robot_file;      /* where the robot was read from, or NULL */
     char  **group;           /* robot.joints as written, or NULL */

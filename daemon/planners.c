@@ -64,9 +64,26 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
         p->gone = 0;
         mpbd_log("planner %s is back", p->id);
     }
-    p->capacity = m->capacity > 0 ? m->capacity : 1;
+    /* Capacity 0 after more: closing (max runs reached). From the start,
+     * it is read as 1: a planner that never set it. */
+    if (m->capacity > 0) {
+        p->capacity = m->capacity;
+        p->capacity_seen = 1;
+        p->closing = 0;
+    } else if (p->capacity_seen) {
+        if (!p->closing)
+            mpbd_log("planner %s is closing: it takes no more runs", p->id);
+        p->closing = 1;
+    } else {
+        p->capacity = 1;
+    }
     p->heartbeat_s = m->heartbeat_ms > 0 ? m->heartbeat_ms / 1000.0 : 0.5;
     p->last_seen = now;
+    int index = (int)(p - d->planners);
+    int num_active = m->num_active > 0 ? m->num_active : 0;
+    mpbd_planner_working_on(d, index, m->active_runs, num_active);
+    if (p->closing)
+        mpbd_planner_closing(d, index, m->active_runs, num_active);
 }
 
 static void on_announce_raw(const lcm_recv_buf_t *rbuf, const char *channel,

@@ -146,15 +146,20 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
     if (run->done || strcmp(run->run.uid, rq.run_id) == 0)
         goto done; /* a resend */
     if (run->run.uid[0] != '\0') {
-        /* A new attempt: the live daemon gave up on the previous one. */
+        /* A new attempt: the live daemon gave up on the previous one, or
+         * took it back if it never started (taken_back() forgets it). */
         mpbd_flight *old = mpbd_flight_find(d, run->run.uid);
-        mpb_store_run_retry(d->store, run->run.id, run->run.uid,
-                            "no result in the log before a new attempt");
-        if (old != NULL)
-            mpbd_flight_remove(d, old);
-    } else {
-        r->open[r->num_open++] = run;
+        if (old != NULL && old->queued) {
+            mpbd_take_back(d, old, "a new attempt before it started");
+        } else {
+            mpb_store_run_retry(d->store, run->run.id, run->run.uid,
+                                "no result in the log before a new attempt");
+            if (old != NULL)
+                mpbd_flight_remove(d, old);
+        }
     }
+    if (run->run.uid[0] == '\0')
+        r->open[r->num_open++] = run;
     memcpy(run->run.uid, rq.run_id, MPB_RUN_ID_SIZE);
     if (mpb_store_run_sent(d->store, run->run.id, run->run.uid,
                            rq.planner_id) != MPB_OK) {
@@ -166,12 +171,36 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
     if (f == NULL)
         goto done;
     /* last_send holds the request's time on the log's clock (no resends
-     * happen in a replay), so that wall times are the logged ones. */
-    *f = (mpbd_flight){.run = run->run, .planner = p, .last_send = r->log_now,
-                       .sends = 1, .acked = 1, .deadline = INFINITY};
-    d->planners[p].active++;
+     * happen in a replay), so that wall times are the logged ones. A
+     * request to a busy planner waits in its queue, as it did live. */
+    mpbd_planner *pl = &d->planners[p];
+    int queued = pl->active >= pl->capacity;
+    *f = (mpbd_flight){.run = run->run, .planner = p, .queued = queued,
+                       .last_send = r->log_now, .sends = 1, .acked = 1,
+                       .deadline = INFINITY};
+    if (queued)
+        pl->queued++;
+    else
+        pl->active++;
 done:
     mpb_plan_request_t_decode_cleanup(&rq);
+}
+
+/* The live handlers took a run back (its planner declined it, or closed
+ * before starting it): it is no longer in flight, and its next request is
+ * a new attempt. */
+static void taken_back(void *ud, const mpbd_run *taken)
+{
+    replay *r = ud;
+    for (int i = 0; i < r->num_open; i++) {
+        replay_run *run = r->open[i];
+        if (strcmp(run->run.uid, taken->uid) == 0) {
+            run->run.uid[0] = '\0';
+            run->run.attempts--;
+            r->open[i] = r->open[--r->num_open];
+            return;
+        }
+    }
 }
 
 /* Hand queued in-process messages to their handlers. */
@@ -183,7 +212,8 @@ static void drain(mpbd *d)
             break;
 }
 
-/* A logged announcement or result: through the live handlers. */
+/* A logged announcement, result or planner's acknowledgement: through the
+ * live handlers. */
 static void on_message(replay *r, const lcm_eventlog_event_t *ev, int result)
 {
     mpbd *d = r->d;
@@ -295,8 +325,9 @@ static int read_log(replay *r, lcm_eventlog_t *log, long size)
         }
         good_end = end;
         r->events++;
-        r->log_now = (double)ev->timestamp * 1e-6;
-        if (strcmp(ev->channel, MPB_CHANNEL_ANNOUNCE) == 0)
+        r->log_now = d->replay_now = (double)ev->timestamp * 1e-6;
+        if (strcmp(ev->channel, MPB_CHANNEL_ANNOUNCE) == 0 ||
+            strcmp(ev->channel, MPB_CHANNEL_ACK) == 0)
             on_message(r, ev, 0);
         else if (strcmp(ev->channel, MPB_CHANNEL_RESULT) == 0)
             on_message(r, ev, 1);
@@ -345,8 +376,12 @@ int mpbd_replay(mpbd *d, const char *log_path)
         fprintf(stderr, "mpbenchd: cannot set up the replay\n");
         goto out;
     }
+    d->replaying = 1;
+    d->on_take_back = taken_back;
+    d->take_back_ud = &r;
     mpbd_planners_subscribe(d);
     mpbd_results_subscribe(d);
+    mpbd_scheduler_subscribe(d);
 
     int status = read_log(&r, log, (long)st.st_size);
     if (status < 0) {

@@ -2,7 +2,17 @@
  * scheduler.c - which run goes to which planner, and what happens to a run
  * on the network: resent until the planner acknowledges it, recorded as
  * crashed if its planner goes silent or its deadline passes.
+ *
+ * A busy planner also holds the next request (experiment.queue_at_planner,
+ * default 1), so that it starts its next run the moment it ends the last
+ * instead of idling while the daemon verifies and stores that one. Such a
+ * request is queued: it starts, with its times and deadline, when the run
+ * before it on that planner ends, or when the planner announces it is
+ * working on it. One its planner never started (declined by a closing
+ * planner, or left at one that closed or went away) is taken back: pending
+ * again, no attempt and no crash counted.
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -155,9 +165,11 @@ static mpbd_flight *add_flight(mpbd *d)
     return &d->flights[d->num_flights++];
 }
 
-/* Send the next run of config c to planner p; 0 if there was none. */
-static int send_next(mpbd *d, int c, int p, double now)
+/* Send the next run of config c to planner p (to wait in its queue if
+ * queued); 0 if there was none. */
+static int send_next(mpbd *d, int c, int p, int queued)
 {
+    double now;
     mpbd_run run;
     mpbd_flight *f;
     if (d->pending_head[c] >= d->pending_len[c])
@@ -189,10 +201,14 @@ static int send_next(mpbd *d, int c, int p, double now)
     /* The clock now, not the loop's wake-up: the results handled since
      * then are not this run's time (its wall_time and latency). */
     now = mpb_monotonic_s();
-    *f = (mpbd_flight){.run = run, .planner = p, .sent_at = now,
-                       .last_send = now, .sends = 1,
-                       .deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S};
-    d->planners[p].active++;
+    *f = (mpbd_flight){.run = run, .planner = p, .queued = queued,
+                       .sent_at = now, .last_send = now, .sends = 1,
+                       .deadline = queued ? INFINITY
+                           : now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S};
+    if (queued)
+        d->planners[p].queued++;
+    else
+        d->planners[p].active++;
     if (publish_request(d, f) != MPB_OK)
         mpbd_log("could not publish run %s (will resend)", run.uid);
     return 1;
@@ -244,14 +260,24 @@ int mpbd_scheduler_dispatch(mpbd *d, double now)
         return 0;
     for (int p = 0; p < d->num_planners; p++) {
         mpbd_planner *pl = &d->planners[p];
-        while (!pl->gone && pl->active < pl->capacity &&
-               host_active(d, pl->host) < d->exp->runs_per_host) {
-            int got = 0;
+        while (!pl->gone && !pl->closing) {
+            /* A run to start, if the planner and its host have room; else
+             * one to wait behind the runs of a busy planner (an idle one
+             * held back by its host's limit gets none: it would start). */
+            int queued, got = 0;
+            if (pl->active < pl->capacity &&
+                host_active(d, pl->host) < d->exp->runs_per_host)
+                queued = 0;
+            else if (pl->active >= pl->capacity &&
+                     pl->queued < d->exp->queue_at_planner)
+                queued = 1;
+            else
+                break;
             for (int k = 0; k < nc && !got; k++) {
                 int c = (d->next_config + k) % nc;
                 if (mpbd_planner_offers(pl, d->exp->configs[c].planner,
                                         d->exp->configs[c].algorithm))
-                    got = send_next(d, c, p, now);
+                    got = send_next(d, c, p, queued);
                 if (got)
                     d->next_config = (c + 1) % nc;
             }
@@ -291,12 +317,93 @@ mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid)
     return NULL;
 }
 
-void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
+double mpbd_clock(const mpbd *d)
+{
+    return d->replaying ? d->replay_now : mpb_monotonic_s();
+}
+
+/* A queued request starts: its planner has begun it, or is about to. */
+static void start_queued(mpbd *d, mpbd_flight *f)
 {
     mpbd_planner *p = &d->planners[f->planner];
-    if (p->active > 0)
+    double now = mpbd_clock(d);
+    f->queued = 0;
+    p->queued--;
+    p->active++;
+    f->sent_at = f->last_send = now;
+    f->sends = 1;
+    f->deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S;
+}
+
+void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
+{
+    int planner = f->planner, was_queued = f->queued;
+    mpbd_planner *p = &d->planners[planner];
+    if (was_queued && p->queued > 0)
+        p->queued--;
+    else if (!was_queued && p->active > 0)
         p->active--;
     *f = d->flights[--d->num_flights];
+    if (was_queued || p->gone || p->closing || p->active >= p->capacity)
+        return;
+    /* The planner takes its next request, the oldest waiting, now. */
+    mpbd_flight *next = NULL;
+    for (int i = 0; i < d->num_flights; i++) {
+        mpbd_flight *g = &d->flights[i];
+        if (g->planner == planner && g->queued &&
+            (next == NULL || g->sent_at < next->sent_at))
+            next = g;
+    }
+    if (next != NULL)
+        start_queued(d, next);
+}
+
+int mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why)
+{
+    int rc = mpb_store_run_unsent(d->store, f->run.id, f->run.uid);
+    if (rc == MPB_OK) {
+        mpbd_run run = f->run;
+        run.attempts--;
+        if (d->on_take_back != NULL)
+            d->on_take_back(d->take_back_ud, &f->run);
+        rc = mpbd_requeue(d, &run);
+        if (d->verbose)
+            mpbd_log("run %lld %s: taken back from %s: %s",
+                     (long long)f->run.id, d->exp->configs[f->run.config].name,
+                     d->planners[f->planner].id, why);
+    } else {
+        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+    }
+    mpbd_flight_remove(d, f);
+    return rc;
+}
+
+void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
+                          int num_active)
+{
+    for (int i = 0; i < d->num_flights;) {
+        mpbd_flight *f = &d->flights[i];
+        int working = 0;
+        for (int k = 0; k < num_active && !working; k++)
+            working = strcmp(active_runs[k], f->run.uid) == 0;
+        if (f->planner == planner && f->queued && !working) {
+            mpbd_take_back(d, f, "its planner is closing");
+            continue; /* f now holds another flight */
+        }
+        i++;
+    }
+}
+
+void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
+                             int num_active)
+{
+    for (int k = 0; k < num_active; k++) {
+        mpbd_flight *f;
+        if (mpb_run_id_is_valid(active_runs[k]) &&
+            (f = mpbd_flight_find(d, active_runs[k])) != NULL &&
+            f->planner == planner && f->queued)
+            start_queued(d, f);
+    }
 }
 
 void mpbd_scheduler_tick(mpbd *d, double now)
@@ -306,10 +413,23 @@ void mpbd_scheduler_tick(mpbd *d, double now)
         mpbd_flight *f = &d->flights[i];
         const mpbd_planner *p = &d->planners[f->planner];
         if (p->gone) {
-            mpbd_record_crash(d, f, "planner went silent during the run");
+            if (f->queued)
+                mpbd_take_back(d, f, "its planner went silent before "
+                                     "starting it");
+            else
+                mpbd_record_crash(d, f, "planner went silent during the run");
             continue; /* f now holds another flight */
         }
-        if (now > f->deadline) {
+        if (f->queued) {
+            i++;
+            continue;
+        }
+        /* A planner that holds other requests may be planning one of them
+         * before it re-sends a lost result of this run. */
+        double deadline = f->deadline;
+        if (p->queued > 0 || p->active > 1)
+            deadline += d->exp->time_limit;
+        if (now > deadline) {
             mpbd_record_crash(d, f, "no result within the time limit and grace");
             continue;
         }
@@ -341,15 +461,25 @@ void mpbd_scheduler_free(mpbd *d)
     free(d->owed);
 }
 
-/* A planner acknowledged a request: stop re-sending it. */
+/* A planner acknowledged a request: stop re-sending it. Or it declined
+ * it, closing: it takes no more runs, and this one goes to another. */
 static void on_ack(mpbd *d, const mpb_run_ack_t *m)
 {
     mpbd_flight *f;
-    if (m->kind != MPB_RUN_ACK_T_REQUEST_RECEIVED || !mpb_run_id_is_valid(m->run_id))
+    if (!mpb_run_id_is_valid(m->run_id) ||
+        (f = mpbd_flight_find(d, m->run_id)) == NULL ||
+        strcmp(d->planners[f->planner].id, m->sender_id) != 0)
         return;
-    if ((f = mpbd_flight_find(d, m->run_id)) != NULL &&
-        strcmp(d->planners[f->planner].id, m->sender_id) == 0)
+    if (m->kind == MPB_RUN_ACK_T_REQUEST_RECEIVED) {
         f->acked = 1;
+    } else if (m->kind == MPB_RUN_ACK_T_REQUEST_DECLINED) {
+        mpbd_planner *p = &d->planners[f->planner];
+        if (!p->closing)
+            mpbd_log("planner %s is closing: it declined run %lld", p->id,
+                     (long long)f->run.id);
+        p->closing = 1;
+        mpbd_take_back(d, f, "its planner declined it");
+    }
 }
 
 static void on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,

@@ -297,7 +297,7 @@ static void mpb__announce(mpb__server *s)
     mpb_publish_announce(s->lcm, s->auth, MPB_CHANNEL_ANNOUNCE, &a);
 }
 
-static void mpb__ack(mpb__server *s, const char *run_id);
+static void mpb__ack(mpb__server *s, const char *run_id, int kind);
 
 /*
  * The heartbeat thread: announce at once, then every heartbeat_ms; a change
@@ -327,7 +327,7 @@ static void *mpb__heartbeat_main(void *arg)
             memcpy(run, s->active, sizeof run);
             s->active_acked = 1;
             pthread_mutex_unlock(&s->mu);
-            mpb__ack(s, run);
+            mpb__ack(s, run, MPB_RUN_ACK_T_REQUEST_RECEIVED);
             pthread_mutex_lock(&s->mu);
         } else if (now >= announce_due) {
             s->announce_now = 0;    /* changes from here on: announce again */
@@ -373,14 +373,14 @@ static void mpb__set_active(mpb__server *s, const char *run_id, int closed)
 
 /* ---- messages ---------------------------------------------------------- */
 
-static void mpb__ack(mpb__server *s, const char *run_id)
+static void mpb__ack(mpb__server *s, const char *run_id, int kind)
 {
     mpb_run_ack_t a;
     memset(&a, 0, sizeof a);
     a.utime = mpb_utime_now();
     a.run_id = (char *)run_id;
     a.sender_id = s->id;
-    a.kind = MPB_RUN_ACK_T_REQUEST_RECEIVED;
+    a.kind = (int8_t)kind;
     mpb_publish_ack(s->lcm, s->auth, MPB_CHANNEL_ACK, &a);
 }
 
@@ -516,7 +516,7 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
     if (k != NULL) {
         /* Solved already: send the result now, and re-send it until it is
          * acknowledged (again, if it was acknowledged before). */
-        mpb__ack(s, msg->run_id);
+        mpb__ack(s, msg->run_id, MPB_RUN_ACK_T_REQUEST_RECEIVED);
         if (k->acked || k->sends_left <= 0) {
             k->acked = 0;
             k->sends_left = MPB__SENDS_MAX;
@@ -525,8 +525,12 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         return;
     }
     if (s->run_error != MPB_OK ||
-        (s->max_runs > 0 && s->solved >= s->max_runs))
-        return;                 /* closing: take no new runs */
+        (s->max_runs > 0 && s->solved >= s->max_runs)) {
+        /* Closing: take no new runs, and say so, so that the daemon gives
+         * this one to another planner instead of waiting for it. */
+        mpb__ack(s, msg->run_id, MPB_RUN_ACK_T_REQUEST_DECLINED);
+        return;
+    }
     /* No REQUEST_RECEIVED yet: the result acknowledges the request, unless
      * the solve lasts MPB__ACK_AFTER_S, when the heartbeat thread sends it. */
 

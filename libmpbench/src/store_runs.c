@@ -80,25 +80,43 @@ int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
                           (long long)run_id);
 }
 
-int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
-                        const char *why)
+/* A sent run back to pending by sql (?1 run id, ?2 its attempt's run id,
+ * ?3 why, if not NULL); MPB_ENOTFOUND if that is not its current attempt. */
+static int run_back_to_pending(mpb_store *s, const char *sql, int64_t run_id,
+                               const char *run_uid, const char *why,
+                               const char *what)
 {
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "UPDATE runs SET state = 'pending', run_uid = NULL, message = ?3,"
-        " crashes = crashes + 1 WHERE id = ?1 AND run_uid = ?2"
-        " AND state = 'sent'");
+    sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, run_id);
     sqlite3_bind_text(st, 2, run_uid, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 3, why, -1, SQLITE_STATIC);
+    if (why != NULL)
+        sqlite3_bind_text(st, 3, why, -1, SQLITE_STATIC);
     int rc = sqlite3_step(st);
     sqlite3_finalize(st);
     if (rc != SQLITE_DONE)
-        return mpb__store_db_fail(s, "retry run");
+        return mpb__store_db_fail(s, what);
     return sqlite3_changes(s->db) ? MPB_OK
         : mpb__store_fail(s, MPB_ENOTFOUND, "run %lld has no attempt %s in "
                           "flight", (long long)run_id, run_uid);
+}
+
+int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
+                        const char *why)
+{
+    return run_back_to_pending(s,
+        "UPDATE runs SET state = 'pending', run_uid = NULL, message = ?3,"
+        " crashes = crashes + 1 WHERE id = ?1 AND run_uid = ?2"
+        " AND state = 'sent'", run_id, run_uid, why, "retry run");
+}
+
+int mpb_store_run_unsent(mpb_store *s, int64_t run_id, const char *run_uid)
+{
+    return run_back_to_pending(s,
+        "UPDATE runs SET state = 'pending', run_uid = NULL,"
+        " attempts = attempts - 1 WHERE id = ?1 AND run_uid = ?2"
+        " AND state = 'sent'", run_id, run_uid, NULL, "take back run");
 }
 
 int mpb__metrics_pack(mpb_store *s, const mpb_named *m, int n,

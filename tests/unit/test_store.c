@@ -163,6 +163,29 @@ static void a_run_is_finished_once(void **state)
     assert_int_equal(rows[1].repetition, 1);
 }
 
+/* A request its planner never started is taken back: pending again, the
+ * attempt not counted, no crash; only for the run's current attempt. */
+static void a_request_never_started_is_taken_back(void **state)
+{
+    fixture *f = *state;
+    mpb_run_row rows[2] = {{0}};
+    const char *uid = "0123456789abcdef0123456789abcdef";
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 0, 5), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows), MPB_OK);
+    int64_t id = rows[1].id;
+
+    assert_int_equal(mpb_store_run_sent(f->s, id, uid, "p@h:1"), MPB_OK);
+    assert_int_equal(mpb_store_run_unsent(f->s, id, "ffffffffffffffffffffffffffffffff"),
+                     MPB_ENOTFOUND);
+    assert_int_equal(peek(f, "SELECT state = 'sent' AND attempts = 1 FROM runs"), 1);
+    assert_int_equal(mpb_store_run_unsent(f->s, id, uid), MPB_OK);
+    assert_int_equal(peek(f, "SELECT state = 'pending' AND run_uid IS NULL"
+                             " AND attempts = 0 AND crashes = 0 FROM runs"), 1);
+    /* Taken back once: the same attempt again is no attempt in flight. */
+    assert_int_equal(mpb_store_run_unsent(f->s, id, uid), MPB_ENOTFOUND);
+    assert_non_null(strstr(mpb_store_errmsg(f->s), uid));
+}
+
 static void a_failed_write_leaves_no_half_run(void **state)
 {
     fixture *f = *state;
@@ -268,6 +291,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(adding_twice_returns_the_same_row, setup, teardown),
         cmocka_unit_test_setup_teardown(queries_are_stored_exactly_and_readably, setup, teardown),
         cmocka_unit_test_setup_teardown(a_run_is_finished_once, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_request_never_started_is_taken_back, setup, teardown),
         cmocka_unit_test_setup_teardown(a_failed_write_leaves_no_half_run, setup, teardown),
         cmocka_unit_test_setup_teardown(resuming_finds_the_unfinished_experiment, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_state_index_is_dropped, setup, teardown),

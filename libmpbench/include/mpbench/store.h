@@ -134,6 +134,14 @@ int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
 int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
                         const char *why);
 
+/*
+ * Take back a request that its planner never started (it declined it, or
+ * went away while the request still waited in its queue): the run is
+ * pending again as if attempt run_uid had not been sent (attempts - 1, no
+ * crash counted). MPB_ENOTFOUND if run_uid is not the run's current attempt.
+ */
+int mpb_store_run_unsent(mpb_store *s, int64_t run_id, const char *run_uid);
+
 /* ---- results ------------------------------------------------------------- */
 
 typedef struct mpb_named {
