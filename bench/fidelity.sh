@@ -3,7 +3,8 @@
 # slower or faster than it is? (docs/performance.md, 4b and 4c)
 #
 #   bench/fidelity.sh [--scene kitchen|narrow_passage] [--runs N]
-#                     [--blocks K] [--pin CPU|none] [--boot B] [--keep]
+#                     [--blocks K] [--pin CPU|none] [--queue Q] [--boot B]
+#                     [--keep]
 #
 # RRTConnect on the first query of one of the paper's environments (the
 # PR2's right arm; start and goal as in scenes/experiments/paper.yaml, the
@@ -25,7 +26,9 @@
 #
 # The processes that plan (mpb-planner-ompl, mpb-bench-fidelity) run on one
 # CPU (--pin, default the last; taskset), mpbenchd on the others; --pin none
-# leaves placement to the scheduler.
+# leaves placement to the scheduler. --queue sets the experiment's
+# queue_at_planner (default 0, the daemon's: the planner waits for the
+# daemon between runs; 1: its next request waits for it, 4d).
 #
 # Then `mpb-bench-fidelity stats`: the ratio of the pooled medians of the
 # solved runs (mpbench / Benchmark, mpbench / bare), bootstrap 95 %
@@ -45,6 +48,7 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 RUNS=5000 BLOCKS=20 PIN="" BOOT=2000 KEEP=0 NETNS=0 BIN="" WORK="" SCENE=kitchen
+QUEUE=0
 KEYP=fidelity_
 while [ $# -gt 0 ]; do
     case $1 in
@@ -53,13 +57,14 @@ while [ $# -gt 0 ]; do
     --runs) RUNS=$2; shift ;;
     --blocks) BLOCKS=$2; shift ;;
     --pin) PIN=$2; shift ;;
+    --queue) QUEUE=$2; shift ;;
     --boot) BOOT=$2; shift ;;
     --keep) KEEP=1 ;;
     --in-netns) NETNS=1 ;;          # a namespace bench/run.sh set up
     --new-netns) NETNS=2 ;;         # this script's own, to set up
     --bin) BIN=$2; shift ;;
     --work) WORK=$2; shift ;;
-    -h|--help) sed -n '2,39p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,43p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/fidelity.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
@@ -67,8 +72,8 @@ done
 case $SCENE in kitchen|narrow_passage) ;; *)
     echo "bench/fidelity.sh: --scene kitchen or narrow_passage, not '$SCENE'" >&2; exit 2 ;;
 esac
-case $RUNS$BLOCKS$BOOT in *[!0-9]*)
-    echo "bench/fidelity.sh: --runs, --blocks and --boot want whole numbers" >&2; exit 2 ;;
+case $RUNS$BLOCKS$BOOT$QUEUE in *[!0-9]*)
+    echo "bench/fidelity.sh: --runs, --blocks, --queue and --boot want whole numbers" >&2; exit 2 ;;
 esac
 [ "$BLOCKS" -ge 1 ] && [ "$RUNS" -ge "$BLOCKS" ] || {
     echo "bench/fidelity.sh: wants 1 <= blocks <= runs" >&2; exit 2; }
@@ -92,7 +97,8 @@ if [ "$NETNS" -eq 0 ]; then
     cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/ompl/mpb-planner-ompl" "$fid" \
         "$WORK/bin/" || exit 1
     set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
-        --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP"
+        --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP" \
+        --queue "$QUEUE"
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     exec unshare -n sh "$0" "$@"
 fi
@@ -138,6 +144,7 @@ experiment:
   runs: $((PER + WARMUP))
   time_limit: $TIME_LIMIT
   seed: $((7000 + $1))
+  queue_at_planner: $QUEUE
 robot:
   format: urdf
   file: $URDF

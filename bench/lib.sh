@@ -11,7 +11,7 @@
 #                         writes the planar throughput experiment: the
 #                         3-joint arm among the pillars, query small_move
 #                         (a free straight line), the null planner;
-#                         requests waiting at a busy planner (default 1,
+#                         requests waiting at a busy planner (default 0,
 #                         the daemon's)
 
 bench_netns() { # name
@@ -41,7 +41,7 @@ experiment:
   time_limit: 1.0
   seed: 1
   runs_per_host: $3
-  queue_at_planner: ${5:-1}
+  queue_at_planner: ${5:-0}
 robot:
   format: planar
   file: $src/scenes/planar/arm3.robot

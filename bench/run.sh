@@ -179,8 +179,8 @@ FLOOR=$(get floor median_us)
 # listener either. Then again with mpb-bench-watch listening, for the
 # parts of a run (a listener is one more process that every message
 # wakes: on 2 cores it slows what it watches by a fifth). No request waits
-# at the planner (queue_at_planner 0): each run's request goes out after
-# the last run's commit, so its latency is the whole round trip.
+# at the planner (queue_at_planner 0, the default): each run's request goes
+# out after the last run's commit, so its latency is the whole round trip.
 echo "== 2. per-run latency, mpbenchd + 1 null planner ($((LAT_N + LAT_SKIP)) runs)"
 experiment bench-latency $((LAT_N + LAT_SKIP)) 1 "$WORK/latency.yaml" 0
 planners 1 "$WORK/latency-own-null"

@@ -300,7 +300,7 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
         else if (parse_positive_int(L, n, "retries", &e->retries) != 0)
             return -1;
     }
-    e->queue_at_planner = 1;
+    e->queue_at_planner = 0;
     if ((n = get(L, m, "queue_at_planner")) != NULL) {
         if (scalar(n) && strcmp(scalar(n), "0") == 0)
             e->queue_at_planner = 0;

@@ -1,9 +1,10 @@
 #!/bin/sh
-# A request waits at each busy planner (experiment.queue_at_planner, default
-# 1), so the planner starts its next run as it ends the last, not a round
-# trip and a commit later. lcm-logger records the traffic:
+# With experiment.queue_at_planner: 1, a request waits at each busy
+# planner, so the planner starts its next run as it ends the last, not a
+# round trip and a commit later. lcm-logger records the traffic:
 #   1. with the queue, each run's request is on the network before the
-#      previous run's result; with queue_at_planner: 0, never;
+#      previous run's result; without (the default), never; the replay
+#      of the log times each run from its start, as the live daemon did;
 #   2. a request a closing planner (--max-runs) will not take is declined
 #      and given to another planner: no crash, no extra attempt;
 #   3. a request left waiting at a planner that is killed is taken back
@@ -88,7 +89,7 @@ order() {
 
 # 1. 20 runs of 50 ms on one planner: with the queue, and without.
 mpb_spawn "$work/null.log" "$null"
-experiment queued 20 0.05
+experiment queued 20 0.05 "queue_at_planner: 1"
 record queued
 check "the experiment with a queue completes" eq $? 0
 set -- $(order queued)
@@ -98,7 +99,20 @@ DB=$work/queued.db
 check "every run succeeds, each in one attempt" \
     eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND attempts = 1")" 20
 
-experiment unqueued 20 0.05 "queue_at_planner: 0"
+# The replay counts a run's wall time from its start too: within a few ms
+# of the live one (from its request, it would be a whole run more).
+"$MPB_BUILD/daemon/mpbenchd" --replay "$work/queued.lcmlog" -d "$work/replayed.db" \
+    "$work/queued.yaml" >"$work/replay.log" 2>&1
+check "the replay of the queued experiment completes" eq $? 0
+DB=$work/replayed.db
+check "... every run solved in one attempt, as live" \
+    eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND attempts = 1")" 20
+check "... each run's wall time within 25 ms of the live one (at least 18)" \
+    ge "$(q "ATTACH '$work/queued.db' AS live;
+             SELECT count(*) FROM runs r JOIN live.runs l USING (run_uid)
+             WHERE abs(r.wall_time - l.wall_time) < 0.025")" 18
+
+experiment unqueued 20 0.05
 record unqueued
 check "the experiment without a queue completes" eq $? 0
 set -- $(order unqueued)
@@ -107,7 +121,7 @@ check "... for all 19 runs after the first" eq "${2:-0}" 19
 mpb_stop_all
 
 # 2. A planner that closes after 3 runs, and one that stays.
-experiment closing 30 0.01
+experiment closing 30 0.01 "queue_at_planner: 1"
 "$MPB_BUILD/daemon/mpbenchd" -d "$work/closing.db" "$work/closing.yaml" \
     >"$work/closing.log" 2>&1 &
 daemon=$!
@@ -130,7 +144,7 @@ check "the daemon says the planner is closing" \
 mpb_stop_all
 
 # 3. A planner killed during a run of 1 s, while a request waits at it.
-experiment killed 6 1.0
+experiment killed 6 1.0 "queue_at_planner: 1"
 "$MPB_BUILD/daemon/mpbenchd" -d "$work/killed.db" "$work/killed.yaml" \
     >"$work/killed.log" 2>&1 &
 daemon=$!
