@@ -226,9 +226,9 @@ rss_sampler() { # pid out
     done >"$2"
 }
 
-throughput() { # planners runs key
+throughput() { # planners runs key [queue_at_planner]
     np=$1 runs=$2 key=$3
-    experiment "bench-throughput-$np" "$runs" "$np" "$WORK/$key.yaml"
+    experiment "bench-throughput-$np" "$runs" "$np" "$WORK/$key.yaml" "${4:-0}"
     planners "$np" "$WORK/$key-null"
     limit=$((runs / 200 + 120))
     timeout -k 5 "$limit" "$SNAP/mpbenchd" -d "$WORK/$key.db" "$WORK/$key.yaml" \
@@ -284,6 +284,11 @@ echo "== 3. throughput, 3 null planners ($TPUT_N runs)"
 throughput 3 "$TPUT_N" tput3
 echo "== 3. throughput, 4 null planners ($TPUT_N runs)"
 throughput 4 "$TPUT_N" tput4
+# With the next request waiting at each planner (docs/performance.md, 4d).
+echo "== 3. throughput, 1 null planner, queue_at_planner 1 ($TPUT_N runs)"
+throughput 1 "$TPUT_N" tput1q 1
+echo "== 3. throughput, 3 null planners, queue_at_planner 1 ($TPUT_N runs)"
+throughput 3 "$TPUT_N" tput3q 1
 if [ "$MILLION" -eq 1 ]; then
     echo "== 3. throughput, 1 null planner (1000000 runs)"
     throughput 1 1000000 tputM
@@ -452,6 +457,7 @@ cat <<EOF
 | 3 | throughput, 2 null planners, $(get tput2 runs) runs | $t2 runs/s | $(calc "1e6 / $t2 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t2" ">=" 10000) |
 | 3 | throughput, 3 null planners, $(get tput3 runs) runs | $t3 runs/s | $(calc "1e6 / $t3 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t3" ">=" 10000) |
 | 3 | throughput, 4 null planners, $(get tput4 runs) runs | $t4 runs/s | $(calc "1e6 / $t4 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t4" ">=" 10000) |
+| 3 | throughput, 1 / 3 null planners with a request waiting at each (\`queue_at_planner: 1\`, 4d), $(get tput1q runs) runs each | $(get tput1q runs_per_s) / $(get tput3q runs_per_s) runs/s | $(calc "1e6 / $(get tput1q runs_per_s) / $FLOOR" 1) / $(calc "1e6 / $(get tput3q runs_per_s) / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$(get tput3q runs_per_s)" ">=" 10000) (3 planners) |
 | 3 | mpbenchd CPU time (user + system) per run, 1 / 2 / 3 / 4 planners | $(get tput1 daemon_cpu_us_per_run) / $(get tput2 daemon_cpu_us_per_run) / $(get tput3 daemon_cpu_us_per_run) / $(get tput4 daemon_cpu_us_per_run) us | $(ratio "$(get tput1 daemon_cpu_us_per_run)") / $(ratio "$(get tput2 daemon_cpu_us_per_run)") / $(ratio "$(get tput3 daemon_cpu_us_per_run)") / $(ratio "$(get tput4 daemon_cpu_us_per_run)") | | |
 | 3 | null planners' CPU time per run (all of them, planner kit included), 1 / 2 / 3 / 4 planners | $(get tput1 planners_cpu_us_per_run) / $(get tput2 planners_cpu_us_per_run) / $(get tput3 planners_cpu_us_per_run) / $(get tput4 planners_cpu_us_per_run) us | $(ratio "$(get tput1 planners_cpu_us_per_run)") / $(ratio "$(get tput2 planners_cpu_us_per_run)") / $(ratio "$(get tput3 planners_cpu_us_per_run)") / $(ratio "$(get tput4 planners_cpu_us_per_run)") | | |
 | 3 | mpbenchd RSS over $(get tput1 runs) runs (1 planner): at 10 % / 50 % / end / max | $(get tput1 rss_early_kb) / $(get tput1 rss_half_kb) / $(get tput1 rss_end_kb) / $(get tput1 rss_max_kb) kB | | flat | $(flat "$grow" "$(get tput1 runs)") |

@@ -3,9 +3,10 @@
  * on the network: resent until the planner acknowledges it, recorded as
  * crashed if its planner goes silent or its deadline passes.
  *
- * A busy planner also holds the next request (experiment.queue_at_planner,
- * default 1), so that it starts its next run the moment it ends the last
- * instead of idling while the daemon verifies and stores that one. Such a
+ * With experiment.queue_at_planner above 0 (default 0), a busy planner also
+ * holds its next request, so that it starts its next run the moment it
+ * ends the last instead of idling while the daemon verifies and stores
+ * that one (at the cost of that work overlapping its planning). Such a
  * request is queued: it starts, with its times and deadline, when the run
  * before it on that planner ends, or when the planner announces it is
  * working on it. One its planner never started (declined by a closing

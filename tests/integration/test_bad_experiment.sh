@@ -55,6 +55,11 @@ experiment: {name: x, runs: -3, time_limit: 1}
 EOT
 bad_case bad_runs.yaml "runs must be a positive integer"
 
+cat >"$work/bad_queue.yaml" <<EOT
+experiment: {name: x, time_limit: 1, queue_at_planner: 9}
+EOT
+bad_case bad_queue.yaml ":1:.*queue_at_planner must be 0 to 4"
+
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
 robot: {format: planar, file: nosuch.robot}
