@@ -73,6 +73,9 @@ typedef struct mpb_planner_def {
  * Serve requests until *stop becomes nonzero (set it from a signal handler)
  * or, when max_runs > 0, after that many runs have been solved and their
  * results acknowledged (or re-sent until the re-sends ran out, ~10 s).
+ * From the start of the last of them the planner announces capacity 0 and
+ * declines any further request (REQUEST_DECLINED), so that the daemon
+ * gives those runs to other planners, with no crash counted.
  * lcm_url NULL means MPB_DEFAULT_LCM_URL. def->name must be a word of
  * [A-Za-z0-9_.-]; the host part of the id is the host name with other
  * characters replaced by '-'. Returns MPB_OK; MPB_EINVAL for a bad def;
