@@ -120,28 +120,32 @@ check "without, no request goes out before the previous result" eq "${1:-1}" 0
 check "... for all 19 runs after the first" eq "${2:-0}" 19
 mpb_stop_all
 
-# 2. A planner that closes after 3 runs, and one that stays.
-experiment closing 30 0.01 "queue_at_planner: 1"
-"$MPB_BUILD/daemon/mpbenchd" -d "$work/closing.db" "$work/closing.yaml" \
-    >"$work/closing.log" 2>&1 &
-daemon=$!
-"$null" --max-runs 3 >"$work/closing_planner.log" 2>&1 &
-closer=$!
-mpb_wait $closer 30
-check "the planner with --max-runs 3 exits by itself" eq $? 0
-mpb_spawn "$work/stays.log" "$null"
-mpb_wait $daemon 60
-check "the experiment completes with the other planner" eq $? 0
-DB=$work/closing.db
-check "the closing planner did 3 runs" \
-    eq "$(q "SELECT count(*) FROM runs WHERE planner_id LIKE '%:$closer'")" 3
-check "all 30 succeed, none crashed" \
-    eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND crashes = 0")" 30
-check "... each in one attempt" \
-    eq "$(q "SELECT count(*) FROM runs WHERE attempts = 1")" 30
-check "the daemon says the planner is closing" \
-    grep -q "is closing" "$work/closing.log"
-mpb_stop_all
+# 2. A planner that closes after 3 runs, and one that stays: without the
+# queue (the next request may reach it before it says it is closing) and
+# with it (one waits at it while it plans its last run).
+for queue in 0 1; do
+    experiment closing$queue 30 0.01 "queue_at_planner: $queue"
+    "$MPB_BUILD/daemon/mpbenchd" -d "$work/closing$queue.db" \
+        "$work/closing$queue.yaml" >"$work/closing$queue.log" 2>&1 &
+    daemon=$!
+    "$null" --max-runs 3 >"$work/closing_planner$queue.log" 2>&1 &
+    closer=$!
+    mpb_wait $closer 30
+    check "queue $queue: the planner with --max-runs 3 exits by itself" eq $? 0
+    mpb_spawn "$work/stays$queue.log" "$null"
+    mpb_wait $daemon 60
+    check "queue $queue: the experiment completes with the other planner" eq $? 0
+    DB=$work/closing$queue.db
+    check "queue $queue: the closing planner did 3 runs" \
+        eq "$(q "SELECT count(*) FROM runs WHERE planner_id LIKE '%:$closer'")" 3
+    check "queue $queue: all 30 succeed, none crashed" \
+        eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND crashes = 0")" 30
+    check "queue $queue: ... each in one attempt" \
+        eq "$(q "SELECT count(*) FROM runs WHERE attempts = 1")" 30
+    check "queue $queue: the daemon says the planner is closing" \
+        grep -q "is closing" "$work/closing$queue.log"
+    mpb_stop_all
+done
 
 # 3. A planner killed during a run of 1 s, while a request waits at it.
 experiment killed 6 1.0 "queue_at_planner: 1"
