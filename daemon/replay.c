@@ -172,9 +172,11 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
         goto done;
     /* last_send holds the request's time on the log's clock (no resends
      * happen in a replay), so that wall times are the logged ones. A
-     * request to a busy planner waits in its queue, as it did live. */
+     * request to a busy planner waits in its queue, as it did live (with
+     * no queue live, such a request followed a run given up on: a crash
+     * this replay does not see). */
     mpbd_planner *pl = &d->planners[p];
-    int queued = pl->active >= pl->capacity;
+    int queued = d->exp->queue_at_planner > 0 && pl->active >= pl->capacity;
     *f = (mpbd_flight){.run = run->run, .planner = p, .queued = queued,
                        .last_send = r->log_now, .sends = 1, .acked = 1,
                        .deadline = INFINITY};
