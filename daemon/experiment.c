@@ -137,20 +137,32 @@ static int parse_double(loader *L, yaml_node_t *n, const char *what, double *out
     return 0;
 }
 
-static int parse_positive_int(loader *L, yaml_node_t *n, const char *what,
-                              int *out)
+/* A whole number in lo..hi: 0 if *out was set, else -1 with the error. */
+static int parse_int_in(loader *L, yaml_node_t *n, const char *what,
+                        long lo, long hi, int *out)
 {
     const char *s = scalar(n);
     char *end;
     long v;
-    if (s == NULL)
-        return fail_at(L, n, "%s must be a positive integer", what);
-    errno = 0;
-    v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno != 0 || v < 1 || v > 1000000000)
-        return fail_at(L, n, "%s must be a positive integer, not '%s'", what, s);
-    *out = (int)v;
-    return 0;
+    if (s != NULL) {
+        errno = 0;
+        v = strtol(s, &end, 10);
+        if (end != s && *end == '\0' && errno == 0 && v >= lo && v <= hi) {
+            *out = (int)v;
+            return 0;
+        }
+    }
+    if (lo == 1)
+        return fail_at(L, n, "%s must be a positive integer%s%s%s", what,
+                       s ? ", not '" : "", s ? s : "", s ? "'" : "");
+    return fail_at(L, n, "%s must be a whole number from %ld to %ld%s%s%s",
+                   what, lo, hi, s ? ", not '" : "", s ? s : "", s ? "'" : "");
+}
+
+static int parse_positive_int(loader *L, yaml_node_t *n, const char *what,
+                              int *out)
+{
+    return parse_int_in(L, n, what, 1, 1000000000, out);
 }
 
 /* A list of exactly n numbers. */
@@ -293,24 +305,14 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
     if ((n = get(L, m, "runs_per_host")) &&
         parse_positive_int(L, n, "runs_per_host", &e->runs_per_host))
         return -1;
-    if ((n = get(L, m, "retries")) != NULL) {
-        /* 0 is allowed here, unlike the other counts. */
-        if (scalar(n) && strcmp(scalar(n), "0") == 0)
-            e->retries = 0;
-        else if (parse_positive_int(L, n, "retries", &e->retries) != 0)
-            return -1;
-    }
-    e->queue_at_planner = 0;
-    if ((n = get(L, m, "queue_at_planner")) != NULL) {
-        if (scalar(n) && strcmp(scalar(n), "0") == 0)
-            e->queue_at_planner = 0;
-        else if (parse_positive_int(L, n, "queue_at_planner",
-                                    &e->queue_at_planner) != 0)
-            return -1;
-        else if (e->queue_at_planner > MPBD_QUEUE_AT_PLANNER_MAX)
-            return fail_at(L, n, "queue_at_planner must be 0 to %d",
-                           MPBD_QUEUE_AT_PLANNER_MAX);
-    }
+    /* 0 is allowed for these, unlike the other counts. */
+    if ((n = get(L, m, "retries")) &&
+        parse_int_in(L, n, "retries", 0, 1000000000, &e->retries))
+        return -1;
+    if ((n = get(L, m, "queue_at_planner")) &&
+        parse_int_in(L, n, "queue_at_planner", 0, MPBD_QUEUE_AT_PLANNER_MAX,
+                     &e->queue_at_planner))
+        return -1;
     return 0;
 }
 

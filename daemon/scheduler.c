@@ -345,7 +345,8 @@ void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
     else if (!was_queued && p->active > 0)
         p->active--;
     *f = d->flights[--d->num_flights];
-    if (was_queued || p->gone || p->closing || p->active >= p->capacity)
+    if (was_queued || p->queued == 0 || p->gone || p->closing ||
+        p->active >= p->capacity)
         return;
     /* The planner takes its next request, the oldest waiting, now. */
     mpbd_flight *next = NULL;
@@ -379,25 +380,32 @@ int mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why)
     return rc;
 }
 
+static int names_run(char *const *runs, int n, const char *uid)
+{
+    for (int k = 0; k < n; k++)
+        if (strcmp(runs[k], uid) == 0)
+            return 1;
+    return 0;
+}
+
 void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
                           int num_active)
 {
     for (int i = 0; i < d->num_flights;) {
         mpbd_flight *f = &d->flights[i];
-        int working = 0;
-        for (int k = 0; k < num_active && !working; k++)
-            working = strcmp(active_runs[k], f->run.uid) == 0;
-        if (f->planner == planner && f->queued && !working) {
-            mpbd_take_back(d, f, "its planner is closing");
-            continue; /* f now holds another flight */
-        }
-        i++;
+        if (f->planner == planner && f->queued &&
+            !names_run(active_runs, num_active, f->run.uid))
+            mpbd_take_back(d, f, "its planner is closing"); /* f: the next */
+        else
+            i++;
     }
 }
 
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
                              int num_active)
 {
+    if (d->planners[planner].queued == 0)
+        return;
     for (int k = 0; k < num_active; k++) {
         mpbd_flight *f;
         if (mpb_run_id_is_valid(active_runs[k]) &&
@@ -428,7 +436,7 @@ void mpbd_scheduler_tick(mpbd *d, double now)
         /* A planner that holds other requests may be planning one of them
          * before it re-sends a lost result of this run. */
         double deadline = f->deadline;
-        if (p->queued > 0 || p->active > 1)
+        if (p->queued > 0 || p->active > p->capacity)
             deadline += d->exp->time_limit;
         if (now > deadline) {
             mpbd_record_crash(d, f, "no result within the time limit and grace");

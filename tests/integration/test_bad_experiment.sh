@@ -58,7 +58,12 @@ bad_case bad_runs.yaml "runs must be a positive integer"
 cat >"$work/bad_queue.yaml" <<EOT
 experiment: {name: x, time_limit: 1, queue_at_planner: 9}
 EOT
-bad_case bad_queue.yaml ":1:.*queue_at_planner must be 0 to 4"
+bad_case bad_queue.yaml ":1:.*queue_at_planner must be a whole number from 0 to 4, not '9'"
+
+cat >"$work/bad_retries.yaml" <<EOT
+experiment: {name: x, time_limit: 1, retries: -1}
+EOT
+bad_case bad_retries.yaml ":1:.*retries must be a whole number from 0 to 1000000000, not '-1'"
 
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
