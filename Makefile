@@ -5,6 +5,8 @@
 #   make        build everything into build/
 #   make test   deps, build, run every test (unit and integration)
 #   make demo   deps, build, run the demo benchmark, print its report
+#   make bench  deps, then the benchmark of the benchmark (bench/run.sh;
+#               root, about 15 minutes): docs/performance.md
 #   make clean  remove build/
 #   make install  build, then install into PREFIX (default /usr/local; DESTDIR
 #               for staging): libmpbench, headers, pkg-config and CMake
@@ -38,7 +40,7 @@ demo: deps
 clean:
 	rm -rf $(BUILD)
 
-bench:
+bench: deps
 	MPB_BUILD=$(BUILD) sh bench/run.sh $(BENCH_FLAGS)
 
 # The prefix goes into the build too (CMAKE_INSTALL_PREFIX), so that what

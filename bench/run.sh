@@ -2,7 +2,7 @@
 # bench/run.sh - the benchmark of the benchmark (docs/performance.md).
 #
 #   bench/run.sh [--quick] [--runs N] [--report-runs N] [--fidelity-runs N]
-#                [--fidelity-np-runs N] [--million] [--keep]
+#                [--fidelity-np-runs N] [--long-runs N] [--keep]
 #
 # Builds the bench programs, then, inside a private network namespace that
 # it creates (only a loopback interface, with a multicast route), measures:
@@ -11,7 +11,9 @@
 #      run from its request's first send to its commit (mpbenchd's own
 #      count, nothing else listening), then its parts from the daemon's
 #      timestamps on the network (mpb-bench-watch listening),
-#   3. throughput with 1 to 4 null planners, the daemon's RSS sampled,
+#   3. throughput with 1 to 4 null planners, with and without a request
+#      waiting at each; 3 planners over 1,000,000 runs each way, the
+#      daemon's memory sampled throughout,
 #   4. verification + metrics, waypoints per second (mpb-bench-verify), for
 #      the planar demo arm and for the PR2 right arm in the kitchen (or,
 #      until that scene exists, the tabletop of the unit tests), and timing
@@ -21,21 +23,23 @@
 #      solve() (bench/fidelity.sh),
 #   5. the store's write cost per run, and `mpb report` over a database of
 #      a million runs (mpb-bench-mkdb),
-#   6. when OMPL_STATS names OMPL's ompl_benchmark_statistics.py (not part
-#      of mpbench): an OMPL log of 50,000 runs into a Planner Arena
-#      database, `mpb import -p` against that script (bench/import.sh).
+#   6. an OMPL log of 50,000 runs into a Planner Arena database, `mpb
+#      import -p` against OMPL's ompl_benchmark_statistics.py (not part of
+#      mpbench: bench/ompl_peer.sh takes it from Debian's source package of
+#      the installed OMPL, unless OMPL_STATS names a copy) (bench/import.sh).
 # Prints a table and writes it, with the machine and the raw results, to
 # bench/results/<date>.md. Every step has a count and a time limit.
 #
 #   --quick          small counts (about 2 minutes in all)
 #   --runs N         runs per throughput experiment (default 100000)
+#   --long-runs N    runs of the two long ones, 3 planners (default
+#                    1000000; with --quick, the --runs count)
 #   --report-runs N  runs in the report database (default 1000000)
 #   --fidelity-runs N  RRTConnect runs on each side for the timing fidelity
 #                    in the kitchen, in 20 interleaved blocks (4 with
 #                    --quick; default 5000, 200 with --quick)
 #   --fidelity-np-runs N  the same in the narrow passage, 20 blocks (3 with
 #                    --quick; default 2000, 60 with --quick)
-#   --million        throughput with 1 planner over 1,000,000 runs too
 #   --keep           keep the work directory (databases, logs)
 set -u
 
@@ -46,13 +50,13 @@ case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 WORK=$BUILD/bench-run/work     # databases and logs of one run
 SNAP=$BUILD/bench-run/bin      # the binaries measured, copied at the start
 
-QUICK=0 MILLION=0 KEEP=0 TPUT_N="" REPORT_N="" FID_N="" FIDNP_N="" IN_NETNS=0
+QUICK=0 KEEP=0 TPUT_N="" LONG_N="" REPORT_N="" FID_N="" FIDNP_N="" IN_NETNS=0
 while [ $# -gt 0 ]; do
     case $1 in
     --quick) QUICK=1 ;;
-    --million) MILLION=1 ;;
     --keep) KEEP=1 ;;
     --runs) TPUT_N=$2; shift ;;
+    --long-runs) LONG_N=$2; shift ;;
     --report-runs) REPORT_N=$2; shift ;;
     --fidelity-runs) FID_N=$2; shift ;;
     --fidelity-np-runs) FIDNP_N=$2; shift ;;
@@ -66,11 +70,11 @@ done
 if [ "$QUICK" -eq 1 ]; then
     FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000 IMPORT_N=5000
     : "${FID_N:=200}" "${FID_BLOCKS:=4}" "${FIDNP_N:=60}" "${FIDNP_BLOCKS:=3}"
-    : "${TPUT_N:=10000}" "${REPORT_N:=100000}"
+    : "${TPUT_N:=10000}" "${LONG_N:=$TPUT_N}" "${REPORT_N:=100000}"
 else
     FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000 IMPORT_N=50000
     : "${FID_N:=5000}" "${FID_BLOCKS:=20}" "${FIDNP_N:=2000}" "${FIDNP_BLOCKS:=20}"
-    : "${TPUT_N:=100000}" "${REPORT_N:=1000000}"
+    : "${TPUT_N:=100000}" "${LONG_N:=1000000}" "${REPORT_N:=1000000}"
 fi
 [ "$FID_N" -ge 1 ] 2>/dev/null && [ "$FID_N" -lt "$FID_BLOCKS" ] && FID_BLOCKS=$FID_N
 [ "$FIDNP_N" -ge 1 ] 2>/dev/null && [ "$FIDNP_N" -lt "$FIDNP_BLOCKS" ] && FIDNP_BLOCKS=$FIDNP_N
@@ -107,6 +111,15 @@ if [ "$IN_NETNS" -eq 0 ]; then
                 >>"$BUILD/bench-build.log" 2>&1 ||
               echo "bench/run.sh: mpb-bench-fidelity does not build; timing fidelity is skipped"; }
     fi || { tail -20 "$BUILD/bench-build.log"; echo "bench/run.sh: bench build failed" >&2; exit 1; }
+    # Item 6's peer, OMPL's own script, from Debian's source package of the
+    # installed OMPL unless OMPL_STATS names it: fetched here, while there
+    # is a network.
+    if [ -z "${OMPL_STATS:-}" ]; then
+        OMPL_STATS=$(MPB_BUILD=$BUILD sh "$src/bench/ompl_peer.sh") &&
+            echo "== OMPL's ompl_benchmark_statistics.py: $OMPL_STATS" ||
+            echo "bench/run.sh: the import (6) is skipped"
+        export OMPL_STATS
+    fi
     # Others may rebuild the tree meanwhile: measure one consistent set.
     rm -rf "$SNAP" && mkdir -p "$SNAP"
     cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/null/mpb-planner-null" \
@@ -116,9 +129,9 @@ if [ "$IN_NETNS" -eq 0 ]; then
         cp "$BUILD/planners/ompl/mpb-planner-ompl" "$SNAP/"
     set -- --in-netns
     [ "$QUICK" -eq 1 ] && set -- "$@" --quick
-    [ "$MILLION" -eq 1 ] && set -- "$@" --million
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
-    exec unshare -n sh "$0" "$@" --runs "$TPUT_N" --report-runs "$REPORT_N" \
+    exec unshare -n sh "$0" "$@" --runs "$TPUT_N" --long-runs "$LONG_N" \
+        --report-runs "$REPORT_N" \
         --fidelity-runs "$FID_N" --fidelity-np-runs "$FIDNP_N"
 fi
 
@@ -255,6 +268,8 @@ throughput() { # planners runs key [queue_at_planner]
     stats=$(sqlite3 -separator ' ' "$WORK/$key.db" "SELECT count(*),
         max(finished) - min(sent), sum(attempts > 1), sum(status = 'crash'),
         sum(success) FROM runs WHERE state = 'done'")
+    # A million runs make a database of about 1.3 GB.
+    [ "$KEEP" -eq 1 ] || rm -f "$WORK/$key.db" "$WORK/$key.db-wal" "$WORK/$key.db-shm"
     # RSS after a tenth and half of the run, at the end, the largest; the
     # growth counted is over the second half (SQLite's page cache, 2 MB,
     # fills during the first thousands of runs).
@@ -280,19 +295,16 @@ echo "== 3. throughput, 1 null planner ($TPUT_N runs)"
 throughput 1 "$TPUT_N" tput1
 echo "== 3. throughput, 2 null planners ($TPUT_N runs)"
 throughput 2 "$TPUT_N" tput2
-echo "== 3. throughput, 3 null planners ($TPUT_N runs)"
-throughput 3 "$TPUT_N" tput3
+# 3 planners over a million runs: the rate sustained, and the memory.
+echo "== 3. throughput, 3 null planners ($LONG_N runs)"
+throughput 3 "$LONG_N" tput3
 echo "== 3. throughput, 4 null planners ($TPUT_N runs)"
 throughput 4 "$TPUT_N" tput4
 # With the next request waiting at each planner (docs/performance.md, 4d).
 echo "== 3. throughput, 1 null planner, queue_at_planner 1 ($TPUT_N runs)"
 throughput 1 "$TPUT_N" tput1q 1
-echo "== 3. throughput, 3 null planners, queue_at_planner 1 ($TPUT_N runs)"
-throughput 3 "$TPUT_N" tput3q 1
-if [ "$MILLION" -eq 1 ]; then
-    echo "== 3. throughput, 1 null planner (1000000 runs)"
-    throughput 1 1000000 tputM
-fi
+echo "== 3. throughput, 3 null planners, queue_at_planner 1 ($LONG_N runs)"
+throughput 3 "$LONG_N" tput3q 1
 
 # The floor again: how much did the machine drift meanwhile?
 timeout -k 5 300 "$SNAP/mpb-bench-floor" --robot "$ROBOT" --scene "$SCENE" \
@@ -388,14 +400,14 @@ db_mb=$(du -m "$WORK/report.db" | cut -f1)
 
 # ---- 6. import into a Planner Arena database ----------------------------------
 # Against OMPL's ompl_benchmark_statistics.py, which is not part of mpbench:
-# measured when OMPL_STATS names it (bench/import.sh).
+# fetched above (bench/ompl_peer.sh) or named by OMPL_STATS (bench/import.sh).
 if [ -n "${OMPL_STATS:-}" ] && [ -f "$OMPL_STATS" ]; then
     echo "== 6. import: an OMPL log of $IMPORT_N runs into a Planner Arena database"
     MPB_BUILD=$BUILD timeout -k 5 1200 sh "$src/bench/import.sh" "$IMPORT_N" \
         >"$WORK/import.log" 2>&1
     grep -v '^RESULT ' "$WORK/import.log"; collect "$WORK/import.log"
 else
-    echo "== 6. import: skipped (OMPL_STATS does not name OMPL's ompl_benchmark_statistics.py)"
+    echo "== 6. import: skipped (no ompl_benchmark_statistics.py: bench/ompl_peer.sh failed and OMPL_STATS names none)"
 fi
 
 # ---- the table ----------------------------------------------------------------
@@ -418,9 +430,9 @@ wlat=$(get run_latency median_us) wlat99=$(get run_latency p99_us)
 cyc=$(get run_cycle median_us) cyc99=$(get run_cycle p99_us)
 t1=$(get tput1 runs_per_s) t2=$(get tput2 runs_per_s) t3=$(get tput3 runs_per_s)
 t4=$(get tput4 runs_per_s)
-grow=$(get tput1 rss_growth_kb)
-mgrow=nan
-[ "$MILLION" -eq 1 ] && mgrow=$(get tputM rss_growth_kb)
+rss_row() { # key: RSS at 10 % / 50 % / end / max of a throughput run
+    echo "$(get "$1" rss_early_kb) / $(get "$1" rss_half_kb) / $(get "$1" rss_end_kb) / $(get "$1" rss_max_kb) kB"
+}
 rep=$(get report seconds)
 vw=$(get verify_0.01 wps) vs=$(get verify_0.1 wps)
 pw=$(get verify_pr2_0.01 wps) ps=$(get verify_pr2_0.1 wps)
@@ -457,11 +469,12 @@ cat <<EOF
 | 3 | throughput, 2 null planners, $(get tput2 runs) runs | $t2 runs/s | $(calc "1e6 / $t2 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t2" ">=" 10000) |
 | 3 | throughput, 3 null planners, $(get tput3 runs) runs | $t3 runs/s | $(calc "1e6 / $t3 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t3" ">=" 10000) |
 | 3 | throughput, 4 null planners, $(get tput4 runs) runs | $t4 runs/s | $(calc "1e6 / $t4 / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$t4" ">=" 10000) |
-| 3 | throughput, 1 / 3 null planners with a request waiting at each (\`queue_at_planner: 1\`, 4d), $(get tput1q runs) runs each | $(get tput1q runs_per_s) / $(get tput3q runs_per_s) runs/s | $(calc "1e6 / $(get tput1q runs_per_s) / $FLOOR" 1) / $(calc "1e6 / $(get tput3q runs_per_s) / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$(get tput3q runs_per_s)" ">=" 10000) (3 planners) |
+| 3 | throughput, 1 / 3 null planners with a request waiting at each (\`queue_at_planner: 1\`, 4d), $(get tput1q runs) / $(get tput3q runs) runs | $(get tput1q runs_per_s) / $(get tput3q runs_per_s) runs/s | $(calc "1e6 / $(get tput1q runs_per_s) / $FLOOR" 1) / $(calc "1e6 / $(get tput3q runs_per_s) / $FLOOR" 1) floors per run | >= 10,000 runs/s | $(verdict "$(get tput3q runs_per_s)" ">=" 10000) (3 planners) |
 | 3 | mpbenchd CPU time (user + system) per run, 1 / 2 / 3 / 4 planners | $(get tput1 daemon_cpu_us_per_run) / $(get tput2 daemon_cpu_us_per_run) / $(get tput3 daemon_cpu_us_per_run) / $(get tput4 daemon_cpu_us_per_run) us | $(ratio "$(get tput1 daemon_cpu_us_per_run)") / $(ratio "$(get tput2 daemon_cpu_us_per_run)") / $(ratio "$(get tput3 daemon_cpu_us_per_run)") / $(ratio "$(get tput4 daemon_cpu_us_per_run)") | | |
 | 3 | null planners' CPU time per run (all of them, planner kit included), 1 / 2 / 3 / 4 planners | $(get tput1 planners_cpu_us_per_run) / $(get tput2 planners_cpu_us_per_run) / $(get tput3 planners_cpu_us_per_run) / $(get tput4 planners_cpu_us_per_run) us | $(ratio "$(get tput1 planners_cpu_us_per_run)") / $(ratio "$(get tput2 planners_cpu_us_per_run)") / $(ratio "$(get tput3 planners_cpu_us_per_run)") / $(ratio "$(get tput4 planners_cpu_us_per_run)") | | |
-| 3 | mpbenchd RSS over $(get tput1 runs) runs (1 planner): at 10 % / 50 % / end / max | $(get tput1 rss_early_kb) / $(get tput1 rss_half_kb) / $(get tput1 rss_end_kb) / $(get tput1 rss_max_kb) kB | | flat | $(flat "$grow" "$(get tput1 runs)") |
-| 3 | mpbenchd RSS over 1,000,000 runs (1 planner): at 10 % / 50 % / end / max | $( [ "$MILLION" -eq 1 ] && echo "$(get tputM rss_early_kb) / $(get tputM rss_half_kb) / $(get tputM rss_end_kb) / $(get tputM rss_max_kb) kB, at $(get tputM runs_per_s) runs/s" || echo "not run (--million)") | | flat | $( [ "$MILLION" -eq 1 ] && flat "$mgrow" "$(get tputM runs)" || echo "not measured") |
+| 3 | mpbenchd RSS over $(get tput1 runs) runs (1 planner): at 10 % / 50 % / end / max | $(rss_row tput1) | | flat | $(flat "$(get tput1 rss_growth_kb)" "$(get tput1 runs)") |
+| 3 | mpbenchd RSS over $(get tput3 runs) runs (3 planners): at 10 % / 50 % / end / max | $(rss_row tput3) | | flat | $(flat "$(get tput3 rss_growth_kb)" "$(get tput3 runs)") |
+| 3 | ... the same with a request waiting at each planner, $(get tput3q runs) runs | $(rss_row tput3q) | | flat | $(flat "$(get tput3q rss_growth_kb)" "$(get tput3q runs)") |
 | 4 | verification + metrics, PR2 right arm in the $PR2_WHERE, waypoints at the resolution ($(get verify_pr2_0.01 checks_per_waypoint) checks each) | $pw waypoints/s | | >= 50,000 | $(verdict "$pw" ">=" 50000)$( [ "$PR2_WHERE" = kitchen ] || echo " (not the kitchen)") |
 | 4 | verification + metrics, PR2 right arm in the $PR2_WHERE, waypoints 0.1 rad apart ($(get verify_pr2_0.1 checks_per_waypoint) checks each) | $ps waypoints/s | | >= 50,000 | $(verdict "$ps" ">=" 50000) |
 | 4 | verification + metrics, planar arm, waypoints at the resolution ($(get verify_0.01 checks_per_waypoint) checks each) | $vw waypoints/s | | | |
@@ -475,7 +488,7 @@ cat <<EOF
 | 5 | store, one transaction per run as mpbenchd commits (no network) | $(calc "$st") us per run | $(ratio "$st") | | |
 | 5 | store, $(get mkdb batch) runs per transaction, 15 metric rows per run | $(calc "$(get mkdb finish_us_per_run)") us per run | | | |
 | 5 | \`mpb report\` over $(get report runs) runs ($db_mb MB database) | $rep s | | < 2 s | $(verdict "$rep" "<=" 2) |
-| 6 | import: an OMPL log of $(get import runs) runs (written by OMPL's Benchmark) into a Planner Arena database, \`mpb import -p\` / OMPL's \`ompl_benchmark_statistics.py\` (bench/import.sh; OMPL_STATS names the script) | $(calc "$(get import direct_s)" 3) / $(calc "$(get import ompl_s)" 3) s: $(get import paired_ratio)x faster (median of the pairs' ratios); the same rows: $(get import same_rows) | | >= 4x faster, the same rows | $( [ "$(get import same_rows)" = yes ] && verdict "$(get import paired_ratio)" ">=" 4 || verdict nan) |
+| 6 | import: an OMPL log of $(get import runs) runs (written by OMPL's Benchmark) into a Planner Arena database, \`mpb import -p\` / OMPL's \`ompl_benchmark_statistics.py\` (bench/import.sh; the script of Debian's source package of OMPL, bench/ompl_peer.sh) | $(calc "$(get import direct_s)" 3) / $(calc "$(get import ompl_s)" 3) s: $(get import paired_ratio)x faster (median of the pairs' ratios); the same rows: $(get import same_rows) | | >= 4x faster, the same rows | $( [ "$(get import same_rows)" = yes ] && verdict "$(get import paired_ratio)" ">=" 4 || verdict nan) |
 EOF
 }
 

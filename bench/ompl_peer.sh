@@ -1,0 +1,51 @@
+#!/bin/sh
+# bench/ompl_peer.sh - the peer of item 6 (docs/performance.md): OMPL's own
+# ompl_benchmark_statistics.py, of the OMPL that is installed. Prints its
+# path, or one line on stderr and exit 1 when it cannot be had.
+#
+#   bench/ompl_peer.sh [DIR]     (default $MPB_BUILD/bench-run/peer)
+#
+# The script is not part of mpbench and no Debian package installs it, but
+# Debian's source package of OMPL carries it. This takes that package, of
+# the version of libompl-dev that is installed, from the Debian archive
+# with apt (which checks the archive's signature and every file's hash),
+# into a private apt state under DIR: nothing of the system's apt setup
+# changes. The script is kept in DIR for the next run; the rest is removed.
+# It needs the network, so bench/run.sh calls it before it leaves the
+# network behind (unshare -n).
+set -eu
+src=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=${MPB_BUILD:-$src/build}
+DIR=${1:-$BUILD/bench-run/peer}
+
+fail() { echo "bench/ompl_peer.sh: $*" >&2; exit 1; }
+
+version=$(dpkg-query -W -f='${source:Version}' libompl-dev 2>/dev/null) ||
+    fail "libompl-dev is not installed (make deps)"
+out=$DIR/ompl-$version/ompl_benchmark_statistics.py
+[ -s "$out" ] && { echo "$out"; exit 0; }
+
+codename=$(. /etc/os-release && echo "${VERSION_CODENAME:-}")
+[ -n "$codename" ] || fail "no VERSION_CODENAME in /etc/os-release"
+apt_dir=$DIR/apt
+rm -rf "$apt_dir" && mkdir -p "$apt_dir/lists/partial" \
+    "$apt_dir/cache/archives/partial" "$apt_dir/source" || fail "cannot write $DIR"
+trap 'rm -rf "$apt_dir"' EXIT
+echo "deb-src [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg]" \
+    "http://deb.debian.org/debian $codename main" >"$apt_dir/sources.list"
+apt() {
+    apt-get -qq -o Dir::Etc::SourceList="$apt_dir/sources.list" \
+        -o Dir::Etc::SourceParts=/dev/null -o Dir::State::Lists="$apt_dir/lists" \
+        -o Dir::Cache="$apt_dir/cache" -o Debug::NoLocking=1 \
+        -o APT::Sandbox::User=root "$@"
+}
+apt update >"$apt_dir/log" 2>&1 ||
+    fail "apt-get update of Debian's source index failed (see $apt_dir/log)"
+(cd "$apt_dir/source" && apt source --download-only "ompl=$version") \
+    >>"$apt_dir/log" 2>&1 || fail "apt-get source ompl=$version failed"
+mkdir -p "$(dirname "$out")"
+tar -xJf "$apt_dir"/source/ompl_*.orig.tar.xz --wildcards -O \
+    '*/scripts/ompl_benchmark_statistics.py' >"$out.part" 2>/dev/null &&
+    [ -s "$out.part" ] || { rm -f "$out.part"; fail "no scripts/ompl_benchmark_statistics.py in OMPL $version's sources"; }
+mv "$out.part" "$out"
+echo "$out"
