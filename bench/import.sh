@@ -12,9 +12,10 @@
 #
 # The log is written by OMPL 1.5's ompl::tools::Benchmark (the test helper
 # mpb-test-ompl-log), its runs repeated until there are RUNS of them.
-# OMPL's script is not part of mpbench: give its path in OMPL_STATS (e.g.
-# scripts/ompl_benchmark_statistics.py of OMPL 1.5.2's sources); without
-# it only mpbench's side is timed. MPB_BUILD is the build tree.
+# OMPL's script is not part of mpbench: OMPL_STATS names it, or else
+# bench/ompl_peer.sh takes it from Debian's source package of the
+# installed OMPL (that needs the network); without it only mpbench's side
+# is timed. MPB_BUILD is the build tree.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${MPB_BUILD:-$root/build}
@@ -88,6 +89,7 @@ time_ompl() {
 # the ratios of each pair.
 REPS=${MPB_IMPORT_REPS:-5}
 have_ompl=0
+[ -n "${OMPL_STATS:-}" ] || OMPL_STATS=$(MPB_BUILD=$BUILD sh "$root/bench/ompl_peer.sh") || true
 [ -n "${OMPL_STATS:-}" ] && [ -f "$OMPL_STATS" ] && have_ompl=1
 ds= os= rs=
 i=0
@@ -106,7 +108,7 @@ echo "mpb import -p (straight into Planner Arena): $d s (median of $REPS:$ds)"
 m=$(median "$(time_mpb)" "$(time_mpb)" "$(time_mpb)")
 echo "mpb import -d + export --planner-arena: $m s"
 if [ $have_ompl = 0 ]; then
-    echo "OMPL_STATS not set: ompl_benchmark_statistics.py not timed"
+    echo "no ompl_benchmark_statistics.py (OMPL_STATS, bench/ompl_peer.sh): OMPL's side not timed"
     echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m"
     exit 0
 fi
