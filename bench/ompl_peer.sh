@@ -16,6 +16,10 @@
 set -eu
 src=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${MPB_BUILD:-$src/build}
+case ${1:-} in
+-h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+-*) echo "bench/ompl_peer.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+esac
 DIR=${1:-$BUILD/bench-run/peer}
 
 fail() { echo "bench/ompl_peer.sh: $*" >&2; exit 1; }

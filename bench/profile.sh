@@ -30,7 +30,7 @@ while [ $# -gt 0 ]; do
     --out) OUT=$2; shift ;;
     --strace) STRACE=1 ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/profile.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

@@ -15,8 +15,7 @@
 #      request waiting at each; 8 planners over 1,000,000 runs each way,
 #      the daemon's memory sampled throughout,
 #   4. verification + metrics, waypoints per second (mpb-bench-verify), for
-#      the planar demo arm and for the PR2 right arm in the kitchen (or,
-#      until that scene exists, the tabletop of the unit tests), and timing
+#      the planar demo arm and for the PR2 right arm in the kitchen, and timing
 #      fidelity: RRTConnect on the first query of the paper's narrow
 #      passage (about 30 ms a run) and of its kitchen (about 2 ms) through
 #      mpbenchd and mpb-planner-ompl vs OMPL's own Benchmark and a bare
@@ -61,7 +60,7 @@ while [ $# -gt 0 ]; do
     --fidelity-runs) FID_N=$2; shift ;;
     --fidelity-np-runs) FIDNP_N=$2; shift ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,38p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
