@@ -7,7 +7,8 @@
  * thread, which reads it, looks up the channel and drops it. In a
  * benchmark of quick planners most messages are for someone else (the
  * requests to the other planners, their results, one's own messages), and
- * those wake-ups cost more CPU than the work (docs/performance.md).
+ * those wake-ups cost more CPU than the work
+ * (docs/performance-history.md, change 15).
  *
  * mpb_lcm_create_keeping() attaches a socket filter (classic BPF) to a new
  * LCM instance's receive socket that passes a message only if its channel
