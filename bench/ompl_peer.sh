@@ -43,10 +43,12 @@ apt() {
         -o Dir::Cache="$apt_dir/cache" -o Debug::NoLocking=1 \
         -o APT::Sandbox::User=root "$@"
 }
+# apt's first complaint, for the one line of a failure (the log goes).
+why() { grep -m1 '^[EW]:' "$apt_dir/log" | cut -c1-200; }
 apt update >"$apt_dir/log" 2>&1 ||
-    fail "apt-get update of Debian's source index failed (see $apt_dir/log)"
+    fail "apt-get update of Debian's source index failed: $(why)"
 (cd "$apt_dir/source" && apt source --download-only "ompl=$version") \
-    >>"$apt_dir/log" 2>&1 || fail "apt-get source ompl=$version failed"
+    >>"$apt_dir/log" 2>&1 || fail "apt-get source ompl=$version failed: $(why)"
 mkdir -p "$(dirname "$out")"
 tar -xJf "$apt_dir"/source/ompl_*.orig.tar.xz --wildcards -O \
     '*/scripts/ompl_benchmark_statistics.py' >"$out.part" 2>/dev/null &&
