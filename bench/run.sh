@@ -270,8 +270,8 @@ throughput() { # planners runs key [queue_at_planner]
     # A million runs make a database of about 1.3 GB.
     [ "$KEEP" -eq 1 ] || rm -f "$WORK/$key.db" "$WORK/$key.db-wal" "$WORK/$key.db-shm"
     # RSS after a tenth and half of the run, at the end, the largest; the
-    # growth counted is over the second half (SQLite's page cache, 2 MB,
-    # fills during the first thousands of runs).
+    # growth counted is over the second half (SQLite's page cache, 16 MiB
+    # at most, fills during the first tens of thousands of runs).
     rss=$(awk '{ t[NR] = $1; r[NR] = $2; c = $3; if ($2 > m) m = $2 }
         END { if (NR == 0) { print "nan nan nan nan nan"; exit }
               for (i = 1; i < NR && t[i] < t[NR] / 10; i++) ;
