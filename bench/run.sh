@@ -510,12 +510,19 @@ done)
 EOF
 }
 
+# Whether the tree measured is the commit named: paths changed, not counting
+# the results this run writes.
+tree_state() {
+    n=$(cd "$src" && GIT_OPTIONAL_LOCKS=0 git status --porcelain -- . ':!bench/results' 2>/dev/null | wc -l)
+    case $n in 0) echo "no change in the work tree" ;; 1) echo "1 path changed in the work tree" ;;
+    *) echo "$n paths changed in the work tree" ;; esac
+}
 describe() {
     cat <<EOF
 - date: $STARTED
 - machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(awk '/MemTotal/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo) memory, kernel $(uname -r)
 - load average (1, 5, 15 min): $LOAD_START at the start, $LOAD_END at the end
-- commit: $(cd "$src" && git rev-parse --short HEAD 2>/dev/null) ($(cd "$src" && GIT_OPTIONAL_LOCKS=0 git status --porcelain 2>/dev/null | wc -l) paths changed in the work tree)
+- commit: $(cd "$src" && git rev-parse --short HEAD 2>/dev/null) ($(tree_state))
 - software: LCM $(pkg-config --modversion lcm 2>/dev/null), SQLite $(sqlite3 --version | cut -d' ' -f1), $(cc --version | head -1), build type $(bt=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$BUILD/CMakeCache.txt"); echo "${bt:-RelWithDebInfo (the default)}")
 - counts: floor $FLOOR_N exchanges, latency $LAT_N runs (after $LAT_SKIP warm-up), throughput $TPUT_N runs, report $REPORT_N runs$( [ "$QUICK" -eq 1 ] && echo " (--quick)")
 EOF
