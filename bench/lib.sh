@@ -1,4 +1,4 @@
-# bench/lib.sh - what bench/run.sh and bench/profile.sh share (POSIX sh,
+# bench/lib.sh - what the bench scripts share (POSIX sh,
 # sourced, not run). The sourcing script sets src (the source tree).
 #
 #   bench_netns NAME      inside `unshare -n`: loopback up with a multicast
@@ -7,6 +7,11 @@
 #   bench_netns_check NAME  only the check (a namespace already set up)
 #   PIDS, cleanup         background processes to stop: cleanup kills and
 #                         waits for every pid in PIDS, then empties it
+#   get KEY FIELD         a field of the RESULT line KEY in the file $RAW
+#                         ("nan" if there is none)
+#   calc EXPR [DIGITS]    EXPR (awk) with DIGITS decimals (default 1);
+#                         "nan" for a value that is not a number
+#   planners_n N          "1 null planner", "N null planners"
 #   experiment NAME RUNS RUNS_PER_HOST FILE [QUEUE_AT_PLANNER]
 #                         writes the planar throughput experiment: the
 #                         3-joint arm among the pillars, query small_move
@@ -25,6 +30,17 @@ bench_netns_check() { # name
         exit 1
     fi
 }
+
+get() { # key field
+    awk -v k="$1" -v f="$2" '$1 == "RESULT" && $2 == k {
+        for (i = 3; i <= NF; i++) { split($i, kv, "="); if (kv[1] == f) v = kv[2] } }
+        END { print (v == "" ? "nan" : v) }' "$RAW"
+}
+calc() { # expr [digits]
+    awk "BEGIN { v = $1; if (v != v) print \"nan\"; else printf \"%.${2:-1}f\", v }"
+}
+
+planners_n() { [ "$1" -eq 1 ] && echo "1 null planner" || echo "$1 null planners"; }
 
 PIDS=""
 cleanup() {
