@@ -10,7 +10,8 @@
 #   get KEY FIELD         a field of the RESULT line KEY in the file $RAW
 #                         ("nan" if there is none)
 #   calc EXPR [DIGITS]    EXPR (awk) with DIGITS decimals (default 1);
-#                         "nan" for a value that is not a number
+#                         "nan" if EXPR holds a "nan" (a value get did
+#                         not find) or gives one
 #   planners_n N          "1 null planner", "N null planners"
 #   experiment NAME RUNS RUNS_PER_HOST FILE [QUEUE_AT_PLANNER]
 #                         writes the planar throughput experiment: the
@@ -37,7 +38,10 @@ get() { # key field
         END { print (v == "" ? "nan" : v) }' "$RAW"
 }
 calc() { # expr [digits]
-    awk "BEGIN { v = $1; if (v != v) print \"nan\"; else printf \"%.${2:-1}f\", v }"
+    case $1 in
+    *nan*) echo nan ;;      # a missing value: awk would take it for 0
+    *) awk "BEGIN { v = $1; if (v != v) print \"nan\"; else printf \"%.${2:-1}f\", v }" ;;
+    esac
 }
 
 planners_n() { [ "$1" -eq 1 ] && echo "1 null planner" || echo "$1 null planners"; }

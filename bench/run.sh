@@ -27,7 +27,8 @@
 #      mpbench: bench/ompl_peer.sh takes it from Debian's source package of
 #      the installed OMPL, unless OMPL_STATS names a copy) (bench/import.sh).
 # Prints a table (bench/table.sh) and writes it, with the machine and the
-# raw results, to bench/results/<date>.md. Every step has a count and a time limit.
+# raw results, to bench/results/<date>.md. Every step has a count and a
+# time limit.
 #
 #   --quick          small counts (about 2 minutes in all)
 #   --runs N         runs per throughput experiment (default 100000)
@@ -406,7 +407,7 @@ fi
 
 # ---- the table ----------------------------------------------------------------
 LOAD_END=$(load)
-table() { sh "$src/bench/table.sh" "$RAW"; }
+TABLE=$(sh "$src/bench/table.sh" "$RAW")
 
 # Whether the tree measured is the commit named: paths changed, not counting
 # the results this run writes.
@@ -430,7 +431,7 @@ echo
 echo "== results"
 describe
 echo
-table
+echo "$TABLE"
 
 mkdir -p "$src/bench/results"
 out=$src/bench/results/$(date +%Y-%m-%d_%H%M).md
@@ -439,7 +440,7 @@ out=$src/bench/results/$(date +%Y-%m-%d_%H%M).md
     echo
     describe
     echo
-    table
+    echo "$TABLE"
     echo
     echo "Raw results (bench/run.sh):"
     echo

@@ -25,9 +25,9 @@ PR2_WHERE=$(get verify_pr2_setup scene)
 [ "$PR2_WHERE" = nan ] && PR2_WHERE=kitchen
 
 ratio() { calc "$1 / $FLOOR" 1; }
-verdict() { # value op target
-    awk -v v="$1" -v t="$3" -v op="$2" 'BEGIN {
-        if (v != v + 0 || v == "nan") { print "not measured"; exit }
+verdict() { # value [op target]
+    awk -v v="$1" -v t="${3:-}" -v op="${2:-}" 'BEGIN {
+        if (v == "nan" || v != v + 0) { print "not measured"; exit }
         ok = (op == "<=") ? v <= t : v >= t; print ok ? "met" : "**missed**" }'
 }
 # Flat: less than 1 MB more at the end than half way through. SQLite's
@@ -35,7 +35,7 @@ verdict() { # value op target
 # cannot tell.
 flat() { # growth_kb runs
     awk -v g="$1" -v n="$2" 'BEGIN {
-        if (g != g + 0) { print "not measured"; exit }
+        if (g == "nan" || n == "nan" || g != g + 0) { print "not measured"; exit }
         if (n < 100000) { printf "too few runs to tell (%+d kB)", g; exit }
         printf "%s (%+d kB over the second half, %.2f B per run)",
                g <= 1024 ? "flat" : "**grows**", g, g * 1024 / (n * 0.5) }'
