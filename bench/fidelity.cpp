@@ -8,6 +8,7 @@
  *
  *   mpb-bench-fidelity run --robot URDF --scene SCENE --joints A,B,...
  *                      --start Q --goal Q --seeds S1,S2,... [options]
+ *   mpb-bench-fidelity pace --planner-pid PID --runs N --robot URDF ...
  *   mpb-bench-fidelity stats [--boot N] FILE
  *   mpb-bench-fidelity seeds EXPERIMENT_SEED N
  *
@@ -24,7 +25,9 @@
  * `run` prints one line per run:
  *   RUN SIDE BLOCK SEED SECONDS SOLVED VERIFIED GRAPH_STATES
  * (VERIFIED is "-" here; bench/fidelity.sh writes mpbench's runs, from the
- * database, in the same form). `stats` reads such lines and compares the
+ * database, in the same form). `pace` prints the same lines, for each run
+ * mpbenchd sends the planner process meanwhile, right after it
+ * (fidelity_pace.h). `stats` reads such lines and compares the
  * median solve times of the solved runs, side against side.
  */
 #include <algorithm>
@@ -53,6 +56,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "fidelity_pace.h"
 #include "joint_space.h"
 #include "mpbench/mpbench.h"
 
@@ -149,50 +153,65 @@ Run plain_run(const Query &q, const std::string &seed, double period = 0)
     return {secs, st == ob::PlannerStatus::EXACT_SOLUTION, data.numVertices()};
 }
 
-// Runs of OMPL's own Benchmark, one per seed. Benchmark keeps one planner
-// and clears it between runs; before each run the pre-run event seeds OMPL
-// and makes (and drops) the objects the planner process makes before its
+// OMPL's own Benchmark, one run per seed. It is kept from one call to the
+// next (pace asks for one seed at a time) and keeps one planner, which it
+// clears between runs; before each run the pre-run event seeds OMPL and
+// makes (and drops) the objects the planner process makes before its
 // solve(), so that the sampler solve() allocates gets the same seed there
 // and here. Benchmark's "time" is what it reports: solve() and the
 // termination condition's thread around it.
-std::vector<Run> benchmark_runs(const Query &q, const std::vector<std::string> &seeds)
-{
-    Problem p = make_problem(q);
-    og::SimpleSetup ss(p.si);
-    ss.getProblemDefinition()->addStartState(p.pdef->getStartState(0));
-    ss.setGoal(p.pdef->getGoal());
-    ss.setPlanner(std::make_shared<og::RRTConnect>(p.si));
-    ss.setup();
-    ot::Benchmark b(ss, "mpbench-fidelity");
-    b.addPlanner(std::make_shared<og::RRTConnect>(p.si));
-    size_t run = 0;
-    b.setPreRunEvent([&](const ob::PlannerPtr &) {
-        seed_run(seeds[run++ % seeds.size()]);
-        Problem twin = make_problem(q);
-        og::RRTConnect draws(twin.si);
-        draws.setProblemDefinition(twin.pdef);
-        draws.setup();
-    });
-    ot::Benchmark::Request req(q.time_limit, 4096.0, static_cast<unsigned>(seeds.size()),
-                               0.05, false, false, false);
-    b.benchmark(req);
+class BenchmarkSide {
+public:
+    explicit BenchmarkSide(const Query &q) : q_(q), p_(make_problem(q))
+    {
+        ss_ = std::make_unique<og::SimpleSetup>(p_.si);
+        ss_->getProblemDefinition()->addStartState(p_.pdef->getStartState(0));
+        ss_->setGoal(p_.pdef->getGoal());
+        ss_->setPlanner(std::make_shared<og::RRTConnect>(p_.si));
+        ss_->setup();
+        b_ = std::make_unique<ot::Benchmark>(*ss_, "mpbench-fidelity");
+        b_->addPlanner(std::make_shared<og::RRTConnect>(p_.si));
+        b_->setPreRunEvent([this](const ob::PlannerPtr &) {
+            seed_run((*seeds_)[next_++ % seeds_->size()]);
+            Problem twin = make_problem(q_);
+            og::RRTConnect draws(twin.si);
+            draws.setProblemDefinition(twin.pdef);
+            draws.setup();
+        });
+    }
 
-    std::vector<Run> out;
-    for (const auto &pe : b.getRecordedExperimentData().planners)
-        for (const auto &r : pe.runs) {
-            auto get = [&r](const char *key) {
-                auto it = r.find(key);
-                return it != r.end() ? it->second : std::string();
-            };
-            bool exact = get("solved BOOLEAN") == "1" &&
-                         get("approximate solution BOOLEAN") != "1";
-            std::string t = get("time REAL");
-            out.push_back({t.empty() ? NAN : std::strtod(t.c_str(), nullptr), exact,
-                           static_cast<unsigned>(std::strtoul(
-                               get("graph states INTEGER").c_str(), nullptr, 10))});
-        }
-    return out;
-}
+    std::vector<Run> runs(const std::vector<std::string> &seeds)
+    {
+        seeds_ = &seeds;
+        next_ = 0;
+        ot::Benchmark::Request req(q_.time_limit, 4096.0, static_cast<unsigned>(seeds.size()),
+                                   0.05, false, false, false);
+        b_->benchmark(req);
+        std::vector<Run> out;
+        for (const auto &pe : b_->getRecordedExperimentData().planners)
+            for (const auto &r : pe.runs) {
+                auto get = [&r](const char *key) {
+                    auto it = r.find(key);
+                    return it != r.end() ? it->second : std::string();
+                };
+                bool exact = get("solved BOOLEAN") == "1" &&
+                             get("approximate solution BOOLEAN") != "1";
+                std::string t = get("time REAL");
+                out.push_back({t.empty() ? NAN : std::strtod(t.c_str(), nullptr), exact,
+                               static_cast<unsigned>(std::strtoul(
+                                   get("graph states INTEGER").c_str(), nullptr, 10))});
+            }
+        return out;
+    }
+
+private:
+    Query q_;
+    Problem p_;
+    std::unique_ptr<og::SimpleSetup> ss_;
+    std::unique_ptr<ot::Benchmark> b_;
+    const std::vector<std::string> *seeds_ = nullptr;
+    size_t next_ = 0;
+};
 
 // ---- statistics ------------------------------------------------------------
 
@@ -552,6 +571,9 @@ void usage(FILE *out)
     std::fprintf(out,
 "usage: mpb-bench-fidelity run --robot URDF --scene SCENE --joints A,B,...\n"
 "                          --start Q --goal Q --seeds S1,S2,... [options]\n"
+"       mpb-bench-fidelity pace --planner-pid PID --runs N --robot URDF\n"
+"                          --scene SCENE --joints A,B,... --start Q --goal Q\n"
+"                          [options]\n"
 "       mpb-bench-fidelity stats [--boot N] FILE\n"
 "       mpb-bench-fidelity seeds EXPERIMENT_SEED N\n"
 "\n"
@@ -571,6 +593,17 @@ void usage(FILE *out)
 "  --tolerance RAD  goal tolerance (default 0.01)\n"
 "  --resolution RAD motion checks, as mpb-planner-ompl (default 0.005)\n"
 "\n"
+"pace: the same sides run by run with a benchmark that runs meanwhile\n"
+"through mpbenchd and the planner process PID (one planner, on this CPU):\n"
+"for each of the next N results on LCM, holds the planner (SIGSTOP), waits\n"
+"without sleeping until mpbenchd has stored the result, runs that run's\n"
+"seed on each side (in turns: A,B then B,A), lets the planner go on\n"
+"(SIGCONT). RUN lines as run's, for all but the first --warmup runs; LATE\n"
+"lines name the runs the planner may have started before it was held (not\n"
+"paced: leave them out); a RESULT line counts. --block, --sides, --warmup,\n"
+"--time-limit, --tolerance and --resolution as for run; --url URL the LCM\n"
+"URL (default mpbench's).\n"
+"\n"
 "stats: the RUN lines of FILE (sides mpbench, ompl, plain), side against\n"
 "side: the ratio of the median solve times of the solved runs, its\n"
 "bootstrap 95 %% interval (N resamples, default 2000), the blocks' own\n"
@@ -580,12 +613,22 @@ void usage(FILE *out)
 "planner configuration and one query, comma-separated.\n");
 }
 
-int run(int argc, char **argv)
+// What run and pace share: the problem and the sides.
+struct Setup {
+    Query q{};
+    std::vector<std::string> seeds, sides;
+    int block = 0, warmup = 5, gap_us = 0;
+    long planner_pid = 0, runs = 0;     // pace
+    std::string url;                    // pace
+};
+
+// Parses the options of `run` (pace == false) or `pace` and opens the
+// world. Returns 0, 1 (a message printed) or 2 (usage).
+int setup(int argc, char **argv, bool pace, Setup &o)
 {
     const char *robot_file = nullptr, *scene_file = nullptr;
     std::string joints_arg, start_arg, goal_arg, seeds_arg, sides_arg = "ompl,plain";
     double time_limit = 10, tolerance = 0.01, resolution = 0.005;
-    int block = 0, warmup = 5, gap_us = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : nullptr;
         if (v == nullptr)
@@ -596,25 +639,31 @@ int run(int argc, char **argv)
         else if (!std::strcmp(a, "--joints")) joints_arg = v;
         else if (!std::strcmp(a, "--start")) start_arg = v;
         else if (!std::strcmp(a, "--goal")) goal_arg = v;
-        else if (!std::strcmp(a, "--seeds")) seeds_arg = v;
         else if (!std::strcmp(a, "--sides")) sides_arg = v;
-        else if (!std::strcmp(a, "--block")) block = std::atoi(v);
-        else if (!std::strcmp(a, "--warmup")) warmup = std::atoi(v);
-        else if (!std::strcmp(a, "--gap-us")) gap_us = std::atoi(v);
+        else if (!std::strcmp(a, "--block")) o.block = std::atoi(v);
+        else if (!std::strcmp(a, "--warmup")) o.warmup = std::atoi(v);
         else if (!std::strcmp(a, "--time-limit")) time_limit = std::atof(v);
         else if (!std::strcmp(a, "--tolerance")) tolerance = std::atof(v);
         else if (!std::strcmp(a, "--resolution")) resolution = std::atof(v);
+        else if (!pace && !std::strcmp(a, "--seeds")) seeds_arg = v;
+        else if (!pace && !std::strcmp(a, "--gap-us")) o.gap_us = std::atoi(v);
+        else if (pace && !std::strcmp(a, "--planner-pid")) o.planner_pid = std::atol(v);
+        else if (pace && !std::strcmp(a, "--runs")) o.runs = std::atol(v);
+        else if (pace && !std::strcmp(a, "--url")) o.url = v;
         else return 2;
     }
-    std::vector<std::string> names = split(joints_arg), seeds = split(seeds_arg),
-                             sides = split(sides_arg);
-    Query q{nullptr, numbers(start_arg), numbers(goal_arg), tolerance, resolution, time_limit};
-    bool sides_ok = !sides.empty();
-    for (const std::string &s : sides)
+    std::vector<std::string> names = split(joints_arg);
+    o.seeds = split(seeds_arg);
+    o.sides = split(sides_arg);
+    o.q = Query{nullptr, numbers(start_arg), numbers(goal_arg), tolerance, resolution,
+                time_limit};
+    bool sides_ok = !o.sides.empty();
+    for (const std::string &s : o.sides)
         sides_ok = sides_ok && (s == "ompl" || s == "plain" || s == "thread");
-    if (!robot_file || !scene_file || names.empty() || q.start.size() != names.size() ||
-        q.goal.size() != names.size() || seeds.empty() || !(time_limit > 0) ||
-        !(resolution > 0) || !sides_ok || warmup < 0)
+    bool what_ok = pace ? o.planner_pid > 0 && o.runs > 0 : !o.seeds.empty();
+    if (!robot_file || !scene_file || names.empty() || o.q.start.size() != names.size() ||
+        o.q.goal.size() != names.size() || !what_ok || !(time_limit > 0) ||
+        !(resolution > 0) || !sides_ok || o.warmup < 0)
         return 2;
     std::string robot = slurp(robot_file), scene = slurp(scene_file);
     std::vector<const char *> cnames;
@@ -624,7 +673,7 @@ int run(int argc, char **argv)
     if (robot.empty() ||
         mpb_world_open_group("urdf", robot.c_str(), "moveit-scene", scene.c_str(),
                              cnames.data(), static_cast<int>(cnames.size()),
-                             &q.world, err, sizeof err) != MPB_OK) {
+                             &o.q.world, err, sizeof err) != MPB_OK) {
         std::fprintf(stderr, "mpb-bench-fidelity: cannot open the world: %s\n",
                      robot.empty() ? "cannot read the robot" : err);
         return 1;
@@ -632,45 +681,100 @@ int run(int argc, char **argv)
     // Re-seeding after the first draw is what makes the runs repeatable
     // (OMPL 1.5 re-seeds its seed generator); its warning is expected.
     ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+    return 0;
+}
 
+void print_run(const std::string &side, int block, const std::string &seed, const Run &r)
+{
+    std::printf("RUN %s %d %s %.9f %d - %u\n", side.c_str(), block, seed.c_str(), r.secs,
+                r.solved ? 1 : 0, r.graph_states);
+}
+
+int run(int argc, char **argv)
+{
+    Setup o;
+    int rc = setup(argc, argv, false, o);
+    if (rc != 0)
+        return rc;
+    const std::vector<std::string> &seeds = o.seeds;
     std::vector<std::string> warm(seeds.begin(),
                                   seeds.begin() + std::min<size_t>(seeds.size(),
-                                                                   static_cast<size_t>(warmup)));
-    for (const std::string &side : sides) {
+                                                                   static_cast<size_t>(o.warmup)));
+    for (const std::string &side : o.sides) {
         std::vector<Run> runs;
         if (side == "ompl") {
+            BenchmarkSide bench(o.q);
             if (!warm.empty())
-                benchmark_runs(q, warm);
-            runs = benchmark_runs(q, seeds);
+                bench.runs(warm);
+            runs = bench.runs(seeds);
         } else {
             double period = side == "thread" ? 0.1 : 0;
             for (const std::string &s : warm)
-                plain_run(q, s, period);
+                plain_run(o.q, s, period);
             for (const std::string &s : seeds) {
-                runs.push_back(plain_run(q, s, period));
+                runs.push_back(plain_run(o.q, s, period));
                 // A pause between runs, as a planner process has while the
                 // daemon verifies, stores and sends the next request.
-                if (gap_us > 0)
-                    usleep(static_cast<useconds_t>(gap_us));
+                if (o.gap_us > 0)
+                    usleep(static_cast<useconds_t>(o.gap_us));
             }
         }
         int solved = 0;
         std::vector<double> times;
         for (size_t r = 0; r < runs.size(); r++) {
-            std::printf("RUN %s %d %s %.9f %d - %u\n", side.c_str(), block,
-                        seeds[r % seeds.size()].c_str(), runs[r].secs, runs[r].solved ? 1 : 0,
-                        runs[r].graph_states);
+            print_run(side, o.block, seeds[r % seeds.size()], runs[r]);
             if (runs[r].solved) {
                 solved++;
                 times.push_back(runs[r].secs);
             }
         }
         std::fprintf(stderr, "mpb-bench-fidelity: block %d, %s: %zu runs, %d solved, "
-                     "median %.3f ms\n", block, side.c_str(), runs.size(), solved,
+                     "median %.3f ms\n", o.block, side.c_str(), runs.size(), solved,
                      median(times) * 1e3);
     }
-    mpb_world_close(q.world);
+    mpb_world_close(o.q.world);
     return 0;
+}
+
+int pace(int argc, char **argv)
+{
+    Setup o;
+    int rc = setup(argc, argv, true, o);
+    if (rc != 0)
+        return rc;
+    BenchmarkSide bench(o.q);
+    auto one = [&](const std::string &side, const std::string &seed) {
+        if (side == "ompl")
+            return bench.runs({seed}).at(0);
+        return plain_run(o.q, seed, side == "thread" ? 0.1 : 0);
+    };
+    mpb_fidelity::PaceOptions opt;
+    opt.planner = static_cast<pid_t>(o.planner_pid);
+    opt.runs = o.runs;
+    opt.lcm_url = o.url.empty() ? nullptr : o.url.c_str();
+    mpb_fidelity::PaceReport report;
+    rc = mpb_fidelity::pace(opt, [&](long index, const std::string &seed) {
+        // The sides in turns, so that neither always comes first after
+        // the planner's run.
+        std::vector<std::string> order = o.sides;
+        if (index % 2)
+            std::reverse(order.begin(), order.end());
+        for (const std::string &side : order) {
+            Run r = one(side, seed);
+            if (index >= o.warmup)
+                print_run(side, o.block, seed, r);
+        }
+        std::fflush(stdout);
+    }, &report);
+    for (const std::string &seed : report.late_seeds)
+        std::printf("LATE %d %s\n", o.block, seed.c_str());
+    std::printf("RESULT fidelity_pace block=%d paced=%ld late=%zu max_hold_ms=%.1f\n", o.block,
+                report.paced, report.late_seeds.size(), report.max_hold_s * 1e3);
+    std::fprintf(stderr, "mpb-bench-fidelity pace: block %d: %ld runs paced, %zu late, "
+                 "the planner held at most %.1f ms\n", o.block, report.paced,
+                 report.late_seeds.size(), report.max_hold_s * 1e3);
+    mpb_world_close(o.q.world);
+    return rc;
 }
 
 } // namespace
@@ -684,6 +788,8 @@ int main(int argc, char **argv)
     int rc = 2;
     if (argc >= 2 && !std::strcmp(argv[1], "run"))
         rc = run(argc - 2, argv + 2);
+    else if (argc >= 2 && !std::strcmp(argv[1], "pace"))
+        rc = pace(argc - 2, argv + 2);
     else if (argc >= 2 && !std::strcmp(argv[1], "stats"))
         rc = stats(argc - 2, argv + 2);
     else if (argc >= 2 && !std::strcmp(argv[1], "seeds"))

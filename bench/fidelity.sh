@@ -4,7 +4,7 @@
 #
 #   bench/fidelity.sh [--scene kitchen|narrow_passage] [--runs N]
 #                     [--blocks K] [--pin CPU|none] [--queue Q] [--boot B]
-#                     [--keep]
+#                     [--interleave block|run] [--keep]
 #
 # RRTConnect on the first query of one of the paper's environments (the
 # PR2's right arm; start and goal as in scenes/experiments/paper.yaml, the
@@ -30,6 +30,15 @@
 # queue_at_planner (default 0, the daemon's: the planner waits for the
 # daemon between runs; 1: its next request waits for it, 4d).
 #
+# --interleave run (4e): within each block, each run through mpbenchd is
+# followed by the in-process runs of its seed (Benchmark and bare in turns)
+# before the planner may start the next one: mpb-bench-fidelity pace holds
+# the planner process (SIGSTOP) from its result until those are done and
+# mpbenchd has stored the result. The sides' runs of a seed are then
+# milliseconds apart, not seconds; the planner no longer idles between
+# runs (the CPU runs the other sides meanwhile), so what the pause costs it
+# on this VM (4b) is left out. Not with --queue 1 or --pin none.
+#
 # Then `mpb-bench-fidelity stats`: the ratio of the pooled medians of the
 # solved runs (mpbench / Benchmark, mpbench / bare), bootstrap 95 %
 # intervals of it (B resamples, default 2000), the median of the blocks' own
@@ -48,7 +57,7 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 RUNS=5000 BLOCKS=20 PIN="" BOOT=2000 KEEP=0 NETNS=0 BIN="" WORK="" SCENE=kitchen
-QUEUE=0
+QUEUE=0 INTERLEAVE=block
 KEYP=fidelity_
 while [ $# -gt 0 ]; do
     case $1 in
@@ -58,6 +67,7 @@ while [ $# -gt 0 ]; do
     --blocks) BLOCKS=$2; shift ;;
     --pin) PIN=$2; shift ;;
     --queue) QUEUE=$2; shift ;;
+    --interleave) INTERLEAVE=$2; shift ;;
     --boot) BOOT=$2; shift ;;
     --keep) KEEP=1 ;;
     --in-netns) NETNS=1 ;;          # a namespace bench/run.sh set up
@@ -72,6 +82,9 @@ done
 case $SCENE in kitchen|narrow_passage) ;; *)
     echo "bench/fidelity.sh: --scene kitchen or narrow_passage, not '$SCENE'" >&2; exit 2 ;;
 esac
+case $INTERLEAVE in block|run) ;; *)
+    echo "bench/fidelity.sh: --interleave block or run, not '$INTERLEAVE'" >&2; exit 2 ;;
+esac
 case $RUNS$BLOCKS$BOOT$QUEUE in *[!0-9]*)
     echo "bench/fidelity.sh: --runs, --blocks, --queue and --boot want whole numbers" >&2; exit 2 ;;
 esac
@@ -79,6 +92,11 @@ esac
     echo "bench/fidelity.sh: wants 1 <= blocks <= runs" >&2; exit 2; }
 NCPU=$(nproc)
 : "${PIN:=$((NCPU - 1))}"
+# Paced runs hold the planner between runs: one request at a time, and the
+# planner and the in-process sides on one CPU.
+if [ "$INTERLEAVE" = run ] && { [ "$QUEUE" != 0 ] || [ "$PIN" = none ]; }; then
+    echo "bench/fidelity.sh: --interleave run wants --queue 0 and a CPU to --pin" >&2; exit 2
+fi
 if [ "$PIN" != none ]; then
     case $PIN in *[!0-9]*|"") echo "bench/fidelity.sh: --pin CPU or none" >&2; exit 2 ;; esac
     [ "$PIN" -lt "$NCPU" ] || { echo "bench/fidelity.sh: no CPU $PIN" >&2; exit 2; }
@@ -98,7 +116,7 @@ if [ "$NETNS" -eq 0 ]; then
         "$WORK/bin/" || exit 1
     set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
         --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP" \
-        --queue "$QUEUE"
+        --queue "$QUEUE" --interleave "$INTERLEAVE"
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     exec unshare -n sh "$0" "$@"
 fi
@@ -171,7 +189,8 @@ LOAD_START=$(cut -d' ' -f1-3 /proc/loadavg)
 
 # mpb-planner-ompl, once for all blocks, on the planning CPU.
 $ON_PIN "$BIN/mpb-planner-ompl" >"$WORK/planner.log" 2>&1 &
-PIDS="$PIDS $!"
+PLANNER=$!      # taskset execs the planner: its pid
+PIDS="$PIDS $PLANNER"
 sleep 0.5   # one announce before the first daemon
 
 # A block's seeds: those mpbenchd draws for its experiment, known before
@@ -214,6 +233,35 @@ inprocess_block() { # block sides
         echo "mpb-bench-fidelity failed: see $WORK/inprocess-$1.log"
 }
 
+# A block run by run: mpb-bench-fidelity pace ready on the planning CPU
+# before mpbenchd starts, then the block through mpbenchd, each run
+# followed by its seed's in-process runs; runs the planner may have
+# started before it was held (LATE) are left out of mpbench's side.
+paced_block() { # block
+    out=$WORK/pace-$1.txt log=$WORK/pace-$1.log
+    : >"$log"
+    timeout -k 5 $((3 * (PER + WARMUP) * (TIME_LIMIT + 2) + 120)) $ON_PIN \
+        "$BIN/mpb-bench-fidelity" pace --planner-pid "$PLANNER" --runs $((PER + WARMUP)) \
+        --robot "$URDF" --scene "$SCENE_FILE" --joints "$JOINTS" --start "$START" \
+        --goal "$GOAL" --time-limit "$TIME_LIMIT" --block "$1" --warmup "$WARMUP" \
+        >"$out" 2>"$log" &
+    pacer=$!
+    i=0
+    until grep -q listening "$log" || [ $i -ge 600 ]; do sleep 0.1; i=$((i + 1)); done
+    from=$(wc -l <"$RUNS_TXT")
+    mpbench_block "$1"
+    wait "$pacer" || echo "mpb-bench-fidelity pace failed: see $log"
+    grep -q '^LATE ' "$out" && echo "  block $1: $(grep -c '^LATE ' "$out") runs not paced (LATE), left out"
+    # mpbench's lines of this block, less the late ones; then the sides'.
+    tail -n +$((from + 1)) "$RUNS_TXT" | awk 'NR == FNR { if ($1 == "LATE") late[$2 " " $3] = 1; next }
+        !(($3 " " $4) in late)' "$out" - >"$WORK/block.txt"
+    head -n "$from" "$RUNS_TXT" >"$WORK/runs.new"
+    cat "$WORK/block.txt" >>"$WORK/runs.new"
+    grep '^RUN ' "$out" >>"$WORK/runs.new"
+    mv "$WORK/runs.new" "$RUNS_TXT"
+    grep '^RESULT fidelity_pace ' "$out" >>"$WORK/pace.txt"
+}
+
 # The median of a block's solved runs of one side, in ms (for the log).
 block_median() { # side block
     awk -v s="$1" -v b="$2" '$2 == s && $3 == b && $6 == 1 { print $5 }' "$RUNS_TXT" |
@@ -223,10 +271,14 @@ block_median() { # side block
 
 echo "== timing fidelity: RRTConnect, PR2 $SCENE ($QUERY), $BLOCKS blocks of $PER runs on each side" \
      "(mpbench, OMPL's Benchmark, bare solve()), planning on" \
-     "$([ "$PIN" = none ] && echo "any CPU (no pinning)" || echo "CPU $PIN")"
+     "$([ "$PIN" = none ] && echo "any CPU (no pinning)" || echo "CPU $PIN")" \
+     "$([ "$INTERLEAVE" = run ] && echo "(paced: run by run)")"
+: >"$WORK/pace.txt"
 k=1
 while [ "$k" -le "$BLOCKS" ]; do
-    if [ $((k % 2)) -eq 1 ]; then
+    if [ "$INTERLEAVE" = run ]; then
+        paced_block "$k"
+    elif [ $((k % 2)) -eq 1 ]; then
         mpbench_block "$k"
         inprocess_block "$k" ompl,plain
     else
@@ -242,6 +294,12 @@ LOAD_END=$(cut -d' ' -f1-3 /proc/loadavg)
 
 {
 echo "RESULT fidelity_setup scene=$SCENE query=$QUERY blocks=$BLOCKS block_runs=$PER warmup=$WARMUP pin=$PIN" \
+     "interleave=$INTERLEAVE" \
      "load_start=$(echo "$LOAD_START" | tr ' ' /) load_end=$(echo "$LOAD_END" | tr ' ' /)"
+[ "$INTERLEAVE" = run ] && awk '{ for (i = 3; i <= NF; i++) { split($i, kv, "=")
+        v[kv[1]] = kv[2] }
+    paced += v["paced"]; late += v["late"]; if (v["max_hold_ms"] > hold) hold = v["max_hold_ms"] }
+    END { printf "RESULT fidelity_paced blocks=%d paced=%d late=%d max_hold_ms=%.1f\n",
+          NR, paced, late, hold }' "$WORK/pace.txt"
 "$BIN/mpb-bench-fidelity" stats --boot "$BOOT" "$RUNS_TXT"
 } | sed "s/^RESULT fidelity_/RESULT $KEYP/"

@@ -48,7 +48,8 @@ planners_n() { [ "$1" -eq 1 ] && echo "1 null planner" || echo "$1 null planners
 
 PIDS=""
 cleanup() {
-    for p in $PIDS; do kill "$p" 2>/dev/null; done
+    # CONT: a planner held by mpb-bench-fidelity pace would not end.
+    for p in $PIDS; do kill "$p" 2>/dev/null; kill -CONT "$p" 2>/dev/null; done
     for p in $PIDS; do wait "$p" 2>/dev/null; done
     PIDS=""
 }
