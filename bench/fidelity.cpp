@@ -599,10 +599,12 @@ void usage(FILE *out)
 "without sleeping until mpbenchd has stored the result, runs that run's\n"
 "seed on each side (in turns: A,B then B,A), lets the planner go on\n"
 "(SIGCONT). RUN lines as run's, for all but the first --warmup runs; LATE\n"
-"lines name the runs the planner may have started before it was held (not\n"
-"paced: leave them out); a RESULT line counts. --block, --sides, --warmup,\n"
-"--time-limit, --tolerance and --resolution as for run; --url URL the LCM\n"
-"URL (default mpbench's).\n"
+"lines name the runs the planner may have started before it was held, LONG\n"
+"lines those it took more than --max-run-s for (default 0.3 s; their sides\n"
+"would hold it so long that mpbenchd takes it for gone): none of their\n"
+"sides run, leave them out of mpbench's. A RESULT line counts. --block,\n"
+"--sides, --warmup, --time-limit, --tolerance and --resolution as for run;\n"
+"--url URL the LCM URL (default mpbench's).\n"
 "\n"
 "stats: the RUN lines of FILE (sides mpbench, ompl, plain), side against\n"
 "side: the ratio of the median solve times of the solved runs, its\n"
@@ -619,6 +621,7 @@ struct Setup {
     std::vector<std::string> seeds, sides;
     int block = 0, warmup = 5, gap_us = 0;
     long planner_pid = 0, runs = 0;     // pace
+    double max_run_s = 0.3;             // pace
     std::string url;                    // pace
 };
 
@@ -650,6 +653,7 @@ int setup(int argc, char **argv, bool pace, Setup &o)
         else if (pace && !std::strcmp(a, "--planner-pid")) o.planner_pid = std::atol(v);
         else if (pace && !std::strcmp(a, "--runs")) o.runs = std::atol(v);
         else if (pace && !std::strcmp(a, "--url")) o.url = v;
+        else if (pace && !std::strcmp(a, "--max-run-s")) o.max_run_s = std::atof(v);
         else return 2;
     }
     std::vector<std::string> names = split(joints_arg);
@@ -660,7 +664,8 @@ int setup(int argc, char **argv, bool pace, Setup &o)
     bool sides_ok = !o.sides.empty();
     for (const std::string &s : o.sides)
         sides_ok = sides_ok && (s == "ompl" || s == "plain" || s == "thread");
-    bool what_ok = pace ? o.planner_pid > 0 && o.runs > 0 : !o.seeds.empty();
+    bool what_ok = pace ? o.planner_pid > 0 && o.runs > 0 && o.max_run_s > 0
+                        : !o.seeds.empty();
     if (!robot_file || !scene_file || names.empty() || o.q.start.size() != names.size() ||
         o.q.goal.size() != names.size() || !what_ok || !(time_limit > 0) ||
         !(resolution > 0) || !sides_ok || o.warmup < 0)
@@ -751,6 +756,7 @@ int pace(int argc, char **argv)
     mpb_fidelity::PaceOptions opt;
     opt.planner = static_cast<pid_t>(o.planner_pid);
     opt.runs = o.runs;
+    opt.max_run_s = o.max_run_s;
     opt.lcm_url = o.url.empty() ? nullptr : o.url.c_str();
     mpb_fidelity::PaceReport report;
     rc = mpb_fidelity::pace(opt, [&](long index, const std::string &seed) {
@@ -768,11 +774,14 @@ int pace(int argc, char **argv)
     }, &report);
     for (const std::string &seed : report.late_seeds)
         std::printf("LATE %d %s\n", o.block, seed.c_str());
-    std::printf("RESULT fidelity_pace block=%d paced=%ld late=%zu max_hold_ms=%.1f\n", o.block,
-                report.paced, report.late_seeds.size(), report.max_hold_s * 1e3);
+    for (const std::string &seed : report.long_seeds)
+        std::printf("LONG %d %s\n", o.block, seed.c_str());
+    std::printf("RESULT fidelity_pace block=%d paced=%ld late=%zu long=%zu max_hold_ms=%.1f\n",
+                o.block, report.paced, report.late_seeds.size(), report.long_seeds.size(),
+                report.max_hold_s * 1e3);
     std::fprintf(stderr, "mpb-bench-fidelity pace: block %d: %ld runs paced, %zu late, "
-                 "the planner held at most %.1f ms\n", o.block, report.paced,
-                 report.late_seeds.size(), report.max_hold_s * 1e3);
+                 "%zu long, the planner held at most %.1f ms\n", o.block, report.paced,
+                 report.late_seeds.size(), report.long_seeds.size(), report.max_hold_s * 1e3);
     mpb_world_close(o.q.world);
     return rc;
 }

@@ -49,6 +49,7 @@ struct Pacer {
     std::string holding;        // the run whose result came; planner held
     int64_t held_at = 0;        // utime when it was held
     double held_mono = 0;
+    double run_s = 0;           // the planner's time_total for it
     bool stored = false;        // mpbenchd acknowledged `holding`
 };
 
@@ -82,6 +83,7 @@ void on_result(const lcm_recv_buf_t *rbuf, const char *, void *user)
         p->held_at = mpb_utime_now();
         p->held_mono = mpb_monotonic_s();
         p->holding = m.run_id;
+        p->run_s = m.time_total;
         p->stored = false;
     }
     mpb_plan_result_t_decode_cleanup(&m);
@@ -155,7 +157,10 @@ int pace(const PaceOptions &opt,
         if (!p.stored)
             std::fprintf(stderr, "mpb-bench-fidelity pace: run %s not acknowledged as "
                          "stored; going on\n", p.holding.c_str());
-        between(report->paced, req.seed);
+        if (p.run_s > opt.max_run_s)
+            report->long_seeds.push_back(req.seed);
+        else
+            between(report->paced, req.seed);
         double held = mpb_monotonic_s() - p.held_mono;
         if (held > report->max_hold_s)
             report->max_hold_s = held;
