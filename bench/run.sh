@@ -19,7 +19,7 @@
 #      fidelity: RRTConnect on the first query of the paper's narrow
 #      passage (about 30 ms a run) and of its kitchen (about 2 ms) through
 #      mpbenchd and mpb-planner-ompl vs OMPL's own Benchmark and a bare
-#      solve() (bench/fidelity.sh),
+#      solve() (bench/fidelity.sh): in interleaved blocks, then run by run,
 #   5. the store's write cost per run, and `mpb report` over a database of
 #      a million runs (mpb-bench-mkdb),
 #   6. an OMPL log of 50,000 runs into a Planner Arena database, `mpb
@@ -39,7 +39,8 @@
 #                    in the kitchen, in 20 interleaved blocks (4 with
 #                    --quick; default 5000, 200 with --quick)
 #   --fidelity-np-runs N  the same in the narrow passage, 20 blocks (3 with
-#                    --quick; default 2000, 60 with --quick)
+#                    --quick; default 2000, 60 with --quick); run by run,
+#                    half as many of each
 #   --keep           keep the work directory (databases, logs)
 set -u
 
@@ -347,18 +348,31 @@ done
 # on each side; its RESULT keys renamed fidelity_np_*) and of its kitchen
 # (FID_N): through mpbenchd + mpb-planner-ompl, in OMPL's own Benchmark, as
 # a bare solve() in process; interleaved blocks, the same seeds on every
-# side, the planning processes on the last CPU (bench/fidelity.sh).
-fidelity_run() { # scene runs blocks key-prefix
-    log=$WORK/fidelity-$1.log
-    set -- --in-netns --bin "$SNAP" --work "$WORK/fidelity-$1" --scene "$1" \
-        --runs "$2" --blocks "$3" --key-prefix "$4"
+# side, the planning processes on the last CPU (bench/fidelity.sh). Then
+# both run by run (half as many runs, in blocks of 100 or more, at most 10:
+# fidelity_npp_*, fidelity_kp_*; 4e).
+fidelity_run() { # scene runs blocks key-prefix [fidelity.sh options]
+    log=$WORK/$4.log
+    scene=$1 runs=$2 blocks=$3 key=$4
+    shift 4
+    set -- --in-netns --bin "$SNAP" --work "$WORK/$key" --scene "$scene" \
+        --runs "$runs" --blocks "$blocks" --key-prefix "$key" "$@"
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     sh "$src/bench/fidelity.sh" "$@" >"$log" 2>&1
     grep -v '^RESULT ' "$log"; collect "$log"
 }
+paced_blocks() { # runs
+    b=$(($1 / 100)); [ "$b" -lt 1 ] && b=1; [ "$b" -gt 10 ] && b=10; echo "$b"
+}
 if [ -x "$SNAP/mpb-planner-ompl" ] && [ -x "$SNAP/mpb-bench-fidelity" ]; then
     fidelity_run narrow_passage "$FIDNP_N" "$FIDNP_BLOCKS" fidelity_np_
     fidelity_run kitchen "$FID_N" "$FID_BLOCKS" fidelity_
+    n=$((FIDNP_N / 2))
+    [ "$n" -ge 1 ] && fidelity_run narrow_passage "$n" "$(paced_blocks "$n")" fidelity_npp_ \
+        --interleave run
+    n=$((FID_N / 2))
+    [ "$n" -ge 1 ] && fidelity_run kitchen "$n" "$(paced_blocks "$n")" fidelity_kp_ \
+        --interleave run
 else
     echo "== 4. timing fidelity: skipped (needs mpb-planner-ompl, mpb-bench-fidelity)"
 fi
