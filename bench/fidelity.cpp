@@ -604,7 +604,9 @@ void usage(FILE *out)
 "would hold it so long that mpbenchd takes it for gone): none of their\n"
 "sides run, leave them out of mpbench's. A RESULT line counts. --block,\n"
 "--sides, --warmup, --time-limit, --tolerance and --resolution as for run;\n"
-"--url URL the LCM URL (default mpbench's).\n"
+"--url URL the LCM URL (default mpbench's). It sends nothing, but joins\n"
+"the LCM group: run it only inside a private network namespace, as\n"
+"bench/fidelity.sh does.\n"
 "\n"
 "stats: the RUN lines of FILE (sides mpbench, ompl, plain), side against\n"
 "side: the ratio of the median solve times of the solved runs, its\n"
@@ -772,6 +774,10 @@ int pace(int argc, char **argv)
         }
         std::fflush(stdout);
     }, &report);
+    if (rc != 0 && report.paced == 0) {
+        mpb_world_close(o.q.world);
+        return rc;
+    }
     for (const std::string &seed : report.late_seeds)
         std::printf("LATE %d %s\n", o.block, seed.c_str());
     for (const std::string &seed : report.long_seeds)

@@ -1,6 +1,6 @@
 #!/bin/sh
 # bench/fidelity.sh - timing fidelity: does mpbench make a planner look
-# slower or faster than it is? (docs/performance.md, 4b and 4c)
+# slower or faster than it is? (docs/performance.md, 4b, 4c and 4e)
 #
 #   bench/fidelity.sh [--scene kitchen|narrow_passage] [--runs N]
 #                     [--blocks K] [--pin CPU|none] [--queue Q] [--boot B]

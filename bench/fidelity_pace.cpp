@@ -6,6 +6,7 @@
  */
 #include "fidelity_pace.h"
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -109,6 +110,11 @@ int pace(const PaceOptions &opt,
          PaceReport *report)
 {
     *report = PaceReport();
+    if (opt.planner <= 0 || kill(opt.planner, 0) != 0) {
+        std::fprintf(stderr, "mpb-bench-fidelity pace: no process %d to hold: %s\n",
+                     static_cast<int>(opt.planner), std::strerror(errno));
+        return 1;
+    }
     lcm_t *lcm = lcm_create(opt.lcm_url ? opt.lcm_url : MPB_DEFAULT_LCM_URL);
     if (lcm == nullptr) {
         std::fprintf(stderr, "mpb-bench-fidelity pace: cannot start LCM\n");
