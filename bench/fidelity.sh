@@ -237,8 +237,9 @@ inprocess_block() { # block sides
 
 # A block run by run: mpb-bench-fidelity pace ready on the planning CPU
 # before mpbenchd starts, then the block through mpbenchd, each run
-# followed by its seed's in-process runs; runs the planner may have
-# started before it was held (LATE) are left out of mpbench's side.
+# followed by its seed's in-process runs. Runs the planner may have
+# started before it was held (LATE) are left out of mpbench's side; runs
+# over 0.3 s (LONG) have no in-process runs and are left out of it too.
 paced_block() { # block
     out=$WORK/pace-$1.txt log=$WORK/pace-$1.log
     : >"$log"
@@ -250,16 +251,13 @@ paced_block() { # block
     pacer=$!
     i=0
     until grep -q listening "$log" || [ $i -ge 600 ]; do sleep 0.1; i=$((i + 1)); done
-    from=$(wc -l <"$RUNS_TXT")
     mpbench_block "$1"
     wait "$pacer" || echo "mpb-bench-fidelity pace failed: see $log"
+    kill -CONT "$PLANNER" 2>/dev/null    # never held into the next block
     grep -q '^LATE ' "$out" && echo "  block $1: $(grep -c '^LATE ' "$out") runs not paced (LATE), left out"
     grep -q '^LONG ' "$out" && echo "  block $1: $(grep -c '^LONG ' "$out") runs over 0.3 s (LONG), left out of every side"
-    # mpbench's lines of this block, less the runs not paced; then the sides'.
-    tail -n +$((from + 1)) "$RUNS_TXT" | awk 'NR == FNR { if ($1 == "LATE" || $1 == "LONG")
-        out[$2 " " $3] = 1; next } !(($3 " " $4) in out)' "$out" - >"$WORK/block.txt"
-    head -n "$from" "$RUNS_TXT" >"$WORK/runs.new"
-    cat "$WORK/block.txt" >>"$WORK/runs.new"
+    awk 'NR == FNR { if ($1 == "LATE" || $1 == "LONG") out[$2 " " $3] = 1; next }
+        !($2 == "mpbench" && ($3 " " $4) in out)' "$out" "$RUNS_TXT" >"$WORK/runs.new"
     grep '^RUN ' "$out" >>"$WORK/runs.new"
     mv "$WORK/runs.new" "$RUNS_TXT"
     grep '^RESULT fidelity_pace ' "$out" >>"$WORK/pace.txt"
