@@ -127,6 +127,23 @@ struct Run {
     double secs;
     bool solved;
     unsigned graph_states;
+    double inner = NAN;     // Benchmark's runs: solve() timed inside it
+};
+
+// RRTConnect whose solve(ptc) times itself: inside Benchmark, the planner's
+// own time, without what Benchmark's stopwatch holds around it.
+class TimedRRTConnect : public og::RRTConnect {
+public:
+    using og::RRTConnect::RRTConnect;
+    using og::RRTConnect::solve;
+    ob::PlannerStatus solve(const ob::PlannerTerminationCondition &ptc) override
+    {
+        const double t0 = mpb_monotonic_s();
+        ob::PlannerStatus st = og::RRTConnect::solve(ptc);
+        last_secs = mpb_monotonic_s() - t0;
+        return st;
+    }
+    double last_secs = NAN;
 };
 
 // A bare run: the request's objects made anew, the planner set up, then
@@ -139,7 +156,7 @@ Run plain_run(const Query &q, const std::string &seed, double period = 0)
 {
     seed_run(seed);
     Problem p = make_problem(q);
-    auto planner = std::make_shared<og::RRTConnect>(p.si);
+    auto planner = std::make_shared<TimedRRTConnect>(p.si);
     planner->setProblemDefinition(p.pdef);
     planner->setup();
     const double t0 = mpb_monotonic_s(), deadline = t0 + q.time_limit;
@@ -150,7 +167,8 @@ Run plain_run(const Query &q, const std::string &seed, double period = 0)
     const double secs = mpb_monotonic_s() - t0;
     ob::PlannerData data(p.si);
     planner->getPlannerData(data);
-    return {secs, st == ob::PlannerStatus::EXACT_SOLUTION, data.numVertices()};
+    return {secs, st == ob::PlannerStatus::EXACT_SOLUTION, data.numVertices(),
+            period > 0 ? planner->last_secs : NAN};
 }
 
 // OMPL's own Benchmark, one run per seed. It is kept from one call to the
@@ -170,7 +188,11 @@ public:
         ss_->setPlanner(std::make_shared<og::RRTConnect>(p_.si));
         ss_->setup();
         b_ = std::make_unique<ot::Benchmark>(*ss_, "mpbench-fidelity");
-        b_->addPlanner(std::make_shared<og::RRTConnect>(p_.si));
+        timed_ = std::make_shared<TimedRRTConnect>(p_.si);
+        b_->addPlanner(timed_);
+        b_->setPostRunEvent([this](const ob::PlannerPtr &, ot::Benchmark::RunProperties &run) {
+            run["inner time REAL"] = std::to_string(timed_->last_secs);
+        });
         b_->setPreRunEvent([this](const ob::PlannerPtr &) {
             seed_run((*seeds_)[next_++ % seeds_->size()]);
             Problem twin = make_problem(q_);
@@ -196,10 +218,11 @@ public:
                 };
                 bool exact = get("solved BOOLEAN") == "1" &&
                              get("approximate solution BOOLEAN") != "1";
-                std::string t = get("time REAL");
+                std::string t = get("time REAL"), in = get("inner time REAL");
                 out.push_back({t.empty() ? NAN : std::strtod(t.c_str(), nullptr), exact,
                                static_cast<unsigned>(std::strtoul(
-                                   get("graph states INTEGER").c_str(), nullptr, 10))});
+                                   get("graph states INTEGER").c_str(), nullptr, 10)),
+                               in.empty() ? NAN : std::strtod(in.c_str(), nullptr)});
             }
         return out;
     }
@@ -209,6 +232,7 @@ private:
     Problem p_;
     std::unique_ptr<og::SimpleSetup> ss_;
     std::unique_ptr<ot::Benchmark> b_;
+    std::shared_ptr<TimedRRTConnect> timed_;
     const std::vector<std::string> *seeds_ = nullptr;
     size_t next_ = 0;
 };
@@ -487,6 +511,19 @@ int stats(int argc, char **argv)
     compare("fidelity_ompl", "mpbench", m, "OMPL Benchmark", o, boots, 0.97, 1.03);
     compare("fidelity_plain", "mpbench", m, "bare solve()", p, boots, 0.97, 1.03);
     compare("fidelity_bench_plain", "OMPL Benchmark", o, "bare solve()", p, boots, 0.97, 1.03);
+    // Benchmark's "time" holds its planner's solve() and, around it, the
+    // start and the join of OMPL's time-limit thread: its planner's own
+    // solve(), timed inside Benchmark, is the time Benchmark itself
+    // measures of the planner.
+    if (sides.count("ompl_solve")) {
+        const Side &os = sides["ompl_solve"];
+        compare("fidelity_ompl_solve", "mpbench", m, "solve() inside OMPL Benchmark", os, boots,
+                0.97, 1.03);
+        compare("fidelity_solve_plain", "solve() inside OMPL Benchmark", os, "bare solve()", p,
+                boots, 0.97, 1.03);
+        compare("fidelity_bench_solve", "OMPL Benchmark", o, "solve() inside it", os, boots,
+                0.97, 1.03);
+    }
     if (sides.count("thread")) {
         const Side &t = sides["thread"];
         compare("fidelity_thread_plain", "solve() with Benchmark's time-limit thread", t,
@@ -583,12 +620,16 @@ void usage(FILE *out)
 "per run. Sides: \"ompl\" (OMPL's Benchmark, its \"time\"), \"plain\" (a bare\n"
 "solve(), timed alone, as mpb-planner-ompl times it), \"thread\" (as plain,\n"
 "the time limit checked by OMPL's thread, every 0.1 s, as Benchmark has it).\n"
+"The ompl and thread sides also print SIDE_solve lines: the planner's\n"
+"solve() timed inside, without the thread's start and join around it.\n"
 "  --sides A,B      default ompl,plain\n"
+"  --interleave run each seed on every side in turn (A,B then B,A), not\n"
+"                   each side's seeds one after the other (block, default)\n"
 "  --block K        the block number printed (default 0)\n"
 "  --warmup N       runs of the first seeds on each side first, not printed\n"
 "                   (default 5)\n"
-"  --gap-us N       sleep N us after each bare run, as a planner process\n"
-"                   waits for its next request (a diagnostic; default 0)\n"
+"  --gap-us N       sleep N us after each run, as a planner process\n"
+"                   waits for its next request (a diagnostic; block only)\n"
 "  --time-limit S   per run (default 10)\n"
 "  --tolerance RAD  goal tolerance (default 0.01)\n"
 "  --resolution RAD motion checks, as mpb-planner-ompl (default 0.005)\n"
@@ -608,7 +649,8 @@ void usage(FILE *out)
 "the LCM group: run it only inside a private network namespace, as\n"
 "bench/fidelity.sh does.\n"
 "\n"
-"stats: the RUN lines of FILE (sides mpbench, ompl, plain), side against\n"
+"stats: the RUN lines of FILE (sides mpbench, ompl, plain; ompl_solve and\n"
+"thread when there), side against\n"
 "side: the ratio of the median solve times of the solved runs, its\n"
 "bootstrap 95 %% interval (N resamples, default 2000), the blocks' own\n"
 "ratios, the success rates; RESULT lines.\n"
@@ -622,6 +664,7 @@ struct Setup {
     Query q{};
     std::vector<std::string> seeds, sides;
     int block = 0, warmup = 5, gap_us = 0;
+    bool by_run = false;                // run: --interleave run
     long planner_pid = 0, runs = 0;     // pace
     double max_run_s = 0.3;             // pace
     std::string url;                    // pace
@@ -652,6 +695,11 @@ int setup(int argc, char **argv, bool pace, Setup &o)
         else if (!std::strcmp(a, "--resolution")) resolution = std::atof(v);
         else if (!pace && !std::strcmp(a, "--seeds")) seeds_arg = v;
         else if (!pace && !std::strcmp(a, "--gap-us")) o.gap_us = std::atoi(v);
+        else if (!pace && !std::strcmp(a, "--interleave")) {
+            if (std::strcmp(v, "run") && std::strcmp(v, "block"))
+                return 2;
+            o.by_run = !std::strcmp(v, "run");
+        }
         else if (pace && !std::strcmp(a, "--planner-pid")) o.planner_pid = std::atol(v);
         else if (pace && !std::strcmp(a, "--runs")) o.runs = std::atol(v);
         else if (pace && !std::strcmp(a, "--url")) o.url = v;
@@ -667,7 +715,7 @@ int setup(int argc, char **argv, bool pace, Setup &o)
     for (const std::string &s : o.sides)
         sides_ok = sides_ok && (s == "ompl" || s == "plain" || s == "thread");
     bool what_ok = pace ? o.planner_pid > 0 && o.runs > 0 && o.max_run_s > 0
-                        : !o.seeds.empty();
+                        : !o.seeds.empty() && !(o.by_run && o.gap_us > 0);
     if (!robot_file || !scene_file || names.empty() || o.q.start.size() != names.size() ||
         o.q.goal.size() != names.size() || !what_ok || !(time_limit > 0) ||
         !(resolution > 0) || !sides_ok || o.warmup < 0)
@@ -691,11 +739,44 @@ int setup(int argc, char **argv, bool pace, Setup &o)
     return 0;
 }
 
+// A run's RUN line; for the sides with OMPL's time-limit thread (ompl,
+// thread), a second line for the solve() inside, side name + "_solve".
 void print_run(const std::string &side, int block, const std::string &seed, const Run &r)
 {
     std::printf("RUN %s %d %s %.9f %d - %u\n", side.c_str(), block, seed.c_str(), r.secs,
                 r.solved ? 1 : 0, r.graph_states);
+    if (!std::isnan(r.inner))
+        std::printf("RUN %s_solve %d %s %.9f %d - %u\n", side.c_str(), block, seed.c_str(),
+                    r.inner, r.solved ? 1 : 0, r.graph_states);
 }
+
+// One run of a seed on an in-process side; Benchmark is kept from one call
+// to the next.
+class Sides {
+public:
+    explicit Sides(const Query &q) : q_(q), bench_(q) {}
+
+    Run one(const std::string &side, const std::string &seed)
+    {
+        if (side == "ompl")
+            return bench_.runs({seed}).at(0);
+        return plain_run(q_, seed, side == "thread" ? 0.1 : 0);
+    }
+
+    std::vector<Run> many(const std::string &side, const std::vector<std::string> &seeds)
+    {
+        if (side == "ompl")
+            return bench_.runs(seeds);
+        std::vector<Run> out;
+        for (const std::string &s : seeds)
+            out.push_back(one(side, s));
+        return out;
+    }
+
+private:
+    const Query &q_;
+    BenchmarkSide bench_;
+};
 
 int run(int argc, char **argv)
 {
@@ -707,36 +788,47 @@ int run(int argc, char **argv)
     std::vector<std::string> warm(seeds.begin(),
                                   seeds.begin() + std::min<size_t>(seeds.size(),
                                                                    static_cast<size_t>(o.warmup)));
-    for (const std::string &side : o.sides) {
-        std::vector<Run> runs;
-        if (side == "ompl") {
-            BenchmarkSide bench(o.q);
-            if (!warm.empty())
-                bench.runs(warm);
-            runs = bench.runs(seeds);
-        } else {
-            double period = side == "thread" ? 0.1 : 0;
-            for (const std::string &s : warm)
-                plain_run(o.q, s, period);
+    Sides sides(o.q);
+    std::map<std::string, std::vector<Run>> runs;
+    for (const std::string &side : o.sides)
+        sides.many(side, warm);
+    if (o.by_run) {
+        // Each seed on every side in turn (A,B then B,A): the sides' runs
+        // of a seed milliseconds apart, so the machine's drift cancels.
+        for (size_t i = 0; i < seeds.size(); i++) {
+            std::vector<std::string> order = o.sides;
+            if (i % 2)
+                std::reverse(order.begin(), order.end());
+            for (const std::string &side : order)
+                runs[side].push_back(sides.one(side, seeds[i]));
+        }
+    } else {
+        for (const std::string &side : o.sides) {
+            if (o.gap_us <= 0) {
+                runs[side] = sides.many(side, seeds);
+                continue;
+            }
             for (const std::string &s : seeds) {
-                runs.push_back(plain_run(o.q, s, period));
+                runs[side].push_back(sides.one(side, s));
                 // A pause between runs, as a planner process has while the
                 // daemon verifies, stores and sends the next request.
-                if (o.gap_us > 0)
-                    usleep(static_cast<useconds_t>(o.gap_us));
+                usleep(static_cast<useconds_t>(o.gap_us));
             }
         }
+    }
+    for (const std::string &side : o.sides) {
+        const std::vector<Run> &v = runs[side];
         int solved = 0;
         std::vector<double> times;
-        for (size_t r = 0; r < runs.size(); r++) {
-            print_run(side, o.block, seeds[r % seeds.size()], runs[r]);
-            if (runs[r].solved) {
+        for (size_t r = 0; r < v.size(); r++) {
+            print_run(side, o.block, seeds[r], v[r]);
+            if (v[r].solved) {
                 solved++;
-                times.push_back(runs[r].secs);
+                times.push_back(v[r].secs);
             }
         }
         std::fprintf(stderr, "mpb-bench-fidelity: block %d, %s: %zu runs, %d solved, "
-                     "median %.3f ms\n", o.block, side.c_str(), runs.size(), solved,
+                     "median %.3f ms\n", o.block, side.c_str(), v.size(), solved,
                      median(times) * 1e3);
     }
     mpb_world_close(o.q.world);
@@ -749,12 +841,7 @@ int pace(int argc, char **argv)
     int rc = setup(argc, argv, true, o);
     if (rc != 0)
         return rc;
-    BenchmarkSide bench(o.q);
-    auto one = [&](const std::string &side, const std::string &seed) {
-        if (side == "ompl")
-            return bench.runs({seed}).at(0);
-        return plain_run(o.q, seed, side == "thread" ? 0.1 : 0);
-    };
+    Sides sides(o.q);
     mpb_fidelity::PaceOptions opt;
     opt.planner = static_cast<pid_t>(o.planner_pid);
     opt.runs = o.runs;
@@ -768,7 +855,7 @@ int pace(int argc, char **argv)
         if (index % 2)
             std::reverse(order.begin(), order.end());
         for (const std::string &side : order) {
-            Run r = one(side, seed);
+            Run r = sides.one(side, seed);
             if (index >= o.warmup)
                 print_run(side, o.block, seed, r);
         }
