@@ -206,8 +206,18 @@ mpbench_block() { # block
     rm -f "$db"*
     block_yaml "$1" "$WORK/fid-$1.yaml"
     timeout -k 5 $(((PER + WARMUP) * (TIME_LIMIT + 2) + 60)) $ON_REST "$BIN/mpbenchd" \
-        -d "$db" "$WORK/fid-$1.yaml" >"$WORK/daemon-$1.log" 2>&1 ||
-        echo "mpbenchd failed: see $WORK/daemon-$1.log"
+        -d "$db" "$WORK/fid-$1.yaml" >"$WORK/daemon-$1.log" 2>&1 &
+    daemon=$!
+    # Without its planner mpbenchd would wait for one until the timeout.
+    (while kill -0 "$PLANNER" 2>/dev/null; do sleep 1; done; kill "$daemon" 2>/dev/null) &
+    watcher=$!
+    wait "$daemon" || echo "mpbenchd failed: see $WORK/daemon-$1.log"
+    kill "$watcher" 2>/dev/null
+    kill -0 "$PLANNER" 2>/dev/null || {
+        echo "bench/fidelity.sh: mpb-planner-ompl ended during block $1 (see $WORK/planner.log)" >&2
+        [ -n "${pacer:-}" ] && kill "$pacer" 2>/dev/null
+        exit 1
+    }
     # The recorded runs, as mpb-bench-fidelity prints its own: seed, the
     # raw stage's time, solved (exactly), verified (mpbench's success), the
     # planner's graph.
