@@ -127,11 +127,12 @@ struct Run {
     double secs;
     bool solved;
     unsigned graph_states;
-    double inner = NAN;     // Benchmark's runs: solve() timed inside it
+    double inner = NAN;     // ompl and thread sides: the solve() inside
 };
 
-// RRTConnect whose solve(ptc) times itself: inside Benchmark, the planner's
-// own time, without what Benchmark's stopwatch holds around it.
+// RRTConnect whose solve(ptc) times itself: the planner's own time, without
+// the start and join of OMPL's time-limit thread that Planner::solve(fn,
+// period), and with it Benchmark's stopwatch, holds around it.
 class TimedRRTConnect : public og::RRTConnect {
 public:
     using og::RRTConnect::RRTConnect;
@@ -151,7 +152,7 @@ public:
 // thread), as mpb-planner-ompl does. With period > 0, the time limit is
 // checked as Benchmark has it checked (Planner::solve(fn, period)): by a
 // thread that OMPL starts, wakes every millisecond and joins inside the
-// solve() timed.
+// solve() timed; the run's inner time is then the planner's solve() alone.
 Run plain_run(const Query &q, const std::string &seed, double period = 0)
 {
     seed_run(seed);
@@ -190,8 +191,8 @@ public:
         b_ = std::make_unique<ot::Benchmark>(*ss_, "mpbench-fidelity");
         timed_ = std::make_shared<TimedRRTConnect>(p_.si);
         b_->addPlanner(timed_);
-        b_->setPostRunEvent([this](const ob::PlannerPtr &, ot::Benchmark::RunProperties &run) {
-            run["inner time REAL"] = std::to_string(timed_->last_secs);
+        b_->setPostRunEvent([this](const ob::PlannerPtr &, ot::Benchmark::RunProperties &) {
+            inner_.push_back(timed_->last_secs);
         });
         b_->setPreRunEvent([this](const ob::PlannerPtr &) {
             seed_run((*seeds_)[next_++ % seeds_->size()]);
@@ -206,6 +207,7 @@ public:
     {
         seeds_ = &seeds;
         next_ = 0;
+        inner_.clear();
         ot::Benchmark::Request req(q_.time_limit, 4096.0, static_cast<unsigned>(seeds.size()),
                                    0.05, false, false, false);
         b_->benchmark(req);
@@ -218,11 +220,12 @@ public:
                 };
                 bool exact = get("solved BOOLEAN") == "1" &&
                              get("approximate solution BOOLEAN") != "1";
-                std::string t = get("time REAL"), in = get("inner time REAL");
+                std::string t = get("time REAL");
+                size_t i = out.size();
                 out.push_back({t.empty() ? NAN : std::strtod(t.c_str(), nullptr), exact,
                                static_cast<unsigned>(std::strtoul(
                                    get("graph states INTEGER").c_str(), nullptr, 10)),
-                               in.empty() ? NAN : std::strtod(in.c_str(), nullptr)});
+                               i < inner_.size() ? inner_[i] : NAN});
             }
         return out;
     }
@@ -233,6 +236,7 @@ private:
     std::unique_ptr<og::SimpleSetup> ss_;
     std::unique_ptr<ot::Benchmark> b_;
     std::shared_ptr<TimedRRTConnect> timed_;
+    std::vector<double> inner_;     // each run's solve(), in order
     const std::vector<std::string> *seeds_ = nullptr;
     size_t next_ = 0;
 };
@@ -390,7 +394,7 @@ void compare(const char *key, const char *a_name, const Side &a, const char *b_n
 
     // The seeds solved on both sides, by block: a's and b's times.
     int paired = 0, same_graph = 0;
-    std::vector<double> seed_ratios;
+    std::vector<double> seed_ratios, seed_diffs;
     std::map<int, std::vector<std::pair<double, double>>> pairs;
     for (const auto &s : a.by_seed) {
         auto it = b.by_seed.find(s.first);
@@ -401,6 +405,7 @@ void compare(const char *key, const char *a_name, const Side &a, const char *b_n
         if (s.second.second == it->second.second) {
             same_graph++;
             seed_ratios.push_back(s.second.first / it->second.first);
+            seed_diffs.push_back(s.second.first - it->second.first);
         }
     }
     // The same ratio of medians, the seeds resampled within each block with
@@ -440,22 +445,23 @@ void compare(const char *key, const char *a_name, const Side &a, const char *b_n
                 "  95 %% CI %.4f-%.4f (whole blocks resampled)\n"
                 "  the %zu blocks' own ratios: median %.4f, %.4f-%.4f\n"
                 "  %d of %d seeds solved on both sides made the same graph; the "
-                "median of their time ratios %.4f\n",
+                "median of their time ratios %.4f, of their differences %+.0f us\n",
                 a_name, b_name, ma * 1e3, mb * 1e3, ratio, lo, hi, v, plo, phi, pv, blo, bhi,
                 block_ratios.size(), median(block_ratios), brmin, brmax, same_graph, paired,
-                median(seed_ratios));
+                median(seed_ratios), median(seed_diffs) * 1e6);
     std::printf("RESULT %s blocks=%zu runs_a=%d solved_a=%d runs_b=%d solved_b=%d "
                 "success=%s median_a_s=%s median_b_s=%s ratio=%s ci_lo=%s ci_hi=%s "
                 "runs_verdict=%s paired_lo=%s paired_hi=%s verdict=%s "
                 "blockboot_lo=%s blockboot_hi=%s block_ratio_median=%s "
                 "block_ratio_min=%s block_ratio_max=%s seeds_paired=%d "
-                "seeds_same_graph=%d seed_ratio_median=%s\n",
+                "seeds_same_graph=%d seed_ratio_median=%s seed_diff_median_us=%s\n",
                 key, block_ratios.size(), a.runs, a.solved, b.runs, b.solved,
                 same_rate(a.solved, a.runs, b.solved, b.runs), fmt(ma, 6).c_str(),
                 fmt(mb, 6).c_str(), fmt(ratio).c_str(), fmt(lo).c_str(), fmt(hi).c_str(), v,
                 fmt(plo).c_str(), fmt(phi).c_str(), pv, fmt(blo).c_str(), fmt(bhi).c_str(),
                 fmt(median(block_ratios)).c_str(), fmt(brmin).c_str(), fmt(brmax).c_str(),
-                paired, same_graph, fmt(median(seed_ratios)).c_str());
+                paired, same_graph, fmt(median(seed_ratios)).c_str(),
+                fmt(median(seed_diffs) * 1e6, 1).c_str());
 }
 
 int stats(int argc, char **argv)
@@ -530,6 +536,8 @@ int stats(int argc, char **argv)
                 "bare solve()", p, boots, 0.97, 1.03);
         compare("fidelity_bench_thread", "OMPL Benchmark", o,
                 "solve() with Benchmark's time-limit thread", t, boots, 0.97, 1.03);
+        compare("fidelity_thread_solve_plain", "solve() inside, with the thread", sides["thread_solve"],
+                "bare solve()", p, boots, 0.97, 1.03);
     }
     return 0;
 }
