@@ -41,8 +41,12 @@
 # side (LONG: their in-process runs would hold the planner so long that
 # mpbenchd takes it for gone). Not with --queue 1 or --pin none.
 #
+# If mpb-planner-ompl ends, the script stops at once (exit 1) rather than
+# leave mpbenchd waiting for a planner until the block's timeout.
+#
 # Then `mpb-bench-fidelity stats`: the ratio of the pooled medians of the
-# solved runs (mpbench / Benchmark, mpbench / bare), bootstrap 95 %
+# solved runs (mpbench / Benchmark, mpbench / bare, mpbench / the planner's
+# solve() timed inside Benchmark, 4f), bootstrap 95 %
 # intervals of it (B resamples, default 2000), the median of the blocks' own
 # ratios, success rates. The runs are pairs (a seed makes the same graph on
 # every side), so the verdict takes the interval that resamples seeds with
