@@ -11,6 +11,8 @@
  *   mpb-bench-fidelity pace --planner-pid PID --runs N --robot URDF ...
  *   mpb-bench-fidelity stats [--boot N] FILE
  *   mpb-bench-fidelity seeds EXPERIMENT_SEED N
+ *   mpb-bench-fidelity apart-worker --robot URDF ...   (the apart side's
+ *                      process: fidelity_apart.h)
  *
  * The problem is built as mpb-planner-ompl builds it for a request: the
  * world's joints as a real vector space (continuous joints wrap), validity
@@ -56,6 +58,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "fidelity_apart.h"
 #include "fidelity_pace.h"
 #include "joint_space.h"
 #include "mpbench/mpbench.h"
@@ -514,9 +517,15 @@ int stats(int argc, char **argv)
                     s.second.verified_known ? std::to_string(s.second.verified).c_str() : "-",
                     s.second.times.size());
     const Side &m = sides["mpbench"], &o = sides["ompl"], &p = sides["plain"];
-    compare("fidelity_ompl", "mpbench", m, "OMPL Benchmark", o, boots, 0.97, 1.03);
-    compare("fidelity_plain", "mpbench", m, "bare solve()", p, boots, 0.97, 1.03);
-    compare("fidelity_bench_plain", "OMPL Benchmark", o, "bare solve()", p, boots, 0.97, 1.03);
+    // Sides a file has no run of (a run of mpb-bench-fidelity alone has
+    // no mpbench side) are not compared.
+    if (m.runs > 0) {
+        compare("fidelity_ompl", "mpbench", m, "OMPL Benchmark", o, boots, 0.97, 1.03);
+        compare("fidelity_plain", "mpbench", m, "bare solve()", p, boots, 0.97, 1.03);
+    }
+    if (o.runs > 0)
+        compare("fidelity_bench_plain", "OMPL Benchmark", o, "bare solve()", p, boots, 0.97,
+                1.03);
     // Benchmark's "time" holds its planner's solve() and, around it, the
     // start and the join of OMPL's time-limit thread: its planner's own
     // solve(), timed inside Benchmark, is the time Benchmark itself
@@ -529,6 +538,16 @@ int stats(int argc, char **argv)
                 boots, 0.97, 1.03);
         compare("fidelity_bench_solve", "OMPL Benchmark", o, "solve() inside it", os, boots,
                 0.97, 1.03);
+    }
+    // The apart side plans as bare as the plain side, but in a process of
+    // its own that waits between runs, as mpbench's planner process does:
+    // what mpbench reads over it is mpbench's own.
+    if (sides.count("apart")) {
+        const Side &ap = sides["apart"];
+        if (m.runs > 0)
+            compare("fidelity_apart", "mpbench", m, "bare solve() apart", ap, boots, 0.97, 1.03);
+        compare("fidelity_apart_plain", "bare solve() apart", ap, "bare solve()", p, boots, 0.97,
+                1.03);
     }
     if (sides.count("thread")) {
         const Side &t = sides["thread"];
@@ -627,7 +646,10 @@ void usage(FILE *out)
 "  RUN SIDE BLOCK SEED SECONDS SOLVED - GRAPH_STATES\n"
 "per run. Sides: \"ompl\" (OMPL's Benchmark, its \"time\"), \"plain\" (a bare\n"
 "solve(), timed alone, as mpb-planner-ompl times it), \"thread\" (as plain,\n"
-"the time limit checked by OMPL's thread, every 0.1 s, as Benchmark has it).\n"
+"the time limit checked by OMPL's thread, every 0.1 s, as Benchmark has it),\n"
+"\"apart\" (as plain, in a process of its own that waits on a pipe between\n"
+"runs, as a planner process waits for its next request, with no LCM and\n"
+"no daemon: this program again, as apart-worker).\n"
 "The ompl and thread sides also print SIDE_solve lines: the planner's\n"
 "solve() timed inside, without the thread's start and join around it.\n"
 "  --sides A,B      default ompl,plain\n"
@@ -657,8 +679,8 @@ void usage(FILE *out)
 "the LCM group: run it only inside a private network namespace, as\n"
 "bench/fidelity.sh does.\n"
 "\n"
-"stats: the RUN lines of FILE (sides mpbench, ompl, plain; ompl_solve and\n"
-"thread when there), side against side: the ratio of the median solve\n"
+"stats: the RUN lines of FILE (sides mpbench, ompl, plain; ompl_solve,\n"
+"thread and apart when there), side against side: the ratio of the median solve\n"
 "times of the solved runs, its bootstrap 95 %% intervals (N resamples,\n"
 "default 2000), the blocks' own ratios, the median per-seed ratio and\n"
 "difference, the success rates; RESULT lines.\n"
@@ -667,10 +689,11 @@ void usage(FILE *out)
 "planner configuration and one query, comma-separated.\n");
 }
 
-// What run and pace share: the problem and the sides.
+// What run, pace and the apart worker share: the problem and the sides.
 struct Setup {
     Query q{};
     std::vector<std::string> seeds, sides;
+    std::vector<std::string> problem_args;     // for the apart worker
     int block = 0, warmup = 5, gap_us = 0;
     bool by_run = false;                // run: --interleave run
     long planner_pid = 0, runs = 0;     // pace
@@ -678,10 +701,13 @@ struct Setup {
     std::string url;                    // pace
 };
 
-// Parses the options of `run` (pace == false) or `pace` and opens the
+enum class Mode { run, pace, apart_worker };
+
+// Parses the options of `run`, `pace` or `apart-worker` and opens the
 // world. Returns 0, 1 (a message printed) or 2 (usage).
-int setup(int argc, char **argv, bool pace, Setup &o)
+int setup(int argc, char **argv, Mode mode, Setup &o)
 {
+    const bool pace = mode == Mode::pace, worker = mode == Mode::apart_worker;
     const char *robot_file = nullptr, *scene_file = nullptr;
     std::string joints_arg, start_arg, goal_arg, seeds_arg, sides_arg = "ompl,plain";
     double time_limit = 10, tolerance = 0.01, resolution = 0.005;
@@ -690,6 +716,14 @@ int setup(int argc, char **argv, bool pace, Setup &o)
         if (v == nullptr)
             return 2;
         i++;
+        static const char *const problem[] = {"--robot", "--scene", "--joints", "--start",
+                                              "--goal", "--time-limit", "--tolerance",
+                                              "--resolution"};
+        for (const char *opt : problem)
+            if (!std::strcmp(a, opt)) {
+                o.problem_args.push_back(a);
+                o.problem_args.push_back(v);
+            }
         if (!std::strcmp(a, "--robot")) robot_file = v;
         else if (!std::strcmp(a, "--scene")) scene_file = v;
         else if (!std::strcmp(a, "--joints")) joints_arg = v;
@@ -701,9 +735,9 @@ int setup(int argc, char **argv, bool pace, Setup &o)
         else if (!std::strcmp(a, "--time-limit")) time_limit = std::atof(v);
         else if (!std::strcmp(a, "--tolerance")) tolerance = std::atof(v);
         else if (!std::strcmp(a, "--resolution")) resolution = std::atof(v);
-        else if (!pace && !std::strcmp(a, "--seeds")) seeds_arg = v;
-        else if (!pace && !std::strcmp(a, "--gap-us")) o.gap_us = std::atoi(v);
-        else if (!pace && !std::strcmp(a, "--interleave")) {
+        else if (mode == Mode::run && !std::strcmp(a, "--seeds")) seeds_arg = v;
+        else if (mode == Mode::run && !std::strcmp(a, "--gap-us")) o.gap_us = std::atoi(v);
+        else if (mode == Mode::run && !std::strcmp(a, "--interleave")) {
             if (std::strcmp(v, "run") && std::strcmp(v, "block"))
                 return 2;
             o.by_run = !std::strcmp(v, "run");
@@ -721,9 +755,10 @@ int setup(int argc, char **argv, bool pace, Setup &o)
                 time_limit};
     bool sides_ok = !o.sides.empty();
     for (const std::string &s : o.sides)
-        sides_ok = sides_ok && (s == "ompl" || s == "plain" || s == "thread");
-    bool what_ok = pace ? o.planner_pid > 0 && o.runs > 0 && o.max_run_s > 0
-                        : !o.seeds.empty() && !(o.by_run && o.gap_us > 0);
+        sides_ok = sides_ok && (s == "ompl" || s == "plain" || s == "thread" || s == "apart");
+    bool what_ok = pace     ? o.planner_pid > 0 && o.runs > 0 && o.max_run_s > 0
+                   : worker ? true
+                            : !o.seeds.empty() && !(o.by_run && o.gap_us > 0);
     if (!robot_file || !scene_file || names.empty() || o.q.start.size() != names.size() ||
         o.q.goal.size() != names.size() || !what_ok || !(time_limit > 0) ||
         !(resolution > 0) || !sides_ok || o.warmup < 0)
@@ -758,16 +793,27 @@ void print_run(const std::string &side, int block, const std::string &seed, cons
                     r.inner, r.solved ? 1 : 0, r.graph_states);
 }
 
-// One run of a seed on an in-process side; Benchmark is kept from one call
-// to the next.
+// A bare run's answer line from the apart worker: "SECONDS SOLVED GRAPH_STATES".
+std::string apart_answer(const Run &r)
+{
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.9f %d %u", r.secs, r.solved ? 1 : 0, r.graph_states);
+    return buf;
+}
+
+// One run of a seed on a side; Benchmark is kept from one call to the next,
+// and so is the apart worker, started at its side's first run.
 class Sides {
 public:
-    explicit Sides(const Query &q) : q_(q), bench_(q) {}
+    Sides(const Query &q, const std::vector<std::string> &problem_args)
+        : q_(q), problem_args_(problem_args), bench_(q) {}
 
     Run one(const std::string &side, const std::string &seed)
     {
         if (side == "ompl")
             return bench_.runs({seed}).at(0);
+        if (side == "apart")
+            return apart(seed);
         return plain_run(q_, seed, side == "thread" ? 0.1 : 0);
     }
 
@@ -782,21 +828,48 @@ public:
     }
 
 private:
+    // A bare solve() in the worker process; the worker's time, as it timed
+    // it. A worker that cannot start or answer ends this program: the
+    // comparison would be one side short.
+    Run apart(const std::string &seed)
+    {
+        if (!apart_) {
+            std::vector<std::string> args{"apart-worker"};
+            args.insert(args.end(), problem_args_.begin(), problem_args_.end());
+            apart_ = std::make_unique<mpb_fidelity::ApartProcess>();
+            if (!apart_->start(args))
+                std::exit(1);
+        }
+        std::string answer;
+        Run r{NAN, false, 0};
+        int solved = 0;
+        if (!apart_->ask(seed, &answer) ||
+            std::sscanf(answer.c_str(), "%lf %d %u", &r.secs, &solved, &r.graph_states) != 3) {
+            std::fprintf(stderr, "mpb-bench-fidelity: no answer from the apart worker for "
+                         "seed %s\n", seed.c_str());
+            std::exit(1);
+        }
+        r.solved = solved != 0;
+        return r;
+    }
+
     const Query &q_;
+    const std::vector<std::string> &problem_args_;
     BenchmarkSide bench_;
+    std::unique_ptr<mpb_fidelity::ApartProcess> apart_;
 };
 
 int run(int argc, char **argv)
 {
     Setup o;
-    int rc = setup(argc, argv, false, o);
+    int rc = setup(argc, argv, Mode::run, o);
     if (rc != 0)
         return rc;
     const std::vector<std::string> &seeds = o.seeds;
     std::vector<std::string> warm(seeds.begin(),
                                   seeds.begin() + std::min<size_t>(seeds.size(),
                                                                    static_cast<size_t>(o.warmup)));
-    Sides sides(o.q);
+    Sides sides(o.q, o.problem_args);
     std::map<std::string, std::vector<Run>> runs;
     for (const std::string &side : o.sides)
         sides.many(side, warm);
@@ -846,10 +919,10 @@ int run(int argc, char **argv)
 int pace(int argc, char **argv)
 {
     Setup o;
-    int rc = setup(argc, argv, true, o);
+    int rc = setup(argc, argv, Mode::pace, o);
     if (rc != 0)
         return rc;
-    Sides sides(o.q);
+    Sides sides(o.q, o.problem_args);
     mpb_fidelity::PaceOptions opt;
     opt.planner = static_cast<pid_t>(o.planner_pid);
     opt.runs = o.runs;
@@ -887,6 +960,20 @@ int pace(int argc, char **argv)
     return rc;
 }
 
+// The apart side's process (fidelity_apart.h): a bare solve() of each seed
+// it is sent, in its own copy of the world.
+int apart_worker(int argc, char **argv)
+{
+    Setup o;
+    int rc = setup(argc, argv, Mode::apart_worker, o);
+    if (rc != 0)
+        return rc;
+    rc = mpb_fidelity::apart_serve(
+        [&o](const std::string &seed) { return apart_answer(plain_run(o.q, seed)); });
+    mpb_world_close(o.q.world);
+    return rc;
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -904,6 +991,8 @@ int main(int argc, char **argv)
         rc = stats(argc - 2, argv + 2);
     else if (argc >= 2 && !std::strcmp(argv[1], "seeds"))
         rc = seeds(argc - 2, argv + 2);
+    else if (argc >= 2 && !std::strcmp(argv[1], "apart-worker"))
+        rc = apart_worker(argc - 2, argv + 2);
     if (rc == 2)
         usage(stderr);
     return rc;

@@ -1,10 +1,10 @@
 #!/bin/sh
 # bench/fidelity.sh - timing fidelity: does mpbench make a planner look
-# slower or faster than it is? (docs/performance.md, 4b, 4c and 4e)
+# slower or faster than it is? (docs/performance.md, 4b, 4c, 4e and 4h)
 #
 #   bench/fidelity.sh [--scene kitchen|narrow_passage] [--runs N]
 #                     [--blocks K] [--pin CPU|none] [--queue Q] [--boot B]
-#                     [--interleave block|run] [--keep]
+#                     [--interleave block|run] [--apart] [--keep]
 #
 # RRTConnect on the first query of one of the paper's environments (the
 # PR2's right arm; start and goal as in scenes/experiments/paper.yaml, the
@@ -45,6 +45,12 @@
 # whose result the pacer saw only after mpbenchd had sent the next request
 # (LATE: 6-8 % unpinned, none pinned) are left out of mpbench's side.
 #
+# --apart (4h) adds a fourth side, "apart": the bare solve() in a process
+# of its own (mpb-bench-fidelity apart-worker) that waits on a pipe between
+# runs, as the planner process waits for its next request: another process
+# than the in-process sides, with its own copy of the world, but no LCM, no
+# daemon and no planner kit. What mpbench reads over it is mpbench's own.
+#
 # If mpb-planner-ompl ends, the script stops at once (exit 1) rather than
 # leave mpbenchd waiting for a planner until the block's timeout.
 #
@@ -67,7 +73,7 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 RUNS=5000 BLOCKS=20 PIN="" BOOT=2000 KEEP=0 NETNS=0 BIN="" WORK="" SCENE=kitchen
-QUEUE=0 INTERLEAVE=block
+QUEUE=0 INTERLEAVE=block SIDES=ompl,plain
 KEYP=fidelity_
 while [ $# -gt 0 ]; do
     case $1 in
@@ -78,6 +84,8 @@ while [ $# -gt 0 ]; do
     --pin) PIN=$2; shift ;;
     --queue) QUEUE=$2; shift ;;
     --interleave) INTERLEAVE=$2; shift ;;
+    --apart) SIDES=apart,ompl,plain ;;
+    --sides) SIDES=$2; shift ;;      # the in-process sides (from --apart, re-entering)
     --boot) BOOT=$2; shift ;;
     --keep) KEEP=1 ;;
     --in-netns) NETNS=1 ;;          # a namespace bench/run.sh set up
@@ -125,7 +133,7 @@ if [ "$NETNS" -eq 0 ]; then
         "$WORK/bin/" || exit 1
     set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
         --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP" \
-        --queue "$QUEUE" --interleave "$INTERLEAVE"
+        --queue "$QUEUE" --interleave "$INTERLEAVE" --sides "$SIDES"
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     exec unshare -n sh "$0" "$@"
 fi
@@ -264,7 +272,7 @@ paced_block() { # block
         "$BIN/mpb-bench-fidelity" pace --planner-pid "$PLANNER" --runs $((PER + WARMUP)) \
         --robot "$URDF" --scene "$SCENE_FILE" --joints "$JOINTS" --start "$START" \
         --goal "$GOAL" --time-limit "$TIME_LIMIT" --block "$1" --warmup "$WARMUP" \
-        >"$out" 2>"$log" &
+        --sides "$SIDES" >"$out" 2>"$log" &
     pacer=$!
     i=0
     until grep -q listening "$log" || [ $i -ge 600 ]; do sleep 0.1; i=$((i + 1)); done
@@ -287,8 +295,9 @@ block_median() { # side block
             printf "%.3f", (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) * 1e3 }'
 }
 
+case $SIDES in *apart*) apart=", bare solve() apart" ;; *) apart="" ;; esac
 echo "== timing fidelity: RRTConnect, PR2 $SCENE ($QUERY), $BLOCKS blocks of $PER runs on each side" \
-     "(mpbench, OMPL's Benchmark, bare solve()), planning on" \
+     "(mpbench, OMPL's Benchmark, bare solve()$apart), planning on" \
      "$([ "$PIN" = none ] && echo "any CPU (no pinning)" || echo "CPU $PIN")" \
      "$([ "$INTERLEAVE" = run ] && echo "(paced: run by run)")"
 : >"$WORK/pace.txt"
@@ -298,13 +307,15 @@ while [ "$k" -le "$BLOCKS" ]; do
         paced_block "$k"
     elif [ $((k % 2)) -eq 1 ]; then
         mpbench_block "$k"
-        inprocess_block "$k" ompl,plain
+        inprocess_block "$k" "$SIDES"
     else
-        inprocess_block "$k" plain,ompl
+        inprocess_block "$k" "$(echo "$SIDES" | tr , '\n' | sed -n '1!G;h;$p' | paste -sd,)"
         mpbench_block "$k"
     fi
+    apart=""
+    case $SIDES in *apart*) apart=", apart $(block_median apart "$k")" ;; esac
     echo "  block $k: median mpbench $(block_median mpbench "$k"), Benchmark" \
-         "$(block_median ompl "$k"), bare $(block_median plain "$k") ms"
+         "$(block_median ompl "$k"), bare $(block_median plain "$k")$apart ms"
     k=$((k + 1))
 done
 cleanup
