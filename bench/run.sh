@@ -19,7 +19,8 @@
 #      fidelity: RRTConnect on the first query of the paper's narrow
 #      passage (about 30 ms a run) and of its kitchen (about 2 ms) through
 #      mpbenchd and mpb-planner-ompl vs OMPL's own Benchmark and a bare
-#      solve() (bench/fidelity.sh): in interleaved blocks, then run by run,
+#      solve() (bench/fidelity.sh): in interleaved blocks, then run by run
+#      with a fourth side, a bare solve() in a process of its own (4h),
 #   5. the store's write cost per run, and `mpb report` over a database of
 #      a million runs (mpb-bench-mkdb),
 #   6. an OMPL log of 50,000 runs into a Planner Arena database, `mpb
@@ -350,7 +351,8 @@ done
 # a bare solve() in process; interleaved blocks, the same seeds on every
 # side, the planning processes on the last CPU (bench/fidelity.sh). Then
 # both run by run (half as many runs, in blocks of 100 or more, at most 10:
-# fidelity_npp_*, fidelity_kp_*; 4e).
+# fidelity_npp_*, fidelity_kp_*; 4e), with the bare solve() also in a
+# process of its own that waits between runs as the planner does (4h).
 fidelity_run() { # scene runs blocks key-prefix [fidelity.sh options]
     log=$WORK/$4.log
     scene=$1 runs=$2 blocks=$3 key=$4
@@ -369,10 +371,10 @@ if [ -x "$SNAP/mpb-planner-ompl" ] && [ -x "$SNAP/mpb-bench-fidelity" ]; then
     fidelity_run kitchen "$FID_N" "$FID_BLOCKS" fidelity_
     n=$((FIDNP_N / 2))
     [ "$n" -ge 1 ] && fidelity_run narrow_passage "$n" "$(paced_blocks "$n")" fidelity_npp_ \
-        --interleave run
+        --interleave run --apart
     n=$((FID_N / 2))
     [ "$n" -ge 1 ] && fidelity_run kitchen "$n" "$(paced_blocks "$n")" fidelity_kp_ \
-        --interleave run
+        --interleave run --apart
 else
     echo "== 4. timing fidelity: skipped (needs mpb-planner-ompl, mpb-bench-fidelity)"
 fi
