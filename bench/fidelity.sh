@@ -50,6 +50,8 @@
 # runs, as the planner process waits for its next request: another process
 # than the in-process sides, with its own copy of the world, but no LCM, no
 # daemon and no planner kit. What mpbench reads over it is mpbench's own.
+# Paced, it waits as the planner does; in blocks it plans its block's seeds
+# back to back, with no pause between them.
 #
 # If mpb-planner-ompl ends, the script stops at once (exit 1) rather than
 # leave mpbenchd waiting for a planner until the block's timeout.
