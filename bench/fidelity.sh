@@ -58,7 +58,8 @@
 #
 # Then `mpb-bench-fidelity stats`: the ratio of the pooled medians of the
 # solved runs (mpbench / Benchmark, mpbench / bare, mpbench / the planner's
-# solve() timed inside Benchmark, 4f), bootstrap 95 %
+# solve() timed inside Benchmark, 4f; with --apart, mpbench / bare apart and
+# bare apart / bare, 4h), bootstrap 95 %
 # intervals of it (B resamples, default 2000), the median of the blocks' own
 # ratios, success rates. The runs are pairs (a seed makes the same graph on
 # every side), so the verdict takes the interval that resamples seeds with
@@ -87,7 +88,6 @@ while [ $# -gt 0 ]; do
     --queue) QUEUE=$2; shift ;;
     --interleave) INTERLEAVE=$2; shift ;;
     --apart) SIDES=apart,ompl,plain ;;
-    --sides) SIDES=$2; shift ;;      # the in-process sides (from --apart, re-entering)
     --boot) BOOT=$2; shift ;;
     --keep) KEEP=1 ;;
     --in-netns) NETNS=1 ;;          # a namespace bench/run.sh set up
@@ -135,7 +135,8 @@ if [ "$NETNS" -eq 0 ]; then
         "$WORK/bin/" || exit 1
     set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
         --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP" \
-        --queue "$QUEUE" --interleave "$INTERLEAVE" --sides "$SIDES"
+        --queue "$QUEUE" --interleave "$INTERLEAVE"
+    [ "$SIDES" = ompl,plain ] || set -- "$@" --apart
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     exec unshare -n sh "$0" "$@"
 fi
