@@ -6,6 +6,8 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/scene.h"
 
+#include "grow.h"
+
 #include <errno.h>
 #include <float.h>
 #include <limits.h>
@@ -221,21 +223,6 @@ static int read_pose(parser *ps, mpb_pose *pose, const char *what)
     pose->t[2] = v[2];
     if (mpb_pose_set_quat(pose, v[3], v[4], v[5], v[6]) != 0)
         return fail(ps, ps->last_line, "%s orientation: the quaternion is zero", what);
-    return MPB_OK;
-}
-
-static int grow(void **arr, int *cap, int need, size_t size)
-{
-    if (need <= *cap)
-        return MPB_OK;
-    int c = *cap ? 2 * *cap : 4;
-    while (c < need)
-        c *= 2;
-    void *a = realloc(*arr, (size_t)c * size);
-    if (!a)
-        return MPB_ENOMEM;
-    *arr = a;
-    *cap = c;
     return MPB_OK;
 }
 
@@ -469,8 +456,8 @@ static int parse_object(parser *ps, mpb_scene *s, int star_line)
                 s->variant = MPB_SCENE_NEW;
     }
 
-    if (grow((void **)&s->objects, &s->cap_objects, s->num_objects + 1,
-             sizeof *s->objects) != MPB_OK)
+    if (mpb__grow((void **)&s->objects, &s->cap_objects, s->num_objects + 1,
+                  sizeof *s->objects) != MPB_OK)
         return MPB_ENOMEM;
     sobj *o = &s->objects[s->num_objects];
     memset(o, 0, sizeof *o);
@@ -492,8 +479,8 @@ static int parse_object(parser *ps, mpb_scene *s, int star_line)
     if (rc != MPB_OK)
         return rc;
     for (long i = 0; i < count; i++) {
-        if (grow((void **)&o->shapes, &o->cap_shapes, o->num_shapes + 1,
-                 sizeof *o->shapes) != MPB_OK)
+        if (mpb__grow((void **)&o->shapes, &o->cap_shapes, o->num_shapes + 1,
+                      sizeof *o->shapes) != MPB_OK)
             return MPB_ENOMEM;
         mpb_scene_shape *sh = &o->shapes[o->num_shapes++];
         memset(sh, 0, sizeof *sh);
@@ -511,8 +498,8 @@ static int parse_object(parser *ps, mpb_scene *s, int star_line)
             int have = next_tok(ps, &t);
             if (!have)
                 return found(ps, &t, have, "expected a subframe name");
-            if (grow((void **)&o->subframes, &o->cap_subframes,
-                     o->num_subframes + 1, sizeof *o->subframes) != MPB_OK)
+            if (mpb__grow((void **)&o->subframes, &o->cap_subframes,
+                          o->num_subframes + 1, sizeof *o->subframes) != MPB_OK)
                 return MPB_ENOMEM;
             mpb_scene_subframe *sf = &o->subframes[o->num_subframes];
             sf->name = dup_n(t.p, (size_t)t.len);

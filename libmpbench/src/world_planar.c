@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "world_provider.h"
 
 #ifndef M_PI
@@ -144,21 +145,6 @@ static void planar_close(void *impl)
     free(p);
 }
 
-static int grow(void **arr, int *cap, int need, size_t size)
-{
-    if (need <= *cap)
-        return MPB_OK;
-    int c = *cap ? 2 * *cap : 8;
-    while (c < need)
-        c *= 2;
-    void *a = realloc(*arr, (size_t)c * size);
-    if (!a)
-        return MPB_ENOMEM;
-    *arr = a;
-    *cap = c;
-    return MPB_OK;
-}
-
 static int parse_robot(mpb_world *w, planar *p, const char *text,
                        char *err, size_t errlen)
 {
@@ -234,8 +220,8 @@ static int parse_robot(mpb_world *w, planar *p, const char *text,
                                "length must be > 0", ln, shown(name), name->p);
                 return MPB_EPARSE;
             }
-            if (grow((void **)&p->length, &cap_length, p->n + 1,
-                     sizeof *p->length) != MPB_OK)
+            if (mpb__grow((void **)&p->length, &cap_length, p->n + 1,
+                          sizeof *p->length) != MPB_OK)
                 return MPB_ENOMEM;
             int rc = mpb__world_add_joint(w, name->p, (size_t)name->len,
                                           v[0], v[1], continuous);
@@ -280,8 +266,8 @@ static int parse_scene(planar *p, const char *text, char *err, size_t errlen)
                 mpb__world_err(err, errlen, "scene line %d: circle radius must be >= 0", ln);
                 return MPB_EPARSE;
             }
-            if (grow((void **)&p->circles, &p->cap_circles, p->num_circles + 1,
-                     sizeof *p->circles) != MPB_OK)
+            if (mpb__grow((void **)&p->circles, &p->cap_circles, p->num_circles + 1,
+                          sizeof *p->circles) != MPB_OK)
                 return MPB_ENOMEM;
             p->circles[p->num_circles++] = (circle){ .cx = v[0], .cy = v[1], .r = v[2] };
         } else if (tok_is(&t[0], "box")) {
@@ -296,8 +282,8 @@ static int parse_scene(planar *p, const char *text, char *err, size_t errlen)
                 mpb__world_err(err, errlen, "scene line %d: box half sizes must be >= 0", ln);
                 return MPB_EPARSE;
             }
-            if (grow((void **)&p->boxes, &p->cap_boxes, p->num_boxes + 1,
-                     sizeof *p->boxes) != MPB_OK)
+            if (mpb__grow((void **)&p->boxes, &p->cap_boxes, p->num_boxes + 1,
+                          sizeof *p->boxes) != MPB_OK)
                 return MPB_ENOMEM;
             p->boxes[p->num_boxes++] = (box){ .xmin = v[0] - v[2], .ymin = v[1] - v[3],
                                               .xmax = v[0] + v[2], .ymax = v[1] + v[3] };

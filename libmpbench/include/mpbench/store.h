@@ -315,7 +315,7 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
                       int (*cb)(void *ud, const mpb_result_row *row),
                       void *ud);
 
-/* ---- exporting: Planner Arena and OMPL (store_export.c) -----------------
+/* ---- exporting: Planner Arena and OMPL (store_export*.c, store_pa*) -----
  *
  * An experiment's finished runs as OMPL's benchmark tools and Planner Arena
  * read them; docs/planner-arena.md gives the mapping. Each query of an
