@@ -191,6 +191,9 @@ void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
 /* A planner says it is working on these runs: any of them queued starts. */
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
                              int num_active);
+/* A new flight at the end of d->flights, for the caller to fill; NULL
+ * when out of memory. Pointers to other flights may move. */
+mpbd_flight *mpbd_flight_add(mpbd *d);
 mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid);
 /* Remove an ended flight; the next request waiting at its planner, if
  * any, starts now. */

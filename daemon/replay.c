@@ -104,19 +104,6 @@ static replay_run *find_run(replay *r, const mpb_plan_request_t *rq,
     return fallback;
 }
 
-static mpbd_flight *add_flight(mpbd *d)
-{
-    if (d->num_flights == d->cap_flights) {
-        int cap = d->cap_flights ? d->cap_flights * 2 : 16;
-        mpbd_flight *a = realloc(d->flights, (size_t)cap * sizeof *a);
-        if (a == NULL)
-            return NULL;
-        d->flights = a;
-        d->cap_flights = cap;
-    }
-    return &d->flights[d->num_flights++];
-}
-
 /* A logged request: the run it names goes in flight, as send_next() in
  * scheduler.c puts it there live. */
 static void on_request(replay *r, const lcm_eventlog_event_t *ev)
@@ -167,7 +154,7 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
         goto done;
     }
     run->run.attempts++;
-    mpbd_flight *f = add_flight(d);
+    mpbd_flight *f = mpbd_flight_add(d);
     if (f == NULL)
         goto done;
     /* last_send holds the request's time on the log's clock (no resends

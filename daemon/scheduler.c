@@ -153,19 +153,6 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
     return mpb_publish_request(d->lcm, d->auth, channel, &rq);
 }
 
-static mpbd_flight *add_flight(mpbd *d)
-{
-    if (d->num_flights == d->cap_flights) {
-        int cap = d->cap_flights ? d->cap_flights * 2 : 16;
-        mpbd_flight *a = realloc(d->flights, (size_t)cap * sizeof *a);
-        if (a == NULL)
-            return NULL;
-        d->flights = a;
-        d->cap_flights = cap;
-    }
-    return &d->flights[d->num_flights++];
-}
-
 /* Send the next run of config c to planner p (to wait in its queue if
  * queued); 0 if there was none. */
 static int send_next(mpbd *d, int c, int p, int queued)
@@ -188,7 +175,7 @@ static int send_next(mpbd *d, int c, int p, int queued)
         d->unrecorded = a;
         d->cap_unrecorded = cap;
     }
-    if ((f = add_flight(d)) == NULL)
+    if ((f = mpbd_flight_add(d)) == NULL)
         return 0;
     /* Written by the next transaction, before the result it may hold: a
      * request goes out as soon as a commit has made room for it. */
@@ -308,6 +295,19 @@ int mpbd_scheduler_record_sent(mpbd *d)
     }
     d->num_unrecorded = 0;
     return rc;
+}
+
+mpbd_flight *mpbd_flight_add(mpbd *d)
+{
+    if (d->num_flights == d->cap_flights) {
+        int cap = d->cap_flights ? d->cap_flights * 2 : 16;
+        mpbd_flight *a = realloc(d->flights, (size_t)cap * sizeof *a);
+        if (a == NULL)
+            return NULL;
+        d->flights = a;
+        d->cap_flights = cap;
+    }
+    return &d->flights[d->num_flights++];
 }
 
 mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid)
