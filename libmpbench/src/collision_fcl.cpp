@@ -33,6 +33,7 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
 #include "collision_internal.h"
+#include "errbuf.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -145,33 +146,6 @@ struct Leaf {
     int    body;                          /* static id */
     int    shape;                         /* index in sshapes */
 };
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 0)))
-#endif
-void fmt_err(char *buf, size_t len, const char *fmt, va_list ap)
-{
-    vsnprintf(buf, len, fmt, ap);
-    for (char *p = buf; *p; p++)
-        if (*p == '\n' || *p == '\r')
-            *p = ' ';
-}
-
-void put_err(char *err, size_t errlen, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-void put_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || errlen == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    fmt_err(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 /* Finite, and the translation within MPB_COLLISION_MAX_COORD. */
 bool finite_pose(const mpb_pose *p)
@@ -353,7 +327,7 @@ struct mpb_collision {
     {
         va_list ap;
         va_start(ap, fmt);
-        fmt_err(err, sizeof err, fmt, ap);
+        mpb__set_err_v(err, sizeof err, fmt, ap);
         va_end(ap);
     }
 
@@ -895,7 +869,7 @@ const char *mpb_shape_type_name(int type)
 int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen)
 {
     if (!g) {
-        put_err(err, errlen, "no geometry");
+        mpb__set_err(err, errlen, "no geometry");
         return MPB_EINVAL;
     }
     /* The type's bits as an int: a C caller may pass any value, and in C++
@@ -914,43 +888,43 @@ int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen)
     case MPB_SHAPE_MESH: {
         char why[160];
         if (mpb_mesh_check(g->mesh, why, sizeof why) != MPB_OK) {
-            put_err(err, errlen, "mesh: %s", why);
+            mpb__set_err(err, errlen, "mesh: %s", why);
             return MPB_EINVAL;
         }
         for (long i = 0; i < 3L * g->mesh->num_vertices; i++)
             if (std::fabs(g->mesh->vertices[i]) > MPB_COLLISION_MAX_COORD) {
-                put_err(err, errlen, "mesh: vertex %ld is beyond %g m", i / 3,
-                        MPB_COLLISION_MAX_COORD);
+                mpb__set_err(err, errlen, "mesh: vertex %ld is beyond %g m", i / 3,
+                             MPB_COLLISION_MAX_COORD);
                 return MPB_EINVAL;
             }
         return MPB_OK;
     }
     default:
-        put_err(err, errlen, "unknown shape type %d", type);
+        mpb__set_err(err, errlen, "unknown shape type %d", type);
         return MPB_EINVAL;
     }
     const char *name = mpb_shape_type_name(type);
     for (int i = 0; i < n; i++) {
         if (!std::isfinite(g->dims[i])) {
-            put_err(err, errlen, "%s: dimension %d is not finite", name, i + 1);
+            mpb__set_err(err, errlen, "%s: dimension %d is not finite", name, i + 1);
             return MPB_EINVAL;
         }
         if (std::fabs(g->dims[i]) > MPB_COLLISION_MAX_COORD) {
-            put_err(err, errlen, "%s: dimension %d (%g) is beyond %g m", name,
-                    i + 1, g->dims[i], MPB_COLLISION_MAX_COORD);
+            mpb__set_err(err, errlen, "%s: dimension %d (%g) is beyond %g m", name,
+                         i + 1, g->dims[i], MPB_COLLISION_MAX_COORD);
             return MPB_EINVAL;
         }
         /* a capsule's radius gives it volume whatever its length */
         double least = type == MPB_SHAPE_CAPSULE && i == 1 ? 0.0 : MPB_COLLISION_MIN_SIZE;
         if (type != MPB_SHAPE_PLANE && !(g->dims[i] >= least)) {
-            put_err(err, errlen, "%s: dimension %d (%g) is %s", name, i + 1,
-                    g->dims[i], g->dims[i] < 0 ? "negative" :
-                    "below " MPB__STR(MPB_COLLISION_MIN_SIZE) " m");
+            mpb__set_err(err, errlen, "%s: dimension %d (%g) is %s", name, i + 1,
+                         g->dims[i], g->dims[i] < 0 ? "negative" :
+                         "below " MPB__STR(MPB_COLLISION_MIN_SIZE) " m");
             return MPB_EINVAL;
         }
     }
     if (type == MPB_SHAPE_PLANE && g->dims[0] == 0 && g->dims[1] == 0 && g->dims[2] == 0) {
-        put_err(err, errlen, "plane: normal (a, b, c) is zero");
+        mpb__set_err(err, errlen, "plane: normal (a, b, c) is zero");
         return MPB_EINVAL;
     }
     return MPB_OK;

@@ -13,7 +13,6 @@
 
 #include <cctype>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -23,26 +22,9 @@
 
 #include <sys/stat.h>
 
+#include "errbuf.h"
+
 namespace {
-
-void set_err(char *err, size_t errlen, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || errlen == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    for (char *p = err; *p; p++)         /* one line, whatever assimp says */
-        if (*p == '\n' || *p == '\r')
-            *p = ' ';
-}
 
 bool is_file(const std::string &path)
 {
@@ -86,11 +68,11 @@ int resolve(const char *uri, const char *const *dirs, int num_dirs,
             std::string &out, char *err, size_t errlen)
 {
     if (!uri || !*uri) {
-        set_err(err, errlen, "mesh: empty URI");
+        mpb__set_err(err, errlen, "mesh: empty URI");
         return MPB_EINVAL;
     }
     if (num_dirs < 0 || (num_dirs > 0 && !dirs)) {
-        set_err(err, errlen, "mesh '%s': bad search path", uri);
+        mpb__set_err(err, errlen, "mesh '%s': bad search path", uri);
         return MPB_EINVAL;
     }
     size_t sl = scheme_len(uri);
@@ -98,7 +80,7 @@ int resolve(const char *uri, const char *const *dirs, int num_dirs,
         const char *pkg = uri + 10;
         const char *slash = strchr(pkg, '/');
         if (!slash || slash == pkg || !slash[1]) {
-            set_err(err, errlen, "mesh '%s': expected package://<package>/<path>", uri);
+            mpb__set_err(err, errlen, "mesh '%s': expected package://<package>/<path>", uri);
             return MPB_EINVAL;
         }
         std::string name(pkg, (size_t)(slash - pkg)), rel(slash + 1);
@@ -118,32 +100,32 @@ int resolve(const char *uri, const char *const *dirs, int num_dirs,
                 }
             }
         }
-        set_err(err, errlen, "mesh '%s': not found (package '%s' looked for in "
-                "%d search director%s)", uri, name.c_str(), num_dirs,
-                num_dirs == 1 ? "y" : "ies");
+        mpb__set_err(err, errlen, "mesh '%s': not found (package '%s' looked for in "
+                     "%d search director%s)", uri, name.c_str(), num_dirs,
+                     num_dirs == 1 ? "y" : "ies");
         return MPB_ENOTFOUND;
     }
     if (sl == 4 && strncmp(uri, "file", 4) == 0) {
         const char *p = uri + 7;
         if (*p != '/') {
-            set_err(err, errlen, "mesh '%s': expected file:///<absolute path>", uri);
+            mpb__set_err(err, errlen, "mesh '%s': expected file:///<absolute path>", uri);
             return MPB_EINVAL;
         }
         if (!is_file(p)) {
-            set_err(err, errlen, "mesh '%s': no such file", uri);
+            mpb__set_err(err, errlen, "mesh '%s': no such file", uri);
             return MPB_ENOTFOUND;
         }
         out = p;
         return MPB_OK;
     }
     if (sl > 0) {
-        set_err(err, errlen, "mesh '%s': URI scheme not supported (use "
-                "package://, file:// or a path)", uri);
+        mpb__set_err(err, errlen, "mesh '%s': URI scheme not supported (use "
+                     "package://, file:// or a path)", uri);
         return MPB_EUNSUPPORTED;
     }
     if (uri[0] == '/') {
         if (!is_file(uri)) {
-            set_err(err, errlen, "mesh '%s': no such file", uri);
+            mpb__set_err(err, errlen, "mesh '%s': no such file", uri);
             return MPB_ENOTFOUND;
         }
         out = uri;
@@ -158,8 +140,8 @@ int resolve(const char *uri, const char *const *dirs, int num_dirs,
             return MPB_OK;
         }
     }
-    set_err(err, errlen, "mesh '%s': not found (relative path looked for in "
-            "%d search director%s)", uri, num_dirs, num_dirs == 1 ? "y" : "ies");
+    mpb__set_err(err, errlen, "mesh '%s': not found (relative path looked for in "
+                 "%d search director%s)", uri, num_dirs, num_dirs == 1 ? "y" : "ies");
     return MPB_ENOTFOUND;
 }
 
@@ -210,8 +192,8 @@ int load(const char *uri, const char *const *dirs, int num_dirs,
     if (scale)
         for (int i = 0; i < 3; i++) {
             if (!std::isfinite(scale[i]) || scale[i] == 0.0) {
-                set_err(err, errlen, "mesh '%s': scale must be finite and "
-                        "nonzero", uri ? uri : "");
+                mpb__set_err(err, errlen, "mesh '%s': scale must be finite and "
+                             "nonzero", uri ? uri : "");
                 return MPB_EINVAL;
             }
             s[i] = scale[i];
@@ -233,8 +215,8 @@ int load(const char *uri, const char *const *dirs, int num_dirs,
         aiProcess_RemoveComponent | aiProcess_Triangulate |
         aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
     if (!scene || !scene->mRootNode) {
-        set_err(err, errlen, "mesh '%s': assimp: %s", path.c_str(),
-                importer.GetErrorString());
+        mpb__set_err(err, errlen, "mesh '%s': assimp: %s", path.c_str(),
+                     importer.GetErrorString());
         return MPB_EPARSE;
     }
     /*
@@ -252,12 +234,12 @@ int load(const char *uri, const char *const *dirs, int num_dirs,
     root.a1 = root.b2 = root.c3 = (ai_real)unit;
     Collected c;
     if (!collect(scene, scene->mRootNode, root, c)) {
-        set_err(err, errlen, "mesh '%s': too many vertices or triangles",
-                path.c_str());
+        mpb__set_err(err, errlen, "mesh '%s': too many vertices or triangles",
+                     path.c_str());
         return MPB_EPARSE;
     }
     if (c.t.empty()) {
-        set_err(err, errlen, "mesh '%s': no triangles", path.c_str());
+        mpb__set_err(err, errlen, "mesh '%s': no triangles", path.c_str());
         return MPB_EPARSE;
     }
     mpb_mesh *m = mpb_mesh_new((int)(c.v.size() / 3), (int)(c.t.size() / 3));
@@ -268,7 +250,7 @@ int load(const char *uri, const char *const *dirs, int num_dirs,
     memcpy(m->triangles, c.t.data(), c.t.size() * sizeof(int32_t));
     char why[160];
     if (mpb_mesh_check(m, why, sizeof why) != MPB_OK) {
-        set_err(err, errlen, "mesh '%s': %s", path.c_str(), why);
+        mpb__set_err(err, errlen, "mesh '%s': %s", path.c_str(), why);
         mpb_mesh_free(m);
         return MPB_EPARSE;
     }
@@ -325,23 +307,23 @@ mpb_mesh *mpb_mesh_copy(const mpb_mesh *m)
 int mpb_mesh_check(const mpb_mesh *m, char *err, size_t errlen)
 {
     if (!m) {
-        set_err(err, errlen, "no mesh");
+        mpb__set_err(err, errlen, "no mesh");
         return MPB_EINVAL;
     }
     if (m->num_triangles < 1 || m->num_vertices < 3 || !m->vertices || !m->triangles) {
-        set_err(err, errlen, "a mesh needs at least 3 vertices and 1 triangle "
-                "(has %d and %d)", m->num_vertices, m->num_triangles);
+        mpb__set_err(err, errlen, "a mesh needs at least 3 vertices and 1 triangle "
+                     "(has %d and %d)", m->num_vertices, m->num_triangles);
         return MPB_EINVAL;
     }
     for (long i = 0; i < 3L * m->num_vertices; i++)
         if (!std::isfinite(m->vertices[i])) {
-            set_err(err, errlen, "vertex %ld is not finite", i / 3);
+            mpb__set_err(err, errlen, "vertex %ld is not finite", i / 3);
             return MPB_EINVAL;
         }
     for (long i = 0; i < 3L * m->num_triangles; i++)
         if (m->triangles[i] < 0 || m->triangles[i] >= m->num_vertices) {
-            set_err(err, errlen, "triangle %ld uses vertex %ld, out of range "
-                    "0..%d", i / 3, (long)m->triangles[i], m->num_vertices - 1);
+            mpb__set_err(err, errlen, "triangle %ld uses vertex %ld, out of range "
+                         "0..%d", i / 3, (long)m->triangles[i], m->num_vertices - 1);
             return MPB_EINVAL;
         }
     return MPB_OK;
@@ -367,9 +349,9 @@ int mpb_mesh_bounds(const mpb_mesh *m, double lo[3], double hi[3])
 int mpb_mesh_resolve(const char *uri, const char *const *dirs, int num_dirs,
                      char *path, size_t pathlen, char *err, size_t errlen)
 {
-    set_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (!path || pathlen == 0) {
-        set_err(err, errlen, "mesh: no room for the path");
+        mpb__set_err(err, errlen, "mesh: no room for the path");
         return MPB_EINVAL;
     }
     path[0] = '\0';
@@ -379,17 +361,17 @@ int mpb_mesh_resolve(const char *uri, const char *const *dirs, int num_dirs,
         if (rc != MPB_OK)
             return rc;
         if (p.size() + 1 > pathlen) {
-            set_err(err, errlen, "mesh '%s': resolved path longer than %zu bytes",
-                    uri, pathlen - 1);
+            mpb__set_err(err, errlen, "mesh '%s': resolved path longer than %zu bytes",
+                         uri, pathlen - 1);
             return MPB_EINVAL;
         }
         memcpy(path, p.c_str(), p.size() + 1);
         return MPB_OK;
     } catch (const std::bad_alloc &) {
-        set_err(err, errlen, "mesh: out of memory");
+        mpb__set_err(err, errlen, "mesh: out of memory");
         return MPB_ENOMEM;
     } catch (...) {
-        set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
+        mpb__set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
         return MPB_EERROR;
     }
 }
@@ -398,25 +380,25 @@ int mpb_mesh_load(const char *uri, const char *const *dirs, int num_dirs,
                   const double scale[3], mpb_mesh **out,
                   char *err, size_t errlen)
 {
-    set_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (!out) {
-        set_err(err, errlen, "mesh: no place for the result");
+        mpb__set_err(err, errlen, "mesh: no place for the result");
         return MPB_EINVAL;
     }
     *out = NULL;
     try {
         int rc = load(uri, dirs, num_dirs, scale, out, err, errlen);
         if (rc == MPB_ENOMEM)
-            set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
+            mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
         return rc;
     } catch (const std::bad_alloc &) {
-        set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
+        mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
         return MPB_ENOMEM;
     } catch (const std::exception &e) {
-        set_err(err, errlen, "mesh '%s': %s", uri ? uri : "", e.what());
+        mpb__set_err(err, errlen, "mesh '%s': %s", uri ? uri : "", e.what());
         return MPB_EPARSE;
     } catch (...) {
-        set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
+        mpb__set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
         return MPB_EERROR;
     }
 }

@@ -9,12 +9,12 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "errbuf.h"
 #include "robot_urdf.h"
 
 #ifndef M_PI
@@ -59,22 +59,6 @@ struct mpb_robot {
 };
 
 /* ---- small helpers --------------------------------------------------- */
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || errlen == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 /* splitmix64: any state is a valid seed. */
 static uint64_t rng_next(uint64_t *s)
@@ -373,29 +357,29 @@ static int validate_model(const mpb__urdf_model *m, char *err, size_t errlen)
         const mpb__urdf_link *l = &m->links[i];
         if (l->parent >= 0) {
             if (!pose_finite(&l->origin)) {
-                set_err(err, errlen, "joint '%.*s': origin is not finite",
-                        NAME_SHOWN, l->joint);
+                mpb__set_err(err, errlen, "joint '%.*s': origin is not finite",
+                             NAME_SHOWN, l->joint);
                 return MPB_EPARSE;
             }
             if (is_active_type(l->type)) {
                 double n = sqrt(l->axis[0] * l->axis[0] + l->axis[1] * l->axis[1]
                                 + l->axis[2] * l->axis[2]);
                 if (!finite3(l->axis) || !(n > 1e-12)) {
-                    set_err(err, errlen, "joint '%.*s': axis is zero or not "
-                            "finite", NAME_SHOWN, l->joint);
+                    mpb__set_err(err, errlen, "joint '%.*s': axis is zero or not "
+                                 "finite", NAME_SHOWN, l->joint);
                     return MPB_EPARSE;
                 }
             }
             if (l->type == MPB_JOINT_REVOLUTE || l->type == MPB_JOINT_PRISMATIC) {
                 if (!l->has_limits || !isfinite(l->lo) || !isfinite(l->hi)) {
-                    set_err(err, errlen, "joint '%.*s': %s joint needs finite "
-                            "lower and upper limits", NAME_SHOWN, l->joint,
-                            mpb_joint_type_name(l->type));
+                    mpb__set_err(err, errlen, "joint '%.*s': %s joint needs finite "
+                                 "lower and upper limits", NAME_SHOWN, l->joint,
+                                 mpb_joint_type_name(l->type));
                     return MPB_EPARSE;
                 }
                 if (l->lo > l->hi) {
-                    set_err(err, errlen, "joint '%.*s': lower limit %g is above "
-                            "upper limit %g", NAME_SHOWN, l->joint, l->lo, l->hi);
+                    mpb__set_err(err, errlen, "joint '%.*s': lower limit %g is above "
+                                 "upper limit %g", NAME_SHOWN, l->joint, l->lo, l->hi);
                     return MPB_EPARSE;
                 }
             }
@@ -413,9 +397,9 @@ static int validate_model(const mpb__urdf_model *m, char *err, size_t errlen)
                      && g->mesh_scale[0] != 0 && g->mesh_scale[1] != 0
                      && g->mesh_scale[2] != 0;
             if (!ok) {
-                set_err(err, errlen, "link '%.*s': collision %d (%s) has a "
-                        "negative, zero or non-finite size, scale or origin",
-                        NAME_SHOWN, l->name, k, mpb_shape_type_name(g->type));
+                mpb__set_err(err, errlen, "link '%.*s': collision %d (%s) has a "
+                             "negative, zero or non-finite size, scale or origin",
+                             NAME_SHOWN, l->name, k, mpb_shape_type_name(g->type));
                 return MPB_EPARSE;
             }
         }
@@ -611,29 +595,29 @@ static int load(const char *text, const char *base_name, const char *tip_name,
     if (!joint_names) {
         base = base_name ? find_link(m, base_name) : 0;
         if (base < 0) {
-            set_err(msg, sizeof msg, "base link '%.*s' not found", NAME_SHOWN,
-                    base_name);
+            mpb__set_err(msg, sizeof msg, "base link '%.*s' not found", NAME_SHOWN,
+                         base_name);
             goto fail;
         }
         tip = find_link(m, tip_name);
         if (tip < 0) {
-            set_err(msg, sizeof msg, "tip link '%.*s' not found", NAME_SHOWN,
-                    tip_name);
+            mpb__set_err(msg, sizeof msg, "tip link '%.*s' not found", NAME_SHOWN,
+                         tip_name);
             goto fail;
         }
         if (tip == base || !is_ancestor(m, base, tip)) {
-            set_err(msg, sizeof msg, "tip link '%.*s' is not below base link "
-                    "'%.*s'", NAME_SHOWN, tip_name, NAME_SHOWN, m->links[base].name);
+            mpb__set_err(msg, sizeof msg, "tip link '%.*s' is not below base link "
+                         "'%.*s'", NAME_SHOWN, tip_name, NAME_SHOWN, m->links[base].name);
             goto fail;
         }
         /* The path tip -> base, then reversed. */
         for (int i = tip; i != base; i = m->links[i].parent) {
             mpb_joint_type t = m->links[i].type;
             if (t == MPB_JOINT_FLOATING || t == MPB_JOINT_PLANAR) {
-                set_err(msg, sizeof msg, "joint '%.*s' between base and tip is "
-                        "%s; only revolute, continuous, prismatic and fixed "
-                        "joints can be in a chain", NAME_SHOWN, m->links[i].joint,
-                        mpb_joint_type_name(t));
+                mpb__set_err(msg, sizeof msg, "joint '%.*s' between base and tip is "
+                             "%s; only revolute, continuous, prismatic and fixed "
+                             "joints can be in a chain", NAME_SHOWN, m->links[i].joint,
+                             mpb_joint_type_name(t));
                 rc = MPB_EUNSUPPORTED;
                 goto fail;
             }
@@ -646,40 +630,40 @@ static int load(const char *text, const char *base_name, const char *tip_name,
             child[b] = t;
         }
         if (n == 0) {
-            set_err(msg, sizeof msg, "no revolute, continuous or prismatic "
-                    "joint between base link '%.*s' and tip link '%.*s'",
-                    NAME_SHOWN, m->links[base].name, NAME_SHOWN, tip_name);
+            mpb__set_err(msg, sizeof msg, "no revolute, continuous or prismatic "
+                         "joint between base link '%.*s' and tip link '%.*s'",
+                         NAME_SHOWN, m->links[base].name, NAME_SHOWN, tip_name);
             goto fail;
         }
     } else {
         if (num_names < 1) {
-            set_err(msg, sizeof msg, "no joints named for the group");
+            mpb__set_err(msg, sizeof msg, "no joints named for the group");
             goto fail;
         }
         for (int j = 0; j < num_names; j++) {
             const char *name = joint_names[j] ? joint_names[j] : "(null)";
             int c = joint_names[j] ? find_joint_link(m, name) : -1;
             if (c < 0) {
-                set_err(msg, sizeof msg, "joint '%.*s' not found", NAME_SHOWN,
-                        name);
+                mpb__set_err(msg, sizeof msg, "joint '%.*s' not found", NAME_SHOWN,
+                             name);
                 goto fail;
             }
             if (!is_active_type(m->links[c].type)) {
-                set_err(msg, sizeof msg, "joint '%.*s' is %s; a group's joints "
-                        "must be revolute, continuous or prismatic", NAME_SHOWN,
-                        name, mpb_joint_type_name(m->links[c].type));
+                mpb__set_err(msg, sizeof msg, "joint '%.*s' is %s; a group's joints "
+                             "must be revolute, continuous or prismatic", NAME_SHOWN,
+                             name, mpb_joint_type_name(m->links[c].type));
                 goto fail;
             }
             for (int i = 0; i < j; i++)
                 if (child[i] == c) {
-                    set_err(msg, sizeof msg, "joint '%.*s' is named twice",
-                            NAME_SHOWN, name);
+                    mpb__set_err(msg, sizeof msg, "joint '%.*s' is named twice",
+                                 NAME_SHOWN, name);
                     goto fail;
                 }
             if (j > 0 && !is_ancestor(m, child[j - 1], m->links[c].parent)) {
-                set_err(msg, sizeof msg, "joint '%.*s' is not below joint "
-                        "'%.*s': the joints must form one chain, base first",
-                        NAME_SHOWN, name, NAME_SHOWN, joint_names[j - 1]);
+                mpb__set_err(msg, sizeof msg, "joint '%.*s' is not below joint "
+                             "'%.*s': the joints must form one chain, base first",
+                             NAME_SHOWN, name, NAME_SHOWN, joint_names[j - 1]);
                 goto fail;
             }
             child[n++] = c;
@@ -697,8 +681,8 @@ static int load(const char *text, const char *base_name, const char *tip_name,
 
 fail:
     if (rc == MPB_ENOMEM)
-        set_err(msg, sizeof msg, "out of memory");
-    set_err(err, errlen, "%s: %s", prefix, msg);
+        mpb__set_err(msg, sizeof msg, "out of memory");
+    mpb__set_err(err, errlen, "%s: %s", prefix, msg);
     if (err)
         for (char *c = err; *c; c++)
             if (*c == '\n' || *c == '\r')
@@ -712,11 +696,11 @@ int mpb_robot_load_urdf(const char *urdf_text, const char *base_link,
                         const char *tip_link, mpb_robot **out,
                         char *err, size_t errlen)
 {
-    set_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (out)
         *out = NULL;
     if (!urdf_text || !tip_link || !out) {
-        set_err(err, errlen, "urdf: text, tip link and out are required");
+        mpb__set_err(err, errlen, "urdf: text, tip link and out are required");
         return MPB_EINVAL;
     }
     return load(urdf_text, base_link, tip_link, NULL, 0, "urdf", out, err,
@@ -727,11 +711,11 @@ int mpb_robot_load_urdf_joints(const char *urdf_text,
                                const char *const *joint_names, int num_names,
                                mpb_robot **out, char *err, size_t errlen)
 {
-    set_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (out)
         *out = NULL;
     if (!urdf_text || !joint_names || !out) {
-        set_err(err, errlen, "urdf: text, joint names and out are required");
+        mpb__set_err(err, errlen, "urdf: text, joint names and out are required");
         return MPB_EINVAL;
     }
     return load(urdf_text, NULL, NULL, joint_names, num_names, "urdf", out,
@@ -742,16 +726,16 @@ int mpb_robot_load_urdf_file(const char *path, const char *base_link,
                              const char *tip_link, mpb_robot **out,
                              char *err, size_t errlen)
 {
-    set_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (out)
         *out = NULL;
     if (!path || !tip_link || !out) {
-        set_err(err, errlen, "urdf: path, tip link and out are required");
+        mpb__set_err(err, errlen, "urdf: path, tip link and out are required");
         return MPB_EINVAL;
     }
     FILE *f = fopen(path, "rb");
     if (!f) {
-        set_err(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        mpb__set_err(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return MPB_EIO;
     }
     char *text = NULL;
@@ -760,15 +744,15 @@ int mpb_robot_load_urdf_file(const char *path, const char *base_link,
     for (;;) {
         if (len + 4096 + 1 > cap) {
             if (cap >= (size_t)MAX_URDF_BYTES) {
-                set_err(err, errlen, "%s: larger than %ld bytes", path,
-                        MAX_URDF_BYTES);
+                mpb__set_err(err, errlen, "%s: larger than %ld bytes", path,
+                             MAX_URDF_BYTES);
                 rc = MPB_EIO;
                 break;
             }
             size_t ncap = cap ? 2 * cap : 65536;
             char *t = realloc(text, ncap);
             if (!t) {
-                set_err(err, errlen, "%s: out of memory", path);
+                mpb__set_err(err, errlen, "%s: out of memory", path);
                 rc = MPB_ENOMEM;
                 break;
             }
@@ -779,7 +763,7 @@ int mpb_robot_load_urdf_file(const char *path, const char *base_link,
         len += got;
         if (got == 0) {
             if (ferror(f)) {
-                set_err(err, errlen, "%s: read error", path);
+                mpb__set_err(err, errlen, "%s: read error", path);
                 rc = MPB_EIO;
             }
             break;
@@ -789,7 +773,7 @@ int mpb_robot_load_urdf_file(const char *path, const char *base_link,
     if (rc == MPB_OK) {
         text[len] = '\0';
         if (strlen(text) != len) {
-            set_err(err, errlen, "%s: not a text file (NUL byte)", path);
+            mpb__set_err(err, errlen, "%s: not a text file (NUL byte)", path);
             rc = MPB_EPARSE;
         } else {
             rc = load(text, base_link, tip_link, NULL, 0, path, out, err,
@@ -1308,25 +1292,25 @@ int mpb_robot_ik(const mpb_robot *r, int link, const double offset[3],
 int mpb_goal_region_check(const mpb_robot *r, const mpb_goal_region *g,
                           char *err, size_t errlen)
 {
-    set_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (!r || !g) {
-        set_err(err, errlen, "goal region: NULL robot or region");
+        mpb__set_err(err, errlen, "goal region: NULL robot or region");
         return MPB_EINVAL;
     }
     if (g->link < 0 || g->link >= r->num_links) {
-        set_err(err, errlen, "goal region: link %d out of range (%d links)",
-                g->link, r->num_links);
+        mpb__set_err(err, errlen, "goal region: link %d out of range (%d links)",
+                     g->link, r->num_links);
         return MPB_EINVAL;
     }
     if (!finite3(g->offset) || !finite3(g->center) || !finite3(g->ref_rpy)
         || !finite3(g->half_extents) || !finite3(g->rpy_tolerance)) {
-        set_err(err, errlen, "goal region: a number is NaN or infinite");
+        mpb__set_err(err, errlen, "goal region: a number is NaN or infinite");
         return MPB_EINVAL;
     }
     for (int i = 0; i < 3; i++)
         if (g->half_extents[i] < 0 || g->rpy_tolerance[i] < 0) {
-            set_err(err, errlen, "goal region: negative half extent or "
-                    "tolerance");
+            mpb__set_err(err, errlen, "goal region: negative half extent or "
+                         "tolerance");
             return MPB_EINVAL;
         }
     return MPB_OK;

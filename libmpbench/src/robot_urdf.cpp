@@ -5,7 +5,6 @@
  */
 #include "robot_urdf.h"
 
-#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -19,6 +18,7 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "errbuf.h"
 #include "mpbench/mpbench.h"
 
 namespace {
@@ -62,22 +62,6 @@ private:
     std::lock_guard<std::mutex> guard_;
     console_bridge::LogLevel level_;
 };
-
-void set_err(char *err, size_t errlen, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || errlen == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 /* One line: the messages joined with "; ", newlines and tabs as spaces. */
 std::string join_one_line(const std::vector<std::string> &msgs)
@@ -174,8 +158,8 @@ bool to_geom(const urdf::Collision &c, const std::string &link,
         g->name = dup_string(c.name);
     const urdf::Geometry *geo = c.geometry.get();
     if (!geo) {
-        set_err(err, errlen, "link '%.80s': collision without geometry",
-                link.c_str());
+        mpb__set_err(err, errlen, "link '%.80s': collision without geometry",
+                     link.c_str());
         return false;
     }
     switch (geo->type) {
@@ -208,8 +192,8 @@ bool to_geom(const urdf::Collision &c, const std::string &link,
         break;
     }
     default:
-        set_err(err, errlen, "link '%.80s': unknown collision geometry",
-                link.c_str());
+        mpb__set_err(err, errlen, "link '%.80s': unknown collision geometry",
+                     link.c_str());
         return false;
     }
     return true;
@@ -232,7 +216,7 @@ int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
 {
     urdf::LinkConstSharedPtr root = model.getRoot();
     if (!root) {
-        set_err(err, errlen, "no root link");
+        mpb__set_err(err, errlen, "no root link");
         return MPB_EPARSE;
     }
     std::vector<urdf::LinkConstSharedPtr> order;
@@ -282,8 +266,8 @@ int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
                 if (!cs[k] || !to_geom(*cs[k], ul.name, &l->geoms[k], err,
                                        errlen)) {
                     if (!cs[k])
-                        set_err(err, errlen, "link '%.80s': empty collision",
-                                ul.name.c_str());
+                        mpb__set_err(err, errlen, "link '%.80s': empty collision",
+                                     ul.name.c_str());
                     return MPB_EPARSE;
                 }
             }
@@ -297,7 +281,7 @@ int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
 extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
                                char *err, size_t errlen)
 {
-    set_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (!m)
         return MPB_EINVAL;
     std::memset(m, 0, sizeof *m);
@@ -307,17 +291,17 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
     while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
         s++;
     if (*s == '\0') {
-        set_err(err, errlen, "empty document");
+        mpb__set_err(err, errlen, "empty document");
         return MPB_EPARSE;
     }
     if (*s != '<') {
-        set_err(err, errlen, "not XML (the text does not begin with '<')");
+        mpb__set_err(err, errlen, "not XML (the text does not begin with '<')");
         return MPB_EPARSE;
     }
 
     int line, col;
     if (find_bad_utf8(text, &line, &col)) {
-        set_err(err, errlen, "line %d, column %d: not UTF-8", line, col);
+        mpb__set_err(err, errlen, "line %d, column %d: not UTF-8", line, col);
         return MPB_EPARSE;
     }
 
@@ -328,8 +312,8 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
         TiXmlDocument xml;
         xml.Parse(text, nullptr, TIXML_ENCODING_UTF8);
         if (xml.Error()) {
-            set_err(err, errlen, "line %d, column %d: not well-formed XML: %s",
-                    xml.ErrorRow(), xml.ErrorCol(), xml.ErrorDesc());
+            mpb__set_err(err, errlen, "line %d, column %d: not well-formed XML: %s",
+                         xml.ErrorRow(), xml.ErrorCol(), xml.ErrorDesc());
             return MPB_EPARSE;
         }
         Capture cap;
@@ -351,18 +335,18 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
             /* tinyxml's own messages all begin "Error ": say it is XML. */
             if (msg.compare(0, 6, "Error ") == 0)
                 msg = "not well-formed XML: " + msg;
-            set_err(err, errlen, "%s", msg.c_str());
+            mpb__set_err(err, errlen, "%s", msg.c_str());
             return MPB_EPARSE;
         }
         rc = fill(*model, m, err, errlen);
     } catch (const std::bad_alloc &) {
-        set_err(err, errlen, "out of memory");
+        mpb__set_err(err, errlen, "out of memory");
         rc = MPB_ENOMEM;
     } catch (const std::exception &e) {
-        set_err(err, errlen, "%s", e.what());
+        mpb__set_err(err, errlen, "%s", e.what());
         rc = MPB_EPARSE;
     } catch (...) {
-        set_err(err, errlen, "unknown exception from urdfdom");
+        mpb__set_err(err, errlen, "unknown exception from urdfdom");
         rc = MPB_EPARSE;
     }
     if (rc != MPB_OK)

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "errbuf.h"
 #include "world_provider.h"
 
 #ifndef M_PI
@@ -17,16 +18,6 @@ static const mpb__world_provider *const providers[] = {
     &mpb__world_urdf,
 };
 #define NUM_PROVIDERS ((int)(sizeof providers / sizeof providers[0]))
-
-void mpb__world_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || errlen == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
                          double lo, double hi, int continuous)
@@ -77,13 +68,13 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
                          const char *const *joints, int num_joints,
                          mpb_world **out, char *err, size_t errlen)
 {
-    mpb__world_err(err, errlen, "%s", "");
+    mpb__set_err(err, errlen, "%s", "");
     if (!out)
         return MPB_EINVAL;
     *out = NULL;
     if (!robot_format || !robot_text || !scene_format) {
-        mpb__world_err(err, errlen, "world: robot format, robot text and "
-                       "scene format are required");
+        mpb__set_err(err, errlen, "world: robot format, robot text and "
+                     "scene format are required");
         return MPB_EINVAL;
     }
     const mpb__world_provider *p = NULL;
@@ -91,37 +82,37 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
         if (strcmp(providers[i]->robot_format, robot_format) == 0)
             p = providers[i];
     if (!p) {
-        mpb__world_err(err, errlen, "world: robot format '%.40s' is not "
-                       "supported", robot_format);
+        mpb__set_err(err, errlen, "world: robot format '%.40s' is not "
+                     "supported", robot_format);
         return MPB_EUNSUPPORTED;
     }
     if (strcmp(p->scene_format, scene_format) != 0) {
-        mpb__world_err(err, errlen, "world: scene format '%.40s' does not go "
-                       "with robot format '%s' (expected '%s')", scene_format,
-                       p->robot_format, p->scene_format);
+        mpb__set_err(err, errlen, "world: scene format '%.40s' does not go "
+                     "with robot format '%s' (expected '%s')", scene_format,
+                     p->robot_format, p->scene_format);
         return MPB_EUNSUPPORTED;
     }
 
     mpb_world *w = calloc(1, sizeof *w);
     if (!w) {
-        mpb__world_err(err, errlen, "world: out of memory");
+        mpb__set_err(err, errlen, "world: out of memory");
         return MPB_ENOMEM;
     }
     w->provider = p;
     if (num_joints < 0 || (num_joints > 0 && joints == NULL)) {
         free(w);
-        mpb__world_err(err, errlen, "world: bad joint list");
+        mpb__set_err(err, errlen, "world: bad joint list");
         return MPB_EINVAL;
     }
     int rc = p->open(w, robot_text, scene_text ? scene_text : "", joints,
                      num_joints, err, errlen);
     if (rc == MPB_OK && w->num_joints < 1) {
-        mpb__world_err(err, errlen, "robot: no joints");
+        mpb__set_err(err, errlen, "robot: no joints");
         rc = MPB_EPARSE;
     }
     if (rc != MPB_OK) {
         if (rc == MPB_ENOMEM)
-            mpb__world_err(err, errlen, "world: out of memory");
+            mpb__set_err(err, errlen, "world: out of memory");
         mpb_world_close(w);
         return rc;
     }
@@ -215,12 +206,12 @@ int mpb_world_ee_position(mpb_world *w, const double *q, double xyz[3])
 int mpb_world_goal_contains(mpb_world *w, const mpb_goal *g, const double *q,
                             char *detail, size_t len)
 {
-    mpb__world_err(detail, len, "%s", "");
+    mpb__set_err(detail, len, "%s", "");
     if (!w || !g || !q)
         return MPB_EINVAL;
     if (g->kind != MPB_GOAL_POSE_REGION || !w->provider->goal_region) {
-        mpb__world_err(detail, len, "pose-region goals cannot be checked in "
-                       "a '%s' world", w->provider->robot_format);
+        mpb__set_err(detail, len, "pose-region goals cannot be checked in "
+                     "a '%s' world", w->provider->robot_format);
         return MPB_EUNSUPPORTED;
     }
     if (!all_finite(w, q))

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "errbuf.h"
 #include "grow.h"
 #include "world_provider.h"
 
@@ -103,8 +104,8 @@ static int numbers(const token *t, int first, int count, double *v,
     for (int i = 0; i < count; i++) {
         const token *k = &t[first + i];
         if (!tok_number(k, &v[i])) {
-            mpb__world_err(err, errlen, "%s line %d: '%.*s' is not a number",
-                           what, lineno, shown(k), k->p);
+            mpb__set_err(err, errlen, "%s line %d: '%.*s' is not a number",
+                         what, lineno, shown(k), k->p);
             return 0;
         }
     }
@@ -157,11 +158,11 @@ static int parse_robot(mpb_world *w, planar *p, const char *text,
         int ln = ls.lineno;
         if (tok_is(&t[0], "base")) {
             if (nt != 3) {
-                mpb__world_err(err, errlen, "robot line %d: base needs <x> <y>", ln);
+                mpb__set_err(err, errlen, "robot line %d: base needs <x> <y>", ln);
                 return MPB_EPARSE;
             }
             if (have_base) {
-                mpb__world_err(err, errlen, "robot line %d: a second base", ln);
+                mpb__set_err(err, errlen, "robot line %d: a second base", ln);
                 return MPB_EPARSE;
             }
             if (!numbers(t, 1, 2, v, "robot", ln, err, errlen))
@@ -171,17 +172,17 @@ static int parse_robot(mpb_world *w, planar *p, const char *text,
             have_base = 1;
         } else if (tok_is(&t[0], "link_radius")) {
             if (nt != 2) {
-                mpb__world_err(err, errlen, "robot line %d: link_radius needs <r>", ln);
+                mpb__set_err(err, errlen, "robot line %d: link_radius needs <r>", ln);
                 return MPB_EPARSE;
             }
             if (have_radius) {
-                mpb__world_err(err, errlen, "robot line %d: a second link_radius", ln);
+                mpb__set_err(err, errlen, "robot line %d: a second link_radius", ln);
                 return MPB_EPARSE;
             }
             if (!numbers(t, 1, 1, v, "robot", ln, err, errlen))
                 return MPB_EPARSE;
             if (v[0] < 0) {
-                mpb__world_err(err, errlen, "robot line %d: link_radius must be >= 0", ln);
+                mpb__set_err(err, errlen, "robot line %d: link_radius must be >= 0", ln);
                 return MPB_EPARSE;
             }
             p->radius = v[0];
@@ -189,16 +190,16 @@ static int parse_robot(mpb_world *w, planar *p, const char *text,
         } else if (tok_is(&t[0], "joint")) {
             int continuous = nt == 4 && tok_is(&t[2], "continuous");
             if (!continuous && nt != 5) {
-                mpb__world_err(err, errlen, "robot line %d: joint needs <name> "
-                               "<lo> <hi> <length> (or <name> continuous "
-                               "<length>)", ln);
+                mpb__set_err(err, errlen, "robot line %d: joint needs <name> "
+                             "<lo> <hi> <length> (or <name> continuous "
+                             "<length>)", ln);
                 return MPB_EPARSE;
             }
             const token *name = &t[1];
             for (int j = 0; j < w->num_joints; j++)
                 if (tok_is(name, w->joint_names[j])) {
-                    mpb__world_err(err, errlen, "robot line %d: joint '%.*s' "
-                                   "declared twice", ln, shown(name), name->p);
+                    mpb__set_err(err, errlen, "robot line %d: joint '%.*s' "
+                                 "declared twice", ln, shown(name), name->p);
                     return MPB_EPARSE;
                 }
             if (continuous) {
@@ -210,14 +211,14 @@ static int parse_robot(mpb_world *w, planar *p, const char *text,
                 if (!numbers(t, 2, 3, v, "robot", ln, err, errlen))
                     return MPB_EPARSE;
                 if (v[0] > v[1]) {
-                    mpb__world_err(err, errlen, "robot line %d: joint '%.*s' "
-                                   "has lo > hi", ln, shown(name), name->p);
+                    mpb__set_err(err, errlen, "robot line %d: joint '%.*s' "
+                                 "has lo > hi", ln, shown(name), name->p);
                     return MPB_EPARSE;
                 }
             }
             if (!(v[2] > 0)) {
-                mpb__world_err(err, errlen, "robot line %d: joint '%.*s' "
-                               "length must be > 0", ln, shown(name), name->p);
+                mpb__set_err(err, errlen, "robot line %d: joint '%.*s' "
+                             "length must be > 0", ln, shown(name), name->p);
                 return MPB_EPARSE;
             }
             if (mpb__grow((void **)&p->length, &cap_length, p->n + 1,
@@ -229,18 +230,18 @@ static int parse_robot(mpb_world *w, planar *p, const char *text,
                 return rc;
             p->length[p->n++] = v[2];
         } else {
-            mpb__world_err(err, errlen, "robot line %d: unknown item '%.*s' "
-                           "(expected base, link_radius or joint)", ln,
-                           shown(&t[0]), t[0].p);
+            mpb__set_err(err, errlen, "robot line %d: unknown item '%.*s' "
+                         "(expected base, link_radius or joint)", ln,
+                         shown(&t[0]), t[0].p);
             return MPB_EPARSE;
         }
     }
     if (!have_radius) {
-        mpb__world_err(err, errlen, "robot: no link_radius line");
+        mpb__set_err(err, errlen, "robot: no link_radius line");
         return MPB_EPARSE;
     }
     if (p->n == 0) {
-        mpb__world_err(err, errlen, "robot: no joints");
+        mpb__set_err(err, errlen, "robot: no joints");
         return MPB_EPARSE;
     }
     return MPB_OK;
@@ -257,13 +258,13 @@ static int parse_scene(planar *p, const char *text, char *err, size_t errlen)
         int ln = ls.lineno;
         if (tok_is(&t[0], "circle")) {
             if (nt != 4) {
-                mpb__world_err(err, errlen, "scene line %d: circle needs <cx> <cy> <r>", ln);
+                mpb__set_err(err, errlen, "scene line %d: circle needs <cx> <cy> <r>", ln);
                 return MPB_EPARSE;
             }
             if (!numbers(t, 1, 3, v, "scene", ln, err, errlen))
                 return MPB_EPARSE;
             if (v[2] < 0) {
-                mpb__world_err(err, errlen, "scene line %d: circle radius must be >= 0", ln);
+                mpb__set_err(err, errlen, "scene line %d: circle radius must be >= 0", ln);
                 return MPB_EPARSE;
             }
             if (mpb__grow((void **)&p->circles, &p->cap_circles, p->num_circles + 1,
@@ -272,14 +273,14 @@ static int parse_scene(planar *p, const char *text, char *err, size_t errlen)
             p->circles[p->num_circles++] = (circle){ .cx = v[0], .cy = v[1], .r = v[2] };
         } else if (tok_is(&t[0], "box")) {
             if (nt != 5) {
-                mpb__world_err(err, errlen, "scene line %d: box needs <cx> <cy> "
-                               "<half_x> <half_y>", ln);
+                mpb__set_err(err, errlen, "scene line %d: box needs <cx> <cy> "
+                             "<half_x> <half_y>", ln);
                 return MPB_EPARSE;
             }
             if (!numbers(t, 1, 4, v, "scene", ln, err, errlen))
                 return MPB_EPARSE;
             if (v[2] < 0 || v[3] < 0) {
-                mpb__world_err(err, errlen, "scene line %d: box half sizes must be >= 0", ln);
+                mpb__set_err(err, errlen, "scene line %d: box half sizes must be >= 0", ln);
                 return MPB_EPARSE;
             }
             if (mpb__grow((void **)&p->boxes, &p->cap_boxes, p->num_boxes + 1,
@@ -288,8 +289,8 @@ static int parse_scene(planar *p, const char *text, char *err, size_t errlen)
             p->boxes[p->num_boxes++] = (box){ .xmin = v[0] - v[2], .ymin = v[1] - v[3],
                                               .xmax = v[0] + v[2], .ymax = v[1] + v[3] };
         } else {
-            mpb__world_err(err, errlen, "scene line %d: unknown item '%.*s' "
-                           "(expected circle or box)", ln, shown(&t[0]), t[0].p);
+            mpb__set_err(err, errlen, "scene line %d: unknown item '%.*s' "
+                         "(expected circle or box)", ln, shown(&t[0]), t[0].p);
             return MPB_EPARSE;
         }
     }
@@ -315,8 +316,8 @@ static int planar_open(mpb_world *w, const char *robot_text,
     for (int j = 0; same && joints && j < num_joints; j++)
         same = joints[j] && strcmp(joints[j], w->joint_names[j]) == 0;
     if (!same) {
-        mpb__world_err(err, errlen, "robot: the group's joints must be the "
-                       "planar arm's %d joints in order", w->num_joints);
+        mpb__set_err(err, errlen, "robot: the group's joints must be the "
+                     "planar arm's %d joints in order", w->num_joints);
         return MPB_EPARSE;
     }
     p->xy = malloc(2 * ((size_t)p->n + 1) * sizeof *p->xy);

@@ -64,13 +64,6 @@ struct mpb_world {
 int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
                          double lo, double hi, int continuous);
 
-/* snprintf into err (if err and errlen), for the providers' messages. */
-void mpb__world_err(char *err, size_t errlen, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
 /* The providers. */
 extern const mpb__world_provider mpb__world_planar;
 extern const mpb__world_provider mpb__world_urdf;

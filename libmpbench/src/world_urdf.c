@@ -26,6 +26,7 @@
 #include "mpbench/collision.h"
 #include "mpbench/robot.h"
 #include "mpbench/scene.h"
+#include "errbuf.h"
 #include "world_provider.h"
 
 #define ROBOT_STATIC 500000
@@ -126,8 +127,8 @@ static int add_robot(urdf_world *u, char *err, size_t errlen)
                 rc = mpb_collision_add_static(u->coll, ROBOT_STATIC + l, &g, &at);
             }
             if (rc != MPB_OK) {
-                mpb__world_err(err, errlen, "robot link '%s': %s", link->name,
-                               mpb_collision_errmsg(u->coll));
+                mpb__set_err(err, errlen, "robot link '%s': %s", link->name,
+                             mpb_collision_errmsg(u->coll));
                 return rc;
             }
         }
@@ -158,7 +159,7 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
 {
     int rc = mpb_scene_add_statics(u->scene, u->coll);
     if (rc != MPB_OK) {
-        mpb__world_err(err, errlen, "scene: %s", mpb_collision_errmsg(u->coll));
+        mpb__set_err(err, errlen, "scene: %s", mpb_collision_errmsg(u->coll));
         return rc;
     }
     int n = mpb_scene_num_objects(u->scene);
@@ -172,9 +173,9 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
             continue;
         int l = mpb_robot_link_index(u->robot, o->attached_link);
         if (l < 0) {
-            mpb__world_err(err, errlen, "scene line %d: object '%s' is attached "
-                           "to '%s', which is not a link of the robot", o->line,
-                           o->id, o->attached_link);
+            mpb__set_err(err, errlen, "scene line %d: object '%s' is attached "
+                         "to '%s', which is not a link of the robot", o->line,
+                         o->id, o->attached_link);
             return MPB_EPARSE;
         }
         int id = u->num_links + k;
@@ -183,8 +184,8 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
             mpb_pose_mul(&o->pose, &o->shapes[s].pose, &at);
             if ((rc = mpb_collision_add_movable(u->coll, id, &o->shapes[s].geometry,
                                                 &at)) != MPB_OK) {
-                mpb__world_err(err, errlen, "scene line %d: %s", o->line,
-                               mpb_collision_errmsg(u->coll));
+                mpb__set_err(err, errlen, "scene line %d: %s", o->line,
+                             mpb_collision_errmsg(u->coll));
                 return rc;
             }
         }
@@ -268,8 +269,8 @@ static int urdf_open(mpb_world *w, const char *robot_text,
         return MPB_ENOMEM;
     w->impl = u;
     if (joints == NULL || num_joints < 1) {
-        mpb__world_err(err, errlen, "robot: a urdf world needs the joints of "
-                       "its planning group");
+        mpb__set_err(err, errlen, "robot: a urdf world needs the joints of "
+                     "its planning group");
         return MPB_EINVAL;
     }
     if ((rc = mpb_robot_load_urdf_joints(robot_text, joints, num_joints,
@@ -338,8 +339,8 @@ static int urdf_goal_region(void *impl, const mpb_goal *g, const double *q,
     char why[160];
     region.link = g->link ? mpb_robot_link_index(u->robot, g->link) : -1;
     if (region.link < 0) {
-        mpb__world_err(detail, len, "goal link '%.60s' is not a link of the "
-                       "robot", g->link ? g->link : "");
+        mpb__set_err(detail, len, "goal link '%.60s' is not a link of the "
+                     "robot", g->link ? g->link : "");
         return MPB_EINVAL;
     }
     for (int i = 0; i < 3; i++) {
@@ -349,16 +350,16 @@ static int urdf_goal_region(void *impl, const mpb_goal *g, const double *q,
         region.rpy_tolerance[i] = g->orientation_tolerance[i];
     }
     if (mpb_goal_region_check(u->robot, &region, why, sizeof why) != MPB_OK) {
-        mpb__world_err(detail, len, "goal region: %s", why);
+        mpb__set_err(detail, len, "goal region: %s", why);
         return MPB_EINVAL;
     }
     if (mpb_goal_region_distance(u->robot, &region, q, &dist) != MPB_OK)
         return MPB_EINVAL;
     if (dist.position == 0 && dist.orientation == 0)
         return 1;
-    mpb__world_err(detail, len, "link '%.40s' is %.4g m outside the goal box "
-                   "and %.4g rad outside the orientation tolerance", g->link,
-                   dist.position, dist.orientation);
+    mpb__set_err(detail, len, "link '%.40s' is %.4g m outside the goal box "
+                 "and %.4g rad outside the orientation tolerance", g->link,
+                 dist.position, dist.orientation);
     return 0;
 }
 
