@@ -718,6 +718,12 @@ static void mpb_export_writes_and_refuses_to_overwrite(void **state)
     run(&o, "export --planner-arena -e 5 '%s' '%s.new'", f->db, f->out);
     assert_int_equal(o.status, 1);
     assert_string_equal(o.text, "mpb export: no experiment 5\n");
+    /* The library's message says what failed once, after the tool's name. */
+    run(&o, "export --planner-arena '%s' '%s.none/x.db'", f->db, f->out);
+    assert_int_equal(o.status, 1);
+    snprintf(want, sizeof want, "mpb export: cannot open %s.none/x.db: ",
+             f->out);
+    assert_memory_equal(o.text, want, strlen(want));
 
     run(&o, "export '%s' '%s'", f->db, f->out);
     assert_int_equal(o.status, 2);

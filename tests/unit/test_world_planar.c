@@ -324,6 +324,12 @@ static void test_formats(void **state)
                                     err, sizeof err), MPB_EUNSUPPORTED);
     assert_null(w);
     assert_non_null(strstr(err, "sdf"));
+    /* A line break in what the message quotes stays off its own line: the
+     * message is one line, as the header promises. */
+    assert_int_equal(mpb_world_open("s\ndf", "<robot/>", "moveit-scene", "",
+                                    &w, err, sizeof err), MPB_EUNSUPPORTED);
+    assert_non_null(strstr(err, "s df"));
+    assert_null(strchr(err, '\n'));
     /* A urdf world needs its planning group's joints. */
     assert_int_equal(mpb_world_open("urdf", "<robot/>", "moveit-scene", "", &w,
                                     err, sizeof err), MPB_EINVAL);
