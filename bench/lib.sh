@@ -13,6 +13,9 @@
 #                         "nan" if EXPR holds a "nan" (a value get did
 #                         not find) or gives one
 #   planners_n N          "1 null planner", "N null planners"
+#   daemon_latency LOG    "median p99 runs" of mpbenchd's own latency count
+#                         (us; request first sent to result committed),
+#                         from its log; nothing if the log has none
 #   experiment NAME RUNS RUNS_PER_HOST FILE [QUEUE_AT_PLANNER]
 #                         writes the planar throughput experiment: the
 #                         3-joint arm among the pillars, query small_move
@@ -42,6 +45,10 @@ calc() { # expr [digits]
     *nan*) echo nan ;;      # a missing value: awk would take it for 0
     *) awk "BEGIN { v = $1; if (v != v) print \"nan\"; else printf \"%.${2:-1}f\", v }" ;;
     esac
+}
+
+daemon_latency() { # log
+    sed -n 's/.*request sent to result committed: median \([0-9]*\) us, p99 \(over \)\{0,1\}\([0-9]*\) us (\([0-9]*\) runs).*/\1 \3 \4/p' "$1"
 }
 
 planners_n() { [ "$1" -eq 1 ] && echo "1 null planner" || echo "$1 null planners"; }

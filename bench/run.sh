@@ -9,8 +9,9 @@
 #   1. the LCM round-trip floor (mpb-bench-floor),
 #   2. per-run latency end to end: real mpbenchd + one null planner, each
 #      run from its request's first send to its commit (mpbenchd's own
-#      count, nothing else listening), then its parts from the daemon's
-#      timestamps on the network (mpb-bench-watch listening),
+#      count, nothing else listening), again in rounds that alternate
+#      with the floor (bench/latency.sh), then its parts from the
+#      daemon's timestamps on the network (mpb-bench-watch listening),
 #   3. throughput with 1, 2, 3, 4 and 8 null planners, with and without a
 #      request waiting at each; 8 planners over 1,000,000 runs each way,
 #      the daemon's memory sampled throughout,
@@ -70,11 +71,11 @@ while [ $# -gt 0 ]; do
 done
 
 if [ "$QUICK" -eq 1 ]; then
-    FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 VERIFY_S=0.3 STORE_N=5000 IMPORT_N=5000
+    FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 LAT_ROUNDS=3 LAT_ROUND_N=1000 VERIFY_S=0.3 STORE_N=5000 IMPORT_N=5000
     : "${FID_N:=200}" "${FID_BLOCKS:=4}" "${FIDNP_N:=60}" "${FIDNP_BLOCKS:=3}"
     : "${TPUT_N:=10000}" "${LONG_N:=$TPUT_N}" "${REPORT_N:=100000}"
 else
-    FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 VERIFY_S=1 STORE_N=20000 IMPORT_N=50000
+    FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 LAT_ROUNDS=20 LAT_ROUND_N=5000 VERIFY_S=1 STORE_N=20000 IMPORT_N=50000
     : "${FID_N:=5000}" "${FID_BLOCKS:=20}" "${FIDNP_N:=2000}" "${FIDNP_BLOCKS:=20}"
     : "${TPUT_N:=100000}" "${LONG_N:=1000000}" "${REPORT_N:=1000000}"
 fi
@@ -195,12 +196,21 @@ planners 1 "$WORK/latency-own-null"
 timeout -k 5 600 "$SNAP/mpbenchd" -d "$WORK/latency-own.db" "$WORK/latency.yaml" \
     >"$WORK/latency-own-daemon.log" 2>&1 || echo "mpbenchd failed: see $WORK/latency-own-daemon.log"
 cleanup
-sed -n 's/.*request sent to result committed: median \([0-9]*\) us, p99 \(over \)\{0,1\}\([0-9]*\) us (\([0-9]*\) runs).*/\1 \3 \4/p' \
-    "$WORK/latency-own-daemon.log" | {
+daemon_latency "$WORK/latency-own-daemon.log" | {
     read -r med p99 n
     put "run_latency_own n=${n:-0} median_us=${med:-nan} p99_us=${p99:-nan}"
 }
 grep "^RESULT run_latency_own " "$RAW" | sed 's/^RESULT /  /'
+
+# The same in turns with the floor, seconds apart (bench/latency.sh): the
+# floor of item 1 was measured a minute before, and on this VM it can move
+# by half in that time.
+echo "== 2. per-run latency in turns with the floor ($LAT_ROUNDS rounds of $LAT_ROUND_N)"
+timeout -k 5 900 sh "$src/bench/latency.sh" --in-netns --bin "$SNAP" \
+    --out "$WORK/latency-paired" --rounds "$LAT_ROUNDS" --runs "$LAT_ROUND_N" \
+    --exchanges "$LAT_ROUND_N" >"$WORK/latency-paired.log" 2>&1
+grep '^RESULT latency_paired ' "$WORK/latency-paired.log" | sed 's/^RESULT /  /'
+collect "$WORK/latency-paired.log"
 
 echo "== 2. the same, with mpb-bench-watch listening ($LAT_N runs after $LAT_SKIP)"
 planners 1 "$WORK/latency-null"
@@ -439,7 +449,7 @@ describe() {
 - load average (1, 5, 15 min): $LOAD_START at the start, $LOAD_END at the end
 - commit: $(cd "$src" && git rev-parse --short HEAD 2>/dev/null) ($(tree_state))
 - software: LCM $(pkg-config --modversion lcm 2>/dev/null), SQLite $(sqlite3 --version | cut -d' ' -f1), $(cc --version | head -1), build type $(bt=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$BUILD/CMakeCache.txt"); echo "${bt:-RelWithDebInfo (the default)}")
-- counts: floor $FLOOR_N exchanges, latency $LAT_N runs (after $LAT_SKIP warm-up), throughput $TPUT_N runs, report $REPORT_N runs$( [ "$QUICK" -eq 1 ] && echo " (--quick)")
+- counts: floor $FLOOR_N exchanges, latency $LAT_N runs (after $LAT_SKIP warm-up) and $LAT_ROUNDS rounds of $LAT_ROUND_N in turns with floors of $LAT_ROUND_N, throughput $TPUT_N runs, report $REPORT_N runs$( [ "$QUICK" -eq 1 ] && echo " (--quick)")
 EOF
 }
 

@@ -41,6 +41,14 @@ flat() { # growth_kb runs
                g <= 1024 ? "flat" : "**grows**", g, g * 1024 / (n * 0.5) }'
 }
 lat=$(get run_latency_own median_us) lat99=$(get run_latency_own p99_us)
+# The verdict on the latency: against floors measured in turns with it
+# (bench/latency.sh) where the run has them, else against the floor of
+# item 1, measured a minute before.
+if [ "$(get latency_paired ratio_median)" = nan ]; then
+    lat_status=$(verdict "$(calc "$lat / $FLOOR" 3)" "<=" 3)
+else
+    lat_status="(the verdict is the next row's)"
+fi
 wlat=$(get run_latency median_us) wlat99=$(get run_latency p99_us)
 cyc=$(get run_cycle median_us) cyc99=$(get run_cycle p99_us)
 # A field of the throughput runs with 1, 2, 3, 4 and 8 planners, joined
@@ -88,7 +96,8 @@ cat <<EOF
 | # | measurement | result | per floor | target | status |
 |---|---|---|---|---|---|
 | 1 | LCM round trip, plan request $(get floor request_bytes) B out, result $(get floor result_bytes) B back: median / p99 | $(calc "$FLOOR") / $(calc "$(get floor p99_us)") us | 1 | the floor | (again at the end: $(calc "$(get floor_again median_us)") us) |
-| 2 | per-run latency, request first sent to result verified, measured, stored and committed, 1 null planner, nothing else listening (mpbenchd's own count, $(get run_latency_own n) runs): median / p99 | $(calc "$lat") / $(calc "$lat99") us | $(ratio "$lat") / $(ratio "$lat99") | median <= 3x floor | $(verdict "$(calc "$lat / $FLOOR" 3)" "<=" 3) |
+| 2 | per-run latency, request first sent to result verified, measured, stored and committed, 1 null planner, nothing else listening (mpbenchd's own count, $(get run_latency_own n) runs): median / p99 | $(calc "$lat") / $(calc "$lat99") us | $(ratio "$lat") / $(ratio "$lat99") | median <= 3x floor | $lat_status |
+| 2 | ... the same in turns with the floor (bench/latency.sh): $(get latency_paired rounds) rounds, each a floor of $(get latency_paired exchanges) round trips and $(get latency_paired runs) runs, seconds apart; each round's latency median over its floor median | $(calc "$(get latency_paired latency_median_us)") us over $(calc "$(get latency_paired floor_median_us)") us (medians of the rounds) | $(get latency_paired ratio_median) (rounds $(get latency_paired ratio_min)-$(get latency_paired ratio_max)) | median <= 3x floor | $(verdict "$(get latency_paired ratio_median)" "<=" 3) |
 | 2' | ... with mpb-bench-watch listening: request to the acknowledgement the planner receives | $(calc "$wlat") / $(calc "$wlat99") us | $(ratio "$wlat") / $(ratio "$wlat99") | | |
 | 2a | ... of which request to result published (network out, planner, network back) | $(calc "$(get run_out_back median_us)") / $(calc "$(get run_out_back p99_us)") us | $(ratio "$(get run_out_back median_us)") | | |
 | 2b | ... of which result published to acknowledged (network in, verify, metrics, store, commit, the acknowledgement) | $(calc "$(get run_daemon median_us)") / $(calc "$(get run_daemon p99_us)") us | $(ratio "$(get run_daemon median_us)") | | |
