@@ -123,16 +123,9 @@ fi
 
 # ---- outside the namespace: snapshot the binaries, re-enter ---------------
 if [ "$NETNS" -eq 0 ]; then
-    [ "$(id -u)" -eq 0 ] || { echo "bench/fidelity.sh: needs root (unshare -n)" >&2; exit 1; }
-    fid=$BUILD/bench-standalone/mpb-bench-fidelity
-    [ -x "$fid" ] || fid=$BUILD/bench/mpb-bench-fidelity
-    for b in "$BUILD/daemon/mpbenchd" "$BUILD/planners/ompl/mpb-planner-ompl" "$fid"; do
-        [ -x "$b" ] || { echo "bench/fidelity.sh: $b not built (bench/run.sh builds it)" >&2; exit 1; }
-    done
     : "${WORK:=$BUILD/bench-run/fidelity}"
-    rm -rf "$WORK" && mkdir -p "$WORK/bin" || exit 1
-    cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/ompl/mpb-planner-ompl" "$fid" \
-        "$WORK/bin/" || exit 1
+    bench_snapshot bench/fidelity.sh "$WORK" "$BUILD/daemon/mpbenchd" \
+        "$BUILD/planners/ompl/mpb-planner-ompl" "$(bench_program "$BUILD" mpb-bench-fidelity)"
     set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
         --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP" \
         --queue "$QUEUE" --interleave "$INTERLEAVE"

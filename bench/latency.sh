@@ -51,16 +51,8 @@ esac
 : "${OUT:=$BUILD/bench-run/latency}"
 
 if [ "$NETNS" -eq 0 ]; then
-    [ "$(id -u)" -eq 0 ] || { echo "bench/latency.sh: needs root (unshare -n)" >&2; exit 1; }
-    floor=$BUILD/bench-standalone/mpb-bench-floor
-    [ -x "$floor" ] || floor=$BUILD/bench/mpb-bench-floor
-    for b in "$BUILD/daemon/mpbenchd" "$BUILD/planners/null/mpb-planner-null" "$floor"; do
-        [ -x "$b" ] || { echo "bench/latency.sh: $b not built (bench/run.sh builds it)" >&2; exit 1; }
-    done
-    # Measure one consistent set of binaries, whatever others rebuild.
-    rm -rf "$OUT" && mkdir -p "$OUT/bin" || exit 1
-    cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/null/mpb-planner-null" "$floor" \
-        "$OUT/bin/" || exit 1
+    bench_snapshot bench/latency.sh "$OUT" "$BUILD/daemon/mpbenchd" \
+        "$BUILD/planners/null/mpb-planner-null" "$(bench_program "$BUILD" mpb-bench-floor)"
     exec unshare -n sh "$0" --new-netns --bin "$OUT/bin" --out "$OUT" \
         --rounds "$ROUNDS" --runs "$RUNS" --exchanges "$EXCHANGES"
 fi

@@ -5,6 +5,12 @@
 #                         route; exits, naming NAME, unless loopback is the
 #                         namespace's only interface
 #   bench_netns_check NAME  only the check (a namespace already set up)
+#   bench_snapshot NAME DIR BINARY...  before `unshare -n`: exits, naming
+#                         NAME, unless root and every BINARY is built;
+#                         then copies them into DIR/bin, made anew, so a
+#                         run measures one set whatever others rebuild
+#   bench_program BUILD NAME  the path of bench program NAME (mpb-bench-*)
+#                         in BUILD: bench/'s own build or the main one
 #   PIDS, cleanup         background processes to stop: cleanup kills and
 #                         waits for every pid in PIDS, then empties it
 #   get KEY FIELD         a field of the RESULT line KEY in the file $RAW
@@ -33,6 +39,21 @@ bench_netns_check() { # name
         echo "$1: not in a private network namespace; refusing" >&2
         exit 1
     fi
+}
+
+bench_snapshot() { # name dir binary...
+    name=$1 dir=$2
+    shift 2
+    [ "$(id -u)" -eq 0 ] || { echo "$name: needs root (unshare -n)" >&2; exit 1; }
+    for b in "$@"; do
+        [ -x "$b" ] || { echo "$name: $b not built (bench/run.sh builds it)" >&2; exit 1; }
+    done
+    rm -rf "$dir" && mkdir -p "$dir/bin" && cp "$@" "$dir/bin/" || exit 1
+}
+
+bench_program() { # build name
+    if [ -x "$1/bench-standalone/$2" ]; then echo "$1/bench-standalone/$2"
+    else echo "$1/bench/$2"; fi
 }
 
 get() { # key field

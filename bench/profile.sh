@@ -38,14 +38,9 @@ done
 : "${OUT:=$BUILD/bench-run/profile}"
 
 if [ "$IN_NETNS" -eq 0 ]; then
-    [ "$(id -u)" -eq 0 ] || { echo "bench/profile.sh: needs root (unshare -n)" >&2; exit 1; }
     command -v valgrind >/dev/null || { echo "bench/profile.sh: needs valgrind" >&2; exit 1; }
-    for b in daemon/mpbenchd planners/null/mpb-planner-null; do
-        [ -x "$BUILD/$b" ] || { echo "bench/profile.sh: $BUILD/$b not built" >&2; exit 1; }
-    done
-    # Measure one consistent set of binaries, whatever others rebuild.
-    rm -rf "$OUT" && mkdir -p "$OUT/bin" || exit 1
-    cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/null/mpb-planner-null" "$OUT/bin/" || exit 1
+    bench_snapshot bench/profile.sh "$OUT" "$BUILD/daemon/mpbenchd" \
+        "$BUILD/planners/null/mpb-planner-null"
     set -- --in-netns --runs "$RUNS" --planners "$NP" --out "$OUT"
     [ "$STRACE" -eq 1 ] && set -- "$@" --strace
     exec unshare -n sh "$0" "$@"

@@ -39,14 +39,8 @@ esac
 : "${OUT:=$BUILD/bench-run/queue}"
 
 if [ "$IN_NETNS" -eq 0 ]; then
-    [ "$(id -u)" -eq 0 ] || { echo "bench/queue.sh: needs root (unshare -n)" >&2; exit 1; }
-    for b in daemon/mpbenchd planners/null/mpb-planner-null planners/ompl/mpb-planner-ompl; do
-        [ -x "$BUILD/$b" ] || { echo "bench/queue.sh: $BUILD/$b not built" >&2; exit 1; }
-    done
-    # Measure one consistent set of binaries, whatever others rebuild.
-    rm -rf "$OUT" && mkdir -p "$OUT/bin" || exit 1
-    cp "$BUILD/daemon/mpbenchd" "$BUILD/planners/null/mpb-planner-null" \
-        "$BUILD/planners/ompl/mpb-planner-ompl" "$OUT/bin/" || exit 1
+    bench_snapshot bench/queue.sh "$OUT" "$BUILD/daemon/mpbenchd" \
+        "$BUILD/planners/null/mpb-planner-null" "$BUILD/planners/ompl/mpb-planner-ompl"
     exec unshare -n sh "$0" --in-netns --runs "$RUNS" --rounds "$ROUNDS" --out "$OUT"
 fi
 
