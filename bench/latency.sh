@@ -69,9 +69,8 @@ SCENE=$src/scenes/planar/pillars.scene
 floor() { # round
     timeout -k 5 120 "$BIN/mpb-bench-floor" --robot "$ROBOT" --scene "$SCENE" \
         --count "$EXCHANGES" --warmup 500 >"$OUT/floor-$1.log" 2>&1
-    awk '$1 == "RESULT" && $2 == "floor" { for (i = 3; i <= NF; i++)
-        if ($i ~ /^median_us=/) { sub(/^median_us=/, "", $i); v = $i } }
-        END { print (v == "" ? "nan" : v) }' "$OUT/floor-$1.log"
+    RAW=$OUT/floor-$1.log   # floor runs in $(...): RAW stays there
+    get floor median_us
 }
 
 # One latency experiment: mpbenchd's own median (us), or nan.
