@@ -338,6 +338,15 @@ struct mpb_collision {
         return &movables[(size_t)movable_index[(size_t)id]];
     }
 
+    /* find() for the public calls: an unknown id is the caller's error. */
+    Movable *find_or_err(int id)
+    {
+        Movable *m = find(id);
+        if (!m)
+            set_err("collision: no movable body %d", id);
+        return m;
+    }
+
     bool is_allowed(size_t a, size_t b) const
     {
         return allowed[a * astride + b] != 0;
@@ -1084,11 +1093,9 @@ int mpb_collision_set_pose(mpb_collision *c, int id, const mpb_pose *pose)
 {
     if (!c)
         return MPB_EINVAL;
-    Movable *m = c->find(id);
-    if (!m) {
-        c->set_err("collision: no movable body %d", id);
+    Movable *m = c->find_or_err(id);
+    if (!m)
         return MPB_ENOTFOUND;
-    }
     if (!pose || !finite_pose(pose)) {
         c->set_err("collision: movable %d: pose missing, not finite or too far "
                    "(%g m at most)", id, MPB_COLLISION_MAX_COORD);
@@ -1105,11 +1112,9 @@ int mpb_collision_set_enabled(mpb_collision *c, int id, int enabled)
 {
     if (!c)
         return MPB_EINVAL;
-    Movable *m = c->find(id);
-    if (!m) {
-        c->set_err("collision: no movable body %d", id);
+    Movable *m = c->find_or_err(id);
+    if (!m)
         return MPB_ENOTFOUND;
-    }
     m->enabled = enabled != 0;
     return MPB_OK;
 }
@@ -1118,11 +1123,10 @@ int mpb_collision_allow_pair(mpb_collision *c, int movable_a, int movable_b)
 {
     if (!c)
         return MPB_EINVAL;
-    Movable *a = c->find(movable_a), *b = c->find(movable_b);
-    if (!a || !b) {
-        c->set_err("collision: no movable body %d", a ? movable_b : movable_a);
+    Movable *a = c->find_or_err(movable_a);
+    Movable *b = a ? c->find_or_err(movable_b) : nullptr;
+    if (!a || !b)
         return MPB_ENOTFOUND;
-    }
     if (a == b) {
         c->set_err("collision: a body cannot be paired with itself (%d)", movable_a);
         return MPB_EINVAL;
@@ -1138,11 +1142,9 @@ int mpb_collision_allow_static(mpb_collision *c, int movable, int static_id)
 {
     if (!c)
         return MPB_EINVAL;
-    Movable *m = c->find(movable);
-    if (!m) {
-        c->set_err("collision: no movable body %d", movable);
+    Movable *m = c->find_or_err(movable);
+    if (!m)
         return MPB_ENOTFOUND;
-    }
     if (static_id < 0 || static_id > MPB_COLLISION_MAX_ID) {
         c->set_err("collision: static id %d out of range 0..%d", static_id,
                    MPB_COLLISION_MAX_ID);

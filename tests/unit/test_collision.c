@@ -603,6 +603,9 @@ static void test_allowed_pairs(void **state)
     assert_int_equal(b, 10);
     assert_int_equal(mpb_collision_allow_pair(c, 3, 3), MPB_EINVAL);
     assert_int_equal(mpb_collision_allow_pair(c, 3, 99), MPB_ENOTFOUND);
+    assert_string_equal(mpb_collision_errmsg(c), "collision: no movable body 99");
+    assert_int_equal(mpb_collision_allow_pair(c, 98, 3), MPB_ENOTFOUND);
+    assert_string_equal(mpb_collision_errmsg(c), "collision: no movable body 98");
 
     /* a link allowed to touch the floor, not a wall */
     mpb_geometry floor = box(10, 10, 0.1), wall = box(0.1, 10, 10);
@@ -675,6 +678,7 @@ static void test_errors(void **state)
     mpb_pose p = at(0, 0, 0);
     assert_int_equal(mpb_collision_set_pose(c, 4, &p), MPB_ENOTFOUND);
     assert_int_equal(mpb_collision_set_enabled(c, 4, 1), MPB_ENOTFOUND);
+    assert_string_equal(mpb_collision_errmsg(c), "collision: no movable body 4");
     assert_int_equal(mpb_collision_allow_static(c, 4, 1), MPB_ENOTFOUND);
     ok(c, mpb_collision_add_movable(c, 4, &s, NULL));
     assert_int_equal(mpb_collision_allow_static(c, 4, -3), MPB_EINVAL);
