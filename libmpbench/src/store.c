@@ -6,7 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "store_internal.h"
 
@@ -348,37 +350,150 @@ static void ckpt_start(mpb_store *s, const char *path)
     sqlite3_wal_hook(s->db, ckpt_on_commit, c);
 }
 
+/* ---- opening ---------------------------------------------------------------
+ *
+ * Every error of mpb_store_open() names the file and says what is wrong
+ * with it in words a user can act on. A file is inspected before anything
+ * is written to it, so that a wrong path given as the database (a Planner
+ * Arena database, some other program's) is refused, not converted.
+ */
+
+/* What inspect() found the file to be. */
+enum { FILE_EMPTY, FILE_MPBENCH, FILE_OTHER };
+
+/* The last SQLite error on s, said of the file at path. */
+static int file_fail(mpb_store *s, const char *path)
+{
+    const char *why = sqlite3_errmsg(s->db);
+    switch (sqlite3_errcode(s->db) & 0xff) {
+    case SQLITE_NOTADB:
+        return mpb__store_fail(s, MPB_EDB, "%s is not an mpbench database: "
+                               "not an SQLite file", path);
+    case SQLITE_CORRUPT:
+        return mpb__store_fail(s, MPB_EDB, "%s is damaged: %s", path, why);
+    case SQLITE_READONLY:
+        return mpb__store_fail(s, MPB_EIO, "%s cannot be written: %s", path, why);
+    default:
+        return mpb__store_fail(s, MPB_EIO, "cannot open %s: %s", path, why);
+    }
+}
+
+/* Read what the file holds: nothing yet, an mpbench database (*version its
+ * schema's), or the tables of something else. */
+static int inspect(mpb_store *s, const char *path, int *kind, int *version)
+{
+    sqlite3_stmt *st = NULL;
+    int tables = 0, meta = 0;
+    *version = 0;
+    if (sqlite3_prepare_v2(s->db, "SELECT count(*), count(*) FILTER (WHERE"
+                           " name = 'meta') FROM sqlite_master WHERE type ="
+                           " 'table'", -1, &st, NULL) != SQLITE_OK ||
+        sqlite3_step(st) != SQLITE_ROW) {
+        sqlite3_finalize(st);
+        return file_fail(s, path);
+    }
+    tables = sqlite3_column_int(st, 0);
+    meta = sqlite3_column_int(st, 1);
+    sqlite3_finalize(st);
+    if (meta && schema_version(s, version) != MPB_OK)
+        return file_fail(s, path);
+    *kind = tables == 0 ? FILE_EMPTY
+          : *version > 0 ? FILE_MPBENCH : FILE_OTHER;
+    return MPB_OK;
+}
+
+static int exists(const char *path, const char *suffix)
+{
+    char p[4096];
+    struct stat st;
+    return snprintf(p, sizeof p, "%s%s", path, suffix) < (int)sizeof p &&
+           stat(p, &st) == 0;
+}
+
+/* A read-only URI for path: "file:" and the path with the characters a URI
+ * gives a meaning to escaped. */
+static int immutable_uri(const char *path, char *uri, size_t cap)
+{
+    size_t n = (size_t)snprintf(uri, cap, "file:");
+    for (const char *c = path; *c != '\0'; c++) {
+        int special = *c == '%' || *c == '?' || *c == '#';
+        if (n + 4 >= cap)
+            return -1;
+        n += (size_t)(special ? snprintf(uri + n, cap - n, "%%%02X",
+                                         (unsigned char)*c)
+                              : snprintf(uri + n, cap - n, "%c", *c));
+    }
+    return snprintf(uri + n, cap - n, "?immutable=1") < (int)(cap - n) ? 0 : -1;
+}
+
+/*
+ * Open path for reading only. Where the file and its folder can be
+ * written, a read-write connection that runs nothing but queries
+ * (query_only): closing it as the last one folds the WAL back into the
+ * database and removes -wal and -shm, which a read-only connection cannot
+ * and leaves behind. Where they cannot be written (an archive, another
+ * user's results) and no writer is at work (no -wal), the file is opened
+ * immutable, which needs no -shm: a read-only connection would have to
+ * create one, and fails in a read-only folder or leaves a file of ours
+ * that keeps the owner from writing.
+ */
+static int open_for_reading(mpb_store *s, const char *path)
+{
+    char dir[4096], uri[8300];
+    const char *slash = strrchr(path, '/');
+    if (slash == NULL)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path),
+                 path);
+    int writable = access(path, W_OK) == 0 && access(dir, W_OK) == 0;
+    int flags = SQLITE_OPEN_NOMUTEX;
+
+    if (writable) {
+        flags |= SQLITE_OPEN_READWRITE;
+    } else if (!exists(path, "-wal") && immutable_uri(path, uri, sizeof uri) == 0) {
+        flags |= SQLITE_OPEN_READONLY | SQLITE_OPEN_URI;
+        path = uri;
+    } else {
+        flags |= SQLITE_OPEN_READONLY;
+    }
+    if (sqlite3_open_v2(path, &s->db, flags, NULL) != SQLITE_OK)
+        return MPB_EIO;
+    return writable ? exec(s, "PRAGMA query_only=ON", "configure") : MPB_OK;
+}
+
 int mpb_store_open(const char *path, int readonly, mpb_store **out)
 {
     mpb_store *s = calloc(1, sizeof *s);
-    /* A handle is used by one thread at a time: no mutex per call. */
-    int flags = SQLITE_OPEN_NOMUTEX |
-                (readonly ? SQLITE_OPEN_READONLY
-                          : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
-    int rc;
+    int rc, kind, version;
 
     *out = s;
     if (s == NULL)
         return MPB_ENOMEM;
     s->readonly = readonly;
-    if (sqlite3_open_v2(path, &s->db, flags, NULL) != SQLITE_OK) {
-        return mpb__store_fail(s, MPB_EIO, "cannot open database %s: %s", path,
-                               s->db ? sqlite3_errmsg(s->db) : "out of memory");
-    }
+    rc = readonly ? open_for_reading(s, path)
+                  : sqlite3_open_v2(path, &s->db, SQLITE_OPEN_NOMUTEX |
+                                    SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
+                                    NULL) == SQLITE_OK ? MPB_OK : MPB_EIO;
+    if (s->db == NULL)
+        return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+    if (rc != MPB_OK)
+        return file_fail(s, path);
     /* Several processes (the daemon, `mpb report`, sqlite3) share the file;
      * wait for a lock rather than fail. */
     sqlite3_busy_handler(s->db, store_busy, (void *)&busy_wait_us);
-    if (readonly) {
-        int version;
-        if ((rc = schema_version(s, &version)) != MPB_OK)
-            return mpb__store_fail(s, MPB_EDB, "%s is not an mpbench database",
-                                   path);
-        if (version != MPB__SCHEMA_VERSION)
-            return mpb__store_fail(s, MPB_EUNSUPPORTED,
-                                   "%s has schema version %d, expected %d",
-                                   path, version, MPB__SCHEMA_VERSION);
+    if ((rc = inspect(s, path, &kind, &version)) != MPB_OK)
+        return rc;
+    if (kind == FILE_OTHER || (readonly && kind == FILE_EMPTY))
+        return mpb__store_fail(s, MPB_EDB, "%s is not an mpbench database%s",
+                               path, kind == FILE_OTHER && !readonly
+                               ? " (it holds other tables; give a new file)" : "");
+    if (readonly && version != MPB__SCHEMA_VERSION)
+        return mpb__store_fail(s, MPB_EUNSUPPORTED,
+                               "%s has schema version %d, expected %d",
+                               path, version, MPB__SCHEMA_VERSION);
+    if (readonly)
         return MPB_OK;
-    }
     /* WAL: readers never block the daemon's writer. synchronous=NORMAL keeps
      * every committed transaction across a process crash (only a power loss
      * can take the last ones), at a fraction of FULL's fsyncs. Savepoint
@@ -387,10 +502,14 @@ int mpb_store_open(const char *path, int readonly, mpb_store **out)
      * run at one transaction per run). */
     if ((rc = exec(s, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;"
                       " PRAGMA foreign_keys=ON; PRAGMA temp_store=MEMORY;"
-                      " PRAGMA cache_size=-16384;", "configure")) != MPB_OK)
-        return rc;
-    if ((rc = create_schema(s)) != MPB_OK)
-        return rc;
+                      " PRAGMA cache_size=-16384;", "configure")) != MPB_OK ||
+        (rc = create_schema(s)) != MPB_OK) {
+        if ((sqlite3_errcode(s->db) & 0xff) == SQLITE_READONLY)
+            return file_fail(s, path);
+        char why[sizeof s->errmsg];
+        snprintf(why, sizeof why, "%s", s->errmsg);
+        return mpb__store_fail(s, rc, "%s: %s", path, why);
+    }
     ckpt_start(s, path);
     return MPB_OK;
 }

@@ -388,8 +388,7 @@ int cmd_import(int argc, char **argv)
         return to_planner_arena(arena, argc - optind, argv + optind);
     mpb_store *s = NULL;
     if (mpb_store_open(db, 0, &s) != MPB_OK) {
-        fprintf(stderr, "mpb " CMD ": cannot open %s: %s\n", db,
-                mpb_store_errmsg(s));
+        fprintf(stderr, "mpb " CMD ": %s\n", mpb_store_errmsg(s));
         mpb_store_close(s);
         return MPB_EXIT_ERROR;
     }

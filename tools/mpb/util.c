@@ -27,8 +27,8 @@ mpb_store *tool_open_readonly(const char *cmd, const char *path)
         return NULL;
     }
     if (mpb_store_open(path, 1, &s) != MPB_OK) {
-        fprintf(stderr, "mpb %s: cannot open %s: %s\n", cmd, path,
-                mpb_store_errmsg(s));
+        /* The store's message names the file and says what is wrong. */
+        fprintf(stderr, "mpb %s: %s\n", cmd, mpb_store_errmsg(s));
         mpb_store_close(s);
         return NULL;
     }

@@ -21,9 +21,14 @@ typedef struct mpb_store mpb_store;
 
 /*
  * Open (creating if needed) the database at path and bring its schema up to
- * date. *out is set even on failure (except MPB_ENOMEM) so that
- * mpb_store_errmsg() can say why; close it either way. readonly != 0 opens
- * without creating or changing anything (for reports).
+ * date. A file that holds tables of something else (another program's, a
+ * Planner Arena database) is refused before anything is written to it.
+ * *out is set even on failure (except MPB_ENOMEM) so that mpb_store_errmsg()
+ * can say why, naming the file; close it either way.
+ *
+ * readonly != 0 opens without creating or changing anything (for reports),
+ * and leaves no -wal or -shm file behind; a database in a folder that
+ * cannot be written is read as it is.
  */
 int mpb_store_open(const char *path, int readonly, mpb_store **out);
 void mpb_store_close(mpb_store *s);
