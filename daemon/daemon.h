@@ -34,6 +34,9 @@
 #define MPBD_STATUS_PERIOD_S    1.0
 #define MPBD_ACK_HOLD_S         0.02   /* an ack waits this long for a request */
 #define MPBD_STORED_MAX         32     /* acks riding on one request */
+/* The coarsest verification step --resolution takes (rad): coarser, a
+ * segment would pass through an obstacle thinner than the step. */
+#define MPBD_RESOLUTION_MAX     0.1
 
 typedef struct mpbd_planner {
     char    id[MPB_PLANNER_ID_MAX + 1];

@@ -35,7 +35,9 @@ static void usage(FILE *out)
 "  -d, --db PATH         database file (default: mpbench.db)\n"
 "  -u, --lcm-url URL     LCM URL (default: " MPB_DEFAULT_LCM_URL ")\n"
 "  -r, --resolution RAD  joint-space step for collision checks along each\n"
-"                        segment (default: 0.01)\n"
+"                        segment (default: 0.01, at most 0.1); kept with\n"
+"                        the experiment, which resumes only at the same\n"
+"                        step\n"
 "      --secret-file F   authenticate every message with the shared secret in\n"
 "                        F (planners need the same file); messages without\n"
 "                        the right tag are rejected\n"
@@ -83,9 +85,11 @@ static int parse_options(int argc, char **argv, options *o)
         case 'u': o->lcm_url = optarg; break;
         case 'r':
             o->resolution = strtod(optarg, &end);
-            if (*end != '\0' || !(o->resolution > 0)) {
-                fprintf(stderr, "mpbenchd: --resolution must be a positive "
-                                "number, not '%s'\n", optarg);
+            if (end == optarg || *end != '\0' || !(o->resolution > 0) ||
+                o->resolution > MPBD_RESOLUTION_MAX) {
+                fprintf(stderr, "mpbenchd: --resolution must be a number of "
+                                "radians > 0 and <= %g, not '%s'\n",
+                        MPBD_RESOLUTION_MAX, optarg);
                 return -1;
             }
             break;
@@ -124,6 +128,28 @@ static long count_runs(const mpbd_experiment *e)
 
 /* Everything the experiment is made of, written idempotently: a resumed
  * experiment takes the same path and finds its rows already there. */
+/* An experiment to resume must go on being verified at the step its
+ * first runs were: a report cannot tell apart runs checked at two
+ * resolutions. 0 if it may be resumed (or there is none to resume). */
+static int resolution_differs(mpbd *d, const char *db)
+{
+    int64_t id;
+    double was = 0.0;
+    mpbd_experiment *e = d->exp;
+    int rc = mpb_store_experiment_find_unfinished(d->store, e->name, e->hash, &id);
+    if (rc == MPB_OK)
+        rc = mpb_store_experiment_resolution(d->store, id, &was);
+    if (rc == MPB_ENOTFOUND || (rc == MPB_OK && (was == 0.0 || was == d->resolution)))
+        return 0;
+    if (rc != MPB_OK)
+        fprintf(stderr, "mpbenchd: %s: %s\n", db, mpb_store_errmsg(d->store));
+    else
+        fprintf(stderr, "mpbenchd: %s: experiment '%s' (id %lld) is verified at "
+                "--resolution %g, not %g: resume it with that, or start a new "
+                "one with --new\n", db, e->name, (long long)id, was, d->resolution);
+    return 1;
+}
+
 static int setup_experiment(mpbd *d, int fresh)
 {
     mpbd_experiment *e = d->exp;
@@ -143,8 +169,10 @@ static int setup_experiment(mpbd *d, int fresh)
     if (rc == MPB_OK)
         mpbd_log("resuming experiment '%s' (id %lld)", e->name,
                  (long long)d->experiment_id);
-    else if (rc == MPB_ENOTFOUND)
-        rc = mpb_store_experiment_create(s, &info, &d->experiment_id);
+    else if (rc == MPB_ENOTFOUND &&
+             (rc = mpb_store_experiment_create(s, &info, &d->experiment_id)) == MPB_OK)
+        rc = mpb_store_experiment_set_resolution(s, d->experiment_id,
+                                                 d->resolution);
     for (int i = 0; rc == MPB_OK && i < e->num_configs; i++) {
         mpbd_config *c = &e->configs[i];
         rc = mpb_store_planner_config_add(s, d->experiment_id, c->name,
@@ -304,6 +332,8 @@ int main(int argc, char **argv)
         goto out;
     }
     /* A replay always fills a new experiment of its own. */
+    if (!(o.fresh || o.replay) && resolution_differs(&d, o.db))
+        goto out;
     if ((rc = setup_experiment(&d, o.fresh || o.replay)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s: %s\n", o.db, mpb_store_errmsg(d.store));
         goto out;

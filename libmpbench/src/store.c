@@ -142,10 +142,12 @@ static int create_schema(mpb_store *s)
         goto fail;
     /* A database made before runs.final_metrics gets the column, NULL for
      * its runs: reports read their metrics from the metrics table. One made
-     * before pose-region goals gets their columns, NULL for its queries. */
+     * before pose-region goals gets their columns, NULL for its queries;
+     * one made before experiments.resolution, NULL: not known. */
     if ((rc = add_missing_column(s, "runs", "final_metrics", "BLOB")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_link", "TEXT")) != MPB_OK ||
-        (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK)
+        (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK ||
+        (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK)
         goto fail;
     /* A database made before the state index was dropped loses it: it
      * cost three pages in every commit and serves nothing frequent. */

@@ -74,6 +74,38 @@ int mpb_store_experiment_find_unfinished(mpb_store *s, const char *name,
     return rc;
 }
 
+int mpb_store_experiment_set_resolution(mpb_store *s, int64_t id,
+                                        double resolution)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "UPDATE experiments SET resolution = ? WHERE id = ?");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_double(st, 1, resolution);
+    sqlite3_bind_int64(st, 2, id);
+    int rc = step_once(s, st, "set resolution");
+    sqlite3_finalize(st);
+    return rc;
+}
+
+int mpb_store_experiment_resolution(mpb_store *s, int64_t id, double *out)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT coalesce(resolution, 0) FROM experiments WHERE id = ?");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, id);
+    int rc = sqlite3_step(st);
+    *out = rc == SQLITE_ROW ? sqlite3_column_double(st, 0) : 0.0;
+    sqlite3_finalize(st);
+    if (rc == SQLITE_ROW)
+        return MPB_OK;
+    if (rc == SQLITE_DONE)
+        return mpb__store_fail(s, MPB_ENOTFOUND, "no experiment %lld",
+                               (long long)id);
+    return mpb__store_db_fail(s, "experiment resolution");
+}
+
 int mpb_store_experiment_latest(mpb_store *s, int64_t *id)
 {
     sqlite3_stmt *st = mpb__store_prepare(s,

@@ -18,6 +18,7 @@ const char mpb__schema_v1[] =
     "  config_text    TEXT NOT NULL,\n"
     "  runs_per_query INTEGER NOT NULL,\n"
     "  time_limit     REAL NOT NULL,\n"
+    "  resolution     REAL,\n"
     "  host           TEXT NOT NULL,\n"
     "  version        TEXT NOT NULL,\n"
     "  created        REAL NOT NULL,\n"

@@ -49,6 +49,19 @@ while [ $kills -lt 10 ]; do
     [ $finished -eq 1 ] && break
 done
 check "the daemon was killed 10 times before it could finish" eq $kills 10
+check "the experiment keeps the step it is verified at" \
+    test "$(q 'SELECT resolution FROM experiments')" = 0.01
+# Resumed at another step, its runs would be verified two ways.
+done_before=$(q "SELECT count(*) FROM runs WHERE state = 'done'")
+mpb_timeout 30 "$daemon" -d "$DB" -r 0.02 "$work/exp.yaml" >"$work/other_r.log" 2>&1
+check "a restart at another --resolution is refused" eq $? 1
+check "... saying why, in one line" test "$(cat "$work/other_r.log")" = \
+    "mpbenchd: $DB: experiment 'restarts' (id 1) is verified at --resolution 0.01, not 0.02: resume it with that, or start a new one with --new"
+check "... and runs nothing" \
+    eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" "$done_before"
+"$daemon" -d "$DB" -r 0.5 "$work/exp.yaml" >"$work/coarse.log" 2>&1
+check "a step coarser than 0.1 rad is refused" eq $? 2
+check "... naming the bound" grep -q "<= 0.1, not '0.5'" "$work/coarse.log"
 mpb_timeout 120 "$daemon" -d "$DB" "$work/exp.yaml" >>"$work/daemon.log" 2>&1
 check "restarted once more, it completes the experiment" eq $? 0
 check "it resumed rather than starting afresh" \

@@ -56,6 +56,12 @@ int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
 /* The newest unfinished experiment with this name and config hash. */
 int mpb_store_experiment_find_unfinished(mpb_store *s, const char *name,
                                          const char *config_hash, int64_t *id);
+/* The verifier's step (rad) the experiment's runs are checked at: set once,
+ * when it is created; 0 if not known (an import, or a database made before
+ * it was kept). */
+int mpb_store_experiment_set_resolution(mpb_store *s, int64_t id,
+                                        double resolution);
+int mpb_store_experiment_resolution(mpb_store *s, int64_t id, double *out);
 /* The newest experiment of any state; MPB_ENOTFOUND in an empty database. */
 int mpb_store_experiment_latest(mpb_store *s, int64_t *id);
 int mpb_store_experiment_finish(mpb_store *s, int64_t id);
