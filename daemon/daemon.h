@@ -247,6 +247,9 @@ void mpbd_status_publish(mpbd *d, const char *state, double now);
  * (docs/record-and-replay.md); 0 if the whole log was read, 1 if it is
  * missing, damaged or of another experiment (what came before is stored). */
 int  mpbd_replay(mpbd *d, const char *log_path);
+/* 0 if log_path is a file that can be read; otherwise says why on stderr:
+ * checked before the database is opened, so a wrong path creates none. */
+int  mpbd_replay_log_readable(const char *log_path);
 
 /* log.c */
 void mpbd_log(const char *fmt, ...)

@@ -327,6 +327,8 @@ int main(int argc, char **argv)
     snprintf(d.daemon_id, sizeof d.daemon_id, "mpbenchd@%.60s:%ld", host,
              (long)getpid());
 
+    if (o.replay && mpbd_replay_log_readable(o.replay) != 0)
+        goto out;
     if ((rc = mpb_store_open(o.db, 0, &d.store)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
         goto out;

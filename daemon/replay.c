@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <lcm/eventlog.h>
 
@@ -342,19 +343,28 @@ static int read_log(replay *r, lcm_eventlog_t *log, long size)
     return 0;
 }
 
+int mpbd_replay_log_readable(const char *log_path)
+{
+    struct stat st;
+    errno = 0;
+    if (stat(log_path, &st) != 0 || S_ISDIR(st.st_mode) ||
+        access(log_path, R_OK) != 0) {
+        fprintf(stderr, "mpbenchd: cannot read log %s: %s\n", log_path,
+                strerror(errno ? errno : EISDIR));
+        return -1;
+    }
+    return 0;
+}
+
 int mpbd_replay(mpbd *d, const char *log_path)
 {
     replay r = {.d = d, .path = log_path};
-    struct stat st;
     lcm_eventlog_t *log = NULL;
+    struct stat st;
     int rc = 1;
 
-    errno = 0;
-    if (stat(log_path, &st) != 0 || S_ISDIR(st.st_mode)) {
-        fprintf(stderr, "mpbenchd: cannot read log %s: %s\n", log_path,
-                strerror(errno ? errno : EISDIR));
+    if (mpbd_replay_log_readable(log_path) != 0 || stat(log_path, &st) != 0)
         return 1;
-    }
     if ((log = lcm_eventlog_create(log_path, "r")) == NULL) {
         fprintf(stderr, "mpbenchd: cannot read log %s: %s\n", log_path,
                 strerror(errno));

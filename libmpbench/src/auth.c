@@ -29,7 +29,15 @@ int mpb_auth_load(const char *path, mpb_auth **out, char *err, size_t errlen)
         return MPB_EIO;
     }
     n = fread(buf, 1, sizeof buf, f);
+    /* A directory opens, and fails only here. */
+    int read_error = ferror(f) ? errno : 0;
     fclose(f);
+    if (read_error != 0) {
+        snprintf(err, errlen, "%s: cannot read secret: %s", path,
+                 strerror(read_error));
+        sodium_memzero(buf, sizeof buf);
+        return MPB_EIO;
+    }
     if (n < 16) {
         snprintf(err, errlen, "%s: a secret needs at least 16 bytes, this has "
                  "%zu", path, n);

@@ -65,5 +65,9 @@ head -c 5 /dev/urandom >"$work/short"
 "$MPB_BUILD/daemon/mpbenchd" --secret-file "$work/short" -d "$DB" "$work/exp.yaml" \
     >"$work/short.log" 2>&1
 check "a secret shorter than 16 bytes is refused" grep -q "at least 16 bytes" "$work/short.log"
+"$MPB_BUILD/daemon/mpbenchd" --secret-file "$work" -d "$DB" "$work/exp.yaml" \
+    >"$work/dir.log" 2>&1
+check "a directory given as the secret file is said to be one" \
+    grep -q "^mpbenchd: $work: cannot read secret: Is a directory$" "$work/dir.log"
 
 mpb_finish

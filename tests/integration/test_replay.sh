@@ -213,5 +213,6 @@ check "... each exactly as in the live database" \
 check "a missing log fails the replay" eq $? 1
 check "... naming it" \
     grep -q "^mpbenchd: cannot read log $work/nothing.lcmlog: No such file or directory$" "$work/missing.err"
+check "... and creates no database" test ! -e "$work/none.db"
 
 mpb_finish
