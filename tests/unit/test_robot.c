@@ -1049,6 +1049,24 @@ static void test_malformed(void **state)
     expect_error("<robot name='\xc0\xaf'/>", NULL, "a", MPB_EPARSE, "not UTF-8");
     expect_error("<robot name='r\xc3\xa9'><link name='a'/></robot>", NULL, "a",
                  MPB_EPARSE, "is not below");     /* valid UTF-8 goes on */
+    /* Joints that do not make a tree: urdfdom accepts them and the walk
+     * from the root would recurse without end or copy a link twice. */
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 JOINT("j", "revolute", "a", "b", LIMIT)
+                 JOINT("loop", "fixed", "b", "b", "") "</robot>",
+                 NULL, "b", MPB_EPARSE, "the joints form a loop at link 'b'");
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 "<link name='c'/>"
+                 JOINT("j1", "revolute", "a", "b", LIMIT)
+                 JOINT("j2", "revolute", "b", "c", LIMIT)
+                 JOINT("j3", "fixed", "a", "c", "") "</robot>",
+                 NULL, "c", MPB_EPARSE, "link 'c' has two parent joints");
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 "<link name='c'/><link name='d'/>"
+                 JOINT("j", "revolute", "a", "b", LIMIT)
+                 JOINT("cd", "fixed", "c", "d", "")
+                 JOINT("dc", "fixed", "d", "c", "") "</robot>",
+                 NULL, "b", MPB_EPARSE, "the joints form a loop at link");
     /* A link twice. */
     expect_error("<robot name='r'><link name='a'/><link name='a'/></robot>",
                  NULL, "a", MPB_EPARSE, "not unique");
