@@ -126,6 +126,54 @@ bool find_bad_utf8(const char *text, int *line, int *col)
     return false;
 }
 
+/* Deeper than any robot needs; TinyXML recurses once per level and a
+ * hundred thousand levels overflow the stack. */
+const int XML_DEPTH_MAX = 1000;
+
+/* Past "<!--...-->", "<?...?>", "<![CDATA[...]]>" or "<!...>" at p. */
+const char *skip_markup(const char *p)
+{
+    const char *end = "";
+    if (std::strncmp(p, "<!--", 4) == 0)
+        end = "-->";
+    else if (std::strncmp(p, "<![CDATA[", 9) == 0)
+        end = "]]>";
+    else if (p[1] == '?')
+        end = "?>";
+    const char *q = *end ? std::strstr(p, end) : std::strchr(p, '>');
+    return q ? q + std::strlen(*end ? end : ">") : p + std::strlen(p);
+}
+
+/* True if elements nest deeper than XML_DEPTH_MAX, by a scan of the tags
+ * (quoted attribute values may hold '>'). */
+bool too_deep(const char *p)
+{
+    int depth = 0;
+    while ((p = std::strchr(p, '<')) != nullptr) {
+        if (p[1] == '!' || p[1] == '?') {
+            p = skip_markup(p);
+            continue;
+        }
+        bool closing = p[1] == '/';
+        char quote = 0;
+        for (p++; *p && (quote || *p != '>'); p++)
+            if (*p == '"' || *p == '\'') {
+                if (!quote)
+                    quote = *p;
+                else if (quote == *p)
+                    quote = 0;
+            }
+        bool empty = p[-1] == '/';
+        if (closing)
+            depth--;
+        else if (!empty && ++depth > XML_DEPTH_MAX)
+            return true;
+        if (!*p)
+            break;
+    }
+    return false;
+}
+
 void to_pose(const urdf::Pose &in, mpb_pose *out)
 {
     mpb_pose_identity(out);
@@ -366,6 +414,12 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
     int line, col;
     if (find_bad_utf8(text, &line, &col)) {
         mpb__set_err(err, errlen, "line %d, column %d: not UTF-8", line, col);
+        return MPB_EPARSE;
+    }
+
+    if (too_deep(text)) {
+        mpb__set_err(err, errlen, "XML nested too deeply (more than %d levels)",
+                     XML_DEPTH_MAX);
         return MPB_EPARSE;
     }
 

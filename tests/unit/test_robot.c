@@ -987,6 +987,23 @@ static void expect_error(const char *text, const char *base, const char *tip,
     "<child link='" child "'/>" extra "</joint>"
 #define LIMIT "<limit lower='-1' upper='1' effort='1' velocity='1'/>"
 
+/* A robot with one link and n levels of <x> inside; the text is static. */
+static const char *nested_xml(int n)
+{
+    static char *text;
+    const char *head = "<robot name='r'><link name='a'/>";
+    free(text);
+    text = malloc(strlen(head) + (size_t)n * 7 + 16);
+    assert_non_null(text);
+    char *p = text + sprintf(text, "%s", head);
+    for (int i = 0; i < n; i++)
+        p += sprintf(p, "<x>");
+    for (int i = 0; i < n; i++)
+        p += sprintf(p, "</x>");
+    sprintf(p, "</robot>");
+    return text;
+}
+
 static void test_malformed(void **state)
 {
     (void)state;
@@ -1067,6 +1084,11 @@ static void test_malformed(void **state)
                  JOINT("cd", "fixed", "c", "d", "")
                  JOINT("dc", "fixed", "d", "c", "") "</robot>",
                  NULL, "b", MPB_EPARSE, "the joints form a loop at link");
+    /* Elements nested a hundred thousand deep: TinyXML would overflow the
+     * stack, so a scan refuses them first; a thousand levels are fine. */
+    expect_error(nested_xml(100000), NULL, "a", MPB_EPARSE,
+                 "XML nested too deeply (more than 1000 levels)");
+    expect_error(nested_xml(999), NULL, "a", MPB_EPARSE, "is not below");
     /* A link twice. */
     expect_error("<robot name='r'><link name='a'/><link name='a'/></robot>",
                  NULL, "a", MPB_EPARSE, "not unique");
