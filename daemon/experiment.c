@@ -635,6 +635,19 @@ static int load_params(loader *L, mpbd_config *c, yaml_node_t *m)
     return 0;
 }
 
+/* Add one configuration's runs to *total; the cap is checked as they add
+ * up, in 64 bits, so that the product cannot wrap. */
+static int add_runs(loader *L, const mpbd_experiment *e, int runs,
+                    yaml_node_t *where, int64_t *total)
+{
+    *total += (int64_t)runs * e->num_queries;
+    if (*total <= MPBD_RUNS_TOTAL_MAX)
+        return 0;
+    return fail_at(L, where, "runs: %d makes more than %d runs in all (runs "
+                   "x planner configurations x queries)", runs,
+                   MPBD_RUNS_TOTAL_MAX);
+}
+
 static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     static const char *const keys[] = {"planner", "algorithms", "params",
@@ -642,6 +655,9 @@ static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
     yaml_node_t *list = need(L, root, "planners", YAML_SEQUENCE_NODE,
                              "a list of planners");
     size_t total = 0;
+    int64_t total_runs = 0;
+    /* Where the default runs come from, for the message. */
+    yaml_node_t *default_runs = get(L, get(L, root, "experiment"), "runs");
     if (list == NULL)
         return -1;
     for (yaml_node_item_t *it = list->data.sequence.items.start;
@@ -666,8 +682,11 @@ static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
             return -1;
         if (count_items(algos) == 0)
             return fail_at(L, algos, "'algorithms' must not be empty");
-        if ((n = get(L, m, "runs")) && parse_positive_int(L, n, "runs", &runs))
+        yaml_node_t *runs_node = get(L, m, "runs");
+        if (runs_node && parse_positive_int(L, runs_node, "runs", &runs))
             return -1;
+        if (runs_node == NULL)
+            runs_node = default_runs ? default_runs : m;
         if ((n = get(L, m, "name")) != NULL && (suffix = scalar(n)) == NULL)
             return fail_at(L, n, "name must be a string");
         if ((planner = need_string(L, m, "planner")) == NULL)
@@ -699,6 +718,10 @@ static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
                     return fail_at(L, an, "planner configuration '%s' appears "
                                    "twice (give one a 'name')", c->name);
                 }
+            if (add_runs(L, e, runs, runs_node, &total_runs) != 0) {
+                free(planner);
+                return -1;
+            }
         }
         free(planner);
     }

@@ -65,6 +65,16 @@ experiment: {name: x, time_limit: 1, retries: -1}
 EOT
 bad_case bad_retries.yaml ":1:.*retries must be a whole number from 0 to 1000000000, not '-1'"
 
+# 150 million runs: more than an experiment may have (the count wrapped
+# in an int before, and the runs filled the disk in one transaction).
+cat >"$work/too_many_runs.yaml" <<EOT
+experiment: {name: x, time_limit: 1, runs: 50000000}
+robot: {format: planar, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: ompl, algorithms: [RRT, EST, PRM]}]
+EOT
+bad_case too_many_runs.yaml ":1:44: runs: 50000000 makes more than 100000000 runs in all"
+
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
 robot: {format: planar, file: nosuch.robot}
