@@ -89,6 +89,69 @@ static int only_keys(loader *L, yaml_node_t *m, const char *const *known)
     return 0;
 }
 
+/* The key node of pair i of mapping m, for sorting keys by name. */
+typedef struct keyref {
+    const char  *name;
+    yaml_node_t *node;
+} keyref;
+
+static int keyref_cmp(const void *a, const void *b)
+{
+    const keyref *x = a, *y = b;
+    int c = strcmp(x->name, y->name);
+    if (c != 0)
+        return c;
+    return x->node < y->node ? -1 : x->node > y->node;
+}
+
+/* The first key (in file order) that repeats an earlier one in m, or
+ * NULL; sorted, so that a mapping of many keys costs n log n. */
+static yaml_node_t *repeated_key(loader *L, yaml_node_t *m, keyref *keys)
+{
+    size_t n = 0;
+    yaml_node_t *first = NULL;
+    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
+         p < m->data.mapping.pairs.top; p++) {
+        yaml_node_t *k = node(L, p->key);
+        if (scalar(k) != NULL)
+            keys[n++] = (keyref){scalar(k), k};
+    }
+    qsort(keys, n, sizeof *keys, keyref_cmp);
+    for (size_t i = 1; i < n; i++)
+        if (strcmp(keys[i - 1].name, keys[i].name) == 0 &&
+            (first == NULL || keys[i].node->start_mark.index <
+                                  first->start_mark.index))
+            first = keys[i].node;
+    return first;
+}
+
+/*
+ * libyaml keeps every pair of a mapping, and get() would take the first:
+ * refuse a key written twice anywhere, params included, as a typo.
+ */
+static int no_repeated_keys(loader *L)
+{
+    size_t most = 0;
+    keyref *keys;
+    for (yaml_node_t *m = L->doc.nodes.start; m < L->doc.nodes.top; m++)
+        if (m->type == YAML_MAPPING_NODE) {
+            size_t n = (size_t)(m->data.mapping.pairs.top -
+                                m->data.mapping.pairs.start);
+            most = n > most ? n : most;
+        }
+    if ((keys = malloc((most + 1) * sizeof *keys)) == NULL)
+        return fail_at(L, NULL, "out of memory");
+    for (yaml_node_t *m = L->doc.nodes.start; m < L->doc.nodes.top; m++) {
+        yaml_node_t *k;
+        if (m->type == YAML_MAPPING_NODE && (k = repeated_key(L, m, keys))) {
+            free(keys);
+            return fail_at(L, k, "key '%s' appears twice", scalar(k));
+        }
+    }
+    free(keys);
+    return 0;
+}
+
 static yaml_node_t *need(loader *L, yaml_node_t *m, const char *key,
                          yaml_node_type_t type, const char *what)
 {
@@ -740,6 +803,36 @@ static char *dir_of(const char *path)
     return d;
 }
 
+/* libyaml's complaint, at the place it names. */
+static int fail_yaml(loader *L, const yaml_parser_t *parser)
+{
+    snprintf(L->err, L->errlen, "%s:%lu:%lu: YAML: %s", L->path,
+             (unsigned long)parser->problem_mark.line + 1,
+             (unsigned long)parser->problem_mark.column + 1,
+             parser->problem ? parser->problem : "syntax error");
+    L->failed = 1;
+    return -1;
+}
+
+/* The loader reads one document: a second one (after `---`) would be
+ * ignored without a word, so it is an error, as is bad YAML in it. */
+static int no_second_document(loader *L, yaml_parser_t *parser)
+{
+    yaml_document_t next;
+    if (!yaml_parser_load(parser, &next))
+        return fail_yaml(L, parser);
+    int more = yaml_document_get_root_node(&next) != NULL;
+    yaml_mark_t at = next.start_mark;
+    yaml_document_delete(&next);
+    if (!more)
+        return 0;
+    snprintf(L->err, L->errlen, "%s:%lu:%lu: a second YAML document (an "
+             "experiment file holds one)", L->path,
+             (unsigned long)at.line + 1, (unsigned long)at.column + 1);
+    L->failed = 1;
+    return -1;
+}
+
 mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen)
 {
     static const char *const top_keys[] = {"experiment", "robot", "scenes",
@@ -773,15 +866,16 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen
     yaml_parser_initialize(&parser);
     yaml_parser_set_input_string(&parser, (const unsigned char *)e->text, len);
     if (!yaml_parser_load(&parser, &L.doc)) {
-        snprintf(err, errlen, "%s:%lu:%lu: YAML: %s", path,
-                 (unsigned long)parser.problem_mark.line + 1,
-                 (unsigned long)parser.problem_mark.column + 1,
-                 parser.problem ? parser.problem : "syntax error");
+        fail_yaml(&L, &parser);
+        yaml_parser_delete(&parser);
+        goto fail;
+    }
+    have_doc = 1;
+    if (no_second_document(&L, &parser) != 0) {
         yaml_parser_delete(&parser);
         goto fail;
     }
     yaml_parser_delete(&parser);
-    have_doc = 1;
 
     yaml_node_t *root = yaml_document_get_root_node(&L.doc);
     if (root == NULL || root->type != YAML_MAPPING_NODE) {
@@ -789,7 +883,8 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen
                           "and planners");
         goto fail;
     }
-    if (only_keys(&L, root, top_keys) != 0 || load_settings(&L, e, root) != 0 ||
+    if (no_repeated_keys(&L) != 0 ||
+        only_keys(&L, root, top_keys) != 0 || load_settings(&L, e, root) != 0 ||
         load_scenes(&L, e, root) != 0 || load_planners(&L, e, root) != 0)
         goto fail;
 

@@ -75,6 +75,35 @@ planners: [{planner: ompl, algorithms: [RRT, EST, PRM]}]
 EOT
 bad_case too_many_runs.yaml ":1:44: runs: 50000000 makes more than 100000000 runs in all"
 
+# A key twice: libyaml keeps both and the first would win unseen.
+cat >"$work/dup_runs.yaml" <<EOT
+experiment:
+  name: x
+  runs: 10
+  time_limit: 1
+  runs: 1
+EOT
+bad_case dup_runs.yaml ":5:3: key 'runs' appears twice"
+
+cat >"$work/dup_params.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: ompl, algorithms: [RRT], params: {range: 0.3, range: 5}}]
+EOT
+bad_case dup_params.yaml ":4:[0-9]*: key 'range' appears twice"
+
+# A second document after --- would be ignored.
+cat >"$work/two_docs.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: ompl, algorithms: [RRT]}]
+---
+experiment: {name: y, time_limit: 1}
+EOT
+bad_case two_docs.yaml ":5:1: a second YAML document"
+
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
 robot: {format: planar, file: nosuch.robot}
