@@ -833,6 +833,46 @@ static int no_second_document(loader *L, yaml_parser_t *parser)
     return -1;
 }
 
+/* Far deeper than an experiment needs (six levels); libyaml's scanner
+ * spends time in proportion to the depth on every token, so a hundred
+ * thousand '[' took minutes. */
+#define YAML_DEPTH_MAX 100
+
+/* A pass over libyaml's events before it builds the document, stopping
+ * at the first collection nested deeper than YAML_DEPTH_MAX. */
+static int not_too_deep(loader *L, const char *text, size_t len)
+{
+    yaml_parser_t parser;
+    yaml_event_t ev;
+    int depth = 0, rc = 0;
+    yaml_parser_initialize(&parser);
+    yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
+    for (;;) {
+        if (!yaml_parser_parse(&parser, &ev)) {
+            rc = fail_yaml(L, &parser);
+            break;
+        }
+        yaml_event_type_t type = ev.type;
+        yaml_mark_t at = ev.start_mark;
+        yaml_event_delete(&ev);
+        if (type == YAML_STREAM_END_EVENT)
+            break;
+        if (type == YAML_SEQUENCE_END_EVENT || type == YAML_MAPPING_END_EVENT)
+            depth--;
+        else if ((type == YAML_SEQUENCE_START_EVENT ||
+                  type == YAML_MAPPING_START_EVENT) && ++depth > YAML_DEPTH_MAX) {
+            snprintf(L->err, L->errlen, "%s:%lu:%lu: nested too deeply (more "
+                     "than %d levels)", L->path, (unsigned long)at.line + 1,
+                     (unsigned long)at.column + 1, YAML_DEPTH_MAX);
+            L->failed = 1;
+            rc = -1;
+            break;
+        }
+    }
+    yaml_parser_delete(&parser);
+    return rc;
+}
+
 mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen)
 {
     static const char *const top_keys[] = {"experiment", "robot", "scenes",
@@ -863,6 +903,8 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen
     }
     mpb_hash_hex(e->text, len, e->hash);
 
+    if (not_too_deep(&L, e->text, len) != 0)
+        goto fail;
     yaml_parser_initialize(&parser);
     yaml_parser_set_input_string(&parser, (const unsigned char *)e->text, len);
     if (!yaml_parser_load(&parser, &L.doc)) {

@@ -104,6 +104,13 @@ experiment: {name: y, time_limit: 1}
 EOT
 bad_case two_docs.yaml ":5:1: a second YAML document"
 
+# Lists nested 5000 deep: libyaml's time grows with the square of the
+# depth, so the loader stops at 100 levels.
+{ printf 'experiment:\n  name: x\n  runs: '
+  awk 'BEGIN { for (i = 0; i < 5000; i++) printf "["; for (i = 0; i < 5000; i++) printf "]"; print "" }'
+} >"$work/deep.yaml"
+bad_case deep.yaml ":3:107: nested too deeply (more than 100 levels)"
+
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
 robot: {format: planar, file: nosuch.robot}
