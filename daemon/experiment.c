@@ -329,9 +329,14 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
     snprintf(path, sizeof path, "%s%s", f[0] == '/' ? "" : L->dir, f);
     if ((*file_path = strdup(path)) == NULL)
         return fail_at(L, file, "out of memory");
-    if ((*text = slurp(path, NULL)) == NULL)
+    size_t len;
+    if ((*text = slurp(path, &len)) == NULL)
         return fail_at(L, file, "cannot read %s file %s: %s", what, path,
                        strerror(errno));
+    /* The parsers stop at a NUL: the rest would vanish without a word. */
+    if (strlen(*text) != len)
+        return fail_at(L, file, "%s: not a text file (a NUL byte at offset "
+                       "%zu)", path, strlen(*text));
     return 0;
 }
 

@@ -111,6 +111,16 @@ bad_case two_docs.yaml ":5:1: a second YAML document"
 } >"$work/deep.yaml"
 bad_case deep.yaml ":3:107: nested too deeply (more than 100 levels)"
 
+# A NUL byte in a robot file: the parser would stop there.
+printf 'link_radius 0.01\njoint a -1 1 0.5\n\000joint b -1 1 0.5\n' >"$work/nul.robot"
+cat >"$work/nul_robot.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, file: nul.robot}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case nul_robot.yaml ":2:.*nul.robot: not a text file (a NUL byte at offset 34)"
+
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
 robot: {format: planar, file: nosuch.robot}
