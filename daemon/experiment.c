@@ -302,8 +302,13 @@ static char *slurp(const char *path, size_t *len)
 static int load_model(loader *L, yaml_node_t *m, const char *what,
                       char **format, char **text, char **file_path)
 {
-    static const char *const keys[] = {"format", "file", "text", "name",
-                                       "queries", "joints", NULL};
+    /* Each its own: a robot has no name or queries, a scene no joints. */
+    static const char *const robot_keys[] = {"format", "file", "text",
+                                             "joints", NULL};
+    static const char *const scene_keys[] = {"format", "file", "text", "name",
+                                             "queries", "joints", NULL};
+    const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
+                                                         : scene_keys;
     yaml_node_t *file, *inline_text;
     if (m == NULL || m->type != YAML_MAPPING_NODE)
         return fail_at(L, m, "%s must be a mapping with format and file or text",

@@ -121,6 +121,14 @@ planners: [{planner: null, algorithms: [a]}]
 EOT
 bad_case nul_robot.yaml ":2:.*nul.robot: not a text file (a NUL byte at offset 34)"
 
+cat >"$work/robot_name.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, name: arm, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case robot_name.yaml ":2:25: unknown key 'name'"
+
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
 robot: {format: planar, file: nosuch.robot}
