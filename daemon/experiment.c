@@ -89,6 +89,69 @@ static int only_keys(loader *L, yaml_node_t *m, const char *const *known)
     return 0;
 }
 
+/* The key node of pair i of mapping m, for sorting keys by name. */
+typedef struct keyref {
+    const char  *name;
+    yaml_node_t *node;
+} keyref;
+
+static int keyref_cmp(const void *a, const void *b)
+{
+    const keyref *x = a, *y = b;
+    int c = strcmp(x->name, y->name);
+    if (c != 0)
+        return c;
+    return x->node < y->node ? -1 : x->node > y->node;
+}
+
+/* The first key (in file order) that repeats an earlier one in m, or
+ * NULL; sorted, so that a mapping of many keys costs n log n. */
+static yaml_node_t *repeated_key(loader *L, yaml_node_t *m, keyref *keys)
+{
+    size_t n = 0;
+    yaml_node_t *first = NULL;
+    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
+         p < m->data.mapping.pairs.top; p++) {
+        yaml_node_t *k = node(L, p->key);
+        if (scalar(k) != NULL)
+            keys[n++] = (keyref){scalar(k), k};
+    }
+    qsort(keys, n, sizeof *keys, keyref_cmp);
+    for (size_t i = 1; i < n; i++)
+        if (strcmp(keys[i - 1].name, keys[i].name) == 0 &&
+            (first == NULL || keys[i].node->start_mark.index <
+                                  first->start_mark.index))
+            first = keys[i].node;
+    return first;
+}
+
+/*
+ * libyaml keeps every pair of a mapping, and get() would take the first:
+ * refuse a key written twice anywhere, params included, as a typo.
+ */
+static int no_repeated_keys(loader *L)
+{
+    size_t most = 0;
+    keyref *keys;
+    for (yaml_node_t *m = L->doc.nodes.start; m < L->doc.nodes.top; m++)
+        if (m->type == YAML_MAPPING_NODE) {
+            size_t n = (size_t)(m->data.mapping.pairs.top -
+                                m->data.mapping.pairs.start);
+            most = n > most ? n : most;
+        }
+    if ((keys = malloc((most + 1) * sizeof *keys)) == NULL)
+        return fail_at(L, NULL, "out of memory");
+    for (yaml_node_t *m = L->doc.nodes.start; m < L->doc.nodes.top; m++) {
+        yaml_node_t *k;
+        if (m->type == YAML_MAPPING_NODE && (k = repeated_key(L, m, keys))) {
+            free(keys);
+            return fail_at(L, k, "key '%s' appears twice", scalar(k));
+        }
+    }
+    free(keys);
+    return 0;
+}
+
 static yaml_node_t *need(loader *L, yaml_node_t *m, const char *key,
                          yaml_node_type_t type, const char *what)
 {
@@ -239,8 +302,13 @@ static char *slurp(const char *path, size_t *len)
 static int load_model(loader *L, yaml_node_t *m, const char *what,
                       char **format, char **text, char **file_path)
 {
-    static const char *const keys[] = {"format", "file", "text", "name",
-                                       "queries", "joints", NULL};
+    /* Each its own: a robot has no name or queries, a scene no joints. */
+    static const char *const robot_keys[] = {"format", "file", "text",
+                                             "joints", NULL};
+    static const char *const scene_keys[] = {"format", "file", "text", "name",
+                                             "queries", "joints", NULL};
+    const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
+                                                         : scene_keys;
     yaml_node_t *file, *inline_text;
     if (m == NULL || m->type != YAML_MAPPING_NODE)
         return fail_at(L, m, "%s must be a mapping with format and file or text",
@@ -266,9 +334,14 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
     snprintf(path, sizeof path, "%s%s", f[0] == '/' ? "" : L->dir, f);
     if ((*file_path = strdup(path)) == NULL)
         return fail_at(L, file, "out of memory");
-    if ((*text = slurp(path, NULL)) == NULL)
+    size_t len;
+    if ((*text = slurp(path, &len)) == NULL)
         return fail_at(L, file, "cannot read %s file %s: %s", what, path,
                        strerror(errno));
+    /* The parsers stop at a NUL: the rest would vanish without a word. */
+    if (strlen(*text) != len)
+        return fail_at(L, file, "%s: not a text file (a NUL byte at offset "
+                       "%zu)", path, strlen(*text));
     return 0;
 }
 
@@ -635,6 +708,19 @@ static int load_params(loader *L, mpbd_config *c, yaml_node_t *m)
     return 0;
 }
 
+/* Add one configuration's runs to *total; the cap is checked as they add
+ * up, in 64 bits, so that the product cannot wrap. */
+static int add_runs(loader *L, const mpbd_experiment *e, int runs,
+                    yaml_node_t *where, int64_t *total)
+{
+    *total += (int64_t)runs * e->num_queries;
+    if (*total <= MPBD_RUNS_TOTAL_MAX)
+        return 0;
+    return fail_at(L, where, "runs: %d makes more than %d runs in all (runs "
+                   "x planner configurations x queries)", runs,
+                   MPBD_RUNS_TOTAL_MAX);
+}
+
 static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     static const char *const keys[] = {"planner", "algorithms", "params",
@@ -642,6 +728,9 @@ static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
     yaml_node_t *list = need(L, root, "planners", YAML_SEQUENCE_NODE,
                              "a list of planners");
     size_t total = 0;
+    int64_t total_runs = 0;
+    /* Where the default runs come from, for the message. */
+    yaml_node_t *default_runs = get(L, get(L, root, "experiment"), "runs");
     if (list == NULL)
         return -1;
     for (yaml_node_item_t *it = list->data.sequence.items.start;
@@ -666,8 +755,11 @@ static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
             return -1;
         if (count_items(algos) == 0)
             return fail_at(L, algos, "'algorithms' must not be empty");
-        if ((n = get(L, m, "runs")) && parse_positive_int(L, n, "runs", &runs))
+        yaml_node_t *runs_node = get(L, m, "runs");
+        if (runs_node && parse_positive_int(L, runs_node, "runs", &runs))
             return -1;
+        if (runs_node == NULL)
+            runs_node = default_runs ? default_runs : m;
         if ((n = get(L, m, "name")) != NULL && (suffix = scalar(n)) == NULL)
             return fail_at(L, n, "name must be a string");
         if ((planner = need_string(L, m, "planner")) == NULL)
@@ -699,6 +791,10 @@ static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
                     return fail_at(L, an, "planner configuration '%s' appears "
                                    "twice (give one a 'name')", c->name);
                 }
+            if (add_runs(L, e, runs, runs_node, &total_runs) != 0) {
+                free(planner);
+                return -1;
+            }
         }
         free(planner);
     }
@@ -715,6 +811,76 @@ static char *dir_of(const char *path)
         d[n] = '\0';
     }
     return d;
+}
+
+/* libyaml's complaint, at the place it names. */
+static int fail_yaml(loader *L, const yaml_parser_t *parser)
+{
+    snprintf(L->err, L->errlen, "%s:%lu:%lu: YAML: %s", L->path,
+             (unsigned long)parser->problem_mark.line + 1,
+             (unsigned long)parser->problem_mark.column + 1,
+             parser->problem ? parser->problem : "syntax error");
+    L->failed = 1;
+    return -1;
+}
+
+/* The loader reads one document: a second one (after `---`) would be
+ * ignored without a word, so it is an error, as is bad YAML in it. */
+static int no_second_document(loader *L, yaml_parser_t *parser)
+{
+    yaml_document_t next;
+    if (!yaml_parser_load(parser, &next))
+        return fail_yaml(L, parser);
+    int more = yaml_document_get_root_node(&next) != NULL;
+    yaml_mark_t at = next.start_mark;
+    yaml_document_delete(&next);
+    if (!more)
+        return 0;
+    snprintf(L->err, L->errlen, "%s:%lu:%lu: a second YAML document (an "
+             "experiment file holds one)", L->path,
+             (unsigned long)at.line + 1, (unsigned long)at.column + 1);
+    L->failed = 1;
+    return -1;
+}
+
+/* Far deeper than an experiment needs (six levels); libyaml's scanner
+ * spends time in proportion to the depth on every token, so a hundred
+ * thousand '[' took minutes. */
+#define YAML_DEPTH_MAX 100
+
+/* A pass over libyaml's events before it builds the document, stopping
+ * at the first collection nested deeper than YAML_DEPTH_MAX. */
+static int not_too_deep(loader *L, const char *text, size_t len)
+{
+    yaml_parser_t parser;
+    yaml_event_t ev;
+    int depth = 0, rc = 0;
+    yaml_parser_initialize(&parser);
+    yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
+    for (;;) {
+        if (!yaml_parser_parse(&parser, &ev)) {
+            rc = fail_yaml(L, &parser);
+            break;
+        }
+        yaml_event_type_t type = ev.type;
+        yaml_mark_t at = ev.start_mark;
+        yaml_event_delete(&ev);
+        if (type == YAML_STREAM_END_EVENT)
+            break;
+        if (type == YAML_SEQUENCE_END_EVENT || type == YAML_MAPPING_END_EVENT)
+            depth--;
+        else if ((type == YAML_SEQUENCE_START_EVENT ||
+                  type == YAML_MAPPING_START_EVENT) && ++depth > YAML_DEPTH_MAX) {
+            snprintf(L->err, L->errlen, "%s:%lu:%lu: nested too deeply (more "
+                     "than %d levels)", L->path, (unsigned long)at.line + 1,
+                     (unsigned long)at.column + 1, YAML_DEPTH_MAX);
+            L->failed = 1;
+            rc = -1;
+            break;
+        }
+    }
+    yaml_parser_delete(&parser);
+    return rc;
 }
 
 mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen)
@@ -747,18 +913,21 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen
     }
     mpb_hash_hex(e->text, len, e->hash);
 
+    if (not_too_deep(&L, e->text, len) != 0)
+        goto fail;
     yaml_parser_initialize(&parser);
     yaml_parser_set_input_string(&parser, (const unsigned char *)e->text, len);
     if (!yaml_parser_load(&parser, &L.doc)) {
-        snprintf(err, errlen, "%s:%lu:%lu: YAML: %s", path,
-                 (unsigned long)parser.problem_mark.line + 1,
-                 (unsigned long)parser.problem_mark.column + 1,
-                 parser.problem ? parser.problem : "syntax error");
+        fail_yaml(&L, &parser);
+        yaml_parser_delete(&parser);
+        goto fail;
+    }
+    have_doc = 1;
+    if (no_second_document(&L, &parser) != 0) {
         yaml_parser_delete(&parser);
         goto fail;
     }
     yaml_parser_delete(&parser);
-    have_doc = 1;
 
     yaml_node_t *root = yaml_document_get_root_node(&L.doc);
     if (root == NULL || root->type != YAML_MAPPING_NODE) {
@@ -766,7 +935,8 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen
                           "and planners");
         goto fail;
     }
-    if (only_keys(&L, root, top_keys) != 0 || load_settings(&L, e, root) != 0 ||
+    if (no_repeated_keys(&L) != 0 ||
+        only_keys(&L, root, top_keys) != 0 || load_settings(&L, e, root) != 0 ||
         load_scenes(&L, e, root) != 0 || load_planners(&L, e, root) != 0)
         goto fail;
 

@@ -15,6 +15,9 @@
 /* Most requests that may wait at one planner: the C planner kit's LCM
  * queue holds 8, and the request in flight may be re-sent meanwhile. */
 #define MPBD_QUEUE_AT_PLANNER_MAX 4
+/* Most runs one experiment may have (runs x configurations x queries): the
+ * daemon inserts them in one transaction, and beyond this the disk fills. */
+#define MPBD_RUNS_TOTAL_MAX 100000000
 
 typedef struct mpbd_config {
     char       *name;        /* "ompl/RRTConnect", unique in the experiment */

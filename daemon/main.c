@@ -118,11 +118,12 @@ static int parse_options(int argc, char **argv, options *o)
     return 0;
 }
 
-static long count_runs(const mpbd_experiment *e)
+/* At most MPBD_RUNS_TOTAL_MAX: the loader checks it. */
+static int64_t count_runs(const mpbd_experiment *e)
 {
-    long n = 0;
+    int64_t n = 0;
     for (int c = 0; c < e->num_configs; c++)
-        n += (long)e->configs[c].runs * e->num_queries;
+        n += (int64_t)e->configs[c].runs * e->num_queries;
     return n;
 }
 

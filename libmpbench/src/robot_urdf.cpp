@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <mutex>
 #include <new>
 #include <string>
@@ -125,6 +126,54 @@ bool find_bad_utf8(const char *text, int *line, int *col)
     return false;
 }
 
+/* Deeper than any robot needs; TinyXML recurses once per level and a
+ * hundred thousand levels overflow the stack. */
+const int XML_DEPTH_MAX = 1000;
+
+/* Past "<!--...-->", "<?...?>", "<![CDATA[...]]>" or "<!...>" at p. */
+const char *skip_markup(const char *p)
+{
+    const char *end = "";
+    if (std::strncmp(p, "<!--", 4) == 0)
+        end = "-->";
+    else if (std::strncmp(p, "<![CDATA[", 9) == 0)
+        end = "]]>";
+    else if (p[1] == '?')
+        end = "?>";
+    const char *q = *end ? std::strstr(p, end) : std::strchr(p, '>');
+    return q ? q + std::strlen(*end ? end : ">") : p + std::strlen(p);
+}
+
+/* True if elements nest deeper than XML_DEPTH_MAX, by a scan of the tags
+ * (quoted attribute values may hold '>'). */
+bool too_deep(const char *p)
+{
+    int depth = 0;
+    while ((p = std::strchr(p, '<')) != nullptr) {
+        if (p[1] == '!' || p[1] == '?') {
+            p = skip_markup(p);
+            continue;
+        }
+        bool closing = p[1] == '/';
+        char quote = 0;
+        for (p++; *p && (quote || *p != '>'); p++)
+            if (*p == '"' || *p == '\'') {
+                if (!quote)
+                    quote = *p;
+                else if (quote == *p)
+                    quote = 0;
+            }
+        bool empty = p[-1] == '/';
+        if (closing)
+            depth--;
+        else if (!empty && ++depth > XML_DEPTH_MAX)
+            return true;
+        if (!*p)
+            break;
+    }
+    return false;
+}
+
 void to_pose(const urdf::Pose &in, mpb_pose *out)
 {
     mpb_pose_identity(out);
@@ -199,16 +248,77 @@ bool to_geom(const urdf::Collision &c, const std::string &link,
     return true;
 }
 
-/* Depth-first from the root, parents before children. */
-void collect(const urdf::LinkConstSharedPtr &link, int parent,
+/*
+ * urdfdom links a child under every joint that names it and does not look
+ * for loops, so a link with two parent joints would be copied twice and a
+ * loop would make the walk below endless. Refuse both here.
+ */
+bool check_tree(const urdf::ModelInterface &model, char *err, size_t errlen)
+{
+    std::map<std::string, std::string> parent_of;   /* child -> parent */
+    std::map<std::string, std::string> joint_of;    /* child -> joint */
+    for (const auto &kv : model.joints_) {
+        const urdf::Joint &j = *kv.second;
+        if (j.parent_link_name == j.child_link_name) {
+            mpb__set_err(err, errlen, "the joints form a loop at link '%.80s'",
+                         j.child_link_name.c_str());
+            return false;
+        }
+        auto seen = joint_of.find(j.child_link_name);
+        if (seen != joint_of.end()) {
+            mpb__set_err(err, errlen, "link '%.80s' has two parent joints "
+                         "('%.80s' and '%.80s')", j.child_link_name.c_str(),
+                         seen->second.c_str(), j.name.c_str());
+            return false;
+        }
+        joint_of[j.child_link_name] = j.name;
+        parent_of[j.child_link_name] = j.parent_link_name;
+    }
+    /* Each link has one parent at most: walk up from each, 1 marking the
+     * links on this walk, 2 those already known to reach a root. */
+    std::map<std::string, int> mark;
+    for (const auto &kv : parent_of) {
+        std::vector<std::string> path;
+        std::string at = kv.first;
+        while (mark[at] == 0) {
+            mark[at] = 1;
+            path.push_back(at);
+            auto up = parent_of.find(at);
+            if (up == parent_of.end())
+                break;
+            at = up->second;
+        }
+        if (mark[at] == 1 && parent_of.count(at)) {
+            mpb__set_err(err, errlen, "the joints form a loop at link '%.80s'",
+                         at.c_str());
+            return false;
+        }
+        for (const std::string &l : path)
+            mark[l] = 2;
+    }
+    return true;
+}
+
+/* Depth-first from the root, parents before children; a stack of its own,
+ * as a deep chain must not exhaust the C stack. */
+void collect(const urdf::LinkConstSharedPtr &root,
              std::vector<urdf::LinkConstSharedPtr> &order,
              std::vector<int> &parents)
 {
-    int me = static_cast<int>(order.size());
-    order.push_back(link);
-    parents.push_back(parent);
-    for (const urdf::LinkSharedPtr &child : link->child_links)
-        collect(child, me, order, parents);
+    std::vector<std::pair<urdf::LinkConstSharedPtr, int>> todo;
+    todo.emplace_back(root, -1);
+    while (!todo.empty()) {
+        urdf::LinkConstSharedPtr link = todo.back().first;
+        int parent = todo.back().second;
+        todo.pop_back();
+        int me = static_cast<int>(order.size());
+        order.push_back(link);
+        parents.push_back(parent);
+        /* Reversed, so the first child comes off the stack first. */
+        for (auto c = link->child_links.rbegin(); c != link->child_links.rend();
+             ++c)
+            todo.emplace_back(*c, me);
+    }
 }
 
 int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
@@ -219,9 +329,11 @@ int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
         mpb__set_err(err, errlen, "no root link");
         return MPB_EPARSE;
     }
+    if (!check_tree(model, err, errlen))
+        return MPB_EPARSE;
     std::vector<urdf::LinkConstSharedPtr> order;
     std::vector<int> parents;
-    collect(root, -1, order, parents);
+    collect(root, order, parents);
 
     m->name = dup_string(model.getName());
     m->links = static_cast<mpb__urdf_link *>(
@@ -302,6 +414,12 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
     int line, col;
     if (find_bad_utf8(text, &line, &col)) {
         mpb__set_err(err, errlen, "line %d, column %d: not UTF-8", line, col);
+        return MPB_EPARSE;
+    }
+
+    if (too_deep(text)) {
+        mpb__set_err(err, errlen, "XML nested too deeply (more than %d levels)",
+                     XML_DEPTH_MAX);
         return MPB_EPARSE;
     }
 

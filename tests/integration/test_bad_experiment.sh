@@ -65,6 +65,70 @@ experiment: {name: x, time_limit: 1, retries: -1}
 EOT
 bad_case bad_retries.yaml ":1:.*retries must be a whole number from 0 to 1000000000, not '-1'"
 
+# 150 million runs: more than an experiment may have (the count wrapped
+# in an int before, and the runs filled the disk in one transaction).
+cat >"$work/too_many_runs.yaml" <<EOT
+experiment: {name: x, time_limit: 1, runs: 50000000}
+robot: {format: planar, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: ompl, algorithms: [RRT, EST, PRM]}]
+EOT
+bad_case too_many_runs.yaml ":1:44: runs: 50000000 makes more than 100000000 runs in all"
+
+# A key twice: libyaml keeps both and the first would win unseen.
+cat >"$work/dup_runs.yaml" <<EOT
+experiment:
+  name: x
+  runs: 10
+  time_limit: 1
+  runs: 1
+EOT
+bad_case dup_runs.yaml ":5:3: key 'runs' appears twice"
+
+cat >"$work/dup_params.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: ompl, algorithms: [RRT], params: {range: 0.3, range: 5}}]
+EOT
+bad_case dup_params.yaml ":4:[0-9]*: key 'range' appears twice"
+
+# A second document after --- would be ignored.
+cat >"$work/two_docs.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: ompl, algorithms: [RRT]}]
+---
+experiment: {name: y, time_limit: 1}
+EOT
+bad_case two_docs.yaml ":5:1: a second YAML document"
+
+# Lists nested 5000 deep: libyaml's time grows with the square of the
+# depth, so the loader stops at 100 levels.
+{ printf 'experiment:\n  name: x\n  runs: '
+  awk 'BEGIN { for (i = 0; i < 5000; i++) printf "["; for (i = 0; i < 5000; i++) printf "]"; print "" }'
+} >"$work/deep.yaml"
+bad_case deep.yaml ":3:107: nested too deeply (more than 100 levels)"
+
+# A NUL byte in a robot file: the parser would stop there.
+printf 'link_radius 0.01\njoint a -1 1 0.5\n\000joint b -1 1 0.5\n' >"$work/nul.robot"
+cat >"$work/nul_robot.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, file: nul.robot}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case nul_robot.yaml ":2:.*nul.robot: not a text file (a NUL byte at offset 34)"
+
+cat >"$work/robot_name.yaml" <<EOT
+experiment: {name: x, time_limit: 1}
+robot: {format: planar, name: arm, text: "link_radius 0.01\\njoint a -1 1 0.5\\n"}
+scenes: [{name: s, format: planar, text: "", queries: [{name: q, start: [0], goal: [0.5]}]}]
+planners: [{planner: null, algorithms: [a]}]
+EOT
+bad_case robot_name.yaml ":2:25: unknown key 'name'"
+
 cat >"$work/missing_file.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
 robot: {format: planar, file: nosuch.robot}

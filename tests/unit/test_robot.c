@@ -987,6 +987,23 @@ static void expect_error(const char *text, const char *base, const char *tip,
     "<child link='" child "'/>" extra "</joint>"
 #define LIMIT "<limit lower='-1' upper='1' effort='1' velocity='1'/>"
 
+/* A robot with one link and n levels of <x> inside; the text is static. */
+static const char *nested_xml(int n)
+{
+    static char *text;
+    const char *head = "<robot name='r'><link name='a'/>";
+    free(text);
+    text = malloc(strlen(head) + (size_t)n * 7 + 16);
+    assert_non_null(text);
+    char *p = text + sprintf(text, "%s", head);
+    for (int i = 0; i < n; i++)
+        p += sprintf(p, "<x>");
+    for (int i = 0; i < n; i++)
+        p += sprintf(p, "</x>");
+    sprintf(p, "</robot>");
+    return text;
+}
+
 static void test_malformed(void **state)
 {
     (void)state;
@@ -1049,6 +1066,29 @@ static void test_malformed(void **state)
     expect_error("<robot name='\xc0\xaf'/>", NULL, "a", MPB_EPARSE, "not UTF-8");
     expect_error("<robot name='r\xc3\xa9'><link name='a'/></robot>", NULL, "a",
                  MPB_EPARSE, "is not below");     /* valid UTF-8 goes on */
+    /* Joints that do not make a tree: urdfdom accepts them and the walk
+     * from the root would recurse without end or copy a link twice. */
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 JOINT("j", "revolute", "a", "b", LIMIT)
+                 JOINT("loop", "fixed", "b", "b", "") "</robot>",
+                 NULL, "b", MPB_EPARSE, "the joints form a loop at link 'b'");
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 "<link name='c'/>"
+                 JOINT("j1", "revolute", "a", "b", LIMIT)
+                 JOINT("j2", "revolute", "b", "c", LIMIT)
+                 JOINT("j3", "fixed", "a", "c", "") "</robot>",
+                 NULL, "c", MPB_EPARSE, "link 'c' has two parent joints");
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 "<link name='c'/><link name='d'/>"
+                 JOINT("j", "revolute", "a", "b", LIMIT)
+                 JOINT("cd", "fixed", "c", "d", "")
+                 JOINT("dc", "fixed", "d", "c", "") "</robot>",
+                 NULL, "b", MPB_EPARSE, "the joints form a loop at link");
+    /* Elements nested a hundred thousand deep: TinyXML would overflow the
+     * stack, so a scan refuses them first; a thousand levels are fine. */
+    expect_error(nested_xml(100000), NULL, "a", MPB_EPARSE,
+                 "XML nested too deeply (more than 1000 levels)");
+    expect_error(nested_xml(999), NULL, "a", MPB_EPARSE, "is not below");
     /* A link twice. */
     expect_error("<robot name='r'><link name='a'/><link name='a'/></robot>",
                  NULL, "a", MPB_EPARSE, "not unique");
