@@ -616,6 +616,13 @@ int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
     for (int i = 0; i < log->num_planners; i++)
         if (planner_block(&r, &log->planners[i]) != 0)
             goto fail;
+    /* A planner count too small leaves planners unread: nothing may
+     * follow the last one but blank lines. */
+    for (const char *s; (s = next_line(&r)) != NULL;)
+        if (*s) {
+            fail(&r, "text after the last planner");
+            goto fail;
+        }
     free(r.buf);
     *out = log;
     return MPB_OK;

@@ -1,0 +1,111 @@
+/*
+ * test_ompl_log.c - the OMPL benchmark log reader (ompl_log.c): a log
+ * OMPL's own Benchmark wrote is read, and each damage done to it is
+ * refused with the line and what is wrong.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+#include "test_files.h"
+
+#define WALL_LOG MPB_TEST_DATA "/../../fuzz/corpus/ompl_log/wall.log"
+
+/* wall.log with the first occurrence of old replaced by new (the whole
+ * text when old is NULL), parsed; the log is freed, err holds the error. */
+static int parse_edited(const char *old, const char *new, char *err, size_t errlen)
+{
+    char *text = test_read_file(WALL_LOG);
+    size_t len = strlen(text);
+    char *edited = text;
+    if (old != NULL) {
+        char *at = strstr(text, old);
+        assert_non_null(at);
+        size_t nold = strlen(old), nnew = strlen(new);
+        edited = malloc(len - nold + nnew + 1);
+        assert_non_null(edited);
+        memcpy(edited, text, (size_t)(at - text));
+        memcpy(edited + (at - text), new, nnew);
+        strcpy(edited + (at - text) + nnew, at + nold);
+        len = len - nold + nnew;
+    }
+    mpb_ompl_log *log = NULL;
+    err[0] = '\0';
+    int rc = mpb_ompl_log_parse(edited, len, &log, err, errlen);
+    assert_true((rc == MPB_OK) == (log != NULL));
+    mpb_ompl_log_free(log);
+    if (edited != text)
+        free(edited);
+    free(text);
+    return rc;
+}
+
+/* wall.log with tail after its end, parsed; err holds the error. */
+static int parse_appended(const char *tail, char *err, size_t errlen)
+{
+    char *text = test_read_file(WALL_LOG);
+    size_t n = strlen(text), k = strlen(tail);
+    char *all = malloc(n + k + 1);
+    assert_non_null(all);
+    memcpy(all, text, n);
+    memcpy(all + n, tail, k + 1);
+    mpb_ompl_log *log = NULL;
+    err[0] = '\0';
+    int rc = mpb_ompl_log_parse(all, n + k, &log, err, errlen);
+    assert_true((rc == MPB_OK) == (log != NULL));
+    mpb_ompl_log_free(log);
+    free(all);
+    free(text);
+    return rc;
+}
+
+/* The edit is refused with exactly that message. */
+static void refused(const char *old, const char *new, const char *message)
+{
+    char err[256];
+    assert_int_equal(parse_edited(old, new, err, sizeof err), MPB_EPARSE);
+    assert_string_equal(err, message);
+}
+
+/* The edit is read. */
+static void read_ok(const char *old, const char *new)
+{
+    char err[256];
+    int rc = parse_edited(old, new, err, sizeof err);
+    if (rc != MPB_OK)
+        fail_msg("%s", err);
+}
+
+static void ompls_own_log_is_read(void **state)
+{
+    (void)state;
+    read_ok(NULL, NULL);
+    char err[256];
+    assert_int_equal(parse_appended("\n  \n", err, sizeof err), MPB_OK);
+}
+
+static void planner_count_must_match(void **state)
+{
+    (void)state;
+    refused("\n3 planners\n", "\n2 planners\n",
+            "line 102: text after the last planner");
+    refused("\n3 planners\n", "\n0 planners\n",
+            "line 20: text after the last planner");
+    char err[256];
+    assert_int_equal(parse_appended("\njunk\n", err, sizeof err), MPB_EPARSE);
+    assert_string_equal(err, "line 159: text after the last planner");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(ompls_own_log_is_read),
+        cmocka_unit_test(planner_count_must_match),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
