@@ -101,11 +101,63 @@ static void planner_count_must_match(void **state)
     assert_string_equal(err, "line 159: text after the last planner");
 }
 
+/* Run 1 of geometric_RRTConnect (line 54), its values in the order of
+ * the properties: ... graph motions INTEGER (5th) ... solved BOOLEAN
+ * (20th), status ENUM, time REAL, valid segment fraction REAL. */
+static void values_must_be_of_their_type(void **state)
+{
+    (void)state;
+    const char *e = "line 54: run 1 of geometric_RRTConnect: ";
+    char want[256];
+    static const struct { const char *old, *new, *bad; } cases[] = {
+        {"0; 0; 1; 1; 13; ", "0; 0; 1; 1; abc; ", "'abc' is not an INTEGER"},
+        {"0; 0; 1; 1; 13; ", "0; 0; 1; 1; 99999999999999999999999; ",
+         "'99999999999999999999999' is not an INTEGER"},
+        {"0; 0; 1; 1; 13; ", "0; 0; 1; 1; 1.5; ", "'1.5' is not an INTEGER"},
+        {"0; 0; 1; 1; 13; ", "0; 0; 7; 1; 13; ", "'7' is not a BOOLEAN"},
+        {"9.56641; ", "abc; ", "'abc' is not a REAL"},
+        {"9.56641; ", "1.5x; ", "'1.5x' is not a REAL"},
+        {"125.645; 1; 6; ", "125.645; 1; 99; ",
+         "'99' is not a value of the ENUM 'status' (0 to 8)"},
+        {"125.645; 1; 6; ", "125.645; 1; -1; ",
+         "'-1' is not a value of the ENUM 'status' (0 to 8)"},
+        {"0.000195201; 0.444444", "-5; 0.444444",
+         "'-5' is not a time (a number of seconds, not negative)"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        snprintf(want, sizeof want, "%s%s", e, cases[i].bad);
+        refused(cases[i].old, cases[i].new, want);
+    }
+    refused("status ENUM\n", "status FLOAT\n", "line 50: unknown property type "
+            "'FLOAT' (not REAL, INTEGER, BOOLEAN or ENUM)");
+    refused("42 is the random seed", "x is the random seed",
+            "line 12: 'x' is not a random seed (a number)");
+    refused("Starting at 2026-11-22 11:22:29", "Starting at yesterday",
+            "line 5: 'yesterday' is not a date (YYYY-MM-DD ...)");
+}
+
+/* What OMPL's own Benchmark writes stays readable: empty values for what
+ * a run did not measure, nan and inf for reals, true and false. */
+static void what_ompl_writes_is_read(void **state)
+{
+    (void)state;
+    read_ok("0; 0; 1; 1; 13; 14; 9.56641; 7.6093e-05; ",
+            "0; 0; 1; 1; ; 14; nan; inf; ");
+    read_ok("0; 0; 1; 1; 13; 14; 9.56641; 7.6093e-05; ",
+            "0; false; true; 1; -13; +14; -inf; -nan; ");
+    read_ok("0; 0; 1; 1; 13; 14; 9.56641; 7.6093e-05; ",
+            "0; 0; 1; 1; 13; 14; 1e300; 0.10000000000000001; ");
+    read_ok("125.645; 1; 6; 0.000195201", "125.645; 1; 8; 0");
+    read_ok("Starting at 2026-11-22 11:22:29", "Starting at 2026-Nov-22 11:22:29");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(ompls_own_log_is_read),
         cmocka_unit_test(planner_count_must_match),
+        cmocka_unit_test(values_must_be_of_their_type),
+        cmocka_unit_test(what_ompl_writes_is_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
