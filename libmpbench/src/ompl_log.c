@@ -68,6 +68,11 @@ static char *next_line(reader *r)
     const char *nl = memchr(r->p, '\n', (size_t)(r->end - r->p));
     const char *stop = nl ? nl : r->end;
     size_t n = (size_t)(stop - r->p);
+    if (memchr(r->p, '\0', n) != NULL) {
+        r->line++;
+        fail(r, "a NUL byte: not a benchmark log");
+        return NULL;
+    }
     if (n + 1 > r->cap) {
         size_t cap = n + 1 > 2 * r->cap ? n + 1 : 2 * r->cap;
         char *b = realloc(r->buf, cap);
@@ -92,7 +97,7 @@ static char *next_line(reader *r)
 static char *need_line(reader *r, const char *what)
 {
     char *s = next_line(r);
-    if (s == NULL) {
+    if (s == NULL && !r->failed) {
         r->line++;
         fail(r, "the log ends where %s was expected", what);
     }
@@ -136,6 +141,8 @@ static int number_line(reader *r, const char *words, double *out)
         end++;
     if (end == s || strcmp(end, words) != 0)
         return fail(r, "expected 'X %s', found '%.60s'", words, s);
+    if (!(v >= 0 && v <= DBL_MAX))
+        return fail(r, "'%.60s': X must be a number no less than 0", s);
     *out = v;
     return 0;
 }
@@ -390,6 +397,9 @@ static int property_lines(reader *r, long n, mpb_ompl_property **out,
         *sp = '\0';
         if ((p[i].name = dup(r, s)) == NULL || (p[i].type = dup(r, sp + 1)) == NULL)
             return -1;
+        for (long k = 0; k < i; k++)
+            if (strcmp(p[k].name, p[i].name) == 0)
+                return fail(r, "the property '%.60s' a second time", p[i].name);
         int known = 0;
         for (int k = 0; k < V_TIME; k++)
             known |= strcmp(p[i].type, kind_names[k]) == 0;
@@ -400,12 +410,19 @@ static int property_lines(reader *r, long n, mpb_ompl_property **out,
     return 0;
 }
 
-static int planner_block(reader *r, mpb_ompl_planner *pl)
+/* The planner block of log->planners[index]. */
+static int planner_block(reader *r, mpb_ompl_log *log, int index)
 {
+    mpb_ompl_planner *pl = &log->planners[index];
     long n;
     char *s = need_line(r, "a planner's name");
     if (s == NULL || (pl->name = dup(r, s)) == NULL)
         return -1;
+    if (*s == '\0')
+        return fail(r, "expected a planner's name, found an empty line");
+    for (int k = 0; k < index; k++)
+        if (strcmp(log->planners[k].name, pl->name) == 0)
+            return fail(r, "the planner '%.60s' a second time", pl->name);
     if (count_line(r, "common properties", &n) != 0)
         return -1;
     size_t len = 0;
@@ -615,7 +632,9 @@ static int header(reader *r, mpb_ompl_log *log)
     char *end;
     long k = strtol(s, &end, 10);
     if (end != s && strcmp(end, " experiment properties") == 0) {
-        if (k < 0 || k > MAX_PROPERTIES)
+        if (k < 0)
+            return fail(r, "'%.60s': not a count", s);
+        if (k > MAX_PROPERTIES)
             return fail(r, "%ld experiment properties is more than a log holds", k);
         for (long i = 0; i < k; i++)
             if (need_line(r, "an experiment property") == NULL)
@@ -685,7 +704,9 @@ static int header(reader *r, mpb_ompl_log *log)
     long n = strtol(s, &end, 10);
     if (end != s && (strcmp(end, " enum types") == 0 ||
                      strcmp(end, " enum type") == 0)) {
-        if (n < 0 || n > MAX_PROPERTIES)
+        if (n < 0)
+            return fail(r, "'%.60s': not a count", s);
+        if (n > MAX_PROPERTIES)
             return fail(r, "%ld enum types is more than a log holds", n);
         r->enums = calloc(n ? (size_t)n : 1, sizeof *r->enums);
         if (r->enums == NULL)
@@ -747,7 +768,7 @@ int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
         goto fail;
     }
     for (int i = 0; i < log->num_planners; i++)
-        if (planner_block(&r, &log->planners[i]) != 0)
+        if (planner_block(&r, log, i) != 0)
             goto fail;
     /* A planner count too small leaves planners unread: nothing may
      * follow the last one but blank lines. */
@@ -756,6 +777,8 @@ int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
             fail(&r, "text after the last planner");
             goto fail;
         }
+    if (r.failed)
+        goto fail;
     free(r.buf);
     free_enums(&r);
     *out = log;

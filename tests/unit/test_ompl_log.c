@@ -151,6 +151,38 @@ static void what_ompl_writes_is_read(void **state)
     read_ok("Starting at 2026-11-22 11:22:29", "Starting at 2026-Nov-22 11:22:29");
 }
 
+/* What the mpbench and the Planner Arena paths of mpb import took
+ * differently is refused here, once, for both. */
+static void what_the_databases_would_refuse(void **state)
+{
+    (void)state;
+    refused("0.05 seconds per run", "nan seconds per run",
+            "line 13: 'nan seconds per run': X must be a number no less than 0");
+    refused("0.05 seconds per run", "-1 seconds per run",
+            "line 13: '-1 seconds per run': X must be a number no less than 0");
+    refused("\ngeometric_RRT\n", "\ngeometric_RRTConnect\n",
+            "line 61: the planner 'geometric_RRTConnect' a second time");
+    refused("approximate solution BOOLEAN\n", "approx goal distance REAL\n",
+            "line 31: the property 'approx goal distance' a second time");
+    refused("1 enum type\n", "-1 enum type\n", "line 17: '-1 enum type': not a count");
+    refused("0 experiment properties\n", "-2 experiment properties\n",
+            "line 3: '-2 experiment properties': not a count");
+    char err[256];
+    assert_int_equal(parse_edited("\ngeometric_RRT\n", "\ngeometric_\001RRT\n",
+                                  err, sizeof err), MPB_OK);
+    /* A NUL in a planner's name (the edit cannot hold one: done by hand). */
+    char *text = test_read_file(WALL_LOG);
+    size_t n = strlen(text);
+    char *at = strstr(text, "\ngeometric_RRT\n");
+    assert_non_null(at);
+    at[11] = '\0';
+    mpb_ompl_log *log = NULL;
+    assert_int_equal(mpb_ompl_log_parse(text, n, &log, err, sizeof err), MPB_EPARSE);
+    assert_null(log);
+    assert_string_equal(err, "line 61: a NUL byte: not a benchmark log");
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -158,6 +190,7 @@ int main(void)
         cmocka_unit_test(planner_count_must_match),
         cmocka_unit_test(values_must_be_of_their_type),
         cmocka_unit_test(what_ompl_writes_is_read),
+        cmocka_unit_test(what_the_databases_would_refuse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
