@@ -191,4 +191,24 @@ echo "# $err"
 check "nothing was added by the broken logs" \
     eq "$(q "SELECT count(*) FROM experiments")" "$before"
 
+# Every log is checked before a database is created or opened.
+err=$("$mpb" import -d "$work/new.db" "$work/wall.log" "$work/missing.log" 2>&1)
+check "a missing log fails" test $? -eq 1
+check "... in one line" eq "$(printf '%s\n' "$err" | wc -l)" 1
+check "... and no database is created" test ! -e "$work/new.db"
+echo "# $err"
+"$mpb" import -d "$DB" "$work/wall.log" "$work/cut.log" >/dev/null 2>&1
+check "a good log before a broken one is not imported either" \
+    eq "$(q "SELECT count(*) FROM experiments")" "$before"
+sed 's/^3 planners$/2 planners/' "$work/wall.log" >"$work/fewer.log"
+for to in "-d $work/fewer.db" "-p $work/fewer-pa.db"; do
+    err=$("$mpb" import $to "$work/fewer.log" 2>&1)
+    check "a planner count too small fails (${to%% *})" \
+        sh -c "printf '%s\n' \"\$1\" | grep -q 'fewer.log:[0-9]*: text after the last planner'" _ "$err"
+done
+check "... and writes no database" test ! -e "$work/fewer.db" -a ! -e "$work/fewer-pa.db"
+err=$("$mpb" import -p "$work/direct.db" "$work/wall.log" "$work/wall.log" 2>&1)
+check "an existing Planner Arena database is said once" \
+    eq "$(printf '%s\n' "$err" | grep -c exists)" 1
+
 mpb_finish
