@@ -28,7 +28,17 @@ typedef struct reader {
     char *err;
     size_t errlen;
     int failed;
+    struct log_enum {           /* the log's enum types */
+        char *name;
+        long count;             /* of its values */
+    } *enums;
+    long num_enums;
 } reader;
+
+/* What a run's value may be, by its property's type. */
+enum value_kind { V_REAL, V_INTEGER, V_BOOLEAN, V_ENUM, V_TIME };
+static const char *const kind_names[] = {"REAL", "INTEGER", "BOOLEAN", "ENUM",
+                                         "time"};
 
 static int fail(reader *r, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -58,6 +68,11 @@ static char *next_line(reader *r)
     const char *nl = memchr(r->p, '\n', (size_t)(r->end - r->p));
     const char *stop = nl ? nl : r->end;
     size_t n = (size_t)(stop - r->p);
+    if (memchr(r->p, '\0', n) != NULL) {
+        r->line++;
+        fail(r, "a NUL byte: not a benchmark log");
+        return NULL;
+    }
     if (n + 1 > r->cap) {
         size_t cap = n + 1 > 2 * r->cap ? n + 1 : 2 * r->cap;
         char *b = realloc(r->buf, cap);
@@ -82,7 +97,7 @@ static char *next_line(reader *r)
 static char *need_line(reader *r, const char *what)
 {
     char *s = next_line(r);
-    if (s == NULL) {
+    if (s == NULL && !r->failed) {
         r->line++;
         fail(r, "the log ends where %s was expected", what);
     }
@@ -126,6 +141,8 @@ static int number_line(reader *r, const char *words, double *out)
         end++;
     if (end == s || strcmp(end, words) != 0)
         return fail(r, "expected 'X %s', found '%.60s'", words, s);
+    if (!(v >= 0 && v <= DBL_MAX))
+        return fail(r, "'%.60s': X must be a number no less than 0", s);
     *out = v;
     return 0;
 }
@@ -257,16 +274,59 @@ static double value_of(char *s)
     return value_in(s, s + strlen(s));
 }
 
+/* 1 when [s, e) is a value of that kind as OMPL writes it: empty (not
+ * measured) for any; 0, 1, true or false for a BOOLEAN; an integer of at
+ * most 64 bits for an INTEGER; an index into its enum's values (below
+ * limit, when the log declares the enum) for an ENUM; a number, nan or
+ * inf for a REAL, and a time no less than 0. *e is restored. */
+static int value_ok(const char *s, char *e, int kind, long limit)
+{
+    size_t n = (size_t)(e - s);
+    if (n == 0)
+        return 1;
+    if (kind == V_BOOLEAN)
+        return (n == 1 && (*s == '0' || *s == '1')) ||
+               (n == 4 && memcmp(s, "true", 4) == 0) ||
+               (n == 5 && memcmp(s, "false", 5) == 0);
+    char keep = *e;
+    *e = '\0';
+    char *end;
+    int ok;
+    errno = 0;
+    if (kind == V_INTEGER || kind == V_ENUM) {
+        const char *d = s + (kind == V_INTEGER && (*s == '-' || *s == '+'));
+        ok = d < e;
+        for (const char *c = d; ok && c < e; c++)
+            ok = (unsigned)(*c - '0') < 10;
+        long long v = ok ? strtoll(s, &end, 10) : 0;
+        ok = ok && errno == 0 && (kind == V_INTEGER || limit < 0 || v < limit);
+    } else {
+        double v;
+        if (!fast_decimal(s, e, &v)) {
+            v = strtod(s, &end);
+            ok = end == e;
+        } else {
+            ok = 1;
+        }
+        ok = ok && !(kind == V_TIME && v < 0);
+    }
+    *e = keep;
+    return ok;
+}
+
 /*
  * A run line's values, "v1; v2; ...; " (trimmed), into out[0..n): as
  * split(s, ';', fields, n + 1) and value_of each field, without copying
  * the fields. The count of fields found; *extra_empty says whether an
  * (n+1)-th was found, and empty.
  */
-static int run_values(char *s, double *out, int n, int *extra_empty)
+static int run_values(char *s, double *out, int n, int *extra_empty,
+                      const unsigned char *kinds, const long *limits,
+                      int *bad, char **bad_text)
 {
     int k = 0;
     *extra_empty = 0;
+    *bad = -1;
     while (*s && k <= n) {
         char *next = s;
         while (*next && *next != ';')
@@ -277,9 +337,14 @@ static int run_values(char *s, double *out, int n, int *extra_empty)
             b++;
         while (e > b && e[-1] == ' ')
             e--;
-        if (k < n)
+        if (k < n) {
+            if (*bad < 0 && !value_ok(b, e, kinds[k], limits[k])) {
+                *bad = k;
+                *e = '\0';
+                *bad_text = b;
+            }
             out[k] = value_in(b, e);    /* may write a NUL at e */
-        else
+        } else
             *extra_empty = b == e;
         k++;
         if (last)
@@ -332,16 +397,32 @@ static int property_lines(reader *r, long n, mpb_ompl_property **out,
         *sp = '\0';
         if ((p[i].name = dup(r, s)) == NULL || (p[i].type = dup(r, sp + 1)) == NULL)
             return -1;
+        for (long k = 0; k < i; k++)
+            if (strcmp(p[k].name, p[i].name) == 0)
+                return fail(r, "the property '%.60s' a second time", p[i].name);
+        int known = 0;
+        for (int k = 0; k < V_TIME; k++)
+            known |= strcmp(p[i].type, kind_names[k]) == 0;
+        if (!known)
+            return fail(r, "unknown property type '%.60s' (not REAL, INTEGER, "
+                        "BOOLEAN or ENUM)", p[i].type);
     }
     return 0;
 }
 
-static int planner_block(reader *r, mpb_ompl_planner *pl)
+/* The planner block of log->planners[index]. */
+static int planner_block(reader *r, mpb_ompl_log *log, int index)
 {
+    mpb_ompl_planner *pl = &log->planners[index];
     long n;
     char *s = need_line(r, "a planner's name");
     if (s == NULL || (pl->name = dup(r, s)) == NULL)
         return -1;
+    if (*s == '\0')
+        return fail(r, "expected a planner's name, found an empty line");
+    for (int k = 0; k < index; k++)
+        if (strcmp(log->planners[k].name, pl->name) == 0)
+            return fail(r, "the planner '%.60s' a second time", pl->name);
     if (count_line(r, "common properties", &n) != 0)
         return -1;
     size_t len = 0;
@@ -369,21 +450,60 @@ static int planner_block(reader *r, mpb_ompl_planner *pl)
         return -1;
     size_t cells = (size_t)pl->num_runs * (size_t)(np ? np : 1);
     pl->values = malloc(cells * sizeof *pl->values);
-    if (pl->values == NULL)
+    unsigned char *kinds = malloc((size_t)np + 1);
+    long *limits = malloc(((size_t)np + 1) * sizeof *limits);
+    if (pl->values == NULL || kinds == NULL || limits == NULL) {
+        free(kinds);
+        free(limits);
         return fail(r, "out of memory");
+    }
+    for (long k = 0; k < np; k++) {
+        const mpb_ompl_property *pr = &pl->properties[k];
+        kinds[k] = V_REAL;
+        for (int t = 0; t < V_TIME; t++)
+            if (strcmp(pr->type, kind_names[t]) == 0)
+                kinds[k] = (unsigned char)t;
+        if (kinds[k] == V_REAL && strcmp(pr->name, "time") == 0)
+            kinds[k] = V_TIME;
+        limits[k] = -1;
+        for (long e = 0; e < r->num_enums; e++)
+            if (strcmp(r->enums[e].name, pr->name) == 0)
+                limits[k] = r->enums[e].count;
+    }
     for (long i = 0; i < pl->num_runs; i++) {
         if ((s = need_line(r, "a run's values")) == NULL)
-            return -1;
-        int extra_empty;
+            break;
+        int extra_empty, bad;
+        char *bad_text = NULL;
         int k = run_values(s, pl->values + (size_t)i * (size_t)np, (int)np,
-                           &extra_empty);
+                           &extra_empty, kinds, limits, &bad, &bad_text);
         /* The trailing "; " leaves one empty field more. */
         if (k == (int)np + 1 && extra_empty)
             k--;
-        if (k != (int)np)
-            return fail(r, "run %ld of %s has %d values, not %ld", i + 1,
-                        pl->name, k, np);
+        if (k != (int)np) {
+            fail(r, "run %ld of %s has %d values, not %ld", i + 1,
+                 pl->name, k, np);
+            break;
+        }
+        if (bad >= 0) {
+            if (kinds[bad] == V_TIME)
+                fail(r, "run %ld of %s: '%.60s' is not a time (a number of "
+                     "seconds, not negative)", i + 1, pl->name, bad_text);
+            else if (kinds[bad] == V_ENUM && limits[bad] >= 0)
+                fail(r, "run %ld of %s: '%.60s' is not a value of the ENUM "
+                     "'%.60s' (0 to %ld)", i + 1, pl->name, bad_text,
+                     pl->properties[bad].name, limits[bad] - 1);
+            else
+                fail(r, "run %ld of %s: '%.60s' is not %s %s", i + 1, pl->name,
+                     bad_text, kinds[bad] == V_INTEGER ? "an" : "a",
+                     kind_names[kinds[bad]]);
+            break;
+        }
     }
+    free(kinds);
+    free(limits);
+    if (r->failed)
+        return -1;
 
     if ((s = need_line(r, "'.' or progress properties")) == NULL)
         return -1;
@@ -512,7 +632,9 @@ static int header(reader *r, mpb_ompl_log *log)
     char *end;
     long k = strtol(s, &end, 10);
     if (end != s && strcmp(end, " experiment properties") == 0) {
-        if (k < 0 || k > MAX_PROPERTIES)
+        if (k < 0)
+            return fail(r, "'%.60s': not a count", s);
+        if (k > MAX_PROPERTIES)
             return fail(r, "%ld experiment properties is more than a log holds", k);
         for (long i = 0; i < k; i++)
             if (need_line(r, "an experiment property") == NULL)
@@ -530,6 +652,10 @@ static int header(reader *r, mpb_ompl_log *log)
     const char *date = after(s, "Starting at");
     if (date == NULL)
         return fail(r, "expected 'Starting at DATE', found '%.60s'", s);
+    /* Boost's to_simple_string(): "2026-Nov-22 11:22:29", or ISO's
+     * "2026-11-22 11:22:29". */
+    if (strlen(date) < 8 || strspn(date, "0123456789") != 4 || date[4] != '-')
+        return fail(r, "'%.60s' is not a date (YYYY-MM-DD ...)", date);
     if ((log->date = dup(r, date)) == NULL || block(r, &log->setup) != 0)
         return -1;
     /* cpuinfo is optional: another block, or the seed line. */
@@ -548,6 +674,8 @@ static int header(reader *r, mpb_ompl_log *log)
     if (seed_end == NULL || seed_end[19] != '\0')
         return fail(r, "expected 'SEED is the random seed', found '%.60s'", s);
     *seed_end = '\0';
+    if (*s == '\0' || strspn(s, "0123456789") != strlen(s))
+        return fail(r, "'%.60s' is not a random seed (a number)", s);
     if ((log->seed = dup(r, s)) == NULL)
         return -1;
     if (number_line(r, "seconds per run", &log->time_limit) != 0 ||
@@ -576,11 +704,28 @@ static int header(reader *r, mpb_ompl_log *log)
     long n = strtol(s, &end, 10);
     if (end != s && (strcmp(end, " enum types") == 0 ||
                      strcmp(end, " enum type") == 0)) {
-        if (n < 0 || n > MAX_PROPERTIES)
+        if (n < 0)
+            return fail(r, "'%.60s': not a count", s);
+        if (n > MAX_PROPERTIES)
             return fail(r, "%ld enum types is more than a log holds", n);
-        for (long i = 0; i < n; i++)
-            if (need_line(r, "an enum 'name|value|...'") == NULL)
+        r->enums = calloc(n ? (size_t)n : 1, sizeof *r->enums);
+        if (r->enums == NULL)
+            return fail(r, "out of memory");
+        for (long i = 0; i < n; i++) {
+            if ((s = need_line(r, "an enum 'name|value|...'")) == NULL)
                 return -1;
+            char *bar = strchr(s, '|');
+            if (bar == NULL || bar == s)
+                return fail(r, "expected an enum 'name|value|...', found '%.60s'", s);
+            *bar = '\0';
+            long count = 1;
+            for (const char *c = bar + 1; *c; c++)
+                count += *c == '|';
+            if ((r->enums[i].name = dup(r, s)) == NULL)
+                return -1;
+            r->enums[i].count = count;
+            r->num_enums = i + 1;
+        }
         if ((s = need_line(r, "'P planners'")) == NULL)
             return -1;
         n = strtol(s, &end, 10);
@@ -589,6 +734,15 @@ static int header(reader *r, mpb_ompl_log *log)
         return fail(r, "expected 'P planners', found '%.60s'", s);
     log->num_planners = (int)n;
     return 0;
+}
+
+static void free_enums(reader *r)
+{
+    for (long i = 0; i < r->num_enums; i++)
+        free(r->enums[i].name);
+    free(r->enums);
+    r->enums = NULL;
+    r->num_enums = 0;
 }
 
 int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
@@ -614,9 +768,19 @@ int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
         goto fail;
     }
     for (int i = 0; i < log->num_planners; i++)
-        if (planner_block(&r, &log->planners[i]) != 0)
+        if (planner_block(&r, log, i) != 0)
             goto fail;
+    /* A planner count too small leaves planners unread: nothing may
+     * follow the last one but blank lines. */
+    for (const char *s; (s = next_line(&r)) != NULL;)
+        if (*s) {
+            fail(&r, "text after the last planner");
+            goto fail;
+        }
+    if (r.failed)
+        goto fail;
     free(r.buf);
+    free_enums(&r);
     *out = log;
     return MPB_OK;
 fail:
@@ -624,6 +788,7 @@ fail:
     mpb_ompl_log_free(log);
 done:
     free(r.buf);
+    free_enums(&r);
     return rc;
 }
 

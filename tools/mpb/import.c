@@ -13,6 +13,7 @@
  * from "simplified solution ..."; every other number is kept as the
  * planner's own value, progress samples as progress. docs/planner-arena.md.
  */
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -33,8 +34,9 @@ static void usage(FILE *out)
         "MoveIt's benchmark executor, in the same format) into the mpbench\n"
         "database DB (created if missing): each log becomes an experiment\n"
         "that mpb report, mpb plot and mpb export read like mpbench's own.\n"
-        "Each log is imported in one transaction: a log with an error adds\n"
-        "nothing, and the logs before it stay.\n"
+        "Every log is read and checked before the database is opened: if\n"
+        "one cannot be read or has an error, nothing is imported. Each log\n"
+        "is then imported in one transaction.\n"
         "\n"
         "With -p, write the logs straight into a new Planner Arena database\n"
         "instead, as OMPL's ompl_benchmark_statistics.py does, without an\n"
@@ -316,38 +318,79 @@ static int import_log(mpb_store *s, const char *path, const char *text,
     return mpb_store_experiment_finish(s, exp);
 }
 
-/* -p: each log straight into one Planner Arena database. */
-static int to_planner_arena(const char *out, int num_logs, char **logs)
+/* A log read and parsed, before any database is touched. */
+typedef struct loaded {
+    char *text;
+    mpb_ompl_log *log;
+} loaded;
+
+static void free_loaded(loaded *l, int n)
 {
-    int status = MPB_EXIT_OK, written = 0;
+    for (int i = 0; l && i < n; i++) {
+        mpb_ompl_log_free(l[i].log);
+        free(l[i].text);
+    }
+    free(l);
+}
+
+/* Every log read and parsed, each error said in one line; NULL when one
+ * (or more) failed. */
+static loaded *load_all(int num_logs, char **logs)
+{
+    loaded *l = calloc((size_t)num_logs + 1, sizeof *l);
+    int bad = 0;
+    if (l == NULL) {
+        fprintf(stderr, "mpb " CMD ": out of memory\n");
+        return NULL;
+    }
     for (int i = 0; i < num_logs; i++) {
         size_t len = 0;
-        char *text = read_all(logs[i], &len), err[256];
-        mpb_ompl_log *log = NULL;
-        mpb_export_counts n;
+        char err[256];
         int rc;
-        if (text == NULL) {
-            fprintf(stderr, "mpb " CMD ": cannot read %s\n", logs[i]);
-            status = MPB_EXIT_ERROR;
-            continue;
-        }
-        if ((rc = mpb_ompl_log_parse(text, len, &log, err, sizeof err)) != MPB_OK) {
+        errno = 0;
+        if ((l[i].text = read_all(logs[i], &len)) == NULL) {
+            fprintf(stderr, "mpb " CMD ": cannot read %s: %s\n", logs[i],
+                    errno ? strerror(errno) : "out of memory");
+            bad = 1;
+        } else if ((rc = mpb_ompl_log_parse(l[i].text, len, &l[i].log, err,
+                                            sizeof err)) != MPB_OK) {
+            /* "line N: what" -> "PATH:N: what", as compilers say it. */
             fprintf(stderr, "mpb " CMD ": %s:%s\n", logs[i],
                     rc == MPB_ENOMEM ? " out of memory"
                     : strncmp(err, "line ", 5) == 0 ? err + 5 : err);
-            status = MPB_EXIT_ERROR;
-        } else if (mpb_ompl_log_to_planner_arena(log, out, written ? MPB_EXPORT_APPEND : 0,
-                                                 &n, err, sizeof err) != MPB_OK) {
+            bad = 1;
+        }
+    }
+    if (bad) {
+        free_loaded(l, num_logs);
+        return NULL;
+    }
+    return l;
+}
+
+/* -p: each log straight into one Planner Arena database. */
+static int to_planner_arena(const char *out, int num_logs, char **logs)
+{
+    loaded *l = load_all(num_logs, logs);
+    if (l == NULL)
+        return MPB_EXIT_ERROR;
+    int status = MPB_EXIT_OK, written = 0;
+    for (int i = 0; i < num_logs; i++) {
+        char err[256];
+        mpb_export_counts n;
+        if (mpb_ompl_log_to_planner_arena(l[i].log, out, written ? MPB_EXPORT_APPEND : 0,
+                                          &n, err, sizeof err) != MPB_OK) {
             fprintf(stderr, "mpb " CMD ": %s: %s\n", logs[i], err);
             status = MPB_EXIT_ERROR;
+            if (written == 0)
+                break;      /* not ours (it exists) or not writable: once */
         } else {
             written++;
             printf("%s: experiment '%s', %d planners, %ld runs\n", logs[i],
-                   log->experiment, n.planner_configs, n.runs);
+                   l[i].log->experiment, n.planner_configs, n.runs);
         }
-        mpb_ompl_log_free(log);
-        free(text);
     }
+    free_loaded(l, num_logs);
     return status;
 }
 
@@ -386,37 +429,25 @@ int cmd_import(int argc, char **argv)
     }
     if (arena != NULL)
         return to_planner_arena(arena, argc - optind, argv + optind);
+    /* Every log checked before the database is created or opened. */
+    int num_logs = argc - optind;
+    loaded *l = load_all(num_logs, argv + optind);
+    if (l == NULL)
+        return MPB_EXIT_ERROR;
     mpb_store *s = NULL;
     if (mpb_store_open(db, 0, &s) != MPB_OK) {
         fprintf(stderr, "mpb " CMD ": %s\n", mpb_store_errmsg(s));
         mpb_store_close(s);
+        free_loaded(l, num_logs);
         return MPB_EXIT_ERROR;
     }
     int status = MPB_EXIT_OK;
-    for (int i = optind; i < argc; i++) {
-        const char *path = argv[i];
-        size_t len = 0;
-        char *text = read_all(path, &len), err[256];
-        mpb_ompl_log *log = NULL;
+    for (int i = 0; i < num_logs; i++) {
+        const char *path = argv[optind + i], *text = l[i].text;
+        const mpb_ompl_log *log = l[i].log;
         long runs = 0;
         int rc;
-        if (text == NULL) {
-            perror(path);
-            fprintf(stderr, "mpb " CMD ": cannot read %s\n", path);
-            status = MPB_EXIT_ERROR;
-            continue;
-        }
-        if ((rc = mpb_ompl_log_parse(text, len, &log, err, sizeof err)) != MPB_OK) {
-            /* "line N: what" -> "PATH:N: what", as compilers say it. */
-            fprintf(stderr, "mpb " CMD ": %s:%s\n", path,
-                    rc == MPB_ENOMEM ? " out of memory"
-                    : strncmp(err, "line ", 5) == 0 ? err + 5 : err);
-            status = MPB_EXIT_ERROR;
-        } else if (memchr(text, '\0', len) != NULL) {
-            fprintf(stderr, "mpb " CMD ": %s: a NUL byte: not a benchmark log\n",
-                    path);
-            status = MPB_EXIT_ERROR;
-        } else if ((rc = mpb_store_begin(s)) != MPB_OK ||
+        if ((rc = mpb_store_begin(s)) != MPB_OK ||
                    (rc = import_log(s, path, text, log, &runs)) != MPB_OK ||
                    (rc = mpb_store_commit(s)) != MPB_OK) {
             fprintf(stderr, "mpb " CMD ": %s: %s\n", path, mpb_store_errmsg(s));
@@ -426,9 +457,8 @@ int cmd_import(int argc, char **argv)
             printf("%s: experiment '%s', %d planners, %ld runs\n", path,
                    log->experiment, log->num_planners, runs);
         }
-        mpb_ompl_log_free(log);
-        free(text);
     }
+    free_loaded(l, num_logs);
     mpb_store_close(s);
     return status;
 }

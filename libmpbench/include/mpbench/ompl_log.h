@@ -25,7 +25,13 @@
  *   of samples "a,b,;a,b,;"; and a line ".".
  *
  * Values that are empty, "nan" or "inf" read as NaN; BOOLEAN values are
- * 0 or 1 (also written "true"/"false").
+ * 0 or 1 (also written "true"/"false"). A property's type is REAL,
+ * INTEGER, BOOLEAN or ENUM, and each value must be one of its type, as
+ * OMPL writes it: an INTEGER one of at most 64 bits, an ENUM an index
+ * into its enum's values, a REAL a number, nan or inf, the "time" no less
+ * than 0 (an empty value, for what a run did not measure, is any type's).
+ * SEED is a number, DATE starts "YYYY-". Nothing may follow the last
+ * planner but blank lines.
  */
 #ifndef MPBENCH_OMPL_LOG_H
 #define MPBENCH_OMPL_LOG_H

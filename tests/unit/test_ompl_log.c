@@ -1,0 +1,196 @@
+/*
+ * test_ompl_log.c - the OMPL benchmark log reader (ompl_log.c): a log
+ * OMPL's own Benchmark wrote is read, and each damage done to it is
+ * refused with the line and what is wrong.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+#include "test_files.h"
+
+#define WALL_LOG MPB_TEST_DATA "/../../fuzz/corpus/ompl_log/wall.log"
+
+/* wall.log with the first occurrence of old replaced by new (the whole
+ * text when old is NULL), parsed; the log is freed, err holds the error. */
+static int parse_edited(const char *old, const char *new, char *err, size_t errlen)
+{
+    char *text = test_read_file(WALL_LOG);
+    size_t len = strlen(text);
+    char *edited = text;
+    if (old != NULL) {
+        char *at = strstr(text, old);
+        assert_non_null(at);
+        size_t nold = strlen(old), nnew = strlen(new);
+        edited = malloc(len - nold + nnew + 1);
+        assert_non_null(edited);
+        memcpy(edited, text, (size_t)(at - text));
+        memcpy(edited + (at - text), new, nnew);
+        strcpy(edited + (at - text) + nnew, at + nold);
+        len = len - nold + nnew;
+    }
+    mpb_ompl_log *log = NULL;
+    err[0] = '\0';
+    int rc = mpb_ompl_log_parse(edited, len, &log, err, errlen);
+    assert_true((rc == MPB_OK) == (log != NULL));
+    mpb_ompl_log_free(log);
+    if (edited != text)
+        free(edited);
+    free(text);
+    return rc;
+}
+
+/* wall.log with tail after its end, parsed; err holds the error. */
+static int parse_appended(const char *tail, char *err, size_t errlen)
+{
+    char *text = test_read_file(WALL_LOG);
+    size_t n = strlen(text), k = strlen(tail);
+    char *all = malloc(n + k + 1);
+    assert_non_null(all);
+    memcpy(all, text, n);
+    memcpy(all + n, tail, k + 1);
+    mpb_ompl_log *log = NULL;
+    err[0] = '\0';
+    int rc = mpb_ompl_log_parse(all, n + k, &log, err, errlen);
+    assert_true((rc == MPB_OK) == (log != NULL));
+    mpb_ompl_log_free(log);
+    free(all);
+    free(text);
+    return rc;
+}
+
+/* The edit is refused with exactly that message. */
+static void refused(const char *old, const char *new, const char *message)
+{
+    char err[256];
+    assert_int_equal(parse_edited(old, new, err, sizeof err), MPB_EPARSE);
+    assert_string_equal(err, message);
+}
+
+/* The edit is read. */
+static void read_ok(const char *old, const char *new)
+{
+    char err[256];
+    int rc = parse_edited(old, new, err, sizeof err);
+    if (rc != MPB_OK)
+        fail_msg("%s", err);
+}
+
+static void ompls_own_log_is_read(void **state)
+{
+    (void)state;
+    read_ok(NULL, NULL);
+    char err[256];
+    assert_int_equal(parse_appended("\n  \n", err, sizeof err), MPB_OK);
+}
+
+static void planner_count_must_match(void **state)
+{
+    (void)state;
+    refused("\n3 planners\n", "\n2 planners\n",
+            "line 102: text after the last planner");
+    refused("\n3 planners\n", "\n0 planners\n",
+            "line 20: text after the last planner");
+    char err[256];
+    assert_int_equal(parse_appended("\njunk\n", err, sizeof err), MPB_EPARSE);
+    assert_string_equal(err, "line 159: text after the last planner");
+}
+
+/* Run 1 of geometric_RRTConnect (line 54), its values in the order of
+ * the properties: ... graph motions INTEGER (5th) ... solved BOOLEAN
+ * (20th), status ENUM, time REAL, valid segment fraction REAL. */
+static void values_must_be_of_their_type(void **state)
+{
+    (void)state;
+    const char *e = "line 54: run 1 of geometric_RRTConnect: ";
+    char want[256];
+    static const struct { const char *old, *new, *bad; } cases[] = {
+        {"0; 0; 1; 1; 13; ", "0; 0; 1; 1; abc; ", "'abc' is not an INTEGER"},
+        {"0; 0; 1; 1; 13; ", "0; 0; 1; 1; 99999999999999999999999; ",
+         "'99999999999999999999999' is not an INTEGER"},
+        {"0; 0; 1; 1; 13; ", "0; 0; 1; 1; 1.5; ", "'1.5' is not an INTEGER"},
+        {"0; 0; 1; 1; 13; ", "0; 0; 7; 1; 13; ", "'7' is not a BOOLEAN"},
+        {"9.56641; ", "abc; ", "'abc' is not a REAL"},
+        {"9.56641; ", "1.5x; ", "'1.5x' is not a REAL"},
+        {"125.645; 1; 6; ", "125.645; 1; 99; ",
+         "'99' is not a value of the ENUM 'status' (0 to 8)"},
+        {"125.645; 1; 6; ", "125.645; 1; -1; ",
+         "'-1' is not a value of the ENUM 'status' (0 to 8)"},
+        {"0.000195201; 0.444444", "-5; 0.444444",
+         "'-5' is not a time (a number of seconds, not negative)"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        snprintf(want, sizeof want, "%s%s", e, cases[i].bad);
+        refused(cases[i].old, cases[i].new, want);
+    }
+    refused("status ENUM\n", "status FLOAT\n", "line 50: unknown property type "
+            "'FLOAT' (not REAL, INTEGER, BOOLEAN or ENUM)");
+    refused("42 is the random seed", "x is the random seed",
+            "line 12: 'x' is not a random seed (a number)");
+    refused("Starting at 2026-11-22 11:22:29", "Starting at yesterday",
+            "line 5: 'yesterday' is not a date (YYYY-MM-DD ...)");
+}
+
+/* What OMPL's own Benchmark writes stays readable: empty values for what
+ * a run did not measure, nan and inf for reals, true and false. */
+static void what_ompl_writes_is_read(void **state)
+{
+    (void)state;
+    read_ok("0; 0; 1; 1; 13; 14; 9.56641; 7.6093e-05; ",
+            "0; 0; 1; 1; ; 14; nan; inf; ");
+    read_ok("0; 0; 1; 1; 13; 14; 9.56641; 7.6093e-05; ",
+            "0; false; true; 1; -13; +14; -inf; -nan; ");
+    read_ok("0; 0; 1; 1; 13; 14; 9.56641; 7.6093e-05; ",
+            "0; 0; 1; 1; 13; 14; 1e300; 0.10000000000000001; ");
+    read_ok("125.645; 1; 6; 0.000195201", "125.645; 1; 8; 0");
+    read_ok("Starting at 2026-11-22 11:22:29", "Starting at 2026-Nov-22 11:22:29");
+}
+
+/* What the mpbench and the Planner Arena paths of mpb import took
+ * differently is refused here, once, for both. */
+static void what_the_databases_would_refuse(void **state)
+{
+    (void)state;
+    refused("0.05 seconds per run", "nan seconds per run",
+            "line 13: 'nan seconds per run': X must be a number no less than 0");
+    refused("0.05 seconds per run", "-1 seconds per run",
+            "line 13: '-1 seconds per run': X must be a number no less than 0");
+    refused("\ngeometric_RRT\n", "\ngeometric_RRTConnect\n",
+            "line 61: the planner 'geometric_RRTConnect' a second time");
+    refused("approximate solution BOOLEAN\n", "approx goal distance REAL\n",
+            "line 31: the property 'approx goal distance' a second time");
+    refused("1 enum type\n", "-1 enum type\n", "line 17: '-1 enum type': not a count");
+    refused("0 experiment properties\n", "-2 experiment properties\n",
+            "line 3: '-2 experiment properties': not a count");
+    char err[256];
+    assert_int_equal(parse_edited("\ngeometric_RRT\n", "\ngeometric_\001RRT\n",
+                                  err, sizeof err), MPB_OK);
+    /* A NUL in a planner's name (the edit cannot hold one: done by hand). */
+    char *text = test_read_file(WALL_LOG);
+    size_t n = strlen(text);
+    char *at = strstr(text, "\ngeometric_RRT\n");
+    assert_non_null(at);
+    at[11] = '\0';
+    mpb_ompl_log *log = NULL;
+    assert_int_equal(mpb_ompl_log_parse(text, n, &log, err, sizeof err), MPB_EPARSE);
+    assert_null(log);
+    assert_string_equal(err, "line 61: a NUL byte: not a benchmark log");
+    free(text);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(ompls_own_log_is_read),
+        cmocka_unit_test(planner_count_must_match),
+        cmocka_unit_test(values_must_be_of_their_type),
+        cmocka_unit_test(what_ompl_writes_is_read),
+        cmocka_unit_test(what_the_databases_would_refuse),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
