@@ -166,7 +166,10 @@ static int block(reader *r, char **out)
             free(text);
             return -1;
         }
-        if (strcmp(s, "|>>>") == 0)
+        /* The end is a line that starts with it, as OMPL's own script
+         * reads it: an indented one is text (mpb export --ompl-log writes
+         * one so, from a setup that holds a log's). */
+        if (s == r->buf && strcmp(s, "|>>>") == 0)
             break;
         size_t n = strlen(s);
         if (len + n + 2 > cap) {

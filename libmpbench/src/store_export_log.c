@@ -53,6 +53,27 @@ typedef struct config_count {
 } config_count;
 
 /* One log: one query of experiment e. */
+/*
+ * The setup block, "<<<|" to "|>>>". Readers end it at the first line that
+ * starts with "|>>>" (OMPL's script) or is one (mpb import), and the setup
+ * may hold such a line: an imported log keeps its own setup block in its
+ * text. Such a line is written with a space before it.
+ */
+static void write_setup(FILE *out, const char *text)
+{
+    fputs("<<<|\n", out);
+    for (const char *line = text; *line != '\0';) {
+        const char *end = strchr(line, '\n');
+        size_t n = end ? (size_t)(end - line) : strlen(line);
+        if (strncmp(line, "|>>>", 4) == 0)
+            fputc(' ', out);
+        fwrite(line, 1, n, out);
+        fputc('\n', out);
+        line += end ? n + 1 : n;
+    }
+    fputs("|>>>\n", out);
+}
+
 static int write_log(mpb_store *s, FILE *out, const exp_info *e,
                      const pa_query *q, const prop_list *props,
                      const prop_list *progress)
@@ -107,10 +128,7 @@ static int write_log(mpb_store *s, FILE *out, const exp_info *e,
     char date[32];
     mpb__pa_format_date(e->created, date, sizeof date);
     fprintf(out, "Starting at %s\n", date);
-    fprintf(out, "<<<|\n%s", q->setup);
-    if (q->setup[0] && q->setup[strlen(q->setup) - 1] != '\n')
-        fputc('\n', out);
-    fprintf(out, "|>>>\n");
+    write_setup(out, q->setup);
     fprintf(out, "0 is the random seed\n");
     fprintf(out, "%.17g seconds per run\n", isnan(e->time_limit) ? 0.0
                                                                  : e->time_limit);
