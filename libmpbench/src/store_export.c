@@ -224,6 +224,14 @@ done:
     return rc;
 }
 
+int mpb__pa_is_store_file(mpb_store *s, const struct stat *out)
+{
+    const char *mine = sqlite3_db_filename(s->db, "main");
+    struct stat sb;
+    return mine && *mine && stat(mine, &sb) == 0 &&
+           sb.st_dev == out->st_dev && sb.st_ino == out->st_ino;
+}
+
 int mpb_store_export_planner_arena(mpb_store *s, const char *path,
                                    const int64_t *ids, int num_ids, int flags,
                                    mpb_export_counts *counts)
@@ -238,6 +246,9 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if (path == NULL || num_ids < 0 || (num_ids > 0 && ids == NULL))
         return mpb__store_fail(s, MPB_EINVAL, "bad arguments");
     int exists = stat(path, &sb) == 0;
+    if (exists && mpb__pa_is_store_file(s, &sb))
+        return mpb__store_fail(s, MPB_EINVAL, "%s is the database being "
+                               "exported", path);
     if (exists && !(flags & MPB_EXPORT_APPEND))
         return mpb__store_fail(s, MPB_EEXISTS, "%s exists", path);
     if (!exists && errno != ENOENT)

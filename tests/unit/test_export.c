@@ -690,7 +690,7 @@ static void mpb_export_writes_and_refuses_to_overwrite(void **state)
 {
     fixture *f = *state;
     output o;
-    char want[256];
+    char want[512];
     unlink(f->out);
     run(&o, "export --planner-arena '%s' '%s'", f->db, f->out);
     assert_int_equal(o.status, 0);
@@ -724,6 +724,38 @@ static void mpb_export_writes_and_refuses_to_overwrite(void **state)
     snprintf(want, sizeof want, "mpb export: cannot open %s.none/x.db: ",
              f->out);
     assert_memory_equal(o.text, want, strlen(want));
+
+    /* The database itself, by another name, is never the output: refused
+     * before --force removes anything. */
+    char alias[160];
+    snprintf(alias, sizeof alias, "%s/alias.db", f->dir);
+    unlink(alias);
+    assert_int_equal(symlink(f->db, alias), 0);
+    run(&o, "export --planner-arena --force '%s' '%s'", f->db, alias);
+    assert_int_equal(o.status, 2);
+    snprintf(want, sizeof want, "mpb export: %s is the database %s itself; "
+             "write to another file\n", alias, f->db);
+    assert_string_equal(o.text, want);
+    run(&o, "export --planner-arena --append '%s' '%s'", f->db, alias);
+    assert_int_equal(o.status, 2);
+    mpb_store *s;
+    int64_t n = 0;
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_planner_arena(s, alias, NULL, 0,
+                                                    MPB_EXPORT_APPEND, NULL),
+                     MPB_EINVAL);
+    assert_non_null(strstr(mpb_store_errmsg(s), "is the database being "
+                                                "exported"));
+    mpb_store_close(s);
+    sqlite3 *in;
+    assert_int_equal(sqlite3_open_v2(f->db, &in, SQLITE_OPEN_READONLY, NULL),
+                     SQLITE_OK);
+    assert_string_equal(rows(in, "SELECT count(*) FROM sqlite_master"
+                                 " WHERE name = 'plannerConfigs'"), "0\n");
+    n = atoll(rows(in, "SELECT count(*) FROM experiments"));
+    assert_true(n >= 2);
+    sqlite3_close(in);
+    unlink(alias);
 
     run(&o, "export '%s' '%s'", f->db, f->out);
     assert_int_equal(o.status, 2);

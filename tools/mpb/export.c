@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "mpb.h"
@@ -51,7 +52,8 @@ static void usage(FILE *out)
         "  -h, --help           print this help\n"
         "\n"
         "Without --append or --force an existing OUT.db or log is left alone\n"
-        "(exit 1).\n"
+        "(exit 1). OUT.db or DIR that is DB itself, by any name, is refused\n"
+        "(exit 2).\n"
         "DB is opened read-only. Exit status: 0 on success, 1 on an error, 2 on\n"
         "a bad command line.\n");
 }
@@ -133,6 +135,13 @@ int cmd_export(int argc, char **argv)
         return MPB_EXIT_USAGE;
     }
     const char *path = argv[optind], *out = argv[optind + 1];
+    struct stat in_sb, out_sb;
+    if (stat(path, &in_sb) == 0 && stat(out, &out_sb) == 0 &&
+        in_sb.st_dev == out_sb.st_dev && in_sb.st_ino == out_sb.st_ino) {
+        fprintf(stderr, "mpb " CMD ": %s is the database %s itself; write "
+                "to another file\n", out, path);
+        return MPB_EXIT_USAGE;
+    }
 
     if ((s = tool_open_readonly(CMD, path)) == NULL)
         return MPB_EXIT_ERROR;
