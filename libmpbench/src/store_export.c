@@ -105,7 +105,8 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
     exp_info e = {0};
     prop_list props = {0}, progress = {0};
     pa_query_list queries = {0};
-    sqlite3_stmt *add_exp = NULL, *add_run = NULL, *add_progress = NULL;
+    sqlite3_stmt *add_exp = NULL, *add_run = NULL, *add_progress = NULL,
+                 *present = NULL;
     int64_t *pa_exp = NULL;
     pa_walker *w = NULL;
     int rc;
@@ -135,8 +136,33 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
     }
     char date[32];
     mpb__pa_format_date(e.created, date, sizeof date);
+    if (sqlite3_prepare_v2(o->db,
+            "SELECT 1 FROM experiments WHERE name = ?1 AND query IS ?2 AND"
+            " date IS ?3 AND runcount IS ?4 AND hostname IS ?5", -1, &present,
+            NULL) != SQLITE_OK) {
+        rc = mpb__pa_fail(o, "prepare experiments");
+        goto done;
+    }
     for (int i = 0; i < queries.n; i++) {
         const pa_query *q = &queries.v[i];
+        /* Exported before (same name, query, start and run count): kept
+         * as it is, its runs not added again. */
+        sqlite3_reset(present);
+        sqlite3_bind_text(present, 1, q->problem, -1, SQLITE_STATIC);
+        sqlite3_bind_text(present, 2, q->query, -1, SQLITE_STATIC);
+        sqlite3_bind_text(present, 3, date, -1, SQLITE_STATIC);
+        sqlite3_bind_int(present, 4, e.runs_per_query);
+        sqlite3_bind_text(present, 5, e.host, -1, SQLITE_STATIC);
+        int step = sqlite3_step(present);
+        if (step == SQLITE_ROW) {
+            pa_exp[i] = 0;
+            o->counts.skipped++;
+            continue;
+        }
+        if (step != SQLITE_DONE) {
+            rc = mpb__pa_fail(o, "find an experiment");
+            goto done;
+        }
         sqlite3_reset(add_exp);
         sqlite3_bind_text(add_exp, 1, q->problem, -1, SQLITE_STATIC);
         sqlite3_bind_double(add_exp, 2, q->total_time);
@@ -183,6 +209,8 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
                 goto done;
             }
         }
+        if (pa_exp[qi] == 0)
+            continue;   /* its query was there already */
         if ((rc = planner_id(o, rv.config_id, &pid)) != MPB_OK)
             goto done;
         sqlite3_reset(add_run);
@@ -214,6 +242,7 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
 done:
     mpb__pa_walker_close(w);
     sqlite3_finalize(add_exp);
+    sqlite3_finalize(present);
     sqlite3_finalize(add_run);
     sqlite3_finalize(add_progress);
     free(pa_exp);
@@ -221,6 +250,33 @@ done:
     mpb__pa_props_free(&props);
     mpb__pa_props_free(&progress);
     mpb__pa_exp_info_free(&e);
+    return rc;
+}
+
+/* MPB_OK if o->db has the tables of a Planner Arena database, MPB_EINVAL
+ * (nothing written) if not. */
+static int is_planner_arena(pa_out *o)
+{
+    static const char *const tables[] = {"experiments", "plannerConfigs",
+                                         "runs"};
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(o->db, "SELECT 1 FROM sqlite_master WHERE"
+                           " type = 'table' AND name = ?", -1, &st,
+                           NULL) != SQLITE_OK)
+        return mpb__pa_fail(o, "read its tables");
+    int rc = MPB_OK;
+    for (size_t i = 0; i < sizeof tables / sizeof *tables && !rc; i++) {
+        sqlite3_reset(st);
+        sqlite3_bind_text(st, 1, tables[i], -1, SQLITE_STATIC);
+        int step = sqlite3_step(st);
+        if (step == SQLITE_DONE)
+            rc = mpb__store_fail(o->s, MPB_EINVAL, "%s is no Planner Arena "
+                                 "database (no table %s)", o->path,
+                                 tables[i]);
+        else if (step != SQLITE_ROW)
+            rc = mpb__pa_fail(o, "read its tables");
+    }
+    sqlite3_finalize(st);
     return rc;
 }
 
@@ -264,6 +320,8 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     }
     created = !exists;
     sqlite3_busy_timeout(o.db, 5000);
+    if (exists && (rc = is_planner_arena(&o)) != MPB_OK)
+        goto done;
     if ((rc = mpb__pa_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
         (rc = mpb__pa_begin(&o)))
         goto done;

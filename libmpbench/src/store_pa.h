@@ -118,7 +118,8 @@ typedef struct exp_info {
 int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e);
 void mpb__pa_exp_info_free(exp_info *e);
 
-/* Ids of every experiment, or the ids given (checked). Caller frees. */
+/* Ids of every experiment, or the ids given (checked), each once. Caller
+ * frees. */
 int mpb__pa_experiment_ids(mpb_store *s, const int64_t *ids, int num_ids,
                            int64_t **out, int *n);
 

@@ -861,8 +861,13 @@ int mpb__pa_experiment_ids(mpb_store *s, const int64_t *ids, int num_ids,
         sqlite3_finalize(st);
         if ((*out = malloc(sizeof **out * (size_t)num_ids)) == NULL)
             return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
-        memcpy(*out, ids, sizeof **out * (size_t)num_ids);
-        *n = num_ids;
+        for (int i = 0; i < num_ids; i++) {   /* each id once */
+            int seen = 0;
+            for (int j = 0; j < *n && !seen; j++)
+                seen = (*out)[j] == ids[i];
+            if (!seen)
+                (*out)[(*n)++] = ids[i];
+        }
         return MPB_OK;
     }
     sqlite3_stmt *st = mpb__store_prepare(s,

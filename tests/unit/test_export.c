@@ -526,10 +526,55 @@ static void append_adds_and_reuses_configurations(void **state)
     assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
     sqlite3_close(db);
 
-    /* Everything at once gives the same. */
+    /* The same again adds nothing: each query is there already. */
+    int64_t both[] = {1, 2, 1};
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_planner_arena(s, f->out, both, 3,
+                                                    MPB_EXPORT_APPEND, &c),
+                     MPB_OK);
+    mpb_store_close(s);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(c.runs, 0);
+    assert_int_equal(c.skipped, 4);
+    db = open_out(f);
+    assert_string_equal(rows(db, "SELECT count(*) FROM experiments"), "4\n");
+    assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
+    sqlite3_close(db);
+
+    /* Everything at once gives the same; an id twice counts once. */
     export_fresh(f, NULL, 0, &c);
     assert_int_equal(c.experiments, 4);
     assert_int_equal(c.runs, 8);
+    export_fresh(f, both, 3, &c);
+    assert_int_equal(c.experiments, 4);
+    assert_int_equal(c.runs, 8);
+    assert_int_equal(c.skipped, 0);
+}
+
+static void append_refuses_other_databases(void **state)
+{
+    fixture *f = *state;
+    mpb_store *s;
+    sqlite3 *db;
+    unlink(f->out);
+    assert_int_equal(sqlite3_open(f->out, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "CREATE TABLE x (a); INSERT INTO x"
+                                  " VALUES (1)", NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_planner_arena(s, f->out, NULL, 0,
+                                                    MPB_EXPORT_APPEND, NULL),
+                     MPB_EINVAL);
+    char want[160];
+    snprintf(want, sizeof want, "%s is no Planner Arena database (no table "
+             "experiments)", f->out);
+    assert_string_equal(mpb_store_errmsg(s), want);
+    mpb_store_close(s);
+    db = open_out(f);
+    assert_string_equal(rows(db, "SELECT group_concat(name) FROM"
+                                 " sqlite_master"), "x\n");
+    sqlite3_close(db);
+    unlink(f->out);
 }
 
 static void failures_leave_nothing_behind(void **state)
@@ -714,6 +759,13 @@ static void mpb_export_writes_and_refuses_to_overwrite(void **state)
     db = open_out(f);
     assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
     sqlite3_close(db);
+    run(&o, "export --planner-arena --append -e 1 -e 1 '%s' '%s'", f->db,
+        f->out);
+    assert_int_equal(o.status, 0);
+    snprintf(want, sizeof want, "%s: 0 Planner Arena experiments, 0 runs, "
+             "0 planner configurations added, 0 progress samples; 3 there "
+             "already, skipped\n", f->out);
+    assert_string_equal(o.text, want);
 
     run(&o, "export --planner-arena -e 5 '%s' '%s.new'", f->db, f->out);
     assert_int_equal(o.status, 1);
@@ -815,6 +867,7 @@ int main(void)
         cmocka_unit_test(stage_values_by_hand),
         cmocka_unit_test(progress_samples_and_the_views),
         cmocka_unit_test(append_adds_and_reuses_configurations),
+        cmocka_unit_test(append_refuses_other_databases),
         cmocka_unit_test(failures_leave_nothing_behind),
         cmocka_unit_test(ompl_logs_one_per_query),
         cmocka_unit_test(mpb_export_writes_and_refuses_to_overwrite),

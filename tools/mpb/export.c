@@ -44,10 +44,14 @@ static void usage(FILE *out)
         "                   ompl_benchmark_statistics.py reads them.\n"
         "\n"
         "Options:\n"
-        "  -e, --experiment ID  export experiment ID (repeat for more; default:\n"
-        "                       every experiment in DB)\n"
+        "  -e, --experiment ID  export experiment ID (repeat for more, each\n"
+        "                       counts once; default: every experiment in DB)\n"
         "  -a, --append         add to OUT.db, an existing Planner Arena\n"
-        "                       database (one of OMPL's, or an earlier export)\n"
+        "                       database (one of OMPL's, or an earlier export;\n"
+        "                       any other file is refused, exit 1). A query\n"
+        "                       exported there before (an experiment of the\n"
+        "                       same name, query, date, run count and host) is\n"
+        "                       skipped with its runs, and said so\n"
         "  -f, --force          replace OUT.db (or the logs) if it exists\n"
         "  -h, --help           print this help\n"
         "\n"
@@ -178,12 +182,15 @@ int cmd_export(int argc, char **argv)
         fprintf(stderr, "mpb " CMD ": %s\n", mpb_store_errmsg(s));
     } else {
         printf("%s: %d Planner Arena experiment%s, %ld run%s, %d planner "
-               "configuration%s added, %ld progress sample%s\n", out,
+               "configuration%s added, %ld progress sample%s", out,
                counts.experiments, counts.experiments == 1 ? "" : "s",
                counts.runs, counts.runs == 1 ? "" : "s",
                counts.planner_configs,
                counts.planner_configs == 1 ? "" : "s", counts.progress,
                counts.progress == 1 ? "" : "s");
+        if (counts.skipped > 0)
+            printf("; %d there already, skipped", counts.skipped);
+        putchar('\n');
     }
     mpb_store_close(s);
     return rc == MPB_OK ? MPB_EXIT_OK : MPB_EXIT_ERROR;

@@ -335,6 +335,7 @@ typedef struct mpb_export_counts {
     int  planner_configs;   /* plannerConfigs rows added */
     long runs;
     long progress;          /* progress rows (samples) */
+    int  skipped;           /* Planner Arena experiments there already */
 } mpb_export_counts;
 
 /* Flags of the exports. */
@@ -347,7 +348,12 @@ typedef struct mpb_export_counts {
  * in one transaction: the tables and the bestPlannerConfigs views of OMPL's
  * ompl_benchmark_statistics.py. path must not exist (MPB_EEXISTS) unless
  * flags has MPB_EXPORT_APPEND, which adds to a database that script (or
- * this function) wrote. On failure nothing changes: a new file is removed.
+ * this function) wrote (MPB_EINVAL, nothing written, for a file without its
+ * tables experiments, plannerConfigs and runs, or for s's own file). A
+ * query there already (an experiment of the same name, query, date,
+ * runcount and hostname: exported before) is skipped with its runs
+ * (counts->skipped); an id given twice counts once. On failure nothing
+ * changes: a new file is removed.
  * counts (may be NULL) says what was written. MPB_ENOTFOUND if an id is no
  * experiment or s holds none.
  */
