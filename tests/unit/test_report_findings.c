@@ -182,6 +182,34 @@ static void test_scene_lines(void **state)
                 "shortest paths arastar/ARAstar (l_p 8 rad)");
 }
 
+/* An experiment whose one run has not finished: no success rate yet. */
+static void test_nothing_finished(void **state)
+{
+    (void)state;
+    mpb_store *s;
+    int64_t exp, cfg, scene, query;
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    mpb_experiment_info e = {"waiting", "w.yaml", "h", "text", 1, 60.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRT", "ompl",
+                                                  "RRT", "", &cfg), MPB_OK);
+    mpb_scene_info si = {"empty", "planar", "r", "r", "planar", "empty",
+                         "empty"};
+    assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 0), MPB_OK);
+    mpb_store_close(s);
+    char args[64];
+    snprintf(args, sizeof args, "--findings -e %lld", (long long)exp);
+    assert_int_equal(run_tool(args), 0);
+    assert_says("  empty: no runs finished yet.\n");
+    assert_null(strstr(out, "nan"));
+}
+
 static void test_tables_alone_without_option(void **state)
 {
     (void)state;
@@ -204,6 +232,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_paper_findings),
         cmocka_unit_test(test_scene_lines),
         cmocka_unit_test(test_tables_alone_without_option),
+        cmocka_unit_test(test_nothing_finished),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

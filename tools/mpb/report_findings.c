@@ -101,6 +101,10 @@ static void print_scene_findings(const report *r, int s,
     int fast = argmin(r, cols, mean_of, M_TT, NULL, NULL);
     int shortest = argmin(r, cols, mean_of, M_LP, NULL, NULL);
     int steady = argmin(r, cols, sigma_of, M_LP, NULL, NULL);
+    if (isnan(sum->success)) {
+        fprintf(out, "  %s: no runs finished yet.\n", r->scenes[s].name);
+        return;
+    }
     fprintf(out, "  %s: success %.0f%%", r->scenes[s].name,
             100.0 * sum->success);
     if (fast >= 0)
