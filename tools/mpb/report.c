@@ -89,7 +89,8 @@ static void usage(FILE *out)
         "  s_r                  successful runs / finished runs (%%)\n"
         "Means are over successful runs; sigma is the standard deviation of\n"
         "each query's successful runs, averaged over the scene's queries.\n"
-        "'-' marks a value there is nothing to compute from.\n"
+        "'-' marks a value there is nothing to compute from (a sigma from\n"
+        "fewer than two successful runs, too).\n"
         "\n"
         "Options:\n"
         "  -e, --experiment ID  report on experiment ID (default: the newest)\n"
@@ -346,13 +347,18 @@ long report_scene_columns(const report *r, int si, column *cols)
     return finished;
 }
 
+double report_sigma(const mpb_grouped *g)
+{
+    return g->n < 2 ? NAN : mpb_grouped_stddev(g);
+}
+
 double report_row_value(const table_row *tr, const column *c)
 {
     switch (tr->what) {
     case SHOW_MEAN:
         return mpb_grouped_mean(&c->m[tr->metric]);
     case SHOW_SIGMA:
-        return mpb_grouped_stddev(&c->m[tr->metric]);
+        return report_sigma(&c->m[tr->metric]);
     case SHOW_RATE:
         return c->finished > 0 ? 100.0 * (double)c->succeeded /
                                      (double)c->finished
@@ -403,7 +409,7 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
         for (int c = 0; c < nc; c++) {
             double v = report_row_value(tr, &cols[c]);
             format_value(text[i * nc + c], decimals, v);
-            any |= !isnan(v);
+            any |= !isnan(v) || cols[c].m[tr->metric].n > 0;  /* measured */
         }
         visible[i] = !tr->optional || any;
     }
