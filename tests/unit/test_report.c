@@ -764,7 +764,8 @@ static void help_is_clear(void **state)
     run(&o, "stdout", "report --help");
     assert_int_equal(o.status, 0);
     assert_non_null(strstr(o.text, "usage: mpb report [--experiment ID] "
-                                   "[--stage NAME] [--format FORMAT] DB"));
+                                   "[--stage NAME] [--format FORMAT]\n"
+                                   "                  [--findings] DB\n"));
     assert_non_null(strstr(o.text, "--format FORMAT"));
     assert_non_null(strstr(o.text, "--stage NAME"));
 

@@ -189,6 +189,25 @@ static void test_scene_lines(void **state)
                 "6 s); shortest paths ompl/RRTConnect (l_p 20 rad).\n");
 }
 
+/* Findings are sentences: with another format they would break it. */
+static void test_findings_with_text_only(void **state)
+{
+    (void)state;
+    static const char *const other[] = {"json", "csv", "markdown", "latex"};
+    for (size_t i = 0; i < sizeof other / sizeof *other; i++) {
+        char args[64], want[160];
+        snprintf(args, sizeof args, "--findings --format %s", other[i]);
+        assert_int_equal(run_tool(args), 2);
+        snprintf(want, sizeof want, "mpb report: --findings is plain text, "
+                 "not for --format %s (try 'mpb report --help')\n", other[i]);
+        assert_string_equal(out, want);
+    }
+    assert_int_equal(run_tool("--findings --format text"), 0);
+    assert_says("The paper's findings, checked here:");
+    assert_int_equal(run_tool("--help"), 0);
+    assert_says("[--findings] DB\n");
+}
+
 /* An experiment whose one run has not finished: no success rate yet. */
 static void test_nothing_finished(void **state)
 {
@@ -240,6 +259,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_scene_lines),
         cmocka_unit_test(test_tables_alone_without_option),
         cmocka_unit_test(test_nothing_finished),
+        cmocka_unit_test(test_findings_with_text_only),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -74,7 +74,8 @@ static const struct {
 static void usage(FILE *out)
 {
     fprintf(out,
-        "usage: mpb report [--experiment ID] [--stage NAME] [--format FORMAT] DB\n"
+        "usage: mpb report [--experiment ID] [--stage NAME] [--format FORMAT]\n"
+        "                  [--findings] DB\n"
         "\n"
         "Print the results of an experiment in the database DB as the tables\n"
         "of Cohen, Sucan and Chitta, \"A Generic Infrastructure for\n"
@@ -104,7 +105,8 @@ static void usage(FILE *out)
         "                       fastest planner, the shortest and the steadiest\n"
         "                       paths, the hardest scene, and whether the\n"
         "                       paper's findings hold (ARA* paths, RRTConnect's\n"
-        "                       speed, the narrow passage)\n"
+        "                       speed, the narrow passage); with the text\n"
+        "                       format only (another --format is refused)\n"
         "  -h, --help           print this help\n"
         "\n"
         "The database is opened read-only; a running mpbenchd may go on\n"
@@ -554,6 +556,11 @@ int cmd_report(int argc, char **argv)
         default:    /* ':' a missing value, '?' an unknown option */
             return tool_option_error(CMD, opt, argv);
         }
+    }
+    if (findings && fmt != FORMAT_TEXT) {
+        fprintf(stderr, "mpb " CMD ": --findings is plain text, not for "
+                "--format %s (try 'mpb " CMD " --help')\n", formats[fmt].name);
+        return MPB_EXIT_USAGE;
     }
     if (argc - optind != 1) {
         fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",
