@@ -111,7 +111,8 @@ static int write_log(mpb_store *s, FILE *out, const exp_info *e,
     if (q->setup[0] && q->setup[strlen(q->setup) - 1] != '\n')
         fputc('\n', out);
     fprintf(out, "|>>>\n");
-    fprintf(out, "0 is the random seed\n");
+    fprintf(out, "%lld is the random seed\n",
+            mpb__pa_seed_of(e->config_text));
     fprintf(out, "%.17g seconds per run\n", isnan(e->time_limit) ? 0.0
                                                                  : e->time_limit);
     fprintf(out, "0 MB per run\n");
