@@ -41,7 +41,18 @@ copies=1
 format=text
 record=""
 logs=$MPB_BUILD/run-logs
+# Option $1 needs a value: $2 is the number of words from it on.
+value() {
+    [ "$2" -ge 2 ] || {
+        echo "run_benchmark: $1 wants a value (try --help)" >&2
+        exit 2
+    }
+}
 while [ $# -gt 0 ]; do
+    case $1 in
+        -d|--db|-p|--planners|-n|--copies|-f|--format|-r|--record|-l|--logs)
+            value "$1" $# ;;
+    esac
     case $1 in
         -d|--db) db=$2; shift 2 ;;
         -p|--planners) planners=$(echo "$2" | tr ',' ' '); shift 2 ;;
@@ -61,6 +72,10 @@ if [ $# -eq 0 ]; then
 fi
 case $copies in
     ''|*[!0-9]*|0) echo "run_benchmark: --copies wants a whole number > 0" >&2; exit 2 ;;
+esac
+case $format in
+    text|markdown|csv|latex|json) ;;
+    *) echo "run_benchmark: unknown format '$format' (text, markdown, csv, latex or json)" >&2; exit 2 ;;
 esac
 
 # Absolute paths: the namespace re-runs this script from the same directory,

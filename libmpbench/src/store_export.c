@@ -105,7 +105,8 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
     exp_info e = {0};
     prop_list props = {0}, progress = {0};
     pa_query_list queries = {0};
-    sqlite3_stmt *add_exp = NULL, *add_run = NULL, *add_progress = NULL;
+    sqlite3_stmt *add_exp = NULL, *add_run = NULL, *add_progress = NULL,
+                 *present = NULL;
     int64_t *pa_exp = NULL;
     pa_walker *w = NULL;
     int rc;
@@ -125,7 +126,7 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
             "INSERT INTO experiments (name, totaltime, timelimit, memorylimit,"
             " runcount, version, hostname, cpuinfo, date, seed, setup, query,"
             " mpbench_experiment) VALUES (?1, ?2, ?3, NULL, ?4, ?5, ?6, NULL,"
-            " ?7, NULL, ?8, ?9, ?10)", -1, &add_exp, NULL) != SQLITE_OK) {
+            " ?7, ?11, ?8, ?9, ?10)", -1, &add_exp, NULL) != SQLITE_OK) {
         rc = mpb__pa_fail(o, "prepare experiments");
         goto done;
     }
@@ -135,8 +136,34 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
     }
     char date[32];
     mpb__pa_format_date(e.created, date, sizeof date);
+    long long seed = mpb__pa_seed_of(e.config_text);
+    if (sqlite3_prepare_v2(o->db,
+            "SELECT 1 FROM experiments WHERE name = ?1 AND query IS ?2 AND"
+            " date IS ?3 AND runcount IS ?4 AND hostname IS ?5", -1, &present,
+            NULL) != SQLITE_OK) {
+        rc = mpb__pa_fail(o, "prepare experiments");
+        goto done;
+    }
     for (int i = 0; i < queries.n; i++) {
         const pa_query *q = &queries.v[i];
+        /* Exported before (same name, query, start and run count): kept
+         * as it is, its runs not added again. */
+        sqlite3_reset(present);
+        sqlite3_bind_text(present, 1, q->problem, -1, SQLITE_STATIC);
+        sqlite3_bind_text(present, 2, q->query, -1, SQLITE_STATIC);
+        sqlite3_bind_text(present, 3, date, -1, SQLITE_STATIC);
+        sqlite3_bind_int(present, 4, e.runs_per_query);
+        sqlite3_bind_text(present, 5, e.host, -1, SQLITE_STATIC);
+        int step = sqlite3_step(present);
+        if (step == SQLITE_ROW) {
+            pa_exp[i] = 0;
+            o->counts.skipped++;
+            continue;
+        }
+        if (step != SQLITE_DONE) {
+            rc = mpb__pa_fail(o, "find an experiment");
+            goto done;
+        }
         sqlite3_reset(add_exp);
         sqlite3_bind_text(add_exp, 1, q->problem, -1, SQLITE_STATIC);
         sqlite3_bind_double(add_exp, 2, q->total_time);
@@ -151,6 +178,7 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
         sqlite3_bind_text(add_exp, 8, q->setup, -1, SQLITE_STATIC);
         sqlite3_bind_text(add_exp, 9, q->query, -1, SQLITE_STATIC);
         sqlite3_bind_int64(add_exp, 10, e.id);
+        sqlite3_bind_int64(add_exp, 11, seed);
         if (sqlite3_step(add_exp) != SQLITE_DONE) {
             rc = mpb__pa_fail(o, "add an experiment");
             goto done;
@@ -183,6 +211,8 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
                 goto done;
             }
         }
+        if (pa_exp[qi] == 0)
+            continue;   /* its query was there already */
         if ((rc = planner_id(o, rv.config_id, &pid)) != MPB_OK)
             goto done;
         sqlite3_reset(add_run);
@@ -214,6 +244,7 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
 done:
     mpb__pa_walker_close(w);
     sqlite3_finalize(add_exp);
+    sqlite3_finalize(present);
     sqlite3_finalize(add_run);
     sqlite3_finalize(add_progress);
     free(pa_exp);
@@ -222,6 +253,41 @@ done:
     mpb__pa_props_free(&progress);
     mpb__pa_exp_info_free(&e);
     return rc;
+}
+
+/* MPB_OK if o->db has the tables of a Planner Arena database, MPB_EINVAL
+ * (nothing written) if not. */
+static int is_planner_arena(pa_out *o)
+{
+    static const char *const tables[] = {"experiments", "plannerConfigs",
+                                         "runs"};
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(o->db, "SELECT 1 FROM sqlite_master WHERE"
+                           " type = 'table' AND name = ?", -1, &st,
+                           NULL) != SQLITE_OK)
+        return mpb__pa_fail(o, "read its tables");
+    int rc = MPB_OK;
+    for (size_t i = 0; i < sizeof tables / sizeof *tables && !rc; i++) {
+        sqlite3_reset(st);
+        sqlite3_bind_text(st, 1, tables[i], -1, SQLITE_STATIC);
+        int step = sqlite3_step(st);
+        if (step == SQLITE_DONE)
+            rc = mpb__store_fail(o->s, MPB_EINVAL, "%s is no Planner Arena "
+                                 "database (no table %s)", o->path,
+                                 tables[i]);
+        else if (step != SQLITE_ROW)
+            rc = mpb__pa_fail(o, "read its tables");
+    }
+    sqlite3_finalize(st);
+    return rc;
+}
+
+int mpb__pa_is_store_file(mpb_store *s, const struct stat *out)
+{
+    const char *mine = sqlite3_db_filename(s->db, "main");
+    struct stat sb;
+    return mine && *mine && stat(mine, &sb) == 0 &&
+           sb.st_dev == out->st_dev && sb.st_ino == out->st_ino;
 }
 
 int mpb_store_export_planner_arena(mpb_store *s, const char *path,
@@ -238,6 +304,9 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if (path == NULL || num_ids < 0 || (num_ids > 0 && ids == NULL))
         return mpb__store_fail(s, MPB_EINVAL, "bad arguments");
     int exists = stat(path, &sb) == 0;
+    if (exists && mpb__pa_is_store_file(s, &sb))
+        return mpb__store_fail(s, MPB_EINVAL, "%s is the database being "
+                               "exported", path);
     if (exists && !(flags & MPB_EXPORT_APPEND))
         return mpb__store_fail(s, MPB_EEXISTS, "%s exists", path);
     if (!exists && errno != ENOENT)
@@ -253,6 +322,8 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     }
     created = !exists;
     sqlite3_busy_timeout(o.db, 5000);
+    if (exists && (rc = is_planner_arena(&o)) != MPB_OK)
+        goto done;
     if ((rc = mpb__pa_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
         (rc = mpb__pa_begin(&o)))
         goto done;

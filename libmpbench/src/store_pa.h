@@ -116,9 +116,14 @@ typedef struct exp_info {
 } exp_info;
 
 int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e);
+
+/* The experiment file's seed (experiment: seed:, the daemon derives each
+ * run's from it), 0 where it sets none, as the daemon takes it. */
+long long mpb__pa_seed_of(const char *config_text);
 void mpb__pa_exp_info_free(exp_info *e);
 
-/* Ids of every experiment, or the ids given (checked). Caller frees. */
+/* Ids of every experiment, or the ids given (checked), each once. Caller
+ * frees. */
 int mpb__pa_experiment_ids(mpb_store *s, const int64_t *ids, int num_ids,
                            int64_t **out, int *n);
 
@@ -175,6 +180,10 @@ int mpb__pa_fail(pa_out *o, const char *what);
 
 /* Run sql (several statements may follow each other). */
 int mpb__pa_exec(pa_out *o, const char *sql, const char *what);
+
+/* Whether out (a stat of the output) is the file of the store s itself. */
+struct stat;
+int mpb__pa_is_store_file(mpb_store *s, const struct stat *out);
 
 /* Open a transaction, create the tables that are missing and add the
  * status enum, as OMPL's script does before it reads a log. */

@@ -101,6 +101,8 @@ check "a missing database exits 1 naming it" \
 PATH=/nonexistent "$mpb" plot -o "$work/nognuplot" "$DB" >/dev/null 2>"$work/nognuplot.err"
 check "without gnuplot it exits 1" eq $? 1
 check "... saying what to install" grep -q "^mpb plot: gnuplot not found on PATH" "$work/nognuplot.err"
+check "... in that one line, no shell's 'not found' before it" \
+    eq "$(wc -l <"$work/nognuplot.err")" 1
 
 "$mpb" plot --format gif "$DB" >/dev/null 2>&1
 check "an unknown format is a usage error" eq $? 2

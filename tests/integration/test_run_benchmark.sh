@@ -2,7 +2,9 @@
 # tools/run_benchmark.sh, the batch script behind `make demo`: it starts the
 # planners and the daemon in a namespace of its own, runs the experiment,
 # prints the report and leaves the runs in the database; a second call on
-# a finished experiment runs it again and keeps the first; bad options and unknown planners are refused
+# a finished experiment runs it again and keeps the first; bad options,
+# options without a value, unknown formats and unknown planners are refused,
+# before anything starts,
 # in one line.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
@@ -49,6 +51,20 @@ check "... in one line" eq "$(printf '%s\n' "$err" | wc -l)" 1
 err=$(MPB_BUILD=$MPB_BUILD sh "$script" -p nosuch "$work/exp.yaml" 2>&1)
 check "an unknown planner exits 2" eq $? 2
 check "... naming it" sh -c "printf '%s\n' \"\$1\" | grep -q nosuch" _ "$err"
+
+# Checked before anything starts: no database, no logs, at once.
+err=$(MPB_BUILD=$MPB_BUILD mpb_timeout 120 sh "$script" -d "$work/never.db" -f xml \
+      -l "$work/never-logs" "$work/exp.yaml" 2>&1)
+check "an unknown report format exits 2" eq $? 2
+check "... in one line naming it" \
+    eq "$(printf '%s\n' "$err" | grep -c "unknown format 'xml'")" 1
+check "... before anything ran" sh -c "! [ -e '$work/never.db' ] && ! [ -e '$work/never-logs' ]"
+for opt in -d --db -p -n -f --format -r -l; do
+    err=$(sh "$script" "$opt" 2>&1)
+    check "$opt without a value exits 2" eq $? 2
+    check "... in one line naming it" test "$err" = \
+        "run_benchmark: $opt wants a value (try --help)"
+done
 
 echo "$PASSES passed, $FAILS failed"
 [ "$FAILS" -eq 0 ]

@@ -53,6 +53,10 @@ check "... naming the jar" grep -q '^mpb spy: mpb_types.jar not found' "$work/no
 env -u JAVA_HOME PATH=/nonexistent "$mpb" spy >/dev/null 2>"$work/nojava.err"
 check "without java it exits 1" eq $? 1
 check "... saying so" grep -q '^mpb spy: java not found' "$work/nojava.err"
+env -u DISPLAY -u WAYLAND_DISPLAY timeout 30 "$mpb" spy >"$work/nodisplay.out" 2>"$work/nodisplay.err"
+check "without a display it exits 1" eq $? 1
+check "... in one line saying so, no Java stack trace" \
+    sh -c "[ \$(wc -l <'$work/nodisplay.err') -eq 1 ] && grep -q '^mpb spy: no display' '$work/nodisplay.err' && ! grep -q Exception '$work/nodisplay.err' '$work/nodisplay.out'"
 
 # ---- lcm-spy on a live experiment -----------------------------------------
 mkdir -p "$work/probe"

@@ -47,6 +47,17 @@ check "... and prints nothing on stdout" test ! -s "$work/none.out"
 
 "$mpb" status --timeout soon >/dev/null 2>&1
 check "a timeout that is not a number is a usage error" eq $? 2
+for t in 0x10 1e1 inf; do
+    "$mpb" status --timeout "$t" >/dev/null 2>"$work/t.err"
+    check "--timeout $t (not decimal) is a usage error" eq $? 2
+    check "... naming it" grep -q "not '$t'" "$work/t.err"
+done
+"$mpb" status --timeout 0.5 >/dev/null 2>&1
+check "--timeout 0.5 is taken (no daemon: exit 1)" eq $? 1
+"$mpb" status -u bogus://x --timeout 1 >/dev/null 2>"$work/bogus.err"
+check "a bad LCM URL exits 1" eq $? 1
+check "... without the multicast route hint" \
+    sh -c "grep -q '^mpb status: cannot start LCM on bogus://x' '$work/bogus.err' && ! grep -q 'multicast route' '$work/bogus.err'"
 "$mpb" status extra >/dev/null 2>&1
 check "an argument is a usage error" eq $? 2
 "$mpb" status --help | grep -q '^usage: mpb status \[--lcm-url URL\]'

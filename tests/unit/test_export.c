@@ -151,7 +151,7 @@ static int setup(void **state)
     assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
 
     mpb_experiment_info e = {"paper", "paper.yaml", "h1",
-                             "experiment: {name: paper}\n", 3, 60.0};
+                             "experiment: {name: paper, seed: 42}\n", 3, 60.0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRTConnect",
                                                   "ompl", "RRTConnect",
@@ -309,19 +309,19 @@ static void experiments_keep_planner_arenas_twelve_columns(void **state)
      * a parameter; totaltime the runs' wall time; version never empty. */
     assert_string_equal(rows(db,
         "SELECT id, name, totaltime, timelimit, memorylimit IS NULL, runcount,"
-        " version, length(hostname) > 0, cpuinfo IS NULL, seed IS NULL, query,"
+        " version, length(hostname) > 0, cpuinfo IS NULL, seed, query,"
         " mpbench_experiment FROM experiments ORDER BY id"),
         "1|paper/KITCHEN|3.5|60.0|1|3|mpbench " MPB_VERSION_STRING
-        "|1|1|1|k1|1\n"
+        "|1|1|42|k1|1\n"
         "2|paper/KITCHEN|4.25|60.0|1|3|mpbench " MPB_VERSION_STRING
-        "|1|1|1|k2|1\n"
+        "|1|1|42|k2|1\n"
         "3|paper/TABLE_TOP|8.125|60.0|1|3|mpbench " MPB_VERSION_STRING
-        "|1|1|1|t1|1\n");
+        "|1|1|42|t1|1\n");
     /* A date SQLite reads; the setup holds the experiment file and query. */
     assert_true(number(db, "SELECT count(*) FROM experiments"
                            " WHERE julianday(date) IS NOT NULL") == 3);
     assert_string_equal(rows(db, "SELECT setup FROM experiments WHERE id = 2"),
-        "experiment: {name: paper}\n\n"
+        "experiment: {name: paper, seed: 42}\n\n"
         "mpbench experiment 1, query k2\n"
         "joints: j\nstart: 0\ngoal (joints): 1\ntolerance: 0.01\n\n");
     sqlite3_close(db);
@@ -523,13 +523,61 @@ static void append_adds_and_reuses_configurations(void **state)
                                  " experiments e ON e.id = r.experimentid"
                                  " WHERE e.mpbench_experiment = 2"),
                         "second/KITCHEN|k9|1|2.0\n");
+    /* Its file sets no seed: the daemon's default, 0. */
+    assert_string_equal(rows(db, "SELECT seed FROM experiments"
+                                 " WHERE mpbench_experiment = 2"), "0\n");
     assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
     sqlite3_close(db);
 
-    /* Everything at once gives the same. */
+    /* The same again adds nothing: each query is there already. */
+    int64_t both[] = {1, 2, 1};
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_planner_arena(s, f->out, both, 3,
+                                                    MPB_EXPORT_APPEND, &c),
+                     MPB_OK);
+    mpb_store_close(s);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(c.runs, 0);
+    assert_int_equal(c.skipped, 4);
+    db = open_out(f);
+    assert_string_equal(rows(db, "SELECT count(*) FROM experiments"), "4\n");
+    assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
+    sqlite3_close(db);
+
+    /* Everything at once gives the same; an id twice counts once. */
     export_fresh(f, NULL, 0, &c);
     assert_int_equal(c.experiments, 4);
     assert_int_equal(c.runs, 8);
+    export_fresh(f, both, 3, &c);
+    assert_int_equal(c.experiments, 4);
+    assert_int_equal(c.runs, 8);
+    assert_int_equal(c.skipped, 0);
+}
+
+static void append_refuses_other_databases(void **state)
+{
+    fixture *f = *state;
+    mpb_store *s;
+    sqlite3 *db;
+    unlink(f->out);
+    assert_int_equal(sqlite3_open(f->out, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "CREATE TABLE x (a); INSERT INTO x"
+                                  " VALUES (1)", NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_planner_arena(s, f->out, NULL, 0,
+                                                    MPB_EXPORT_APPEND, NULL),
+                     MPB_EINVAL);
+    char want[160];
+    snprintf(want, sizeof want, "%s is no Planner Arena database (no table "
+             "experiments)", f->out);
+    assert_string_equal(mpb_store_errmsg(s), want);
+    mpb_store_close(s);
+    db = open_out(f);
+    assert_string_equal(rows(db, "SELECT group_concat(name) FROM"
+                                 " sqlite_master"), "x\n");
+    sqlite3_close(db);
+    unlink(f->out);
 }
 
 static void failures_leave_nothing_behind(void **state)
@@ -599,11 +647,11 @@ static void ompl_logs_one_per_query(void **state)
         "query VARCHAR(512) = k1\n"
         "mpbench_experiment INTEGER = 1\n"
         "Running on "));
-    assert_non_null(strstr(log, "\n<<<|\nexperiment: {name: paper}\n\n"
+    assert_non_null(strstr(log, "\n<<<|\nexperiment: {name: paper, seed: 42}\n\n"
                                 "mpbench experiment 1, query k1\n"));
     assert_non_null(strstr(log,
         "|>>>\n"
-        "0 is the random seed\n"
+        "42 is the random seed\n"
         "60 seconds per run\n"
         "0 MB per run\n"
         "3 runs per planner\n"
@@ -690,7 +738,7 @@ static void mpb_export_writes_and_refuses_to_overwrite(void **state)
 {
     fixture *f = *state;
     output o;
-    char want[256];
+    char want[512];
     unlink(f->out);
     run(&o, "export --planner-arena '%s' '%s'", f->db, f->out);
     assert_int_equal(o.status, 0);
@@ -714,6 +762,13 @@ static void mpb_export_writes_and_refuses_to_overwrite(void **state)
     db = open_out(f);
     assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
     sqlite3_close(db);
+    run(&o, "export --planner-arena --append -e 1 -e 1 '%s' '%s'", f->db,
+        f->out);
+    assert_int_equal(o.status, 0);
+    snprintf(want, sizeof want, "%s: 0 Planner Arena experiments, 0 runs, "
+             "0 planner configurations added, 0 progress samples; 3 there "
+             "already, skipped\n", f->out);
+    assert_string_equal(o.text, want);
 
     run(&o, "export --planner-arena -e 5 '%s' '%s.new'", f->db, f->out);
     assert_int_equal(o.status, 1);
@@ -724,6 +779,38 @@ static void mpb_export_writes_and_refuses_to_overwrite(void **state)
     snprintf(want, sizeof want, "mpb export: cannot open %s.none/x.db: ",
              f->out);
     assert_memory_equal(o.text, want, strlen(want));
+
+    /* The database itself, by another name, is never the output: refused
+     * before --force removes anything. */
+    char alias[160];
+    snprintf(alias, sizeof alias, "%s/alias.db", f->dir);
+    unlink(alias);
+    assert_int_equal(symlink(f->db, alias), 0);
+    run(&o, "export --planner-arena --force '%s' '%s'", f->db, alias);
+    assert_int_equal(o.status, 2);
+    snprintf(want, sizeof want, "mpb export: %s is the database %s itself; "
+             "write to another file\n", alias, f->db);
+    assert_string_equal(o.text, want);
+    run(&o, "export --planner-arena --append '%s' '%s'", f->db, alias);
+    assert_int_equal(o.status, 2);
+    mpb_store *s;
+    int64_t n = 0;
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_planner_arena(s, alias, NULL, 0,
+                                                    MPB_EXPORT_APPEND, NULL),
+                     MPB_EINVAL);
+    assert_non_null(strstr(mpb_store_errmsg(s), "is the database being "
+                                                "exported"));
+    mpb_store_close(s);
+    sqlite3 *in;
+    assert_int_equal(sqlite3_open_v2(f->db, &in, SQLITE_OPEN_READONLY, NULL),
+                     SQLITE_OK);
+    assert_string_equal(rows(in, "SELECT count(*) FROM sqlite_master"
+                                 " WHERE name = 'plannerConfigs'"), "0\n");
+    n = atoll(rows(in, "SELECT count(*) FROM experiments"));
+    assert_true(n >= 2);
+    sqlite3_close(in);
+    unlink(alias);
 
     run(&o, "export '%s' '%s'", f->db, f->out);
     assert_int_equal(o.status, 2);
@@ -783,6 +870,7 @@ int main(void)
         cmocka_unit_test(stage_values_by_hand),
         cmocka_unit_test(progress_samples_and_the_views),
         cmocka_unit_test(append_adds_and_reuses_configurations),
+        cmocka_unit_test(append_refuses_other_databases),
         cmocka_unit_test(failures_leave_nothing_behind),
         cmocka_unit_test(ompl_logs_one_per_query),
         cmocka_unit_test(mpb_export_writes_and_refuses_to_overwrite),

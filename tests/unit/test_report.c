@@ -339,14 +339,14 @@ static void the_kitchen_table_matches_the_hand_computed_values(void **state)
     assert_string_equal(cell(&o, KITCHEN, "s_r (%)", A), "83.3");
 
     /* B (ara/ARAstar), one run per query: k1 succeeded (0.5 s, l_p 3),
-     * k2 failed with l_p 77, which must not show. One sample per query:
-     * sigma 0. */
+     * k2 failed with l_p 77, which must not show. One successful run:
+     * no sigma to compute, '-'. */
     assert_string_equal(cell(&o, KITCHEN, "tau_t (Mean, s)", B), "0.500");
-    assert_string_equal(cell(&o, KITCHEN, "tau_t (sigma, s)", B), "0.000");
+    assert_string_equal(cell(&o, KITCHEN, "tau_t (sigma, s)", B), "-");
     assert_string_equal(cell(&o, KITCHEN, "tau_r (Mean, s)", B), "0.300");
     assert_string_equal(cell(&o, KITCHEN, "tau_o (Mean, s)", B), "0.200");
     assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", B), "3.000");
-    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", B), "0.000");
+    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", B), "-");
     assert_string_equal(cell(&o, KITCHEN, "kappa' (Mean, rad^2)", B), "1.500");
     assert_string_equal(cell(&o, KITCHEN, "waypoints (Mean)", B), "8.0");
     assert_string_equal(cell(&o, KITCHEN, "s_r (%)", B), "50.0");
@@ -364,7 +364,7 @@ static void a_second_scene_has_its_own_table(void **state)
     assert_non_null(strstr(o.text, TABLETOP "1 run\n"));
     /* KITCHEN's numbers are not in it, nor its unfinished run. */
     assert_string_equal(cell(&o, TABLETOP, "tau_t (Mean, s)", A), "7.000");
-    assert_string_equal(cell(&o, TABLETOP, "tau_t (sigma, s)", A), "0.000");
+    assert_string_equal(cell(&o, TABLETOP, "tau_t (sigma, s)", A), "-");
     assert_string_equal(cell(&o, TABLETOP, "l_p (Mean, rad)", A), "8.000");
     /* 0.05: 3 significant digits, as every row's smallest value keeps. */
     assert_string_equal(cell(&o, TABLETOP, "d_n (Mean, m)", A), "0.0500");
@@ -484,10 +484,10 @@ static void markdown_has_the_same_tables(void **state)
         "| Metric | ompl/RRTConnect | ara/ARAstar |\n"
         "|:---|---:|---:|\n"
         "| tau_t (Mean, s) | 3.200 | 0.500 |\n"
-        "| tau_t (sigma, s) | 1.207 | 0.000 |\n"
+        "| tau_t (sigma, s) | 1.207 | - |\n"
         "| tau_r (Mean, s) | 2.880 | 0.300 |\n"));
     assert_non_null(strstr(k, "| l_p (Mean, rad) | 4.400 | 3.000 |\n"
-                              "| l_p (sigma, rad) | 1.000 | 0.000 |\n"));
+                              "| l_p (sigma, rad) | 1.000 | - |\n"));
     assert_non_null(strstr(k, "| kappa' (Mean, rad^2) | 0.360 | 1.500 |\n"));
     assert_non_null(strstr(k, "| waypoints (Mean) | 30.0 | 8.0 |\n"
                               "| s_r (%) | 83.3 | 50.0 |\n"));
@@ -496,7 +496,8 @@ static void markdown_has_the_same_tables(void **state)
                               "above.\n"));
     const char *t = section(&o, "## Scene TABLETOP", NULL);
     assert_non_null(strstr(t, "## Scene TABLETOP: 1 run\n"));
-    assert_non_null(strstr(t, "| d_n (Mean, m) | 0.0500 | - |\n"));
+    assert_non_null(strstr(t, "| d_n (Mean, m) | 0.0500 | - |\n"
+                              "| d_n (sigma, m) | - | - |\n"));
     assert_non_null(strstr(t, "| s_r (%) | 100.0 | - |\n"));
     assert_null(strstr(t, "not finished"));
     /* The header, the rule and 14 rows (no l_e: nothing measured it). */
@@ -536,12 +537,12 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
                                    "success_rate,,0.5,,2\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
-                                   "time_total,s,0.5,0,1\n"));
+                                   "time_total,s,0.5,,1\n"));
     /* Not measured, never run: empty values, n = 0. */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "clearance,m,,,0\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ompl/RRTConnect,"
-                                   "clearance,m,0.05,0,1\n"));
+                                   "clearance,m,0.05,,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
                                    "time_total,s,,,0\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
@@ -584,7 +585,7 @@ static void latex_has_a_tabular_per_scene(void **state)
         "    Metric & ompl/RRTConnect & ara/ARAstar \\\\\n"
         "    \\hline\n"
         "    $\\tau_t$ (Mean, s) & 3.200 & 0.500 \\\\\n"
-        "    $\\tau_t$ ($\\sigma$, s) & 1.207 & 0.000 \\\\\n"));
+        "    $\\tau_t$ ($\\sigma$, s) & 1.207 & -- \\\\\n"));
     assert_non_null(strstr(k, "    $\\kappa'$ (Mean, rad$^2$) & 0.360 & "
                               "1.500 \\\\\n"));
     assert_non_null(strstr(k, "    $s_r$ (\\%) & 83.3 & 50.0 \\\\\n"
@@ -641,24 +642,24 @@ static void json_holds_every_number_by_name(void **state)
         "    smoothness 0.36 0.120711 5\n"
         "    waypoints 30.0 8.535534 5\n"
         "  ara/ARAstar ara ARAstar eps=100 2 1 0.5\n"
-        "    time_total 0.5 0.0 1\n"
-        "    time_raw 0.3 0.0 1\n"
-        "    time_other 0.2 0.0 1\n"
+        "    time_total 0.5 None 1\n"
+        "    time_raw 0.3 None 1\n"
+        "    time_other 0.2 None 1\n"
         "    clearance None None 0\n"
-        "    path_length 3.0 0.0 1\n"
+        "    path_length 3.0 None 1\n"
         "    ee_path_length None None 0\n"
-        "    smoothness 1.5 0.0 1\n"
-        "    waypoints 8.0 0.0 1\n"
+        "    smoothness 1.5 None 1\n"
+        "    waypoints 8.0 None 1\n"
         "TABLETOP 1 0\n"
         "  ompl/RRTConnect ompl RRTConnect  1 1 1.0\n"
-        "    time_total 7.0 0.0 1\n"
-        "    time_raw 6.0 0.0 1\n"
-        "    time_other 1.0 0.0 1\n"
-        "    clearance 0.05 0.0 1\n"
-        "    path_length 8.0 0.0 1\n"
+        "    time_total 7.0 None 1\n"
+        "    time_raw 6.0 None 1\n"
+        "    time_other 1.0 None 1\n"
+        "    clearance 0.05 None 1\n"
+        "    path_length 8.0 None 1\n"
         "    ee_path_length None None 0\n"
-        "    smoothness 0.4 0.0 1\n"
-        "    waypoints 12.0 0.0 1\n"
+        "    smoothness 0.4 None 1\n"
+        "    waypoints 12.0 None 1\n"
         "  ara/ARAstar ara ARAstar eps=100 0 0 None\n"
         "    time_total None None 0\n"
         "    time_raw None None 0\n"
@@ -763,7 +764,8 @@ static void help_is_clear(void **state)
     run(&o, "stdout", "report --help");
     assert_int_equal(o.status, 0);
     assert_non_null(strstr(o.text, "usage: mpb report [--experiment ID] "
-                                   "[--stage NAME] [--format FORMAT] DB"));
+                                   "[--stage NAME] [--format FORMAT]\n"
+                                   "                  [--findings] DB\n"));
     assert_non_null(strstr(o.text, "--format FORMAT"));
     assert_non_null(strstr(o.text, "--stage NAME"));
 

@@ -32,15 +32,16 @@ typedef struct run_spec {
  * kitchen:  ARA* shortest (8) with no spread; RRTConnect fastest.
  * tabletop: ARA* shortest; RRT (0.5 s) faster than RRTConnect (1.5 s).
  * narrow:   RRTConnect's path (20) beats ARA*'s (25); 2 of 5 runs succeed,
- *           and the successful ones are the slowest of the experiment.
+ *           and the successful ones are the slowest of the experiment;
+ *           one path each, so no spread to compare.
  */
 static const run_spec runs[] = {
     {RRTC, KITCHEN, 0, 1, 1.0, 10.0},  {RRTC, KITCHEN, 1, 1, 2.0, 12.0},
     {RRT, KITCHEN, 0, 1, 3.0, 9.0},    {RRT, KITCHEN, 1, 1, 5.0, 11.0},
-    {ARA, KITCHEN, 0, 1, 4.0, 8.0},
+    {ARA, KITCHEN, 0, 1, 4.0, 8.0},    {ARA, KITCHEN, 1, 1, 3.0, 8.0},
     {RRTC, TABLETOP, 0, 1, 1.5, 10.0}, {RRTC, TABLETOP, 1, 1, 1.5, 14.0},
     {RRT, TABLETOP, 0, 1, 0.5, 12.0},  {RRT, TABLETOP, 1, 1, 0.5, 12.0},
-    {ARA, TABLETOP, 0, 1, 3.0, 7.0},
+    {ARA, TABLETOP, 0, 1, 3.0, 7.0},   {ARA, TABLETOP, 1, 1, 3.0, 7.0},
     {RRTC, NARROW, 0, 1, 10.0, 20.0},  {RRTC, NARROW, 1, 0, 60.0, 0.0},
     {RRT, NARROW, 0, 0, 60.0, 0.0},    {RRT, NARROW, 1, 0, 60.0, 0.0},
     {ARA, NARROW, 0, 1, 6.0, 25.0},
@@ -159,9 +160,11 @@ static void test_paper_findings(void **state)
 {
     (void)state;
     assert_int_equal(run_tool("--findings"), 0);
-    assert_says("[holds] ARA* has zero spread in path length (3 of 3 scenes)");
+    /* narrow: ARA*'s one path has no spread to speak of. */
+    assert_says("[holds] ARA* has zero spread in path length (2 of 2 scenes)");
     assert_says("[holds in part] ARA* has the shortest paths (2 of 3 scenes)");
-    assert_says("narrow_passage: sigma(l_p) 0 rad; l_p 25 rad, beaten by "
+    assert_says("kitchen: sigma(l_p) 0 rad; l_p 8 rad, next ompl/RRT");
+    assert_says("narrow_passage: sigma(l_p) -; l_p 25 rad, beaten by "
                 "ompl/RRTConnect (20 rad)");
     assert_says("[holds in part] RRTConnect is the fastest sampling-based "
                 "planner outside the narrow passage (1 of 2 scenes)");
@@ -169,7 +172,7 @@ static void test_paper_findings(void **state)
     assert_says("[holds] the narrow passage is the hardest environment "
                 "(2 of 2 measures)");
     assert_says("lowest success rate: narrow_passage (40%; next kitchen 100%)");
-    /* narrow: (10 + 6) / 2; next, kitchen: (1 + 2 + 3 + 5 + 4) / 5. */
+    /* narrow: (10 + 6) / 2; next, kitchen: (1 + 2 + 3 + 5 + 4 + 3) / 6. */
     assert_says("longest mean planning time: narrow_passage (8 s; next kitchen 3 s)");
 }
 
@@ -177,9 +180,60 @@ static void test_scene_lines(void **state)
 {
     (void)state;
     assert_int_equal(run_tool("--findings"), 0);
-    /* kitchen: mean times 1.5 (RRTC), 4 (RRT), 4 (ARA*). */
+    /* kitchen: mean times 1.5 (RRTC), 4 (RRT), 3.5 (ARA*). */
     assert_says("kitchen: success 100%; fastest ompl/RRTConnect (tau_t 1.5 s); "
-                "shortest paths arastar/ARAstar (l_p 8 rad)");
+                "shortest paths arastar/ARAstar (l_p 8 rad); least spread in "
+                "l_p arastar/ARAstar (sigma 0 rad).");
+    /* narrow: one path each for RRTConnect and ARA*: no spread named. */
+    assert_says("narrow_passage: success 40%; fastest arastar/ARAstar (tau_t "
+                "6 s); shortest paths ompl/RRTConnect (l_p 20 rad).\n");
+}
+
+/* Findings are sentences: with another format they would break it. */
+static void test_findings_with_text_only(void **state)
+{
+    (void)state;
+    static const char *const other[] = {"json", "csv", "markdown", "latex"};
+    for (size_t i = 0; i < sizeof other / sizeof *other; i++) {
+        char args[64], want[160];
+        snprintf(args, sizeof args, "--findings --format %s", other[i]);
+        assert_int_equal(run_tool(args), 2);
+        snprintf(want, sizeof want, "mpb report: --findings is plain text, "
+                 "not for --format %s (try 'mpb report --help')\n", other[i]);
+        assert_string_equal(out, want);
+    }
+    assert_int_equal(run_tool("--findings --format text"), 0);
+    assert_says("The paper's findings, checked here:");
+    assert_int_equal(run_tool("--help"), 0);
+    assert_says("[--findings] DB\n");
+}
+
+/* An experiment whose one run has not finished: no success rate yet. */
+static void test_nothing_finished(void **state)
+{
+    (void)state;
+    mpb_store *s;
+    int64_t exp, cfg, scene, query;
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    mpb_experiment_info e = {"waiting", "w.yaml", "h", "text", 1, 60.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRT", "ompl",
+                                                  "RRT", "", &cfg), MPB_OK);
+    mpb_scene_info si = {"empty", "planar", "r", "r", "planar", "empty",
+                         "empty"};
+    assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 0), MPB_OK);
+    mpb_store_close(s);
+    char args[64];
+    snprintf(args, sizeof args, "--findings -e %lld", (long long)exp);
+    assert_int_equal(run_tool(args), 0);
+    assert_says("  empty: no runs finished yet.\n");
+    assert_null(strstr(out, "nan"));
 }
 
 static void test_tables_alone_without_option(void **state)
@@ -204,6 +258,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_paper_findings),
         cmocka_unit_test(test_scene_lines),
         cmocka_unit_test(test_tables_alone_without_option),
+        cmocka_unit_test(test_nothing_finished),
+        cmocka_unit_test(test_findings_with_text_only),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "mpb.h"
@@ -43,15 +44,20 @@ static void usage(FILE *out)
         "                   ompl_benchmark_statistics.py reads them.\n"
         "\n"
         "Options:\n"
-        "  -e, --experiment ID  export experiment ID (repeat for more; default:\n"
-        "                       every experiment in DB)\n"
+        "  -e, --experiment ID  export experiment ID (repeat for more, each\n"
+        "                       counts once; default: every experiment in DB)\n"
         "  -a, --append         add to OUT.db, an existing Planner Arena\n"
-        "                       database (one of OMPL's, or an earlier export)\n"
+        "                       database (one of OMPL's, or an earlier export;\n"
+        "                       any other file is refused, exit 1). A query\n"
+        "                       exported there before (an experiment of the\n"
+        "                       same name, query, date, run count and host) is\n"
+        "                       skipped with its runs, and said so\n"
         "  -f, --force          replace OUT.db (or the logs) if it exists\n"
         "  -h, --help           print this help\n"
         "\n"
         "Without --append or --force an existing OUT.db or log is left alone\n"
-        "(exit 1).\n"
+        "(exit 1). OUT.db or DIR that is DB itself, by any name, is refused\n"
+        "(exit 2).\n"
         "DB is opened read-only. Exit status: 0 on success, 1 on an error, 2 on\n"
         "a bad command line.\n");
 }
@@ -133,6 +139,13 @@ int cmd_export(int argc, char **argv)
         return MPB_EXIT_USAGE;
     }
     const char *path = argv[optind], *out = argv[optind + 1];
+    struct stat in_sb, out_sb;
+    if (stat(path, &in_sb) == 0 && stat(out, &out_sb) == 0 &&
+        in_sb.st_dev == out_sb.st_dev && in_sb.st_ino == out_sb.st_ino) {
+        fprintf(stderr, "mpb " CMD ": %s is the database %s itself; write "
+                "to another file\n", out, path);
+        return MPB_EXIT_USAGE;
+    }
 
     if ((s = tool_open_readonly(CMD, path)) == NULL)
         return MPB_EXIT_ERROR;
@@ -169,12 +182,15 @@ int cmd_export(int argc, char **argv)
         fprintf(stderr, "mpb " CMD ": %s\n", mpb_store_errmsg(s));
     } else {
         printf("%s: %d Planner Arena experiment%s, %ld run%s, %d planner "
-               "configuration%s added, %ld progress sample%s\n", out,
+               "configuration%s added, %ld progress sample%s", out,
                counts.experiments, counts.experiments == 1 ? "" : "s",
                counts.runs, counts.runs == 1 ? "" : "s",
                counts.planner_configs,
                counts.planner_configs == 1 ? "" : "s", counts.progress,
                counts.progress == 1 ? "" : "s");
+        if (counts.skipped > 0)
+            printf("; %d there already, skipped", counts.skipped);
+        putchar('\n');
     }
     mpb_store_close(s);
     return rc == MPB_OK ? MPB_EXIT_OK : MPB_EXIT_ERROR;

@@ -360,8 +360,9 @@ static int draw(plot_scene *scenes, int num_scenes, const char *dir,
     written w = {0};
     int rc = MPB_EXIT_ERROR;
     /* gnuplot's own messages go to our stderr; a missing gnuplot is
-     * told apart by the shell's status 127. */
-    FILE *gp = popen("gnuplot", "w");
+     * told apart by status 127, without the shell's own "not found". */
+    FILE *gp = popen("command -v gnuplot >/dev/null 2>&1 || exit 127; "
+                     "exec gnuplot", "w");
     if (gp == NULL) {
         fprintf(stderr, "mpb " CMD ": cannot start gnuplot: %s\n",
                 strerror(errno));

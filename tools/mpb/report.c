@@ -74,7 +74,8 @@ static const struct {
 static void usage(FILE *out)
 {
     fprintf(out,
-        "usage: mpb report [--experiment ID] [--stage NAME] [--format FORMAT] DB\n"
+        "usage: mpb report [--experiment ID] [--stage NAME] [--format FORMAT]\n"
+        "                  [--findings] DB\n"
         "\n"
         "Print the results of an experiment in the database DB as the tables\n"
         "of Cohen, Sucan and Chitta, \"A Generic Infrastructure for\n"
@@ -89,7 +90,8 @@ static void usage(FILE *out)
         "  s_r                  successful runs / finished runs (%%)\n"
         "Means are over successful runs; sigma is the standard deviation of\n"
         "each query's successful runs, averaged over the scene's queries.\n"
-        "'-' marks a value there is nothing to compute from.\n"
+        "'-' marks a value there is nothing to compute from (a sigma from\n"
+        "fewer than two successful runs, too).\n"
         "\n"
         "Options:\n"
         "  -e, --experiment ID  report on experiment ID (default: the newest)\n"
@@ -103,7 +105,8 @@ static void usage(FILE *out)
         "                       fastest planner, the shortest and the steadiest\n"
         "                       paths, the hardest scene, and whether the\n"
         "                       paper's findings hold (ARA* paths, RRTConnect's\n"
-        "                       speed, the narrow passage)\n"
+        "                       speed, the narrow passage); with the text\n"
+        "                       format only (another --format is refused)\n"
         "  -h, --help           print this help\n"
         "\n"
         "The database is opened read-only; a running mpbenchd may go on\n"
@@ -346,13 +349,18 @@ long report_scene_columns(const report *r, int si, column *cols)
     return finished;
 }
 
+double report_sigma(const mpb_grouped *g)
+{
+    return g->n < 2 ? NAN : mpb_grouped_stddev(g);
+}
+
 double report_row_value(const table_row *tr, const column *c)
 {
     switch (tr->what) {
     case SHOW_MEAN:
         return mpb_grouped_mean(&c->m[tr->metric]);
     case SHOW_SIGMA:
-        return mpb_grouped_stddev(&c->m[tr->metric]);
+        return report_sigma(&c->m[tr->metric]);
     case SHOW_RATE:
         return c->finished > 0 ? 100.0 * (double)c->succeeded /
                                      (double)c->finished
@@ -403,7 +411,7 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
         for (int c = 0; c < nc; c++) {
             double v = report_row_value(tr, &cols[c]);
             format_value(text[i * nc + c], decimals, v);
-            any |= !isnan(v);
+            any |= !isnan(v) || cols[c].m[tr->metric].n > 0;  /* measured */
         }
         visible[i] = !tr->optional || any;
     }
@@ -548,6 +556,11 @@ int cmd_report(int argc, char **argv)
         default:    /* ':' a missing value, '?' an unknown option */
             return tool_option_error(CMD, opt, argv);
         }
+    }
+    if (findings && fmt != FORMAT_TEXT) {
+        fprintf(stderr, "mpb " CMD ": --findings is plain text, not for "
+                "--format %s (try 'mpb " CMD " --help')\n", formats[fmt].name);
+        return MPB_EXIT_USAGE;
     }
     if (argc - optind != 1) {
         fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",

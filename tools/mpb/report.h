@@ -78,6 +78,10 @@ typedef struct report {
     int         nomem;
 } report;
 
+/* The sigma the report shows of g: NaN ('-') from fewer than two values,
+ * where there is no spread to compute. */
+double report_sigma(const mpb_grouped *g);
+
 /* The value a row shows for a column; NaN when there is nothing. */
 double report_row_value(const table_row *tr, const column *c);
 

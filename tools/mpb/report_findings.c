@@ -33,7 +33,7 @@ static double mean_of(const column *c, int metric)
 
 static double sigma_of(const column *c, int metric)
 {
-    return mpb_grouped_stddev(&c->m[metric]);
+    return report_sigma(&c->m[metric]);
 }
 
 static int is_family(const config_ref *cf, const char *family)
@@ -101,6 +101,10 @@ static void print_scene_findings(const report *r, int s,
     int fast = argmin(r, cols, mean_of, M_TT, NULL, NULL);
     int shortest = argmin(r, cols, mean_of, M_LP, NULL, NULL);
     int steady = argmin(r, cols, sigma_of, M_LP, NULL, NULL);
+    if (isnan(sum->success)) {
+        fprintf(out, "  %s: no runs finished yet.\n", r->scenes[s].name);
+        return;
+    }
     fprintf(out, "  %s: success %.0f%%", r->scenes[s].name,
             100.0 * sum->success);
     if (fast >= 0)
@@ -129,7 +133,7 @@ static const char *verdict(int held, int checked)
 static void check_search_planner(const report *r, const scene_summary *sums,
                                  FILE *out)
 {
-    int spread_held = 0, short_held = 0, checked = 0;
+    int spread_held = 0, short_held = 0, checked = 0, spread_checked = 0;
     char detail[2048] = "";
     size_t used = 0;
     for (int s = 0; s < r->num_scenes; s++) {
@@ -138,22 +142,27 @@ static void check_search_planner(const report *r, const scene_summary *sums,
         if (ara < 0)
             continue;
         checked++;
-        double sd = sigma_of(&cols[ara], M_LP);
+        double sd = sigma_of(&cols[ara], M_LP);  /* NaN: one path */
+        spread_checked += !isnan(sd);
         spread_held += !isnan(sd) && sd <= ZERO_SPREAD;
+        char sd_text[32] = "-";
+        if (!isnan(sd))
+            snprintf(sd_text, sizeof sd_text, "%.3g rad", sd);
         int other = argmin(r, cols, mean_of, M_LP, not_family, SEARCH_FAMILY);
         int shortest = other < 0 || mean_of(&cols[ara], M_LP) <=
                                         mean_of(&cols[other], M_LP);
         short_held += shortest;
         if (used < sizeof detail)
             used += (size_t)snprintf(detail + used, sizeof detail - used,
-                "      %s: sigma(l_p) %.3g rad; l_p %.3g rad%s%s (%.3g rad)\n",
-                r->scenes[s].name, sd, mean_of(&cols[ara], M_LP),
+                "      %s: sigma(l_p) %s; l_p %.3g rad%s%s (%.3g rad)\n",
+                r->scenes[s].name, sd_text, mean_of(&cols[ara], M_LP),
                 other < 0 ? "" : shortest ? ", next " : ", beaten by ",
                 other < 0 ? "" : r->configs[other].name,
                 other < 0 ? NAN : mean_of(&cols[other], M_LP));
     }
     fprintf(out, "  [%s] ARA* has zero spread in path length (%d of %d scenes)\n",
-            verdict(spread_held, checked), spread_held, checked);
+            verdict(spread_held, spread_checked), spread_held,
+            spread_checked);
     fprintf(out, "  [%s] ARA* has the shortest paths (%d of %d scenes)\n",
             verdict(short_held, checked), short_held, checked);
     fputs(detail, out);

@@ -180,7 +180,7 @@ int report_write_csv(const report *r, FILE *out)
                               report_metrics[k].unit, out);
                 csv_number(mpb_grouped_mean(&col->m[k]), out);
                 fputc(',', out);
-                csv_number(mpb_grouped_stddev(&col->m[k]), out);
+                csv_number(report_sigma(&col->m[k]), out);
                 fprintf(out, ",%ld\n", col->m[k].n);
             }
             /* The success rate: a fraction of the n finished runs. */
@@ -383,7 +383,7 @@ int report_write_json(const report *r, FILE *out)
                         k ? "," : "", report_metrics[k].key);
                 json_number(mpb_grouped_mean(&col->m[k]), out);
                 fputs(", \"sigma\": ", out);
-                json_number(mpb_grouped_stddev(&col->m[k]), out);
+                json_number(report_sigma(&col->m[k]), out);
                 fprintf(out, ", \"n\": %ld}", col->m[k].n);
             }
             fputs("\n          }\n        }", out);

@@ -47,7 +47,8 @@ static void usage(FILE *out)
         "with lcm.jar and jchart2d.jar from /usr/share/java (Debian packages\n"
         "liblcm-java and libjchart2d-java) and mpb_types.jar from the build\n"
         "tree or the install prefix (share/mpbench). Java is $JAVA_HOME/bin/java\n"
-        "when JAVA_HOME is set, else java on the PATH. It needs a display.\n"
+        "when JAVA_HOME is set, else java on the PATH. It needs a display:\n"
+        "without DISPLAY (or WAYLAND_DISPLAY) it exits 1 at once.\n"
         "\n"
         "Options:\n"
         "  -u, --lcm-url URL     LCM URL (default: " MPB_DEFAULT_LCM_URL ");\n"
@@ -239,9 +240,16 @@ int cmd_spy(int argc, char **argv)
         free(urlarg);
         return MPB_EXIT_OK;
     }
-    if (getenv("DISPLAY") == NULL && getenv("WAYLAND_DISPLAY") == NULL)
-        fprintf(stderr, "mpb " CMD ": warning: DISPLAY is not set; lcm-spy "
-                "needs a display\n");
+    const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
+    if ((x == NULL || *x == '\0') && (wl == NULL || *wl == '\0')) {
+        /* Java would only throw a HeadlessException at length. */
+        fprintf(stderr, "mpb " CMD ": no display (DISPLAY is not set): "
+                "lcm-spy is a window; run it on a desktop, over ssh -X, or "
+                "under xvfb-run\n");
+        free(classpath);
+        free(urlarg);
+        return MPB_EXIT_ERROR;
+    }
     fflush(NULL);
     execv(java, args);
     fprintf(stderr, "mpb " CMD ": cannot run %s: %s\n", java, strerror(errno));

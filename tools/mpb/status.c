@@ -69,9 +69,9 @@ static void usage(FILE *out)
         "                         daemons share the URL)\n"
         "  -1, --once             print the current status, one line per\n"
         "                         planner, and exit\n"
-        "  -t, --timeout S        give up after S seconds without a status\n"
-        "                         message (default: wait for ever; with --once,\n"
-        "                         5)\n"
+        "  -t, --timeout S        give up after S seconds (decimal, e.g. 2.5)\n"
+        "                         without a status message (default: wait for\n"
+        "                         ever; with --once, 5)\n"
         "  -h, --help             print this help\n"
         "\n"
         "Exit status: 0 when the experiment is done (or, with --once, a status\n"
@@ -360,7 +360,9 @@ int cmd_status(int argc, char **argv)
             char *end;
             errno = 0;
             timeout = strtod(optarg, &end);
-            if (errno != 0 || end == optarg || *end != '\0' ||
+            /* Decimal only: strtod would take 0x10, 1e3, inf too. */
+            if (optarg[strspn(optarg, "0123456789.")] != '\0' ||
+                errno != 0 || end == optarg || *end != '\0' ||
                 !(timeout > 0) || isinf(timeout)) {
                 fprintf(stderr, "mpb " CMD ": --timeout wants a number of "
                         "seconds > 0, not '%s'\n", optarg);
@@ -383,8 +385,13 @@ int cmd_status(int argc, char **argv)
 
     lcm_t *lcm = lcm_create(url);
     if (lcm == NULL) {
-        fprintf(stderr, "mpb " CMD ": cannot start LCM on %s (no multicast "
-                "route? see README)\n", url);
+        /* Only a UDP multicast URL fails for want of a route. */
+        if (strncmp(url, "udpm://", 7) == 0)
+            fprintf(stderr, "mpb " CMD ": cannot start LCM on %s (no "
+                    "multicast route? see README)\n", url);
+        else
+            fprintf(stderr, "mpb " CMD ": cannot start LCM on %s (see "
+                    "LCM's URLs: udpm://, file://, memq://)\n", url);
         return MPB_EXIT_ERROR;
     }
     mpb_daemon_status_t_subscription_t *sub =

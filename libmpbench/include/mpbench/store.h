@@ -341,6 +341,7 @@ typedef struct mpb_export_counts {
     int  planner_configs;   /* plannerConfigs rows added */
     long runs;
     long progress;          /* progress rows (samples) */
+    int  skipped;           /* Planner Arena experiments there already */
 } mpb_export_counts;
 
 /* Flags of the exports. */
@@ -353,7 +354,12 @@ typedef struct mpb_export_counts {
  * in one transaction: the tables and the bestPlannerConfigs views of OMPL's
  * ompl_benchmark_statistics.py. path must not exist (MPB_EEXISTS) unless
  * flags has MPB_EXPORT_APPEND, which adds to a database that script (or
- * this function) wrote. On failure nothing changes: a new file is removed.
+ * this function) wrote (MPB_EINVAL, nothing written, for a file without its
+ * tables experiments, plannerConfigs and runs, or for s's own file). A
+ * query there already (an experiment of the same name, query, date,
+ * runcount and hostname: exported before) is skipped with its runs
+ * (counts->skipped); an id given twice counts once. On failure nothing
+ * changes: a new file is removed.
  * counts (may be NULL) says what was written. MPB_ENOTFOUND if an id is no
  * experiment or s holds none.
  */
@@ -365,8 +371,8 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
  * Write the same as OMPL benchmark logs, one per query (OMPL's one
  * experiment per file), into the directory dir (created if missing), named
  * EXPERIMENT.ID.SCENE.QUERY.log. ompl_benchmark_statistics.py turns them
- * into the database mpb_store_export_planner_arena() writes (no seed,
- * memory limit 0). A file that exists is an error (MPB_EEXISTS; the files
+ * into the database mpb_store_export_planner_arena() writes (but memory
+ * limit 0); both carry the experiment file's seed (0 when it sets none). A file that exists is an error (MPB_EEXISTS; the files
  * written before it stay) unless flags has MPB_EXPORT_REPLACE. counts
  * (may be NULL): experiments = files written.
  */
