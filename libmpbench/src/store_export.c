@@ -126,7 +126,7 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
             "INSERT INTO experiments (name, totaltime, timelimit, memorylimit,"
             " runcount, version, hostname, cpuinfo, date, seed, setup, query,"
             " mpbench_experiment) VALUES (?1, ?2, ?3, NULL, ?4, ?5, ?6, NULL,"
-            " ?7, ?11, ?8, ?9, ?10)", -1, &add_exp, NULL) != SQLITE_OK) {
+            " ?7, NULL, ?8, ?9, ?10)", -1, &add_exp, NULL) != SQLITE_OK) {
         rc = mpb__pa_fail(o, "prepare experiments");
         goto done;
     }
@@ -136,7 +136,6 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
     }
     char date[32];
     mpb__pa_format_date(e.created, date, sizeof date);
-    long long seed = mpb__pa_seed_of(e.config_text);
     if (sqlite3_prepare_v2(o->db,
             "SELECT 1 FROM experiments WHERE name = ?1 AND query IS ?2 AND"
             " date IS ?3 AND runcount IS ?4 AND hostname IS ?5", -1, &present,
@@ -178,7 +177,6 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
         sqlite3_bind_text(add_exp, 8, q->setup, -1, SQLITE_STATIC);
         sqlite3_bind_text(add_exp, 9, q->query, -1, SQLITE_STATIC);
         sqlite3_bind_int64(add_exp, 10, e.id);
-        sqlite3_bind_int64(add_exp, 11, seed);
         if (sqlite3_step(add_exp) != SQLITE_DONE) {
             rc = mpb__pa_fail(o, "add an experiment");
             goto done;

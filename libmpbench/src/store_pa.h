@@ -116,10 +116,6 @@ typedef struct exp_info {
 } exp_info;
 
 int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e);
-
-/* The experiment file's seed (experiment: seed:, the daemon derives each
- * run's from it), 0 where it sets none, as the daemon takes it. */
-long long mpb__pa_seed_of(const char *config_text);
 void mpb__pa_exp_info_free(exp_info *e);
 
 /* Ids of every experiment, or the ids given (checked), each once. Caller

@@ -13,8 +13,6 @@
 #include <string.h>
 #include <time.h>
 
-#include <yaml.h>
-
 #include "grow.h"
 #include "store_pa.h"
 
@@ -693,47 +691,6 @@ int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e)
     }
     sqlite3_finalize(st);
     return rc;
-}
-
-/* The scalar under key in the mapping node map of doc, or NULL. */
-static yaml_node_t *map_get(yaml_document_t *doc, yaml_node_t *map,
-                            const char *key)
-{
-    if (map == NULL || map->type != YAML_MAPPING_NODE)
-        return NULL;
-    for (yaml_node_pair_t *p = map->data.mapping.pairs.start;
-         p < map->data.mapping.pairs.top; p++) {
-        yaml_node_t *k = yaml_document_get_node(doc, p->key);
-        if (k && k->type == YAML_SCALAR_NODE &&
-            strcmp((const char *)k->data.scalar.value, key) == 0)
-            return yaml_document_get_node(doc, p->value);
-    }
-    return NULL;
-}
-
-long long mpb__pa_seed_of(const char *config_text)
-{
-    yaml_parser_t parser;
-    yaml_document_t doc;
-    long long seed = 0;
-    if (!yaml_parser_initialize(&parser))
-        return 0;
-    yaml_parser_set_input_string(&parser, (const unsigned char *)config_text,
-                                 strlen(config_text));
-    if (yaml_parser_load(&parser, &doc)) {
-        yaml_node_t *n = map_get(&doc, map_get(&doc,
-                                 yaml_document_get_root_node(&doc),
-                                 "experiment"), "seed");
-        if (n && n->type == YAML_SCALAR_NODE) {
-            char *end;
-            double v = strtod((const char *)n->data.scalar.value, &end);
-            if (*end == '\0' && v == floor(v) && fabs(v) < 1e18)
-                seed = (long long)v;
-        }
-        yaml_document_delete(&doc);
-    }
-    yaml_parser_delete(&parser);
-    return seed;
 }
 
 void mpb__pa_one_word(char *s)

@@ -151,7 +151,7 @@ static int setup(void **state)
     assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
 
     mpb_experiment_info e = {"paper", "paper.yaml", "h1",
-                             "experiment: {name: paper, seed: 42}\n", 3, 60.0};
+                             "experiment: {name: paper}\n", 3, 60.0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRTConnect",
                                                   "ompl", "RRTConnect",
@@ -309,19 +309,19 @@ static void experiments_keep_planner_arenas_twelve_columns(void **state)
      * a parameter; totaltime the runs' wall time; version never empty. */
     assert_string_equal(rows(db,
         "SELECT id, name, totaltime, timelimit, memorylimit IS NULL, runcount,"
-        " version, length(hostname) > 0, cpuinfo IS NULL, seed, query,"
+        " version, length(hostname) > 0, cpuinfo IS NULL, seed IS NULL, query,"
         " mpbench_experiment FROM experiments ORDER BY id"),
         "1|paper/KITCHEN|3.5|60.0|1|3|mpbench " MPB_VERSION_STRING
-        "|1|1|42|k1|1\n"
+        "|1|1|1|k1|1\n"
         "2|paper/KITCHEN|4.25|60.0|1|3|mpbench " MPB_VERSION_STRING
-        "|1|1|42|k2|1\n"
+        "|1|1|1|k2|1\n"
         "3|paper/TABLE_TOP|8.125|60.0|1|3|mpbench " MPB_VERSION_STRING
-        "|1|1|42|t1|1\n");
+        "|1|1|1|t1|1\n");
     /* A date SQLite reads; the setup holds the experiment file and query. */
     assert_true(number(db, "SELECT count(*) FROM experiments"
                            " WHERE julianday(date) IS NOT NULL") == 3);
     assert_string_equal(rows(db, "SELECT setup FROM experiments WHERE id = 2"),
-        "experiment: {name: paper, seed: 42}\n\n"
+        "experiment: {name: paper}\n\n"
         "mpbench experiment 1, query k2\n"
         "joints: j\nstart: 0\ngoal (joints): 1\ntolerance: 0.01\n\n");
     sqlite3_close(db);
@@ -523,9 +523,6 @@ static void append_adds_and_reuses_configurations(void **state)
                                  " experiments e ON e.id = r.experimentid"
                                  " WHERE e.mpbench_experiment = 2"),
                         "second/KITCHEN|k9|1|2.0\n");
-    /* Its file sets no seed: the daemon's default, 0. */
-    assert_string_equal(rows(db, "SELECT seed FROM experiments"
-                                 " WHERE mpbench_experiment = 2"), "0\n");
     assert_string_equal(rows(db, "SELECT count(*) FROM runs"), "8\n");
     sqlite3_close(db);
 
@@ -647,11 +644,11 @@ static void ompl_logs_one_per_query(void **state)
         "query VARCHAR(512) = k1\n"
         "mpbench_experiment INTEGER = 1\n"
         "Running on "));
-    assert_non_null(strstr(log, "\n<<<|\nexperiment: {name: paper, seed: 42}\n\n"
+    assert_non_null(strstr(log, "\n<<<|\nexperiment: {name: paper}\n\n"
                                 "mpbench experiment 1, query k1\n"));
     assert_non_null(strstr(log,
         "|>>>\n"
-        "42 is the random seed\n"
+        "0 is the random seed\n"
         "60 seconds per run\n"
         "0 MB per run\n"
         "3 runs per planner\n"

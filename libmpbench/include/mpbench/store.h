@@ -371,8 +371,8 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
  * Write the same as OMPL benchmark logs, one per query (OMPL's one
  * experiment per file), into the directory dir (created if missing), named
  * EXPERIMENT.ID.SCENE.QUERY.log. ompl_benchmark_statistics.py turns them
- * into the database mpb_store_export_planner_arena() writes (but memory
- * limit 0); both carry the experiment file's seed (0 when it sets none). A file that exists is an error (MPB_EEXISTS; the files
+ * into the database mpb_store_export_planner_arena() writes (no seed,
+ * memory limit 0). A file that exists is an error (MPB_EEXISTS; the files
  * written before it stay) unless flags has MPB_EXPORT_REPLACE. counts
  * (may be NULL): experiments = files written.
  */
