@@ -249,6 +249,22 @@ bool to_geom(const urdf::Collision &c, const std::string &link,
 }
 
 /*
+ * A link holds its children by shared_ptr, so joints that form a loop keep
+ * urdfdom's model alive after its last owner lets go. Cutting every link's
+ * children when the model is done frees it whatever its shape.
+ */
+struct ModelCycleBreaker {
+    urdf::ModelInterfaceSharedPtr model;
+    ~ModelCycleBreaker()
+    {
+        for (auto &kv : model->links_) {
+            kv.second->child_links.clear();
+            kv.second->child_joints.clear();
+        }
+    }
+};
+
+/*
  * urdfdom links a child under every joint that names it and does not look
  * for loops, so a link with two parent joints would be copied twice and a
  * loop would make the walk below endless. Refuse both here.
@@ -456,6 +472,7 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
             mpb__set_err(err, errlen, "%s", msg.c_str());
             return MPB_EPARSE;
         }
+        ModelCycleBreaker breaker{model};
         rc = fill(*model, m, err, errlen);
     } catch (const std::bad_alloc &) {
         mpb__set_err(err, errlen, "out of memory");
