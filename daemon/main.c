@@ -127,8 +127,6 @@ static int64_t count_runs(const mpbd_experiment *e)
     return n;
 }
 
-/* Everything the experiment is made of, written idempotently: a resumed
- * experiment takes the same path and finds its rows already there. */
 /* An experiment to resume must go on being verified at the step its
  * first runs were: a report cannot tell apart runs checked at two
  * resolutions. 0 if it may be resumed (or there is none to resume). */
@@ -151,6 +149,8 @@ static int resolution_differs(mpbd *d, const char *db)
     return 1;
 }
 
+/* Everything the experiment is made of, written idempotently: a resumed
+ * experiment takes the same path and finds its rows already there. */
 static int setup_experiment(mpbd *d, int fresh)
 {
     mpbd_experiment *e = d->exp;

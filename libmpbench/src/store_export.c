@@ -145,8 +145,8 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
     }
     for (int i = 0; i < queries.n; i++) {
         const pa_query *q = &queries.v[i];
-        /* Exported before (same name, query, start and run count): kept
-         * as it is, its runs not added again. */
+        /* Exported before (same name, query, start, run count and
+         * host): kept as it is, its runs not added again. */
         sqlite3_reset(present);
         sqlite3_bind_text(present, 1, q->problem, -1, SQLITE_STATIC);
         sqlite3_bind_text(present, 2, q->query, -1, SQLITE_STATIC);
@@ -280,7 +280,8 @@ static int is_planner_arena(pa_out *o)
     return rc;
 }
 
-int mpb__pa_is_store_file(mpb_store *s, const struct stat *out)
+/* Whether out (a stat of the output) is the file of the store s itself. */
+static int is_store_file(mpb_store *s, const struct stat *out)
 {
     const char *mine = sqlite3_db_filename(s->db, "main");
     struct stat sb;
@@ -302,7 +303,7 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if (path == NULL || num_ids < 0 || (num_ids > 0 && ids == NULL))
         return mpb__store_fail(s, MPB_EINVAL, "bad arguments");
     int exists = stat(path, &sb) == 0;
-    if (exists && mpb__pa_is_store_file(s, &sb))
+    if (exists && is_store_file(s, &sb))
         return mpb__store_fail(s, MPB_EINVAL, "%s is the database being "
                                "exported", path);
     if (exists && !(flags & MPB_EXPORT_APPEND))

@@ -52,7 +52,6 @@ typedef struct config_count {
     long    runs;
 } config_count;
 
-/* One log: one query of experiment e. */
 /*
  * The setup block, "<<<|" to "|>>>". Readers end it at the first line that
  * starts with "|>>>" (OMPL's script) or is one (mpb import), and the setup
@@ -74,6 +73,7 @@ static void write_setup(FILE *out, const char *text)
     fputs("|>>>\n", out);
 }
 
+/* One log: one query of experiment e. */
 static int write_log(mpb_store *s, FILE *out, const exp_info *e,
                      const pa_query *q, const prop_list *props,
                      const prop_list *progress)

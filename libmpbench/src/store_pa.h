@@ -177,10 +177,6 @@ int mpb__pa_fail(pa_out *o, const char *what);
 /* Run sql (several statements may follow each other). */
 int mpb__pa_exec(pa_out *o, const char *sql, const char *what);
 
-/* Whether out (a stat of the output) is the file of the store s itself. */
-struct stat;
-int mpb__pa_is_store_file(mpb_store *s, const struct stat *out);
-
 /* Open a transaction, create the tables that are missing and add the
  * status enum, as OMPL's script does before it reads a log. */
 int mpb__pa_begin(pa_out *o);
