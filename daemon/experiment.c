@@ -2,12 +2,15 @@
  * experiment.c - reading an experiment file (YAML, through libyaml's
  * document API so that every node keeps its line and column for errors).
  */
+#include <ctype.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <yaml.h>
 
@@ -21,6 +24,7 @@ typedef struct loader {
     char       *err;
     size_t      errlen;
     int         failed;
+    yaml_node_t *robot;      /* the robot: mapping, for errors about it */
 } loader;
 
 static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
@@ -187,15 +191,43 @@ static char *need_string(loader *L, yaml_node_t *m, const char *key)
     return dup_str(L, n, scalar(n));
 }
 
+/*
+ * Whether s is a number as people write them in decimal: a sign, digits
+ * with at most one point, an exponent. strtod() alone would also take hex
+ * ("0x10"), "inf", "nan" and leading blanks.
+ */
+static int is_decimal(const char *s, int whole)
+{
+    int digits = 0;
+    if (*s == '-' || *s == '+')
+        s++;
+    for (; isdigit((unsigned char)*s); s++)
+        digits++;
+    if (!whole && *s == '.')
+        for (s++; isdigit((unsigned char)*s); s++)
+            digits++;
+    if (digits == 0)
+        return 0;
+    if (!whole && (*s == 'e' || *s == 'E')) {
+        s++;
+        if (*s == '-' || *s == '+')
+            s++;
+        if (!isdigit((unsigned char)*s))
+            return 0;
+        while (isdigit((unsigned char)*s))
+            s++;
+    }
+    return *s == '\0';
+}
+
 static int parse_double(loader *L, yaml_node_t *n, const char *what, double *out)
 {
     const char *s = scalar(n);
-    char *end;
     if (s == NULL)
         return fail_at(L, n, "%s must be a number", what);
     errno = 0;
-    *out = strtod(s, &end);
-    if (end == s || *end != '\0' || errno != 0 || !isfinite(*out))
+    *out = is_decimal(s, 0) ? strtod(s, NULL) : NAN;
+    if (errno != 0 || !isfinite(*out))
         return fail_at(L, n, "%s must be a number, not '%s'", what, s);
     return 0;
 }
@@ -205,12 +237,11 @@ static int parse_int_in(loader *L, yaml_node_t *n, const char *what,
                         long lo, long hi, int *out)
 {
     const char *s = scalar(n);
-    char *end;
     long v;
     if (s != NULL) {
         errno = 0;
-        v = strtol(s, &end, 10);
-        if (end != s && *end == '\0' && errno == 0 && v >= lo && v <= hi) {
+        v = strtol(s, NULL, 10);
+        if (is_decimal(s, 1) && errno == 0 && v >= lo && v <= hi) {
             *out = (int)v;
             return 0;
         }
@@ -220,6 +251,24 @@ static int parse_int_in(loader *L, yaml_node_t *n, const char *what,
                        s ? ", not '" : "", s ? s : "", s ? "'" : "");
     return fail_at(L, n, "%s must be a whole number from %ld to %ld%s%s%s",
                    what, lo, hi, s ? ", not '" : "", s ? s : "", s ? "'" : "");
+}
+
+/* Read as an integer, not through a double: 2^53 + 1 stays itself. */
+static int parse_seed(loader *L, yaml_node_t *n, uint64_t *out)
+{
+    const char *s = scalar(n);
+    long long v;
+    if (s != NULL && is_decimal(s, 1)) {
+        errno = 0;
+        v = strtoll(s, NULL, 10);
+        if (errno == 0) {
+            *out = (uint64_t)v;
+            return 0;
+        }
+    }
+    return fail_at(L, n, "seed must be a whole number from %lld to %lld%s%s%s",
+                   LLONG_MIN, LLONG_MAX, s ? ", not '" : "", s ? s : "",
+                   s ? "'" : "");
 }
 
 static int parse_positive_int(loader *L, yaml_node_t *n, const char *what,
@@ -264,8 +313,15 @@ static char *slurp(const char *path, size_t *len)
     FILE *f = fopen(path, "rb");
     char *buf = NULL;
     size_t cap = 0, n = 0;
+    struct stat st;
     if (f == NULL)
         return NULL;
+    /* fopen() opens a directory; reading it would say "Input/output error". */
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(f);
+        errno = EISDIR;
+        return NULL;
+    }
     for (;;) {
         if (n + 4096 + 1 > cap) {
             char *nb = realloc(buf, cap = cap * 2 + 8192);
@@ -365,15 +421,8 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
         return -1;
     if (e->time_limit <= 0)
         return fail_at(L, n, "time_limit must be positive");
-    if ((n = get(L, m, "seed")) != NULL) {
-        double s;
-        if (parse_double(L, n, "seed", &s) != 0)
-            return -1;
-        /* Beyond +-2^63 the conversion below is undefined (fuzzing found it). */
-        if (!(s >= -9.2e18 && s <= 9.2e18) || s != floor(s))
-            return fail_at(L, n, "seed must be a whole number of at most 18 digits");
-        e->seed = (uint64_t)(int64_t)s;
-    }
+    if ((n = get(L, m, "seed")) != NULL && parse_seed(L, n, &e->seed) != 0)
+        return -1;
     e->runs_per_host = 1;
     if ((n = get(L, m, "runs_per_host")) &&
         parse_positive_int(L, n, "runs_per_host", &e->runs_per_host))
@@ -394,9 +443,20 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
                       yaml_node_t *where)
 {
     char why[256];
-    if (mpb_world_open_group(sc->robot_format, sc->robot, sc->scene_format,
-                             sc->scene, (const char *const *)e->group,
-                             e->num_group, &sc->world, why, sizeof why) != MPB_OK) {
+    int rc = mpb_world_open_group(sc->robot_format, sc->robot,
+                                  sc->scene_format, sc->scene,
+                                  (const char *const *)e->group, e->num_group,
+                                  &sc->world, why, sizeof why);
+    if (rc == MPB_EUNSUPPORTED) {
+        /* A format: point at the robot's, or at this scene's if the
+         * robot's is known but the scene's does not go with it. */
+        yaml_node_t *at = mpb_world_scene_format(sc->robot_format) == NULL
+                              ? get(L, L->robot, "format")
+                              : get(L, where, "format");
+        const char *what = strncmp(why, "world: ", 7) == 0 ? why + 7 : why;
+        return fail_at(L, at ? at : where, "%s", what);
+    }
+    if (rc != MPB_OK) {
         /* Name the file the fault is in, when it came from one. */
         const char *file = strncmp(why, "scene", 5) == 0 ? sc->scene_file
                                                          : e->robot_file;
@@ -535,13 +595,15 @@ static int load_goal(loader *L, mpbd_experiment *e, int scene, mpbd_query *q,
 }
 
 static int load_queries(loader *L, mpbd_experiment *e, int scene,
-                        yaml_node_t *list)
+                        yaml_node_t *scene_map)
 {
     static const char *const keys[] = {"name", "start", "goal", "tolerance",
                                        NULL};
+    yaml_node_t *list = get(L, scene_map, "queries");
     if (list == NULL || list->type != YAML_SEQUENCE_NODE ||
         list->data.sequence.items.top == list->data.sequence.items.start)
-        return fail_at(L, list, "scene '%s' needs a non-empty list 'queries'",
+        return fail_at(L, list ? list : scene_map,
+                       "scene '%s' needs a non-empty list 'queries'",
                        e->scenes[scene].name);
     for (yaml_node_item_t *it = list->data.sequence.items.start;
          it < list->data.sequence.items.top; it++) {
@@ -606,9 +668,9 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
 
     if (list == NULL)
         return -1;
-    if (need(L, root, "robot", YAML_MAPPING_NODE,
-             "a mapping of format and file or text") == NULL ||
-        load_model(L, get(L, root, "robot"), "robot", &robot_format, &robot,
+    if ((L->robot = need(L, root, "robot", YAML_MAPPING_NODE,
+                         "a mapping of format and file or text")) == NULL ||
+        load_model(L, L->robot, "robot", &robot_format, &robot,
                    &e->robot_file) != 0 ||
         load_group(L, e, get(L, get(L, root, "robot"), "joints")) != 0)
         goto done;
@@ -658,7 +720,7 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
         mpb_hash_hex(sc->robot, strlen(sc->robot), sc->robot_hash);
         mpb_hash_hex(sc->scene, strlen(sc->scene), sc->scene_hash);
         if (open_world(L, e, sc, m) != 0 ||
-            load_queries(L, e, e->num_scenes - 1, get(L, m, "queries")) != 0)
+            load_queries(L, e, e->num_scenes - 1, m) != 0)
             goto done;
     }
     rc = 0;

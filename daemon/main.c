@@ -309,10 +309,11 @@ int main(int argc, char **argv)
     d.runs_total = (int)count_runs(d.exp);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
-               "%d runs\n", o.experiment, d.exp->num_scenes,
+               "%d run%s\n", o.experiment, d.exp->num_scenes,
                d.exp->num_scenes == 1 ? "" : "s", d.exp->num_queries,
                d.exp->num_queries == 1 ? "y" : "ies", d.exp->num_configs,
-               d.exp->num_configs == 1 ? "" : "s", d.runs_total);
+               d.exp->num_configs == 1 ? "" : "s", d.runs_total,
+               d.runs_total == 1 ? "" : "s");
         mpbd_experiment_free(d.exp);
         return 0;
     }

@@ -55,6 +55,21 @@ int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
     return MPB_OK;
 }
 
+static const mpb__world_provider *find_provider(const char *robot_format)
+{
+    for (int i = 0; i < NUM_PROVIDERS; i++)
+        if (strcmp(providers[i]->robot_format, robot_format) == 0)
+            return providers[i];
+    return NULL;
+}
+
+const char *mpb_world_scene_format(const char *robot_format)
+{
+    const mpb__world_provider *p = robot_format ? find_provider(robot_format)
+                                                : NULL;
+    return p ? p->scene_format : NULL;
+}
+
 int mpb_world_open(const char *robot_format, const char *robot_text,
                    const char *scene_format, const char *scene_text,
                    mpb_world **out, char *err, size_t errlen)
@@ -77,13 +92,14 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
                      "scene format are required");
         return MPB_EINVAL;
     }
-    const mpb__world_provider *p = NULL;
-    for (int i = 0; i < NUM_PROVIDERS; i++)
-        if (strcmp(providers[i]->robot_format, robot_format) == 0)
-            p = providers[i];
+    const mpb__world_provider *p = find_provider(robot_format);
     if (!p) {
+        char known[128] = "";
+        for (int i = 0; i < NUM_PROVIDERS; i++)
+            snprintf(known + strlen(known), sizeof known - strlen(known),
+                     "%s'%s'", i ? ", " : "", providers[i]->robot_format);
         mpb__set_err(err, errlen, "world: robot format '%.40s' is not "
-                     "supported", robot_format);
+                     "supported (known: %s)", robot_format, known);
         return MPB_EUNSUPPORTED;
     }
     if (strcmp(p->scene_format, scene_format) != 0) {

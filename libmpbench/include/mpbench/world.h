@@ -21,7 +21,10 @@
  *                 box <cx> <cy> <half_x> <half_y>      (axis-aligned, >= 0)
  *             Distances are exact (capsule to circle, capsule to box). The
  *             planar arm has NO self-collision: links may cross each other.
- *   "urdf" + "moveit-scene" are to come (FCL, urdfdom, assimp).
+ *   "urdf"    A robot from URDF (robot.h), among the objects of a MoveIt
+ *             .scene file, scene format "moveit-scene" (scene.h); meshes
+ *             through assimp, collision and distance through FCL
+ *             (collision.h). The planning group is named by its joints.
  *
  * A world is not thread-safe; use one per thread.
  */
@@ -61,6 +64,13 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
                          mpb_world **out, char *err, size_t errlen);
 
 void mpb_world_close(mpb_world *w);
+
+/*
+ * The scene format that goes with robot_format ("planar" for "planar",
+ * "moveit-scene" for "urdf"), or NULL when no provider reads robot_format:
+ * tells which of the two formats an MPB_EUNSUPPORTED is about.
+ */
+const char *mpb_world_scene_format(const char *robot_format);
 
 /* Accessors; a joint out of range gives NULL / NaN limits / 0. */
 int         mpb_world_num_joints(const mpb_world *w);

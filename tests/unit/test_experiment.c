@@ -1,0 +1,197 @@
+/*
+ * test_experiment.c - the daemon's experiment loader on small files written
+ * here: numbers read as they are written (a seed beyond 2^53 exactly, no
+ * hex, no "inf"), and errors that point at the line at fault. The files of
+ * the paper's suite are read in test_paper_scenes.c; the daemon's refusals,
+ * database untouched, in tests/integration/test_bad_experiment.sh.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "experiment.h"
+
+/* One joint, one empty scene, one query: the smallest valid experiment,
+ * with the experiment's settings and the scene's source to fill in. */
+#define ROBOT "robot: {format: planar, text: \"link_radius 0.01\\njoint a -1 1 0.5\\n\"}\n"
+#define PLANNERS "planners: [{planner: null, algorithms: [a]}]\n"
+#define QUERIES "queries: [{name: q, start: [0], goal: [0.5]}]"
+
+static char dir[64];
+static char err[512];
+
+static int make_dir(void **state)
+{
+    (void)state;
+    snprintf(dir, sizeof dir, "/tmp/mpb-test-experiment-XXXXXX");
+    return mkdtemp(dir) == NULL ? -1 : 0;
+}
+
+static int remove_dir(void **state)
+{
+    char cmd[128];
+    (void)state;
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+/* Write text as dir/e.yaml and load it; NULL with err set if refused. */
+static mpbd_experiment *load_text(const char *text)
+{
+    char path[128];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/e.yaml", dir);
+    assert_non_null(f = fopen(path, "w"));
+    assert_int_equal(fputs(text, f) >= 0, 1);
+    assert_int_equal(fclose(f), 0);
+    err[0] = '\0';
+    return mpbd_experiment_load(path, err, sizeof err);
+}
+
+/* An experiment whose settings mapping is {name: x, <settings>}. */
+static mpbd_experiment *load_settings(const char *settings)
+{
+    char text[1024];
+    snprintf(text, sizeof text,
+             "experiment: {name: x, %s}\n" ROBOT
+             "scenes: [{name: s, format: planar, text: \"\", " QUERIES "}]\n"
+             PLANNERS, settings);
+    return load_text(text);
+}
+
+/* err is "<dir>/e.yaml:<where>: <what>" */
+static void assert_error(const char *where, const char *what)
+{
+    char want[640];
+    snprintf(want, sizeof want, "%s/e.yaml:%s: %s", dir, where, what);
+    assert_string_equal(err, want);
+}
+
+static void seed_keeps_every_digit(void **state)
+{
+    mpbd_experiment *e;
+    (void)state;
+    /* 2^53 + 1: through a double it became 2^53. */
+    assert_non_null(e = load_settings("time_limit: 1, seed: 9007199254740993"));
+    assert_true(e->seed == UINT64_C(9007199254740993));
+    mpbd_experiment_free(e);
+    assert_non_null(e = load_settings("time_limit: 1, seed: 9223372036854775807"));
+    assert_true(e->seed == UINT64_C(9223372036854775807));
+    mpbd_experiment_free(e);
+    assert_non_null(e = load_settings("time_limit: 1, seed: -1"));
+    assert_true(e->seed == UINT64_MAX);
+    mpbd_experiment_free(e);
+}
+
+static void seed_must_be_a_decimal_integer(void **state)
+{
+    static const char *const bad[] = {"0x10", "1.5", "1e3", "9223372036854775808",
+                                      "seven", "' 7'", NULL};
+    char settings[128], what[256];
+    (void)state;
+    for (int i = 0; bad[i]; i++) {
+        snprintf(settings, sizeof settings, "time_limit: 1, seed: %s", bad[i]);
+        assert_null(load_settings(settings));
+        snprintf(what, sizeof what, "seed must be a whole number from "
+                 "-9223372036854775808 to 9223372036854775807, not '%s'",
+                 bad[i][0] == '\'' ? " 7" : bad[i]);
+        assert_error("1:44", what);
+    }
+}
+
+static void numbers_are_decimal(void **state)
+{
+    static const char *const good[] = {"2", "+2", "0.5", ".5", "5.", "1e-1",
+                                       "2E+0", NULL};
+    static const double value[] = {2, 2, 0.5, 0.5, 5, 0.1, 2};
+    static const char *const bad[] = {"0x1p0", "inf", "nan", "1e", "-", ".",
+                                      "1.2.3", "' 1'", "1e999", NULL};
+    char settings[128], what[128];
+    mpbd_experiment *e;
+    (void)state;
+    for (int i = 0; good[i]; i++) {
+        snprintf(settings, sizeof settings, "time_limit: %s", good[i]);
+        assert_non_null(e = load_settings(settings));
+        assert_true(e->time_limit == value[i]);
+        mpbd_experiment_free(e);
+    }
+    for (int i = 0; bad[i]; i++) {
+        snprintf(settings, sizeof settings, "time_limit: %s", bad[i]);
+        assert_null(load_settings(settings));
+        snprintf(what, sizeof what, "time_limit must be a number, not '%s'",
+                 bad[i][0] == '\'' ? " 1" : bad[i]);
+        assert_error("1:35", what);
+    }
+    /* Counts are whole and decimal too: strtol() read "0x10" as 0. */
+    assert_null(load_settings("time_limit: 1, runs: 0x10"));
+    assert_error("1:44", "runs must be a positive integer, not '0x10'");
+    /* A joint value in hex was read as 0. */
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n" ROBOT
+                          "scenes: [{name: s, format: planar, text: \"\", "
+                          "queries: [{name: q, start: [0x0], goal: [0.5]}]}]\n"
+                          PLANNERS));
+    assert_error("3:74", "start must be a number, not '0x0'");
+}
+
+static void a_scene_without_queries_has_a_line(void **state)
+{
+    (void)state;
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n" ROBOT
+                          "scenes:\n"
+                          "  - {name: s, format: planar, text: \"\"}\n"
+                          PLANNERS));
+    assert_error("4:5", "scene 's' needs a non-empty list 'queries'");
+}
+
+static void an_unknown_format_is_pointed_at(void **state)
+{
+    (void)state;
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n"
+                          "robot: {format: zzz, text: \"x\"}\n"
+                          "scenes: [{name: s, format: planar, text: \"\", "
+                          QUERIES "}]\n" PLANNERS));
+    assert_error("2:17", "robot format 'zzz' is not supported "
+                         "(known: 'planar', 'urdf')");
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n" ROBOT
+                          "scenes: [{name: s, format: moveit-scene, text: \"\", "
+                          QUERIES "}]\n" PLANNERS));
+    assert_error("3:28", "scene format 'moveit-scene' does not go with robot "
+                         "format 'planar' (expected 'planar')");
+}
+
+static void a_directory_is_not_a_file(void **state)
+{
+    char text[1024], what[256];
+    (void)state;
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n" ROBOT
+             "scenes: [{name: s, format: planar, file: %s, " QUERIES "}]\n"
+             PLANNERS, dir);
+    assert_null(load_text(text));
+    snprintf(what, sizeof what, "cannot read scene file %s: Is a directory",
+             dir);
+    assert_error("3:42", what);
+    assert_null(mpbd_experiment_load(dir, err, sizeof err));
+    snprintf(what, sizeof what, "%s: cannot read: Is a directory", dir);
+    assert_string_equal(err, what);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(seed_keeps_every_digit),
+        cmocka_unit_test(seed_must_be_a_decimal_integer),
+        cmocka_unit_test(numbers_are_decimal),
+        cmocka_unit_test(a_scene_without_queries_has_a_line),
+        cmocka_unit_test(an_unknown_format_is_pointed_at),
+        cmocka_unit_test(a_directory_is_not_a_file),
+    };
+    return cmocka_run_group_tests(tests, make_dir, remove_dir);
+}
