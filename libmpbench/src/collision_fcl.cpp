@@ -123,6 +123,25 @@ struct Plane {
     int           id;
 };
 
+/*
+ * The plane a x + b y + c z = d as a unit normal and the signed distance
+ * of the plane from the origin. Scaled by the largest of a, b, c first, so
+ * that neither 1e-300 nor 1e300 over- or underflows in the squares. False
+ * if the coefficients are not finite or the normal is zero.
+ */
+bool plane_unit(const double dims[4], fcl::Vector3d &n, double &dist)
+{
+    double scale = std::max({std::fabs(dims[0]), std::fabs(dims[1]),
+                             std::fabs(dims[2])});
+    if (!(scale > 0) || !std::isfinite(scale) || !std::isfinite(dims[3]))
+        return false;
+    n = fcl::Vector3d(dims[0] / scale, dims[1] / scale, dims[2] / scale);
+    double len = n.norm();      /* in 1 .. sqrt(3) */
+    n /= len;
+    dist = dims[3] / scale / len;
+    return true;
+}
+
 struct Movable {
     int                  id;
     bool                 enabled;
@@ -893,7 +912,27 @@ int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen)
     case MPB_SHAPE_CYLINDER:
     case MPB_SHAPE_CONE:
     case MPB_SHAPE_CAPSULE:  n = 2; break;
-    case MPB_SHAPE_PLANE:    n = 4; break;
+    case MPB_SHAPE_PLANE: {
+        /* Its coefficients are no lengths: only where it lies is bounded. */
+        fcl::Vector3d unit;
+        double dist;
+        for (int i = 0; i < 4; i++)
+            if (!std::isfinite(g->dims[i])) {
+                mpb__set_err(err, errlen, "plane: coefficient %c is not finite",
+                             "abcd"[i]);
+                return MPB_EINVAL;
+            }
+        if (!plane_unit(g->dims, unit, dist)) {
+            mpb__set_err(err, errlen, "plane: normal (a, b, c) is zero");
+            return MPB_EINVAL;
+        }
+        if (!(std::fabs(dist) <= MPB_COLLISION_MAX_COORD)) {
+            mpb__set_err(err, errlen, "plane: %g m from the origin, beyond %g m",
+                         std::fabs(dist), MPB_COLLISION_MAX_COORD);
+            return MPB_EINVAL;
+        }
+        return MPB_OK;
+    }
     case MPB_SHAPE_MESH: {
         char why[160];
         if (mpb_mesh_check(g->mesh, why, sizeof why) != MPB_OK) {
@@ -925,16 +964,12 @@ int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen)
         }
         /* a capsule's radius gives it volume whatever its length */
         double least = type == MPB_SHAPE_CAPSULE && i == 1 ? 0.0 : MPB_COLLISION_MIN_SIZE;
-        if (type != MPB_SHAPE_PLANE && !(g->dims[i] >= least)) {
+        if (!(g->dims[i] >= least)) {
             mpb__set_err(err, errlen, "%s: dimension %d (%g) is %s", name, i + 1,
                          g->dims[i], g->dims[i] < 0 ? "negative" :
                          "below " MPB__STR(MPB_COLLISION_MIN_SIZE) " m");
             return MPB_EINVAL;
         }
-    }
-    if (type == MPB_SHAPE_PLANE && g->dims[0] == 0 && g->dims[1] == 0 && g->dims[2] == 0) {
-        mpb__set_err(err, errlen, "plane: normal (a, b, c) is zero");
-        return MPB_EINVAL;
     }
     return MPB_OK;
 }
@@ -987,12 +1022,12 @@ int mpb_collision_add_static(mpb_collision *c, int id, const mpb_geometry *g,
             return rc;
         fcl::Transform3d tf = to_tf(pose);
         if (g->type == MPB_SHAPE_PLANE) {
-            const double *d = g->dims;
-            double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            fcl::Vector3d nl(d[0] / len, d[1] / len, d[2] / len);
+            fcl::Vector3d nl;
+            double dist = 0;
+            plane_unit(g->dims, nl, dist);   /* true: check_args checked it */
             Plane p;
             p.n = tf.linear() * nl;
-            p.d = d[3] / len + p.n.dot(tf.translation());
+            p.d = dist + p.n.dot(tf.translation());
             p.id = id;
             c->planes.push_back(p);
             return MPB_OK;

@@ -410,6 +410,29 @@ static void test_plane_and_cone(void **state)
     assert_int_equal(mpb_collision_add_movable(c, 1, &plane, NULL), MPB_EINVAL);
     mpb_collision_destroy(c);
 
+    /* The same plane at any scale: squaring 1e-300 gave a zero normal and
+     * NaN distances, squaring 1e300 an infinite one. */
+    static const double scales[] = {1e-300, 1e300};
+    for (int i = 0; i < 2; i++) {
+        c = new_world();
+        plane.dims[2] = 2 * scales[i];
+        plane.dims[3] = 0.5 * scales[i];
+        ok(c, mpb_collision_add_static(c, 5, &plane, NULL));
+        ok(c, mpb_collision_add_movable(c, 0, &s, NULL));
+        p = at(3, -2, 0.25 + 0.3);
+        ok(c, mpb_collision_set_pose(c, 0, &p));
+        assert_near(distance_of(c, NULL), 0.2, 1e-9);
+        mpb_collision_destroy(c);
+    }
+    /* Its coefficients are not lengths; where it lies is bounded. */
+    char why[160];
+    plane = (mpb_geometry){ .type = MPB_SHAPE_PLANE, .dims = { 0, 0, 1e-3, 1e3 } };
+    assert_int_equal(mpb_geometry_check(&plane, why, sizeof why), MPB_EINVAL);
+    assert_string_equal(why, "plane: 1e+06 m from the origin, beyond 100000 m");
+    plane.dims[3] = INFINITY;
+    assert_int_equal(mpb_geometry_check(&plane, why, sizeof why), MPB_EINVAL);
+    assert_string_equal(why, "plane: coefficient d is not finite");
+
     /*
      * Cone radius 1, length 2 at the origin, apex at z = +1: its radius at
      * height z is (1 - z) / 2. A small sphere at (0.9, 0, 0.9) is far from

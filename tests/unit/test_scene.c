@@ -299,6 +299,14 @@ static void test_small_texts(void **state)
     s = parse_ok("q\n* a\n0 0 0\n0 0 2 2\n0\n0\n.\n");
     expect_rotation(&mpb_scene_object_at(s, 0)->pose, 0, 0, M_SQRT1_2, M_SQRT1_2);
     mpb_scene_free(s);
+    /* at any scale: the squares of 1e300 overflowed and were called zero */
+    s = parse_ok("q\n* a\n0 0 0\n0 0 1e300 1e300\n0\n0\n.\n");
+    expect_rotation(&mpb_scene_object_at(s, 0)->pose, 0, 0, M_SQRT1_2, M_SQRT1_2);
+    mpb_scene_free(s);
+    s = parse_ok("q\n* a\n0 0 0\n0 0 1e-300 0\n0\n0\n.\n");
+    expect_rotation(&mpb_scene_object_at(s, 0)->pose, 0, 0, 1, 0);
+    assert_near(mpb_scene_object_at(s, 0)->pose.R[0], -1, 1e-15);
+    mpb_scene_free(s);
     mpb_scene_free(NULL);
     assert_int_equal(mpb_scene_parse(NULL, &s, NULL, 0), MPB_EINVAL);
     assert_int_equal(mpb_scene_parse("x\n.\n", NULL, NULL, 0), MPB_EINVAL);
@@ -330,6 +338,7 @@ static const bad_case BAD[] = {
     { "s\n* a\n0 0 0\n0 0 0 1\n1\nmesh 2 0\n", 6, "at least" },
     { "s\n* a\n0 0 0\n0 0 0 1\n1\nmesh 99999999 1\n0 0 0\n", 6, "more than" },
     { "s\n* a\n0 0 0\n0 0 0 1\n1\nplane 0 0 0 1\n", 6, "normal" },
+    { "s\n* a\n0 0 0\n0 0 0 1\n1\nplane 0 1e-300 0 1\n", 6, "1e+300 m from the origin" },
     { "s\n* a\n0 0 0\n0 0 0 1\n1\nbox 1 1 1\n0 0 0\n0 0 0 1\n0 0 0\n", 9, "color" },
     { "s\n* a\n0 0 0\n0 0 0 1\n0\n1\n", 6, "subframe name" },
     { "s\n* a\n0 0 0\n0 0 0 1\n0\n1\ntip 0 0\n", 7, "subframe position" },

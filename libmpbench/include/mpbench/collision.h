@@ -68,8 +68,9 @@ typedef enum mpb_shape_type {
     MPB_SHAPE_CYLINDER = 2, /* dims: radius, length (m); along z */
     MPB_SHAPE_CONE = 3,     /* dims: radius, length (m); apex at +z */
     MPB_SHAPE_CAPSULE = 4,  /* dims: radius, length (m, may be 0); along z */
-    MPB_SHAPE_PLANE = 5,    /* dims: a b c d, a x + b y + c z = d, (a,b,c) != 0;
-                               static only */
+    MPB_SHAPE_PLANE = 5,    /* dims: a b c d, a x + b y + c z = d, (a,b,c) != 0,
+                               at most MPB_COLLISION_MAX_COORD from the
+                               origin; static only */
     MPB_SHAPE_MESH = 6      /* mesh: the triangles */
 } mpb_shape_type;
 

@@ -32,18 +32,23 @@ static inline void mpb_pose_identity(mpb_pose *p)
 
 /*
  * Set p->R from the quaternion (x, y, z, w), normalised first; p->t is left
- * alone. Returns 0, or -1 for a quaternion of zero or non-finite norm (then
- * R is the identity).
+ * alone. Returns 0, or -1 for a quaternion that is zero or not finite (then
+ * R is the identity). Any other scale is fine: 1e300 and 1e-300 included.
  */
 static inline int mpb_pose_set_quat(mpb_pose *p, double x, double y,
                                     double z, double w)
 {
-    double n = sqrt(x * x + y * y + z * z + w * w);
-    if (!(n > 0.0) || !isfinite(n)) {
+    /* Scaled by the largest first, so that the squares cannot overflow
+     * or underflow. */
+    double s = fmax(fmax(fabs(x), fabs(y)), fmax(fabs(z), fabs(w)));
+    if (!(s > 0.0) || !isfinite(x) || !isfinite(y) || !isfinite(z) ||
+        !isfinite(w)) {
         for (int i = 0; i < 9; i++)
             p->R[i] = (i % 4 == 0) ? 1.0 : 0.0;
         return -1;
     }
+    x /= s; y /= s; z /= s; w /= s;
+    double n = sqrt(x * x + y * y + z * z + w * w);   /* in 1 .. 2 */
     x /= n; y /= n; z /= n; w /= n;
     p->R[0] = 1 - 2 * (y * y + z * z);
     p->R[1] = 2 * (x * y - z * w);
