@@ -580,6 +580,7 @@ static int parse_extension(parser *ps, mpb_scene *s)
                         touch_len, n - 3);
         if (rc != MPB_OK)
             return rc;
+        s->objects[i].pub.attach_line = line;
     }
     return MPB_OK;
 }
@@ -767,6 +768,8 @@ int mpb_scene_attach(mpb_scene *s, const char *id, const char *link,
         lens[k] = strlen(touch[k]);
     int rc = attach(&s->objects[i], link, strlen(link), touch, lens, num_touch);
     free(lens);
+    if (rc == MPB_OK)
+        s->objects[i].pub.attach_line = 0;
     if (rc == MPB_OK && link_T_object)
         s->objects[i].pub.pose = *link_T_object;
     return rc;

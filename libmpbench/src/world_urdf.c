@@ -171,13 +171,23 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
         const mpb_scene_object *o = mpb_scene_object_at(u->scene, k);
         if (!o->attached_link)
             continue;
+        /* A fault in the attachment is on its attach line, if it has one. */
+        int line = o->attach_line ? o->attach_line : o->line;
         int l = mpb_robot_link_index(u->robot, o->attached_link);
         if (l < 0) {
             mpb__set_err(err, errlen, "scene line %d: object '%s' is attached "
-                         "to '%s', which is not a link of the robot", o->line,
+                         "to '%s', which is not a link of the robot", line,
                          o->id, o->attached_link);
             return MPB_EPARSE;
         }
+        /* A misspelt touch link would leave a contact forbidden, unseen. */
+        for (int t = 0; t < o->num_touch_links; t++)
+            if (mpb_robot_link_index(u->robot, o->touch_links[t]) < 0) {
+                mpb__set_err(err, errlen, "scene line %d: object '%s' may "
+                             "touch '%s', which is not a link of the robot",
+                             line, o->id, o->touch_links[t]);
+                return MPB_EPARSE;
+            }
         int id = u->num_links + k;
         for (int s = 0; s < o->num_shapes; s++) {
             mpb_pose at;
@@ -195,7 +205,7 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
             mpb_collision_allow_pair(u->coll, id, l);
         for (int t = 0; t < o->num_touch_links; t++) {
             int tl = mpb_robot_link_index(u->robot, o->touch_links[t]);
-            if (tl >= 0 && is_moving_body(u, tl))
+            if (is_moving_body(u, tl))
                 mpb_collision_allow_pair(u->coll, id, tl);
         }
         u->attached[u->num_attached] = k;

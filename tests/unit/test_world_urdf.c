@@ -214,6 +214,34 @@ static void bad_input_gets_one_line_naming_where(void **state)
     assert_non_null(strstr(err, "nope"));
 }
 
+/* An attach line names a link the arm lacks: the error is on that line,
+ * not on the object's, and a misspelt touch link is one too. */
+static void a_bad_attachment_is_named_on_its_line(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *attach, *want;
+    } cases[] = {
+        {"attach box r_hand_link\n",
+         "scene line 15: object 'box' is attached to 'r_hand_link', which is "
+         "not a link of the robot"},
+        {"attach box r_wrist_roll_link r_wrist_flex_link r_fingr\n",
+         "scene line 15: object 'box' may touch 'r_fingr', which is not a "
+         "link of the robot"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char scene[512], err[256];
+        mpb_world *w;
+        snprintf(scene, sizeof scene, "%s# carried\n\n%s", box_scene,
+                 cases[i].attach);
+        assert_int_equal(mpb_world_open_group("urdf", urdf, "moveit-scene",
+                                              scene, joints, 7, &w, err,
+                                              sizeof err), MPB_EPARSE);
+        assert_null(w);
+        assert_string_equal(err, cases[i].want);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -222,6 +250,7 @@ int main(void)
         cmocka_unit_test(a_segment_through_the_box_is_rejected_at_that_segment),
         cmocka_unit_test(pose_region_goals_are_checked),
         cmocka_unit_test(bad_input_gets_one_line_naming_where),
+        cmocka_unit_test(a_bad_attachment_is_named_on_its_line),
     };
     return cmocka_run_group_tests_name("world_urdf", tests, setup, teardown);
 }

@@ -29,7 +29,9 @@
  * which makes the object a carried one: its pose is read in the frame of
  * <link> instead of the world's, and the touch links (besides <link>) may
  * touch it. An object id with spaces cannot be named here (use
- * mpb_scene_attach()).
+ * mpb_scene_attach()). The scene does not know the robot: a "urdf" world
+ * (world.h) refuses a <link> or touch link the robot lacks, naming the
+ * attach line.
  */
 #ifndef MPBENCH_SCENE_H
 #define MPBENCH_SCENE_H
@@ -71,6 +73,9 @@ typedef struct mpb_scene_object {
                                                 that may touch it */
     const char *const      *touch_links;
     int                     line;   /* of its '*' line */
+    int                     attach_line;  /* of its attach line; 0 if not
+                                             attached or attached by
+                                             mpb_scene_attach() */
 } mpb_scene_object;
 
 /* The two variants of the format. */
