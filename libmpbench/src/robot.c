@@ -104,6 +104,17 @@ static int pose_finite(const mpb_pose *p)
     return finite3(p->t);
 }
 
+/* Within the collision world's bounds (collision.h), as m or rad. */
+static int bounded(double v)
+{
+    return fabs(v) <= MPB_COLLISION_MAX_COORD;
+}
+
+static int bounded3(const double v[3])
+{
+    return bounded(v[0]) && bounded(v[1]) && bounded(v[2]);
+}
+
 /* c = a * b, 3x3 row-major; c must not alias a or b. */
 static void mat3_mul(const double *a, const double *b, double *c)
 {
@@ -361,6 +372,13 @@ static int validate_model(const mpb__urdf_model *m, char *err, size_t errlen)
                              NAME_SHOWN, l->joint);
                 return MPB_EPARSE;
             }
+            /* Near 1e306 FCL's tree crashes; see MPB_COLLISION_MAX_COORD. */
+            if (!bounded3(l->origin.t)) {
+                mpb__set_err(err, errlen, "joint '%.*s': origin xyz is beyond "
+                             "%g m", NAME_SHOWN, l->joint,
+                             MPB_COLLISION_MAX_COORD);
+                return MPB_EPARSE;
+            }
             if (is_active_type(l->type)) {
                 double n = sqrt(l->axis[0] * l->axis[0] + l->axis[1] * l->axis[1]
                                 + l->axis[2] * l->axis[2]);
@@ -375,6 +393,12 @@ static int validate_model(const mpb__urdf_model *m, char *err, size_t errlen)
                     mpb__set_err(err, errlen, "joint '%.*s': %s joint needs finite "
                                  "lower and upper limits", NAME_SHOWN, l->joint,
                                  mpb_joint_type_name(l->type));
+                    return MPB_EPARSE;
+                }
+                if (!bounded(l->lo) || !bounded(l->hi)) {
+                    mpb__set_err(err, errlen, "joint '%.*s': a limit is beyond "
+                                 "%g (m or rad)", NAME_SHOWN, l->joint,
+                                 MPB_COLLISION_MAX_COORD);
                     return MPB_EPARSE;
                 }
                 if (l->lo > l->hi) {
@@ -400,6 +424,15 @@ static int validate_model(const mpb__urdf_model *m, char *err, size_t errlen)
                 mpb__set_err(err, errlen, "link '%.*s': collision %d (%s) has a "
                              "negative, zero or non-finite size, scale or origin",
                              NAME_SHOWN, l->name, k, mpb_shape_type_name(g->type));
+                return MPB_EPARSE;
+            }
+            for (int d = 0; d < nd; d++)
+                ok = ok && bounded(g->dims[d]);
+            if (!ok || !bounded3(g->origin.t)) {
+                mpb__set_err(err, errlen, "link '%.*s': collision %d (%s) has a "
+                             "size or origin beyond %g m", NAME_SHOWN, l->name, k,
+                             mpb_shape_type_name(g->type),
+                             MPB_COLLISION_MAX_COORD);
                 return MPB_EPARSE;
             }
         }

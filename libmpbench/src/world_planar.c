@@ -97,7 +97,11 @@ static int tok_number(const token *t, double *v)
     return 1;
 }
 
-/* Parse tokens t[first..first+count) as numbers into v; 0 and a message if not. */
+/*
+ * Parse tokens t[first..first+count) as numbers into v; 0 and a message if
+ * not. Each is a length (m) or an angle (rad), bounded as the collision
+ * world bounds coordinates: near 1e308 the distances overflow to NaN.
+ */
 static int numbers(const token *t, int first, int count, double *v,
                    const char *what, int lineno, char *err, size_t errlen)
 {
@@ -106,6 +110,12 @@ static int numbers(const token *t, int first, int count, double *v,
         if (!tok_number(k, &v[i])) {
             mpb__set_err(err, errlen, "%s line %d: '%.*s' is not a number",
                          what, lineno, shown(k), k->p);
+            return 0;
+        }
+        if (fabs(v[i]) > MPB_COLLISION_MAX_COORD) {
+            mpb__set_err(err, errlen, "%s line %d: %.*s is beyond %g (m or "
+                         "rad)", what, lineno, shown(k), k->p,
+                         MPB_COLLISION_MAX_COORD);
             return 0;
         }
     }

@@ -1057,6 +1057,26 @@ static void test_malformed(void **state)
     expect_error("<robot name='r'><link name='a'/><link name='b'/>"
                  JOINT("j", "revolute", "a", "b", "") "</robot>",
                  NULL, "b", MPB_EPARSE, "does not specify limits");
+    /* Finite but far: links near 1e306 crash FCL's tree. */
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 JOINT("j", "revolute", "a", "b",
+                       LIMIT "<origin xyz='1e308 0 0'/>") "</robot>",
+                 NULL, "b", MPB_EPARSE, "joint 'j': origin xyz is beyond 100000 m");
+    expect_error("<robot name='r'><link name='a'/><link name='b'/>"
+                 JOINT("j", "prismatic", "a", "b",
+                       "<limit lower='0' upper='1e300' effort='1' velocity='1'/>")
+                 "</robot>", NULL, "b", MPB_EPARSE,
+                 "joint 'j': a limit is beyond 100000 (m or rad)");
+    expect_error("<robot name='r'><link name='a'/><link name='b'><collision>"
+                 "<origin xyz='0 0 -2e5'/><geometry><sphere radius='1'/>"
+                 "</geometry></collision></link>"
+                 JOINT("j", "revolute", "a", "b", LIMIT) "</robot>",
+                 NULL, "b", MPB_EPARSE,
+                 "link 'b': collision 0 (sphere) has a size or origin beyond");
+    expect_error("<robot name='r'><link name='a'/><link name='b'><collision>"
+                 "<geometry><box size='1 1e200 1'/></geometry></collision></link>"
+                 JOINT("j", "revolute", "a", "b", LIMIT) "</robot>",
+                 NULL, "b", MPB_EPARSE, "link 'b': collision 0 (box) has a size");
     /* Not UTF-8: a sequence cut short by the end of the text (TinyXML
      * would read past it), a stray continuation byte, an overlong form. */
     expect_error("<robot name='r'><link name='a'/>\n</robot>\n \xe9", NULL, "a",

@@ -290,6 +290,13 @@ static void test_robot_parse_errors(void **state)
     expect_parse_error("links 3\n", "", "robot line 1:", "unknown item 'links'");
     expect_parse_error("link_radius 0.1\njoint a -1 1 0\n", "",
                        "robot line 2:", "length must be > 0");
+    /* Near 1e308 the distances overflowed to NaN: bounded like FCL's. */
+    expect_parse_error("link_radius 0.1\njoint a -1 1 1e308\n", "",
+                       "robot line 2:", "1e308 is beyond 100000 (m or rad)");
+    expect_parse_error("base -2e5 0\nlink_radius 0.1\njoint a -1 1 1\n", "",
+                       "robot line 1:", "-2e5 is beyond 100000");
+    expect_parse_error("link_radius 0.1\njoint a -1e300 1e300 1\n", "",
+                       "robot line 2:", "-1e300 is beyond");
     expect_parse_error("link_radius 0.1\njoint a -1 1 1\njoint a -1 1 1\n", "",
                        "robot line 3:", "declared twice");
     expect_parse_error("link_radius -0.1\njoint a -1 1 1\n", "",
@@ -311,6 +318,10 @@ static void test_scene_parse_errors(void **state)
     expect_parse_error(ARM2, "box 0 0 -1 1", "scene line 1:", "half sizes");
     expect_parse_error(ARM2, "box 0 0 1", "scene line 1:", "box needs");
     expect_parse_error(ARM2, "circle 0 0 -1", "scene line 1:", "radius");
+    expect_parse_error(ARM2, "circle 0 0 1\ncircle 1e308 1e308 1e308",
+                       "scene line 2:", "1e308 is beyond 100000");
+    expect_parse_error(ARM2, "box 0 0 1 1e6", "scene line 1:",
+                       "1e6 is beyond 100000");
     expect_parse_error(ARM2, "\n\n\nsphere 0 0 1", "scene line 4:",
                        "unknown item 'sphere'");
 }

@@ -87,7 +87,8 @@ typedef struct mpb_geometry {
  * The sizes a world accepts (m). Every dimension of a primitive is at least
  * MPB_COLLISION_MIN_SIZE (a capsule's length may be anything from 0; a
  * plane's coefficients are free) and at most MPB_COLLISION_MAX_COORD, as is every
- * mesh vertex coordinate and every pose's translation. Degenerate shapes (a
+ * mesh vertex coordinate, every pose's translation and a plane's distance
+ * from the origin. Degenerate shapes (a
  * sphere of radius 0, a flat box) and aspect ratios near 1e14 send libccd's
  * MPR into an endless loop, and coordinates near 1e306 crash FCL's tree;
  * these bounds, fuzzed with 10^6 random pairs, keep well clear of both.
