@@ -357,6 +357,39 @@ static int run_values(char *s, double *out, int n, int *extra_empty,
     return k;
 }
 
+/* Each of the n properties' kind of value and, for an ENUM the log
+ * declares, its count of values (else -1). */
+static void kinds_of(const reader *r, const mpb_ompl_property *p, long n,
+                     unsigned char *kinds, long *limits)
+{
+    for (long k = 0; k < n; k++) {
+        kinds[k] = V_REAL;
+        for (int t = 0; t < V_TIME; t++)
+            if (strcmp(p[k].type, kind_names[t]) == 0)
+                kinds[k] = (unsigned char)t;
+        if (kinds[k] == V_REAL && strcmp(p[k].name, "time") == 0)
+            kinds[k] = V_TIME;
+        limits[k] = -1;
+        for (long e = 0; e < r->num_enums; e++)
+            if (strcmp(r->enums[e].name, p[k].name) == 0)
+                limits[k] = r->enums[e].count;
+    }
+}
+
+/* The error for text in where, which value_ok() refused for property p. */
+static int not_a_value(reader *r, const char *where, const char *text,
+                       const mpb_ompl_property *p, int kind, long limit)
+{
+    if (kind == V_TIME)
+        return fail(r, "%s: '%.60s' is not a time (a number of seconds, not "
+                    "negative)", where, text);
+    if (kind == V_ENUM && limit >= 0)
+        return fail(r, "%s: '%.60s' is not a value of the ENUM '%.60s' (0 to "
+                    "%ld)", where, text, p->name, limit - 1);
+    return fail(r, "%s: '%.60s' is not %s %s", where, text,
+                kind == V_INTEGER ? "an" : "a", kind_names[kind]);
+}
+
 /* Split s at sep into at most n trimmed fields; the count found. */
 static int split(char *s, char sep, char **fields, int n)
 {
@@ -413,6 +446,91 @@ static int property_lines(reader *r, long n, mpb_ompl_property **out,
     return 0;
 }
 
+/*
+ * The progress of pl's runs: "N runs", then a line per run of samples
+ * "a,b,;a,b,;", q values each, typed like a run's values. Value at of a
+ * sample is stored first (its time), as planner_block() moved its name.
+ */
+static int progress_samples(reader *r, mpb_ompl_planner *pl, long q, long at)
+{
+    long nr;
+    size_t used = 0, cap = 0;
+    char **vals = NULL, *s;
+    unsigned char *kinds = NULL;
+    long *limits = NULL;
+    int rc = -1;
+
+    if (count_line(r, "runs", &nr) != 0)
+        return -1;
+    if (nr != pl->num_runs)
+        return fail(r, "%ld runs of progress for %ld runs", nr, pl->num_runs);
+    pl->progress_start = calloc((size_t)nr + 1, sizeof *pl->progress_start);
+    vals = calloc((size_t)q + 1, sizeof *vals);
+    kinds = malloc((size_t)q);
+    limits = malloc((size_t)q * sizeof *limits);
+    if (pl->progress_start == NULL || vals == NULL || kinds == NULL ||
+        limits == NULL) {
+        fail(r, "out of memory");
+        goto done;
+    }
+    kinds_of(r, pl->progress_properties, q, kinds, limits);
+    for (long i = 0; i < nr; i++) {
+        if ((s = need_line(r, "a run's progress")) == NULL)
+            goto done;
+        pl->progress_start[i] = (long)(used / (size_t)q);
+        char *sample = s;
+        while (*sample) {
+            char *semi = strchr(sample, ';');
+            if (semi)
+                *semi = '\0';
+            if (*sample) {
+                int k = split(sample, ',', vals, (int)q + 1);
+                if (k == (int)q + 1 && vals[q][0] == '\0')
+                    k--;
+                if (k != (int)q) {
+                    fail(r, "a progress sample of %s has %d values, not %ld",
+                         pl->name, k, q);
+                    goto done;
+                }
+                if (used + (size_t)q > cap) {
+                    cap = cap ? 2 * cap : 64 * (size_t)q;
+                    double *t = realloc(pl->progress, cap * sizeof *t);
+                    if (t == NULL) {
+                        fail(r, "out of memory");
+                        goto done;
+                    }
+                    pl->progress = t;
+                }
+                for (long j = 0; j < q; j++) {
+                    long to = j == at ? 0 : j < at ? j + 1 : j;
+                    if (!value_ok(vals[j], vals[j] + strlen(vals[j]), kinds[to],
+                                  limits[to])) {
+                        char where[128];
+                        snprintf(where, sizeof where, "the progress of run %ld "
+                                 "of %.60s", i + 1, pl->name);
+                        not_a_value(r, where, vals[j],
+                                    &pl->progress_properties[to], kinds[to],
+                                    limits[to]);
+                        goto done;
+                    }
+                    pl->progress[used + (size_t)to] = value_of(vals[j]);
+                }
+                used += (size_t)q;
+            }
+            if (!semi)
+                break;
+            sample = semi + 1;
+        }
+    }
+    pl->progress_start[nr] = (long)(used / (size_t)q);
+    rc = 0;
+done:
+    free(vals);
+    free(kinds);
+    free(limits);
+    return rc;
+}
+
 /* The planner block of log->planners[index]. */
 static int planner_block(reader *r, mpb_ompl_log *log, int index)
 {
@@ -460,19 +578,7 @@ static int planner_block(reader *r, mpb_ompl_log *log, int index)
         free(limits);
         return fail(r, "out of memory");
     }
-    for (long k = 0; k < np; k++) {
-        const mpb_ompl_property *pr = &pl->properties[k];
-        kinds[k] = V_REAL;
-        for (int t = 0; t < V_TIME; t++)
-            if (strcmp(pr->type, kind_names[t]) == 0)
-                kinds[k] = (unsigned char)t;
-        if (kinds[k] == V_REAL && strcmp(pr->name, "time") == 0)
-            kinds[k] = V_TIME;
-        limits[k] = -1;
-        for (long e = 0; e < r->num_enums; e++)
-            if (strcmp(r->enums[e].name, pr->name) == 0)
-                limits[k] = r->enums[e].count;
-    }
+    kinds_of(r, pl->properties, np, kinds, limits);
     for (long i = 0; i < pl->num_runs; i++) {
         if ((s = need_line(r, "a run's values")) == NULL)
             break;
@@ -489,17 +595,10 @@ static int planner_block(reader *r, mpb_ompl_log *log, int index)
             break;
         }
         if (bad >= 0) {
-            if (kinds[bad] == V_TIME)
-                fail(r, "run %ld of %s: '%.60s' is not a time (a number of "
-                     "seconds, not negative)", i + 1, pl->name, bad_text);
-            else if (kinds[bad] == V_ENUM && limits[bad] >= 0)
-                fail(r, "run %ld of %s: '%.60s' is not a value of the ENUM "
-                     "'%.60s' (0 to %ld)", i + 1, pl->name, bad_text,
-                     pl->properties[bad].name, limits[bad] - 1);
-            else
-                fail(r, "run %ld of %s: '%.60s' is not %s %s", i + 1, pl->name,
-                     bad_text, kinds[bad] == V_INTEGER ? "an" : "a",
-                     kind_names[kinds[bad]]);
+            char where[128];
+            snprintf(where, sizeof where, "run %ld of %.60s", i + 1, pl->name);
+            not_a_value(r, where, bad_text, &pl->properties[bad], kinds[bad],
+                        limits[bad]);
             break;
         }
     }
@@ -539,59 +638,8 @@ static int planner_block(reader *r, mpb_ompl_log *log, int index)
                 (size_t)at * sizeof *pl->progress_properties);
         pl->progress_properties[0] = time;
     }
-    long nr;
-    if (count_line(r, "runs", &nr) != 0)
+    if (progress_samples(r, pl, q, at) != 0)
         return -1;
-    if (nr != pl->num_runs)
-        return fail(r, "%ld runs of progress for %ld runs", nr, pl->num_runs);
-    pl->progress_start = calloc((size_t)nr + 1, sizeof *pl->progress_start);
-    if (pl->progress_start == NULL)
-        return fail(r, "out of memory");
-    size_t used = 0, cap = 0;
-    char **vals = calloc((size_t)q + 1, sizeof *vals);
-    if (vals == NULL)
-        return fail(r, "out of memory");
-    for (long i = 0; i < nr; i++) {
-        if ((s = need_line(r, "a run's progress")) == NULL) {
-            free(vals);
-            return -1;
-        }
-        pl->progress_start[i] = (long)(used / (size_t)q);
-        char *sample = s;
-        while (*sample) {
-            char *semi = strchr(sample, ';');
-            if (semi)
-                *semi = '\0';
-            if (*sample) {
-                int k = split(sample, ',', vals, (int)q + 1);
-                if (k == (int)q + 1 && vals[q][0] == '\0')
-                    k--;
-                if (k != (int)q) {
-                    free(vals);
-                    return fail(r, "a progress sample of %s has %d values, "
-                                "not %ld", pl->name, k, q);
-                }
-                if (used + (size_t)q > cap) {
-                    cap = cap ? 2 * cap : 64 * (size_t)q;
-                    double *t = realloc(pl->progress, cap * sizeof *t);
-                    if (t == NULL) {
-                        free(vals);
-                        return fail(r, "out of memory");
-                    }
-                    pl->progress = t;
-                }
-                for (long j = 0; j < q; j++)
-                    pl->progress[used + (size_t)(j == at ? 0 : j < at ? j + 1 : j)] =
-                        value_of(vals[j]);
-                used += (size_t)q;
-            }
-            if (!semi)
-                break;
-            sample = semi + 1;
-        }
-    }
-    free(vals);
-    pl->progress_start[nr] = (long)(used / (size_t)q);
     if ((s = need_line(r, "'.'")) == NULL)
         return -1;
     if (strcmp(s, ".") != 0)

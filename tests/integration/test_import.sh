@@ -211,6 +211,16 @@ for to in "-d $work/fewer.db" "-p $work/fewer-pa.db"; do
         sh -c "printf '%s\n' \"\$1\" | grep -q 'fewer.log:[0-9]*: text after the last planner'" _ "$err"
 done
 check "... and writes no database" test ! -e "$work/fewer.db" -a ! -e "$work/fewer-pa.db"
+# A log OMPL wrote with no planner added: nothing to import, no database.
+sed -n '1,/^[0-9]* planners$/p' "$work/wall.log" | sed 's/^3 planners$/0 planners/' \
+    >"$work/none.log"
+for to in "-d $work/none.db" "-p $work/none-pa.db"; do
+    err=$("$mpb" import $to "$work/none.log" 2>&1)
+    check "a log without runs fails (${to%% *})" test $? -eq 1
+    check "... saying so" test "$err" = \
+        "mpb import: $work/none.log: no runs in the log (0 planners): nothing to import"
+done
+check "... and writes no database" test ! -e "$work/none.db" -a ! -e "$work/none-pa.db"
 err=$("$mpb" import -p "$work/direct.db" "$work/wall.log" "$work/wall.log" 2>&1)
 check "an existing Planner Arena database is said once" \
     eq "$(printf '%s\n' "$err" | grep -c exists)" 1

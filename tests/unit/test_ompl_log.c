@@ -128,6 +128,16 @@ static void values_must_be_of_their_type(void **state)
         snprintf(want, sizeof want, "%s%s", e, cases[i].bad);
         refused(cases[i].old, cases[i].new, want);
     }
+    /* A run's progress too (the last planner's: best cost, edge count,
+     * iterations, milestone count, time). */
+    read_ok("time REAL\n6 runs\n\n", "time REAL\n6 runs\n1.5,3,4,2,0.01,;"
+            "1.25,5,9,3,0.02,;\n");
+    refused("time REAL\n6 runs\n\n", "time REAL\n6 runs\n1.5,3,x,2,0.01,;\n",
+            "line 151: the progress of run 1 of geometric_PRM: 'x' is not an "
+            "INTEGER");
+    refused("time REAL\n6 runs\n\n", "time REAL\n6 runs\n1.5,3,4,2,-1,;\n",
+            "line 151: the progress of run 1 of geometric_PRM: '-1' is not a "
+            "time (a number of seconds, not negative)");
     refused("status ENUM\n", "status FLOAT\n", "line 50: unknown property type "
             "'FLOAT' (not REAL, INTEGER, BOOLEAN or ENUM)");
     refused("42 is the random seed", "x is the random seed",

@@ -333,6 +333,14 @@ static void free_loaded(loaded *l, int n)
     free(l);
 }
 
+static long total_runs(const mpb_ompl_log *log)
+{
+    long n = 0;
+    for (int i = 0; i < log->num_planners; i++)
+        n += log->planners[i].num_runs;
+    return n;
+}
+
 /* Every log read and parsed, each error said in one line; NULL when one
  * (or more) failed. */
 static loaded *load_all(int num_logs, char **logs)
@@ -358,6 +366,13 @@ static loaded *load_all(int num_logs, char **logs)
             fprintf(stderr, "mpb " CMD ": %s:%s\n", logs[i],
                     rc == MPB_ENOMEM ? " out of memory"
                     : strncmp(err, "line ", 5) == 0 ? err + 5 : err);
+            bad = 1;
+        } else if (total_runs(l[i].log) == 0) {
+            /* OMPL writes such a log when no planner was added; importing
+             * it would make an experiment that reports nothing. */
+            fprintf(stderr, "mpb " CMD ": %s: no runs in the log (%d "
+                    "planners): nothing to import\n", logs[i],
+                    l[i].log->num_planners);
             bad = 1;
         }
     }
