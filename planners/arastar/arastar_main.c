@@ -19,7 +19,8 @@ static void on_signal(int sig)
 static void usage(FILE *out)
 {
     fprintf(out,
-"usage: mpb-planner-arastar [--lcm-url URL] [--secret-file FILE] [-v]\n"
+"usage: mpb-planner-arastar [--lcm-url URL] [--name NAME] [--max-runs N]\n"
+"                           [--secret-file FILE] [-v]\n"
 "\n"
 "A search-based planner process for mpbench: ARA* over joint-space motion\n"
 "primitives, with a heuristic from a 3-D breadth-first search of the\n"
@@ -28,13 +29,16 @@ static void usage(FILE *out)
 "URDF robots with MoveIt scenes. It returns the first solution (epsilon\n"
 "100) unless the request sets improve=1. Parameters: docs/planners.md.\n"
 "\n"
-"It announces itself on LCM as arastar@host:pid and serves until SIGINT\n"
-"or SIGTERM.\n"
+"It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
+"SIGTERM (or N runs).\n"
 "\n"
 "options:\n"
 "  --lcm-url URL   LCM URL to join (default %s;\n"
 "                  the daemon must use the same one)\n"
+"  --name NAME     planner name used in experiment files (default \"arastar\")\n"
+"  --max-runs N    exit after answering N runs (default 0: no limit)\n"
 "  --secret-file F authenticate every message with the shared secret in F\n"
+"                  (the daemon must use the same file)\n"
 "  -v              one line per run on stderr\n"
 "  --help          show this text\n",
             MPB_DEFAULT_LCM_URL);
@@ -49,11 +53,19 @@ static void on_ready(void *user, const char *planner_id)
 
 int main(int argc, char **argv)
 {
-    const char *url = NULL, *secret = NULL;
+    mpb_planner_options opt = {.name = "arastar"};
     ara_context ctx = {&g_stop, 0};
+    char err[256] = "";
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
+        int took = mpb_planner_option(argc, argv, &i, &opt, err, sizeof err);
+        if (took < 0) {
+            fprintf(stderr, "mpb-planner-arastar: %s (see --help)\n", err);
+            return 2;
+        }
+        if (took)
+            continue;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return 0;
@@ -62,21 +74,9 @@ int main(int argc, char **argv)
             ctx.verbose = 1;
             continue;
         }
-        if ((strcmp(a, "--lcm-url") == 0 || strcmp(a, "--secret-file") == 0) &&
-            i + 1 >= argc) {
-            fprintf(stderr, "mpb-planner-arastar: %s needs a value "
-                    "(see --help)\n", a);
-            return 2;
-        }
-        if (strcmp(a, "--lcm-url") == 0) {
-            url = argv[++i];
-        } else if (strcmp(a, "--secret-file") == 0) {
-            secret = argv[++i];
-        } else {
-            fprintf(stderr, "mpb-planner-arastar: unknown argument '%s' "
-                    "(see --help)\n", a);
-            return 2;
-        }
+        fprintf(stderr, "mpb-planner-arastar: unknown argument '%s' "
+                "(see --help)\n", a);
+        return 2;
     }
 
     struct sigaction sa;
@@ -88,7 +88,7 @@ int main(int argc, char **argv)
 
     static const char *const algorithms[] = { "ARAstar" };
     mpb_planner_def def = {
-        .name = "arastar",
+        .name = opt.name,
         .language = "c",
         .version = MPB_VERSION_STRING,
         .algorithms = algorithms,
@@ -96,10 +96,10 @@ int main(int argc, char **argv)
         .solve = ara_solve,
         .user = &ctx,
         .on_ready = on_ready,
-        .secret_file = secret,
+        .secret_file = opt.secret_file,
     };
-    char err[256] = "";
-    int rc = mpb_planner_serve(&def, url, &g_stop, 0, err, sizeof err);
+    int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,
+                               sizeof err);
     if (rc != MPB_OK) {
         fprintf(stderr, "mpb-planner-arastar: %s\n",
                 err[0] ? err : mpb_strerror(rc));

@@ -97,41 +97,25 @@ static void on_ready(void *user, const char *planner_id)
 
 int main(int argc, char **argv)
 {
-    const char *url = NULL, *name = "null", *secret = NULL;
-    long max_runs = 0;
+    mpb_planner_options opt = {.name = "null"};
+    char err[256];
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
+        int took = mpb_planner_option(argc, argv, &i, &opt, err, sizeof err);
+        if (took < 0) {
+            fprintf(stderr, "mpb-planner-null: %s (see --help)\n", err);
+            return 2;
+        }
+        if (took)
+            continue;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return 0;
         }
-        if ((strcmp(a, "--lcm-url") == 0 || strcmp(a, "--name") == 0 ||
-             strcmp(a, "--max-runs") == 0 || strcmp(a, "--secret-file") == 0) &&
-            i + 1 >= argc) {
-            fprintf(stderr, "mpb-planner-null: %s needs a value (see --help)\n", a);
-            return 2;
-        }
-        if (strcmp(a, "--lcm-url") == 0) {
-            url = argv[++i];
-        } else if (strcmp(a, "--name") == 0) {
-            name = argv[++i];
-        } else if (strcmp(a, "--secret-file") == 0) {
-            secret = argv[++i];
-        } else if (strcmp(a, "--max-runs") == 0) {
-            char *end;
-            errno = 0;
-            max_runs = strtol(argv[++i], &end, 10);
-            if (errno != 0 || *end != '\0' || end == argv[i] || max_runs < 0) {
-                fprintf(stderr, "mpb-planner-null: --max-runs wants a "
-                        "number >= 0, not '%s'\n", argv[i]);
-                return 2;
-            }
-        } else {
-            fprintf(stderr, "mpb-planner-null: unknown argument '%s' "
-                    "(see --help)\n", a);
-            return 2;
-        }
+        fprintf(stderr, "mpb-planner-null: unknown argument '%s' (see --help)\n",
+                a);
+        return 2;
     }
 
     struct sigaction sa;
@@ -143,7 +127,7 @@ int main(int argc, char **argv)
 
     static const char *const algorithms[] = { "straight_line" };
     mpb_planner_def def = {
-        .name = name,
+        .name = opt.name,
         .language = "c",
         .version = MPB_VERSION_STRING,
         .algorithms = algorithms,
@@ -152,10 +136,10 @@ int main(int argc, char **argv)
         .user = NULL,
         .heartbeat_ms = 0,
         .on_ready = on_ready,
-        .secret_file = secret,
+        .secret_file = opt.secret_file,
     };
-    char err[256];
-    int rc = mpb_planner_serve(&def, url, &g_stop, max_runs, err, sizeof err);
+    int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,
+                               sizeof err);
     if (rc != MPB_OK) {
         fprintf(stderr, "mpb-planner-null: %s\n", err[0] ? err : mpb_strerror(rc));
         return 1;

@@ -759,12 +759,21 @@ extern "C" void on_ready(void *, const char *planner_id)
 
 int main(int argc, char **argv)
 {
-    const char *url = nullptr, *name = "ompl", *secret = nullptr;
-    long max_runs = 0;
+    mpb_planner_options opt;
+    std::memset(&opt, 0, sizeof opt);
+    opt.name = "ompl";
     bool verbose = false;
+    char err[256] = "";
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
+        int took = mpb_planner_option(argc, argv, &i, &opt, err, sizeof err);
+        if (took < 0) {
+            std::fprintf(stderr, "mpb-planner-ompl: %s (see --help)\n", err);
+            return 2;
+        }
+        if (took)
+            continue;
         if (!std::strcmp(a, "--help") || !std::strcmp(a, "-h")) {
             usage(stdout);
             return 0;
@@ -773,31 +782,8 @@ int main(int argc, char **argv)
             verbose = true;
             continue;
         }
-        if ((!std::strcmp(a, "--lcm-url") || !std::strcmp(a, "--name") ||
-             !std::strcmp(a, "--max-runs") || !std::strcmp(a, "--secret-file")) &&
-            i + 1 >= argc) {
-            std::fprintf(stderr, "mpb-planner-ompl: %s needs a value (see --help)\n", a);
-            return 2;
-        }
-        if (!std::strcmp(a, "--lcm-url")) {
-            url = argv[++i];
-        } else if (!std::strcmp(a, "--name")) {
-            name = argv[++i];
-        } else if (!std::strcmp(a, "--secret-file")) {
-            secret = argv[++i];
-        } else if (!std::strcmp(a, "--max-runs")) {
-            char *end;
-            errno = 0;
-            max_runs = std::strtol(argv[++i], &end, 10);
-            if (errno != 0 || *end != '\0' || end == argv[i] || max_runs < 0) {
-                std::fprintf(stderr, "mpb-planner-ompl: --max-runs wants a "
-                             "number >= 0, not '%s'\n", argv[i]);
-                return 2;
-            }
-        } else {
-            std::fprintf(stderr, "mpb-planner-ompl: unknown argument '%s' (see --help)\n", a);
-            return 2;
-        }
+        std::fprintf(stderr, "mpb-planner-ompl: unknown argument '%s' (see --help)\n", a);
+        return 2;
     }
 
     LogHandler log;
@@ -818,7 +804,7 @@ int main(int argc, char **argv)
     Context ctx;
     mpb_planner_def def;
     std::memset(&def, 0, sizeof def);
-    def.name = name;
+    def.name = opt.name;
     def.language = "c++";
     def.version = k_version;
     def.algorithms = names.data();
@@ -826,10 +812,10 @@ int main(int argc, char **argv)
     def.solve = solve;
     def.user = &ctx;
     def.on_ready = on_ready;
-    def.secret_file = secret;
+    def.secret_file = opt.secret_file;
 
-    char err[256];
-    int rc = mpb_planner_serve(&def, url, &g_stop, max_runs, err, sizeof err);
+    int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,
+                               sizeof err);
     ompl::msg::restorePreviousOutputHandler();
     if (rc != MPB_OK) {
         std::fprintf(stderr, "mpb-planner-ompl: %s\n", err[0] ? err : mpb_strerror(rc));

@@ -30,14 +30,20 @@ scenes:
         goal: [-0.261284, -0.420386, -1.523717, -1.031201, -1.236424, -1.761224, -2.299770]
         tolerance: 0.001
 planners:
-  - {planner: arastar, algorithms: [ARAstar]}
+  - {planner: ara, algorithms: [ARAstar]}
 EOT
 
-mpb_spawn "$work/arastar.log" "$MPB_BUILD/planners/arastar/mpb-planner-arastar" -v
+# Under another name, for the 4 runs only: it must stop by itself.
+"$MPB_BUILD/planners/arastar/mpb-planner-arastar" -v --name ara --max-runs 4 \
+    >"$work/arastar.log" 2>&1 &
+planner=$!
 mpb_timeout 240 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/ara.yaml" >"$work/daemon.log" 2>&1
 status=$?
 check "mpbenchd completes the experiment and exits 0" eq "$status" 0
 [ "$status" -eq 0 ] || { cat "$work/daemon.log"; cat "$work/arastar.log"; }
+mpb_wait "$planner" 20
+check "the planner, named ara, exits 0 by itself after its 4 runs" eq $? 0
+check "... having served as ara@" grep -q "serving as ara@" "$work/arastar.log"
 
 check "4 runs are done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 4
 check "the planner claims every run solved" \

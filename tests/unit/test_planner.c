@@ -161,6 +161,44 @@ static mpb_planner_def make_def(const char *name)
     return def;
 }
 
+/* The shared options are taken out of argv; the rest is left alone. */
+static void test_options(void **state)
+{
+    (void)state;
+    char *argv[] = {"p", "--name", "ara", "-v", "--max-runs", "4",
+                    "--lcm-url", "udpm://u", "--secret-file", "f", "--max-runs",
+                    NULL};
+    int argc = 11, left[11], num_left = 0;
+    mpb_planner_options o = {.name = "default"};
+    char err[128];
+    for (int i = 1; i < argc; i++) {
+        int took = mpb_planner_option(argc, argv, &i, &o, err, sizeof err);
+        if (took < 0)
+            break;
+        if (!took)
+            left[num_left++] = i;
+    }
+    assert_string_equal(o.name, "ara");
+    assert_int_equal(o.max_runs, 4);
+    assert_string_equal(o.lcm_url, "udpm://u");
+    assert_string_equal(o.secret_file, "f");
+    assert_int_equal(num_left, 1);
+    assert_string_equal(argv[left[0]], "-v");
+    /* the last --max-runs has no value */
+    assert_string_equal(err, "--max-runs needs a value");
+    static const char *const bad[] = {"-1", "x", "4x", "", NULL};
+    for (int k = 0; bad[k]; k++) {
+        char *one[] = {"p", "--max-runs", (char *)bad[k], NULL};
+        int i = 1;
+        char want[96];
+        assert_int_equal(mpb_planner_option(3, one, &i, &o, err, sizeof err), -1);
+        snprintf(want, sizeof want, "--max-runs wants a number >= 0, not '%s'",
+                 bad[k]);
+        assert_string_equal(err, want);
+    }
+    assert_int_equal(o.max_runs, 4);
+}
+
 static void test_serve_rejects_bad_definitions(void **state)
 {
     (void)state;
@@ -240,6 +278,7 @@ int main(void)
         cmocka_unit_test(test_values_and_message),
         cmocka_unit_test(test_result_round_trip),
         cmocka_unit_test(test_request_param),
+        cmocka_unit_test(test_options),
         cmocka_unit_test(test_serve_rejects_bad_definitions),
         cmocka_unit_test(test_serve_reports_lcm_failure),
         cmocka_unit_test(test_serve_starts_and_stops),

@@ -87,6 +87,37 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
                       char *err, size_t errlen);
 
 /*
+ * The options every planner process of this kit takes, so that all of them
+ * are started alike:
+ *   --lcm-url URL   the LCM URL (the daemon's)
+ *   --name NAME     the planner family experiment files name
+ *   --max-runs N    exit after N runs (0: no limit)
+ *   --secret-file F authenticate messages with the secret in F
+ */
+typedef struct mpb_planner_options {
+    const char *lcm_url;         /* NULL: MPB_DEFAULT_LCM_URL */
+    const char *name;            /* the planner's default until given */
+    const char *secret_file;     /* NULL: no authentication */
+    long        max_runs;        /* 0: no limit */
+} mpb_planner_options;
+
+/*
+ * If argv[*i] is one of those options, store it (and its value, argv[*i+1])
+ * in o, step *i past the value and return 1; return 0 for any other
+ * argument, left to the caller; -1 with one line in err for a missing
+ * value or a bad count ("--max-runs wants a number >= 0, not 'x'"). Meant
+ * for the caller's loop over argv:
+ *     for (int i = 1; i < argc; i++) {
+ *         int took = mpb_planner_option(argc, argv, &i, &o, err, sizeof err);
+ *         if (took < 0) ... print err, exit 2
+ *         if (took) continue;
+ *         ... the planner's own options ...
+ *     }
+ */
+int mpb_planner_option(int argc, char **argv, int *i, mpb_planner_options *o,
+                       char *err, size_t errlen);
+
+/*
  * Append a stage of num_waypoints x num_joints values (copied, row after
  * row) to res. These four return MPB_OK, MPB_EINVAL or MPB_ENOMEM.
  */
