@@ -73,10 +73,12 @@ fi
 case $copies in
     ''|*[!0-9]*|0) echo "run_benchmark: --copies wants a whole number > 0" >&2; exit 2 ;;
 esac
-case $format in
-    text|markdown|csv|latex|json) ;;
-    *) echo "run_benchmark: unknown format '$format' (text, markdown, csv, latex or json)" >&2; exit 2 ;;
-esac
+# The report's format, checked by mpb report itself (it reads --format
+# before --help), so that a bad one stops us before anything starts.
+if ! err=$("$MPB_BUILD/tools/mpb" report --format "$format" --help 2>&1 >/dev/null); then
+    echo "run_benchmark: ${err#mpb report: }" >&2
+    exit 2
+fi
 
 # Absolute paths: the namespace re-runs this script from the same directory,
 # but the daemon resolves nothing relative to it.

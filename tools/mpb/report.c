@@ -542,8 +542,11 @@ int cmd_report(int argc, char **argv)
                 if (strcmp(optarg, formats[fmt].name) == 0)
                     break;
             if (fmt == NUM_FORMATS) {
-                fprintf(stderr, "mpb " CMD ": unknown format '%s' (text, "
-                        "markdown, csv, latex or json)\n", optarg);
+                fprintf(stderr, "mpb " CMD ": unknown format '%s' (", optarg);
+                for (int k = 0; k < NUM_FORMATS; k++)
+                    fprintf(stderr, "%s%s", k == 0 ? "" : k + 1 < NUM_FORMATS
+                            ? ", " : " or ", formats[k].name);
+                fprintf(stderr, ")\n");
                 return MPB_EXIT_USAGE;
             }
             break;
