@@ -225,9 +225,9 @@ static int parse_double(loader *L, yaml_node_t *n, const char *what, double *out
     const char *s = scalar(n);
     if (s == NULL)
         return fail_at(L, n, "%s must be a number", what);
-    errno = 0;
+    /* Not errno: strtod() sets ERANGE for 1e-310 too, which is a number. */
     *out = is_decimal(s, 0) ? strtod(s, NULL) : NAN;
-    if (errno != 0 || !isfinite(*out))
+    if (!isfinite(*out))
         return fail_at(L, n, "%s must be a number, not '%s'", what, s);
     return 0;
 }
@@ -266,7 +266,8 @@ static int parse_seed(loader *L, yaml_node_t *n, uint64_t *out)
             return 0;
         }
     }
-    return fail_at(L, n, "seed must be a whole number from %lld to %lld%s%s%s",
+    return fail_at(L, n, "seed must be an integer in digits (no point or "
+                   "exponent) from %lld to %lld%s%s%s",
                    LLONG_MIN, LLONG_MAX, s ? ", not '" : "", s ? s : "",
                    s ? "'" : "");
 }
@@ -447,12 +448,14 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
                                   sc->scene_format, sc->scene,
                                   (const char *const *)e->group, e->num_group,
                                   &sc->world, why, sizeof why);
-    if (rc == MPB_EUNSUPPORTED) {
+    const char *goes_with = mpb_world_scene_format(sc->robot_format);
+    if (rc == MPB_EUNSUPPORTED &&
+        (goes_with == NULL || strcmp(goes_with, sc->scene_format) != 0)) {
         /* A format: point at the robot's, or at this scene's if the
-         * robot's is known but the scene's does not go with it. */
-        yaml_node_t *at = mpb_world_scene_format(sc->robot_format) == NULL
-                              ? get(L, L->robot, "format")
-                              : get(L, where, "format");
+         * robot's is known but the scene's does not go with it. (Other
+         * faults are unsupported too, a mesh URI's scheme: not these.) */
+        yaml_node_t *at = goes_with == NULL ? get(L, L->robot, "format")
+                                            : get(L, where, "format");
         const char *what = strncmp(why, "world: ", 7) == 0 ? why + 7 : why;
         return fail_at(L, at ? at : where, "%s", what);
     }

@@ -503,8 +503,12 @@ static int progress_samples(reader *r, mpb_ompl_planner *pl, long q, long at)
                 }
                 for (long j = 0; j < q; j++) {
                     long to = j == at ? 0 : j < at ? j + 1 : j;
+                    /* A sample without a time cannot be placed (the
+                     * databases' column is NOT NULL). */
+                    double v = value_of(vals[j]);
                     if (!value_ok(vals[j], vals[j] + strlen(vals[j]), kinds[to],
-                                  limits[to])) {
+                                  limits[to]) ||
+                        (to == 0 && !isfinite(v))) {
                         char where[128];
                         snprintf(where, sizeof where, "the progress of run %ld "
                                  "of %.60s", i + 1, pl->name);
@@ -513,7 +517,7 @@ static int progress_samples(reader *r, mpb_ompl_planner *pl, long q, long at)
                                     limits[to]);
                         goto done;
                     }
-                    pl->progress[used + (size_t)to] = value_of(vals[j]);
+                    pl->progress[used + (size_t)to] = v;
                 }
                 used += (size_t)q;
             }

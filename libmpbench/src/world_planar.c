@@ -113,9 +113,10 @@ static int numbers(const token *t, int first, int count, double *v,
             return 0;
         }
         if (fabs(v[i]) > MPB_COLLISION_MAX_COORD) {
-            mpb__set_err(err, errlen, "%s line %d: %.*s is beyond %g (m or "
-                         "rad)", what, lineno, shown(k), k->p,
-                         MPB_COLLISION_MAX_COORD);
+            /* A scene holds lengths only; a robot, angles too. */
+            mpb__set_err(err, errlen, "%s line %d: %.*s is beyond %g %s", what,
+                         lineno, shown(k), k->p, MPB_COLLISION_MAX_COORD,
+                         strcmp(what, "scene") == 0 ? "m" : "(m or rad)");
             return 0;
         }
     }

@@ -100,8 +100,9 @@ static void seed_must_be_a_decimal_integer(void **state)
     for (int i = 0; bad[i]; i++) {
         snprintf(settings, sizeof settings, "time_limit: 1, seed: %s", bad[i]);
         assert_null(load_settings(settings));
-        snprintf(what, sizeof what, "seed must be a whole number from "
-                 "-9223372036854775808 to 9223372036854775807, not '%s'",
+        snprintf(what, sizeof what, "seed must be an integer in digits (no "
+                 "point or exponent) from -9223372036854775808 to "
+                 "9223372036854775807, not '%s'",
                  bad[i][0] == '\'' ? " 7" : bad[i]);
         assert_error("1:44", what);
     }
@@ -110,8 +111,8 @@ static void seed_must_be_a_decimal_integer(void **state)
 static void numbers_are_decimal(void **state)
 {
     static const char *const good[] = {"2", "+2", "0.5", ".5", "5.", "1e-1",
-                                       "2E+0", NULL};
-    static const double value[] = {2, 2, 0.5, 0.5, 5, 0.1, 2};
+                                       "2E+0", "1e-310", NULL};
+    static const double value[] = {2, 2, 0.5, 0.5, 5, 0.1, 2, 1e-310};
     static const char *const bad[] = {"0x1p0", "inf", "nan", "1e", "-", ".",
                                       "1.2.3", "' 1'", "1e999", NULL};
     char settings[128], what[128];
@@ -167,6 +168,31 @@ static void an_unknown_format_is_pointed_at(void **state)
                          "format 'planar' (expected 'planar')");
 }
 
+/* A robot fault the world calls unsupported that is no format (a mesh
+ * URI's scheme) is the robot file's, named, not the scene's format's. */
+static void an_unsupported_robot_is_not_a_format(void **state)
+{
+    char path[128], text[1024], want[512];
+    FILE *f;
+    (void)state;
+    snprintf(path, sizeof path, "%s/r.urdf", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fputs("<robot name='r'><link name='a'/><link name='b'><collision><geometry>"
+          "<mesh filename='http://example.com/x.stl'/></geometry></collision>"
+          "</link><joint name='j' type='revolute'><parent link='a'/>"
+          "<child link='b'/><limit lower='-1' upper='1' effort='1' "
+          "velocity='1'/></joint></robot>\n", f);
+    assert_int_equal(fclose(f), 0);
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             "robot: {format: urdf, file: r.urdf, joints: [j]}\n"
+             "scenes: [{name: s, format: moveit-scene, text: \"\", " QUERIES
+             "}]\n" PLANNERS);
+    assert_null(load_text(text));
+    snprintf(want, sizeof want, "%s/e.yaml:3:10: scene 's': %s: ", dir, path);
+    if (strncmp(err, want, strlen(want)) != 0 || !strstr(err, "http"))
+        fail_msg("'%s' does not start '%s'", err, want);
+}
+
 static void a_directory_is_not_a_file(void **state)
 {
     char text[1024], what[256];
@@ -191,6 +217,7 @@ int main(void)
         cmocka_unit_test(numbers_are_decimal),
         cmocka_unit_test(a_scene_without_queries_has_a_line),
         cmocka_unit_test(an_unknown_format_is_pointed_at),
+        cmocka_unit_test(an_unsupported_robot_is_not_a_format),
         cmocka_unit_test(a_directory_is_not_a_file),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);

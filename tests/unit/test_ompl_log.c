@@ -138,6 +138,14 @@ static void values_must_be_of_their_type(void **state)
     refused("time REAL\n6 runs\n\n", "time REAL\n6 runs\n1.5,3,4,2,-1,;\n",
             "line 151: the progress of run 1 of geometric_PRM: '-1' is not a "
             "time (a number of seconds, not negative)");
+    /* A sample's time must be there: the databases cannot store it else. */
+    refused("time REAL\n6 runs\n\n", "time REAL\n6 runs\n1.5,3,4,2,inf,;\n",
+            "line 151: the progress of run 1 of geometric_PRM: 'inf' is not a "
+            "time (a number of seconds, not negative)");
+    refused("time REAL\n6 runs\n\n", "time REAL\n6 runs\n1,,,,,;\n",
+            "line 151: the progress of run 1 of geometric_PRM: '' is not a "
+            "time (a number of seconds, not negative)");
+    read_ok("time REAL\n6 runs\n\n", "time REAL\n6 runs\n,,,,0.5,;\n");
     refused("status ENUM\n", "status FLOAT\n", "line 50: unknown property type "
             "'FLOAT' (not REAL, INTEGER, BOOLEAN or ENUM)");
     refused("42 is the random seed", "x is the random seed",

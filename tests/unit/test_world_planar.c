@@ -319,7 +319,7 @@ static void test_scene_parse_errors(void **state)
     expect_parse_error(ARM2, "box 0 0 1", "scene line 1:", "box needs");
     expect_parse_error(ARM2, "circle 0 0 -1", "scene line 1:", "radius");
     expect_parse_error(ARM2, "circle 0 0 1\ncircle 1e308 1e308 1e308",
-                       "scene line 2:", "1e308 is beyond 100000");
+                       "scene line 2:", "1e308 is beyond 100000 m");
     expect_parse_error(ARM2, "box 0 0 1 1e6", "scene line 1:",
                        "1e6 is beyond 100000");
     expect_parse_error(ARM2, "\n\n\nsphere 0 0 1", "scene line 4:",

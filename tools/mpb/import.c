@@ -370,9 +370,10 @@ static loaded *load_all(int num_logs, char **logs)
         } else if (total_runs(l[i].log) == 0) {
             /* OMPL writes such a log when no planner was added; importing
              * it would make an experiment that reports nothing. */
+            int np = l[i].log->num_planners;
             fprintf(stderr, "mpb " CMD ": %s: no runs in the log (%d "
-                    "planners): nothing to import\n", logs[i],
-                    l[i].log->num_planners);
+                    "planner%s): nothing to import\n", logs[i], np,
+                    np == 1 ? "" : "s");
             bad = 1;
         }
     }
