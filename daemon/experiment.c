@@ -675,7 +675,7 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
                          "a mapping of format and file or text")) == NULL ||
         load_model(L, L->robot, "robot", &robot_format, &robot,
                    &e->robot_file) != 0 ||
-        load_group(L, e, get(L, get(L, root, "robot"), "joints")) != 0)
+        load_group(L, e, get(L, L->robot, "joints")) != 0)
         goto done;
     e->num_scenes = 0;
     e->scenes = calloc(count_items(list) + 1, sizeof *e->scenes);

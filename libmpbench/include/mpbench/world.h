@@ -20,8 +20,9 @@
  *                 circle <cx> <cy> <r>                 (r >= 0)
  *                 box <cx> <cy> <half_x> <half_y>      (axis-aligned, >= 0)
  *             Every number is within +-1e5 (MPB_COLLISION_MAX_COORD, m
- *             or rad). Distances are exact (capsule to circle, capsule to box). The
- *             planar arm has NO self-collision: links may cross each other.
+ *             or rad). Distances are exact (capsule to circle, capsule to
+ *             box). The planar arm has NO self-collision: links may cross
+ *             each other.
  *   "urdf"    A robot from URDF (robot.h), among the objects of a MoveIt
  *             .scene file, scene format "moveit-scene" (scene.h); meshes
  *             through assimp, collision and distance through FCL
