@@ -116,21 +116,37 @@ static int schema_version(mpb_store *s, int *version)
     return MPB_OK;
 }
 
+static int has_column(mpb_store *s, const char *table, const char *column)
+{
+    char sql[160];
+    sqlite3_stmt *probe = NULL;
+    snprintf(sql, sizeof sql, "SELECT %s FROM %s LIMIT 0", column, table);
+    int present = sqlite3_prepare_v2(s->db, sql, -1, &probe, NULL) == SQLITE_OK;
+    sqlite3_finalize(probe);
+    return present;
+}
+
 /* Add a column that a database made by an earlier mpbench lacks. */
 static int add_missing_column(mpb_store *s, const char *table,
                               const char *column, const char *type)
 {
     char sql[160], what[96];
-    sqlite3_stmt *probe = NULL;
-    snprintf(sql, sizeof sql, "SELECT %s FROM %s LIMIT 0", column, table);
-    int present = sqlite3_prepare_v2(s->db, sql, -1, &probe, NULL) == SQLITE_OK;
-    sqlite3_finalize(probe);
-    if (present)
+    if (has_column(s, table, column))
         return MPB_OK;
     snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", table,
              column, type);
     snprintf(what, sizeof what, "add %s.%s", table, column);
     return exec(s, sql, what);
+}
+
+static int refresh_results_view(mpb_store *s)
+{
+    if (has_column(s, "results", "experiment_id") &&
+        has_column(s, "results", "message"))
+        return MPB_OK;
+    int rc = exec(s, "DROP VIEW IF EXISTS results", "drop results view");
+    return rc != MPB_OK ? rc
+                        : exec(s, mpb__schema_results_view, "create results view");
 }
 
 static int create_schema(mpb_store *s)
@@ -148,6 +164,10 @@ static int create_schema(mpb_store *s)
         (rc = add_missing_column(s, "queries", "goal_link", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK)
+        goto fail;
+    /* The results view is made again when it lacks a column this version
+     * gives it (a database made before results.experiment_id). */
+    if ((rc = refresh_results_view(s)) != MPB_OK)
         goto fail;
     /* A database made before the state index was dropped loses it: it
      * cost three pages in every commit and serves nothing frequent. */

@@ -9,6 +9,7 @@
 #define MPB__SCHEMA_VERSION 1
 
 extern const char mpb__schema_v1[];
+extern const char mpb__schema_results_view[];
 
 /* Prepared statements, made once per handle and kept (SQLite's own advice
  * for statements run thousands of times). */

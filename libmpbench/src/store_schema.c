@@ -131,15 +131,20 @@ const char mpb__schema_v1[] =
     "  time   REAL NOT NULL,\n"
     "  name   TEXT NOT NULL,\n"
     "  value  REAL,\n"
-    "  PRIMARY KEY(run_id, seq, name)) WITHOUT ROWID;\n"
+    "  PRIMARY KEY(run_id, seq, name)) WITHOUT ROWID;\n";
 
-    /* For people at the sqlite3 prompt: one row per finished run, with the
-     * metrics of its final stage. */
+/* For people at the sqlite3 prompt: one row per finished run, with the
+ * metrics of its final stage. An experiment run again after it finished
+ * gets a new id under the same name, so the id is there to tell them
+ * apart. */
+const char mpb__schema_results_view[] =
     "CREATE VIEW IF NOT EXISTS results AS\n"
-    "SELECT r.id AS run, e.name AS experiment, s.name AS scene,\n"
+    "SELECT r.id AS run, r.experiment_id, e.name AS experiment,\n"
+    "       s.name AS scene,\n"
     "       q.name AS query, c.name AS planner, r.repetition, r.status,\n"
     "       r.claimed_success,\n"
-    "       r.success, r.verdict, r.time_total, r.time_raw, r.time_other,\n"
+    "       r.success, r.verdict, r.message,\n"
+    "       r.time_total, r.time_raw, r.time_other,\n"
     "       r.final_stage,\n"
     "       (SELECT value FROM metrics m WHERE m.run_id = r.id\n"
     "          AND m.stage = r.final_stage AND m.name = 'path_length')\n"

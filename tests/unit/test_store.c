@@ -151,6 +151,9 @@ static void a_run_is_finished_once(void **state)
     assert_int_equal(peek(f, "SELECT length(waypoints) FROM stages"), 32);
     assert_int_equal(peek(f, "SELECT attempts FROM runs WHERE state = 'done'"), 1);
     assert_int_equal(peek(f, "SELECT path_length * 100 FROM results"), 125);
+    /* The view tells experiments of one name apart by their id. */
+    assert_true(peek(f, "SELECT experiment_id FROM results") == f->exp);
+    assert_int_equal(peek(f, "SELECT message = '' FROM results"), 1);
 
     assert_int_equal(mpb_store_run_counts(f->s, f->exp, &c), MPB_OK);
     assert_int_equal(c.total, 2);
@@ -252,6 +255,27 @@ static void an_older_state_index_is_dropped(void **state)
     assert_int_equal(rows[0].attempts, 2);
 }
 
+/* A database made before results.experiment_id gets the view as it is now
+ * when it is opened for writing; its rows are unchanged. */
+static void an_older_results_view_is_replaced(void **state)
+{
+    fixture *f = *state;
+    sqlite3 *db;
+    mpb_store_close(f->s);
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "DROP VIEW results; CREATE VIEW results AS"
+                                      " SELECT r.id AS run FROM runs r",
+                                  NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(peek(f, "SELECT count(*) FROM pragma_table_info('results')"
+                             " WHERE name = 'experiment_id'"), 0);
+
+    assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM pragma_table_info('results')"
+                             " WHERE name IN ('experiment_id', 'message',"
+                             " 'path_length')"), 3);
+}
+
 static void refuses_what_is_not_its_database(void **state)
 {
     (void)state;
@@ -295,6 +319,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(a_failed_write_leaves_no_half_run, setup, teardown),
         cmocka_unit_test_setup_teardown(resuming_finds_the_unfinished_experiment, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_state_index_is_dropped, setup, teardown),
+        cmocka_unit_test_setup_teardown(an_older_results_view_is_replaced, setup, teardown),
         cmocka_unit_test(refuses_what_is_not_its_database),
         cmocka_unit_test_setup_teardown(refuses_a_newer_schema, setup, teardown),
     };
