@@ -86,6 +86,7 @@ void mpb_grouped_end_group(mpb_grouped *g)
     if (g->g_n > 0) {
         g->sd_sum += group_sd(g);
         g->groups++;
+        g->measured += g->g_n >= 2;
     }
     g->g_n = 0;
     g->g_mean = 0.0;
@@ -107,4 +108,23 @@ double mpb_grouped_stddev(const mpb_grouped *g)
         groups++;
     }
     return groups > 0 ? sd_sum / groups : NAN;
+}
+
+int mpb_grouped_measured(const mpb_grouped *g)
+{
+    return g->measured + (g->g_n >= 2);   /* the open group counts too */
+}
+
+void mpb_grouped_merge(mpb_grouped *into, const mpb_grouped *g)
+{
+    into->sum += g->sum;
+    into->n += g->n;
+    into->sd_sum += g->sd_sum;
+    into->groups += g->groups;
+    into->measured += g->measured;
+    if (g->g_n > 0) {
+        into->sd_sum += group_sd(g);
+        into->groups++;
+        into->measured += g->g_n >= 2;
+    }
 }

@@ -131,6 +131,7 @@ static void test_grouped(void **state)
     mpb_grouped_end_group(&g);            /* D, empty */
 
     assert_int_equal(g.groups, 3);
+    assert_int_equal(mpb_grouped_measured(&g), 2);    /* A and B */
     assert_near(mpb_grouped_mean(&g), 35.0 / 6, EPS);
     assert_near(mpb_grouped_stddev(&g), (1 + sqrt(8.0)) / 3, EPS);
 }
@@ -150,6 +151,7 @@ static void test_grouped_open_group_and_single_runs(void **state)
     mpb_grouped_end_group(&g);
     assert_near(mpb_grouped_mean(&g), 0.48, EPS);
     assert_near(mpb_grouped_stddev(&g), 0.0, 0);
+    assert_int_equal(mpb_grouped_measured(&g), 0);    /* 0 by convention */
 
     /*
      * A last group left open counts as ended: groups 2 4 (sd sqrt(2)) and
@@ -160,17 +162,48 @@ static void test_grouped_open_group_and_single_runs(void **state)
     mpb_grouped_add(&g, 4);
     mpb_grouped_end_group(&g);
     mpb_grouped_add(&g, 1);
+    assert_int_equal(mpb_grouped_measured(&g), 1);
     mpb_grouped_add(&g, 3);
+    assert_int_equal(mpb_grouped_measured(&g), 2);    /* the open group too */
     assert_near(mpb_grouped_stddev(&g), sqrt(2.0), EPS);
     assert_near(mpb_grouped_mean(&g), 2.5, EPS);
     mpb_grouped_end_group(&g);
     assert_near(mpb_grouped_stddev(&g), sqrt(2.0), EPS);
 }
 
+/* Groups kept apart and merged give what adding them in turn gives. */
+static void test_grouped_merge(void **state)
+{
+    (void)state;
+    static const double a[] = {1, 2, 3}, b[] = {10, 14}, c[] = {5};
+    mpb_grouped whole, part[3], merged;
+    mpb_grouped_init(&whole);
+    mpb_grouped_init(&merged);
+    const double *groups[] = {a, b, c};
+    const int sizes[] = {3, 2, 1};
+    for (int i = 0; i < 3; i++) {
+        mpb_grouped_init(&part[i]);
+        for (int k = 0; k < sizes[i]; k++) {
+            mpb_grouped_add(&whole, groups[i][k]);
+            mpb_grouped_add(&part[i], groups[i][k]);
+        }
+        mpb_grouped_end_group(&whole);
+        if (i < 2)                      /* the last stays open */
+            mpb_grouped_end_group(&part[i]);
+        mpb_grouped_merge(&merged, &part[i]);
+    }
+    assert_int_equal(merged.n, 6);
+    assert_int_equal(merged.groups, 3);
+    assert_int_equal(mpb_grouped_measured(&merged), 2);
+    assert_near(mpb_grouped_mean(&merged), mpb_grouped_mean(&whole), EPS);
+    assert_near(mpb_grouped_stddev(&merged), (1 + sqrt(8.0)) / 3, EPS);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_summarize_six),
+        cmocka_unit_test(test_grouped_merge),
         cmocka_unit_test(test_summarize_small),
         cmocka_unit_test(test_summarize_empty_and_bad),
         cmocka_unit_test(test_grouped),

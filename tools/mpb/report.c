@@ -314,19 +314,6 @@ static void report_free(report *r)
 
 /* ---- what every format shows ---------------------------------------------- */
 
-/*
- * Fold one query's statistics (a single ended group) into a scene's. The
- * four fields are mpb_grouped's documented running sums; stats.h offers no
- * merge, and runs arrive interleaved, not query by query.
- */
-static void grouped_merge(mpb_grouped *into, const mpb_grouped *g)
-{
-    into->sum += g->sum;
-    into->n += g->n;
-    into->sd_sum += g->sd_sum;
-    into->groups += g->groups;
-}
-
 long report_scene_columns(const report *r, int si, column *cols)
 {
     long finished = 0;
@@ -342,7 +329,7 @@ long report_scene_columns(const report *r, int si, column *cols)
             cols[c].finished += cl->finished;
             cols[c].succeeded += cl->succeeded;
             for (int k = 0; k < M_COUNT; k++)
-                grouped_merge(&cols[c].m[k], &cl->m[k]);
+                mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
         }
         finished += cols[c].finished;
     }

@@ -45,6 +45,7 @@ typedef struct mpb_grouped {
     long   n;          /* all samples */
     double sd_sum;     /* sum of per-group standard deviations */
     int    groups;     /* groups with at least one sample */
+    int    measured;   /* groups with two or more: a spread was measured */
     /* the group being filled (Welford's running mean and M2) */
     long   g_n;
     double g_mean;
@@ -56,6 +57,13 @@ void   mpb_grouped_add(mpb_grouped *g, double x);
 void   mpb_grouped_end_group(mpb_grouped *g);   /* call after each group */
 double mpb_grouped_mean(const mpb_grouped *g);  /* NaN when empty */
 double mpb_grouped_stddev(const mpb_grouped *g);/* NaN when no group */
+/* Groups with two samples or more. With none, the standard deviation is 0
+ * by the convention above, not by measurement: nothing was repeated. */
+int    mpb_grouped_measured(const mpb_grouped *g);
+/* Add g's groups to into's, as if their samples had been added there group
+ * by group (g's open group counts as ended; into's stays open): for groups
+ * that arrive interleaved and are kept apart until they end. */
+void   mpb_grouped_merge(mpb_grouped *into, const mpb_grouped *g);
 
 #ifdef __cplusplus
 }
