@@ -410,6 +410,62 @@ static void the_newest_experiment_is_the_default(void **state)
                         "0.000400");
 }
 
+/*
+ * A row whose values span four decades: 0.004895 s and 5.21e-7 s. At the
+ * row's 6 decimals the second would keep one digit (0.000001); it keeps
+ * three in exponent form. The configuration named with a UTF-8 letter
+ * lines up with the rule below it, counted in characters, not bytes.
+ */
+static void tiny_values_and_wide_names(void **state)
+{
+    fixture *f = *state;
+    char path[128];
+    mpb_store *s;
+    int64_t exp, cfg[2], scene, query, ids[2];
+    snprintf(path, sizeof path, "%s/tiny.db", f->dir);
+    assert_int_equal(mpb_store_open(path, 0, &s), MPB_OK);
+    mpb_experiment_info e = {"tiny", "t.yaml", "h4", "text", 1, 10.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "x/tuned_\u00fc", "x",
+                     "tuned", "", &cfg[0]), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "x/plain", "x",
+                     "plain", "", &cfg[1]), MPB_OK);
+    mpb_scene_info sc = {"S\u00e4ule", "planar", "r", "r", "planar", "n", "n"};
+    assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    mpb_query_info q = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    for (int c = 0; c < 2; c++) {
+        assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query, 0, c), MPB_OK);
+        assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &ids[c]), 1);
+        run_spec r = {0, 0, 0, 1, 1, c ? 5.21e-7 : 0.004895, 0, 0, -1.0, 1.0,
+                      0.0, 2, -1};
+        finish(s, ids[c], &r);
+    }
+    mpb_store_close(s);
+
+    output o;
+    run(&o, "stdout", "report '%s'", path);
+    assert_int_equal(o.status, 0);
+    const char *title = "Scene S\u00e4ule - experiment tiny";
+    assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 0), "0.004895");
+    assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 1), "5.21e-07");
+    /* The header, the rule and a row: the same number of characters. */
+    const char *head = strstr(o.text, "\nMetric");
+    assert_non_null(head);
+    int widths[3] = {0};
+    const char *p = head + 1;
+    for (int line = 0; line < 3; line++) {
+        for (; *p != '\n'; p++)
+            widths[line] += ((unsigned char)*p & 0xC0) != 0x80;
+        p++;
+    }
+    assert_int_equal(widths[0], widths[1]);
+    assert_int_equal(widths[2], widths[1]);
+}
+
 /* ---- the other formats -------------------------------------------------------- */
 
 /* The part of o's text from the first occurrence of from up to (not
@@ -519,40 +575,41 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
     run(&o, "stdout", "report --format=csv -e 1 '%s'", f->db);
     assert_int_equal(o.status, 0);
     const char *header =
-        "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n\n";
+        "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
+        "unfinished\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
     /* 2 scenes x 2 configurations x (8 metrics + the success rate), and
      * the header: always the same rows, empty where nothing was measured. */
     assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 9);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "time_total,s,3.2,1.20710678118655,5\n"));
+                                   "time_total,s,3.2,1.20710678118655,5,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "path_length,rad,4.4,1,5\n"));
+                                   "path_length,rad,4.4,1,5,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "waypoints,,30,"));
     /* 5 of 6 finished runs; B: 1 of 2. */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "success_rate,,0.833333333333333,,6\n"));
+                                   "success_rate,,0.833333333333333,,6,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
-                                   "success_rate,,0.5,,2\n"));
+                                   "success_rate,,0.5,,2,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
-                                   "time_total,s,0.5,,1\n"));
+                                   "time_total,s,0.5,,1,1\n"));
     /* Not measured, never run: empty values, n = 0. */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "clearance,m,,,0\n"));
+                                   "clearance,m,,,0,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ompl/RRTConnect,"
-                                   "clearance,m,0.05,,1\n"));
+                                   "clearance,m,0.05,,1,0\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
-                                   "time_total,s,,,0\n"));
+                                   "time_total,s,,,0,0\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
-                                   "success_rate,,,,0\n"));
+                                   "success_rate,,,,0,0\n"));
     /* --stage changes the path metrics only. */
     run(&o, "stdout", "report -f csv -e 1 --stage raw '%s'", f->db);
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "path_length,rad,32,12.0710678118655,5\n"));
+                                   "path_length,rad,32,12.0710678118655,5,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "time_total,s,3.2,1.20710678118655,5\n"));
+                                   "time_total,s,3.2,1.20710678118655,5,1\n"));
 
     /* A CSV reader gets the names back whole. */
     python_on_report(f, &o,
@@ -802,6 +859,7 @@ int main(void)
         cmocka_unit_test(a_second_scene_has_its_own_table),
         cmocka_unit_test(a_chosen_stage_gives_its_own_metrics),
         cmocka_unit_test(the_newest_experiment_is_the_default),
+        cmocka_unit_test(tiny_values_and_wide_names),
         cmocka_unit_test(markdown_has_the_same_tables),
         cmocka_unit_test(csv_has_a_row_per_scene_planner_and_metric),
         cmocka_unit_test(latex_has_a_tabular_per_scene),

@@ -380,8 +380,8 @@ static void format_value(char *buf, int decimals, double v)
 {
     if (isnan(v))
         snprintf(buf, CELL_TEXT, "-");
-    else if (v != 0.0 && fabs(v) < 0.5e-6 && decimals == 6)
-        snprintf(buf, CELL_TEXT, "%.2e", v);    /* would print as 0.000000 */
+    else if (v != 0.0 && fabs(v) < 1e-4 && decimals == 6)
+        snprintf(buf, CELL_TEXT, "%.2e", v);    /* 3 digits, not 0.00000x */
     else
         snprintf(buf, CELL_TEXT, "%.*f", decimals, v);
 }
@@ -405,6 +405,24 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
 }
 
 /* ---- text ------------------------------------------------------------------ */
+
+/* Columns on a terminal: one per character, not per byte, so that a name
+ * such as "tuned_\u00fc" lines up (UTF-8 continuation bytes take none). */
+static int text_width(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += ((unsigned char)*s & 0xC0) != 0x80;
+    return n;
+}
+
+/* s right-aligned in width columns. */
+static void print_right(FILE *out, const char *s, int width)
+{
+    for (int pad = width - text_width(s); pad > 0; pad--)
+        fputc(' ', out);
+    fputs(s, out);
+}
 
 static int print_scene(const report *r, int si, FILE *out)
 {
@@ -431,12 +449,12 @@ static int print_scene(const report *r, int si, FILE *out)
             label_width = len;
     }
     for (int c = 0; c < nc; c++) {
-        width[c] = (int)strlen(r->configs[c].name);
+        width[c] = text_width(r->configs[c].name);
         if (width[c] < 8)
             width[c] = 8;
         for (int i = 0; i < report_num_rows; i++)
-            if ((int)strlen(text[i * nc + c]) > width[c])
-                width[c] = (int)strlen(text[i * nc + c]);
+            if (text_width(text[i * nc + c]) > width[c])
+                width[c] = text_width(text[i * nc + c]);
     }
 
     fprintf(out, "Scene %s - experiment %s (%lld), %ld run%s\n",
@@ -445,7 +463,8 @@ static int print_scene(const report *r, int si, FILE *out)
     int rule = label_width;
     fprintf(out, "%-*s", label_width, "Metric");
     for (int c = 0; c < nc; c++) {
-        fprintf(out, "  %*s", width[c], r->configs[c].name);
+        fputs("  ", out);
+        print_right(out, r->configs[c].name, width[c]);
         rule += 2 + width[c];
     }
     fputc('\n', out);
@@ -456,8 +475,10 @@ static int print_scene(const report *r, int si, FILE *out)
         if (!visible[i])
             continue;
         fprintf(out, "%-*s", label_width, report_rows[i].label);
-        for (int c = 0; c < nc; c++)
-            fprintf(out, "  %*s", width[c], text[i * nc + c]);
+        for (int c = 0; c < nc; c++) {
+            fputs("  ", out);
+            print_right(out, text[i * nc + c], width[c]);
+        }
         fputc('\n', out);
     }
     if (r->scenes[si].unfinished > 0)

@@ -167,8 +167,10 @@ static void csv_row_start(const report *r, int si, int c, const char *metric,
 
 int report_write_csv(const report *r, FILE *out)
 {
-    fputs("experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n\n",
-          out);
+    /* unfinished: the scene's runs not finished yet, on each of its rows,
+     * so that a partial experiment cannot pass for a whole one. */
+    fputs("experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
+          "unfinished\n", out);
     for (int si = 0; si < r->num_scenes; si++) {
         scene_table t = {0};
         if (scene_table_make(r, si, &t) != MPB_OK)
@@ -181,14 +183,16 @@ int report_write_csv(const report *r, FILE *out)
                 csv_number(mpb_grouped_mean(&col->m[k]), out);
                 fputc(',', out);
                 csv_number(report_sigma(&col->m[k]), out);
-                fprintf(out, ",%ld\n", col->m[k].n);
+                fprintf(out, ",%ld,%d\n", col->m[k].n,
+                        r->scenes[si].unfinished);
             }
             /* The success rate: a fraction of the n finished runs. */
             csv_row_start(r, si, c, "success_rate", "", out);
             csv_number(col->finished > 0 ? (double)col->succeeded /
                                                (double)col->finished
                                          : NAN, out);
-            fprintf(out, ",,%ld\n", col->finished);
+            fprintf(out, ",,%ld,%d\n", col->finished,
+                    r->scenes[si].unfinished);
         }
         scene_table_free(&t);
     }
