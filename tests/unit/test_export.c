@@ -227,6 +227,102 @@ static void export_fresh(fixture *f, const int64_t *ids, int n,
     mpb_store_close(s);
 }
 
+/* ---- small stores of their own ------------------------------------------------ */
+
+/* A query of mini_experiment(): its scene (an index into the scene
+ * names), its name, and a pose region (12 numbers) or NULL for a joint
+ * goal. */
+typedef struct mini_query {
+    int           scene;
+    const char   *name;
+    const double *region;
+} mini_query;
+
+/*
+ * Add experiment name to the store at path (made if missing): its scenes,
+ * its queries, one configuration (null/straight_line) and num_runs finished
+ * runs per query, each with one stage that has every metric the daemon
+ * stores (daemon/results.c). Its id into *id.
+ */
+static void mini_experiment(const char *path, const char *name,
+                            const char *const *scenes, int num_scenes,
+                            const mini_query *queries, int num_queries,
+                            int num_runs, int64_t *id)
+{
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    static const mpb_named metrics[] = {
+        {"time", 0.5}, {"waypoints", 3}, {"path_length", 1.0},
+        {"smoothness", 0.25}, {"clearance", 0.125}, {"min_clearance", 0.0625},
+        {"ee_path_length", 2.0}};
+    mpb_store *s;
+    int64_t cfg, scene_id[8];
+    assert_true(num_scenes <= 8);
+    assert_int_equal(mpb_store_open(path, 0, &s), MPB_OK);
+    mpb_experiment_info e = {name, "mini.yaml", "h", "x", num_runs, 1.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, id), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, *id, "null/straight_line",
+                                                  "null", "straight_line", "",
+                                                  &cfg), MPB_OK);
+    for (int i = 0; i < num_scenes; i++) {
+        mpb_scene_info sc = {scenes[i], "planar", "r", "r", "planar", "s",
+                             "s"};
+        assert_int_equal(mpb_store_scene_add(s, *id, &sc, &scene_id[i]),
+                         MPB_OK);
+    }
+    for (int i = 0; i < num_queries; i++) {
+        const mini_query *mq = &queries[i];
+        mpb_query_info q = {mq->name, 1, joints, zero,
+                            mq->region ? MPB_GOAL_POSE_REGION
+                                       : MPB_GOAL_JOINTS,
+                            mq->region ? NULL : one, 0.001,
+                            mq->region ? "tool" : NULL, mq->region};
+        int64_t query_id;
+        assert_int_equal(mpb_store_query_add(s, scene_id[mq->scene], &q,
+                                             &query_id), MPB_OK);
+        for (int rep = 0; rep < num_runs; rep++) {
+            int64_t run_id = 0;
+            char uid[32];
+            assert_int_equal(mpb_store_run_add(s, *id, cfg, query_id, rep,
+                                               rep), MPB_OK);
+            assert_int_equal(mpb_store_runs_unfinished(s, *id, first_id,
+                                                       &run_id), 1);
+            snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
+            assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p"),
+                             MPB_OK);
+            mpb_stage_record st = {
+                .name = "raw", .time = 0.5, .num_waypoints = 3,
+                .valid = 1, .verdict = "valid", .verdict_segment = -1,
+                .num_metrics = (int)(sizeof metrics / sizeof metrics[0]),
+                .metrics = metrics};
+            mpb_run_record rec = {
+                .run_id = run_id, .run_uid = uid, .planner_id = "p",
+                .status = "solved", .message = "", .claimed_success = 1,
+                .success = 1, .time_total = 0.5, .time_raw = 0.5,
+                .wall_time = 0.75, .num_stages = 1, .stages = &st};
+            assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+        }
+    }
+    mpb_store_close(s);
+}
+
+/* Export the store at path for Planner Arena into a new f->out, or with
+ * MPB_EXPORT_APPEND into the one there. */
+static void export_store(fixture *f, const char *path, int flags,
+                         mpb_export_counts *counts)
+{
+    mpb_store *s;
+    if (!(flags & MPB_EXPORT_APPEND))
+        unlink(f->out);
+    assert_int_equal(mpb_store_open(path, 1, &s), MPB_OK);
+    int rc = mpb_store_export_planner_arena(s, f->out, NULL, 0, flags,
+                                            counts);
+    if (rc != MPB_OK)
+        fprintf(stderr, "export: %s\n", mpb_store_errmsg(s));
+    assert_int_equal(rc, MPB_OK);
+    mpb_store_close(s);
+}
+
 /* ---- reading the export back ------------------------------------------------ */
 
 static sqlite3 *open_out(const fixture *f)
@@ -286,6 +382,18 @@ static double number(sqlite3 *db, const char *sql)
     return v;
 }
 
+/* A file's text (the first 64 KiB), until the next call. */
+static char *slurp(const char *path)
+{
+    FILE *in = fopen(path, "r");
+    assert_non_null(in);
+    static char buf[65536];
+    size_t n = fread(buf, 1, sizeof buf - 1, in);
+    buf[n] = '\0';
+    fclose(in);
+    return buf;
+}
+
 /* ---- the tests ------------------------------------------------------------ */
 
 static void experiments_keep_planner_arenas_twelve_columns(void **state)
@@ -325,6 +433,55 @@ static void experiments_keep_planner_arenas_twelve_columns(void **state)
         "mpbench experiment 1, query k2\n"
         "joints: j\nstart: 0\ngoal (joints): 1\ntolerance: 0.01\n\n");
     sqlite3_close(db);
+}
+
+static void setup_shows_a_pose_regions_goal(void **state)
+{
+    fixture *f = *state;
+    static const double region[12] = {0.5, -0.25, 1, 0.125, 0.125, 0.125,
+                                      0, 1.5, 0, 0.0625, 0.0625, 3.5};
+    static const char *const scenes[] = {"shelf"};
+    static const mini_query queries[] = {{0, "reach", region},
+                                         {0, "home", NULL}};
+    char path[128], dir[128], log[256];
+    int64_t exp;
+    snprintf(path, sizeof path, "%s/region.db", f->dir);
+    mini_experiment(path, "pr", scenes, 1, queries, 2, 1, &exp);
+
+    /* The region as the experiment file gives it, the tolerance the
+     * start's; a joint goal as before. */
+static const char reach[] =
+        "x\n\n"
+        "mpbench experiment 1, query reach\n"
+        "joints: j\nstart: 0\n"
+        "goal (pose_region): link tool\n"
+        "  position: 0.5 -0.25 1\n"
+        "  position_tolerance: 0.125 0.125 0.125\n"
+        "  rpy: 0 1.5 0\n"
+        "  rpy_tolerance: 0.0625 0.0625 3.5\n"
+        "start tolerance: 0.001\n";
+    char want[512];
+    export_store(f, path, 0, NULL);
+    sqlite3 *db = open_out(f);
+    snprintf(want, sizeof want, "%s\n", reach);
+    assert_string_equal(rows(db, "SELECT setup FROM experiments"
+                                 " WHERE query = 'reach'"), want);
+    assert_string_equal(rows(db, "SELECT setup FROM experiments"
+                                 " WHERE query = 'home'"),
+        "x\n\nmpbench experiment 1, query home\n"
+        "joints: j\nstart: 0\ngoal (joints): 1\ntolerance: 0.001\n\n");
+    sqlite3_close(db);
+
+    /* The log's setup block says the same. */
+    mpb_store *s;
+    snprintf(dir, sizeof dir, "%s/region-logs", f->dir);
+    assert_int_equal(mpb_store_open(path, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0, 0, NULL),
+                     MPB_OK);
+    mpb_store_close(s);
+    snprintf(log, sizeof log, "%s/pr.1.shelf.reach.log", dir);
+    snprintf(want, sizeof want, "\n<<<|\n%s|>>>\n", reach);
+    assert_non_null(strstr(slurp(log), want));
 }
 
 static void planner_configs_and_the_status_enum(void **state)
@@ -608,17 +765,6 @@ static int count_lines_starting(const char *text, const char *start)
     return n;
 }
 
-static char *slurp(const char *path)
-{
-    FILE *in = fopen(path, "r");
-    assert_non_null(in);
-    static char buf[65536];
-    size_t n = fread(buf, 1, sizeof buf - 1, in);
-    buf[n] = '\0';
-    fclose(in);
-    return buf;
-}
-
 static void ompl_logs_one_per_query(void **state)
 {
     fixture *f = *state;
@@ -861,6 +1007,7 @@ int main(void)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(experiments_keep_planner_arenas_twelve_columns),
+        cmocka_unit_test(setup_shows_a_pose_regions_goal),
         cmocka_unit_test(planner_configs_and_the_status_enum),
         cmocka_unit_test(runs_carry_attributes_from_the_fourth_column),
         cmocka_unit_test(booleans_are_0_or_1_and_status_is_the_enum),
