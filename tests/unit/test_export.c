@@ -708,6 +708,78 @@ static void append_adds_and_reuses_configurations(void **state)
     assert_int_equal(c.skipped, 0);
 }
 
+static void scenes_of_one_word_name_stay_apart(void **state)
+{
+    fixture *f = *state;
+    /* "a b" and "a_b" are one word alike, and a scene may be called what
+     * a told-apart name would be. */
+    static const char *const scenes[] = {"a b", "a_b", "a_b#1"};
+    static const mini_query queries[] = {{0, "q 1", NULL}, {0, "q_1", NULL},
+                                         {1, "q 1", NULL}, {2, "q 1", NULL}};
+    char path[128];
+    int64_t exp;
+    mpb_export_counts c;
+    snprintf(path, sizeof path, "%s/clash.db", f->dir);
+    mini_experiment(path, "clash", scenes, 3, queries, 4, 2, &exp);
+
+    /* Into a new file every query goes, its runs with it, each scene
+     * under a name of its own (#N: its place in the experiment). */
+    export_store(f, path, 0, &c);
+    assert_int_equal(c.experiments, 4);
+    assert_int_equal(c.runs, 8);
+    assert_int_equal(c.skipped, 0);
+    sqlite3 *db = open_out(f);
+    assert_string_equal(rows(db, "SELECT e.name, e.query, count(r.id)"
+                                 " FROM experiments e JOIN runs r"
+                                 " ON r.experimentid = e.id"
+                                 " GROUP BY e.id ORDER BY e.id"),
+                        "clash/a_b#1#1|q 1|2\n"
+                        "clash/a_b#1#1|q_1|2\n"
+                        "clash/a_b#2|q 1|2\n"
+                        "clash/a_b#1#3|q 1|2\n");
+    sqlite3_close(db);
+
+    /* Appended again, each is found there, none for another. */
+    export_store(f, path, MPB_EXPORT_APPEND, &c);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(c.runs, 0);
+    assert_int_equal(c.skipped, 4);
+}
+
+static void one_export_skips_only_what_was_there(void **state)
+{
+    fixture *f = *state;
+    static const char *const scenes[] = {"s"};
+    static const mini_query queries[] = {{0, "q", NULL}};
+    char path[128];
+    int64_t exp[2];
+    mpb_export_counts c;
+    snprintf(path, sizeof path, "%s/twice.db", f->dir);
+    /* Two experiments of one name, host, run count and start second:
+     * alike to a query of the file, but not the same. */
+    mini_experiment(path, "twice", scenes, 1, queries, 1, 1, &exp[0]);
+    mini_experiment(path, "twice", scenes, 1, queries, 1, 1, &exp[1]);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "UPDATE experiments SET"
+                                  " created = 1700000000", NULL, NULL, NULL),
+                     SQLITE_OK);
+    sqlite3_close(db);
+
+    export_store(f, path, 0, &c);
+    assert_int_equal(c.experiments, 2);
+    assert_int_equal(c.runs, 2);
+    assert_int_equal(c.skipped, 0);
+    db = open_out(f);
+    assert_string_equal(rows(db, "SELECT name, query, mpbench_experiment"
+                                 " FROM experiments ORDER BY id"),
+                        "twice/s|q|1\ntwice/s|q|2\n");
+    sqlite3_close(db);
+    export_store(f, path, MPB_EXPORT_APPEND, &c);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(c.skipped, 2);
+}
+
 static void append_refuses_other_databases(void **state)
 {
     fixture *f = *state;
@@ -1014,6 +1086,8 @@ int main(void)
         cmocka_unit_test(stage_values_by_hand),
         cmocka_unit_test(progress_samples_and_the_views),
         cmocka_unit_test(append_adds_and_reuses_configurations),
+        cmocka_unit_test(scenes_of_one_word_name_stay_apart),
+        cmocka_unit_test(one_export_skips_only_what_was_there),
         cmocka_unit_test(append_refuses_other_databases),
         cmocka_unit_test(failures_leave_nothing_behind),
         cmocka_unit_test(ompl_logs_one_per_query),
