@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <dirent.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdio.h>
@@ -923,6 +924,80 @@ static void ompl_logs_one_per_query(void **state)
     mpb_store_close(s);
 }
 
+/* The number of files in dir. */
+static int count_files(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *ent;
+    int n = 0;
+    assert_non_null(d);
+    while ((ent = readdir(d)) != NULL)
+        n += ent->d_name[0] != '.';
+    closedir(d);
+    return n;
+}
+
+static void ompl_logs_of_names_alike_are_files_of_their_own(void **state)
+{
+    fixture *f = *state;
+    /* Scenes "tai dokoro" and "souko" (kitchen and storehouse, two CJK
+     * characters each) are "______" in a file name, "q 1" and "q_1" are
+     * "q_1"; "K" and "k" are one file where case is ignored. */
+    static const char *const scenes[] = {"\xe5\x8f\xb0\xe6\x89\x80",
+                                         "\xe5\x80\x89\xe5\xba\xab", "K", "k"};
+    static const mini_query queries[] = {{0, "q 1", NULL}, {0, "q_1", NULL},
+                                         {1, "q 1", NULL}, {2, "a", NULL},
+                                         {3, "a", NULL}, {2, "b", NULL}};
+    static const struct { const char *file, *experiment, *query; } logs[] = {
+        {"x.1.______.q_1+1.log", "x/\xe5\x8f\xb0\xe6\x89\x80", "q 1"},
+        {"x.1.______.q_1+2.log", "x/\xe5\x8f\xb0\xe6\x89\x80", "q_1"},
+        {"x.1.______.q_1+3.log", "x/\xe5\x80\x89\xe5\xba\xab", "q 1"},
+        {"x.1.K.a+4.log", "x/K", "a"},
+        {"x.1.k.a+5.log", "x/k", "a"},
+        {"x.1.K.b.log", "x/K", "b"},
+    };
+    char path[128], dir[128], log[256], want[256];
+    int64_t exp;
+    mpb_store *s;
+    mpb_export_counts c;
+    snprintf(path, sizeof path, "%s/alike.db", f->dir);
+    snprintf(dir, sizeof dir, "%s/alike-logs", f->dir);
+    mini_experiment(path, "x", scenes, 4, queries, 6, 2, &exp);
+
+    /* A file per query, each with its query's runs; the counts are what
+     * is there. */
+    assert_int_equal(mpb_store_open(path, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0, 0, &c),
+                     MPB_OK);
+    assert_int_equal(c.experiments, 6);
+    assert_int_equal(c.runs, 12);
+    assert_int_equal(count_files(dir), 6);
+    for (size_t i = 0; i < sizeof logs / sizeof logs[0]; i++) {
+        snprintf(log, sizeof log, "%s/%s", dir, logs[i].file);
+        snprintf(want, sizeof want, "\nExperiment %s\n2 experiment "
+                 "properties\nquery VARCHAR(512) = %s\n", logs[i].experiment,
+                 logs[i].query);
+        const char *text = slurp(log);
+        assert_non_null(strstr(text, want));
+        assert_non_null(strstr(text, "\n2 runs\n"));
+    }
+
+    /* Again without replacing: one log there stops it before it writes
+     * any (the one removed is not made again). */
+    snprintf(log, sizeof log, "%s/%s", dir, logs[0].file);
+    assert_int_equal(unlink(log), 0);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0, 0, &c),
+                     MPB_EEXISTS);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(count_files(dir), 5);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0,
+                                                MPB_EXPORT_REPLACE, &c),
+                     MPB_OK);
+    assert_int_equal(c.experiments, 6);
+    assert_int_equal(count_files(dir), 6);
+    mpb_store_close(s);
+}
+
 /* ---- the command line --------------------------------------------------------- */
 
 typedef struct output {
@@ -1091,6 +1166,7 @@ int main(void)
         cmocka_unit_test(append_refuses_other_databases),
         cmocka_unit_test(failures_leave_nothing_behind),
         cmocka_unit_test(ompl_logs_one_per_query),
+        cmocka_unit_test(ompl_logs_of_names_alike_are_files_of_their_own),
         cmocka_unit_test(mpb_export_writes_and_refuses_to_overwrite),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -42,7 +42,9 @@ static void usage(FILE *out)
         "                   docs/planner-arena.md.\n"
         "  --ompl-log       the same as OMPL benchmark logs in the directory DIR\n"
         "                   (made if missing), one per query, named\n"
-        "                   EXPERIMENT.ID.SCENE.QUERY.log; OMPL's\n"
+        "                   EXPERIMENT.ID.SCENE.QUERY.log (other than\n"
+        "                   [A-Za-z0-9.-] as '_'; names that would be alike\n"
+        "                   get +QUERYID before .log); OMPL's\n"
         "                   ompl_benchmark_statistics.py reads them.\n"
         "\n"
         "Options:\n"
@@ -59,8 +61,8 @@ static void usage(FILE *out)
         "  -h, --help           print this help\n"
         "\n"
         "Without --append or --force an existing OUT.db or log is left alone\n"
-        "(exit 1). OUT.db or DIR that is DB itself, by any name, is refused\n"
-        "(exit 2).\n"
+        "(exit 1; then no log is written). OUT.db or DIR that is DB itself,\n"
+        "by any name, is refused (exit 2).\n"
         "DB is opened read-only. Exit status: 0 on success, 1 on an error, 2 on\n"
         "a bad command line.\n");
 }
