@@ -242,8 +242,9 @@ typedef struct mini_query {
 /*
  * Add experiment name to the store at path (made if missing): its scenes,
  * its queries, one configuration (null/straight_line) and num_runs finished
- * runs per query, each with one stage that has every metric the daemon
- * stores (daemon/results.c). Its id into *id.
+ * runs per query, each with the stages of OMPL's planner (raw, shortcut,
+ * smoothed) and every metric the daemon stores (daemon/results.c). Its id
+ * into *id.
  */
 static void mini_experiment(const char *path, const char *name,
                             const char *const *scenes, int num_scenes,
@@ -291,16 +292,20 @@ static void mini_experiment(const char *path, const char *name,
             snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
             assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p"),
                              MPB_OK);
-            mpb_stage_record st = {
-                .name = "raw", .time = 0.5, .num_waypoints = 3,
-                .valid = 1, .verdict = "valid", .verdict_segment = -1,
-                .num_metrics = (int)(sizeof metrics / sizeof metrics[0]),
-                .metrics = metrics};
+            static const char *const stages[] = {"raw", "shortcut",
+                                                 "smoothed"};
+            mpb_stage_record st[3];
+            for (int k = 0; k < 3; k++)
+                st[k] = (mpb_stage_record){
+                    .name = stages[k], .time = 0.5, .num_waypoints = 3,
+                    .valid = 1, .verdict = "valid", .verdict_segment = -1,
+                    .num_metrics = (int)(sizeof metrics / sizeof metrics[0]),
+                    .metrics = metrics};
             mpb_run_record rec = {
                 .run_id = run_id, .run_uid = uid, .planner_id = "p",
                 .status = "solved", .message = "", .claimed_success = 1,
-                .success = 1, .time_total = 0.5, .time_raw = 0.5,
-                .wall_time = 0.75, .num_stages = 1, .stages = &st};
+                .success = 1, .time_total = 1.5, .time_raw = 1.5,
+                .wall_time = 2.0, .num_stages = 3, .stages = st};
             assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
         }
     }
@@ -546,6 +551,50 @@ static void runs_carry_attributes_from_the_fourth_column(void **state)
         " JOIN pragma_table_info('runs') b ON b.name = 'simplified_' || a.name"
         ) == 6);
     sqlite3_close(db);
+}
+
+static void the_doc_lists_every_runs_attribute(void **state)
+{
+    fixture *f = *state;
+    static const char *const scenes[] = {"s"};
+    static const mini_query queries[] = {{0, "q", NULL}};
+    char path[128];
+    int64_t exp;
+    snprintf(path, sizeof path, "%s/doc.db", f->dir);
+    mini_experiment(path, "doc", scenes, 1, queries, 1, 1, &exp);
+    export_store(f, path, 0, NULL);
+
+    /* docs/planner-arena.md's runs table: from "### runs" to the next
+     * heading. */
+    char *doc = slurp(MPB_SOURCE_DIR "/docs/planner-arena.md");
+    char *table = strstr(doc, "\n### runs\n");
+    assert_non_null(table);
+    char *end = strstr(table + 1, "\n###");
+    assert_non_null(end);
+    *end = '\0';
+
+    /* Every attribute (the fourth column on: no planner numbers here) in
+     * it, by its name in a log. */
+    sqlite3 *db = open_out(f);
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_prepare_v2(db, "SELECT name FROM"
+                                        " pragma_table_info('runs')"
+                                        " WHERE cid >= 3", -1, &st, NULL),
+                     SQLITE_OK);
+    int n = 0;
+    while (sqlite3_step(st) == SQLITE_ROW) {
+        char want[128];
+        snprintf(want, sizeof want, "`%s`", sqlite3_column_text(st, 0));
+        for (char *p = want; *p; p++)
+            if (*p == '_')
+                *p = ' ';
+        if (strstr(table, want) == NULL)
+            fprintf(stderr, "docs/planner-arena.md: no %s\n", want);
+        n += strstr(table, want) == NULL;
+    }
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+    assert_int_equal(n, 0);
 }
 
 static void booleans_are_0_or_1_and_status_is_the_enum(void **state)
@@ -1157,6 +1206,7 @@ int main(void)
         cmocka_unit_test(setup_shows_a_pose_regions_goal),
         cmocka_unit_test(planner_configs_and_the_status_enum),
         cmocka_unit_test(runs_carry_attributes_from_the_fourth_column),
+        cmocka_unit_test(the_doc_lists_every_runs_attribute),
         cmocka_unit_test(booleans_are_0_or_1_and_status_is_the_enum),
         cmocka_unit_test(stage_values_by_hand),
         cmocka_unit_test(progress_samples_and_the_views),
