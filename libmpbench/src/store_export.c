@@ -141,8 +141,7 @@ static int export_experiment(pa_out *o, int64_t experiment_id,
     if (sqlite3_prepare_v2(o->db,
             "SELECT 1 FROM experiments WHERE name = ?1 AND query IS ?2 AND"
             " date IS ?3 AND runcount IS ?4 AND hostname IS ?5 AND id <= ?6",
-            -1, &present,
-            NULL) != SQLITE_OK) {
+            -1, &present, NULL) != SQLITE_OK) {
         rc = mpb__pa_fail(o, "prepare experiments");
         goto done;
     }
@@ -286,7 +285,7 @@ static int is_planner_arena(pa_out *o)
 }
 
 /* The largest id in o->db's experiments (0 if none) into *out: rows
- * added later have larger ids (AUTOINCREMENT). */
+ * added later have larger ids. */
 static int last_experiment(pa_out *o, int64_t *out)
 {
     sqlite3_stmt *st;
