@@ -99,8 +99,10 @@ done:
     return rc;
 }
 
-/* One mpbench experiment into the open database. */
-static int export_experiment(pa_out *o, int64_t experiment_id)
+/* One mpbench experiment into the open database, whose experiments rows
+ * up to id before were there before this export began. */
+static int export_experiment(pa_out *o, int64_t experiment_id,
+                             int64_t before)
 {
     exp_info e = {0};
     prop_list props = {0}, progress = {0};
@@ -138,21 +140,23 @@ static int export_experiment(pa_out *o, int64_t experiment_id)
     mpb__pa_format_date(e.created, date, sizeof date);
     if (sqlite3_prepare_v2(o->db,
             "SELECT 1 FROM experiments WHERE name = ?1 AND query IS ?2 AND"
-            " date IS ?3 AND runcount IS ?4 AND hostname IS ?5", -1, &present,
-            NULL) != SQLITE_OK) {
+            " date IS ?3 AND runcount IS ?4 AND hostname IS ?5 AND id <= ?6",
+            -1, &present, NULL) != SQLITE_OK) {
         rc = mpb__pa_fail(o, "prepare experiments");
         goto done;
     }
     for (int i = 0; i < queries.n; i++) {
         const pa_query *q = &queries.v[i];
-        /* Exported before (same name, query, start, run count and
-         * host): kept as it is, its runs not added again. */
+        /* Exported before this export (same name, query, start, run
+         * count and host): kept as it is, its runs not added again. Rows
+         * this export wrote are other scenes or experiments. */
         sqlite3_reset(present);
         sqlite3_bind_text(present, 1, q->problem, -1, SQLITE_STATIC);
         sqlite3_bind_text(present, 2, q->query, -1, SQLITE_STATIC);
         sqlite3_bind_text(present, 3, date, -1, SQLITE_STATIC);
         sqlite3_bind_int(present, 4, e.runs_per_query);
         sqlite3_bind_text(present, 5, e.host, -1, SQLITE_STATIC);
+        sqlite3_bind_int64(present, 6, before);
         int step = sqlite3_step(present);
         if (step == SQLITE_ROW) {
             pa_exp[i] = 0;
@@ -280,6 +284,22 @@ static int is_planner_arena(pa_out *o)
     return rc;
 }
 
+/* The largest id in o->db's experiments (0 if none) into *out: rows
+ * added later have larger ids. */
+static int last_experiment(pa_out *o, int64_t *out)
+{
+    sqlite3_stmt *st;
+    int rc = MPB_OK;
+    if (sqlite3_prepare_v2(o->db, "SELECT coalesce(max(id), 0) FROM"
+                           " experiments", -1, &st, NULL) != SQLITE_OK ||
+        sqlite3_step(st) != SQLITE_ROW)
+        rc = mpb__pa_fail(o, "read experiments");
+    else
+        *out = sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+    return rc;
+}
+
 /* Whether out (a stat of the output) is the file of the store s itself. */
 static int is_store_file(mpb_store *s, const struct stat *out)
 {
@@ -326,6 +346,10 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if ((rc = mpb__pa_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
         (rc = mpb__pa_begin(&o)))
         goto done;
+    /* Only what was there before can be exported already. */
+    int64_t before = 0;
+    if ((rc = last_experiment(&o, &before)))
+        goto done;
     /* The experiment parameters after the twelve known columns. */
     for (int i = 0; i < MPB__PA_NUM_EXP_PARAMS && rc == MPB_OK; i++) {
         prop p = {.name = (char *)mpb__pa_exp_params[i][0],
@@ -334,7 +358,7 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
         rc = mpb__pa_ensure_columns(&o, "experiments", &one, 0);
     }
     for (int i = 0; i < num_exps && rc == MPB_OK; i++)
-        rc = export_experiment(&o, exps[i]);
+        rc = export_experiment(&o, exps[i], before);
 done:
     rc = mpb__pa_finish(&o, rc);
     if (rc != MPB_OK && created) {

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -235,13 +236,120 @@ done:
     return rc;
 }
 
+/* A log's file name, without its directory and ".log". */
+typedef struct log_name {
+    int64_t query_id;
+    char   *base;
+    int     clash;
+} log_name;
+
+typedef struct log_names {
+    log_name *v;
+    int       n, cap;
+} log_names;
+
+static void log_names_free(log_names *l)
+{
+    for (int i = 0; i < l->n; i++)
+        free(l->v[i].base);
+    free(l->v);
+    *l = (log_names){0};
+}
+
+static int cmp_base(const void *a, const void *b)
+{
+    const log_name *x = *(const log_name *const *)a,
+                   *y = *(const log_name *const *)b;
+    return strcasecmp(x->base, y->base);
+}
+
+/*
+ * The file names of the logs of experiments exps, in the order they are
+ * written: EXPERIMENT.ID.SCENE.QUERY of file_word()'s characters (the
+ * scene is the problem name's part after the experiment's). Names that
+ * would be one file, compared ignoring case as some file systems do, all
+ * get "+QUERYID": file_word() makes no '+' and query ids are unique, so
+ * then every name differs.
+ */
+static int plan_names(mpb_store *s, const int64_t *exps, int num_exps,
+                      log_names *out)
+{
+    int rc = MPB_OK;
+    for (int i = 0; i < num_exps && rc == MPB_OK; i++) {
+        exp_info e = {0};
+        pa_query_list queries = {0};
+        if ((rc = mpb__pa_exp_info_read(s, exps[i], &e)) == MPB_OK &&
+            (rc = mpb__pa_read_queries(s, &e, &queries)) == MPB_OK) {
+            for (int k = 0; k < queries.n && rc == MPB_OK; k++) {
+                const pa_query *q = &queries.v[k];
+                const char *scene = q->problem + strlen(e.name);
+                scene += *scene == '/';
+                size_t n = strlen(e.name) + strlen(scene) + strlen(q->query) +
+                           64;
+                char *base = malloc(n);
+                if (base == NULL ||
+                    mpb__grow((void **)&out->v, &out->cap, out->n + 1,
+                              sizeof *out->v)) {
+                    free(base);
+                    rc = mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+                    break;
+                }
+                snprintf(base, n, "%s.%lld.%s.%s", e.name, (long long)e.id,
+                         scene, q->query);
+                file_word(base);
+                out->v[out->n++] = (log_name){.query_id = q->query_id,
+                                              .base = base};
+            }
+        }
+        mpb__pa_queries_free(&queries);
+        mpb__pa_exp_info_free(&e);
+    }
+    if (rc != MPB_OK || out->n == 0)
+        return rc;
+
+    log_name **order = malloc(sizeof *order * (size_t)out->n);
+    if (order == NULL)
+        return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+    for (int i = 0; i < out->n; i++)
+        order[i] = &out->v[i];
+    qsort(order, (size_t)out->n, sizeof *order, cmp_base);
+    for (int i = 1; i < out->n; i++)
+        if (strcasecmp(order[i - 1]->base, order[i]->base) == 0)
+            order[i - 1]->clash = order[i]->clash = 1;
+    free(order);
+    for (int i = 0; i < out->n; i++) {
+        log_name *l = &out->v[i];
+        if (!l->clash)
+            continue;
+        size_t n = strlen(l->base) + 32;
+        char *base = malloc(n);
+        if (base == NULL)
+            return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+        snprintf(base, n, "%s+%lld", l->base, (long long)l->query_id);
+        free(l->base);
+        l->base = base;
+    }
+    return MPB_OK;
+}
+
+/* DIR/BASE.log; caller frees; NULL when out of memory. */
+static char *log_path(const char *dir, const char *base)
+{
+    size_t n = strlen(dir) + strlen(base) + 8;
+    char *path = malloc(n);
+    if (path)
+        snprintf(path, n, "%s/%s.log", dir, base);
+    return path;
+}
+
 int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
                                const int64_t *ids, int num_ids, int flags,
                                mpb_export_counts *counts)
 {
     int64_t *exps = NULL;
-    int num_exps = 0, rc;
+    int num_exps = 0, rc, next = 0;
     mpb_export_counts c = {0};
+    log_names names = {0};
 
     if (counts)
         *counts = c;
@@ -254,8 +362,23 @@ int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
         return mpb__store_fail(s, MPB_EIO, "%s is not a directory",
                                dir);
-    if ((rc = mpb__pa_experiment_ids(s, ids, num_ids, &exps, &num_exps)) != MPB_OK)
-        return rc;
+    if ((rc = mpb__pa_experiment_ids(s, ids, num_ids, &exps, &num_exps)) ||
+        (rc = plan_names(s, exps, num_exps, &names)))
+        goto done;
+    /* Without MPB_EXPORT_REPLACE, a log there already stops the export
+     * before it writes any. */
+    for (int i = 0; i < names.n && !(flags & MPB_EXPORT_REPLACE); i++) {
+        char *path = log_path(dir, names.v[i].base);
+        if (path == NULL) {
+            rc = mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+            goto done;
+        }
+        if (lstat(path, &sb) == 0)
+            rc = mpb__store_fail(s, MPB_EEXISTS, "%s: exists", path);
+        free(path);
+        if (rc)
+            goto done;
+    }
     for (int i = 0; i < num_exps && rc == MPB_OK; i++) {
         exp_info e = {0};
         prop_list props = {0}, progress = {0};
@@ -266,24 +389,18 @@ int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
             goto next;
         for (int k = 0; k < queries.n && rc == MPB_OK; k++) {
             const pa_query *q = &queries.v[k];
-            size_t n = strlen(dir) + strlen(e.name) + strlen(q->problem) +
-                       strlen(q->query) + 64;
-            char *path = malloc(n), *base = malloc(n);
-            if (path == NULL || base == NULL) {
-                free(path);
-                free(base);
+            /* Its name: the next planned, unless runs were finished
+             * since (a query with its first). */
+            if (next == names.n || names.v[next].query_id != q->query_id) {
+                rc = mpb__store_fail(s, MPB_EDB, "runs changed while "
+                                     "being read");
+                break;
+            }
+            char *path = log_path(dir, names.v[next++].base);
+            if (path == NULL) {
                 rc = mpb__store_fail(s, MPB_ENOMEM, "out of memory");
                 break;
             }
-            /* EXPERIMENT.ID.SCENE.QUERY.log; the scene is the problem
-             * name's part after the experiment's. */
-            const char *scene = q->problem + strlen(e.name);
-            scene += *scene == '/';
-            snprintf(base, n, "%s.%lld.%s.%s", e.name, (long long)e.id,
-                     scene, q->query);
-            file_word(base);
-            snprintf(path, n, "%s/%s.log", dir, base);
-            free(base);
             FILE *out = fopen(path, (flags & MPB_EXPORT_REPLACE) ? "w" : "wx");
             if (out == NULL) {
                 rc = mpb__store_fail(s, errno == EEXIST ? MPB_EEXISTS : MPB_EIO,
@@ -311,9 +428,10 @@ int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
         mpb__pa_props_free(&progress);
         mpb__pa_queries_free(&queries);
     }
+done:
+    log_names_free(&names);
     free(exps);
     if (counts)
         *counts = c;
     return rc;
 }
-

@@ -136,7 +136,8 @@ void mpb__pa_format_date(double t, char *buf, size_t n);
 /* A Planner Arena experiment: one query of an mpbench experiment. */
 typedef struct pa_query {
     int64_t query_id;
-    char   *problem;    /* "<experiment>/<scene>", one word */
+    char   *problem;    /* "<experiment>/<scene>", one word, "#N" after
+                           a scene whose word another scene has */
     char   *query;      /* the query's name */
     char   *setup;      /* the experiment file and the query */
     long    runs;

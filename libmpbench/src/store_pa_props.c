@@ -716,18 +716,181 @@ void mpb__pa_queries_free(pa_query_list *l)
     *l = (pa_query_list){0};
 }
 
-int mpb__pa_read_queries(mpb_store *s, const exp_info *e, pa_query_list *out)
+/* A scene's Planner Arena experiment name. */
+typedef struct scene_problem {
+    int64_t id;
+    char   *problem;
+    int     clash;
+} scene_problem;
+
+static void scene_problems_free(scene_problem *v, int n)
 {
+    for (int i = 0; i < n; i++)
+        free(v[i].problem);
+    free(v);
+}
+
+/*
+ * The Planner Arena experiment name of each scene of experiment e, by
+ * scene id: "<experiment>/<scene>", one word. Scenes whose names become
+ * the same word ("a b", "a_b") are told apart by "#N", N the scene's place
+ * in the experiment (1, 2, ...), so that reruns of an experiment file get
+ * the same names; again while names are the same (a scene may be called
+ * "a_b#1"). That ends: two names that end in "#N" differ in N, so each
+ * round gives a suffix to at least one scene that had none.
+ */
+static int scene_problems(mpb_store *s, const exp_info *e,
+                          scene_problem **out, int *num)
+{
+    scene_problem *v = NULL;
+    int n = 0, cap = 0, step, rc = MPB_OK;
+    *out = NULL;
+    *num = 0;
     sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT q.id, q.name, sc.name, count(r.id), total(r.wall_time),"
-        " q.joint_names, q.start, q.goal_kind, q.goal_joints,"
-        " q.goal_tolerance"
-        " FROM queries q JOIN scenes sc ON sc.id = q.scene_id"
-        " JOIN runs r ON r.query_id = q.id AND r.state = 'done'"
-        " WHERE sc.experiment_id = ?1 GROUP BY q.id ORDER BY sc.id, q.id");
-    int step, rc = MPB_OK;
+        "SELECT id, name FROM scenes WHERE experiment_id = ?1 ORDER BY id");
     if (st == NULL)
         return MPB_EDB;
+    sqlite3_bind_int64(st, 1, e->id);
+    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
+        const char *name = (const char *)sqlite3_column_text(st, 1);
+        size_t len = strlen(e->name) + strlen(name ? name : "") + 2;
+        if (mpb__grow((void **)&v, &cap, n + 1, sizeof *v)) {
+            rc = MPB_ENOMEM;
+            break;
+        }
+        v[n] = (scene_problem){.id = sqlite3_column_int64(st, 0),
+                               .problem = malloc(len)};
+        if (v[n++].problem == NULL) {
+            rc = MPB_ENOMEM;
+            break;
+        }
+        snprintf(v[n - 1].problem, len, "%s/%s", e->name, name ? name : "");
+        mpb__pa_one_word(v[n - 1].problem);
+    }
+    if (rc == MPB_OK && step != SQLITE_DONE)
+        rc = mpb__store_db_fail(s, "read scenes");
+    sqlite3_finalize(st);
+    for (int clashes = 1; rc == MPB_OK && clashes;) {
+        clashes = 0;
+        for (int i = 0; i < n; i++) {
+            v[i].clash = 0;
+            for (int j = 0; j < n && !v[i].clash; j++)
+                v[i].clash = j != i && strcmp(v[i].problem, v[j].problem) == 0;
+            clashes |= v[i].clash;
+        }
+        for (int i = 0; i < n && rc == MPB_OK; i++) {
+            if (!v[i].clash)
+                continue;
+            size_t len = strlen(v[i].problem) + 16;
+            char *p = malloc(len);
+            if (p == NULL) {
+                rc = MPB_ENOMEM;
+                break;
+            }
+            snprintf(p, len, "%s#%d", v[i].problem, i + 1);
+            free(v[i].problem);
+            v[i].problem = p;
+        }
+    }
+    if (rc != MPB_OK) {
+        scene_problems_free(v, n);
+        return rc;
+    }
+    *out = v;
+    *num = n;
+    return MPB_OK;
+}
+
+/*
+ * The goal lines of a query's setup. A joint goal: its joints and the
+ * tolerance (the start's and the goal's). A pose region: its link, the
+ * 12 stored numbers under their experiment file keys (box centre and half
+ * sizes, reference rpy and tolerances), and the tolerance, the start's
+ * only. Caller frees; NULL when out of memory.
+ */
+static char *goal_text(const char *kind, const char *joints,
+                       const char *tolerance, const char *link,
+                       const char *region)
+{
+    static const char *const keys[] = {"position", "position_tolerance",
+                                       "rpy", "rpy_tolerance"};
+    char *text = NULL;
+    size_t len = 0;
+    FILE *out = open_memstream(&text, &len);
+    if (out == NULL)
+        return NULL;
+    if (strcmp(kind, "pose_region") != 0) {
+        fprintf(out, "goal (%s): %s\ntolerance: %s\n", kind, joints,
+                tolerance);
+    } else {
+        const char *num[12];
+        size_t num_len[12];
+        int n = 0;
+        for (const char *p = region; n < 13;) {
+            p += strspn(p, " ");
+            if (*p == '\0')
+                break;
+            size_t k = strcspn(p, " ");
+            if (n < 12) {
+                num[n] = p;
+                num_len[n] = k;
+            }
+            n++;
+            p += k;
+        }
+        fprintf(out, "goal (%s): link %s\n", kind, link);
+        if (n == 12)
+            for (int i = 0; i < 4; i++)
+                fprintf(out, "  %s: %.*s %.*s %.*s\n", keys[i],
+                        (int)num_len[3 * i], num[3 * i],
+                        (int)num_len[3 * i + 1], num[3 * i + 1],
+                        (int)num_len[3 * i + 2], num[3 * i + 2]);
+        else
+            fprintf(out, "  region: %s\n", region);  /* not 12 numbers */
+        fprintf(out, "start tolerance: %s\n", tolerance);
+    }
+    if (fclose(out) != 0) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
+int mpb__pa_read_queries(mpb_store *s, const exp_info *e, pa_query_list *out)
+{
+    scene_problem *scenes = NULL;
+    int step, rc, num_scenes = 0, si = 0;
+    if ((rc = scene_problems(s, e, &scenes, &num_scenes)) != MPB_OK)
+        goto done;
+    /* A database made before pose-region goals, opened read-only, has no
+     * columns for them (a writer adds them): NULLs instead. */
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT count(*) FROM pragma_table_info('queries')"
+        " WHERE name = 'goal_region'");
+    if (st == NULL) {
+        rc = MPB_EDB;
+        goto done;
+    }
+    int has_region = sqlite3_step(st) == SQLITE_ROW &&
+                     sqlite3_column_int(st, 0) == 1;
+    sqlite3_finalize(st);
+    st = mpb__store_prepare(s, has_region
+        ? "SELECT q.id, q.name, q.scene_id, count(r.id), total(r.wall_time),"
+          " q.joint_names, q.start, q.goal_kind, q.goal_joints,"
+          " q.goal_tolerance, q.goal_link, q.goal_region"
+          " FROM queries q JOIN scenes sc ON sc.id = q.scene_id"
+          " JOIN runs r ON r.query_id = q.id AND r.state = 'done'"
+          " WHERE sc.experiment_id = ?1 GROUP BY q.id ORDER BY sc.id, q.id"
+        : "SELECT q.id, q.name, q.scene_id, count(r.id), total(r.wall_time),"
+          " q.joint_names, q.start, q.goal_kind, q.goal_joints,"
+          " q.goal_tolerance, NULL, NULL"
+          " FROM queries q JOIN scenes sc ON sc.id = q.scene_id"
+          " JOIN runs r ON r.query_id = q.id AND r.state = 'done'"
+          " WHERE sc.experiment_id = ?1 GROUP BY q.id ORDER BY sc.id, q.id");
+    if (st == NULL) {
+        rc = MPB_EDB;
+        goto done;
+    }
     sqlite3_bind_int64(st, 1, e->id);
     while ((step = sqlite3_step(st)) == SQLITE_ROW) {
         if ((rc = mpb__grow((void **)&out->v, &out->cap, out->n + 1,
@@ -737,41 +900,50 @@ int mpb__pa_read_queries(mpb_store *s, const exp_info *e, pa_query_list *out)
         *q = (pa_query){.query_id = sqlite3_column_int64(st, 0),
                         .runs = sqlite3_column_int(st, 3),
                         .total_time = sqlite3_column_double(st, 4)};
-        const char *scene = (const char *)sqlite3_column_text(st, 2);
-        const char *text[5];
-        for (int i = 0; i < 5; i++) {
+        /* By scene, as the scenes are. */
+        int64_t scene_id = sqlite3_column_int64(st, 2);
+        while (si < num_scenes && scenes[si].id != scene_id)
+            si++;
+        if (si == num_scenes) {
+            rc = mpb__store_fail(s, MPB_EDB, "query %lld has no scene",
+                                 (long long)q->query_id);
+            break;
+        }
+        const char *text[7];
+        for (int i = 0; i < 7; i++) {
             text[i] = (const char *)sqlite3_column_text(st, 5 + i);
             if (text[i] == NULL)
                 text[i] = "";
         }
-        size_t n = strlen(e->name) + strlen(scene ? scene : "") + 2;
+        char *goal = goal_text(text[2], text[3], text[4], text[5], text[6]);
         size_t ns = strlen(e->config_text) + 256 + strlen(text[0]) +
-                    strlen(text[1]) + strlen(text[3]) + strlen(text[4]) +
+                    strlen(text[1]) + (goal ? strlen(goal) : 0) +
                     strlen((const char *)sqlite3_column_text(st, 1));
-        q->problem = malloc(n);
+        q->problem = strdup(scenes[si].problem);
         q->query = mpb__pa_col_dup(st, 1);
         q->setup = malloc(ns);
-        if (!q->problem || !q->query || !q->setup) {
+        if (!q->problem || !q->query || !q->setup || !goal) {
+            free(goal);
             rc = MPB_ENOMEM;
             break;
         }
-        snprintf(q->problem, n, "%s/%s", e->name, scene ? scene : "");
-        mpb__pa_one_word(q->problem);
         snprintf(q->setup, ns,
                  "%s%s\nmpbench experiment %lld, query %s\n"
-                 "joints: %s\nstart: %s\ngoal (%s): %s\ntolerance: %s\n",
+                 "joints: %s\nstart: %s\n%s",
                  e->config_text,
                  e->config_text[0] &&
                          e->config_text[strlen(e->config_text) - 1] != '\n'
                      ? "\n" : "",
-                 (long long)e->id, q->query, text[0], text[1], text[2],
-                 text[3], text[4]);
+                 (long long)e->id, q->query, text[0], text[1], goal);
+        free(goal);
     }
     if (rc == MPB_OK && step != SQLITE_DONE)
         rc = mpb__store_db_fail(s, "read queries");
+    sqlite3_finalize(st);
+done:
     if (rc == MPB_ENOMEM)
         mpb__store_fail(s, rc, "out of memory");
-    sqlite3_finalize(st);
+    scene_problems_free(scenes, num_scenes);
     return rc;
 }
 

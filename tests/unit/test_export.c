@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <dirent.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdio.h>
@@ -227,6 +228,107 @@ static void export_fresh(fixture *f, const int64_t *ids, int n,
     mpb_store_close(s);
 }
 
+/* ---- small stores of their own ------------------------------------------------ */
+
+/* A query of mini_experiment(): its scene (an index into the scene
+ * names), its name, and a pose region (12 numbers) or NULL for a joint
+ * goal. */
+typedef struct mini_query {
+    int           scene;
+    const char   *name;
+    const double *region;
+} mini_query;
+
+/*
+ * Add experiment name to the store at path (made if missing): its scenes,
+ * its queries, one configuration (null/straight_line) and num_runs finished
+ * runs per query, each with the stages of OMPL's planner (raw, shortcut,
+ * smoothed) and every metric the daemon stores (daemon/results.c). Its id
+ * into *id.
+ */
+static void mini_experiment(const char *path, const char *name,
+                            const char *const *scenes, int num_scenes,
+                            const mini_query *queries, int num_queries,
+                            int num_runs, int64_t *id)
+{
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    static const mpb_named metrics[] = {
+        {"time", 0.5}, {"waypoints", 3}, {"path_length", 1.0},
+        {"smoothness", 0.25}, {"clearance", 0.125}, {"min_clearance", 0.0625},
+        {"ee_path_length", 2.0}};
+    mpb_store *s;
+    int64_t cfg, scene_id[8];
+    assert_true(num_scenes <= 8);
+    assert_int_equal(mpb_store_open(path, 0, &s), MPB_OK);
+    mpb_experiment_info e = {name, "mini.yaml", "h", "x", num_runs, 1.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, id), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, *id, "null/straight_line",
+                                                  "null", "straight_line", "",
+                                                  &cfg), MPB_OK);
+    for (int i = 0; i < num_scenes; i++) {
+        mpb_scene_info sc = {scenes[i], "planar", "r", "r", "planar", "s",
+                             "s"};
+        assert_int_equal(mpb_store_scene_add(s, *id, &sc, &scene_id[i]),
+                         MPB_OK);
+    }
+    for (int i = 0; i < num_queries; i++) {
+        const mini_query *mq = &queries[i];
+        mpb_query_info q = {mq->name, 1, joints, zero,
+                            mq->region ? MPB_GOAL_POSE_REGION
+                                       : MPB_GOAL_JOINTS,
+                            mq->region ? NULL : one, 0.001,
+                            mq->region ? "tool" : NULL, mq->region};
+        int64_t query_id;
+        assert_int_equal(mpb_store_query_add(s, scene_id[mq->scene], &q,
+                                             &query_id), MPB_OK);
+        for (int rep = 0; rep < num_runs; rep++) {
+            int64_t run_id = 0;
+            char uid[32];
+            assert_int_equal(mpb_store_run_add(s, *id, cfg, query_id, rep,
+                                               rep), MPB_OK);
+            assert_int_equal(mpb_store_runs_unfinished(s, *id, first_id,
+                                                       &run_id), 1);
+            snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
+            assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p"),
+                             MPB_OK);
+            static const char *const stages[] = {"raw", "shortcut",
+                                                 "smoothed"};
+            mpb_stage_record st[3];
+            for (int k = 0; k < 3; k++)
+                st[k] = (mpb_stage_record){
+                    .name = stages[k], .time = 0.5, .num_waypoints = 3,
+                    .valid = 1, .verdict = "valid", .verdict_segment = -1,
+                    .num_metrics = (int)(sizeof metrics / sizeof metrics[0]),
+                    .metrics = metrics};
+            mpb_run_record rec = {
+                .run_id = run_id, .run_uid = uid, .planner_id = "p",
+                .status = "solved", .message = "", .claimed_success = 1,
+                .success = 1, .time_total = 1.5, .time_raw = 1.5,
+                .wall_time = 2.0, .num_stages = 3, .stages = st};
+            assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+        }
+    }
+    mpb_store_close(s);
+}
+
+/* Export the store at path for Planner Arena into a new f->out, or with
+ * MPB_EXPORT_APPEND into the one there. */
+static void export_store(fixture *f, const char *path, int flags,
+                         mpb_export_counts *counts)
+{
+    mpb_store *s;
+    if (!(flags & MPB_EXPORT_APPEND))
+        unlink(f->out);
+    assert_int_equal(mpb_store_open(path, 1, &s), MPB_OK);
+    int rc = mpb_store_export_planner_arena(s, f->out, NULL, 0, flags,
+                                            counts);
+    if (rc != MPB_OK)
+        fprintf(stderr, "export: %s\n", mpb_store_errmsg(s));
+    assert_int_equal(rc, MPB_OK);
+    mpb_store_close(s);
+}
+
 /* ---- reading the export back ------------------------------------------------ */
 
 static sqlite3 *open_out(const fixture *f)
@@ -286,6 +388,18 @@ static double number(sqlite3 *db, const char *sql)
     return v;
 }
 
+/* A file's text (the first 64 KiB), until the next call. */
+static char *slurp(const char *path)
+{
+    FILE *in = fopen(path, "r");
+    assert_non_null(in);
+    static char buf[65536];
+    size_t n = fread(buf, 1, sizeof buf - 1, in);
+    buf[n] = '\0';
+    fclose(in);
+    return buf;
+}
+
 /* ---- the tests ------------------------------------------------------------ */
 
 static void experiments_keep_planner_arenas_twelve_columns(void **state)
@@ -325,6 +439,55 @@ static void experiments_keep_planner_arenas_twelve_columns(void **state)
         "mpbench experiment 1, query k2\n"
         "joints: j\nstart: 0\ngoal (joints): 1\ntolerance: 0.01\n\n");
     sqlite3_close(db);
+}
+
+static void setup_shows_a_pose_regions_goal(void **state)
+{
+    fixture *f = *state;
+    static const double region[12] = {0.5, -0.25, 1, 0.125, 0.125, 0.125,
+                                      0, 1.5, 0, 0.0625, 0.0625, 3.5};
+    static const char *const scenes[] = {"shelf"};
+    static const mini_query queries[] = {{0, "reach", region},
+                                         {0, "home", NULL}};
+    char path[128], dir[128], log[256];
+    int64_t exp;
+    snprintf(path, sizeof path, "%s/region.db", f->dir);
+    mini_experiment(path, "pr", scenes, 1, queries, 2, 1, &exp);
+
+    /* The region as the experiment file gives it, the tolerance the
+     * start's; a joint goal as before. */
+static const char reach[] =
+        "x\n\n"
+        "mpbench experiment 1, query reach\n"
+        "joints: j\nstart: 0\n"
+        "goal (pose_region): link tool\n"
+        "  position: 0.5 -0.25 1\n"
+        "  position_tolerance: 0.125 0.125 0.125\n"
+        "  rpy: 0 1.5 0\n"
+        "  rpy_tolerance: 0.0625 0.0625 3.5\n"
+        "start tolerance: 0.001\n";
+    char want[512];
+    export_store(f, path, 0, NULL);
+    sqlite3 *db = open_out(f);
+    snprintf(want, sizeof want, "%s\n", reach);
+    assert_string_equal(rows(db, "SELECT setup FROM experiments"
+                                 " WHERE query = 'reach'"), want);
+    assert_string_equal(rows(db, "SELECT setup FROM experiments"
+                                 " WHERE query = 'home'"),
+        "x\n\nmpbench experiment 1, query home\n"
+        "joints: j\nstart: 0\ngoal (joints): 1\ntolerance: 0.001\n\n");
+    sqlite3_close(db);
+
+    /* The log's setup block says the same. */
+    mpb_store *s;
+    snprintf(dir, sizeof dir, "%s/region-logs", f->dir);
+    assert_int_equal(mpb_store_open(path, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0, 0, NULL),
+                     MPB_OK);
+    mpb_store_close(s);
+    snprintf(log, sizeof log, "%s/pr.1.shelf.reach.log", dir);
+    snprintf(want, sizeof want, "\n<<<|\n%s|>>>\n", reach);
+    assert_non_null(strstr(slurp(log), want));
 }
 
 static void planner_configs_and_the_status_enum(void **state)
@@ -388,6 +551,50 @@ static void runs_carry_attributes_from_the_fourth_column(void **state)
         " JOIN pragma_table_info('runs') b ON b.name = 'simplified_' || a.name"
         ) == 6);
     sqlite3_close(db);
+}
+
+static void the_doc_lists_every_runs_attribute(void **state)
+{
+    fixture *f = *state;
+    static const char *const scenes[] = {"s"};
+    static const mini_query queries[] = {{0, "q", NULL}};
+    char path[128];
+    int64_t exp;
+    snprintf(path, sizeof path, "%s/doc.db", f->dir);
+    mini_experiment(path, "doc", scenes, 1, queries, 1, 1, &exp);
+    export_store(f, path, 0, NULL);
+
+    /* docs/planner-arena.md's runs table: from "### runs" to the next
+     * heading. */
+    char *doc = slurp(MPB_SOURCE_DIR "/docs/planner-arena.md");
+    char *table = strstr(doc, "\n### runs\n");
+    assert_non_null(table);
+    char *end = strstr(table + 1, "\n###");
+    assert_non_null(end);
+    *end = '\0';
+
+    /* Every attribute (the fourth column on: no planner numbers here) in
+     * it, by its name in a log. */
+    sqlite3 *db = open_out(f);
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_prepare_v2(db, "SELECT name FROM"
+                                        " pragma_table_info('runs')"
+                                        " WHERE cid >= 3", -1, &st, NULL),
+                     SQLITE_OK);
+    int n = 0;
+    while (sqlite3_step(st) == SQLITE_ROW) {
+        char want[128];
+        snprintf(want, sizeof want, "`%s`", sqlite3_column_text(st, 0));
+        for (char *p = want; *p; p++)
+            if (*p == '_')
+                *p = ' ';
+        if (strstr(table, want) == NULL)
+            fprintf(stderr, "docs/planner-arena.md: no %s\n", want);
+        n += strstr(table, want) == NULL;
+    }
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+    assert_int_equal(n, 0);
 }
 
 static void booleans_are_0_or_1_and_status_is_the_enum(void **state)
@@ -551,6 +758,78 @@ static void append_adds_and_reuses_configurations(void **state)
     assert_int_equal(c.skipped, 0);
 }
 
+static void scenes_of_one_word_name_stay_apart(void **state)
+{
+    fixture *f = *state;
+    /* "a b" and "a_b" are one word alike, and a scene may be called what
+     * a told-apart name would be. */
+    static const char *const scenes[] = {"a b", "a_b", "a_b#1"};
+    static const mini_query queries[] = {{0, "q 1", NULL}, {0, "q_1", NULL},
+                                         {1, "q 1", NULL}, {2, "q 1", NULL}};
+    char path[128];
+    int64_t exp;
+    mpb_export_counts c;
+    snprintf(path, sizeof path, "%s/clash.db", f->dir);
+    mini_experiment(path, "clash", scenes, 3, queries, 4, 2, &exp);
+
+    /* Into a new file every query goes, its runs with it, each scene
+     * under a name of its own (#N: its place in the experiment). */
+    export_store(f, path, 0, &c);
+    assert_int_equal(c.experiments, 4);
+    assert_int_equal(c.runs, 8);
+    assert_int_equal(c.skipped, 0);
+    sqlite3 *db = open_out(f);
+    assert_string_equal(rows(db, "SELECT e.name, e.query, count(r.id)"
+                                 " FROM experiments e JOIN runs r"
+                                 " ON r.experimentid = e.id"
+                                 " GROUP BY e.id ORDER BY e.id"),
+                        "clash/a_b#1#1|q 1|2\n"
+                        "clash/a_b#1#1|q_1|2\n"
+                        "clash/a_b#2|q 1|2\n"
+                        "clash/a_b#1#3|q 1|2\n");
+    sqlite3_close(db);
+
+    /* Appended again, each is found there, none for another. */
+    export_store(f, path, MPB_EXPORT_APPEND, &c);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(c.runs, 0);
+    assert_int_equal(c.skipped, 4);
+}
+
+static void one_export_skips_only_what_was_there(void **state)
+{
+    fixture *f = *state;
+    static const char *const scenes[] = {"s"};
+    static const mini_query queries[] = {{0, "q", NULL}};
+    char path[128];
+    int64_t exp[2];
+    mpb_export_counts c;
+    snprintf(path, sizeof path, "%s/twice.db", f->dir);
+    /* Two experiments of one name, host, run count and start second:
+     * alike to a query of the file, but not the same. */
+    mini_experiment(path, "twice", scenes, 1, queries, 1, 1, &exp[0]);
+    mini_experiment(path, "twice", scenes, 1, queries, 1, 1, &exp[1]);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "UPDATE experiments SET"
+                                  " created = 1700000000", NULL, NULL, NULL),
+                     SQLITE_OK);
+    sqlite3_close(db);
+
+    export_store(f, path, 0, &c);
+    assert_int_equal(c.experiments, 2);
+    assert_int_equal(c.runs, 2);
+    assert_int_equal(c.skipped, 0);
+    db = open_out(f);
+    assert_string_equal(rows(db, "SELECT name, query, mpbench_experiment"
+                                 " FROM experiments ORDER BY id"),
+                        "twice/s|q|1\ntwice/s|q|2\n");
+    sqlite3_close(db);
+    export_store(f, path, MPB_EXPORT_APPEND, &c);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(c.skipped, 2);
+}
+
 static void append_refuses_other_databases(void **state)
 {
     fixture *f = *state;
@@ -606,17 +885,6 @@ static int count_lines_starting(const char *text, const char *start)
         if (strncmp(p, start, len) == 0 && p[len] == '\n')
             n++;
     return n;
-}
-
-static char *slurp(const char *path)
-{
-    FILE *in = fopen(path, "r");
-    assert_non_null(in);
-    static char buf[65536];
-    size_t n = fread(buf, 1, sizeof buf - 1, in);
-    buf[n] = '\0';
-    fclose(in);
-    return buf;
 }
 
 static void ompl_logs_one_per_query(void **state)
@@ -702,6 +970,80 @@ static void ompl_logs_one_per_query(void **state)
     assert_int_equal(mpb_store_export_ompl_logs(s, dir, &one, 1,
                                                 MPB_EXPORT_REPLACE, &c),
                      MPB_OK);
+    mpb_store_close(s);
+}
+
+/* The number of files in dir. */
+static int count_files(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *ent;
+    int n = 0;
+    assert_non_null(d);
+    while ((ent = readdir(d)) != NULL)
+        n += ent->d_name[0] != '.';
+    closedir(d);
+    return n;
+}
+
+static void ompl_logs_of_names_alike_are_files_of_their_own(void **state)
+{
+    fixture *f = *state;
+    /* Scenes "tai dokoro" and "souko" (kitchen and storehouse, two CJK
+     * characters each) are "______" in a file name, "q 1" and "q_1" are
+     * "q_1"; "K" and "k" are one file where case is ignored. */
+    static const char *const scenes[] = {"\xe5\x8f\xb0\xe6\x89\x80",
+                                         "\xe5\x80\x89\xe5\xba\xab", "K", "k"};
+    static const mini_query queries[] = {{0, "q 1", NULL}, {0, "q_1", NULL},
+                                         {1, "q 1", NULL}, {2, "a", NULL},
+                                         {3, "a", NULL}, {2, "b", NULL}};
+    static const struct { const char *file, *experiment, *query; } logs[] = {
+        {"x.1.______.q_1+1.log", "x/\xe5\x8f\xb0\xe6\x89\x80", "q 1"},
+        {"x.1.______.q_1+2.log", "x/\xe5\x8f\xb0\xe6\x89\x80", "q_1"},
+        {"x.1.______.q_1+3.log", "x/\xe5\x80\x89\xe5\xba\xab", "q 1"},
+        {"x.1.K.a+4.log", "x/K", "a"},
+        {"x.1.k.a+5.log", "x/k", "a"},
+        {"x.1.K.b.log", "x/K", "b"},
+    };
+    char path[128], dir[128], log[256], want[256];
+    int64_t exp;
+    mpb_store *s;
+    mpb_export_counts c;
+    snprintf(path, sizeof path, "%s/alike.db", f->dir);
+    snprintf(dir, sizeof dir, "%s/alike-logs", f->dir);
+    mini_experiment(path, "x", scenes, 4, queries, 6, 2, &exp);
+
+    /* A file per query, each with its query's runs; the counts are what
+     * is there. */
+    assert_int_equal(mpb_store_open(path, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0, 0, &c),
+                     MPB_OK);
+    assert_int_equal(c.experiments, 6);
+    assert_int_equal(c.runs, 12);
+    assert_int_equal(count_files(dir), 6);
+    for (size_t i = 0; i < sizeof logs / sizeof logs[0]; i++) {
+        snprintf(log, sizeof log, "%s/%s", dir, logs[i].file);
+        snprintf(want, sizeof want, "\nExperiment %s\n2 experiment "
+                 "properties\nquery VARCHAR(512) = %s\n", logs[i].experiment,
+                 logs[i].query);
+        const char *text = slurp(log);
+        assert_non_null(strstr(text, want));
+        assert_non_null(strstr(text, "\n2 runs\n"));
+    }
+
+    /* Again without replacing: one log there stops it before it writes
+     * any (the one removed is not made again). */
+    snprintf(log, sizeof log, "%s/%s", dir, logs[0].file);
+    assert_int_equal(unlink(log), 0);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0, 0, &c),
+                     MPB_EEXISTS);
+    assert_int_equal(c.experiments, 0);
+    assert_int_equal(count_files(dir), 5);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0,
+                                                MPB_EXPORT_REPLACE, &c),
+                     MPB_OK);
+    assert_int_equal(c.experiments, 6);
+    assert_int_equal(count_files(dir), 6);
     mpb_store_close(s);
 }
 
@@ -861,15 +1203,20 @@ int main(void)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(experiments_keep_planner_arenas_twelve_columns),
+        cmocka_unit_test(setup_shows_a_pose_regions_goal),
         cmocka_unit_test(planner_configs_and_the_status_enum),
         cmocka_unit_test(runs_carry_attributes_from_the_fourth_column),
+        cmocka_unit_test(the_doc_lists_every_runs_attribute),
         cmocka_unit_test(booleans_are_0_or_1_and_status_is_the_enum),
         cmocka_unit_test(stage_values_by_hand),
         cmocka_unit_test(progress_samples_and_the_views),
         cmocka_unit_test(append_adds_and_reuses_configurations),
+        cmocka_unit_test(scenes_of_one_word_name_stay_apart),
+        cmocka_unit_test(one_export_skips_only_what_was_there),
         cmocka_unit_test(append_refuses_other_databases),
         cmocka_unit_test(failures_leave_nothing_behind),
         cmocka_unit_test(ompl_logs_one_per_query),
+        cmocka_unit_test(ompl_logs_of_names_alike_are_files_of_their_own),
         cmocka_unit_test(mpb_export_writes_and_refuses_to_overwrite),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

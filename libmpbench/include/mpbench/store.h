@@ -355,11 +355,13 @@ typedef struct mpb_export_counts {
  * ompl_benchmark_statistics.py. path must not exist (MPB_EEXISTS) unless
  * flags has MPB_EXPORT_APPEND, which adds to a database that script (or
  * this function) wrote (MPB_EINVAL, nothing written, for a file without its
- * tables experiments, plannerConfigs and runs, or for s's own file). A
- * query there already (an experiment of the same name, query, date,
- * runcount and hostname: exported before) is skipped with its runs
- * (counts->skipped); an id given twice counts once. On failure nothing
- * changes: a new file is removed.
+ * tables experiments, plannerConfigs and runs, or for s's own file). Each
+ * query is an experiment named EXPERIMENT/SCENE, whitespace as '_', with
+ * "#N" (N the scene's place in its experiment) for scenes that would
+ * share a name. A query there already (an experiment of the same name,
+ * query, date, runcount and hostname, in the file before this call:
+ * exported before) is skipped with its runs (counts->skipped); an id given
+ * twice counts once. On failure nothing changes: a new file is removed.
  * counts (may be NULL) says what was written. MPB_ENOTFOUND if an id is no
  * experiment or s holds none.
  */
@@ -370,11 +372,14 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
 /*
  * Write the same as OMPL benchmark logs, one per query (OMPL's one
  * experiment per file), into the directory dir (created if missing), named
- * EXPERIMENT.ID.SCENE.QUERY.log. ompl_benchmark_statistics.py turns them
- * into the database mpb_store_export_planner_arena() writes (no seed,
- * memory limit 0). A file that exists is an error (MPB_EEXISTS; the files
- * written before it stay) unless flags has MPB_EXPORT_REPLACE. counts
- * (may be NULL): experiments = files written.
+ * EXPERIMENT.ID.SCENE.QUERY.log (anything but [A-Za-z0-9.-] as '_'; names
+ * that would be one file, case ignored, each with "+QUERYID" before
+ * ".log", so that each query has a file of its own).
+ * ompl_benchmark_statistics.py turns them into the database
+ * mpb_store_export_planner_arena() writes (no seed, memory limit 0). A
+ * file that exists is an error (MPB_EEXISTS, found before any is written)
+ * unless flags has MPB_EXPORT_REPLACE. counts (may be NULL): experiments =
+ * files written.
  */
 int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
                                const int64_t *ids, int num_ids, int flags,
