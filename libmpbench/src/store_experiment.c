@@ -199,8 +199,21 @@ int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
     return insert_or_get(s, ins, sel, "add scene", id);
 }
 
-/* Numbers as text, space-separated, exact (%.17g): readable at the sqlite3
- * prompt and read back without loss. Free the result. */
+/* v in the fewest digits that read back as v: 0.08, not the
+ * 0.080000000000000002 that %.17g gives; 17 always suffice. */
+static int exact_number(char *buf, size_t cap, double v)
+{
+    int len = 0;
+    for (int digits = 15; digits <= 17; digits++) {
+        len = snprintf(buf, cap, "%.*g", digits, v);
+        if (strtod(buf, NULL) == v)
+            break;
+    }
+    return len;
+}
+
+/* Numbers as text, space-separated, exact: readable at the sqlite3 prompt
+ * and read back without loss. Free the result. */
 static char *numbers_text(const double *v, int n)
 {
     size_t cap = (size_t)n * 26 + 1;
@@ -208,8 +221,11 @@ static char *numbers_text(const double *v, int n)
     if (buf == NULL)
         return NULL;
     *p = '\0';
-    for (int i = 0; i < n; i++)
-        p += snprintf(p, cap - (size_t)(p - buf), i ? " %.17g" : "%.17g", v[i]);
+    for (int i = 0; i < n; i++) {
+        if (i)
+            *p++ = ' ';
+        p += exact_number(p, cap - (size_t)(p - buf), v[i]);
+    }
     return buf;
 }
 

@@ -96,7 +96,7 @@ check "the query is stored as a pose region of r_gripper_tool_frame" \
          "pose_region r_gripper_tool_frame"
 check "... with its centre, half sizes, rpy and tolerances, exactly" \
     test "$(q "SELECT goal_region FROM queries")" = \
-         "0.625 -0.25 0.875 0.01 0.02 0.029999999999999999 0.5 -0.25 1.5 0.050000000000000003 0.050000000000000003 0.050000000000000003"
+         "0.625 -0.25 0.875 0.01 0.02 0.03 0.5 -0.25 1.5 0.05 0.05 0.05"
 check "... and no joint goal" eq "$(q "SELECT count(*) FROM queries WHERE goal_joints IS NULL")" 1
 check "the planner was asked for a region, not a configuration" \
     eq "$(q "SELECT count(*) FROM runs WHERE state = 'done' AND success = 0 AND message LIKE '%needs a joint-space goal%'")" 1
