@@ -4,7 +4,9 @@
 # the expected images, each a real PNG or a well-formed SVG that names the
 # planners and says what the database says; and one-line errors for an
 # unknown scene, an experiment without finished runs, a missing database
-# and a missing gnuplot.
+# and a missing gnuplot. A second experiment, left unfinished (its OMPL
+# planner never comes), has scenes whose names differ only in non-ASCII
+# characters or punctuation: a file of their own for each.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -22,6 +24,72 @@ mpb_spawn "$work/ompl.log" "$MPB_BUILD/planners/ompl/mpb-planner-ompl"
 mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/demo.yaml" \
     >"$work/daemon.log" 2>&1
 check "the benchmark completes" eq $? 0
+mpb_stop_all
+
+# Odd names: 台所 and 倉庫 give the same file name part, as do "a b" and
+# "a_b"; "a_b-3" is what "a b" (scene 3) becomes then. The null planner's
+# 30 runs finish; the OMPL configuration's 18 never do.
+sed "s|PLANAR|$planar|" >"$work/names.yaml" <<'END'
+experiment:
+  name: "names 'odd' ü"
+  runs: 3
+  time_limit: 1.0
+robot:
+  format: planar
+  file: PLANAR/arm3.robot
+scenes:
+  - name: "台所"
+    format: planar
+    file: PLANAR/pillars.scene
+    queries:
+      - {name: q, start: [0, 0, 0], goal: [-1.2, 1.5, 1.0], tolerance: 0.01}
+  - name: "倉庫"
+    format: planar
+    file: PLANAR/pillars.scene
+    queries:
+      - {name: q, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+  - name: "a b"
+    format: planar
+    file: PLANAR/pillars.scene
+    queries:
+      - {name: q, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+  - name: "a_b"
+    format: planar
+    file: PLANAR/pillars.scene
+    queries:
+      - {name: q, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+  - name: "a_b-3"
+    format: planar
+    file: PLANAR/pillars.scene
+    queries:
+      - {name: q, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+  - name: "Säule \"x\" | `echo hi` 'q' \\ 100% & $HOME @x {y}^z_w, a scene whose name goes on and on past the width of any plot title, with more words"
+    format: planar
+    file: PLANAR/pillars.scene
+    queries:
+      - {name: q, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+planners:
+  - planner: null
+    algorithms: [straight_line]
+  - planner: null
+    algorithms: [straight_line]
+    name: "zwei ü"
+    runs: 2
+  - planner: ompl
+    algorithms: [RRTConnect]
+END
+NAMES=$work/names.db
+mpb_spawn "$work/null2.log" "$MPB_BUILD/planners/null/mpb-planner-null"
+"$MPB_BUILD/daemon/mpbenchd" -d "$NAMES" "$work/names.yaml" >"$work/names.log" 2>&1 &
+daemon=$!
+for i in $(seq 300); do
+    [ "$(sqlite3 "$NAMES" "SELECT count(*) FROM runs WHERE state = 'done'" 2>/dev/null)" -ge 30 ] 2>/dev/null && break
+    sleep 0.1
+done
+kill -TERM $daemon
+wait $daemon
+check "the second experiment stops with 30 runs done and 18 not" \
+    test "$(sqlite3 "$NAMES" "SELECT count(*) FROM runs WHERE state = 'done'"):$(sqlite3 "$NAMES" "SELECT count(*) FROM runs WHERE state != 'done'")" = 30:18
 mpb_stop_all
 
 # ---- PNG (the default) ------------------------------------------------------
@@ -71,6 +139,26 @@ check "... and draws the experiment's time limit" \
     grep -qx "time limit $(printf %g "$(sqlite3 "$DB" 'SELECT time_limit FROM experiments')") s" "$work/time.txt"
 check "the titles name the scene and the experiment" \
     grep -q "scene pillars, 2 queries pooled (experiment demo)" "$work/success.txt"
+
+# ---- names that clash in file names ---------------------------------------------
+"$mpb" plot --format both -o "$work/names" "$NAMES" >"$work/names.out" 2>"$work/names.err"
+check "mpb plot of the odd names exits 0" eq $? 0
+check "... prints no path twice" eq "$(sort "$work/names.out" | uniq -d | wc -l)" 0
+check "... and writes as many files as it prints paths" \
+    eq "$(ls "$work/names" | wc -l)" "$(wc -l <"$work/names.out")"
+check "... a time plot for each of the 6 scenes" \
+    eq "$(grep -c -- '-time\.svg$' "$work/names.out")" 6
+for f in __-1 __-2 a_b-3 a_b-4 a_b-3-5; do
+    check "a scene whose file name another one has takes its id: plot-$f-time" \
+        grep -qx "$work/names/plot-$f-time.svg" "$work/names.out"
+done
+svg_text "$work/names/plot-__-1-success.svg" >"$work/names1.txt"
+svg_text "$work/names/plot-__-2-success.svg" >"$work/names2.txt"
+check "scene 1 (台所) has its own success chart: 3 of 3" grep -qx "3 of 3" "$work/names1.txt"
+check "... and scene 2 (倉庫) its own: 0 of 3" grep -qx "0 of 3" "$work/names2.txt"
+"$mpb" plot --scene "a b" --format svg -o "$work/names-ab" "$NAMES" >"$work/names-ab.out"
+check "--scene keeps the scene's file name" \
+    grep -qx "$work/names-ab/plot-a_b-3-time.svg" "$work/names-ab.out"
 
 # ---- errors -------------------------------------------------------------------
 "$mpb" plot --scene kitchen -o "$work/none" "$DB" >/dev/null 2>"$work/scene.err"

@@ -29,6 +29,8 @@ typedef struct plot_series {
 typedef struct plot_scene {
     const char *experiment;  /* name */
     const char *scene;       /* name */
+    const char *file;        /* the scene in file names, unique in the
+                              * experiment: see plot_file_part() */
     int         num_queries; /* the scene's queries, pooled in every plot */
     double      time_limit;  /* s */
     int         num_configs;
@@ -50,17 +52,21 @@ static inline plot_series *plot_metric_series(const plot_scene *sc, int m,
 
 /*
  * Write to gp the gnuplot commands that draw one scene's plots into dir,
- * as plot-SCENE-WHAT.EXT (EXT "png" or "svg"): planning time, success
- * rate, and each path metric that has values. wrote(ud, path) is called
- * for each file the commands make. Returns the number of plots.
+ * as plot-FILE-WHAT.EXT (FILE sc->file, EXT "png" or "svg"): planning
+ * time, success rate, and each path metric that has values. wrote(ud,
+ * path) is called for each file the commands make. Returns the number of plots.
  */
 int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
                        const char *ext,
                        void (*wrote)(void *ud, const char *path), void *ud);
 
-/* The scene's name as it goes into file names: [A-Za-z0-9_.-] kept, other
- * characters as '_'. */
-void plot_file_name(char *out, size_t size, const char *dir,
-                    const char *scene, const char *what, const char *ext);
+/*
+ * A scene's name as it goes into file names: [A-Za-z0-9_.-] kept, any other
+ * character (a UTF-8 sequence counts as one) as '_', at most
+ * PLOT_PART_MAX bytes. Two names can give the same part ("a b", "a_b");
+ * plot.c then adds each such scene's id (see name_files()).
+ */
+#define PLOT_PART_MAX 120
+void plot_file_part(char *out, size_t size, const char *scene);
 
 #endif

@@ -47,18 +47,29 @@ static const char *safe_text(char *out, size_t size, const char *in)
     return out;
 }
 
-void plot_file_name(char *out, size_t size, const char *dir,
-                    const char *scene, const char *what, const char *ext)
+void plot_file_part(char *out, size_t size, const char *scene)
 {
-    char name[128];
-    size_t n = 0;
-    for (; scene && *scene && n + 1 < sizeof name; scene++) {
+    size_t n = 0, max = size < PLOT_PART_MAX + 1 ? size : PLOT_PART_MAX + 1;
+    unsigned char prev = 0;
+    for (; scene && *scene && n + 1 < max; scene++) {
         unsigned char c = (unsigned char)*scene;
-        name[n++] = (char)(isalnum(c) || c == '_' || c == '.' || c == '-'
-                           ? c : '_');
+        /* A UTF-8 continuation byte after a non-ASCII byte: the same
+         * character, already one '_'. */
+        if ((c & 0xc0) == 0x80 && prev >= 0x80) {
+            prev = c;
+            continue;
+        }
+        prev = c;
+        out[n++] = (char)(c < 0x80 && (isalnum(c) || strchr("_.-", c))
+                          ? c : '_');
     }
-    name[n] = '\0';
-    snprintf(out, size, "%s/plot-%s-%s.%s", dir, name, what, ext);
+    out[n] = '\0';
+}
+
+static void file_name(char *out, size_t size, const char *dir,
+                      const char *part, const char *what, const char *ext)
+{
+    snprintf(out, size, "%s/plot-%s-%s.%s", dir, part, what, ext);
 }
 
 /* A path as a gnuplot single-quoted string: ' doubled. */
@@ -323,18 +334,18 @@ int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
     char path[4096];
     int n = 0;
 
-    plot_file_name(path, sizeof path, dir, sc->scene, "time", ext);
+    file_name(path, sizeof path, dir, sc->file, "time", ext);
     if (time_plot(gp, sc, path, ext)) {
         wrote(ud, path);
         n++;
     }
-    plot_file_name(path, sizeof path, dir, sc->scene, "success", ext);
+    file_name(path, sizeof path, dir, sc->file, "success", ext);
     if (success_plot(gp, sc, path, ext)) {
         wrote(ud, path);
         n++;
     }
     for (int m = 0; m < PM_COUNT; m++) {
-        plot_file_name(path, sizeof path, dir, sc->scene, plot_metrics[m].name,
+        file_name(path, sizeof path, dir, sc->file, plot_metrics[m].name,
                        ext);
         if (metric_plot(gp, sc, m, path, ext)) {
             wrote(ud, path);
