@@ -160,6 +160,43 @@ check "... and scene 2 (倉庫) its own: 0 of 3" grep -qx "0 of 3" "$work/names2
 check "--scene keeps the scene's file name" \
     grep -qx "$work/names-ab/plot-a_b-3-time.svg" "$work/names-ab.out"
 
+# ---- names as they are, in lines that fit -------------------------------------
+# The SVG's text: each name as the database has it (UTF-8, quotes,
+# backquotes, backslash, $ and @ untouched), titles broken into lines of at
+# most 95 characters (800 px) that, joined, give the whole title.
+title_has() {
+    python3 - "$@" <<'END'
+import sys, xml.etree.ElementTree as E
+texts = [''.join(t.itertext()) for t in E.parse(sys.argv[1]).iter()
+         if t.tag.endswith('text')]
+joined = ' '.join(texts)
+long = [t for t in texts if len(t) > 95]
+missing = [w for w in sys.argv[2:] if w not in joined]
+if long or missing:
+    print('too long:', long, 'missing:', missing)
+    sys.exit(1)
+END
+}
+long_name=$(sqlite3 "$NAMES" "SELECT name FROM scenes WHERE id = 6")
+check "the long name's success chart names it whole, in lines that fit" \
+    title_has "$(ls "$work"/names/plot-S_ule*-success.svg)" \
+    "scene $long_name, 1 query pooled (experiment names 'odd' ü)"
+check "scene 台所's titles name it, its configurations keep their ü" \
+    title_has "$work/names/plot-__-1-time.svg" "scene 台所, 1 query pooled" \
+    "null/straight_line#zwei ü"
+check "the demo's smoothness title fits too" \
+    title_has "$work/svg/plot-pillars-smoothness.svg" "Smoothness"
+# A PNG draws 台 only when a font has it (else '?': pango would draw a box
+# many times the text's size across the image).
+mkdir "$work/bin"
+printf '#!/bin/sh\ntee "%s" | exec %s "$@"\n' "$work/png.gp" "$(command -v gnuplot)" >"$work/bin/gnuplot"
+chmod +x "$work/bin/gnuplot"
+PATH=$work/bin:$PATH "$mpb" plot --scene 台所 -o "$work/names-png" "$NAMES" >/dev/null
+if [ -n "$(fc-list ':charset=53f0' family 2>/dev/null)" ]; then kitchen=台所; else kitchen='??'; fi
+check "the PNG's title shows 台所 as $kitchen, as the fonts allow" \
+    grep -q "^set title 'Planning time per run - scene $kitchen, 1 query" "$work/png.gp"
+check "... and its ü as ü" grep -q "'null/straight_line#zwei ü'" "$work/png.gp"
+
 # ---- errors -------------------------------------------------------------------
 "$mpb" plot --scene kitchen -o "$work/none" "$DB" >/dev/null 2>"$work/scene.err"
 check "an unknown scene exits 1" eq $? 1

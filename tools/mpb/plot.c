@@ -417,6 +417,7 @@ static int draw(plot_scene *scenes, int num_scenes, const char *dir,
                 const char *ext)
 {
     written w = {0};
+    plot_glyphs gl = {.all = strcmp(ext, "svg") == 0};
     int rc = MPB_EXIT_ERROR;
     /* gnuplot's own messages go to our stderr; a missing gnuplot is
      * told apart by status 127, without the shell's own "not found". */
@@ -429,7 +430,7 @@ static int draw(plot_scene *scenes, int num_scenes, const char *dir,
     }
     for (int i = 0; i < num_scenes; i++)
         if (scenes[i].num_configs > 0)
-            plot_gnuplot_scene(gp, &scenes[i], dir, ext, on_wrote, &w);
+            plot_gnuplot_scene(gp, &scenes[i], dir, ext, &gl, on_wrote, &w);
     int status = pclose(gp);
     if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127) {
         fprintf(stderr, "mpb " CMD ": gnuplot not found on PATH (Debian: "
@@ -460,6 +461,7 @@ done:
     for (int i = 0; i < w.n; i++)
         free(w.paths[i]);
     free(w.paths);
+    plot_glyphs_free(&gl);
     return rc;
 }
 

@@ -51,13 +51,30 @@ static inline plot_series *plot_metric_series(const plot_scene *sc, int m,
 }
 
 /*
+ * Which characters a PNG can show. For a character no installed font has,
+ * pango draws a box many times the text's size across the image, so such
+ * characters are drawn as '?'. Latin, Greek and Cyrillic are taken as
+ * there; any other character is looked up once with fontconfig's fc-list
+ * (none without fc-list). An SVG is drawn by its viewer's fonts: all.
+ */
+typedef struct plot_glyphs {
+    int       all;        /* every character (SVG) */
+    unsigned *cp;         /* characters looked up */
+    char     *ok;         /* per cp: a font has it */
+    int       n, cap;
+} plot_glyphs;
+
+void plot_glyphs_free(plot_glyphs *gl);
+
+/*
  * Write to gp the gnuplot commands that draw one scene's plots into dir,
  * as plot-FILE-WHAT.EXT (FILE sc->file, EXT "png" or "svg"): planning
- * time, success rate, and each path metric that has values. wrote(ud,
- * path) is called for each file the commands make. Returns the number of plots.
+ * time, success rate, and each path metric that has values; names drawn
+ * as gl lets them. wrote(ud, path) is called for each file the commands
+ * make. Returns the number of plots.
  */
 int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
-                       const char *ext,
+                       const char *ext, plot_glyphs *gl,
                        void (*wrote)(void *ud, const char *path), void *ud);
 
 /*
