@@ -140,6 +140,70 @@ check "... and draws the experiment's time limit" \
 check "the titles name the scene and the experiment" \
     grep -q "scene pillars, 2 queries pooled (experiment demo)" "$work/success.txt"
 
+# ---- boxes -----------------------------------------------------------------------
+# The script mpb gives gnuplot, through a gnuplot that keeps a copy.
+mkdir "$work/bin"
+printf '#!/bin/sh\ntee "$GP_SCRIPT" | exec %s "$@"\n' "$(command -v gnuplot)" >"$work/bin/gnuplot"
+chmod +x "$work/bin/gnuplot"
+GP_SCRIPT=$work/demo.gp PATH=$work/bin:$PATH "$mpb" plot -o "$work/gp" "$DB" >/dev/null
+GP_SCRIPT=$work/names.gp PATH=$work/bin:$PATH "$mpb" plot -o "$work/gp" "$NAMES" >/dev/null
+# Each plot's datablocks: $bC_K the values of configuration C, stage K (one
+# a line); $qC_K its box: x q1 low high q3 median. Checked against type-7
+# quartiles (Python's statistics.quantiles, method 'inclusive', as R's and
+# numpy's default) and whiskers at the furthest value within 1.5 IQR.
+boxes_check() {
+    python3 - "$@" <<'END'
+import re, statistics, sys
+script, mode = open(sys.argv[1]).read(), sys.argv[2]
+plots = script.split('\nreset\n')
+boxes = small = 0
+bad = []
+for plot in plots:
+    blocks = dict(re.findall(r'^\$(\w+) << EOD\n(.*?)^EOD$', plot, re.M | re.S))
+    for name, text in blocks.items():
+        if not name.startswith('b'):
+            continue
+        v = sorted(float(x) for x in text.split())
+        q = blocks.get('q' + name[1:])
+        if len(v) < 3:
+            small += 1
+            if q is not None:
+                bad.append((name, 'a box of %d values' % len(v)))
+            continue
+        if q is None or not re.search(r'\$q%s using 1:2:3:4:5 with candlesticks' % name[1:], plot):
+            bad.append((name, 'no box drawn'))
+            continue
+        boxes += 1
+        x, q1, lo, hi, q3, med = (float(t) for t in q.split())
+        e1, e2, e3 = statistics.quantiles(v, n=4, method='inclusive')
+        iqr = e3 - e1
+        elo = min(t for t in v if t >= e1 - 1.5 * iqr)
+        ehi = max(t for t in v if t <= e3 + 1.5 * iqr)
+        for got, want in ((q1, e1), (med, e2), (q3, e3), (lo, elo), (hi, ehi)):
+            if abs(got - want) > 1e-9 * max(1, abs(want)):
+                bad.append((name, got, want))
+if mode == 'boxes':
+    print('%d boxes checked' % boxes)
+    sys.exit(1 if bad or boxes == 0 else 0)
+print('%d series of 1 or 2 values' % small)
+sys.exit(1 if bad or small == 0 else 0)
+END
+}
+check "every box is type-7 quartiles and median, whiskers at 1.5 IQR" \
+    boxes_check "$work/demo.gp" boxes
+check "... for 3 values too (null planner, 3 runs per scene)" \
+    boxes_check "$work/names.gp" boxes
+check "... and 1 or 2 values are only dots" boxes_check "$work/names.gp" small
+sqlite3 "$DB" "SELECT time_total FROM runs WHERE state = 'done'" >"$work/times.txt"
+check "the time plot's values are the database's" python3 - "$work/demo.gp" "$work/times.txt" <<'END'
+import re, sys
+plot = [p for p in open(sys.argv[1]).read().split('\nreset\n') if 'plot-pillars-time.png' in p][0]
+got = sorted(float(x) for name, text in re.findall(r'^\$(\w+) << EOD\n(.*?)^EOD$', plot, re.M | re.S)
+             if name.startswith('b') for x in text.split())
+want = sorted(float(x) for x in open(sys.argv[2]).read().split())
+sys.exit(0 if len(got) == len(want) and all(abs(a - b) <= 1e-12 * max(1, abs(b)) for a, b in zip(got, want)) else 1)
+END
+
 # ---- names that clash in file names ---------------------------------------------
 "$mpb" plot --format both -o "$work/names" "$NAMES" >"$work/names.out" 2>"$work/names.err"
 check "mpb plot of the odd names exits 0" eq $? 0
@@ -188,10 +252,8 @@ check "the demo's smoothness title fits too" \
     title_has "$work/svg/plot-pillars-smoothness.svg" "Smoothness"
 # A PNG draws 台 only when a font has it (else '?': pango would draw a box
 # many times the text's size across the image).
-mkdir "$work/bin"
-printf '#!/bin/sh\ntee "%s" | exec %s "$@"\n' "$work/png.gp" "$(command -v gnuplot)" >"$work/bin/gnuplot"
-chmod +x "$work/bin/gnuplot"
-PATH=$work/bin:$PATH "$mpb" plot --scene 台所 -o "$work/names-png" "$NAMES" >/dev/null
+GP_SCRIPT=$work/png.gp PATH=$work/bin:$PATH \
+    "$mpb" plot --scene 台所 -o "$work/names-png" "$NAMES" >/dev/null
 if [ -n "$(fc-list ':charset=53f0' family 2>/dev/null)" ]; then kitchen=台所; else kitchen='??'; fi
 check "the PNG's title shows 台所 as $kitchen, as the fonts allow" \
     grep -q "^set title 'Planning time per run - scene $kitchen, 1 query" "$work/png.gp"

@@ -20,6 +20,9 @@ typedef struct plot_metric_info {
 
 extern const plot_metric_info plot_metrics[PM_COUNT];
 
+/* A box needs this many values; fewer are drawn only as dots. */
+#define PLOT_BOX_MIN 3
+
 /* Values of one box, grown as rows come. */
 typedef struct plot_series {
     double *v;

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mpbench/mpbench.h"
 #include "plot.h"
 
 const plot_metric_info plot_metrics[PM_COUNT] = {
@@ -274,7 +275,6 @@ static void begin_plot(FILE *gp, const char *path, const char *ext, int width)
                 "set ytics nomirror\n"
                 "set grid ytics lc rgb '#dddddd'\n"
                 "set style fill solid 0.4 border -1\n"
-                "set style boxplot nooutliers candlesticks\n"
                 /* Room for the two-line labels under the axis. */
                 "set bmargin 4\n");
 }
@@ -345,25 +345,57 @@ static void datablock(FILE *gp, const char *name, const plot_series *s)
     fprintf(gp, "EOD\n");
 }
 
-/* Box plots of boxes[c * num_stages + k]; stage names in the key when
- * there are several. Returns 0 if there is nothing to draw. */
+/*
+ * One box, from mpb_summarize()'s quartiles (type 7, as R and numpy; see
+ * docs/metrics.md): x q1 low high q3 median, where the whiskers reach the
+ * furthest value within 1.5 interquartile ranges of the box. 0, or -1 when
+ * there is no box (too few values, or no memory).
+ */
+static int box_row(FILE *gp, const char *name, const plot_series *s, double x)
+{
+    mpb_summary q;
+    if (s->n < PLOT_BOX_MIN || mpb_summarize(s->v, s->n, &q) != MPB_OK)
+        return -1;
+    double iqr = q.q3 - q.q1, low = q.q1, high = q.q3;
+    for (int i = 0; i < s->n; i++) {
+        if (s->v[i] >= q.q1 - 1.5 * iqr && s->v[i] < low)
+            low = s->v[i];
+        if (s->v[i] <= q.q3 + 1.5 * iqr && s->v[i] > high)
+            high = s->v[i];
+    }
+    fprintf(gp, "$%s << EOD\n%.17g %.17g %.17g %.17g %.17g %.17g\nEOD\n",
+            name, x, q.q1, low, high, q.q3, q.median);
+    return 0;
+}
+
+/* Box plots of series[c * num_stages + k], each run also a dot; stage
+ * names in the key when there are several. Returns 0 if there is nothing
+ * to draw. */
 static int boxes(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
                  plot_series *const *series, int num_stages,
                  char *const *stage_names, int logscale)
 {
     double width = 0.7 / num_stages;
-    int plotted = 0, keyed[64] = {0};
-    char name[160];
+    int plotted = 0, n = sc->num_configs * num_stages;
+    int *boxed = calloc((size_t)n + 1, sizeof *boxed);
+    int *keyed = calloc((size_t)num_stages + 1, sizeof *keyed);
+    int *stage_boxed = calloc((size_t)num_stages + 1, sizeof *stage_boxed);
+    char name[160], block[32];
 
+    if (boxed == NULL || keyed == NULL || stage_boxed == NULL)
+        goto done;
     for (int c = 0; c < sc->num_configs; c++) {
         int any = 0;
         for (int k = 0; k < num_stages; k++) {
             const plot_series *s = series[c * num_stages + k];
             if (s->n == 0)
                 continue;
-            char block[32];
+            double x = c + 1 + (k - (num_stages - 1) / 2.0) * width;
             snprintf(block, sizeof block, "b%d_%d", c, k);
             datablock(gp, block, s);
+            snprintf(block, sizeof block, "q%d_%d", c, k);
+            boxed[c * num_stages + k] = box_row(gp, block, s, x) == 0;
+            stage_boxed[k] |= boxed[c * num_stages + k];
             any = 1;
         }
         if (!any)
@@ -387,26 +419,49 @@ static int boxes(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
             double x = c + 1 + (k - (num_stages - 1) / 2.0) * width;
             const char *color = num_stages > 1 ? colors[k % NUM_COLORS]
                                                : ONE_COLOR;
+            int box = boxed[c * num_stages + k];
+            /* The stage's key: its first box, or its first dots when it
+             * has no box. */
+            int key = num_stages > 1 && !keyed[k] && (box || !stage_boxed[k]);
             /* Every run as a dot, spread sideways (gnuplot's rand() is
-             * seeded the same each time: the same picture each time); a
-             * box of two values says little alone. */
+             * seeded the same each time: the same picture each time). */
             fprintf(gp, "%s $b%d_%d using (%g + %g * (rand(0) - 0.5)):1 with "
-                        "points pt 7 ps 0.5 lc rgb '#60%s' notitle",
+                        "points pt 7 ps 0.5 lc rgb '#60%s'",
                     plotted ? ", \\\n    " : " ", c, k, x, width * 0.5,
                     color + 1);
-            fprintf(gp, ", \\\n    $b%d_%d using (%g):1 with boxplot "
-                        "lc rgb '%s' fs transparent solid 0.4 border -1",
-                    c, k, x, color);
-            if (num_stages > 1 && k < 64 && !keyed[k]) {
+            if (key && !box) {
                 keyed[k] = 1;
                 fprintf(gp, " title ");
                 put_text(gp, clean_text(name, sizeof name, stage_names[k], gl));
             } else {
                 fprintf(gp, " notitle");
             }
+            /* The box, its whiskers with bars at their ends, and the
+             * median as a box of no height. */
+            if (box) {
+                fprintf(gp, ", \\\n    $q%d_%d using 1:2:3:4:5 with "
+                            "candlesticks whiskerbars 0.5 lc rgb '%s' "
+                            "fs transparent solid 0.4 border rgb '#000000'",
+                        c, k, color);
+                if (key) {
+                    keyed[k] = 1;
+                    fprintf(gp, " title ");
+                    put_text(gp, clean_text(name, sizeof name, stage_names[k],
+                                            gl));
+                } else {
+                    fprintf(gp, " notitle");
+                }
+                fprintf(gp, ", \\\n    $q%d_%d using 1:6:6:6:6 with "
+                            "candlesticks lc rgb '#000000' lw 1.5 notitle",
+                        c, k);
+            }
             plotted++;
         }
     fprintf(gp, "\n");
+done:
+    free(boxed);
+    free(keyed);
+    free(stage_boxed);
     return plotted;
 }
 
