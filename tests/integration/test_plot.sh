@@ -221,6 +221,19 @@ svg_text "$work/names/plot-__-2-success.svg" >"$work/names2.txt"
 check "scene 1 (台所) has its own success chart: 3 of 3" grep -qx "3 of 3" "$work/names1.txt"
 check "... and scene 2 (倉庫) its own: 0 of 3" grep -qx "0 of 3" "$work/names2.txt"
 "$mpb" plot --scene "a b" --format svg -o "$work/names-ab" "$NAMES" >"$work/names-ab.out"
+check "... with nothing on stderr (no 'empty y range' for a straight path's smoothness, all 0)" \
+    test ! -s "$work/names.err"
+svg_text "$work/names/plot-__-1-time.svg" >"$work/names1-time.txt"
+check "an unfinished experiment's plots say so: the time plot" \
+    grep -q "UNFINISHED: 3 more runs not finished yet" "$work/names1-time.txt"
+check "... the success chart" \
+    grep -q "UNFINISHED: 3 more runs not finished yet" "$work/names1.txt"
+check "... where a configuration has no finished run" \
+    grep -qx "no finished run" "$work/names1.txt"
+check "... and a path metric's plot" \
+    grep -q "UNFINISHED: 3 more runs" "$work/names/plot-__-1-smoothness.svg"
+check "a finished experiment's plots do not" \
+    sh -c "! grep -q UNFINISHED '$work'/svg/*.svg"
 check "--scene keeps the scene's file name" \
     grep -qx "$work/names-ab/plot-a_b-3-time.svg" "$work/names-ab.out"
 

@@ -372,6 +372,20 @@ done:
     return rc;
 }
 
+typedef struct unfinished {
+    const gather *g;
+    plot_scene   *scenes;
+} unfinished;
+
+static int on_unfinished(void *ud, int64_t scene_id, int n)
+{
+    unfinished *u = ud;
+    for (int i = 0; i < u->g->num_scenes; i++)
+        if (u->g->scene_ids[i] == scene_id)
+            u->scenes[i].unfinished = n;
+    return 0;
+}
+
 static void gather_free(gather *g)
 {
     for (int i = 0; i < g->num_configs; i++)
@@ -585,6 +599,13 @@ int cmd_plot(int argc, char **argv)
             goto out;
         for (int c = 0; c < scenes[i].num_configs; c++)
             finished += scenes[i].finished[c];
+    }
+    unfinished u = {&g, scenes};
+    if ((rc = mpb_store_unfinished_by_scene(s, g.experiment_id, on_unfinished,
+                                            &u)) != MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": %s: cannot count the runs not finished "
+                "yet: %s\n", o.db, mpb_store_errmsg(s));
+        goto out;
     }
     if (finished == 0) {
         fprintf(stderr, "mpb " CMD ": experiment '%s' (id %lld) in %s has no "

@@ -36,6 +36,7 @@ typedef struct plot_scene {
                               * experiment: see plot_file_part() */
     int         num_queries; /* the scene's queries, pooled in every plot */
     double      time_limit;  /* s */
+    int         unfinished;  /* runs of the scene not done yet */
     int         num_configs;
     char      **configs;     /* names, "ompl/RRTConnect" */
     int         num_stages;

@@ -345,6 +345,13 @@ static void datablock(FILE *gp, const char *name, const plot_series *s)
     fprintf(gp, "EOD\n");
 }
 
+/* A configuration's place in a plot when it has nothing to draw. */
+static void no_values(FILE *gp, const char *why, int c)
+{
+    fprintf(gp, "set label '%s' at %d, graph 0.5 center rotate by 90 "
+                "tc rgb '#888888'\n", why, c + 1);
+}
+
 /*
  * One box, from mpb_summarize()'s quartiles (type 7, as R and numpy; see
  * docs/metrics.md): x q1 low high q3 median, where the whiskers reach the
@@ -369,11 +376,11 @@ static int box_row(FILE *gp, const char *name, const plot_series *s, double x)
 }
 
 /* Box plots of series[c * num_stages + k], each run also a dot; stage
- * names in the key when there are several. Returns 0 if there is nothing
- * to draw. */
+ * names in the key when there are several; none written where a
+ * configuration has no values. Returns 0 if there is nothing to draw. */
 static int boxes(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
                  plot_series *const *series, int num_stages,
-                 char *const *stage_names, int logscale)
+                 char *const *stage_names, const char *none, int logscale)
 {
     double width = 0.7 / num_stages;
     int plotted = 0, n = sc->num_configs * num_stages;
@@ -399,8 +406,7 @@ static int boxes(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
             any = 1;
         }
         if (!any)
-            fprintf(gp, "set label \"no successful run\" at %d, graph 0.5 "
-                        "center rotate by 90 tc rgb '#888888'\n", c + 1);
+            no_values(gp, none, c);
     }
     if (logscale)
         fprintf(gp, "set logscale y\nset format y '%%g'\n");
@@ -494,6 +500,13 @@ static void set_title(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
         add_lines(text, sizeof text, where, cols);
     }
     add_lines(text, sizeof text, sub, cols);
+    if (sc->unfinished > 0) {
+        char more[128];
+        snprintf(more, sizeof more, "UNFINISHED: %d more run%s not finished "
+                 "yet, not counted here", sc->unfinished,
+                 sc->unfinished == 1 ? "" : "s");
+        add_lines(text, sizeof text, more, cols);
+    }
     fprintf(gp, "set title ");
     put_text(gp, text);
     fprintf(gp, "\n");
@@ -536,8 +549,11 @@ static int time_plot(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
         fprintf(gp, "set label \"time limit %g s\" at graph 0.01, first %g "
                     "offset 0,0.7 tc rgb '#aa0000'\n",
                 sc->time_limit, sc->time_limit);
+    } else if (!(hi > lo)) {
+        /* One value: gnuplot would warn of an empty range. */
+        fprintf(gp, "set yrange [0:%g]\n", 2 * hi);
     }
-    n = boxes(gp, sc, gl, series, 1, NULL, logscale);
+    n = boxes(gp, sc, gl, series, 1, NULL, "no finished run", logscale);
 done:
     free(series);
     free(counts);
@@ -548,6 +564,7 @@ static int metric_plot(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
                        int m, const char *path, const char *ext)
 {
     int nk = sc->num_stages, nc = sc->num_configs, total = 0, n = 0;
+    double hi = 0;
     plot_series **series = calloc((size_t)(nc * nk) + 1, sizeof *series);
     int *counts = calloc((size_t)nc + 1, sizeof *counts);
     char sub[256];
@@ -559,6 +576,8 @@ static int metric_plot(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
         for (int k = 0; k < nk; k++) {
             series[c * nk + k] = plot_metric_series(sc, m, k, c);
             total += series[c * nk + k]->n;
+            for (int i = 0; i < series[c * nk + k]->n; i++)
+                hi = fmax(hi, series[c * nk + k]->v[i]);
         }
     }
     if (total == 0)
@@ -570,8 +589,10 @@ static int metric_plot(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
     set_title(gp, sc, gl, plot_metrics[m].title, sub, width);
     fprintf(gp, "set ylabel \"%s\"\n", plot_metrics[m].axis);
     config_tics(gp, sc, gl, counts, "successful runs", width);
-    fprintf(gp, "set yrange [0:*]\n"); /* every path metric is >= 0 */
-    n = boxes(gp, sc, gl, series, nk, sc->stages, 0);
+    /* Every path metric is >= 0; all 0 (a straight path's smoothness)
+     * would be an empty range to gnuplot. */
+    fprintf(gp, hi > 0 ? "set yrange [0:*]\n" : "set yrange [0:1]\n");
+    n = boxes(gp, sc, gl, series, nk, sc->stages, "no successful run", 0);
 done:
     free(series);
     free(counts);
@@ -598,6 +619,9 @@ static int success_plot(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
                 "set boxwidth 0.6\nset style fill solid 0.6 border -1\n"
                 "unset key\n");
     config_tics(gp, sc, gl, sc->finished, "runs", width);
+    for (int c = 0; c < sc->num_configs; c++)
+        if (sc->finished[c] == 0)
+            no_values(gp, "no finished run", c);
     fprintf(gp, "$s << EOD\n");
     for (int c = 0; c < sc->num_configs; c++)
         if (sc->finished[c] > 0)
