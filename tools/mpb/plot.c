@@ -43,6 +43,8 @@ static void usage(FILE *out)
         "                  box plots over successful runs, one box per\n"
         "                  configuration and stage (raw, shortcut, smoothed,\n"
         "                  ...), for the metrics the database holds\n"
+        "SCENE is the scene's name with characters other than [A-Za-z0-9_.-]\n"
+        "as '_', and -ID, the scene's id, added when two scenes would share it.\n"
         "Draws through gnuplot (Debian: gnuplot-nox), which must be on PATH.\n"
         "Prints the path of each image written.\n"
         "\n"
@@ -69,6 +71,7 @@ typedef struct gather {
     int         num_configs;
     int64_t    *scene_ids;
     char      **scenes;
+    char      **files;         /* per scene: its part of the file names */
     int         num_scenes;
     /* The scene being read. */
     plot_scene *sc;
@@ -265,6 +268,7 @@ static int read_scene(mpb_store *s, gather *g, int i, plot_scene *sc)
     int rc;
 
     *sc = (plot_scene){.experiment = g->experiment, .scene = g->scenes[i],
+                       .file = g->files[i],
                        .time_limit = g->time_limit,
                        .num_configs = g->num_configs, .configs = g->configs};
     g->sc = sc;
@@ -316,17 +320,86 @@ db:
     return rc;
 }
 
+/*
+ * Each scene's part of the file names, over all the experiment's scenes
+ * (so that --scene does not change them): plot_file_part() of its name,
+ * and for every scene whose part another scene has too, the part, '-' and
+ * the scene's id. Parts with an id differ from each other (their last '-'
+ * is followed by the id); one can still meet another scene's plain part,
+ * which then takes its id in the next round. 0, or -1 out of memory.
+ */
+static int name_files(gather *g)
+{
+    char part[PLOT_PART_MAX + 32];
+    int n = g->num_scenes, rc = -1, again = 1;
+    int *with_id = calloc((size_t)n + 1, sizeof *with_id);
+    int *clash = calloc((size_t)n + 1, sizeof *clash);
+
+    if ((g->files = calloc((size_t)n + 1, sizeof *g->files)) == NULL ||
+        with_id == NULL || clash == NULL)
+        goto done;
+    for (int i = 0; i < n; i++) {
+        plot_file_part(part, sizeof part, g->scenes[i]);
+        if ((g->files[i] = strdup(part)) == NULL)
+            goto done;
+    }
+    while (again) {
+        again = 0;
+        for (int i = 0; i < n; i++) {
+            clash[i] = 0;
+            for (int j = 0; !with_id[i] && j < n && !clash[i]; j++)
+                clash[i] = j != i && strcmp(g->files[i], g->files[j]) == 0;
+        }
+        for (int i = 0; i < n; i++) {
+            if (!clash[i])
+                continue;
+            plot_file_part(part, sizeof part, g->scenes[i]);
+            size_t len = strlen(part);
+            snprintf(part + len, sizeof part - len, "-%lld",
+                     (long long)g->scene_ids[i]);
+            char *file = strdup(part);
+            if (file == NULL)
+                goto done;
+            free(g->files[i]);
+            g->files[i] = file;
+            with_id[i] = again = 1;
+        }
+    }
+    rc = 0;
+done:
+    free(with_id);
+    free(clash);
+    return rc;
+}
+
+typedef struct unfinished {
+    const gather *g;
+    plot_scene   *scenes;
+} unfinished;
+
+static int on_unfinished(void *ud, int64_t scene_id, int n)
+{
+    unfinished *u = ud;
+    for (int i = 0; i < u->g->num_scenes; i++)
+        if (u->g->scene_ids[i] == scene_id)
+            u->scenes[i].unfinished = n;
+    return 0;
+}
+
 static void gather_free(gather *g)
 {
     for (int i = 0; i < g->num_configs; i++)
         free(g->configs[i]);
-    for (int i = 0; i < g->num_scenes; i++)
+    for (int i = 0; i < g->num_scenes; i++) {
         free(g->scenes[i]);
+        free(g->files ? g->files[i] : NULL);
+    }
     for (int i = 0; i < g->num_finals; i++)
         free(g->finals[i]);
     free(g->configs);
     free(g->config_ids);
     free(g->scenes);
+    free(g->files);
     free(g->scene_ids);
     free(g->finals);
     free(g->experiment);
@@ -358,6 +431,7 @@ static int draw(plot_scene *scenes, int num_scenes, const char *dir,
                 const char *ext)
 {
     written w = {0};
+    plot_glyphs gl = {.all = strcmp(ext, "svg") == 0};
     int rc = MPB_EXIT_ERROR;
     /* gnuplot's own messages go to our stderr; a missing gnuplot is
      * told apart by status 127, without the shell's own "not found". */
@@ -370,7 +444,7 @@ static int draw(plot_scene *scenes, int num_scenes, const char *dir,
     }
     for (int i = 0; i < num_scenes; i++)
         if (scenes[i].num_configs > 0)
-            plot_gnuplot_scene(gp, &scenes[i], dir, ext, on_wrote, &w);
+            plot_gnuplot_scene(gp, &scenes[i], dir, ext, &gl, on_wrote, &w);
     int status = pclose(gp);
     if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127) {
         fprintf(stderr, "mpb " CMD ": gnuplot not found on PATH (Debian: "
@@ -401,6 +475,7 @@ done:
     for (int i = 0; i < w.n; i++)
         free(w.paths[i]);
     free(w.paths);
+    plot_glyphs_free(&gl);
     return rc;
 }
 
@@ -496,6 +571,8 @@ int cmd_plot(int argc, char **argv)
         rc = mpb_store_planner_configs(s, g.experiment_id, on_config, &g);
     if (rc == MPB_OK)
         rc = mpb_store_scenes(s, g.experiment_id, on_scene, &g);
+    if (rc == MPB_OK && !g.nomem && name_files(&g) != 0)
+        g.nomem = 1;
     if (g.nomem || rc != MPB_OK) {
         fprintf(stderr, "mpb " CMD ": %s: %s\n", o.db,
                 rc == MPB_ENOTFOUND ? "no such experiment" :
@@ -522,6 +599,13 @@ int cmd_plot(int argc, char **argv)
             goto out;
         for (int c = 0; c < scenes[i].num_configs; c++)
             finished += scenes[i].finished[c];
+    }
+    unfinished u = {&g, scenes};
+    if ((rc = mpb_store_unfinished_by_scene(s, g.experiment_id, on_unfinished,
+                                            &u)) != MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": %s: cannot count the runs not finished "
+                "yet: %s\n", o.db, mpb_store_errmsg(s));
+        goto out;
     }
     if (finished == 0) {
         fprintf(stderr, "mpb " CMD ": experiment '%s' (id %lld) in %s has no "

@@ -20,6 +20,9 @@ typedef struct plot_metric_info {
 
 extern const plot_metric_info plot_metrics[PM_COUNT];
 
+/* A box needs this many values; fewer are drawn only as dots. */
+#define PLOT_BOX_MIN 3
+
 /* Values of one box, grown as rows come. */
 typedef struct plot_series {
     double *v;
@@ -29,8 +32,11 @@ typedef struct plot_series {
 typedef struct plot_scene {
     const char *experiment;  /* name */
     const char *scene;       /* name */
+    const char *file;        /* the scene in file names, unique in the
+                              * experiment: see plot_file_part() */
     int         num_queries; /* the scene's queries, pooled in every plot */
     double      time_limit;  /* s */
+    int         unfinished;  /* runs of the scene not done yet */
     int         num_configs;
     char      **configs;     /* names, "ompl/RRTConnect" */
     int         num_stages;
@@ -49,18 +55,39 @@ static inline plot_series *plot_metric_series(const plot_scene *sc, int m,
 }
 
 /*
+ * Which characters a PNG can show. For a character no installed font has,
+ * pango draws a box many times the text's size across the image, so such
+ * characters are drawn as '?'. Latin, Greek and Cyrillic are taken as
+ * there; any other character is looked up once with fontconfig's fc-list
+ * (none without fc-list). An SVG is drawn by its viewer's fonts: all.
+ */
+typedef struct plot_glyphs {
+    int       all;        /* every character (SVG) */
+    unsigned *cp;         /* characters looked up */
+    char     *ok;         /* per cp: a font has it */
+    int       n, cap;
+} plot_glyphs;
+
+void plot_glyphs_free(plot_glyphs *gl);
+
+/*
  * Write to gp the gnuplot commands that draw one scene's plots into dir,
- * as plot-SCENE-WHAT.EXT (EXT "png" or "svg"): planning time, success
- * rate, and each path metric that has values. wrote(ud, path) is called
- * for each file the commands make. Returns the number of plots.
+ * as plot-FILE-WHAT.EXT (FILE sc->file, EXT "png" or "svg"): planning
+ * time, success rate, and each path metric that has values; names drawn
+ * as gl lets them. wrote(ud, path) is called for each file the commands
+ * make. Returns the number of plots.
  */
 int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
-                       const char *ext,
+                       const char *ext, plot_glyphs *gl,
                        void (*wrote)(void *ud, const char *path), void *ud);
 
-/* The scene's name as it goes into file names: [A-Za-z0-9_.-] kept, other
- * characters as '_'. */
-void plot_file_name(char *out, size_t size, const char *dir,
-                    const char *scene, const char *what, const char *ext);
+/*
+ * A scene's name as it goes into file names: [A-Za-z0-9_.-] kept, any other
+ * character (a UTF-8 sequence counts as one) as '_', at most
+ * PLOT_PART_MAX bytes. Two names can give the same part ("a b", "a_b");
+ * plot.c then adds each such scene's id (see name_files()).
+ */
+#define PLOT_PART_MAX 120
+void plot_file_part(char *out, size_t size, const char *scene);
 
 #endif
