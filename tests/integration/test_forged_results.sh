@@ -58,5 +58,7 @@ check "no forged stage reached the database" \
 check "the attacked run holds the real planner's answer" \
     test "$(q "SELECT planner_id LIKE 'null@%' AND planner_id != 'null@elsewhere:1' AND message != 'forged' FROM runs WHERE run_uid = '$uid'")" = 1
 check "all six runs are solved" eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved'")" 6
+check "a median latency over the histogram's cap is written as such" \
+    grep -q "median over 65536 us" "$work/daemon.log"
 
 mpb_finish
