@@ -182,7 +182,10 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m)
     double now = mpb_monotonic_s();
 
     if (!mpb_run_id_is_valid(m->run_id)) {
+        /* No run has such an id: answered so that a planner stops
+         * re-sending it (if it names a valid planner to answer). */
         reject(d, "malformed run id", m);
+        mpbd_ack(d, m->planner_id, m->run_id, MPB_RUN_ACK_T_RESULT_REJECTED);
         return;
     }
     if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
