@@ -145,6 +145,72 @@ static int is_time(double t)
     return isfinite(t) && t >= 0;
 }
 
+typedef struct named_at {
+    const char *name;
+    int         idx;
+} named_at;
+
+static int by_name_then_index(const void *a, const void *b)
+{
+    const named_at *x = a, *y = b;
+    int c = strcmp(x->name, y->name);
+    return c != 0 ? c : (x->idx > y->idx) - (x->idx < y->idx);
+}
+
+static int by_name(const void *key, const void *elem)
+{
+    return strcmp(key, ((const named_at *)elem)->name);
+}
+
+/*
+ * Make names[0..n) unique, keeping every entry: the first use of a name
+ * keeps it, the k-th (k >= 2, in the planner's order) becomes "name#k",
+ * k raised past any name the planner sent itself. Two such new names never
+ * meet (the number after the last '#' tells them apart). New names are
+ * malloc'd into owned[i] (NULL where unchanged; the caller frees them) and
+ * replace names[i]; what was renamed is noted, "what" naming the kind.
+ * Returns how many were renamed, or MPB_ENOMEM.
+ */
+static int unique_names(const char **names, char **owned, int n,
+                        const char *what, notes *nt)
+{
+    named_at *sorted;
+    int renamed = 0;
+    if (n < 2)
+        return 0;
+    if ((sorted = malloc((size_t)n * sizeof *sorted)) == NULL)
+        return MPB_ENOMEM;
+    for (int i = 0; i < n; i++)
+        sorted[i] = (named_at){names[i], i};
+    qsort(sorted, (size_t)n, sizeof *sorted, by_name_then_index);
+    for (int g = 0, e; g < n; g = e) {
+        int k = 1;
+        for (e = g + 1; e < n && strcmp(sorted[e].name, sorted[g].name) == 0; e++) {
+            size_t len = strlen(sorted[g].name) + 16;
+            char *name = malloc(len);
+            if (name == NULL) {
+                free(sorted);
+                return MPB_ENOMEM;
+            }
+            do
+                snprintf(name, len, "%s#%d", sorted[g].name, ++k);
+            while (bsearch(name, sorted, (size_t)n, sizeof *sorted, by_name));
+            int i = sorted[e].idx;
+            owned[i] = name;
+            if (++renamed <= 3)
+                note(nt, "%s %d '%.64s' stored as '%.64s#%d' (a name used "
+                     "before)", what, i, sorted[g].name, sorted[g].name, k);
+        }
+    }
+    free(sorted);
+    if (renamed > 3)
+        note(nt, "%d more %ss renamed so", renamed - 3, what);
+    for (int i = 0; i < n; i++)
+        if (owned[i] != NULL)
+            names[i] = owned[i];
+    return renamed;
+}
+
 /* The planner's times, checked: one that is no time, or a time_other above
  * time_total, is noted and stored as NULL (NaN), so that no mean, plot or
  * export ever takes it in; the numbers sent stay in the note. Returns 1 if
@@ -208,11 +274,15 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
     mpb_stage_record *stages = calloc((size_t)m->num_stages + 1, sizeof *stages);
     mpb_named *values = calloc((size_t)m->num_values + 1, sizeof *values);
     mpb_progress_record *prog = calloc((size_t)np + 1, sizeof *prog);
+    const char **names = calloc((size_t)m->num_stages + (size_t)m->num_values + 1,
+                                sizeof *names);
+    char **owned = calloc((size_t)m->num_stages + (size_t)m->num_values + 1,
+                          sizeof *owned);
     char *message = NULL;
     notes nt = {.len = 0};
     int rc = MPB_ENOMEM;
 
-    if (!works || !stages || !values || !prog)
+    if (!works || !stages || !values || !prog || !names || !owned)
         goto done;
     /* A status the protocol does not give planners: the daemon alone says
      * crash, and a number outside the list means nothing. */
@@ -225,14 +295,26 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
                                                : "no such status");
         status = MPB_PLAN_RESULT_T_FAILED;
     }
-    for (int i = 0; i < m->num_stages; i++)
+    for (int i = 0; i < m->num_stages; i++) {
         measure_stage(d, q, &m->stages[i], &works[i]);
+        names[i] = m->stages[i].name;
+    }
+    for (int i = 0; i < m->num_values; i++)
+        names[m->num_stages + i] = m->values[i].name;
+    /* Metrics are keyed by stage name, values by name: a repeated name
+     * would overwrite the rows before it. */
+    if (unique_names(names, owned, m->num_stages, "stage", &nt) < 0 ||
+        unique_names(names + m->num_stages, owned + m->num_stages,
+                     m->num_values, "value", &nt) < 0)
+        goto done;
     double total, other;
     int times_ok = check_times(m, works, &total, &other, &nt);
-    for (int i = 0; i < m->num_stages; i++)
+    for (int i = 0; i < m->num_stages; i++) {
+        works[i].rec.name = names[i];
         stages[i] = works[i].rec;
+    }
     for (int i = 0; i < m->num_values; i++)
-        values[i] = (mpb_named){m->values[i].name, m->values[i].value};
+        values[i] = (mpb_named){names[m->num_stages + i], m->values[i].value};
     np = 0;
     for (int i = 0; i < m->num_progress; i++)
         for (int k = 0; k < m->progress[i].num_values; k++)
@@ -313,6 +395,10 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
                      rec.success ? "" : rec.message);
     }
 done:
+    for (int i = 0; owned && i < m->num_stages + m->num_values; i++)
+        free(owned[i]);
+    free(owned);
+    free(names);
     free(message);
     free(works);
     free(stages);

@@ -114,6 +114,15 @@ check "a NaN time_total is no success, with its reason" \
     test "$(run "success = 0 AND message LIKE 'time_total nan s is not finite%'" 5)" = 1
 check "a result late by the daemon's clock is no success" test "$(run success 6)" = 0
 check "... saying so" test "$(run "message LIKE '%by the daemon''s clock%over the time limit 1 s plus 1 s slack%'" 6)" = 1
+uid7=$(run run_uid 7)
+check "repeated stage names are all kept, renamed in order" \
+    test "$(q "SELECT group_concat(name, ' ') FROM (SELECT name FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$uid7' ORDER BY idx)")" = "raw raw#3 raw#2"
+check "... each with its metrics" \
+    eq "$(q "SELECT count(DISTINCT stage) FROM metrics m JOIN runs r ON r.id = m.run_id WHERE r.run_uid = '$uid7'")" 3
+check "repeated value names are all kept" \
+    test "$(q "SELECT group_concat(name || '=' || value, ' ') FROM (SELECT name, value FROM planner_values v JOIN runs r ON r.id = v.run_id WHERE r.run_uid = '$uid7' ORDER BY name)")" = "n=10.0 n#2=20.0"
+check "... the renames noted" \
+    test "$(run "message LIKE 'stage 1 ''raw'' stored as ''raw#3''%value 1 ''n'' stored as ''n#2''%'" 7)" = 1
 check "solved with no stages says so" test "$(run "success = 0 AND message LIKE 'solved, but no stages%'" 8)" = 1
 check "an honest time over the limit says so" \
     test "$(run "success = 0 AND message LIKE 'time_total 3 s exceeds the time limit 1 s%'" 9)" = 1
