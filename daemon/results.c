@@ -64,6 +64,14 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
                             sizeof w->verdict.detail)) {
         w->verdict.code = MPB_VERDICT_WRONG_SIZE;
         w->verdict.segment = -1;
+        /* Stored as sent when its sizes agree with its values (another
+         * number of joints): the blob is the message's own array. */
+        if (st->num_waypoints > 0 && st->num_joints > 0 &&
+            (int64_t)st->num_waypoints * st->num_joints == st->num_values) {
+            w->rec.num_waypoints = st->num_waypoints;
+            w->rec.num_joints = st->num_joints;
+            w->rec.waypoints = st->waypoints;
+        }
     } else {
         w->rec.num_waypoints = st->num_waypoints;
         w->rec.num_joints = st->num_joints;
@@ -79,8 +87,10 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
 
     w->metrics[nm++] = (mpb_named){"time", st->time};
     w->metrics[nm++] = (mpb_named){"waypoints", w->rec.num_waypoints};
-    /* Lengths of a path with NaN in it mean nothing: leave them out. */
-    if (w->rec.waypoints != NULL && w->verdict.code != MPB_VERDICT_NOT_FINITE) {
+    /* Lengths of a path with NaN in it, or of the wrong size, mean
+     * nothing: leave them out. */
+    if (w->rec.waypoints != NULL && w->verdict.code != MPB_VERDICT_NOT_FINITE &&
+        w->verdict.code != MPB_VERDICT_WRONG_SIZE) {
         w->metrics[nm++] = (mpb_named){"path_length",
             mpb_path_length(st->waypoints, st->num_waypoints, st->num_joints,
                             e->wraps)};

@@ -126,6 +126,9 @@ check "... the renames noted" \
 check "solved with no stages says so" test "$(run "success = 0 AND message LIKE 'solved, but no stages%'" 8)" = 1
 check "an honest time over the limit says so" \
     test "$(run "success = 0 AND message LIKE 'time_total 3 s exceeds the time limit 1 s%'" 9)" = 1
+uid10=$(run run_uid 10)
+check "a stage of the wrong size is stored as sent" \
+    test "$(q "SELECT s.verdict || ' ' || num_waypoints || ' ' || num_joints || ' ' || length(waypoints) FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$uid10' AND idx = 0")" = "wrong_size 2 4 64"
 check "a failure without a message gets one" \
     test "$(run message 11)" = "the planner reported failed with no message"
 check "a result within the limit and its slack is a success" test "$(run success 12)" = 1
