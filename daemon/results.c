@@ -243,7 +243,8 @@ static int check_times(const mpb_plan_result_t *m, stage_work *works,
         *other = NAN;
         ok = 0;
     } else if (isfinite(m->time_total) && *other > m->time_total) {
-        note(nt, "time_other %g s exceeds time_total %g s", *other, *total);
+        note(nt, "time_other %g s exceeds time_total %g s", *other,
+             m->time_total);
         *other = NAN;
         ok = 0;
     }

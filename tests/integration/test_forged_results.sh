@@ -109,7 +109,7 @@ check "... stored as NULL" \
 check "... and the stage time too" \
     test "$(q "SELECT time IS NULL FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$(run run_uid 4)'")" = 1
 check "... the values sent kept in the message" \
-    test "$(run "message LIKE 'time_total -1 s is negative; time_other 3 s%stage 0 time -5 s is negative%'" 4)" = 1
+    test "$(run "message LIKE 'time_total -1 s is negative; time_other 3 s exceeds time_total -1 s; stage 0 time -5 s is negative%'" 4)" = 1
 check "a NaN time_total is no success, with its reason" \
     test "$(run "success = 0 AND message LIKE 'time_total nan s is not finite%'" 5)" = 1
 check "a result late by the daemon's clock is no success" test "$(run success 6)" = 0
