@@ -30,6 +30,10 @@
 #define MPBD_REQUEST_RESEND_S   0.25   /* resend a request not acked by then */
 #define MPBD_REQUEST_MAX_SENDS  20
 #define MPBD_DEADLINE_GRACE_S   5.0    /* beyond the time limit, before crash */
+/* A result later than the time limit plus this, by the daemon's clock from
+ * the request's last send, is no success whatever time it reports: room
+ * for the network both ways and for reading the request. */
+#define MPBD_WALL_SLACK_S       1.0
 #define MPBD_PLANNER_MISSED     3      /* heartbeats missed = planner gone */
 #define MPBD_STATUS_PERIOD_S    1.0
 #define MPBD_ACK_HOLD_S         0.02   /* an ack waits this long for a request */

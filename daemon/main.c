@@ -286,8 +286,9 @@ static void log_latency(const mpbd *d)
     long p99 = mpbd_latency_quantile_us(&d->latency, 0.99);
     if (med < 0)
         return;
-    mpbd_log("latency of a run, request sent to result committed: median %ld"
-             " us, p99 %s%ld us (%llu runs)", med,
+    mpbd_log("latency of a run, request sent to result committed: median "
+             "%s%ld us, p99 %s%ld us (%llu runs)",
+             med >= MPBD_LATENCY_MAX_US ? "over " : "", med,
              p99 >= MPBD_LATENCY_MAX_US ? "over " : "", p99,
              (unsigned long long)d->latency.n);
 }

@@ -5,6 +5,7 @@
  * row per run, stage, metric and value in the store.
  */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,6 +64,14 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
                             sizeof w->verdict.detail)) {
         w->verdict.code = MPB_VERDICT_WRONG_SIZE;
         w->verdict.segment = -1;
+        /* Stored as sent when its sizes agree with its values (another
+         * number of joints): the blob is the message's own array. */
+        if (st->num_waypoints > 0 && st->num_joints > 0 &&
+            (int64_t)st->num_waypoints * st->num_joints == st->num_values) {
+            w->rec.num_waypoints = st->num_waypoints;
+            w->rec.num_joints = st->num_joints;
+            w->rec.waypoints = st->waypoints;
+        }
     } else {
         w->rec.num_waypoints = st->num_waypoints;
         w->rec.num_joints = st->num_joints;
@@ -78,8 +87,10 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
 
     w->metrics[nm++] = (mpb_named){"time", st->time};
     w->metrics[nm++] = (mpb_named){"waypoints", w->rec.num_waypoints};
-    /* Lengths of a path with NaN in it mean nothing: leave them out. */
-    if (w->rec.waypoints != NULL && w->verdict.code != MPB_VERDICT_NOT_FINITE) {
+    /* Lengths of a path with NaN in it, or of the wrong size, mean
+     * nothing: leave them out. */
+    if (w->rec.waypoints != NULL && w->verdict.code != MPB_VERDICT_NOT_FINITE &&
+        w->verdict.code != MPB_VERDICT_WRONG_SIZE) {
         w->metrics[nm++] = (mpb_named){"path_length",
             mpb_path_length(st->waypoints, st->num_waypoints, st->num_joints,
                             e->wraps)};
@@ -107,26 +118,214 @@ static int count_progress(const mpb_plan_result_t *m)
     return n;
 }
 
-/* Store the run; returns what mpb_store_run_finish() returns. */
+/* What the daemon refused or changed in a result, one note after another
+ * ("; " between), for runs.message: bounded, however much is wrong. */
+typedef struct notes {
+    char text[1024];
+    size_t len;
+} notes;
+
+static void note(notes *n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static void note(notes *n, const char *fmt, ...)
+{
+    va_list ap;
+    size_t room = sizeof n->text - n->len;
+    if (room <= 1)
+        return;
+    if (n->len > 0) {
+        int k = snprintf(n->text + n->len, room, "; ");
+        n->len += (size_t)k < room ? (size_t)k : room - 1;
+        room = sizeof n->text - n->len;
+    }
+    va_start(ap, fmt);
+    int k = vsnprintf(n->text + n->len, room, fmt, ap);
+    va_end(ap);
+    if (k > 0)
+        n->len += (size_t)k < room ? (size_t)k : room - 1;
+}
+
+/* A time as the planner sent it is a time: finite and not negative. */
+static int is_time(double t)
+{
+    return isfinite(t) && t >= 0;
+}
+
+typedef struct named_at {
+    const char *name;
+    int         idx;
+} named_at;
+
+static int by_name_then_index(const void *a, const void *b)
+{
+    const named_at *x = a, *y = b;
+    int c = strcmp(x->name, y->name);
+    return c != 0 ? c : (x->idx > y->idx) - (x->idx < y->idx);
+}
+
+static int by_name(const void *key, const void *elem)
+{
+    return strcmp(key, ((const named_at *)elem)->name);
+}
+
+/*
+ * Make names[0..n) unique, keeping every entry: the first use of a name
+ * keeps it, the k-th (k >= 2, in the planner's order) becomes "name#k",
+ * k raised past any name the planner sent itself. Two such new names never
+ * meet (the number after the last '#' tells them apart). New names are
+ * malloc'd into owned[i] (NULL where unchanged; the caller frees them) and
+ * replace names[i]; what was renamed is noted, "what" naming the kind.
+ * Returns how many were renamed, or MPB_ENOMEM.
+ */
+static int unique_names(const char **names, char **owned, int n,
+                        const char *what, notes *nt)
+{
+    named_at *sorted;
+    int renamed = 0;
+    if (n < 2)
+        return 0;
+    if ((sorted = malloc((size_t)n * sizeof *sorted)) == NULL)
+        return MPB_ENOMEM;
+    for (int i = 0; i < n; i++)
+        sorted[i] = (named_at){names[i], i};
+    qsort(sorted, (size_t)n, sizeof *sorted, by_name_then_index);
+    for (int g = 0, e; g < n; g = e) {
+        int k = 1;
+        for (e = g + 1; e < n && strcmp(sorted[e].name, sorted[g].name) == 0; e++) {
+            size_t len = strlen(sorted[g].name) + 16;
+            char *name = malloc(len);
+            if (name == NULL) {
+                free(sorted);
+                return MPB_ENOMEM;
+            }
+            do
+                snprintf(name, len, "%s#%d", sorted[g].name, ++k);
+            while (bsearch(name, sorted, (size_t)n, sizeof *sorted, by_name));
+            int i = sorted[e].idx;
+            owned[i] = name;
+            if (++renamed <= 3)
+                note(nt, "%s %d '%.64s' stored as '%.64s#%d' (a name used "
+                     "before)", what, i, sorted[g].name, sorted[g].name, k);
+        }
+    }
+    free(sorted);
+    if (renamed > 3)
+        note(nt, "%d more %ss renamed so", renamed - 3, what);
+    for (int i = 0; i < n; i++)
+        if (owned[i] != NULL)
+            names[i] = owned[i];
+    return renamed;
+}
+
+/* The planner's times, checked: one that is no time, or a time_other above
+ * time_total, is noted and stored as NULL (NaN), so that no mean, plot or
+ * export ever takes it in; the numbers sent stay in the note. Returns 1 if
+ * all were sound. */
+static int check_times(const mpb_plan_result_t *m, stage_work *works,
+                       double *total, double *other, notes *nt)
+{
+    int ok = 1, bad_stages = 0;
+    *total = m->time_total;
+    *other = m->time_other;
+    if (!is_time(*total)) {
+        note(nt, "time_total %g s is %s", *total,
+             isfinite(*total) ? "negative" : "not finite");
+        *total = NAN;
+        ok = 0;
+    }
+    if (!is_time(*other)) {
+        note(nt, "time_other %g s is %s", *other,
+             isfinite(*other) ? "negative" : "not finite");
+        *other = NAN;
+        ok = 0;
+    } else if (isfinite(m->time_total) && *other > m->time_total) {
+        note(nt, "time_other %g s exceeds time_total %g s", *other,
+             m->time_total);
+        *other = NAN;
+        ok = 0;
+    }
+    for (int i = 0; i < m->num_stages; i++) {
+        if (is_time(m->stages[i].time))
+            continue;
+        if (++bad_stages <= 3)
+            note(nt, "stage %d time %g s is %s", i, m->stages[i].time,
+                 isfinite(m->stages[i].time) ? "negative" : "not finite");
+        works[i].rec.time = NAN;
+        works[i].metrics[M_TIME].value = NAN;
+        ok = 0;
+    }
+    if (bad_stages > 3)
+        note(nt, "%d more stage times not times", bad_stages - 3);
+    return ok;
+}
+
+/* The latest the planner can have started the run, by the clock of
+ * f->sent_at: the request's last send (a planner starts on the first copy
+ * it receives; re-sends stop once it acknowledges one), or for a request
+ * queued at the planner, its start. Replaying, replay.c has placed sent_at
+ * at the logged last send already. */
+static double latest_start(const mpbd *d, const mpbd_flight *f)
+{
+    return d->replaying ? f->sent_at : f->last_send;
+}
+
+/* Store the run; returns what mpb_store_run_finish() returns. recv is when
+ * the result arrived (mpb_monotonic_s() clock). */
 static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
-                        double now)
+                        double now, double recv)
 {
     const mpbd_query *q = &d->exp->queries[f->run.query];
+    const double limit = d->exp->time_limit;
     int np = count_progress(m);
     stage_work *works = calloc((size_t)m->num_stages + 1, sizeof *works);
     mpb_stage_record *stages = calloc((size_t)m->num_stages + 1, sizeof *stages);
     mpb_named *values = calloc((size_t)m->num_values + 1, sizeof *values);
     mpb_progress_record *prog = calloc((size_t)np + 1, sizeof *prog);
+    const char **names = calloc((size_t)m->num_stages + (size_t)m->num_values + 1,
+                                sizeof *names);
+    char **owned = calloc((size_t)m->num_stages + (size_t)m->num_values + 1,
+                          sizeof *owned);
+    char *message = NULL;
+    notes nt = {.len = 0};
     int rc = MPB_ENOMEM;
 
-    if (!works || !stages || !values || !prog)
+    if (!works || !stages || !values || !prog || !names || !owned)
         goto done;
+    /* A status the protocol does not give planners: the daemon alone says
+     * crash, and a number outside the list means nothing. */
+    int status = m->status;
+    if (status < MPB_PLAN_RESULT_T_SOLVED ||
+        status > MPB_PLAN_RESULT_T_INVALID_REQUEST) {
+        note(&nt, "status %d (%s) is not a planner's to send: recorded as "
+             "failed", (int)m->status,
+             status == MPB_PLAN_RESULT_T_CRASH ? "crash, set by the daemon alone"
+                                               : "no such status");
+        status = MPB_PLAN_RESULT_T_FAILED;
+    }
     for (int i = 0; i < m->num_stages; i++) {
         measure_stage(d, q, &m->stages[i], &works[i]);
+        names[i] = m->stages[i].name;
+    }
+    for (int i = 0; i < m->num_values; i++)
+        names[m->num_stages + i] = m->values[i].name;
+    /* Metrics are keyed by stage name, values by name: a repeated name
+     * would overwrite the rows before it. */
+    if (unique_names(names, owned, m->num_stages, "stage", &nt) < 0 ||
+        unique_names(names + m->num_stages, owned + m->num_stages,
+                     m->num_values, "value", &nt) < 0)
+        goto done;
+    double total, other;
+    int times_ok = check_times(m, works, &total, &other, &nt);
+    for (int i = 0; i < m->num_stages; i++) {
+        works[i].rec.name = names[i];
         stages[i] = works[i].rec;
     }
     for (int i = 0; i < m->num_values; i++)
-        values[i] = (mpb_named){m->values[i].name, m->values[i].value};
+        values[i] = (mpb_named){names[m->num_stages + i], m->values[i].value};
     np = 0;
     for (int i = 0; i < m->num_progress; i++)
         for (int k = 0; k < m->progress[i].num_values; k++)
@@ -134,20 +333,55 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
                                                m->progress[i].values[k].name,
                                                m->progress[i].values[k].value};
 
-    int claimed = m->status == MPB_PLAN_RESULT_T_SOLVED;
+    /* Success: claimed, the final stage valid, and in time by the planner's
+     * clock and, with MPBD_WALL_SLACK_S for the network, by the daemon's
+     * (docs/metrics.md). Each reason it is not is noted. */
+    int claimed = status == MPB_PLAN_RESULT_T_SOLVED;
     int final_valid = m->num_stages > 0 && stages[m->num_stages - 1].valid;
-    int in_time = isfinite(m->time_total) && m->time_total <= d->exp->time_limit;
+    double took = recv - latest_start(d, f);
+    int success = claimed && final_valid && times_ok;
+    if (claimed) {
+        const mpb_stage_record *last =
+            m->num_stages > 0 ? &stages[m->num_stages - 1] : NULL;
+        if (last == NULL)
+            note(&nt, "solved, but no stages");
+        else if (!final_valid)
+            note(&nt, "final stage %d '%.64s' is %s: %s", m->num_stages - 1,
+                 last->name, last->verdict, last->verdict_detail);
+        if (isfinite(total) && total > limit) {
+            note(&nt, "time_total %g s exceeds the time limit %g s", total,
+                 limit);
+            success = 0;
+        }
+        if (took > limit + MPBD_WALL_SLACK_S) {
+            note(&nt, "%.3f s by the daemon's clock, request to result, over "
+                 "the time limit %g s plus %g s slack", took, limit,
+                 MPBD_WALL_SLACK_S);
+            success = 0;
+        }
+    } else if (nt.len == 0 && m->message[0] == '\0') {
+        note(&nt, "the planner reported %s with no message",
+             mpb_status_name(status));
+    }
+    /* runs.message: the daemon's notes, then the planner's own words. */
+    if (nt.len > 0) {
+        size_t len = nt.len + strlen(m->message) + 32;
+        if ((message = malloc(len)) == NULL)
+            goto done;
+        snprintf(message, len, "%s%s%s", nt.text,
+                 m->message[0] ? "; planner's message: " : "", m->message);
+    }
     mpb_run_record rec = {
         .run_id = f->run.id,
         .run_uid = f->run.uid,
         .planner_id = m->planner_id,
-        .status = mpb_status_name(m->status),
-        .message = m->message,
+        .status = mpb_status_name(status),
+        .message = message ? message : m->message,
         .claimed_success = claimed,
-        .success = claimed && final_valid && in_time,
-        .time_total = m->time_total,
-        .time_raw = m->time_total - m->time_other,
-        .time_other = m->time_other,
+        .success = success,
+        .time_total = total,
+        .time_raw = total - other,
+        .time_other = other,
         .wall_time = now - f->sent_at,
         .num_stages = m->num_stages,
         .stages = stages,
@@ -164,11 +398,19 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
         else
             d->count.failed++;
         if (d->verbose)
-            mpbd_log("run %lld %s: %s%s", (long long)f->run.id,
-                     d->exp->configs[f->run.config].name, rec.status,
-                     rec.success ? "" : " (not a success)");
+            mpbd_log("run %lld %s: %s, verdict %s: %s%.400s",
+                     (long long)f->run.id, d->exp->configs[f->run.config].name,
+                     rec.status, m->num_stages > 0
+                         ? stages[m->num_stages - 1].verdict : "none",
+                     rec.success ? "success" : "not a success: ",
+                     rec.success ? "" : rec.message);
     }
 done:
+    for (int i = 0; owned && i < m->num_stages + m->num_values; i++)
+        free(owned[i]);
+    free(owned);
+    free(names);
+    free(message);
     free(works);
     free(stages);
     free(values);
@@ -176,13 +418,17 @@ done:
     return rc;
 }
 
-static void on_result(mpbd *d, const mpb_plan_result_t *m)
+/* recv: when the result arrived, by the monotonic clock. */
+static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
 {
     mpbd_flight *f;
     double now = mpb_monotonic_s();
 
     if (!mpb_run_id_is_valid(m->run_id)) {
+        /* No run has such an id: answered so that a planner stops
+         * re-sending it (if it names a valid planner to answer). */
         reject(d, "malformed run id", m);
+        mpbd_ack(d, m->planner_id, m->run_id, MPB_RUN_ACK_T_RESULT_REJECTED);
         return;
     }
     if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
@@ -201,7 +447,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m)
         reject(d, "sent by a planner the run did not go to", m);
         return;
     }
-    int rc = store_result(d, f, m, now);
+    int rc = store_result(d, f, m, now, recv);
     if (rc == MPB_OK || rc == MPB_EEXISTS) {
         d->planners[f->planner].runs_done++;
         remember(d, f->run.uid);
@@ -224,7 +470,11 @@ static void on_result_raw(const lcm_recv_buf_t *rbuf, const char *channel,
     size_t len = mpbd_message_ok(user, MPB_WIRE_PLAN_RESULT, rbuf, channel);
     if (len == 0 || mpb_plan_result_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
-    on_result(user, &m);
+    /* When it arrived, from LCM's receive time (the kernel's, where it
+     * keeps one): not when a busy daemon got round to it. */
+    double now = mpb_monotonic_s();
+    double waited = (double)(mpb_utime_now() - rbuf->recv_utime) * 1e-6;
+    on_result(user, &m, waited > 0 && waited < 3600 ? now - waited : now);
     mpb_plan_result_t_decode_cleanup(&m);
 }
 

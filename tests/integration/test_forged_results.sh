@@ -1,7 +1,9 @@
 #!/bin/sh
 # Forged results: one for a run id that was never sent, one for a real run
-# in flight but from a planner the run did not go to. Both are rejected and
-# counted; neither reaches the database.
+# in flight but from a planner the run did not go to, one with a malformed
+# run id. All are rejected and counted; none reaches the database. Then a
+# forger that is the runs' planner sends results that are wrong in every
+# way a planner's can be: each stored with its reason, none a success.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -43,7 +45,7 @@ check "a result for an unknown run id is refused" test "$out" = "acked rejected"
 # may get meanwhile; the log and the database tell what happened.)
 "$forge" "$uid" "null@elsewhere:1" >/dev/null
 out=$("$forge" "not-a-run-id" "null@elsewhere:1")
-check "a malformed run id gets no acknowledgement" test "$out" = "no ack"
+check "a malformed run id is refused too" test "$out" = "acked rejected"
 
 mpb_wait $daemon 30
 check "the experiment completes" eq $? 0
@@ -58,5 +60,81 @@ check "no forged stage reached the database" \
 check "the attacked run holds the real planner's answer" \
     test "$(q "SELECT planner_id LIKE 'null@%' AND planner_id != 'null@elsewhere:1' AND message != 'forged' FROM runs WHERE run_uid = '$uid'")" = 1
 check "all six runs are solved" eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved'")" 6
+check "a median latency over the histogram's cap is written as such" \
+    grep -q "median over 65536 us" "$work/daemon.log"
+
+# The forger as the runs' planner, one run per invocation, in run order.
+DB=$work/shaped.db
+cat >"$work/shaped.yaml" <<EOT
+experiment: {name: shaped, runs: 12, time_limit: 1}
+robot: {format: planar, file: $planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $planar/pillars.scene
+    queries:
+      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+planners:
+  - {planner: forger, algorithms: [forged]}
+EOT
+"$MPB_BUILD/daemon/mpbenchd" -v -d "$DB" "$work/shaped.yaml" >"$work/shaped.log" 2>&1 &
+daemon=$!
+serve() { "$forge" --serve "$@" forger@forged:1 >>"$work/forger.log" 2>&1; }
+serve                                                 # 1: a success
+serve --status 5                                      # 2: crash, from a planner
+serve --status 42                                     # 3: no such status
+serve --time-total -1 --time-other 3 --stage-time -5  # 4: times that are none
+serve --time-total nan                                # 5
+serve --time-total 0.002 --delay 2.6                  # 6: late by the daemon's clock
+serve --stages raw,raw,raw#2 --values n=10,n=20       # 7: names used twice
+serve --stages ""                                     # 8: solved, no stages
+serve --time-total 3                                  # 9: late by its own clock
+serve --wrong-size --stages raw,final                 # 10: a stage of 4 joints
+serve --status 3 --message ""                         # 11: failed, no word why
+serve --time-total 0.9 --delay 0.9                    # 12: in time
+mpb_wait $daemon 30
+check "the shaped experiment completes" eq $? 0
+run() { q "SELECT $1 FROM runs r JOIN experiments e ON e.id = r.experiment_id WHERE e.name = 'shaped' ORDER BY r.id LIMIT 1 OFFSET $(($2 - 1))"; }
+check "a sound forged result is a success" test "$(run success 1)" = 1
+check "... with the planner's message as it is" test "$(run message 1)" = forged
+check "a planner's status crash is stored as failed" test "$(run status 2)" = failed
+check "... saying why" \
+    test "$(run "message LIKE 'status 5 (crash, set by the daemon alone)%; planner''s message: forged'" 2)" = 1
+check "... and is no crash in the counts" grep -q "0 crashed" "$work/shaped.log"
+check "a status outside the list is stored as failed" test "$(run status 3)" = failed
+check "... saying why" test "$(run "message LIKE 'status 42 (no such status)%'" 3)" = 1
+check "negative times are no success" test "$(run success 4)" = 0
+check "... stored as NULL" \
+    test "$(run "time_total IS NULL AND time_raw IS NULL AND time_other IS NULL" 4)" = 1
+check "... and the stage time too" \
+    test "$(q "SELECT time IS NULL FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$(run run_uid 4)'")" = 1
+check "... the values sent kept in the message" \
+    test "$(run "message LIKE 'time_total -1 s is negative; time_other 3 s exceeds time_total -1 s; stage 0 time -5 s is negative%'" 4)" = 1
+check "a NaN time_total is no success, with its reason" \
+    test "$(run "success = 0 AND message LIKE 'time_total nan s is not finite%'" 5)" = 1
+check "a result late by the daemon's clock is no success" test "$(run success 6)" = 0
+check "... saying so" test "$(run "message LIKE '%by the daemon''s clock%over the time limit 1 s plus 1 s slack%'" 6)" = 1
+uid7=$(run run_uid 7)
+check "repeated stage names are all kept, renamed in order" \
+    test "$(q "SELECT group_concat(name, ' ') FROM (SELECT name FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$uid7' ORDER BY idx)")" = "raw raw#3 raw#2"
+check "... each with its metrics" \
+    eq "$(q "SELECT count(DISTINCT stage) FROM metrics m JOIN runs r ON r.id = m.run_id WHERE r.run_uid = '$uid7'")" 3
+check "repeated value names are all kept" \
+    test "$(q "SELECT group_concat(name || '=' || value, ' ') FROM (SELECT name, value FROM planner_values v JOIN runs r ON r.id = v.run_id WHERE r.run_uid = '$uid7' ORDER BY name)")" = "n=10.0 n#2=20.0"
+check "... the renames noted" \
+    test "$(run "message LIKE 'stage 1 ''raw'' stored as ''raw#3''%value 1 ''n'' stored as ''n#2''%'" 7)" = 1
+check "solved with no stages says so" test "$(run "success = 0 AND message LIKE 'solved, but no stages%'" 8)" = 1
+check "an honest time over the limit says so" \
+    test "$(run "success = 0 AND message LIKE 'time_total 3 s exceeds the time limit 1 s%'" 9)" = 1
+uid10=$(run run_uid 10)
+check "a stage of the wrong size is stored as sent" \
+    test "$(q "SELECT s.verdict || ' ' || num_waypoints || ' ' || num_joints || ' ' || length(waypoints) FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$uid10' AND idx = 0")" = "wrong_size 2 4 64"
+check "a failure without a message gets one" \
+    test "$(run message 11)" = "the planner reported failed with no message"
+check "a result within the limit and its slack is a success" test "$(run success 12)" = 1
+check "every run that is no success says why" \
+    eq "$(q "SELECT count(*) FROM runs WHERE success = 0 AND message = ''")" 0
+check "the -v log gives each run's verdict and reason" \
+    grep -q "run [0-9]* forger/forged: solved, verdict valid: not a success: time_total 3 s exceeds" "$work/shaped.log"
 
 mpb_finish
