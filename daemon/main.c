@@ -29,7 +29,8 @@ static void usage(FILE *out)
 "the planner processes that offer its algorithms, verifies and measures every\n"
 "trajectory they return, and stores everything in an SQLite database. Exits\n"
 "when every run is done. Started again on the same database, it resumes an\n"
-"unfinished experiment of the same name and file content.\n"
+"unfinished experiment of the same name and file content, unless its robot\n"
+"or scene files have changed since.\n"
 "\n"
 "options:\n"
 "  -d, --db PATH         database file (default: mpbench.db)\n"
@@ -129,24 +130,91 @@ static int64_t count_runs(const mpbd_experiment *e)
 
 /* An experiment to resume must go on being verified at the step its
  * first runs were: a report cannot tell apart runs checked at two
- * resolutions. 0 if it may be resumed (or there is none to resume). */
-static int resolution_differs(mpbd *d, const char *db)
+ * resolutions. 0 if it may be resumed. */
+static int resolution_differs(mpbd *d, const char *db, int64_t id)
 {
-    int64_t id;
     double was = 0.0;
-    mpbd_experiment *e = d->exp;
-    int rc = mpb_store_experiment_find_unfinished(d->store, e->name, e->hash, &id);
-    if (rc == MPB_OK)
-        rc = mpb_store_experiment_resolution(d->store, id, &was);
-    if (rc == MPB_ENOTFOUND || (rc == MPB_OK && (was == 0.0 || was == d->resolution)))
+    int rc = mpb_store_experiment_resolution(d->store, id, &was);
+    if (rc == MPB_OK && (was == 0.0 || was == d->resolution))
         return 0;
     if (rc != MPB_OK)
         fprintf(stderr, "mpbenchd: %s: %s\n", db, mpb_store_errmsg(d->store));
     else
         fprintf(stderr, "mpbenchd: %s: experiment '%s' (id %lld) is verified at "
                 "--resolution %g, not %g: resume it with that, or start a new "
-                "one with --new\n", db, e->name, (long long)id, was, d->resolution);
+                "one with --new\n", db, d->exp->name, (long long)id, was,
+                d->resolution);
     return 1;
+}
+
+typedef struct input_check {
+    const mpbd_experiment *e;
+    const char *db;
+    int64_t     id;
+    int         differs;
+} input_check;
+
+/* The experiment file names its robot and scene files; their text is not
+ * part of its hash, so an edit to one of them since the experiment began is
+ * found here, scene by scene, against what the database keeps. */
+static int compare_scene(void *ud, const mpb_scene_row *row)
+{
+    input_check *ic = ud;
+    const mpbd_experiment *e = ic->e;
+    for (int i = 0; i < e->num_scenes; i++) {
+        const mpbd_scene *sc = &e->scenes[i];
+        if (strcmp(sc->name, row->name) != 0)
+            continue;
+        const char *what = NULL, *file = NULL;
+        if (strcmp(sc->robot_hash, row->robot_hash) != 0)
+            what = "robot", file = e->robot_file;
+        else if (strcmp(sc->scene_hash, row->scene_hash) != 0)
+            what = "scene", file = sc->scene_file;
+        if (what == NULL)
+            return 0;
+        fprintf(stderr, "mpbenchd: %s: experiment '%s' (id %lld) began with "
+                "another %s for scene '%s'%s%s%s: restore it to resume, or "
+                "start a new experiment with --new\n", ic->db, e->name,
+                (long long)ic->id, what, sc->name, file ? " (" : "",
+                file ? file : "", file ? " has changed since)" : "");
+        ic->differs = 1;
+        return 1;
+    }
+    return 0;
+}
+
+/*
+ * Whether the unfinished experiment this file would resume may be resumed:
+ * 0 if so, or if there is none. One whose file has changed is not resumed
+ * (a new experiment begins), and that is said, so that its runs are not
+ * thought lost.
+ */
+static int cannot_resume(mpbd *d, const char *db)
+{
+    int64_t id;
+    mpbd_experiment *e = d->exp;
+    int rc = mpb_store_experiment_find_unfinished(d->store, e->name, e->hash, &id);
+    if (rc == MPB_ENOTFOUND) {
+        if (mpb_store_experiment_find_unfinished(d->store, e->name, NULL,
+                                                 &id) == MPB_OK)
+            mpbd_log("experiment '%s' (id %lld) is unfinished, but its file "
+                     "has changed since: a new one begins (the file as it "
+                     "was resumes the old one)", e->name, (long long)id);
+        return 0;
+    }
+    if (rc != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s: %s\n", db, mpb_store_errmsg(d->store));
+        return 1;
+    }
+    if (resolution_differs(d, db, id))
+        return 1;
+    input_check ic = {e, db, id, 0};
+    rc = mpb_store_scenes(d->store, id, compare_scene, &ic);
+    if (rc != MPB_OK && !ic.differs) {
+        fprintf(stderr, "mpbenchd: %s: %s\n", db, mpb_store_errmsg(d->store));
+        return 1;
+    }
+    return ic.differs;
 }
 
 /* Everything the experiment is made of, written idempotently: a resumed
@@ -337,7 +405,7 @@ int main(int argc, char **argv)
         goto out;
     }
     /* A replay always fills a new experiment of its own. */
-    if (!(o.fresh || o.replay) && resolution_differs(&d, o.db))
+    if (!(o.fresh || o.replay) && cannot_resume(&d, o.db))
         goto out;
     if ((rc = setup_experiment(&d, o.fresh || o.replay)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s: %s\n", o.db, mpb_store_errmsg(d.store));

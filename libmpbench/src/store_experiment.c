@@ -63,7 +63,8 @@ int mpb_store_experiment_find_unfinished(mpb_store *s, const char *name,
                                          const char *config_hash, int64_t *id)
 {
     sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT id FROM experiments WHERE name = ? AND config_hash = ?"
+        "SELECT id FROM experiments WHERE name = ?1"
+        " AND (?2 IS NULL OR config_hash = ?2)"
         " AND finished IS NULL ORDER BY id DESC LIMIT 1");
     if (st == NULL)
         return MPB_EDB;

@@ -10,6 +10,8 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; [ "$FAILS" -eq 0 ] && rm -rf "$work"' EXIT
 daemon=$MPB_BUILD/daemon/mpbenchd
 planar=$MPB_SOURCE/scenes/planar
+# A scene of its own, to edit between two starts.
+cp "$planar/pillars.scene" "$work/pillars.scene"
 
 cat >"$work/exp.yaml" <<EOT
 experiment: {name: restarts, runs: 50, time_limit: 2, seed: 3}
@@ -17,7 +19,7 @@ robot: {format: planar, file: $planar/arm3.robot}
 scenes:
   - name: pillars
     format: planar
-    file: $planar/pillars.scene
+    file: $work/pillars.scene
     queries:
       - {name: free, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
       - {name: blocked, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
@@ -59,6 +61,31 @@ check "... saying why, in one line" test "$(cat "$work/other_r.log")" = \
     "mpbenchd: $DB: experiment 'restarts' (id 1) is verified at --resolution 0.01, not 0.02: resume it with that, or start a new one with --new"
 check "... and runs nothing" \
     eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" "$done_before"
+# Resumed against an edited scene, its runs would be verified two ways.
+cp "$work/pillars.scene" "$work/pillars.kept"
+echo "circle 0.5 0.5 0.1" >>"$work/pillars.scene"
+mpb_timeout 30 "$daemon" -d "$DB" "$work/exp.yaml" >"$work/edited.log" 2>&1
+check "a restart with the scene file edited is refused" eq $? 1
+check "... naming the file, in one line" test "$(cat "$work/edited.log")" = \
+    "mpbenchd: $DB: experiment 'restarts' (id 1) began with another scene for scene 'pillars' ($work/pillars.scene has changed since): restore it to resume, or start a new experiment with --new"
+check "... and runs nothing" \
+    eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" "$done_before"
+mv "$work/pillars.kept" "$work/pillars.scene"
+# An edited experiment file is a new experiment; the old one is named.
+sed 's/seed: 3}/seed: 3}  # edited/' "$work/exp.yaml" >"$work/exp2.yaml"
+"$daemon" -d "$work/edit.db" "$work/exp.yaml" >/dev/null 2>&1 &
+pid=$!
+for i in $(seq 100); do      # until it has begun, at most 10 s
+    [ "$(sqlite3 "$work/edit.db" 'SELECT count(*) FROM runs' 2>/dev/null)" = 200 ] && break
+    sleep 0.1
+done
+kill -KILL $pid 2>/dev/null
+wait $pid 2>/dev/null
+mpb_timeout 120 "$daemon" -d "$work/edit.db" "$work/exp2.yaml" >"$work/exp2.log" 2>&1
+check "an edited experiment file runs as a new experiment" \
+    eq "$(sqlite3 "$work/edit.db" 'SELECT count(*) FROM experiments')" 2
+check "... saying that the unfinished one with its name is left" \
+    grep -q "experiment 'restarts' (id 1) is unfinished, but its file has changed since: a new one begins" "$work/exp2.log"
 "$daemon" -d "$DB" -r 0.5 "$work/exp.yaml" >"$work/coarse.log" 2>&1
 check "a step coarser than 0.1 rad is refused" eq $? 2
 check "... naming the bound" grep -q "<= 0.1, not '0.5'" "$work/coarse.log"

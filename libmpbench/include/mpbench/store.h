@@ -53,7 +53,8 @@ typedef struct mpb_experiment_info {
 
 int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
                                 int64_t *id);
-/* The newest unfinished experiment with this name and config hash. */
+/* The newest unfinished experiment with this name and config hash (any
+ * hash when config_hash is NULL); MPB_ENOTFOUND if there is none. */
 int mpb_store_experiment_find_unfinished(mpb_store *s, const char *name,
                                          const char *config_hash, int64_t *id);
 /* The verifier's step (rad) the experiment's runs are checked at: set once,
