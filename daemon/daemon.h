@@ -42,6 +42,14 @@
  * segment would pass through an obstacle thinner than the step. */
 #define MPBD_RESOLUTION_MAX     0.1
 
+/* A run given up on at its deadline, that its planner may still plan. */
+typedef struct mpbd_abandoned {
+    char    uid[MPB_RUN_ID_SIZE];
+    int64_t run_id;          /* runs.id, for the log */
+    double  since;           /* monotonic s, when given up on */
+    int     named;           /* an announcement named it since */
+} mpbd_abandoned;
+
 typedef struct mpbd_planner {
     char    id[MPB_PLANNER_ID_MAX + 1];
     char    host[64];        /* as announced; the per-host limit counts by it */
@@ -50,9 +58,18 @@ typedef struct mpbd_planner {
     int     num_algorithms;
     int     capacity;
     int     capacity_seen;   /* it announced a capacity above 0 once */
-    int     closing;         /* then 0, or declined a run: takes no more */
+    int     closing;         /* then 0: takes no more */
     int     active;          /* runs we have in flight on it */
     int     queued;          /* requests waiting at it behind those */
+    /* Runs it still plans that the daemon gave up on at their deadline:
+     * each holds one of its capacity until an announcement leaves it out
+     * (scheduler.c). */
+    mpbd_abandoned *abandoned;
+    int     num_abandoned, cap_abandoned;
+    /* Requests it declined in a row while announcing room for them; no
+     * request goes to it before declined_until (monotonic s). */
+    int     declines;
+    double  declined_until;
     int     runs_done;
     double  heartbeat_s;
     double  last_seen;       /* monotonic s */
@@ -81,7 +98,8 @@ typedef struct mpbd_flight {
                                 its planner's queue */
     double   last_send;
     int      sends;
-    int      acked;          /* planner said REQUEST_RECEIVED */
+    int      acked;          /* planner said REQUEST_RECEIVED, or named
+                                it among its active runs */
     double   deadline;
 } mpbd_flight;
 
@@ -169,6 +187,7 @@ typedef struct mpbd {
     double           started;        /* monotonic s */
     double           last_status;
     double           last_wait_log;
+    double           last_bad_announce_log;
 } mpbd;
 
 /* planners.c */
@@ -195,7 +214,8 @@ int  mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why);
  * but for the runs it says it is working on (active_runs). */
 void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
                           int num_active);
-/* A planner says it is working on these runs: any of them queued starts. */
+/* A planner says it is working on these runs: any of them queued starts,
+ * and a run given up on that it leaves out frees its slot. */
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
                              int num_active);
 /* A new flight at the end of d->flights, for the caller to fill; NULL

@@ -786,6 +786,28 @@ static int add_runs(loader *L, const mpbd_experiment *e, int runs,
                    MPBD_RUNS_TOTAL_MAX);
 }
 
+/* A planner announces itself as name@host:pid, an id of at most
+ * MPB_PLANNER_ID_MAX characters from [A-Za-z0-9_.:@-] (docs/protocol.md):
+ * a family outside that can never be offered, and its runs would wait
+ * for ever. */
+static int check_family(loader *L, const yaml_node_t *n, const char *family)
+{
+    size_t len = strlen(family);
+    if (len > MPB_PLANNER_ID_MAX - 4)
+        return fail_at(L, n, "planner '%.40s...' is longer than %d characters: "
+                       "no planner id (name@host:pid, at most %d) can hold it",
+                       family, MPB_PLANNER_ID_MAX - 4, MPB_PLANNER_ID_MAX);
+    for (size_t i = 0; i < len; i++) {
+        char c = family[i];
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+              (c >= '0' && c <= '9') || strchr("_.:@-", c) != NULL))
+            return fail_at(L, n, "planner '%s' can never announce itself: a "
+                           "planner id (name@host:pid) holds only letters, "
+                           "digits and '_' '.' ':' '@' '-'", family);
+    }
+    return 0;
+}
+
 static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     static const char *const keys[] = {"planner", "algorithms", "params",
@@ -829,6 +851,10 @@ static int load_planners(loader *L, mpbd_experiment *e, yaml_node_t *root)
             return fail_at(L, n, "name must be a string");
         if ((planner = need_string(L, m, "planner")) == NULL)
             return -1;
+        if (check_family(L, get(L, m, "planner"), planner) != 0) {
+            free(planner);
+            return -1;
+        }
         for (yaml_node_item_t *a = algos->data.sequence.items.start;
              a < algos->data.sequence.items.top; a++) {
             yaml_node_t *an = node(L, *a);

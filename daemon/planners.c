@@ -33,14 +33,52 @@ static void set_offer(mpbd_planner *p, const mpb_planner_announce_t *m)
             p->num_algorithms++;
 }
 
+/* Why an announcement cannot be taken, or NULL if it can. */
+static const char *announce_fault(const mpb_planner_announce_t *m,
+                                  char *why, size_t len)
+{
+    const char *id = m->planner_id;
+    size_t n = strlen(id);
+    if (n == 0)
+        return "its planner id is empty";
+    if (n > MPB_PLANNER_ID_MAX) {
+        snprintf(why, len, "planner id '%.40s...' is %zu characters long, "
+                 "more than %d", id, n, MPB_PLANNER_ID_MAX);
+        return why;
+    }
+    if (!mpb_planner_id_is_valid(id)) {
+        snprintf(why, len, "planner id '%s' has characters outside "
+                 "[A-Za-z0-9_.:@-]", id);
+        return why;
+    }
+    if (m->name[0] == '\0') {
+        snprintf(why, len, "planner %s announces no family name", id);
+        return why;
+    }
+    if (m->num_algorithms < 0) {
+        snprintf(why, len, "planner %s announces %d algorithms", id,
+                 m->num_algorithms);
+        return why;
+    }
+    return NULL;
+}
+
 static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
 {
     mpbd_planner *p;
     double now = mpb_monotonic_s();
+    char why[256];
+    const char *fault = announce_fault(m, why, sizeof why);
 
-    if (!mpb_planner_id_is_valid(m->planner_id) || m->name[0] == '\0' ||
-        m->num_algorithms < 0) {
+    if (fault != NULL) {
         d->count.rejected++;
+        /* Such a planner goes on announcing: one line in 5 s says why no
+         * run goes to it, not one a heartbeat. */
+        if (now - d->last_bad_announce_log >= 5.0) {
+            mpbd_log("rejected an announcement: %s (%ld messages rejected "
+                     "so far)", fault, d->count.rejected);
+            d->last_bad_announce_log = now;
+        }
         return;
     }
     if ((p = find(d, m->planner_id)) == NULL) {
@@ -135,6 +173,7 @@ void mpbd_planners_free(mpbd *d)
             free(d->planners[i].algorithms[a]);
         free(d->planners[i].algorithms);
         free(d->planners[i].name);
+        free(d->planners[i].abandoned);
     }
     free(d->planners);
     d->planners = NULL;

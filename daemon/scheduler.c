@@ -9,9 +9,15 @@
  * that one (at the cost of that work overlapping its planning). Such a
  * request is queued: it starts, with its times and deadline, when the run
  * before it on that planner ends, or when the planner announces it is
- * working on it. One its planner never started (declined by a closing
- * planner, or left at one that closed or went away) is taken back: pending
- * again, no attempt and no crash counted.
+ * working on it. One its planner never started (declined, or left at one
+ * that closed or went away) is taken back: pending again, no attempt and
+ * no crash counted.
+ *
+ * A run given up on at its deadline may still be planned: while its
+ * planner's announcements name it, it holds a slot of that planner's
+ * capacity, so that the next run does not wait behind it and crash in its
+ * turn. A planner that declines requests although it announces room for
+ * them gets none for a while, longer each time (1 s doubling to 60 s).
  */
 #include <math.h>
 #include <stdio.h>
@@ -208,20 +214,41 @@ static void log_waiting(mpbd *d, double now)
         return;
     for (int c = 0; c < d->exp->num_configs; c++) {
         const mpbd_config *cf = &d->exp->configs[c];
+        const mpbd_planner *declining = NULL;
         int offered = 0;
         if (d->pending_head[c] >= d->pending_len[c])
             continue;
-        for (int p = 0; p < d->num_planners && !offered; p++)
-            offered = !d->planners[p].gone &&
-                      mpbd_planner_offers(&d->planners[p], cf->planner,
-                                          cf->algorithm);
-        if (!offered) {
+        for (int p = 0; p < d->num_planners && !offered; p++) {
+            const mpbd_planner *pl = &d->planners[p];
+            if (pl->gone || !mpbd_planner_offers(pl, cf->planner, cf->algorithm))
+                continue;
+            if (now < pl->declined_until && !pl->closing)
+                declining = pl;
+            else
+                offered = 1;
+        }
+        if (!offered && declining != NULL) {
+            mpbd_log("%s: waiting for a planner '%s' offering '%s' (%d runs): "
+                     "%s declined its last %d request%s; next try in %.0f s",
+                     cf->name, cf->planner, cf->algorithm,
+                     d->pending_len[c] - d->pending_head[c], declining->id,
+                     declining->declines, declining->declines == 1 ? "" : "s",
+                     declining->declined_until - now);
+            d->last_wait_log = now;
+        } else if (!offered) {
             mpbd_log("%s: waiting for a planner '%s' offering '%s' "
                      "(%d runs)", cf->name, cf->planner, cf->algorithm,
                      d->pending_len[c] - d->pending_head[c]);
             d->last_wait_log = now;
         }
     }
+}
+
+/* A planner's runs in flight, and those it still plans that were given up
+ * on: what it has room for is its capacity less these. */
+static int busy(const mpbd_planner *p)
+{
+    return p->active + p->num_abandoned;
 }
 
 /* Runs in flight on the planners of one host. */
@@ -248,15 +275,15 @@ int mpbd_scheduler_dispatch(mpbd *d, double now)
         return 0;
     for (int p = 0; p < d->num_planners; p++) {
         mpbd_planner *pl = &d->planners[p];
-        while (!pl->gone && !pl->closing) {
+        while (!pl->gone && !pl->closing && now >= pl->declined_until) {
             /* A run to start, if the planner and its host have room; else
              * one to wait behind the runs of a busy planner (an idle one
              * held back by its host's limit gets none: it would start). */
             int queued, got = 0;
-            if (pl->active < pl->capacity &&
+            if (busy(pl) < pl->capacity &&
                 host_active(d, pl->host) < d->exp->runs_per_host)
                 queued = 0;
-            else if (pl->active >= pl->capacity &&
+            else if (busy(pl) >= pl->capacity &&
                      pl->queued < d->exp->queue_at_planner)
                 queued = 1;
             else
@@ -336,19 +363,12 @@ static void start_queued(mpbd *d, mpbd_flight *f)
     f->deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S;
 }
 
-void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
+/* A planner with room takes its next request, the oldest waiting, now. */
+static void start_next_queued(mpbd *d, int planner)
 {
-    int planner = f->planner, was_queued = f->queued;
-    mpbd_planner *p = &d->planners[planner];
-    if (was_queued && p->queued > 0)
-        p->queued--;
-    else if (!was_queued && p->active > 0)
-        p->active--;
-    *f = d->flights[--d->num_flights];
-    if (was_queued || p->queued == 0 || p->gone || p->closing ||
-        p->active >= p->capacity)
+    const mpbd_planner *p = &d->planners[planner];
+    if (p->queued == 0 || p->gone || p->closing || busy(p) >= p->capacity)
         return;
-    /* The planner takes its next request, the oldest waiting, now. */
     mpbd_flight *next = NULL;
     for (int i = 0; i < d->num_flights; i++) {
         mpbd_flight *g = &d->flights[i];
@@ -358,6 +378,19 @@ void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
     }
     if (next != NULL)
         start_queued(d, next);
+}
+
+void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
+{
+    int planner = f->planner, was_queued = f->queued;
+    mpbd_planner *p = &d->planners[planner];
+    if (was_queued && p->queued > 0)
+        p->queued--;
+    else if (!was_queued && p->active > 0)
+        p->active--;
+    *f = d->flights[--d->num_flights];
+    if (!was_queued)
+        start_next_queued(d, planner);
 }
 
 int mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why)
@@ -404,15 +437,59 @@ void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
                              int num_active)
 {
-    if (d->planners[planner].queued == 0)
-        return;
+    mpbd_planner *p = &d->planners[planner];
+    int dropped = 0;
     for (int k = 0; k < num_active; k++) {
         mpbd_flight *f;
         if (mpb_run_id_is_valid(active_runs[k]) &&
             (f = mpbd_flight_find(d, active_runs[k])) != NULL &&
-            f->planner == planner && f->queued)
-            start_queued(d, f);
+            f->planner == planner) {
+            f->acked = 1;           /* it has the request: no more resends */
+            p->declines = 0;
+            if (f->queued)
+                start_queued(d, f);
+        }
     }
+    /* A run given up on holds its slot while the planner names it. */
+    for (int i = 0; i < p->num_abandoned;) {
+        mpbd_abandoned *a = &p->abandoned[i];
+        if (names_run(active_runs, num_active, a->uid)) {
+            if (!a->named)
+                mpbd_log("planner %s still plans run %lld, given up on at its "
+                         "deadline: it gets no run in its place until it "
+                         "stops", p->id, (long long)a->run_id);
+            a->named = 1;
+            i++;
+            continue;
+        }
+        if (a->named)
+            mpbd_log("planner %s has stopped planning run %lld, %.1f s after "
+                     "its deadline: it takes runs again", p->id,
+                     (long long)a->run_id, mpb_monotonic_s() - a->since);
+        *a = p->abandoned[--p->num_abandoned];
+        dropped = 1;
+    }
+    if (dropped)
+        start_next_queued(d, planner);
+}
+
+/* A run given up on at its deadline, which its planner may still plan. */
+static void abandon(mpbd *d, const mpbd_flight *f)
+{
+    mpbd_planner *p = &d->planners[f->planner];
+    if (p->num_abandoned == p->cap_abandoned) {
+        int cap = p->cap_abandoned ? p->cap_abandoned * 2 : 4;
+        mpbd_abandoned *a = realloc(p->abandoned, (size_t)cap * sizeof *a);
+        if (a == NULL)
+            return;             /* then its slot is free at once, as before */
+        p->abandoned = a;
+        p->cap_abandoned = cap;
+    }
+    mpbd_abandoned *a = &p->abandoned[p->num_abandoned++];
+    memcpy(a->uid, f->run.uid, sizeof a->uid);
+    a->run_id = f->run.id;
+    a->since = mpb_monotonic_s();
+    a->named = 0;
 }
 
 void mpbd_scheduler_tick(mpbd *d, double now)
@@ -436,10 +513,19 @@ void mpbd_scheduler_tick(mpbd *d, double now)
         /* A planner that holds other requests may be planning one of them
          * before it re-sends a lost result of this run. */
         double deadline = f->deadline;
-        if (p->queued > 0 || p->active > p->capacity)
+        if (p->queued > 0 || busy(p) > p->capacity)
             deadline += d->exp->time_limit;
         if (now > deadline) {
-            mpbd_record_crash(d, f, "no result within the time limit and grace");
+            char why[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX + 128];
+            if (f->acked || f->sends < MPBD_REQUEST_MAX_SENDS)
+                snprintf(why, sizeof why,
+                         "no result within the time limit and grace");
+            else
+                snprintf(why, sizeof why, "request never acknowledged (%d "
+                         "sends): is the planner subscribed to %s%s?",
+                         f->sends, MPB_CHANNEL_REQUEST_PREFIX, p->id);
+            abandon(d, f);
+            mpbd_record_crash(d, f, why);
             continue;
         }
         if (!f->acked && f->sends < MPBD_REQUEST_MAX_SENDS &&
@@ -470,8 +556,33 @@ void mpbd_scheduler_free(mpbd *d)
     free(d->owed);
 }
 
+/* A planner declined a request: it goes to another. A planner declines
+ * only when closing, and then announces capacity 0; one that has not (or
+ * not yet) gets no request for a while, 1 s doubling to 60 s, so that one
+ * that declines everything does not have the daemon send it a request and
+ * take it back, with two log lines, every heartbeat for ever. */
+static void declined(mpbd *d, mpbd_flight *f)
+{
+    mpbd_planner *p = &d->planners[f->planner];
+    long long run = (long long)f->run.id;
+    if (!p->closing) {
+        double pause = p->declines < 6 ? (double)(1 << p->declines) : 60.0;
+        p->declines++;
+        p->declined_until = mpb_monotonic_s() + pause;
+        if (p->declines == 1)
+            mpbd_log("planner %s declined run %lld: no request goes to it "
+                     "for %.0f s", p->id, run, pause);
+        else
+            mpbd_log("planner %s declined run %lld, %d in a row, while it "
+                     "announces capacity %d (a planner declines only when "
+                     "closing, at capacity 0): no request goes to it for "
+                     "%.0f s", p->id, run, p->declines, p->capacity, pause);
+    }
+    mpbd_take_back(d, f, "its planner declined it");
+}
+
 /* A planner acknowledged a request: stop re-sending it. Or it declined
- * it, closing: it takes no more runs, and this one goes to another. */
+ * it: it goes to another. */
 static void on_ack(mpbd *d, const mpb_run_ack_t *m)
 {
     mpbd_flight *f;
@@ -481,13 +592,9 @@ static void on_ack(mpbd *d, const mpb_run_ack_t *m)
         return;
     if (m->kind == MPB_RUN_ACK_T_REQUEST_RECEIVED) {
         f->acked = 1;
+        d->planners[f->planner].declines = 0;
     } else if (m->kind == MPB_RUN_ACK_T_REQUEST_DECLINED) {
-        mpbd_planner *p = &d->planners[f->planner];
-        if (!p->closing)
-            mpbd_log("planner %s is closing: it declined run %lld", p->id,
-                     (long long)f->run.id);
-        p->closing = 1;
-        mpbd_take_back(d, f, "its planner declined it");
+        declined(d, f);
     }
 }
 

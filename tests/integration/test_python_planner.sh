@@ -3,7 +3,9 @@
 # its runs on the planar arm and on the PR2 with a pose-region goal are
 # stored and verified valid; the same seed gives the same path; a request
 # it cannot use gets INVALID_REQUEST and a malformed message changes
-# nothing; with a shared secret it takes part as the C planners do.
+# nothing; with a shared secret it takes part as the C planners do. The
+# kit (mpbplanner.node) under a planner of the test's own: an exception in
+# its solve() and an algorithm it does not offer are answered, not fatal.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -131,6 +133,101 @@ check "a request naming joints the robot lacks gets INVALID_REQUEST (4)" \
     test "${out%% *}" = 4
 check "after a malformed message the planner goes on announcing" \
     test "${out##* }" -ge 3
+mpb_stop_all
+
+# The kit on its own (mpbplanner.node), as docs/writing-a-planner.md shows
+# it: a solve() that raises is answered FAILED with the exception, and the
+# planner goes on; a request for an algorithm it does not offer is
+# INVALID_REQUEST without a call to solve(); a family the C kit would
+# refuse is refused.
+kitpath=$MPB_SOURCE/planners/python:$MPB_BUILD/lcmtypes/python
+cat >"$work/kit.py" <<'EOT'
+import sys
+from mpb import plan_result_t, stage_t
+from mpbplanner.node import Node
+
+def solve(req):
+    if any(p.key == "boom" for p in req.params):
+        return 1 / 0
+    res = plan_result_t()
+    st = stage_t()
+    st.name, st.num_waypoints, st.num_joints = "raw", 2, req.num_joints
+    st.waypoints = list(req.start) + list(req.goal.joints)
+    st.num_values = len(st.waypoints)
+    res.status, res.stages, res.num_stages = plan_result_t.SOLVED, [st], 1
+    return res
+
+try:
+    Node(sys.argv[1], ["line"], "")
+except ValueError as e:
+    print(e)
+    sys.exit(2)
+Node("kit", ["line"], "", verbose=True).serve(solve) if sys.argv[1] == "kit" else None
+EOT
+PYTHONPATH=$kitpath "$python" "$work/kit.py" "py planner" >"$work/kit-name.log" 2>&1
+check "kit: Node refuses the family 'py planner' as the C kit does" \
+    grep -qx "planner name 'py planner' may hold only letters, digits and '_' '.' '-'" "$work/kit-name.log"
+"$planner" --name "py planner" >"$work/python-name.log" 2>&1
+check "mpb-planner-python --name 'py planner' exits 2" eq $? 2
+cat >"$work/kit.yaml" <<EOT
+experiment: {name: kit, runs: 2, time_limit: 2}
+robot: {format: planar, file: $scenes/planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $scenes/planar/pillars.scene
+    queries:
+      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+planners:
+  - {planner: kit, algorithms: [line], params: {boom: 1}, name: boom}
+  - {planner: kit, algorithms: [line], name: fine}
+EOT
+PYTHONPATH=$kitpath "$python" "$work/kit.py" kit >"$work/kit-planner.log" 2>&1 &
+MPB_PIDS="$MPB_PIDS $!"
+DB=$work/kit.db
+"$daemon" -d "$DB" "$work/kit.yaml" >"$work/kit-daemon.log" 2>&1 &
+mpb_wait $! 30
+check "kit: the experiment completes" eq $? 0
+check "kit: a solve() that raises is FAILED with the exception, not a crash" \
+    eq "$(q "SELECT count(*) FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
+             WHERE c.name = 'kit/line#boom' AND r.status = 'failed'
+               AND r.message = 'solve() raised ZeroDivisionError: division by zero'")" 2
+check "kit: ... and the planner goes on: the other runs solved" \
+    eq "$(q "SELECT count(*) FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
+             WHERE c.name = 'kit/line#fine' AND r.status = 'solved'")" 2
+check "kit: the traceback is on the planner's stderr" \
+    grep -q "ZeroDivisionError" "$work/kit-planner.log"
+cat >"$work/forge-kit.py" <<'EOT'
+import time
+import lcm
+from mpb import plan_request_t, plan_result_t, planner_announce_t
+lc = lcm.LCM()
+seen = {}
+def on_announce(channel, data):
+    a = planner_announce_t.decode(data)
+    if a.name == "kit":
+        seen["id"] = a.planner_id
+def on_result(channel, data):
+    r = plan_result_t.decode(data)
+    seen["answer"] = f"{r.status} {r.message}"
+lc.subscribe("MPB_ANNOUNCE", on_announce)
+lc.subscribe("MPB_RESULT", on_result)
+end = time.time() + 10
+while "id" not in seen and time.time() < end:
+    lc.handle_timeout(100)
+r = plan_request_t()
+r.run_id, r.planner_id, r.algorithm = "e" * 32, seen["id"], "Nope"
+r.robot_format = r.robot = r.scene_format = r.scene = ""
+r.robot_hash = r.scene_hash = r.goal.link = ""
+lc.publish("MPB_REQUEST_" + seen["id"], r.encode())
+end = time.time() + 3
+while "answer" not in seen and time.time() < end:
+    lc.handle_timeout(100)
+print(seen.get("answer", "none"))
+EOT
+out=$(PYTHONPATH=$kitpath "$python" "$work/forge-kit.py" 2>&1)
+check "kit: an algorithm not offered is INVALID_REQUEST (4), solve() not called" \
+    test "$out" = "4 algorithm 'Nope' not offered by this planner (offered: line)"
 mpb_stop_all
 
 # With a shared secret the planner signs and checks, as the daemon does.

@@ -209,6 +209,40 @@ static void a_directory_is_not_a_file(void **state)
     assert_string_equal(err, what);
 }
 
+/* A family no planner id can hold is refused at its line, not waited for. */
+static void a_planner_family_must_fit_an_id(void **state)
+{
+    char text[1024], what[256], long_name[94];
+    mpbd_experiment *e;
+    (void)state;
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n" ROBOT
+                          "scenes: [{name: s, format: planar, text: \"\", "
+                          QUERIES "}]\n"
+                          "planners:\n"
+                          "  - {planner: 'py planner', algorithms: [a]}\n"));
+    assert_error("5:15", "planner 'py planner' can never announce itself: a "
+                         "planner id (name@host:pid) holds only letters, "
+                         "digits and '_' '.' ':' '@' '-'");
+    memset(long_name, 'p', sizeof long_name - 1);
+    long_name[sizeof long_name - 1] = '\0';
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n" ROBOT
+             "scenes: [{name: s, format: planar, text: \"\", " QUERIES "}]\n"
+             "planners: [{planner: %s, algorithms: [a]}]\n", long_name);
+    assert_null(load_text(text));
+    snprintf(what, sizeof what, "planner '%.40s...' is longer than 92 "
+             "characters: no planner id (name@host:pid, at most 96) can hold "
+             "it", long_name);
+    assert_error("4:22", what);
+    /* 92 characters and every character an id may hold are fine. */
+    long_name[92] = '\0';
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n" ROBOT
+             "scenes: [{name: s, format: planar, text: \"\", " QUERIES "}]\n"
+             "planners: [{planner: %s, algorithms: [a]}, "
+             "{planner: 'A-z_0.9:@', algorithms: [a]}]\n", long_name);
+    assert_non_null(e = load_text(text));
+    mpbd_experiment_free(e);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -219,6 +253,7 @@ int main(void)
         cmocka_unit_test(an_unknown_format_is_pointed_at),
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
         cmocka_unit_test(a_directory_is_not_a_file),
+        cmocka_unit_test(a_planner_family_must_fit_an_id),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);
 }

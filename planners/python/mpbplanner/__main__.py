@@ -8,7 +8,7 @@ import argparse
 import signal
 import sys
 
-from .node import Auth, Node
+from .node import Auth, Node, name_error
 from .solve import WorldCache, solve
 
 ALGORITHMS = ["RRTConnect"]
@@ -33,6 +33,10 @@ def main(argv=None):
     ap.add_argument("-v", "--verbose", action="store_true",
                     help="log each run to stderr")
     args = ap.parse_args(argv)
+    error = name_error(args.name)
+    if error:
+        print(f"mpb-planner-python: {error} (see --help)", file=sys.stderr)
+        return 2
 
     try:
         auth = Auth(args.secret_file) if args.secret_file else None

@@ -6,18 +6,29 @@ queue, acknowledges them, announces the planner every heartbeat, and
 re-sends each result until the daemon acknowledges it. A request seen
 before is never planned twice: it is answered with the result already
 made, or only acknowledged while planning.
+
+Reusable for any planner in Python (docs/writing-a-planner.md):
+
+    Node(name, algorithms, url).serve(solve)
+
+with solve(req) -> plan_result_t. As the C kit does, the node answers a
+request for an algorithm it does not offer with INVALID_REQUEST without
+calling solve(), and an exception in solve() with FAILED and the
+exception in the result's message, and goes on serving.
 """
 import hashlib
 import hmac
 import os
 import queue
+import re
 import socket
 import sys
 import threading
 import time
+import traceback
 
 import lcm
-from mpb import plan_request_t, planner_announce_t, run_ack_t
+from mpb import plan_request_t, plan_result_t, planner_announce_t, run_ack_t
 
 ANNOUNCE = "MPB_ANNOUNCE"
 ACK = "MPB_ACK"
@@ -25,6 +36,26 @@ RESULT = "MPB_RESULT"
 HEARTBEAT_S = 0.5
 RESEND_S = 0.2
 TAG_BYTES = 32
+PLANNER_ID_MAX = 96
+MESSAGE_MAX = 1000          # characters of an exception kept in a message
+
+
+def name_error(name):
+    """Why name cannot name a planner family (the C kit's rule), or None."""
+    if not 1 <= len(name) <= 32:
+        return "planner name must be 1 to 32 characters"
+    if not re.fullmatch(r"[A-Za-z0-9_.-]+", name):
+        return (f"planner name '{name}' may hold only letters, digits "
+                "and '_' '.' '-'")
+    return None
+
+
+def planner_id(name, host, pid):
+    """name@host:pid, with the host's other characters as '-' and the host
+    shortened so that the id fits in PLANNER_ID_MAX characters."""
+    host = re.sub(r"[^A-Za-z0-9_.-]", "-", host) or "localhost"
+    room = PLANNER_ID_MAX - len(name) - 2 - len(str(pid))
+    return f"{name}@{host[:room]}:{pid}"
 
 
 class Auth:
@@ -52,10 +83,18 @@ class Auth:
 
 
 class Node:
+    """A planner process on the network: name is its family (what
+    experiment files name), algorithms the names it offers, url LCM's URL
+    ("" for LCM's default), auth an Auth or None. Raises ValueError for a
+    name the C kit would refuse too."""
+
     def __init__(self, name, algorithms, url, auth=None, verbose=False):
-        self.lc = lcm.LCM(url) if url else lcm.LCM()
+        error = name_error(name)
+        if error:
+            raise ValueError(error)
         self.host = socket.gethostname()
-        self.planner_id = f"{name}@{self.host}:{os.getpid()}"[:96]
+        self.planner_id = planner_id(name, self.host, os.getpid())
+        self.lc = lcm.LCM(url) if url else lcm.LCM()
         self.name, self.algorithms = name, algorithms
         self.auth, self.verbose = auth, verbose
         self.requests = queue.Queue()
@@ -163,6 +202,42 @@ class Node:
 
     # ---- planning (caller's thread) ---------------------------------------
 
+    def _failed(self, status, message):
+        res = plan_result_t()
+        res.status, res.message = status, message[:MESSAGE_MAX]
+        return res
+
+    def _answer(self, solve, req):
+        """(result, its encoding): solve's, or INVALID_REQUEST for an
+        algorithm not offered, or FAILED saying what went wrong in solve()."""
+        if req.algorithm not in self.algorithms:
+            res = self._failed(plan_result_t.INVALID_REQUEST,
+                               f"algorithm '{req.algorithm}' not offered by "
+                               f"this planner (offered: "
+                               f"{', '.join(self.algorithms)})")
+        else:
+            try:
+                res = solve(req)
+            except Exception as e:      # the planner's bug: say so, go on
+                print(f"mpb-planner-python: run {req.run_id[:8]}: solve() "
+                      f"raised:\n{traceback.format_exc()}", file=sys.stderr,
+                      end="", flush=True)
+                res = self._failed(plan_result_t.FAILED, f"solve() raised "
+                                   f"{type(e).__name__}: {e}")
+            if not isinstance(res, plan_result_t):
+                res = self._failed(plan_result_t.FAILED, f"solve() returned "
+                                   f"{type(res).__name__}, not a plan_result_t")
+        res.utime = int(time.time() * 1e6)
+        res.run_id, res.planner_id = req.run_id, self.planner_id
+        try:
+            return res, res.encode()
+        except Exception as e:          # e.g. num_stages != len(stages)
+            res = self._failed(plan_result_t.FAILED, f"the result of solve() "
+                               f"cannot be encoded: {type(e).__name__}: {e}")
+            res.utime = int(time.time() * 1e6)
+            res.run_id, res.planner_id = req.run_id, self.planner_id
+            return res, res.encode()
+
     def serve(self, solve):
         """Answer requests with solve(req) -> plan_result_t until stop()."""
         t = threading.Thread(target=self._lcm_loop, daemon=True)
@@ -176,10 +251,7 @@ class Node:
                 self.active = [req.run_id]
             self.log(f"run {req.run_id[:8]}: {req.algorithm}, "
                      f"{req.time_limit:g} s")
-            res = solve(req)
-            res.utime = int(time.time() * 1e6)
-            res.run_id, res.planner_id = req.run_id, self.planner_id
-            data = res.encode()
+            res, data = self._answer(solve, req)
             with self.lock:
                 self.active = []
                 self.seen[req.run_id] = data
