@@ -116,7 +116,7 @@ static int schema_version(mpb_store *s, int *version)
     return MPB_OK;
 }
 
-static int has_column(mpb_store *s, const char *table, const char *column)
+int mpb__store_has_column(mpb_store *s, const char *table, const char *column)
 {
     char sql[160];
     sqlite3_stmt *probe = NULL;
@@ -131,7 +131,7 @@ static int add_missing_column(mpb_store *s, const char *table,
                               const char *column, const char *type)
 {
     char sql[160], what[96];
-    if (has_column(s, table, column))
+    if (mpb__store_has_column(s, table, column))
         return MPB_OK;
     snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", table,
              column, type);
@@ -141,8 +141,8 @@ static int add_missing_column(mpb_store *s, const char *table,
 
 static int refresh_results_view(mpb_store *s)
 {
-    if (has_column(s, "results", "experiment_id") &&
-        has_column(s, "results", "message"))
+    if (mpb__store_has_column(s, "results", "experiment_id") &&
+        mpb__store_has_column(s, "results", "message"))
         return MPB_OK;
     int rc = exec(s, "DROP VIEW IF EXISTS results", "drop results view");
     return rc != MPB_OK ? rc

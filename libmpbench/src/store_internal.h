@@ -11,6 +11,10 @@
 extern const char mpb__schema_v1[];
 extern const char mpb__schema_results_view[];
 
+/* Whether the table (or view) has the column: a database made by an earlier
+ * mpbench and opened read-only may lack one that a writer would add. */
+int mpb__store_has_column(mpb_store *s, const char *table, const char *column);
+
 /* Prepared statements, made once per handle and kept (SQLite's own advice
  * for statements run thousands of times). */
 typedef enum mpb__stmt_id {

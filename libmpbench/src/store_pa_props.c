@@ -864,17 +864,8 @@ int mpb__pa_read_queries(mpb_store *s, const exp_info *e, pa_query_list *out)
         goto done;
     /* A database made before pose-region goals, opened read-only, has no
      * columns for them (a writer adds them): NULLs instead. */
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT count(*) FROM pragma_table_info('queries')"
-        " WHERE name = 'goal_region'");
-    if (st == NULL) {
-        rc = MPB_EDB;
-        goto done;
-    }
-    int has_region = sqlite3_step(st) == SQLITE_ROW &&
-                     sqlite3_column_int(st, 0) == 1;
-    sqlite3_finalize(st);
-    st = mpb__store_prepare(s, has_region
+    int has_region = mpb__store_has_column(s, "queries", "goal_region");
+    sqlite3_stmt *st = mpb__store_prepare(s, has_region
         ? "SELECT q.id, q.name, q.scene_id, count(r.id), total(r.wall_time),"
           " q.joint_names, q.start, q.goal_kind, q.goal_joints,"
           " q.goal_tolerance, q.goal_link, q.goal_region"

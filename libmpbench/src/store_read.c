@@ -146,15 +146,8 @@ int mpb_store_queries(mpb_store *s, int64_t scene_id,
 {
     /* A database made before pose-region goals, opened read-only, has no
      * columns for them (a writer adds them): read NULLs instead. */
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT count(*) FROM pragma_table_info('queries')"
-        " WHERE name = 'goal_region'");
-    if (st == NULL)
-        return MPB_EDB;
-    int has_region = sqlite3_step(st) == SQLITE_ROW &&
-                     sqlite3_column_int(st, 0) == 1;
-    sqlite3_finalize(st);
-    st = mpb__store_prepare(s, has_region
+    int has_region = mpb__store_has_column(s, "queries", "goal_region");
+    sqlite3_stmt *st = mpb__store_prepare(s, has_region
         ? "SELECT id, scene_id, name, joint_names, start, goal_kind = 'joints',"
           " goal_joints, goal_tolerance, goal_link, goal_region"
           " FROM queries WHERE scene_id = ? ORDER BY id"
