@@ -378,6 +378,13 @@ int main(int argc, char **argv)
         exit_code = mpbd_replay(&d, o.replay) == 0 ? 0 : 1;
         goto out;
     }
+    /* A resumed experiment's status counts its runs done before, too. */
+    mpb_run_counts before = {0};
+    if (mpb_store_run_counts(d.store, d.experiment_id, &before) == MPB_OK) {
+        d.count.succeeded = before.succeeded;
+        d.count.crashed = before.crashed;
+        d.count.failed = before.done - before.succeeded - before.crashed;
+    }
     /* What it subscribes to, and nothing else: its own requests and
      * acknowledgements and its status are dropped by the kernel, not
      * after a wake-up of LCM's thread (lcm_filter.h). */
