@@ -139,6 +139,10 @@ typedef struct mpbd {
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result;
     mpb_store       *store;
+    const char      *db_path;        /* as given */
+    /* The last database error logged, not logged again until a commit
+     * succeeds: a failed transaction fails every write in it alike. */
+    char             db_error[256];
     mpbd_experiment *exp;
     int64_t          experiment_id;
     char             daemon_id[MPB_PLANNER_ID_MAX + 1];
@@ -281,5 +285,8 @@ void mpbd_log(const char *fmt, ...)
     __attribute__((format(printf, 1, 2)))
 #endif
     ;
+/* Log the store's last error, naming the database, unless it is the one
+ * logged last (d->db_error). */
+void mpbd_db_error(mpbd *d);
 
 #endif

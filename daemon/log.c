@@ -1,6 +1,7 @@
 /* log.c - the daemon's console log: one short line per event worth seeing. */
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 #include <time.h>
 
 #include "daemon.h"
@@ -19,4 +20,13 @@ void mpbd_log(const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     va_end(ap);
     fputc('\n', stderr);
+}
+
+void mpbd_db_error(mpbd *d)
+{
+    const char *msg = mpb_store_errmsg(d->store);
+    if (strcmp(msg, d->db_error) == 0)
+        return;
+    snprintf(d->db_error, sizeof d->db_error, "%s", msg);
+    mpbd_log("database %s: %s", d->db_path, msg);
 }

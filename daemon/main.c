@@ -305,7 +305,12 @@ static int wait_readable(int fd, int timeout_ms)
     return n > 0 && (pfd.revents & POLLIN);
 }
 
-static int run_loop(mpbd *d)
+/* How run_loop() ends, besides 0 (every run done) and 1 (a signal). */
+enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2 };
+
+/* The loop, until every run is done, a signal or a database failure;
+ * LOOP_DB_GONE says why in gone (cap bytes). */
+static int run_loop(mpbd *d, char *gone, size_t cap)
 {
     int fd = lcm_get_fileno(d->lcm);
     double now = mpb_monotonic_s();
@@ -318,8 +323,9 @@ static int run_loop(mpbd *d)
          * (bounded, so that timers still run under a flood). */
         if (mpb_store_begin(d->store) != MPB_OK ||
             mpbd_scheduler_record_sent(d) != MPB_OK) {
-            mpbd_log("database: %s", mpb_store_errmsg(d->store));
-            return -1;
+            mpbd_db_error(d);
+            mpb_store_rollback(d->store);
+            return LOOP_DB_ERROR;
         }
         for (int n = 0; ready && n < 4096; n++) {
             if (lcm_handle(d->lcm) != 0)
@@ -328,17 +334,26 @@ static int run_loop(mpbd *d)
         }
         mpbd_scheduler_tick(d, now);
         if (mpb_store_commit(d->store) != MPB_OK) {
-            mpbd_log("database: %s", mpb_store_errmsg(d->store));
+            mpbd_db_error(d);
             mpb_store_rollback(d->store);
-            return -1;
+            return LOOP_DB_ERROR;
         }
+        d->db_error[0] = '\0';
         /* Then the next requests: a run's latency ends with its commit,
          * not with the next run's request, and each request carries the
          * acknowledgements this commit made true (acks.c). */
         mpbd_acks_flush(d);
         mpbd_scheduler_dispatch(d, now);
         mpbd_owed_send(d, now, 0);
-        if (mpbd_scheduler_done(d))
+        /* Results written to a file that lost its name are lost: looked
+         * at once a status period, and before saying the work is done. */
+        int done = mpbd_scheduler_done(d);
+        if ((done || now - d->last_status >= MPBD_STATUS_PERIOD_S) &&
+            mpb_store_check_file(d->store) != MPB_OK) {
+            snprintf(gone, cap, "%s", mpb_store_errmsg(d->store));
+            return LOOP_DB_GONE;
+        }
+        if (done)
             return 0;
         if (now - d->last_status >= MPBD_STATUS_PERIOD_S)
             mpbd_status_publish(d, d->num_planners ? "running" : "waiting", now);
@@ -400,8 +415,19 @@ int main(int argc, char **argv)
 
     if (o.replay && mpbd_replay_log_readable(o.replay) != 0)
         goto out;
+    d.db_path = o.db;
     if ((rc = mpb_store_open(o.db, 0, &d.store)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
+        goto out;
+    }
+    /* One daemon per database, whatever its experiment: a second one on
+     * the same runs would send each twice. */
+    if ((rc = mpb_store_claim(d.store)) != MPB_OK) {
+        if (rc == MPB_EBUSY)
+            fprintf(stderr, "mpbenchd: %s is in use by another mpbenchd: "
+                    "wait for it to end, or give another --db\n", o.db);
+        else
+            fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
         goto out;
     }
     /* A replay always fills a new experiment of its own. */
@@ -419,6 +445,13 @@ int main(int argc, char **argv)
     if (o.replay) {
         exit_code = mpbd_replay(&d, o.replay) == 0 ? 0 : 1;
         goto out;
+    }
+    /* A resumed experiment's status counts its runs done before, too. */
+    mpb_run_counts before = {0};
+    if (mpb_store_run_counts(d.store, d.experiment_id, &before) == MPB_OK) {
+        d.count.succeeded = before.succeeded;
+        d.count.crashed = before.crashed;
+        d.count.failed = before.done - before.succeeded - before.crashed;
     }
     /* What it subscribes to, and nothing else: its own requests and
      * acknowledgements and its status are dropped by the kernel, not
@@ -448,19 +481,25 @@ int main(int argc, char **argv)
     mpbd_log("experiment '%s' (id %lld): %ld of %d runs to do, database %s",
              d.exp->name, (long long)d.experiment_id, d.total_pending,
              d.runs_total, o.db);
-    rc = run_loop(&d);
+    char gone[256] = "";
+    rc = run_loop(&d, gone, sizeof gone);
     mpbd_owed_send(&d, 0.0, 1);     /* no more requests to ride on */
     /* Runs in flight keep their ids for a resume. */
     if (d.num_unrecorded > 0 &&
         (mpb_store_begin(d.store) != MPB_OK ||
          mpbd_scheduler_record_sent(&d) != MPB_OK ||
-         mpb_store_commit(d.store) != MPB_OK))
-        mpbd_log("database: %s", mpb_store_errmsg(d.store));
+         mpb_store_commit(d.store) != MPB_OK)) {
+        mpbd_db_error(&d);
+        mpb_store_rollback(d.store);
+    }
     double elapsed = mpb_monotonic_s() - d.started;
     log_latency(&d);
+    if (rc == 0 && mpb_store_experiment_finish(d.store, d.experiment_id) != MPB_OK) {
+        mpbd_db_error(&d);
+        rc = LOOP_DB_ERROR;
+    }
     if (rc == 0) {
         mpb_run_counts counts = {0};
-        mpb_store_experiment_finish(d.store, d.experiment_id);
         mpb_store_run_counts(d.store, d.experiment_id, &counts);
         mpbd_status_publish(&d, "done", mpb_monotonic_s());
         mpbd_log("experiment '%s' complete: %d runs, %d succeeded, %d crashed "
@@ -473,6 +512,15 @@ int main(int argc, char **argv)
                  "command to resume", (int)stop_signal,
                  d.total_pending + d.num_flights);
         exit_code = 128 + (int)stop_signal;
+    } else {
+        mpbd_status_publish(&d, "stopped", mpb_monotonic_s());
+        if (rc == LOOP_DB_GONE)
+            mpbd_log("stopped with %ld runs left: %s",
+                     d.total_pending + d.num_flights, gone);
+        else
+            mpbd_log("stopped by a database error with %ld runs left; run "
+                     "the same command to resume",
+                     d.total_pending + d.num_flights);
     }
 out:
     if (d.lcm) {

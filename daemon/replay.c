@@ -151,7 +151,7 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
     memcpy(run->run.uid, rq.run_id, MPB_RUN_ID_SIZE);
     if (mpb_store_run_sent(d->store, run->run.id, run->run.uid,
                            rq.planner_id) != MPB_OK) {
-        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+        mpbd_db_error(d);
         goto done;
     }
     run->run.attempts++;
@@ -283,7 +283,7 @@ static int commit(mpbd *d)
 {
     d->num_acks = 0;
     if (mpb_store_commit(d->store) != MPB_OK) {
-        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+        mpbd_db_error(d);
         mpb_store_rollback(d->store);
         return -1;
     }

@@ -459,7 +459,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         mpbd_flight_remove(d, f);
     } else {
         /* The store failed: keep the flight, the planner will re-send. */
-        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+        mpbd_db_error(d);
     }
 }
 
@@ -497,7 +497,7 @@ int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
             return rc;
         }
         if (rc != MPB_OK)
-            mpbd_log("database: %s", mpb_store_errmsg(d->store));
+            mpbd_db_error(d);
     }
     mpb_run_record rec = {
         .run_id = f->run.id,
@@ -516,7 +516,7 @@ int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
                  d->exp->configs[f->run.config].name,
                  d->planners[f->planner].id, why);
     } else if (rc != MPB_EEXISTS) {
-        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+        mpbd_db_error(d);
     }
     /* Not remembered: a late result of this attempt is a stray now. */
     mpbd_flight_remove(d, f);

@@ -316,7 +316,7 @@ int mpbd_scheduler_record_sent(mpbd *d)
         /* Done already: its result came in a transaction before (a resend
          * after a restart). Anything else is the database failing. */
         if (r != MPB_OK && r != MPB_EEXISTS) {
-            mpbd_log("database: %s", mpb_store_errmsg(d->store));
+            mpbd_db_error(d);
             rc = r;
         }
     }
@@ -407,7 +407,7 @@ int mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why)
                      (long long)f->run.id, d->exp->configs[f->run.config].name,
                      d->planners[f->planner].id, why);
     } else {
-        mpbd_log("database: %s", mpb_store_errmsg(d->store));
+        mpbd_db_error(d);
     }
     mpbd_flight_remove(d, f);
     return rc;

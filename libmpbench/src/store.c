@@ -1,11 +1,13 @@
 /* store.c - opening the database, its schema version, transactions, errors,
  * and the WAL checkpoints, kept out of the writer's commits. */
 #include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -484,6 +486,22 @@ static int open_for_reading(mpb_store *s, const char *path)
     return writable ? exec(s, "PRAGMA query_only=ON", "configure") : MPB_OK;
 }
 
+/* A descriptor of our own on the file SQLite opened at path, and who the
+ * file is (device, inode), for mpb_store_check_file(). */
+static int remember_file(mpb_store *s, const char *path)
+{
+    struct stat st;
+    if ((s->path = strdup(path)) == NULL)
+        return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+    s->fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (s->fd < 0 || fstat(s->fd, &st) != 0)
+        return mpb__store_fail(s, MPB_EIO, "cannot open %s: %s", path,
+                               strerror(errno));
+    s->dev = st.st_dev;
+    s->ino = st.st_ino;
+    return MPB_OK;
+}
+
 int mpb_store_open(const char *path, int readonly, mpb_store **out)
 {
     mpb_store *s = calloc(1, sizeof *s);
@@ -492,6 +510,7 @@ int mpb_store_open(const char *path, int readonly, mpb_store **out)
     *out = s;
     if (s == NULL)
         return MPB_ENOMEM;
+    s->fd = -1;
     s->readonly = readonly;
     rc = readonly ? open_for_reading(s, path)
                   : sqlite3_open_v2(path, &s->db, SQLITE_OPEN_NOMUTEX |
@@ -532,6 +551,8 @@ int mpb_store_open(const char *path, int readonly, mpb_store **out)
         snprintf(why, sizeof why, "%s", s->errmsg);
         return mpb__store_fail(s, rc, "%s: %s", path, why);
     }
+    if ((rc = remember_file(s, path)) != MPB_OK)
+        return rc;
     ckpt_start(s, path);
     return MPB_OK;
 }
@@ -546,8 +567,52 @@ void mpb_store_close(mpb_store *s)
     for (int i = 0; i < MPB__METRIC_ROWS_MAX; i++)
         sqlite3_finalize(s->metric_rows[i]);
     sqlite3_close(s->db);
+    /* Last: SQLite's locks on the file are gone with its connections. */
+    if (s->fd >= 0)
+        close(s->fd);
+    free(s->path);
     free(s->pack);
     free(s);
+}
+
+int mpb_store_check_file(mpb_store *s)
+{
+    struct stat now, own;
+    if (s->fd < 0)
+        return MPB_OK;
+    if (fstat(s->fd, &own) != 0)
+        return mpb__store_fail(s, MPB_EIO, "%s: %s", s->path, strerror(errno));
+    /* Links left to the file we write: 0, and what it holds dies with us. */
+    const char *fate = own.st_nlink == 0 ? "what was written to it is lost"
+                     : "it lives on under another name";
+    if (stat(s->path, &now) != 0) {
+        if (errno != ENOENT)
+            return mpb__store_fail(s, MPB_EIO, "%s: %s", s->path,
+                                   strerror(errno));
+        return mpb__store_fail(s, MPB_ENOTFOUND, "%s was %s while in use: %s",
+                               s->path, own.st_nlink == 0 ? "removed" : "moved",
+                               fate);
+    }
+    if (now.st_dev != s->dev || now.st_ino != s->ino)
+        return mpb__store_fail(s, MPB_EEXISTS, "%s was replaced by another "
+                               "file while in use: the file written to %s",
+                               s->path, own.st_nlink == 0 ? "is gone, and "
+                               "what was written to it lost" : "lives on "
+                               "under another name");
+    return MPB_OK;
+}
+
+int mpb_store_claim(mpb_store *s)
+{
+    if (s->fd < 0)
+        return mpb__store_fail(s, MPB_EINVAL, "claim: the database is open "
+                               "for reading only");
+    if (flock(s->fd, LOCK_EX | LOCK_NB) == 0)
+        return MPB_OK;
+    if (errno == EWOULDBLOCK)
+        return mpb__store_fail(s, MPB_EBUSY, "%s is claimed by another "
+                               "process", s->path);
+    return mpb__store_fail(s, MPB_EIO, "claim %s: %s", s->path, strerror(errno));
 }
 
 const char *mpb_store_errmsg(const mpb_store *s)

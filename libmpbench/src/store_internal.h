@@ -3,6 +3,7 @@
 #define MPB_STORE_INTERNAL_H
 
 #include <sqlite3.h>
+#include <sys/types.h>
 
 #include "mpbench/mpbench.h"
 
@@ -59,6 +60,14 @@ struct mpb_store {
     unsigned char *pack;        /* mpb__metrics_pack's buffer */
     size_t        pack_cap;
     char          errmsg[256];
+    /* A writable handle's own descriptor of the file it opened, for
+     * mpb_store_check_file() and mpb_store_claim(); -1 if none. Closed
+     * after SQLite's connections: closing any descriptor of a file drops
+     * the process's fcntl() locks on it, SQLite's among them. */
+    int           fd;
+    dev_t         dev;
+    ino_t         ino;
+    char         *path;
 };
 
 /* Record an error on s (printf-style) and return code. */

@@ -156,4 +156,23 @@ check "... saying so" \
     grep -q 'mpbenchd stopped before the experiment was done' "$work/stopped.err"
 check "... after its last line" grep -q '^stopped: stopped, ' "$work/stopped.out"
 
+# ---- the same experiment resumed -------------------------------------------
+# Its counts start from the runs done before the stop, as runs done do.
+"$mpb" status --timeout 30 >"$work/resumed.out" 2>"$work/resumed.err" &
+follower=$!
+sleep 0.3
+mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$work/stopped.db" \
+    "$work/stopped.yaml" >"$work/daemon3.log" 2>&1
+check "the stopped experiment resumes to the end" eq $? 0
+wait $follower
+check "mpb status follows the resumed one to the end" eq $? 0
+DB=$work/stopped.db
+succeeded=$(q "SELECT count(*) FROM runs WHERE success = 1")
+crashed=$(q "SELECT count(*) FROM runs WHERE status = 'crash'")
+failed=$(q "SELECT count(*) FROM runs WHERE state = 'done' AND success = 0 AND status != 'crash'")
+last=$(tail -n 1 "$work/resumed.out")
+echo "# last line: $last"
+check "... whose done line counts the runs of both sessions" \
+    sh -c "echo '$last' | grep -q '^stopped: done, 80/80 runs (100%), $succeeded succeeded, $failed failed, $crashed crashed, '"
+
 mpb_finish

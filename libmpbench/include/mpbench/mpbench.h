@@ -40,7 +40,8 @@ extern "C" {
     X(EXISTS,     -8,   "already exists")                         \
     X(LCM,        -9,   "LCM error")                              \
     X(UNSUPPORTED,-10,  "unsupported format or feature")          \
-    X(REJECTED,   -11,  "message rejected")
+    X(REJECTED,   -11,  "message rejected")                       \
+    X(BUSY,       -12,  "in use by another process")
 
 typedef enum mpb_errno {
 #define MPB__ERRNO_ENUM(name, value, text) MPB_E##name = (value),

@@ -36,6 +36,31 @@ void mpb_store_close(mpb_store *s);
 /* The last error on s, one line; valid until the next call on s. */
 const char *mpb_store_errmsg(const mpb_store *s);
 
+/*
+ * Whether the path s was opened at still names the file s writes to. SQLite
+ * goes on writing into a file that has been removed or replaced, and what
+ * it writes is lost with it: a long-running writer calls this now and then
+ * (it costs one stat()). MPB_OK if it does, or if s is read-only;
+ * MPB_ENOTFOUND if nothing is at the path any more (removed or moved away),
+ * MPB_EEXISTS if another file is (moved or copied over it), MPB_EIO if it
+ * cannot be told. mpb_store_errmsg() names the path and says which, and
+ * whether what was written is lost (the file has no name left).
+ */
+int mpb_store_check_file(mpb_store *s);
+
+/*
+ * Claim the database for s, so that no other handle can claim it until s
+ * is closed (or its process ends, however it ends): mpbenchd claims its
+ * database, and a second one on the same file is refused. An advisory
+ * flock() on the file, apart from SQLite's own locks: handles that do not
+ * claim (readers, `mpb import`, the sqlite3 shell) are not affected.
+ * MPB_EBUSY if another handle holds the claim, MPB_EINVAL if s is
+ * read-only. (On NFS, Linux emulates flock() with fcntl() locks, which
+ * would hold readers off: keep the database on a local disk, as SQLite's
+ * WAL mode needs anyway.)
+ */
+int mpb_store_claim(mpb_store *s);
+
 int mpb_store_begin(mpb_store *s);
 int mpb_store_commit(mpb_store *s);
 int mpb_store_rollback(mpb_store *s);
