@@ -575,6 +575,40 @@ void mpb_store_close(mpb_store *s)
     free(s);
 }
 
+static const char *const side_suffix[2] = {"-wal", "-shm"};
+
+/* While the file at path is ours, so are the -wal and -shm beside it:
+ * remember who they are. */
+static void note_side_files(mpb_store *s)
+{
+    char side[4096];
+    struct stat st;
+    for (int i = 0; i < 2; i++) {
+        snprintf(side, sizeof side, "%s%s", s->path, side_suffix[i]);
+        if (stat(side, &st) == 0) {
+            s->side_dev[i] = st.st_dev;
+            s->side_ino[i] = st.st_ino;
+            s->side_seen[i] = 1;
+        }
+    }
+}
+
+/* Our file has no name left, so what our -wal holds is lost with it; left
+ * beside whatever the path names now (a file moved over ours, or one made
+ * there later), SQLite would replay our pages into that file. Remove our
+ * own -wal and -shm, and nothing that is not ours. */
+static void drop_side_files(mpb_store *s)
+{
+    char side[4096];
+    struct stat st;
+    for (int i = 0; i < 2; i++) {
+        snprintf(side, sizeof side, "%s%s", s->path, side_suffix[i]);
+        if (s->side_seen[i] && stat(side, &st) == 0 &&
+            st.st_dev == s->side_dev[i] && st.st_ino == s->side_ino[i])
+            unlink(side);
+    }
+}
+
 int mpb_store_check_file(mpb_store *s)
 {
     struct stat now, own;
@@ -589,16 +623,22 @@ int mpb_store_check_file(mpb_store *s)
         if (errno != ENOENT)
             return mpb__store_fail(s, MPB_EIO, "%s: %s", s->path,
                                    strerror(errno));
+        if (own.st_nlink == 0)
+            drop_side_files(s);
         return mpb__store_fail(s, MPB_ENOTFOUND, "%s was %s while in use: %s",
                                s->path, own.st_nlink == 0 ? "removed" : "moved",
                                fate);
     }
-    if (now.st_dev != s->dev || now.st_ino != s->ino)
+    if (now.st_dev != s->dev || now.st_ino != s->ino) {
+        if (own.st_nlink == 0)
+            drop_side_files(s);
         return mpb__store_fail(s, MPB_EEXISTS, "%s was replaced by another "
                                "file while in use: the file written to %s",
                                s->path, own.st_nlink == 0 ? "is gone, and "
                                "what was written to it lost" : "lives on "
                                "under another name");
+    }
+    note_side_files(s);
     return MPB_OK;
 }
 
@@ -607,8 +647,10 @@ int mpb_store_claim(mpb_store *s)
     if (s->fd < 0)
         return mpb__store_fail(s, MPB_EINVAL, "claim: the database is open "
                                "for reading only");
-    if (flock(s->fd, LOCK_EX | LOCK_NB) == 0)
+    if (flock(s->fd, LOCK_EX | LOCK_NB) == 0) {
+        note_side_files(s);     /* ours now, as the file is */
         return MPB_OK;
+    }
     if (errno == EWOULDBLOCK)
         return mpb__store_fail(s, MPB_EBUSY, "%s is claimed by another "
                                "process", s->path);

@@ -67,6 +67,10 @@ struct mpb_store {
     int           fd;
     dev_t         dev;
     ino_t         ino;
+    /* The -wal and -shm files seen beside it while it was still ours. */
+    dev_t         side_dev[2];
+    ino_t         side_ino[2];
+    int           side_seen[2];
     char         *path;
 };
 

@@ -276,6 +276,33 @@ static void an_older_results_view_is_replaced(void **state)
                              " 'path_length')"), 3);
 }
 
+/*
+ * Another database moved over ours while we write: the check says so, and
+ * what we wrote after the move does not end up in the other file (our -wal
+ * is left beside it otherwise, and SQLite would replay it there).
+ */
+static void a_file_moved_over_ours_is_left_alone(void **state)
+{
+    fixture *f = *state;
+    char other[80];
+    sqlite3 *db;
+    snprintf(other, sizeof other, "%s.other", f->path);
+    assert_int_equal(mpb_store_claim(f->s), MPB_OK);
+    assert_int_equal(sqlite3_open(other, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "CREATE TABLE t(x)", NULL, NULL, NULL),
+                     SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(rename(other, f->path), 0);
+    /* Written after the move: pages in our -wal. */
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 0, 9),
+                     MPB_OK);
+    assert_int_equal(mpb_store_check_file(f->s), MPB_EEXISTS);
+    mpb_store_close(f->s);
+    f->s = NULL;
+    assert_int_equal(peek(f, "SELECT count(*) FROM sqlite_master"), 1);
+    assert_int_equal(peek(f, "SELECT count(*) FROM t"), 0);
+}
+
 static void refuses_what_is_not_its_database(void **state)
 {
     (void)state;
@@ -320,6 +347,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(resuming_finds_the_unfinished_experiment, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_state_index_is_dropped, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_results_view_is_replaced, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_file_moved_over_ours_is_left_alone, setup, teardown),
         cmocka_unit_test(refuses_what_is_not_its_database),
         cmocka_unit_test_setup_teardown(refuses_a_newer_schema, setup, teardown),
     };
