@@ -52,4 +52,14 @@ int tool_parse_id(const char *text, int64_t *out);
 int tool_option_error(const char *cmd, int opt, char **argv);
 int tool_extra_argument(const char *cmd, const char *arg);
 
+/* The length of the valid UTF-8 sequence at s, its code point in *cp; 0
+ * when s does not start one. */
+int tool_utf8_char(const char *s, unsigned *cp);
+/* Columns character c takes on a terminal or in a plot: 2 for the wide
+ * (East Asian) ones, else 1. */
+int tool_char_cols(unsigned c);
+/* Columns of the text from s up to end (or its '\0'); a byte that starts
+ * no valid character takes one. */
+int tool_text_cols(const char *s, const char *end);
+
 #endif

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "mpbench/mpbench.h"
+#include "mpb.h"
 #include "plot.h"
 
 const plot_metric_info plot_metrics[PM_COUNT] = {
@@ -37,38 +38,6 @@ static const char *const colors[] = {
 };
 #define NUM_COLORS ((int)(sizeof colors / sizeof colors[0]))
 #define ONE_COLOR "#4c72b0"
-
-/* The length of the valid UTF-8 sequence at s, its code point in *cp;
- * 0 when s does not start one. */
-static int utf8_char(const char *s, unsigned *cp)
-{
-    const unsigned char *u = (const unsigned char *)s;
-    int len = u[0] < 0x80 ? 1 : u[0] >= 0xc2 && u[0] <= 0xdf ? 2
-              : u[0] >= 0xe0 && u[0] <= 0xef ? 3
-              : u[0] >= 0xf0 && u[0] <= 0xf4 ? 4 : 0;
-    unsigned c = len == 1 ? u[0] : u[0] & (0x7f >> len);
-    for (int i = 1; i < len; i++) {
-        if ((u[i] & 0xc0) != 0x80)
-            return 0;
-        c = c << 6 | (u[i] & 0x3fu);
-    }
-    /* Overlong forms, surrogates, beyond U+10FFFF. */
-    if ((len == 3 && c < 0x800) || (len == 4 && (c < 0x10000 || c > 0x10ffff))
-        || (c >= 0xd800 && c <= 0xdfff))
-        return 0;
-    *cp = c;
-    return len;
-}
-
-/* Columns a character takes: 2 for the wide (East Asian) ones. */
-static int char_cols(unsigned c)
-{
-    return (c >= 0x1100 && c <= 0x115f) || (c >= 0x2e80 && c <= 0xa4cf) ||
-           (c >= 0xac00 && c <= 0xd7a3) || (c >= 0xf900 && c <= 0xfaff) ||
-           (c >= 0xfe30 && c <= 0xfe4f) || (c >= 0xff00 && c <= 0xff60) ||
-           (c >= 0xffe0 && c <= 0xffe6) || (c >= 0x1f300 && c <= 0x1f64f) ||
-           (c >= 0x20000 && c <= 0x3fffd) ? 2 : 1;
-}
 
 void plot_glyphs_free(plot_glyphs *gl)
 {
@@ -119,7 +88,7 @@ static const char *clean_text(char *out, size_t size, const char *in,
     size_t n = 0;
     unsigned cp;
     while (in && *in) {
-        int len = utf8_char(in, &cp);
+        int len = tool_utf8_char(in, &cp);
         if (len == 0)
             len = -1;
         else if (cp < 0x20 || (cp >= 0x7f && cp < 0xa0) || !drawable(gl, cp))
@@ -147,19 +116,6 @@ static const char *clean_text(char *out, size_t size, const char *in,
     return out;
 }
 
-/* Columns of clean text up to end (or its '\0'). */
-static int text_cols(const char *s, const char *end)
-{
-    int cols = 0;
-    unsigned cp;
-    while (*s && (end == NULL || s < end)) {
-        int len = utf8_char(s, &cp);
-        cols += len ? char_cols(cp) : 1;
-        s += len ? len : 1;
-    }
-    return cols;
-}
-
 /* Append clean text in to out (size bytes in all), on a line of its own
  * when out has one, broken at spaces into lines of at most cols columns; a
  * word longer than that is broken where it reaches them. */
@@ -175,7 +131,7 @@ static void add_lines(char *out, size_t size, const char *in, int cols)
         const char *word = in;
         while (*in && *in != ' ')
             in++;
-        int w = text_cols(word, in);
+        int w = tool_text_cols(word, in);
         if (col > 0 && col + 1 + w > cols) {
             out[n++] = '\n';
             col = 0;
@@ -184,10 +140,10 @@ static void add_lines(char *out, size_t size, const char *in, int cols)
             col++;
         }
         for (const char *p = word; p < in && n + 1 < size;) {
-            int len = utf8_char(p, &cp), cw;
+            int len = tool_utf8_char(p, &cp), cw;
             if (len == 0)
                 len = 1, cp = '?';
-            cw = char_cols(cp);
+            cw = tool_char_cols(cp);
             if (col > 0 && col + cw > cols && n + 2 < size) {
                 out[n++] = '\n';
                 col = 0;
@@ -293,8 +249,8 @@ static void cut_cols(char *s, int cols)
     unsigned cp;
     char *end = NULL;   /* where "..." would go: cols - 3 columns in */
     for (char *p = s; *p;) {
-        int len = utf8_char(p, &cp);
-        int cw = len ? char_cols(cp) : 1;
+        int len = tool_utf8_char(p, &cp);
+        int cw = len ? tool_char_cols(cp) : 1;
         if (col + cw > cols - 3 && end == NULL)
             end = p;
         if (col + cw > cols) {
@@ -491,7 +447,7 @@ static void set_title(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
              clean_text(scene, sizeof scene, sc->scene, gl), sc->num_queries,
              sc->num_queries == 1 ? "y" : "ies",
              clean_text(exp, sizeof exp, sc->experiment, gl));
-    if (text_cols(what, NULL) + 3 + text_cols(where, NULL) <= cols) {
+    if (tool_text_cols(what, NULL) + 3 + tool_text_cols(where, NULL) <= cols) {
         char line[1400];
         snprintf(line, sizeof line, "%s - %s", what, where);
         add_lines(text, sizeof text, line, cols);

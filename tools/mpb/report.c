@@ -406,20 +406,10 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
 
 /* ---- text ------------------------------------------------------------------ */
 
-/* Columns on a terminal: one per character, not per byte, so that a name
- * such as "tuned_\u00fc" lines up (UTF-8 continuation bytes take none). */
-static int text_width(const char *s)
-{
-    int n = 0;
-    for (; *s; s++)
-        n += ((unsigned char)*s & 0xC0) != 0x80;
-    return n;
-}
-
 /* s right-aligned in width columns. */
 static void print_right(FILE *out, const char *s, int width)
 {
-    for (int pad = width - text_width(s); pad > 0; pad--)
+    for (int pad = width - tool_text_cols(s, NULL); pad > 0; pad--)
         fputc(' ', out);
     fputs(s, out);
 }
@@ -449,12 +439,12 @@ static int print_scene(const report *r, int si, FILE *out)
             label_width = len;
     }
     for (int c = 0; c < nc; c++) {
-        width[c] = text_width(r->configs[c].name);
+        width[c] = tool_text_cols(r->configs[c].name, NULL);
         if (width[c] < 8)
             width[c] = 8;
         for (int i = 0; i < report_num_rows; i++)
-            if (text_width(text[i * nc + c]) > width[c])
-                width[c] = text_width(text[i * nc + c]);
+            if (tool_text_cols(text[i * nc + c], NULL) > width[c])
+                width[c] = tool_text_cols(text[i * nc + c], NULL);
     }
 
     fprintf(out, "Scene %s - experiment %s (%lld), %ld run%s\n",
