@@ -35,6 +35,10 @@
  * for the network both ways and for reading the request. */
 #define MPBD_WALL_SLACK_S       1.0
 #define MPBD_PLANNER_MISSED     3      /* heartbeats missed = planner gone */
+/* A round of the daemon's loop (at most 20 ms waiting for messages, then
+ * handling them) that took longer than this: the daemon did not run
+ * meanwhile (SIGSTOP, a suspended machine) or was busy. */
+#define MPBD_STALL_S            1.0
 #define MPBD_STATUS_PERIOD_S    1.0
 #define MPBD_ACK_HOLD_S         0.02   /* an ack waits this long for a request */
 #define MPBD_STORED_MAX         32     /* acks riding on one request */
@@ -209,6 +213,10 @@ int  mpbd_scheduler_dispatch(mpbd *d, double now);
  * planner), in the open transaction. */
 int  mpbd_scheduler_record_sent(mpbd *d);
 void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost planners */
+/* The daemon did not run for this long: planners' silence and runs'
+ * deadlines are counted without it, so that its own absence does not make
+ * its planners gone or its runs crashes. */
+void mpbd_scheduler_stalled(mpbd *d, double secs);
 /* Queue a run again for a new attempt. */
 int  mpbd_requeue(mpbd *d, const mpbd_run *run);
 /* A request its planner never started (declined, or left waiting at a

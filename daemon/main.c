@@ -317,8 +317,14 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
 
     mpbd_status_publish(d, "waiting", now);
     while (!stop_signal) {
+        double last = now;
         int ready = wait_readable(fd, 20);
         now = mpb_monotonic_s();
+        /* A round of the loop that took seconds: the daemon was stopped,
+         * its machine suspended, or it was busy. It read no message then,
+         * so that time is not its planners' silence. */
+        if (now - last > MPBD_STALL_S)
+            mpbd_scheduler_stalled(d, now - last);
         /* One transaction: the runs sent last time, then what has arrived
          * (bounded, so that timers still run under a flood). */
         if (mpb_store_begin(d->store) != MPB_OK ||

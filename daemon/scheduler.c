@@ -538,6 +538,17 @@ void mpbd_scheduler_tick(mpbd *d, double now)
     }
 }
 
+void mpbd_scheduler_stalled(mpbd *d, double secs)
+{
+    for (int i = 0; i < d->num_planners; i++)
+        d->planners[i].last_seen += secs;
+    for (int i = 0; i < d->num_flights; i++)
+        d->flights[i].deadline += secs;   /* INFINITY stays so */
+    mpbd_log("read no message for %.1f s (stopped, its machine "
+             "suspended, or busy): planners' silence and runs' deadlines "
+             "are counted without that time", secs);
+}
+
 int mpbd_scheduler_done(const mpbd *d)
 {
     return d->total_pending == 0 && d->num_flights == 0;
