@@ -167,7 +167,8 @@ typedef struct mpbd {
     mpbd_unrecorded *unrecorded;
     int              num_unrecorded, cap_unrecorded;
 
-    int              next_config;    /* round-robin start for dispatch */
+    int              next_config;    /* round-robin starts for dispatch */
+    int              next_planner;
     /* --replay: the log's clock, which starts a queued run's times
      * (mpbd_clock()); live, the monotonic clock. */
     int              replaying;

@@ -268,38 +268,68 @@ int mpbd_requeue(mpbd *d, const mpbd_run *run)
     return push_pending(d, run->config, &again);
 }
 
+/* What a planner has room for now: START a run, QUEUE one behind its
+ * runs in flight (experiment queue_at_planner), or NONE. An idle planner
+ * held back by its host's limit gets none: a request would start. */
+enum room { ROOM_NONE, ROOM_START, ROOM_QUEUE };
+
+static enum room room(const mpbd *d, const mpbd_planner *pl, double now)
+{
+    if (pl->gone || pl->closing || now < pl->declined_until)
+        return ROOM_NONE;
+    if (busy(pl) < pl->capacity)
+        return host_active(d, pl->host) < d->exp->runs_per_host
+                   ? ROOM_START : ROOM_NONE;
+    return pl->queued < d->exp->queue_at_planner ? ROOM_QUEUE : ROOM_NONE;
+}
+
+/* The planner to take config c's next run: one that can start it, else
+ * one that can queue it; the search starts after the planner that took
+ * the last run, so that planners alike share the runs. -1: none. */
+static int pick_planner(const mpbd *d, int c, double now, int *queued)
+{
+    const mpbd_config *cf = &d->exp->configs[c];
+    int np = d->num_planners, queue_at = -1;
+    for (int k = 0; k < np; k++) {
+        int p = (d->next_planner + k) % np;
+        const mpbd_planner *pl = &d->planners[p];
+        enum room r = room(d, pl, now);
+        if (r == ROOM_NONE ||
+            !mpbd_planner_offers(pl, cf->planner, cf->algorithm))
+            continue;
+        if (r == ROOM_START) {
+            *queued = 0;
+            return p;
+        }
+        if (queue_at < 0)
+            queue_at = p;
+    }
+    *queued = 1;
+    return queue_at;
+}
+
+/* One run at a time, to the configurations in turn (and to the planners
+ * in turn within one), whichever planner is free: each configuration
+ * advances at the same pace, even when its planners share a host's slot,
+ * so that an experiment stopped part-way is balanced. */
 int mpbd_scheduler_dispatch(mpbd *d, double now)
 {
     int sent = 0, nc = d->exp->num_configs;
-    if (d->total_pending == 0)
-        return 0;
-    for (int p = 0; p < d->num_planners; p++) {
-        mpbd_planner *pl = &d->planners[p];
-        while (!pl->gone && !pl->closing && now >= pl->declined_until) {
-            /* A run to start, if the planner and its host have room; else
-             * one to wait behind the runs of a busy planner (an idle one
-             * held back by its host's limit gets none: it would start). */
-            int queued, got = 0;
-            if (busy(pl) < pl->capacity &&
-                host_active(d, pl->host) < d->exp->runs_per_host)
-                queued = 0;
-            else if (busy(pl) >= pl->capacity &&
-                     pl->queued < d->exp->queue_at_planner)
-                queued = 1;
-            else
-                break;
-            for (int k = 0; k < nc && !got; k++) {
-                int c = (d->next_config + k) % nc;
-                if (mpbd_planner_offers(pl, d->exp->configs[c].planner,
-                                        d->exp->configs[c].algorithm))
-                    got = send_next(d, c, p, queued);
-                if (got)
-                    d->next_config = (c + 1) % nc;
+    while (d->total_pending > 0) {
+        int got = 0;
+        for (int k = 0; k < nc && !got; k++) {
+            int c = (d->next_config + k) % nc, p, queued;
+            if (d->pending_head[c] >= d->pending_len[c] ||
+                (p = pick_planner(d, c, now, &queued)) < 0)
+                continue;
+            if ((got = send_next(d, c, p, queued))) {
+                d->next_config = (c + 1) % nc;
+                d->next_planner = (p + 1) % d->num_planners;
             }
-            if (!got)
-                break;
-            sent++;
         }
+        if (!got)
+            break;
+        sent++;
     }
     if (d->total_pending > 0)
         log_waiting(d, now);
