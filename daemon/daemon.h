@@ -11,6 +11,7 @@
  *   latency.c    each run's latency, request to commit, as a histogram
  *   inbox.c      checking messages before they are decoded
  *   replay.c     --replay: results from an LCM log instead of the network
+ *   daemons.c    other daemons on the same LCM URL: the younger one stops
  *   log.c        the console log
  */
 #ifndef MPBD_DAEMON_H
@@ -40,6 +41,9 @@
  * meanwhile (SIGSTOP, a suspended machine) or was busy. */
 #define MPBD_STALL_S            1.0
 #define MPBD_STATUS_PERIOD_S    1.0
+/* No request before this long after the loop starts: time to hear of an
+ * older daemon on the same LCM URL (daemons.c). */
+#define MPBD_LISTEN_S           0.25
 #define MPBD_ACK_HOLD_S         0.02   /* an ack waits this long for a request */
 #define MPBD_STORED_MAX         32     /* acks riding on one request */
 /* The coarsest verification step --resolution takes (rad): coarser, a
@@ -141,7 +145,7 @@ typedef struct mpbd {
     lcm_t           *lcm;
     mpb_auth        *auth;           /* NULL: messages are not authenticated */
     /* Subscriptions, released before lcm_destroy(). */
-    lcm_subscription_t *sub_announce, *sub_ack, *sub_result;
+    lcm_subscription_t *sub_announce, *sub_ack, *sub_result, *sub_status;
     mpb_store       *store;
     const char      *db_path;        /* as given */
     /* The last database error logged, not logged again until a commit
@@ -194,6 +198,11 @@ typedef struct mpbd {
     int              runs_total;
     mpbd_counters    count;
     double           started;        /* monotonic s */
+    int64_t          started_utime;  /* the same moment, wall clock us */
+    /* An older daemon heard on the LCM URL, as the log names it: then
+     * this one stops (daemons.c). */
+    char             elder[256];
+    char             younger_logged[MPB_PLANNER_ID_MAX + 1];
     double           last_status;
     double           last_wait_log;
     double           last_bad_announce_log;
@@ -206,6 +215,9 @@ int  mpbd_planners_expire(mpbd *d, double now);
 int  mpbd_planner_offers(const mpbd_planner *p, const char *name,
                          const char *algorithm);
 void mpbd_planners_free(mpbd *d);
+
+/* daemons.c */
+void mpbd_daemons_subscribe(mpbd *d);
 
 /* scheduler.c */
 int  mpbd_scheduler_load(mpbd *d);             /* unfinished runs from the store */

@@ -306,14 +306,14 @@ static int wait_readable(int fd, int timeout_ms)
 }
 
 /* How run_loop() ends, besides 0 (every run done) and 1 (a signal). */
-enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2 };
+enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2, LOOP_NOT_ALONE = -3 };
 
 /* The loop, until every run is done, a signal or a database failure;
  * LOOP_DB_GONE says why in gone (cap bytes). */
 static int run_loop(mpbd *d, char *gone, size_t cap)
 {
     int fd = lcm_get_fileno(d->lcm);
-    double now = mpb_monotonic_s();
+    double now = mpb_monotonic_s(), listen_until = now + MPBD_LISTEN_S;
 
     mpbd_status_publish(d, "waiting", now);
     while (!stop_signal) {
@@ -345,11 +345,14 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
             return LOOP_DB_ERROR;
         }
         d->db_error[0] = '\0';
+        if (d->elder[0] != '\0')
+            return LOOP_NOT_ALONE;
         /* Then the next requests: a run's latency ends with its commit,
          * not with the next run's request, and each request carries the
          * acknowledgements this commit made true (acks.c). */
         mpbd_acks_flush(d);
-        mpbd_scheduler_dispatch(d, now);
+        if (now >= listen_until)
+            mpbd_scheduler_dispatch(d, now);
         mpbd_owed_send(d, now, 0);
         /* Results written to a file that lost its name are lost: looked
          * at once a status period, and before saying the work is done. */
@@ -460,11 +463,13 @@ int main(int argc, char **argv)
         d.count.failed = before.done - before.succeeded - before.crashed;
     }
     /* What it subscribes to, and nothing else: its own requests and
-     * acknowledgements and its status are dropped by the kernel, not
-     * after a wake-up of LCM's thread (lcm_filter.h). */
+     * acknowledgements are dropped by the kernel, not after a wake-up of
+     * LCM's thread (lcm_filter.h). Statuses pass, its own once a second
+     * with them, for the other daemons' (daemons.c). */
     static const char *const wanted[] = {MPB_CHANNEL_ANNOUNCE,
-                                         MPB_CHANNEL_RESULT, MPB_CHANNEL_ACK};
-    if ((d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 3, NULL)) == NULL) {
+                                         MPB_CHANNEL_RESULT, MPB_CHANNEL_ACK,
+                                         MPB_CHANNEL_STATUS};
+    if ((d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 4, NULL)) == NULL) {
         fprintf(stderr, "mpbenchd: cannot start LCM on %s (no multicast "
                         "route? see README)\n", o.lcm_url);
         goto out;
@@ -472,6 +477,7 @@ int main(int argc, char **argv)
     mpbd_planners_subscribe(&d);
     mpbd_scheduler_subscribe(&d);
     mpbd_results_subscribe(&d);
+    mpbd_daemons_subscribe(&d);
 
     struct sigaction sa = {.sa_handler = on_signal};
     sigemptyset(&sa.sa_mask);
@@ -482,6 +488,7 @@ int main(int argc, char **argv)
     if (mpbd_latency_init(&d.latency) != MPB_OK)
         mpbd_log("out of memory for the latency count: not counted");
     d.started = mpb_monotonic_s();
+    d.started_utime = mpb_utime_now();
     /* Planners announce within a heartbeat: say nothing of waiting before. */
     d.last_wait_log = d.started - 4.0;
     mpbd_log("experiment '%s' (id %lld): %ld of %d runs to do, database %s",
@@ -523,6 +530,12 @@ int main(int argc, char **argv)
         if (rc == LOOP_DB_GONE)
             mpbd_log("stopped with %ld runs left: %s",
                      d.total_pending + d.num_flights, gone);
+        else if (rc == LOOP_NOT_ALONE)
+            mpbd_log("stopped: another mpbenchd, %s, is on this LCM URL "
+                     "(%s), and two would disturb each other's runs: give "
+                     "this benchmark its own URL (-u, and the same on its "
+                     "planners), or run the same command once the other "
+                     "ends", d.elder, o.lcm_url);
         else
             mpbd_log("stopped by a database error with %ld runs left; run "
                      "the same command to resume",
@@ -536,6 +549,8 @@ out:
             lcm_unsubscribe(d.lcm, d.sub_ack);
         if (d.sub_result)
             lcm_unsubscribe(d.lcm, d.sub_result);
+        if (d.sub_status)
+            lcm_unsubscribe(d.lcm, d.sub_status);
         lcm_destroy(d.lcm);
     }
     mpbd_latency_free(&d.latency);

@@ -7,7 +7,9 @@
 void mpbd_status_publish(mpbd *d, const char *state, double now)
 {
     mpb_planner_seen_t *seen = calloc((size_t)d->num_planners + 1, sizeof *seen);
-    double elapsed = now - d->started;
+    /* Both clocks read together: utime less elapsed_s is when the daemon
+     * started, to the microsecond, for other daemons (daemons.c). */
+    double elapsed = mpb_monotonic_s() - d->started;
     mpb_daemon_status_t st = {
         .utime = mpb_utime_now(),
         .daemon_id = d->daemon_id,

@@ -43,6 +43,7 @@ typedef struct follower {
     int         ended;          /* "done" (1) or "stopped" (2) seen */
     int         waiting;        /* the "waiting for" line is on the screen */
     char        following[256]; /* the experiment the header names */
+    char        daemon[128];    /* the daemon followed, from its first status */
     char        last_key[LINE_MAX_LEN]; /* the numbers printed last */
     char        detail[8192];   /* --once: a line per planner */
 } follower;
@@ -59,14 +60,14 @@ static void usage(FILE *out)
         "runs in flight, the rate, the time left, and the planners the daemon\n"
         "sees (name, and how many processes when more than one). On a\n"
         "terminal a progress bar is redrawn in place; otherwise a plain line\n"
-        "is printed each time the numbers change. It exits when the daemon\n"
-        "reports the experiment done.\n"
+        "is printed each time the numbers change. It follows the first daemon\n"
+        "it hears, and exits when that daemon reports the experiment done.\n"
         "\n"
         "Options:\n"
         "  -u, --lcm-url URL      LCM URL (default: " MPB_DEFAULT_LCM_URL ");\n"
         "                         the daemon's\n"
-        "  -e, --experiment NAME  follow only the experiment NAME (when several\n"
-        "                         daemons share the URL)\n"
+        "  -e, --experiment NAME  follow only a daemon running the experiment\n"
+        "                         NAME\n"
         "  -1, --once             print the current status, one line per\n"
         "                         planner, and exit\n"
         "  -t, --timeout S        give up after S seconds (decimal, e.g. 2.5)\n"
@@ -274,6 +275,14 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel,
         return;
     if (f->experiment != NULL && strcmp(st->experiment, f->experiment) != 0)
         return;
+    /* One daemon: another started beside it on the URL stops at once, and
+     * its "stopped" is not the end of this one's experiment. */
+    if (st->daemon_id != NULL) {
+        if (f->daemon[0] == '\0')
+            snprintf(f->daemon, sizeof f->daemon, "%s", st->daemon_id);
+        else if (strcmp(st->daemon_id, f->daemon) != 0)
+            return;
+    }
     f->seen++;
     describe(st, line, sizeof line);
 
