@@ -74,6 +74,10 @@ typedef struct mpbd_planner {
      * (scheduler.c). */
     mpbd_abandoned *abandoned;
     int     num_abandoned, cap_abandoned;
+    /* Runs it announces it is planning that this daemon did not send it
+     * (given up on by the daemon before a restart): each holds one of
+     * its capacity, as a run given up on does. */
+    int     unknown;
     /* Requests it declined in a row while announcing room for them; no
      * request goes to it before declined_until (monotonic s). */
     int     declines;
@@ -283,6 +287,8 @@ void mpbd_results_subscribe(mpbd *d);
 /* A run ended without a result (crash, lost planner): retry it if the
  * experiment allows, else record it as crashed. */
 int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
+/* A run whose result was stored lately (the last 256). */
+int  mpbd_recently_done(const mpbd *d, const char *uid);
 
 /* inbox.c: the length of a received message to decode, or 0 if it is not
  * authentic or well-formed (then counted and logged) */

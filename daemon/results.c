@@ -31,7 +31,7 @@ static void remember(mpbd *d, const char *uid)
     d->recent_next = (d->recent_next + 1) % (int)(sizeof d->recent / sizeof d->recent[0]);
 }
 
-static int recently_done(const mpbd *d, const char *uid)
+int mpbd_recently_done(const mpbd *d, const char *uid)
 {
     for (size_t i = 0; i < sizeof d->recent / sizeof d->recent[0]; i++)
         if (strcmp(d->recent[i], uid) == 0)
@@ -432,7 +432,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         return;
     }
     if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
-        if (recently_done(d, m->run_id)) {
+        if (mpbd_recently_done(d, m->run_id)) {
             /* Stored, perhaps in the transaction still open: acknowledged
              * again once that commits. */
             mpbd_ack_after_commit(d, m->planner_id, m->run_id, -1.0);

@@ -245,10 +245,11 @@ static void log_waiting(mpbd *d, double now)
 }
 
 /* A planner's runs in flight, and those it still plans that were given up
- * on: what it has room for is its capacity less these. */
+ * on, before a restart too: what it has room for is its capacity less
+ * these. */
 static int busy(const mpbd_planner *p)
 {
-    return p->active + p->num_abandoned;
+    return p->active + p->num_abandoned + p->unknown;
 }
 
 /* Runs in flight on the planners of one host. */
@@ -464,22 +465,63 @@ void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
     }
 }
 
+static int is_abandoned(const mpbd_planner *p, const char *uid)
+{
+    for (int i = 0; i < p->num_abandoned; i++)
+        if (strcmp(p->abandoned[i].uid, uid) == 0)
+            return 1;
+    return 0;
+}
+
+/* A run sent before a restart, to be sent again with its id: such runs
+ * lead their configuration's queue (mpbd_scheduler_load). */
+static int pending_resend(const mpbd *d, const char *uid)
+{
+    for (int c = 0; c < d->exp->num_configs; c++)
+        for (int i = d->pending_head[c];
+             i < d->pending_len[c] && d->pending[c][i].uid[0] != '\0'; i++)
+            if (strcmp(d->pending[c][i].uid, uid) == 0)
+                return 1;
+    return 0;
+}
+
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
                              int num_active)
 {
     mpbd_planner *p = &d->planners[planner];
-    int dropped = 0;
+    int dropped = 0, unknown = 0;
     for (int k = 0; k < num_active; k++) {
         mpbd_flight *f;
-        if (mpb_run_id_is_valid(active_runs[k]) &&
-            (f = mpbd_flight_find(d, active_runs[k])) != NULL &&
-            f->planner == planner) {
+        if (!mpb_run_id_is_valid(active_runs[k]))
+            continue;
+        if ((f = mpbd_flight_find(d, active_runs[k])) != NULL) {
+            if (f->planner != planner)
+                continue;
             f->acked = 1;           /* it has the request: no more resends */
             p->declines = 0;
             if (f->queued)
                 start_queued(d, f);
+        } else if (!is_abandoned(p, active_runs[k]) &&
+                   !mpbd_recently_done(d, active_runs[k]) &&
+                   !pending_resend(d, active_runs[k])) {
+            unknown++;     /* not in flight, given up on, just stored, or
+                              to be sent again after a restart */
         }
     }
+    /* Runs it plans that this daemon did not send it: given up on by this
+     * daemon before a restart. Each holds a slot, as below. */
+    if (unknown > 0 && p->unknown == 0)
+        mpbd_log("planner %s is planning %d run%s this daemon did not send "
+                 "it (given up on before a restart?): it gets no run in "
+                 "%s place until it stops", p->id, unknown,
+                 unknown == 1 ? "" : "s", unknown == 1 ? "its" : "their");
+    else if (unknown == 0 && p->unknown > 0)
+        mpbd_log("planner %s has stopped planning the run%s this daemon did "
+                 "not send it: it takes runs again", p->id,
+                 p->unknown == 1 ? "" : "s");
+    if (unknown < p->unknown)
+        dropped = 1;
+    p->unknown = unknown;
     /* A run given up on holds its slot while the planner names it. */
     for (int i = 0; i < p->num_abandoned;) {
         mpbd_abandoned *a = &p->abandoned[i];

@@ -5,7 +5,9 @@
 #      not the next runs' on the same planner (they wait for it to stop);
 #   2. a planner that never acknowledges a request is told from a slow one;
 #   3. a planner that declines every request gets fewer and fewer;
-#   4. an announcement with an invalid planner id is logged, with the id.
+#   4. an announcement with an invalid planner id is logged, with the id;
+#   5. a run given up on before a daemon restart holds its planner's slot
+#      after the restart too.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -118,5 +120,36 @@ for id in "raw bad@vm:1" "$long@vm:1"; do
     check "bad id ${id%%@*}: logged once, with why" \
         eq "$(grep -c "rejected an announcement: $want" "$work/badid.log")" 1
 done
+
+# 5. As 1, but the daemon is killed once the hung run is a crash (5.5 s),
+# and started again while the planner still sleeps (to 15 s). The new
+# daemon never sent that run, yet the planner says it plans it: the
+# other runs wait for it instead of each waiting behind it at the planner
+# past its deadline, 5.5 s, and crashing.
+experiment restart 0.5 \
+    "{planner: null, algorithms: [straight_line], params: {delay: 15}, name: hang}" \
+    "{planner: null, algorithms: [straight_line], runs: 2, name: quick}"
+DB=$work/restart.db
+mpb_spawn "$work/restart-planner.log" "$null"
+"$daemon" -d "$DB" "$work/restart.yaml" >"$work/restart1.log" 2>&1 &
+d=$!
+for _ in $(seq 150); do
+    [ "$(q "SELECT count(*) FROM runs WHERE status = 'crash'" 2>/dev/null)" = 1 ] && break
+    sleep 0.1
+done
+kill -KILL $d
+wait $d 2>/dev/null
+"$daemon" -d "$DB" "$work/restart.yaml" >"$work/restart2.log" 2>&1 &
+mpb_wait $! 60
+check "restart: the resumed experiment completes" eq $? 0
+check "restart: the 2 runs of the other configuration solved, none crashed" \
+    eq "$(q "SELECT count(*) FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
+             WHERE c.name NOT LIKE '%#hang' AND r.status = 'solved'
+               AND r.crashes = 0 AND r.attempts = 1")" 2
+check "restart: the daemon says why it waits" \
+    grep -q "is planning 1 run this daemon did not send it" "$work/restart2.log"
+check "restart: ... and when it goes on" \
+    grep -q "has stopped planning the run this daemon did not send it" "$work/restart2.log"
+mpb_stop_all
 
 mpb_finish
