@@ -1,7 +1,8 @@
 # lib.sh - shared by the integration tests (and tools/demo.sh): a private
 # network namespace for LCM, and starting and stopping processes.
 #
-# Sourced, not run. Expects MPB_BUILD (the build tree).
+# Sourced, not run. Expects MPB_BUILD (the build tree), and MPB_SOURCE for
+# mpb_planar_experiment.
 
 # Re-run the calling script inside a new network namespace with only a
 # loopback interface and a multicast route on it, so that LCM traffic never
@@ -56,6 +57,28 @@ mpb_wait() {
 mpb_timeout() {
     secs=$1; shift
     timeout --kill-after=5 "$secs" "$@"
+}
+
+# mpb_planar_experiment FILE FIELDS PLANNER...: write an experiment file for
+# the planar arm among the pillars. FIELDS is the inside of the experiment
+# map ("name: x, runs: 4, time_limit: 1"), each PLANNER one entry of the
+# planners list (a YAML flow map). The queries are MPB_QUERIES, one flow map
+# a line, or else query "a", whose straight line is free.
+mpb_planar_experiment() {
+    mpb_file=$1; mpb_fields=$2; shift 2
+    mpb_queries=${MPB_QUERIES:-'{name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}'}
+    cat >"$mpb_file" <<EOT
+experiment: {$mpb_fields}
+robot: {format: planar, file: $MPB_SOURCE/scenes/planar/arm3.robot}
+scenes:
+  - name: pillars
+    format: planar
+    file: $MPB_SOURCE/scenes/planar/pillars.scene
+    queries:
+$(printf '%s\n' "$mpb_queries" | sed 's/^[[:space:]]*/      - /')
+planners:
+$(printf '  - %s\n' "$@")
+EOT
 }
 
 FAILS=0

@@ -15,21 +15,10 @@ trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 lcmlog=$work/bench.lcmlog
 url="udpm://239.255.76.67:7667?ttl=0"
-planar=$MPB_SOURCE/scenes/planar
 python=$MPB_SOURCE/.venv/bin/python3
 
-cat >"$work/exp.yaml" <<EOT
-experiment: {name: acks, runs: 200, time_limit: 5}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.003}}
-EOT
+mpb_planar_experiment "$work/exp.yaml" "name: acks, runs: 200, time_limit: 5" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.003}}"
 mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
 lcm-logger -q --lcm-url="$url" "$lcmlog" >"$work/logger.log" 2>&1 &
 logger=$!

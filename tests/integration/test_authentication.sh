@@ -10,22 +10,12 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 null=$MPB_BUILD/planners/null/mpb-planner-null
-planar=$MPB_SOURCE/scenes/planar
 head -c 32 /dev/urandom >"$work/secret"
 head -c 32 /dev/urandom >"$work/other"
 
-cat >"$work/exp.yaml" <<EOT
-experiment: {name: auth, runs: 10, time_limit: 5, runs_per_host: 2}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.1}}
-EOT
+mpb_planar_experiment "$work/exp.yaml" \
+    "name: auth, runs: 10, time_limit: 5, runs_per_host: 2" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.1}}"
 "$null" --secret-file "$work/secret" >"$work/good.log" 2>&1 &
 good=$!
 "$null" --secret-file "$work/other" >"$work/bad.log" 2>&1 &

@@ -12,20 +12,9 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 forge=$MPB_BUILD/tests/mpb-test-forge-result
-planar=$MPB_SOURCE/scenes/planar
 
-cat >"$work/exp.yaml" <<EOT
-experiment: {name: forged, runs: 6, time_limit: 5}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.5}}
-EOT
+mpb_planar_experiment "$work/exp.yaml" "name: forged, runs: 6, time_limit: 5" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.5}}"
 mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1 &
 daemon=$!
@@ -65,18 +54,8 @@ check "a median latency over the histogram's cap is written as such" \
 
 # The forger as the runs' planner, one run per invocation, in run order.
 DB=$work/shaped.db
-cat >"$work/shaped.yaml" <<EOT
-experiment: {name: shaped, runs: 12, time_limit: 1}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: forger, algorithms: [forged]}
-EOT
+mpb_planar_experiment "$work/shaped.yaml" "name: shaped, runs: 12, time_limit: 1" \
+    "{planner: forger, algorithms: [forged]}"
 "$MPB_BUILD/daemon/mpbenchd" -v -d "$DB" "$work/shaped.yaml" >"$work/shaped.log" 2>&1 &
 daemon=$!
 serve() { "$forge" --serve "$@" forger@forged:1 >>"$work/forger.log" 2>&1; }

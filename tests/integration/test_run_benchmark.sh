@@ -13,20 +13,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 DB=$work/batch.db
 script=$MPB_SOURCE/tools/run_benchmark.sh
-planar=$MPB_SOURCE/scenes/planar
-cat >"$work/exp.yaml" <<EOT
-experiment: {name: batch, runs: 4, time_limit: 2}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line]}
-  - {planner: ompl, algorithms: [RRTConnect]}
-EOT
+mpb_planar_experiment "$work/exp.yaml" "name: batch, runs: 4, time_limit: 2" \
+    "{planner: null, algorithms: [straight_line]}" \
+    "{planner: ompl, algorithms: [RRTConnect]}"
 
 out=$(MPB_BUILD=$MPB_BUILD mpb_timeout 120 sh "$script" -d "$DB" -p null,ompl \
       -l "$work/logs" "$work/exp.yaml" 2>&1)
