@@ -12,23 +12,13 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; [ "$FAILS" -eq 0 ] && rm -rf "$work"' EXIT
 daemon=$MPB_BUILD/daemon/mpbenchd
 mpb=$MPB_BUILD/tools/mpb
-planar=$MPB_SOURCE/scenes/planar
 
 # 2 queries x 60 runs of 0.05 s on one planner: about 6 s.
 write_experiment() {
-    cat >"$1" <<EOT
-experiment: {name: $2, runs: 60, time_limit: 2.0, seed: 5}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
-      - {name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.05}}
-EOT
+    MPB_QUERIES='{name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+                 {name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}' \
+    mpb_planar_experiment "$1" "name: $2, runs: 60, time_limit: 2.0, seed: 5" \
+        "{planner: null, algorithms: [straight_line], params: {delay: 0.05}}"
 }
 write_experiment "$work/exp.yaml" faults
 write_experiment "$work/other.yaml" other

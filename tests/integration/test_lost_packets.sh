@@ -15,21 +15,11 @@ iptables -A INPUT -p udp -m statistic --mode random --probability 0.2 -j DROP
 work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
-planar=$MPB_SOURCE/scenes/planar
 
-cat >"$work/exp.yaml" <<EOT
-experiment: {name: lossy, runs: 100, time_limit: 5, retries: 5}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-      - {name: b, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line]}
-EOT
+MPB_QUERIES='{name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+             {name: b, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}' \
+mpb_planar_experiment "$work/exp.yaml" "name: lossy, runs: 100, time_limit: 5, retries: 5" \
+    "{planner: null, algorithms: [straight_line]}"
 mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
 mpb_timeout 200 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1
 check "the experiment completes despite the losses" eq $? 0

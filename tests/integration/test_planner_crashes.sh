@@ -10,22 +10,13 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 null=$MPB_BUILD/planners/null/mpb-planner-null
-planar=$MPB_SOURCE/scenes/planar
 
 # 60 runs of 0.15 s each; a run whose planner dies is retried up to 3 times.
-cat >"$work/exp.yaml" <<EOT
-experiment: {name: crashes, runs: 30, time_limit: 2, retries: 3, runs_per_host: 2}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-      - {name: b, start: [0, 0, 0], goal: [-0.2, 0.3, 0.2], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.15}}
-EOT
+MPB_QUERIES='{name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+             {name: b, start: [0, 0, 0], goal: [-0.2, 0.3, 0.2], tolerance: 0.01}' \
+mpb_planar_experiment "$work/exp.yaml" \
+    "name: crashes, runs: 30, time_limit: 2, retries: 3, runs_per_host: 2" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.15}}"
 
 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1 &
 daemon=$!

@@ -17,19 +17,10 @@ daemon=$MPB_BUILD/daemon/mpbenchd
 scenes=$MPB_SOURCE/scenes
 python=$MPB_SOURCE/.venv/bin/python3
 
-cat >"$work/planar.yaml" <<EOT
-experiment: {name: planar, runs: 5, time_limit: 5, seed: 7}
-robot: {format: planar, file: $scenes/planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $scenes/planar/pillars.scene
-    queries:
-      - {name: over, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
-      - {name: fold, start: [0, 0, 0], goal: [-1.2, 1.5, 1.0], tolerance: 0.01}
-planners:
-  - {planner: python, algorithms: [RRTConnect]}
-EOT
+MPB_QUERIES='{name: over, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+             {name: fold, start: [0, 0, 0], goal: [-1.2, 1.5, 1.0], tolerance: 0.01}' \
+mpb_planar_experiment "$work/planar.yaml" "name: planar, runs: 5, time_limit: 5, seed: 7" \
+    "{planner: python, algorithms: [RRTConnect]}"
 
 # The PR2 in the kitchen, from the paper's first goal region.
 sed -n '/^experiment:/,/^      - name: counter_front/p' \
@@ -169,19 +160,9 @@ check "kit: Node refuses the family 'py planner' as the C kit does" \
     grep -qx "planner name 'py planner' may hold only letters, digits and '_' '.' '-'" "$work/kit-name.log"
 "$planner" --name "py planner" >"$work/python-name.log" 2>&1
 check "mpb-planner-python --name 'py planner' exits 2" eq $? 2
-cat >"$work/kit.yaml" <<EOT
-experiment: {name: kit, runs: 2, time_limit: 2}
-robot: {format: planar, file: $scenes/planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $scenes/planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: kit, algorithms: [line], params: {boom: 1}, name: boom}
-  - {planner: kit, algorithms: [line], name: fine}
-EOT
+mpb_planar_experiment "$work/kit.yaml" "name: kit, runs: 2, time_limit: 2" \
+    "{planner: kit, algorithms: [line], params: {boom: 1}, name: boom}" \
+    "{planner: kit, algorithms: [line], name: fine}"
 PYTHONPATH=$kitpath "$python" "$work/kit.py" kit >"$work/kit-planner.log" 2>&1 &
 MPB_PIDS="$MPB_PIDS $!"
 DB=$work/kit.db

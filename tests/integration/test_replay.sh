@@ -140,18 +140,9 @@ diff "$work/live.runs" "$work/replayed.runs" | head -5
 # ---- a run whose planner dies: crashed live, and so in the replay --------
 # The log holds no result for it, but the daemon's "done" status: every run
 # had ended, so the run without a result had crashed.
-cat >"$work/crash.yaml" <<EOT
-experiment: {name: crashing, runs: 3, time_limit: 5, retries: 0, seed: 3}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 1.0}}
-EOT
+mpb_planar_experiment "$work/crash.yaml" \
+    "name: crashing, runs: 3, time_limit: 5, retries: 0, seed: 3" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 1.0}}"
 "$MPB_BUILD/planners/null/mpb-planner-null" >"$work/victim.log" 2>&1 &
 victim=$!
 lcm-logger -q --lcm-url="$url" "$work/crash.lcmlog" >/dev/null 2>&1 &

@@ -16,7 +16,6 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; [ -n "${MPB_KEEP:-}" ] || rm -rf "$work"' EXIT
 DB=$work/spy.db
 mpb=$MPB_BUILD/tools/mpb
-planar=$MPB_SOURCE/scenes/planar
 
 # wait_for PATTERN FILE SECONDS: until a line of FILE matches (grep -E).
 wait_for() {
@@ -79,20 +78,11 @@ wait_for '^probe: (watching|failed)' "$work/spy.log" 90
 check "mpb spy starts lcm-spy, which loads the probe plugin" \
     grep -q '^probe: watching' "$work/spy.log"
 
-cat >"$work/spydemo.yaml" <<EOT
-experiment: {name: spydemo, runs: 40, time_limit: 2.0, seed: 3}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
-      - {name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.05}}
-  - {planner: ompl, algorithms: [RRTConnect]}
-EOT
+MPB_QUERIES='{name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+             {name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}' \
+mpb_planar_experiment "$work/spydemo.yaml" "name: spydemo, runs: 40, time_limit: 2.0, seed: 3" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.05}}" \
+    "{planner: ompl, algorithms: [RRTConnect]}"
 mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
 mpb_spawn "$work/ompl.log" "$MPB_BUILD/planners/ompl/mpb-planner-ompl"
 mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/spydemo.yaml" \

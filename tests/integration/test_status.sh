@@ -13,25 +13,15 @@ trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 mpb=$MPB_BUILD/tools/mpb
 null=$MPB_BUILD/planners/null/mpb-planner-null
-planar=$MPB_SOURCE/scenes/planar
 
 # small.yaml's scene with the null planner only and more runs: 2 queries x
 # 40 runs of 0.08 s. The straight line through the pillar fails
 # verification, the small move succeeds: both counts are nonzero.
 write_experiment() {
-    cat >"$1" <<EOT
-experiment: {name: $2, runs: 40, time_limit: 2.0, seed: 7}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
-      - {name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.08}}
-EOT
+    MPB_QUERIES='{name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}
+                 {name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}' \
+    mpb_planar_experiment "$1" "name: $2, runs: 40, time_limit: 2.0, seed: 7" \
+        "{planner: null, algorithms: [straight_line], params: {delay: 0.08}}"
 }
 write_experiment "$work/follow.yaml" follow
 write_experiment "$work/stopped.yaml" stopped

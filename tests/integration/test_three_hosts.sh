@@ -17,7 +17,6 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 url='udpm://239.255.76.67:7667?ttl=1'
-planar=$MPB_SOURCE/scenes/planar
 
 # This namespace is the daemon's host; a bridge is its LAN. The addresses
 # exist only inside the namespaces this test made.
@@ -49,19 +48,10 @@ nsenter -t "$pid_hostB" -n -u "$MPB_BUILD/planners/null/mpb-planner-null" \
     --lcm-url "$url" >"$work/b.log" 2>&1 &
 MPB_PIDS="$MPB_PIDS $!"
 
-cat >"$work/exp.yaml" <<EOT
-experiment: {name: lan, runs: 20, time_limit: 2, retries: 2}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-      - {name: b, start: [0, 0, 0], goal: [-0.2, 0.3, 0.2], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.2}}
-EOT
+MPB_QUERIES='{name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+             {name: b, start: [0, 0, 0], goal: [-0.2, 0.3, 0.2], tolerance: 0.01}' \
+mpb_planar_experiment "$work/exp.yaml" "name: lan, runs: 20, time_limit: 2, retries: 2" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.2}}"
 "$MPB_BUILD/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
     >"$work/daemon.log" 2>&1 &
 daemon=$!
