@@ -12,26 +12,17 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 daemon=$MPB_BUILD/daemon/mpbenchd
 null=$MPB_BUILD/planners/null/mpb-planner-null
-planar=$MPB_SOURCE/scenes/planar
 
 # experiment NAME RUNS PLANNERS...: RUNS runs of 50 ms each per
 # configuration, one at a time on the host.
 experiment() {
     name=$1; runs=$2; shift 2
-    {
-        echo "experiment: {name: $name, runs: $runs, time_limit: 1, runs_per_host: 1}"
-        echo "robot: {format: planar, file: $planar/arm3.robot}"
-        echo "scenes:"
-        echo "  - name: pillars"
-        echo "    format: planar"
-        echo "    file: $planar/pillars.scene"
-        echo "    queries:"
-        echo "      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}"
-        echo "planners:"
-        for p in "$@"; do
-            echo "  - {planner: $p, algorithms: [straight_line], params: {delay: 0.05}}"
-        done
-    } >"$work/$name.yaml"
+    for p in "$@"; do     # each family name becomes its planners entry
+        set -- "$@" "{planner: $p, algorithms: [straight_line], params: {delay: 0.05}}"
+        shift
+    done
+    mpb_planar_experiment "$work/$name.yaml" \
+        "name: $name, runs: $runs, time_limit: 1, runs_per_host: 1" "$@"
 }
 
 # per_config, per_planner: runs done by each, ascending, on one line (a

@@ -17,23 +17,12 @@ work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 daemon=$MPB_BUILD/daemon/mpbenchd
 null=$MPB_BUILD/planners/null/mpb-planner-null
-planar=$MPB_SOURCE/scenes/planar
 other_url='udpm://239.255.76.68:7668?ttl=0'
 
 # experiment NAME RUNS: RUNS runs of 50 ms each.
 experiment() {
-    cat >"$work/$1.yaml" <<YAML
-experiment: {name: $1, runs: $2, time_limit: 1}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 0.05}}
-YAML
+    mpb_planar_experiment "$work/$1.yaml" "name: $1, runs: $2, time_limit: 1" \
+        "{planner: null, algorithms: [straight_line], params: {delay: 0.05}}"
 }
 
 # 1. "first" runs 100 runs (5 s); "second" starts once it has done 5.

@@ -17,25 +17,11 @@ trap 'mpb_stop_all; rm -rf "$work"' EXIT
 daemon=$MPB_BUILD/daemon/mpbenchd
 null=$MPB_BUILD/planners/null/mpb-planner-null
 rogue=$MPB_BUILD/tests/mpb-test-rogue-planner
-planar=$MPB_SOURCE/scenes/planar
 
 # experiment NAME TIME_LIMIT PLANNERS...: one query on the planar arm.
 experiment() {
     name=$1; limit=$2; shift 2
-    {
-        echo "experiment: {name: $name, runs: 1, time_limit: $limit}"
-        echo "robot: {format: planar, file: $planar/arm3.robot}"
-        echo "scenes:"
-        echo "  - name: pillars"
-        echo "    format: planar"
-        echo "    file: $planar/pillars.scene"
-        echo "    queries:"
-        echo "      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}"
-        echo "planners:"
-        for p in "$@"; do
-            echo "  - $p"
-        done
-    } >"$work/$name.yaml"
+    mpb_planar_experiment "$work/$name.yaml" "name: $name, runs: 1, time_limit: $limit" "$@"
 }
 
 # 1. One planner; the first run sleeps 12 s against a limit of 0.5 s. It

@@ -16,23 +16,13 @@ daemon_pid=0
 trap 'kill -CONT $daemon_pid 2>/dev/null; mpb_stop_all; rm -rf "$work"' EXIT
 daemon=$MPB_BUILD/daemon/mpbenchd
 null=$MPB_BUILD/planners/null/mpb-planner-null
-planar=$MPB_SOURCE/scenes/planar
 
 # experiment NAME: 4 runs of 2 s each, a time limit of 3 s (a deadline
 # 8 s after a request), one retry.
 experiment() {
-    cat >"$work/$1.yaml" <<YAML
-experiment: {name: $1, runs: 4, time_limit: 3, retries: 1, runs_per_host: 2}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: 2}}
-YAML
+    mpb_planar_experiment "$work/$1.yaml" \
+        "name: $1, runs: 4, time_limit: 3, retries: 1, runs_per_host: 2" \
+        "{planner: null, algorithms: [straight_line], params: {delay: 2}}"
 }
 
 # start NAME: two planners and a daemon; stopped once both plan a run.

@@ -16,25 +16,15 @@ mpb_enter_netns "$0" "$@"
 work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 url="udpm://239.255.76.67:7667?ttl=0"
-planar=$MPB_SOURCE/scenes/planar
 null=$MPB_BUILD/planners/null/mpb-planner-null
 python=$MPB_SOURCE/.venv/bin/python3
 
 # experiment NAME RUNS DELAY [SETTINGS]: an experiment file of null runs
 # that each last DELAY seconds.
 experiment() {
-    cat >"$work/$1.yaml" <<EOT
-experiment: {name: $1, runs: $2, time_limit: 5, retries: 0 ${4:+, $4}}
-robot: {format: planar, file: $planar/arm3.robot}
-scenes:
-  - name: pillars
-    format: planar
-    file: $planar/pillars.scene
-    queries:
-      - {name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
-planners:
-  - {planner: null, algorithms: [straight_line], params: {delay: $3}}
-EOT
+    mpb_planar_experiment "$work/$1.yaml" \
+        "name: $1, runs: $2, time_limit: 5, retries: 0${4:+, $4}" \
+        "{planner: null, algorithms: [straight_line], params: {delay: $3}}"
 }
 
 # For each run but a planner's first: was its request (first send) on the
