@@ -59,6 +59,20 @@ mpb_timeout() {
     timeout --kill-after=5 "$secs" "$@"
 }
 
+# mpb_wait_count DB N SECONDS SQL: wait until the count SQL selects from DB
+# is at least N (the database may not exist yet), looking every 0.1 s, at
+# most SECONDS; 1 if it never was.
+mpb_wait_count() {
+    mpb_db=$1; mpb_n=$2; mpb_tenths=$(($3 * 10)); mpb_sql=$4
+    while [ "$mpb_tenths" -gt 0 ]; do
+        mpb_got=$(sqlite3 "$mpb_db" "$mpb_sql" 2>/dev/null)
+        [ "${mpb_got:-0}" -ge "$mpb_n" ] 2>/dev/null && return 0
+        sleep 0.1
+        mpb_tenths=$((mpb_tenths - 1))
+    done
+    return 1
+}
+
 # mpb_planar_experiment FILE FIELDS PLANNER...: write an experiment file for
 # the planar arm among the pillars. FIELDS is the inside of the experiment
 # map ("name: x, runs: 4, time_limit: 1"), each PLANNER one entry of the

@@ -45,10 +45,7 @@ mpb_spawn "$work/one.log" "$null" --name one
 mpb_spawn "$work/two.log" "$null" --name two
 "$daemon" -d "$DB" "$work/families.yaml" >"$work/families.log" 2>&1 &
 pid=$!
-for _ in $(seq 100); do
-    [ "$(q "SELECT count(*) FROM runs WHERE state = 'done'" 2>/dev/null)" -ge 40 ] 2>/dev/null && break
-    sleep 0.1
-done
+mpb_wait_count "$DB" 40 10 "SELECT count(*) FROM runs WHERE state = 'done'"
 kill -INT $pid
 mpb_wait $pid 20
 check "families: stopped by SIGINT (exit 130)" eq $? 130

@@ -75,10 +75,7 @@ mv "$work/pillars.kept" "$work/pillars.scene"
 sed 's/seed: 3}/seed: 3}  # edited/' "$work/exp.yaml" >"$work/exp2.yaml"
 "$daemon" -d "$work/edit.db" "$work/exp.yaml" >/dev/null 2>&1 &
 pid=$!
-for i in $(seq 100); do      # until it has begun, at most 10 s
-    [ "$(sqlite3 "$work/edit.db" 'SELECT count(*) FROM runs' 2>/dev/null)" = 200 ] && break
-    sleep 0.1
-done
+mpb_wait_count "$work/edit.db" 200 10 'SELECT count(*) FROM runs'   # begun
 kill -KILL $pid 2>/dev/null
 wait $pid 2>/dev/null
 mpb_timeout 120 "$daemon" -d "$work/edit.db" "$work/exp2.yaml" >"$work/exp2.log" 2>&1

@@ -31,10 +31,7 @@ experiment second 10
 mpb_spawn "$work/planner.log" "$null"
 "$daemon" -d "$work/first.db" "$work/first.yaml" >"$work/first.log" 2>&1 &
 first=$!
-for _ in $(seq 100); do
-    [ "$(sqlite3 "$work/first.db" "SELECT count(*) FROM runs WHERE state = 'done'" 2>/dev/null)" -ge 5 ] 2>/dev/null && break
-    sleep 0.1
-done
+mpb_wait_count "$work/first.db" 5 10 "SELECT count(*) FROM runs WHERE state = 'done'"
 "$MPB_BUILD/tools/mpb" status --timeout 30 >"$work/status.log" 2>&1 &
 status=$!
 sleep 1.5

@@ -119,10 +119,7 @@ DB=$work/restart.db
 mpb_spawn "$work/restart-planner.log" "$null"
 "$daemon" -d "$DB" "$work/restart.yaml" >"$work/restart1.log" 2>&1 &
 d=$!
-for _ in $(seq 150); do
-    [ "$(q "SELECT count(*) FROM runs WHERE status = 'crash'" 2>/dev/null)" = 1 ] && break
-    sleep 0.1
-done
+mpb_wait_count "$DB" 1 15 "SELECT count(*) FROM runs WHERE status = 'crash'"
 kill -KILL $d
 wait $d 2>/dev/null
 "$daemon" -d "$DB" "$work/restart.yaml" >"$work/restart2.log" 2>&1 &

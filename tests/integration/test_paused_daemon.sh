@@ -35,10 +35,7 @@ start() {
     second=${MPB_PIDS##* }
     "$daemon" -d "$DB" "$work/$1.yaml" >"$work/$1.log" 2>&1 &
     daemon_pid=$!
-    for _ in $(seq 50); do
-        [ "$(q "SELECT count(*) FROM runs WHERE state = 'sent'" 2>/dev/null)" = 2 ] && break
-        sleep 0.1
-    done
+    mpb_wait_count "$DB" 2 5 "SELECT count(*) FROM runs WHERE state = 'sent'"
     kill -STOP $daemon_pid
 }
 

@@ -82,10 +82,7 @@ NAMES=$work/names.db
 mpb_spawn "$work/null2.log" "$MPB_BUILD/planners/null/mpb-planner-null"
 "$MPB_BUILD/daemon/mpbenchd" -d "$NAMES" "$work/names.yaml" >"$work/names.log" 2>&1 &
 daemon=$!
-for i in $(seq 300); do
-    [ "$(sqlite3 "$NAMES" "SELECT count(*) FROM runs WHERE state = 'done'" 2>/dev/null)" -ge 30 ] 2>/dev/null && break
-    sleep 0.1
-done
+mpb_wait_count "$NAMES" 30 30 "SELECT count(*) FROM runs WHERE state = 'done'"
 kill -TERM $daemon
 wait $daemon
 check "the second experiment stops with 30 runs done and 18 not" \
@@ -282,10 +279,7 @@ check "... naming it and the scenes there are" \
 # planner came.
 "$MPB_BUILD/daemon/mpbenchd" -d "$work/empty.db" "$work/demo.yaml" >/dev/null 2>&1 &
 daemon=$!
-for i in $(seq 100); do
-    [ "$(sqlite3 "$work/empty.db" 'SELECT count(*) FROM runs' 2>/dev/null)" -gt 0 ] 2>/dev/null && break
-    sleep 0.1
-done
+mpb_wait_count "$work/empty.db" 1 10 'SELECT count(*) FROM runs'
 kill -TERM $daemon
 wait $daemon
 "$mpb" plot -o "$work/none" "$work/empty.db" >"$work/empty.out" 2>"$work/empty.err"
