@@ -12,33 +12,20 @@
  * one stops on hearing it. Daemons with different secrets (auth.h) do not
  * hear each other, and need not: their planners do not answer each other.
  */
-#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "daemon.h"
 #include "mpb_daemon_status_t.h"
 
-/* When a daemon started, by the wall clock, from its status alone: the
- * same reckoning for every daemon, its own included. */
-static int64_t started_utime(const mpb_daemon_status_t *m)
-{
-    return m->utime - (int64_t)llround(m->elapsed_s * 1e6);
-}
-
-/* Whether daemon a, started at a_us, came before daemon b. */
-static int before(int64_t a_us, const char *a, int64_t b_us, const char *b)
-{
-    return a_us != b_us ? a_us < b_us : strcmp(a, b) < 0;
-}
-
 static void on_status(mpbd *d, const mpb_daemon_status_t *m, double now)
 {
     if (strcmp(m->daemon_id, d->daemon_id) == 0 ||
         (strcmp(m->state, "waiting") != 0 && strcmp(m->state, "running") != 0))
         return;                 /* itself, or one that is ending */
-    int64_t theirs = started_utime(m);
-    if (before(theirs, m->daemon_id, d->started_utime, d->daemon_id)) {
+    int64_t theirs = mpb_daemon_started_utime(m);
+    if (mpb_daemon_started_before(theirs, m->daemon_id, d->started_utime,
+                                  d->daemon_id)) {
         if (d->elder[0] == '\0')
             snprintf(d->elder, sizeof d->elder, "%s (experiment '%s', "
                      "started %.1f s before this one)", m->daemon_id,

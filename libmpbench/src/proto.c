@@ -1,4 +1,5 @@
 /* proto.c - run ids, content hashes, channel names and clocks of the protocol. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -6,6 +7,7 @@
 #include <sodium.h>
 
 #include "mpbench/mpbench.h"
+#include "mpb_daemon_status_t.h"
 #include "mpb_plan_result_t.h"
 #include "mpb_stage_t.h"
 
@@ -124,4 +126,15 @@ int mpb_stage_sizes_ok(const mpb_stage_t *st, int num_joints, char *why,
                  "%d values; the robot has %d joints", st->name ? st->name : "",
                  st->num_waypoints, st->num_joints, st->num_values, num_joints);
     return 0;
+}
+
+int64_t mpb_daemon_started_utime(const mpb_daemon_status_t *st)
+{
+    return st->utime - (int64_t)llround(st->elapsed_s * 1e6);
+}
+
+int mpb_daemon_started_before(int64_t a_utime, const char *a_id,
+                              int64_t b_utime, const char *b_id)
+{
+    return a_utime != b_utime ? a_utime < b_utime : strcmp(a_id, b_id) < 0;
 }

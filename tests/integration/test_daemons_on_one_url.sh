@@ -5,8 +5,9 @@
 #   1. a daemon started beside a running one stops at once, in one line
 #      naming the other and -u, having sent nothing; the first goes on
 #      undisturbed, and the second's command, run again once the first has
-#      ended, resumes and completes; `mpb status`, following the first,
-#      is not ended by the second's stop;
+#      ended, resumes and completes; `mpb status` follows the first, and
+#      is not ended by the second's stop, even when it heard the second
+#      first;
 #   2. of two daemons started at the same moment, exactly one stops;
 #   3. on URLs of their own, two daemons run at once.
 set -u
@@ -35,6 +36,17 @@ mpb_wait_count "$work/first.db" 5 10 "SELECT count(*) FROM runs WHERE state = 'd
 "$MPB_BUILD/tools/mpb" status --timeout 30 >"$work/status.log" 2>&1 &
 status=$!
 sleep 1.5
+# A second `mpb status`, started with the second daemon just after the
+# first daemon's status of the second (a line in status.log), hears the
+# second daemon before the first publishes again, and must leave it for
+# the first, which stays.
+lines=$(wc -l <"$work/status.log")
+for _ in $(seq 200); do
+    [ "$(wc -l <"$work/status.log")" -gt "$lines" ] && break
+    sleep 0.01
+done
+"$MPB_BUILD/tools/mpb" status --timeout 30 >"$work/status2.log" 2>&1 &
+status2=$!
 "$daemon" -d "$work/second.db" "$work/second.yaml" >"$work/second.log" 2>&1 &
 second=$!
 mpb_wait $second 10
@@ -55,6 +67,13 @@ mpb_wait $status 10
 check "beside: mpb status follows the first to its end (exit 0)" eq $? 0
 check "beside: ... and prints nothing of the second" \
     test "$(grep -c second "$work/status.log")" -eq 0
+mpb_wait $status2 10
+check "beside: mpb status that heard the second first follows the first to its end (exit 0)" \
+    eq $? 0
+check "beside: ... having heard the second first" \
+    grep -q "^second: " "$work/status2.log"
+check "beside: ... and ends on the first's last line" \
+    test "$(tail -n 1 "$work/status2.log" | cut -d, -f1)" = "first: done"
 "$daemon" -d "$work/second.db" "$work/second.yaml" >"$work/second-again.log" 2>&1 &
 mpb_wait $! 30
 check "beside: the second's command, run again, completes" eq $? 0

@@ -1,5 +1,5 @@
-/* test_proto.c - run ids, planner ids, channels, content hashes and stage
- * size checks of the protocol. */
+/* test_proto.c - run ids, planner ids, channels, content hashes, stage
+ * size checks and the first of two daemons, of the protocol. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -8,6 +8,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
+#include "mpb_daemon_status_t.h"
 #include "mpb_stage_t.h"
 
 static void run_ids_are_hex_and_distinct(void **state)
@@ -92,6 +93,23 @@ static void statuses_have_names(void **state)
     assert_string_equal(mpb_err_name(MPB_EPARSE), "MPB_EPARSE");
 }
 
+static void the_first_daemon_is_the_earliest_started(void **state)
+{
+    (void)state;
+    /* Sent 2.5 s apart by daemons that started 0.5 s apart. */
+    mpb_daemon_status_t a = {.utime = 10000000, .elapsed_s = 3.0};
+    mpb_daemon_status_t b = {.utime = 12500000, .elapsed_s = 5.0};
+    int64_t ta = mpb_daemon_started_utime(&a), tb = mpb_daemon_started_utime(&b);
+    assert_int_equal(ta, 7000000);
+    assert_int_equal(tb, 7500000);
+    assert_true(mpb_daemon_started_before(ta, "z", tb, "a"));
+    assert_false(mpb_daemon_started_before(tb, "a", ta, "z"));
+    /* A tie: exactly one of the two is first, by id. */
+    assert_true(mpb_daemon_started_before(ta, "a", ta, "b"));
+    assert_false(mpb_daemon_started_before(ta, "b", ta, "a"));
+    assert_false(mpb_daemon_started_before(ta, "a", ta, "a"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -100,6 +118,7 @@ int main(void)
         cmocka_unit_test(hashes_are_blake2b_128),
         cmocka_unit_test(stage_sizes_must_agree),
         cmocka_unit_test(statuses_have_names),
+        cmocka_unit_test(the_first_daemon_is_the_earliest_started),
     };
     return cmocka_run_group_tests_name("proto", tests, NULL, NULL);
 }

@@ -43,7 +43,8 @@ typedef struct follower {
     int         ended;          /* "done" (1) or "stopped" (2) seen */
     int         waiting;        /* the "waiting for" line is on the screen */
     char        following[256]; /* the experiment the header names */
-    char        daemon[128];    /* the daemon followed, from its first status */
+    char        daemon[128];    /* the daemon followed: the first to start */
+    int64_t     daemon_started; /* when it started, wall clock us */
     char        last_key[LINE_MAX_LEN]; /* the numbers printed last */
     char        detail[8192];   /* --once: a line per planner */
 } follower;
@@ -60,8 +61,9 @@ static void usage(FILE *out)
         "runs in flight, the rate, the time left, and the planners the daemon\n"
         "sees (name, and how many processes when more than one). On a\n"
         "terminal a progress bar is redrawn in place; otherwise a plain line\n"
-        "is printed each time the numbers change. It follows the first daemon\n"
-        "it hears, and exits when that daemon reports the experiment done.\n"
+        "is printed each time the numbers change. It follows the daemon on the\n"
+        "URL (of two, the one that started first and stays), and exits when\n"
+        "that daemon reports the experiment done.\n"
         "\n"
         "Options:\n"
         "  -u, --lcm-url URL      LCM URL (default: " MPB_DEFAULT_LCM_URL ");\n"
@@ -276,12 +278,21 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel,
     if (f->experiment != NULL && strcmp(st->experiment, f->experiment) != 0)
         return;
     /* One daemon: another started beside it on the URL stops at once, and
-     * its "stopped" is not the end of this one's experiment. */
-    if (st->daemon_id != NULL) {
-        if (f->daemon[0] == '\0')
-            snprintf(f->daemon, sizeof f->daemon, "%s", st->daemon_id);
-        else if (strcmp(st->daemon_id, f->daemon) != 0)
+     * its "stopped" is not the end of this one's experiment. The one that
+     * stays is the first to start, which answers a younger one at once:
+     * followed from then on, even if the younger one was heard first. */
+    if (st->daemon_id != NULL && strcmp(st->daemon_id, f->daemon) != 0) {
+        int64_t started = mpb_daemon_started_utime(st);
+        if (f->daemon[0] != '\0' &&
+            !mpb_daemon_started_before(started, st->daemon_id,
+                                       f->daemon_started, f->daemon))
             return;
+        if (f->daemon[0] != '\0') {
+            f->following[0] = '\0';     /* a header, a line, for this one */
+            f->last_key[0] = '\0';
+        }
+        snprintf(f->daemon, sizeof f->daemon, "%s", st->daemon_id);
+        f->daemon_started = started;
     }
     f->seen++;
     describe(st, line, sizeof line);

@@ -78,6 +78,24 @@ struct _mpb_stage_t;
 int mpb_stage_sizes_ok(const struct _mpb_stage_t *st, int num_joints,
                        char *why, size_t whylen);
 
+struct _mpb_daemon_status_t;
+
+/*
+ * One daemon runs on an LCM URL: the one that started first (two would
+ * share its planners; docs/protocol.md). When the daemon that sent a
+ * status started, on the wall clock in microseconds: its utime less its
+ * elapsed_s, the same reckoning for every daemon, a daemon's own included.
+ */
+int64_t mpb_daemon_started_utime(const struct _mpb_daemon_status_t *st);
+
+/*
+ * 1 if daemon a_id, started at a_utime, came before daemon b_id, started
+ * at b_utime, else 0; the ids break a tie, so that of two daemons exactly
+ * one is first.
+ */
+int mpb_daemon_started_before(int64_t a_utime, const char *a_id,
+                              int64_t b_utime, const char *b_id);
+
 #ifdef __cplusplus
 }
 #endif
