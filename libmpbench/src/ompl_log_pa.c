@@ -1,7 +1,7 @@
 /*
- * ompl_log_pa.c - an OMPL benchmark log straight into a Planner Arena
+ * ompl_log_pa.c - OMPL benchmark logs straight into a Planner Arena
  * database, with the same rows OMPL's ompl_benchmark_statistics.py writes
- * (mpb_ompl_log_to_planner_arena(); the database's tables are
+ * (mpb_ompl_logs_to_planner_arena(); the database's tables are
  * store_pa_db.c's). A new database is written beside its name and takes
  * it only once complete.
  */
@@ -215,9 +215,43 @@ static int publish(mpb_store *errs, const char *tmp, const char *path)
     return rc;
 }
 
-int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
-                                  int flags, mpb_export_counts *counts,
-                                  char *err, size_t errlen)
+/* The log's experiment, then its planner blocks. */
+static int write_log(pa_out *o, const mpb_ompl_log *log)
+{
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(o->db, "INSERT INTO experiments (name, totaltime,"
+                           " timelimit, memorylimit, runcount, version,"
+                           " hostname, cpuinfo, date, seed, setup) VALUES"
+                           " (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", -1, &st,
+                           NULL) != SQLITE_OK)
+        return mpb__pa_fail(o, "prepare experiments");
+    sqlite3_bind_text(st, 1, log->experiment, -1, SQLITE_STATIC);
+    sqlite3_bind_double(st, 2, log->total_time);
+    sqlite3_bind_double(st, 3, log->time_limit);
+    sqlite3_bind_double(st, 4, log->memory_limit);
+    sqlite3_bind_int64(st, 5, log->runs_per_planner);
+    sqlite3_bind_text(st, 6, log->version, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 7, log->host, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 8, log->cpuinfo, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 9, log->date, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 10, log->seed, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 11, log->setup, -1, SQLITE_STATIC);
+    int rc = MPB_OK;
+    if (sqlite3_step(st) != SQLITE_DONE)
+        rc = mpb__pa_fail(o, "add the experiment");
+    sqlite3_finalize(st);
+    int64_t experiment = sqlite3_last_insert_rowid(o->db);
+    if (rc == MPB_OK)
+        o->counts.experiments++;
+    for (int i = 0; i < log->num_planners && rc == MPB_OK; i++)
+        rc = write_log_planner(o, experiment, &log->planners[i]);
+    return rc;
+}
+
+int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
+                                   mpb_ompl_log_next_fn next, void *ud,
+                                   mpb_export_counts *counts, char *err,
+                                   size_t errlen)
 {
     /* The Planner Arena writer reports through a store's message; this
      * one has nothing else. */
@@ -229,7 +263,7 @@ int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
     int rc;
     if (counts)
         *counts = (mpb_export_counts){0};
-    if (log == NULL || path == NULL) {
+    if (next == NULL || path == NULL) {
         rc = mpb__store_fail(&errs, MPB_EINVAL, "bad arguments");
         goto out;
     }
@@ -263,33 +297,16 @@ int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
                                    "PRAGMA locking_mode = EXCLUSIVE", "configure"))) ||
         (rc = mpb__pa_begin(&o)))
         goto close;
-    sqlite3_stmt *st;
-    if (sqlite3_prepare_v2(o.db, "INSERT INTO experiments (name, totaltime,"
-                           " timelimit, memorylimit, runcount, version,"
-                           " hostname, cpuinfo, date, seed, setup) VALUES"
-                           " (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", -1, &st,
-                           NULL) != SQLITE_OK) {
-        rc = mpb__pa_fail(&o, "prepare experiments");
-        goto close;
+    for (;;) {
+        const mpb_ompl_log *log = NULL;
+        if ((rc = next(ud, &log)) != MPB_OK) {
+            rc = mpb__store_fail(&errs, rc, "a log to write could not be "
+                                 "read: nothing written");
+            break;
+        }
+        if (log == NULL || (rc = write_log(&o, log)) != MPB_OK)
+            break;
     }
-    sqlite3_bind_text(st, 1, log->experiment, -1, SQLITE_STATIC);
-    sqlite3_bind_double(st, 2, log->total_time);
-    sqlite3_bind_double(st, 3, log->time_limit);
-    sqlite3_bind_double(st, 4, log->memory_limit);
-    sqlite3_bind_int64(st, 5, log->runs_per_planner);
-    sqlite3_bind_text(st, 6, log->version, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 7, log->host, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 8, log->cpuinfo, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 9, log->date, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 10, log->seed, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 11, log->setup, -1, SQLITE_STATIC);
-    if (sqlite3_step(st) != SQLITE_DONE)
-        rc = mpb__pa_fail(&o, "add the experiment");
-    sqlite3_finalize(st);
-    int64_t experiment = sqlite3_last_insert_rowid(o.db);
-    o.counts.experiments = 1;
-    for (int i = 0; i < log->num_planners && rc == MPB_OK; i++)
-        rc = write_log_planner(&o, experiment, &log->planners[i]);
 close:
     rc = mpb__pa_finish(&o, rc);
     if (tmp) {
@@ -308,3 +325,26 @@ out:
     return rc;
 }
 
+/* next() for one log, which ud points to: it, then the end. */
+static int one_log(void *ud, const mpb_ompl_log **log)
+{
+    const mpb_ompl_log **only = ud;
+    *log = *only;
+    *only = NULL;
+    return MPB_OK;
+}
+
+int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
+                                  int flags, mpb_export_counts *counts,
+                                  char *err, size_t errlen)
+{
+    if (log == NULL) {
+        if (counts)
+            *counts = (mpb_export_counts){0};
+        if (err && errlen)
+            snprintf(err, errlen, "bad arguments");
+        return MPB_EINVAL;
+    }
+    return mpb_ompl_logs_to_planner_arena(path, flags, one_log, &log, counts,
+                                          err, errlen);
+}

@@ -204,6 +204,12 @@ echo "# $err"
 "$mpb" import -d "$DB" "$work/wall.log" "$work/cut.log" >/dev/null 2>&1
 check "a good log before a broken one is not imported either" \
     eq "$(q "SELECT count(*) FROM experiments")" "$before"
+err=$("$mpb" import -p "$work/part.db" "$work/wall.log" "$work/wall.log" "$work/cut.log" "$work/missing.log" 2>&1)
+check "-p: good logs before broken ones fail" test $? -eq 1
+check "... each broken one said, once" \
+    test "$(printf '%s\n' "$err" | grep -c 'cut.log:[0-9]*: ')$(printf '%s\n' "$err" | grep -c 'cannot read .*missing.log')$(printf '%s\n' "$err" | wc -l)" = 112
+check "... and no database appears, nor a file beside it" \
+    test -z "$(ls "$work" | grep '^part\.db')"
 sed 's/^3 planners$/2 planners/' "$work/wall.log" >"$work/fewer.log"
 for to in "-d $work/fewer.db" "-p $work/fewer-pa.db"; do
     err=$("$mpb" import $to "$work/fewer.log" 2>&1)

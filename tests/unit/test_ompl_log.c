@@ -1,15 +1,20 @@
 /*
  * test_ompl_log.c - the OMPL benchmark log reader (ompl_log.c): a log
  * OMPL's own Benchmark wrote is read, and each damage done to it is
- * refused with the line and what is wrong.
+ * refused with the line and what is wrong; logs written one at a time
+ * into one Planner Arena database (ompl_log_pa.c), whole or not at all.
  */
+#include <dirent.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
+#include <sqlite3.h>
 
 #include "mpbench/mpbench.h"
 #include "test_files.h"
@@ -201,6 +206,99 @@ static void what_the_databases_would_refuse(void **state)
     free(text);
 }
 
+/* next() for the Planner Arena writer: the same log `count` times, then
+ * the end; or, at call number fail_at, MPB_EPARSE. */
+typedef struct feed {
+    const mpb_ompl_log *log;
+    int count, given, fail_at, calls;
+} feed;
+
+static int feed_next(void *ud, const mpb_ompl_log **log)
+{
+    feed *f = ud;
+    if (++f->calls == f->fail_at)
+        return MPB_EPARSE;
+    *log = f->given < f->count ? f->log : NULL;
+    f->given += *log != NULL;
+    return MPB_OK;
+}
+
+static int entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;)
+        n += e->d_name[0] != '.';
+    closedir(d);
+    return n;
+}
+
+static void logs_are_written_one_at_a_time_whole_or_not_at_all(void **state)
+{
+    (void)state;
+    char *text = test_read_file(WALL_LOG), err[256];
+    mpb_ompl_log *log = NULL;
+    assert_int_equal(mpb_ompl_log_parse(text, strlen(text), &log, err,
+                                        sizeof err), MPB_OK);
+    long runs = 0;
+    for (int i = 0; i < log->num_planners; i++)
+        runs += log->planners[i].num_runs;
+    char dir[] = "/tmp/mpb-test-pa-XXXXXX", path[64];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/pa.db", dir);
+
+    /* The second log fails to come: nothing at path, nothing beside it. */
+    feed f = {.log = log, .count = 3, .fail_at = 2};
+    assert_int_equal(mpb_ompl_logs_to_planner_arena(path, 0, feed_next, &f,
+                                                    NULL, err, sizeof err),
+                     MPB_EPARSE);
+    assert_int_equal(f.given, 1);
+    assert_non_null(strstr(err, "nothing written"));
+    assert_int_equal(entries(dir), 0);
+
+    /* Three logs, each given as the one before is written: one file. */
+    f = (feed){.log = log, .count = 3};
+    mpb_export_counts n;
+    assert_int_equal(mpb_ompl_logs_to_planner_arena(path, 0, feed_next, &f,
+                                                    &n, err, sizeof err),
+                     MPB_OK);
+    assert_int_equal(n.experiments, 3);
+    assert_int_equal(n.runs, 3 * runs);
+    assert_int_equal(entries(dir), 1);
+    sqlite3 *db;
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_open_v2(path, &db, SQLITE_OPEN_READONLY, NULL),
+                     SQLITE_OK);
+    assert_int_equal(sqlite3_prepare_v2(db, "SELECT (SELECT count(*) FROM "
+                                        "experiments), (SELECT count(*) FROM "
+                                        "runs)", -1, &st, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+    assert_int_equal(sqlite3_column_int(st, 0), 3);
+    assert_int_equal(sqlite3_column_int64(st, 1), 3 * runs);
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+
+    /* Added to, with the failure: the database is as it was. */
+    f = (feed){.log = log, .count = 2, .fail_at = 2};
+    assert_int_equal(mpb_ompl_logs_to_planner_arena(path, MPB_EXPORT_APPEND,
+                                                    feed_next, &f, NULL, err,
+                                                    sizeof err), MPB_EPARSE);
+    assert_int_equal(sqlite3_open_v2(path, &db, SQLITE_OPEN_READONLY, NULL),
+                     SQLITE_OK);
+    assert_int_equal(sqlite3_prepare_v2(db, "SELECT count(*) FROM experiments",
+                                        -1, &st, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+    assert_int_equal(sqlite3_column_int(st, 0), 3);
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+
+    unlink(path);
+    rmdir(dir);
+    mpb_ompl_log_free(log);
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -209,6 +307,7 @@ int main(void)
         cmocka_unit_test(values_must_be_of_their_type),
         cmocka_unit_test(what_ompl_writes_is_read),
         cmocka_unit_test(what_the_databases_would_refuse),
+        cmocka_unit_test(logs_are_written_one_at_a_time_whole_or_not_at_all),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

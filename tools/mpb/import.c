@@ -36,11 +36,14 @@ static void usage(FILE *out)
         "that mpb report, mpb plot and mpb export read like mpbench's own.\n"
         "Every log is read and checked before the database is opened: if\n"
         "one cannot be read or has an error, nothing is imported. Each log\n"
-        "is then imported in one transaction.\n"
+        "is then read again and imported in one transaction, so that one\n"
+        "log at a time is held in memory.\n"
         "\n"
         "With -p, write the logs straight into a new Planner Arena database\n"
         "instead, as OMPL's ompl_benchmark_statistics.py does, without an\n"
-        "mpbench database in between.\n"
+        "mpbench database in between: each log is read once and written as\n"
+        "it is read, and OUT.db appears only once every log is in it (if\n"
+        "one cannot be read or has an error, it does not appear).\n"
         "\n"
         "Options:\n"
         "  -d, --db DB               the mpbench database to add to\n"
@@ -318,19 +321,17 @@ static int import_log(mpb_store *s, const char *path, const char *text,
     return mpb_store_experiment_finish(s, exp);
 }
 
-/* A log read and parsed, before any database is touched. */
+/* A log read and parsed. */
 typedef struct loaded {
     char *text;
     mpb_ompl_log *log;
 } loaded;
 
-static void free_loaded(loaded *l, int n)
+static void unload(loaded *l)
 {
-    for (int i = 0; l && i < n; i++) {
-        mpb_ompl_log_free(l[i].log);
-        free(l[i].text);
-    }
-    free(l);
+    mpb_ompl_log_free(l->log);
+    free(l->text);
+    *l = (loaded){0};
 }
 
 static long total_runs(const mpb_ompl_log *log)
@@ -341,72 +342,122 @@ static long total_runs(const mpb_ompl_log *log)
     return n;
 }
 
-/* Every log read and parsed, each error said in one line; NULL when one
- * (or more) failed. */
-static loaded *load_all(int num_logs, char **logs)
+/* The log at path read and parsed into *l; 0 and its error said in one
+ * line when it cannot be. */
+static int load(const char *path, loaded *l)
 {
-    loaded *l = calloc((size_t)num_logs + 1, sizeof *l);
-    int bad = 0;
-    if (l == NULL) {
-        fprintf(stderr, "mpb " CMD ": out of memory\n");
-        return NULL;
+    size_t len = 0;
+    char err[256];
+    int rc;
+    *l = (loaded){0};
+    errno = 0;
+    if ((l->text = read_all(path, &len)) == NULL) {
+        fprintf(stderr, "mpb " CMD ": cannot read %s: %s\n", path,
+                errno ? strerror(errno) : "out of memory");
+        return 0;
     }
-    for (int i = 0; i < num_logs; i++) {
-        size_t len = 0;
-        char err[256];
-        int rc;
-        errno = 0;
-        if ((l[i].text = read_all(logs[i], &len)) == NULL) {
-            fprintf(stderr, "mpb " CMD ": cannot read %s: %s\n", logs[i],
-                    errno ? strerror(errno) : "out of memory");
-            bad = 1;
-        } else if ((rc = mpb_ompl_log_parse(l[i].text, len, &l[i].log, err,
-                                            sizeof err)) != MPB_OK) {
-            /* "line N: what" -> "PATH:N: what", as compilers say it. */
-            fprintf(stderr, "mpb " CMD ": %s:%s\n", logs[i],
-                    rc == MPB_ENOMEM ? " out of memory"
-                    : strncmp(err, "line ", 5) == 0 ? err + 5 : err);
-            bad = 1;
-        } else if (total_runs(l[i].log) == 0) {
-            /* OMPL writes such a log when no planner was added; importing
-             * it would make an experiment that reports nothing. */
-            int np = l[i].log->num_planners;
-            fprintf(stderr, "mpb " CMD ": %s: no runs in the log (%d "
-                    "planner%s): nothing to import\n", logs[i], np,
-                    np == 1 ? "" : "s");
-            bad = 1;
-        }
+    if ((rc = mpb_ompl_log_parse(l->text, len, &l->log, err, sizeof err)) !=
+        MPB_OK) {
+        /* "line N: what" -> "PATH:N: what", as compilers say it. */
+        fprintf(stderr, "mpb " CMD ": %s:%s\n", path,
+                rc == MPB_ENOMEM ? " out of memory"
+                : strncmp(err, "line ", 5) == 0 ? err + 5 : err);
+        unload(l);
+        return 0;
     }
-    if (bad) {
-        free_loaded(l, num_logs);
-        return NULL;
+    if (total_runs(l->log) == 0) {
+        /* OMPL writes such a log when no planner was added; importing it
+         * would make an experiment that reports nothing. */
+        int np = l->log->num_planners;
+        fprintf(stderr, "mpb " CMD ": %s: no runs in the log (%d planner%s): "
+                "nothing to import\n", path, np, np == 1 ? "" : "s");
+        unload(l);
+        return 0;
     }
-    return l;
+    return 1;
 }
 
-/* -p: each log straight into one Planner Arena database. */
+/* Every log read and checked, one at a time, each error said: 1 when all
+ * can be imported. */
+static int check_all(int num_logs, char **logs)
+{
+    int ok = 1;
+    for (int i = 0; i < num_logs; i++) {
+        loaded l;
+        if (load(logs[i], &l))
+            unload(&l);
+        else
+            ok = 0;
+    }
+    return ok;
+}
+
+/* What is said of a log once it is imported. */
+typedef struct imported {
+    const char *path;
+    char       *experiment;
+    int         planners;
+    long        runs;
+} imported;
+
+/* -p: the logs handed to the Planner Arena writer one at a time, each
+ * read as the one before is written, so that one log at a time is held. */
+typedef struct arena_feed {
+    char     **logs;
+    int        num_logs, next, bad;
+    loaded     current;
+    imported  *done;
+} arena_feed;
+
+static int feed_next(void *ud, const mpb_ompl_log **log)
+{
+    arena_feed *f = ud;
+    unload(&f->current);
+    *log = NULL;
+    if (f->next == f->num_logs)
+        return MPB_OK;
+    const char *path = f->logs[f->next];
+    if (!load(path, &f->current)) {
+        f->bad = 1;
+        f->next++;              /* said: the rest are checked after */
+        return MPB_EPARSE;
+    }
+    const mpb_ompl_log *l = f->current.log;
+    f->done[f->next++] = (imported){path, strdup(l->experiment ? l->experiment : ""),
+                                    l->num_planners, total_runs(l)};
+    *log = l;
+    return MPB_OK;
+}
+
+/* -p: the logs straight into one new Planner Arena database, whole or
+ * not at all. */
 static int to_planner_arena(const char *out, int num_logs, char **logs)
 {
-    loaded *l = load_all(num_logs, logs);
-    if (l == NULL)
+    arena_feed f = {.logs = logs, .num_logs = num_logs};
+    char err[256];
+    int status = MPB_EXIT_OK;
+    if ((f.done = calloc((size_t)num_logs, sizeof *f.done)) == NULL) {
+        fprintf(stderr, "mpb " CMD ": out of memory\n");
         return MPB_EXIT_ERROR;
-    int status = MPB_EXIT_OK, written = 0;
-    for (int i = 0; i < num_logs; i++) {
-        char err[256];
-        mpb_export_counts n;
-        if (mpb_ompl_log_to_planner_arena(l[i].log, out, written ? MPB_EXPORT_APPEND : 0,
-                                          &n, err, sizeof err) != MPB_OK) {
-            fprintf(stderr, "mpb " CMD ": %s: %s\n", logs[i], err);
-            status = MPB_EXIT_ERROR;
-            if (written == 0)
-                break;      /* not ours (it exists) or not writable: once */
-        } else {
-            written++;
-            printf("%s: experiment '%s', %d planners, %ld runs\n", logs[i],
-                   l[i].log->experiment, n.planner_configs, n.runs);
-        }
     }
-    free_loaded(l, num_logs);
+    if (mpb_ompl_logs_to_planner_arena(out, 0, feed_next, &f, NULL, err,
+                                       sizeof err) != MPB_OK) {
+        if (f.bad)      /* the rest checked too, for every error at once */
+            check_all(num_logs - f.next, logs + f.next);
+        else
+            fprintf(stderr, "mpb " CMD ": %s\n", err);
+        status = MPB_EXIT_ERROR;
+    }
+    unload(&f.current);
+    for (int i = 0; i < num_logs; i++) {
+        if (status == MPB_EXIT_OK)
+            printf("%s: experiment '%s', %d planners, %ld runs\n",
+                   f.done[i].path, f.done[i].experiment ? f.done[i].experiment
+                                   : "?", f.done[i].planners,
+                   f.done[i].runs);
+        free(f.done[i].experiment);
+    }
+    free(f.done);
     return status;
 }
 
@@ -445,36 +496,39 @@ int cmd_import(int argc, char **argv)
     }
     if (arena != NULL)
         return to_planner_arena(arena, argc - optind, argv + optind);
-    /* Every log checked before the database is created or opened. */
+    /* Every log checked before the database is created or opened, then
+     * read again as it is imported: one log in memory at a time. */
     int num_logs = argc - optind;
-    loaded *l = load_all(num_logs, argv + optind);
-    if (l == NULL)
+    char **logs = argv + optind;
+    if (!check_all(num_logs, logs))
         return MPB_EXIT_ERROR;
     mpb_store *s = NULL;
     if (mpb_store_open(db, 0, &s) != MPB_OK) {
         fprintf(stderr, "mpb " CMD ": %s\n", mpb_store_errmsg(s));
         mpb_store_close(s);
-        free_loaded(l, num_logs);
         return MPB_EXIT_ERROR;
     }
     int status = MPB_EXIT_OK;
     for (int i = 0; i < num_logs; i++) {
-        const char *path = argv[optind + i], *text = l[i].text;
-        const mpb_ompl_log *log = l[i].log;
+        loaded l;
         long runs = 0;
         int rc;
+        if (!load(logs[i], &l)) {   /* changed since it was checked */
+            status = MPB_EXIT_ERROR;
+            continue;
+        }
         if ((rc = mpb_store_begin(s)) != MPB_OK ||
-                   (rc = import_log(s, path, text, log, &runs)) != MPB_OK ||
+                   (rc = import_log(s, logs[i], l.text, l.log, &runs)) != MPB_OK ||
                    (rc = mpb_store_commit(s)) != MPB_OK) {
-            fprintf(stderr, "mpb " CMD ": %s: %s\n", path, mpb_store_errmsg(s));
+            fprintf(stderr, "mpb " CMD ": %s: %s\n", logs[i], mpb_store_errmsg(s));
             mpb_store_rollback(s);
             status = MPB_EXIT_ERROR;
         } else {
-            printf("%s: experiment '%s', %d planners, %ld runs\n", path,
-                   log->experiment, log->num_planners, runs);
+            printf("%s: experiment '%s', %d planners, %ld runs\n", logs[i],
+                   l.log->experiment, l.log->num_planners, runs);
         }
+        unload(&l);
     }
-    free_loaded(l, num_logs);
     mpb_store_close(s);
     return status;
 }

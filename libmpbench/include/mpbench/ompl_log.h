@@ -107,6 +107,25 @@ int mpb_ompl_log_to_planner_arena(const mpb_ompl_log *log, const char *path,
                                   int flags, struct mpb_export_counts *counts,
                                   char *err, size_t errlen);
 
+/*
+ * Gives the next log to write: *log, or NULL after the last, and MPB_OK.
+ * The log stays the caller's and need live only until the next call. Any
+ * other return abandons the writing (the caller tells why).
+ */
+typedef int (*mpb_ompl_log_next_fn)(void *ud, const mpb_ompl_log **log);
+
+/*
+ * mpb_ompl_log_to_planner_arena() for every log next(ud, ...) gives, one
+ * at a time, all into the one database at path and in the one transaction:
+ * each log need be held only while it is written. If next() fails,
+ * nothing is written (path is as it was, no temporary file is left) and
+ * its return is returned.
+ */
+int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
+                                   mpb_ompl_log_next_fn next, void *ud,
+                                   struct mpb_export_counts *counts,
+                                   char *err, size_t errlen);
+
 /* The index of the run property of that name, or -1. */
 int mpb_ompl_planner_property(const mpb_ompl_planner *p, const char *name);
 
