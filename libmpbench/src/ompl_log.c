@@ -123,8 +123,10 @@ static int count_line(reader *r, const char *words, long *out)
     long v = strtol(s, &end, 10);
     while (*end == ' ')
         end++;
-    if (end == s || errno || v < 0 || v > MAX_COUNT || strcmp(end, words) != 0)
+    if (end == s || errno || v < 0 || strcmp(end, words) != 0)
         return fail(r, "expected 'N %s', found '%.60s'", words, s);
+    if (v > MAX_COUNT)
+        return fail(r, "%ld %s is more than a log holds", v, words);
     *out = v;
     return 0;
 }
@@ -785,8 +787,10 @@ static int header(reader *r, mpb_ompl_log *log)
             return -1;
         n = strtol(s, &end, 10);
     }
-    if (end == s || n < 0 || n > MAX_PROPERTIES || strcmp(end, " planners") != 0)
+    if (end == s || n < 0 || strcmp(end, " planners") != 0)
         return fail(r, "expected 'P planners', found '%.60s'", s);
+    if (n > MAX_PROPERTIES)
+        return fail(r, "%ld planners is more than a log holds", n);
     log->num_planners = (int)n;
     return 0;
 }

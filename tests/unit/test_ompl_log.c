@@ -190,6 +190,11 @@ static void what_the_databases_would_refuse(void **state)
     refused("1 enum type\n", "-1 enum type\n", "line 17: '-1 enum type': not a count");
     refused("0 experiment properties\n", "-2 experiment properties\n",
             "line 3: '-2 experiment properties': not a count");
+    /* Counts past what any log holds are said as such, not as a format. */
+    refused("\n3 planners\n", "\n20000 planners\n",
+            "line 19: 20000 planners is more than a log holds");
+    refused("\n6 runs\n", "\n2000000000 runs\n",
+            "line 53: 2000000000 runs is more than a log holds");
     char err[256];
     assert_int_equal(parse_edited("\ngeometric_RRT\n", "\ngeometric_\001RRT\n",
                                   err, sizeof err), MPB_OK);
