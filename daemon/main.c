@@ -463,17 +463,21 @@ int main(int argc, char **argv)
         d.count.failed = before.done - before.succeeded - before.crashed;
     }
     /* What it subscribes to, and nothing else: its own requests and
-     * acknowledgements are dropped by the kernel, not after a wake-up of
-     * LCM's thread (lcm_filter.h). Statuses pass, its own once a second
-     * with them, for the other daemons' (daemons.c). */
+     * acknowledgements, and malformed datagrams, are dropped by the
+     * kernel, not after a wake-up of LCM's thread (lcm_filter.h).
+     * Statuses pass, its own once a second with them, for the other
+     * daemons' (daemons.c). */
     static const char *const wanted[] = {MPB_CHANNEL_ANNOUNCE,
                                          MPB_CHANNEL_RESULT, MPB_CHANNEL_ACK,
                                          MPB_CHANNEL_STATUS};
-    if ((d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 4, NULL)) == NULL) {
+    int filtered = 0;
+    if ((d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 4, &filtered)) == NULL) {
         fprintf(stderr, "mpbenchd: cannot start LCM on %s (no multicast "
                         "route? see README)\n", o.lcm_url);
         goto out;
     }
+    if (!filtered)
+        mpbd_log("%s", MPB_LCM_UNFILTERED);
     mpbd_planners_subscribe(&d);
     mpbd_scheduler_subscribe(&d);
     mpbd_results_subscribe(&d);

@@ -691,11 +691,13 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
 
     const char *url = lcm_url != NULL ? lcm_url : MPB_DEFAULT_LCM_URL;
     /* The other planners' requests and acknowledgements, every result,
-     * announcement and status: dropped by the kernel, not after a wake-up
-     * of LCM's thread in this process (lcm_filter.h). Without the filter
-     * the same messages arrive and are ignored. */
+     * announcement and status, and every malformed datagram: dropped by
+     * the kernel, not after a wake-up of LCM's thread in this process
+     * (lcm_filter.h). Without the filter the same messages arrive and are
+     * ignored, but a malformed datagram can crash LCM's thread. */
     const char *mine[] = {s->request_channel, s->ack_channel};
-    s->lcm = mpb_lcm_create_keeping(url, mine, 2, NULL);
+    int filtered = 0;
+    s->lcm = mpb_lcm_create_keeping(url, mine, 2, &filtered);
     if (s->lcm == NULL) {
         snprintf(err, errlen, "cannot join LCM at %s (udpm needs a multicast "
                  "route, e.g. 'ip route add 224.0.0.0/4 dev lo')", url);
@@ -719,6 +721,8 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
         free(s);
         return MPB_ELCM;
     }
+    if (!filtered && def->on_warning != NULL)
+        def->on_warning(def->user, MPB_LCM_UNFILTERED);
     lcm_subscription_set_queue_capacity(rsub, MPB__REQUEST_QUEUE);
     lcm_subscription_set_queue_capacity(asub, MPB__ACK_QUEUE);
 

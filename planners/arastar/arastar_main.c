@@ -44,6 +44,12 @@ static void usage(FILE *out)
             MPB_DEFAULT_LCM_URL);
 }
 
+static void on_warning(void *user, const char *line)
+{
+    (void)user;
+    fprintf(stderr, "mpb-planner-arastar: %s\n", line);
+}
+
 static void on_ready(void *user, const char *planner_id)
 {
     (void)user;
@@ -96,6 +102,7 @@ int main(int argc, char **argv)
         .solve = ara_solve,
         .user = &ctx,
         .on_ready = on_ready,
+        .on_warning = on_warning,
         .secret_file = opt.secret_file,
     };
     int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,

@@ -88,6 +88,12 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
     return MPB_OK;
 }
 
+static void on_warning(void *user, const char *line)
+{
+    (void)user;
+    fprintf(stderr, "mpb-planner-null: %s\n", line);
+}
+
 static void on_ready(void *user, const char *planner_id)
 {
     (void)user;
@@ -136,6 +142,7 @@ int main(int argc, char **argv)
         .user = NULL,
         .heartbeat_ms = 0,
         .on_ready = on_ready,
+        .on_warning = on_warning,
         .secret_file = opt.secret_file,
     };
     int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,

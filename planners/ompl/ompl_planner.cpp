@@ -749,6 +749,11 @@ void usage(std::FILE *out)
     std::fprintf(out, "\n");
 }
 
+extern "C" void on_warning(void *, const char *line)
+{
+    std::fprintf(stderr, "mpb-planner-ompl: %s\n", line);
+}
+
 extern "C" void on_ready(void *, const char *planner_id)
 {
     std::printf("mpb-planner-ompl: serving as %s\n", planner_id);
@@ -812,6 +817,7 @@ int main(int argc, char **argv)
     def.solve = solve;
     def.user = &ctx;
     def.on_ready = on_ready;
+    def.on_warning = on_warning;
     def.secret_file = opt.secret_file;
 
     int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,

@@ -4,7 +4,9 @@
 # exactly those short messages, not channels one byte or one character
 # longer or shorter, while an unfiltered listener made before it in the
 # same process receives everything; long (fragmented) messages pass whole.
-# What cannot be filtered gives a plain instance.
+# A channel list the filter cannot hold gives a filter that keeps every
+# channel (it still drops malformed datagrams); a URL that is not udpm://
+# a plain instance.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -23,9 +25,9 @@ done
 check "a long message on a kept channel arrives whole" eq "$(count filtered KEEP_1+big)" 1
 check "long messages pass whatever their channel (fragments name none)" \
     eq "$(count filtered DROP_BIG+big)" 1
-check "more channels than a filter holds: an instance, unfiltered" grep -qx "too_many instance 1 filtered 0" "$work/out.txt"
-check "a name too long: the same" grep -qx "too_long instance 1 filtered 0" "$work/out.txt"
-check "no channels: the same" grep -qx "no_channels instance 1 filtered 0" "$work/out.txt"
-check "not udpm: the same" grep -qx "not_udpm instance 1 filtered 0" "$work/out.txt"
+check "more channels than a filter holds: filtered, every channel kept" grep -qx "too_many instance 1 filtered 1" "$work/out.txt"
+check "a name too long for LCM: the same" grep -qx "too_long instance 1 filtered 1" "$work/out.txt"
+check "no channels: the same" grep -qx "no_channels instance 1 filtered 1" "$work/out.txt"
+check "not udpm: an instance, unfiltered" grep -qx "not_udpm instance 1 filtered 0" "$work/out.txt"
 [ "$FAILS" -eq 0 ] || cat "$work/out.txt"
 mpb_finish

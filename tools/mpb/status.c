@@ -403,7 +403,12 @@ int cmd_status(int argc, char **argv)
         timeout = 5.0;
     f.tty = isatty(STDOUT_FILENO);
 
-    lcm_t *lcm = lcm_create(url);
+    /* Its one channel, and no malformed datagram (lcm_filter.h). */
+    static const char *const mine[] = {MPB_CHANNEL_STATUS};
+    int filtered = 0;
+    lcm_t *lcm = mpb_lcm_create_keeping(url, mine, 1, &filtered);
+    if (lcm != NULL && !filtered)
+        fprintf(stderr, "mpb " CMD ": " MPB_LCM_UNFILTERED "\n");
     if (lcm == NULL) {
         /* Only a UDP multicast URL fails for want of a route. */
         if (strncmp(url, "udpm://", 7) == 0)

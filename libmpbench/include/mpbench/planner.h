@@ -67,6 +67,12 @@ typedef struct mpb_planner_def {
      * with (auth.h); the daemon must use the same. NULL: no authentication.
      */
     const char *secret_file;
+    /*
+     * Optional: called in the serving thread with one line for the user,
+     * e.g. MPB_LCM_UNFILTERED when LCM's socket could not be filtered
+     * (lcm_filter.h); print it. NULL: the line is lost.
+     */
+    void      (*on_warning)(void *user, const char *line);
 } mpb_planner_def;
 
 /*
