@@ -336,7 +336,7 @@ static int sockets_on(int port, int *fds, ino_t *inos, int max)
 int mpb_lcm_sockets(const char *url, int *fds, int max)
 {
     ino_t inos[SOCKETS_MAX];
-    int port = url_port(url);
+    int port = url_port(url ? url : MPB_DEFAULT_LCM_URL);
     if (port == 0 || fds == NULL || max < 1)
         return 0;
     return sockets_on(port, fds, inos, max < SOCKETS_MAX ? max : SOCKETS_MAX);

@@ -114,7 +114,8 @@ int mpb_lcm_filter_program(const char *const *channels, int n,
 int mpb_lcm_filter_socket(int fd, const char *const *channels, int n);
 
 /*
- * This process's UDP sockets bound to the port of url (a udpm:// URL):
+ * This process's UDP sockets bound to the port of url (a udpm:// URL;
+ * NULL for MPB_DEFAULT_LCM_URL):
  * their descriptors in fds, at most max; returns how many (0 for a URL
  * that is not udpm://). With a list taken before an LCM instance is made
  * and one after, the new descriptor is that instance's receive socket:

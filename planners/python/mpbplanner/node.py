@@ -27,8 +27,9 @@ import threading
 import time
 import traceback
 
-import lcm
 from mpb import plan_request_t, plan_result_t, planner_announce_t, run_ack_t
+
+from .sockfilter import filtered_lcm
 
 ANNOUNCE = "MPB_ANNOUNCE"
 ACK = "MPB_ACK"
@@ -94,7 +95,15 @@ class Node:
             raise ValueError(error)
         self.host = socket.gethostname()
         self.planner_id = planner_id(name, self.host, os.getpid())
-        self.lc = lcm.LCM(url) if url else lcm.LCM()
+        # Its two channels, and no malformed datagram (sockfilter.py).
+        request = "MPB_REQUEST_" + self.planner_id
+        ack = ACK + "_" + self.planner_id
+        self.lc, filtered = filtered_lcm(url, [request, ack])
+        if not filtered:
+            print("mpb-planner-python: warning: LCM's receive socket has no "
+                  "filter (not a udpm:// URL, or the kernel refused it): a "
+                  "malformed datagram can crash this process",
+                  file=sys.stderr, flush=True)
         self.name, self.algorithms = name, algorithms
         self.auth, self.verbose = auth, verbose
         self.requests = queue.Queue()
@@ -103,9 +112,9 @@ class Node:
         self.unacked = {}        # run id -> next time to re-send its result
         self.active = []
         self.stopping = False
-        self.lc.subscribe("MPB_REQUEST_" + self.planner_id, self._on_request)
+        self.lc.subscribe(request, self._on_request)
         # The daemon acknowledges our results on a channel of our own.
-        self.lc.subscribe(ACK + "_" + self.planner_id, self._on_ack)
+        self.lc.subscribe(ack, self._on_ack)
 
     def log(self, text):
         if self.verbose:
