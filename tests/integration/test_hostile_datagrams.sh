@@ -1,8 +1,9 @@
 #!/bin/sh
 # No datagram can crash an mpbench process (issue 28, lcm_filter.h): while a
 # planar experiment runs with the null, OMPL and Python planners (and the
-# ARA* planner listening, though it serves no planar world) and mpb status
-# watches, mpb-test-hostile sends to the LCM group, on every channel they
+# ARA* planner listening, though it serves no planar world), mpb status and
+# mpb spy (lcm-spy under Xvfb, with the probe plugin of test_spy) watch,
+# mpb-test-hostile sends to the LCM group, on every channel they
 # subscribe to, the fragment whose offset wraps liblcm's bounds check (as
 # fragment 0 and as fragment 1), a fragment past its total, a message over
 # MPB_LCM_MESSAGE_MAX, a short message whose channel has no NUL after a
@@ -10,8 +11,9 @@
 # at 300 a second. The experiment cannot end before that: it also has runs
 # for a null planner named "late", started only afterwards. Every process
 # is still alive at the end, no warning of an unfiltered socket is
-# printed, the experiment completes, and every run is stored exactly once
-# and done by a planner (none counted a crash).
+# printed, lcm-spy still decodes the daemon's last status, the experiment
+# completes, and every run is stored exactly once and done by a planner
+# (none counted a crash).
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -27,11 +29,35 @@ mpb_planar_experiment "$work/exp.yaml" "name: hostile, runs: 12, time_limit: 5, 
     "{planner: python, algorithms: [RRTConnect]}" \
     "{planner: late, algorithms: [straight_line]}"
 
+# wait_for PATTERN FILE SECONDS: until a line of FILE matches (grep -E).
+wait_for() {
+    tenths=$(($3 * 10))
+    until grep -Eq "$1" "$2" 2>/dev/null; do
+        [ "$tenths" -gt 0 ] || return 1
+        sleep 0.1
+        tenths=$((tenths - 1))
+    done
+}
+
+mkdir -p "$work/probe"
+javac -nowarn -cp /usr/share/java/lcm.jar -d "$work/probe" \
+    "$MPB_SOURCE/tests/integration/data/MpbSpyProbe.java"
+Xvfb -displayfd 3 -screen 0 1024x600x24 -nolisten tcp 3>"$work/display" \
+    >"$work/xvfb.log" 2>&1 &
+xvfb=$!
+wait_for '^[0-9]+$' "$work/display" 30
+DISPLAY=:$(cat "$work/display")
+export DISPLAY
+mpb_spawn "$work/spy.log" "$MPB_BUILD/tools/mpb" spy --classpath "$work/probe"
+spy=$!
+wait_for '^probe: (watching|failed)' "$work/spy.log" 90
+check "mpb spy starts lcm-spy with the probe" grep -q '^probe: watching' "$work/spy.log"
+
 mpb_spawn "$work/null.log" "$planners/null/mpb-planner-null"
 mpb_spawn "$work/ompl.log" "$planners/ompl/mpb-planner-ompl"
 mpb_spawn "$work/arastar.log" "$planners/arastar/mpb-planner-arastar"
 mpb_spawn "$work/python.log" "$planners/python/mpb-planner-python" -v
-listeners=$MPB_PIDS
+listeners=${MPB_PIDS#" $spy"}
 
 # The planners' ids name their channels: wait until each has said it.
 tenths=300
@@ -69,6 +95,10 @@ done
 check "the four planners are alive" eq "$alive" 4
 mpb_wait "$status_pid" 10
 check "mpb status follows to the end and exits 0" eq $? 0
+wait_for '^probe: MPB_STATUS state=done' "$work/spy.log" 30
+check "lcm-spy decodes the daemon's last status" \
+    grep -q '^probe: MPB_STATUS state=done' "$work/spy.log"
+check "... and runs on" kill -0 "$spy"
 check "no process warns of an unfiltered socket" \
     eq "$(cat "$work"/*.log | grep -c "has no filter")" 0
 
@@ -81,6 +111,7 @@ check "... no stage stored twice" \
     eq "$(q "SELECT count(*) FROM (SELECT run_id, name FROM stages
              GROUP BY run_id, name HAVING count(*) > 1)")" 0
 check "every run verified valid" eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 48
+kill "$xvfb" 2>/dev/null
 if [ "$FAILS" -ne 0 ]; then
     for f in "$work"/*.log; do echo "== $f"; tail -n 5 "$f"; done
 fi

@@ -2,14 +2,23 @@
  * spy.c - `mpb spy`: starts LCM's lcm-spy with mpbench's message types on
  * its class path, so that every mpbench channel shows decoded. Debian's
  * lcm-spy wrapper passes -Xincgc, which Java 17 refuses, so this runs
- * `java -cp lcm.jar:jchart2d.jar:mpb_types.jar lcm.spy.Spy` itself.
+ * `java -cp lcm.jar:jchart2d.jar:mpb_types.jar lcm.spy.Spy` itself, as its
+ * child: once Java's LCM has made its UDP socket, this process takes it
+ * (pidfd_getfd(), which a parent may do to its child) and attaches the
+ * filter of lcm_filter.h that keeps every channel and drops malformed
+ * datagrams, then waits for lcm-spy and exits with its status.
  */
+#include <dirent.h>
 #include <errno.h>
 #include <getopt.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "mpb.h"
@@ -48,7 +57,9 @@ static void usage(FILE *out)
         "liblcm-java and libjchart2d-java) and mpb_types.jar from the build\n"
         "tree or the install prefix (share/mpbench). Java is $JAVA_HOME/bin/java\n"
         "when JAVA_HOME is set, else java on the PATH. It needs a display:\n"
-        "without DISPLAY (or WAYLAND_DISPLAY) it exits 1 at once.\n"
+        "without DISPLAY (or WAYLAND_DISPLAY) it exits 1 at once. Its LCM\n"
+        "socket drops malformed datagrams, as every mpbench process's does;\n"
+        "a warning says when that filter could not be attached.\n"
         "\n"
         "Options:\n"
         "  -u, --lcm-url URL     LCM URL (default: " MPB_DEFAULT_LCM_URL ");\n"
@@ -61,6 +72,97 @@ static void usage(FILE *out)
         "\n"
         "Exit status: lcm-spy's; 1 when java or a jar is missing, 2 on a bad\n"
         "command line.\n");
+}
+
+/* How long Java may take to make its LCM socket. */
+#define SPY_SOCKET_WAIT_S 60
+
+static volatile sig_atomic_t spy_child;
+
+static void forward_signal(int sig)
+{
+    if (spy_child > 0)
+        kill((pid_t)spy_child, sig);
+}
+
+/* Attach the keep-every-channel filter to the UDP socket on url's port
+ * of the child pidfd names, pid: each of its sockets is taken in turn
+ * (a duplicate, closed again) and the ones mpb_lcm_sockets() then finds
+ * in this process are its. 1 if attached. */
+static int filter_child(int pidfd, pid_t pid, const char *url)
+{
+    char dir[64];
+    snprintf(dir, sizeof dir, "/proc/%d/fd", (int)pid);
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    int attached = 0;
+    if (d == NULL)
+        return 0;
+    while (!attached && (e = readdir(d)) != NULL) {
+        char path[sizeof dir + sizeof e->d_name], target[64];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        ssize_t n = readlink(path, target, sizeof target - 1);
+        if (n <= 0)
+            continue;
+        target[n] = '\0';
+        if (strncmp(target, "socket:", 7) != 0)
+            continue;
+        int fd = (int)syscall(SYS_pidfd_getfd, pidfd, atoi(e->d_name), 0);
+        if (fd < 0)
+            continue;
+        int mine[4];
+        int k = mpb_lcm_sockets(url, mine, 4);
+        for (int i = 0; i < k; i++)
+            if (mine[i] == fd)
+                attached = mpb_lcm_filter_socket(fd, NULL, 0) == MPB_OK;
+        close(fd);
+    }
+    closedir(d);
+    return attached;
+}
+
+/* Run lcm-spy as a child, filter its LCM socket, and wait for it: its
+ * exit status. */
+static int run_spy(const char *java, char *const args[], const char *url)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        fprintf(stderr, "mpb " CMD ": cannot start %s: %s\n", java, strerror(errno));
+        return MPB_EXIT_ERROR;
+    }
+    if (pid == 0) {
+        execv(java, args);
+        fprintf(stderr, "mpb " CMD ": cannot run %s: %s\n", java, strerror(errno));
+        _exit(MPB_EXIT_ERROR);
+    }
+    spy_child = pid;
+    struct sigaction sa = {.sa_handler = forward_signal};
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+
+    int pidfd = (int)syscall(SYS_pidfd_open, pid, 0), attached = 0, status = 0;
+    struct timespec tick = {0, 20 * 1000000L};
+    for (int i = 0; pidfd >= 0 && !attached && i < SPY_SOCKET_WAIT_S * 50; i++) {
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid) {
+            close(pidfd);
+            return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        }
+        attached = filter_child(pidfd, pid, url);
+        if (!attached)
+            nanosleep(&tick, NULL);
+    }
+    if (pidfd >= 0)
+        close(pidfd);
+    if (!attached)
+        fprintf(stderr, "mpb " CMD ": " MPB_LCM_UNFILTERED "\n");
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return MPB_EXIT_ERROR;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 /* path is a readable regular file or directory. */
@@ -250,10 +352,8 @@ int cmd_spy(int argc, char **argv)
         free(urlarg);
         return MPB_EXIT_ERROR;
     }
-    fflush(NULL);
-    execv(java, args);
-    fprintf(stderr, "mpb " CMD ": cannot run %s: %s\n", java, strerror(errno));
+    int rc = run_spy(java, args, url);
     free(classpath);
     free(urlarg);
-    return MPB_EXIT_ERROR;
+    return rc;
 }
