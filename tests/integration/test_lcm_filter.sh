@@ -6,7 +6,7 @@
 # same process receives everything; long (fragmented) messages pass whole.
 # A channel list the filter cannot hold gives a filter that keeps every
 # channel (it still drops malformed datagrams); a URL that is not udpm://
-# a plain instance.
+# a plain instance, and the planners and mpb status then warn once.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -29,5 +29,16 @@ check "more channels than a filter holds: filtered, every channel kept" grep -qx
 check "a name too long for LCM: the same" grep -qx "too_long instance 1 filtered 1" "$work/out.txt"
 check "no channels: the same" grep -qx "no_channels instance 1 filtered 1" "$work/out.txt"
 check "not udpm: an instance, unfiltered" grep -qx "not_udpm instance 1 filtered 0" "$work/out.txt"
+
+# A process whose socket cannot be filtered (memq:// has none) says so in
+# one warning line on stderr; each is stopped after 3 s.
+for cmd in "planners/null/mpb-planner-null --lcm-url memq://" \
+           "planners/python/mpb-planner-python --lcm-url memq://" \
+           "tools/mpb status --lcm-url memq://"; do
+    # shellcheck disable=SC2086  # the command's words
+    timeout 3 $MPB_BUILD/$cmd >/dev/null 2>"$work/warn.err"
+    check "unfiltered, ${cmd%% --lcm-url*} warns once" \
+        eq "$(grep -c "warning: LCM's receive socket has no filter" "$work/warn.err")" 1
+done
 [ "$FAILS" -eq 0 ] || cat "$work/out.txt"
 mpb_finish
