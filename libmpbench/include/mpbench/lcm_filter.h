@@ -24,7 +24,8 @@
  * channel.
  *
  * lcm-spy and other listeners have sockets of their own and see every
- * message, malformed ones included, unless they filter their own socket.
+ * message, malformed ones included, unless their socket is filtered too
+ * (mpb spy filters lcm-spy's).
  */
 #ifndef MPBENCH_LCM_FILTER_H
 #define MPBENCH_LCM_FILTER_H
@@ -39,13 +40,13 @@ extern "C" {
 #endif
 
 /*
- * The largest LCM message (encoded, without LCM's headers) any mpbench
- * process sends or accepts: 16 MiB. The largest are results, whose stages
+ * The largest LCM message (encoded, without LCM's headers) an mpbench
+ * process accepts: 16 MiB. The largest are results, whose stages
  * carry trajectories (a 7-joint path of 299,000 waypoints is 16 MiB), and
  * requests, which carry the robot and scene text. liblcm keeps at most
  * 16 MiB of partly received messages in all, so a larger one would push
  * every other out while it arrives. A fragment claiming a larger message
- * is dropped.
+ * is dropped. (The daemon and the planners do not yet refuse to send one.)
  */
 #define MPB_LCM_MESSAGE_MAX (16u << 20)
 
