@@ -388,7 +388,7 @@ static void log_latency(const mpbd *d)
 int main(int argc, char **argv)
 {
     options o;
-    char err[1024], host[64] = "";
+    char err[1024], host[256] = "";
     mpbd d = {0};
     int rc, exit_code = 1;
 
@@ -419,8 +419,8 @@ int main(int argc, char **argv)
     d.resolution = o.resolution;
     d.verbose = o.verbose;
     gethostname(host, sizeof host - 1);
-    snprintf(d.daemon_id, sizeof d.daemon_id, "mpbenchd@%.60s:%ld", host,
-             (long)getpid());
+    mpb_planner_id_make("mpbenchd", host, (long)getpid(), d.daemon_id,
+                        sizeof d.daemon_id);
 
     if (o.replay && mpbd_replay_log_readable(o.replay) != 0)
         goto out;

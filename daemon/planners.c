@@ -117,6 +117,7 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
     }
     p->heartbeat_s = m->heartbeat_ms > 0 ? m->heartbeat_ms / 1000.0 : 0.5;
     p->last_seen = now;
+    p->instance = d->msg_from;
     int index = (int)(p - d->planners);
     int num_active = m->num_active > 0 ? m->num_active : 0;
     mpbd_planner_working_on(d, index, m->active_runs, num_active);
@@ -163,6 +164,14 @@ int mpbd_planner_offers(const mpbd_planner *p, const char *name,
     for (int i = 0; i < p->num_algorithms; i++)
         if (strcmp(p->algorithms[i], algorithm) == 0)
             return 1;
+    return 0;
+}
+
+uint64_t mpbd_planner_instance(const mpbd *d, const char *id)
+{
+    for (int i = 0; i < d->num_planners; i++)
+        if (strcmp(d->planners[i].id, id) == 0)
+            return d->planners[i].instance;
     return 0;
 }
 
