@@ -128,4 +128,15 @@ replayed=$(($(total "$work/replayed-first") + $(total "$work/replayed-second")))
 check "every replayed message was counted as rejected ($replayed)" \
     grep -q "complete: .* ($replayed rejected messages)" "$work/second.log"
 
+# 4. A log given to --replay is what was heard then: with the same secret
+#    its messages are believed, whoever sent them.
+"$daemon" --secret-file "$work/secret" --replay "$work/first.lcm" \
+    -d "$work/replayed.db" "$work/exp.yaml" >"$work/replay.log" 2>&1
+check "mpbenchd --replay of the first log with the secret exits 0" eq $? 0
+rebuilt=$(sed -n 's/.* \([0-9]*\) of 40 runs stored.* 0 rejected messages$/\1/p' \
+    "$work/replay.log")
+check "... rebuilding the dead planner's runs, rejecting nothing" \
+    eq "${rebuilt:-0}" \
+    "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND planner_id = '$p1_id'")"
+
 mpb_finish
