@@ -74,4 +74,31 @@ check "no line of the log begins with their text" \
 check "no escape or bell character reached the log" \
     sh -c "! grep -q \"\$(printf '[\\033\\007]')\" '$work/daemon.log'"
 
+# mpb status shows a forged status's text escaped too.
+cat >"$work/forge-status.py" <<'EOT'
+import time
+import lcm
+from mpb import daemon_status_t, planner_seen_t
+
+lc = lcm.LCM()
+st = daemon_status_t()
+st.daemon_id, st.experiment, st.state = "d\x1b[1m", "x\x1b[2J\nline", "running"
+p = planner_seen_t()
+p.planner_id, p.name = "p\x1b[31m", "n\x07"
+st.planners, st.num_planners = [p], 1
+for i in range(30):
+    st.utime = int(time.time() * 1e6)
+    lc.publish("MPB_STATUS", st.encode())
+    time.sleep(0.1)
+EOT
+mpb_timeout 10 "$MPB_BUILD/tools/mpb" status --once >"$work/status.out" 2>&1 &
+follower=$!
+PYTHONPATH="$MPB_BUILD/lcmtypes/python" "$python" "$work/forge-status.py"
+wait $follower
+check "mpb status prints a forged status" eq $? 0
+check "... with its text escaped" \
+    grep -qF 'p\x1b[31m (n\x07)' "$work/status.out"
+check "... and no escape or bell character of it" \
+    sh -c "! grep -q \"\$(printf '[\033\007]')\" '$work/status.out'"
+
 mpb_finish
