@@ -59,13 +59,16 @@ static void on_status(mpbd *d, const mpb_daemon_status_t *m,
     if (strcmp(m->daemon_id, d->daemon_id) == 0 ||
         (d->auth != NULL && info->instance == mpb_auth_instance(d->auth)))
         return;                 /* itself */
+    int ending = strcmp(m->state, "waiting") != 0 &&
+                 strcmp(m->state, "running") != 0;
     int64_t theirs = mpb_daemon_started_utime(m);
     if (mpb_daemon_started_before(theirs, m->daemon_id, d->started_utime,
                                   d->daemon_id)) {
-        if (!believe_elder(d, m, v, channel))
+        /* One that is ending is no concern; with a secret, one that
+         * cannot be believed is counted all the same (a replay). */
+        if ((ending && d->auth == NULL) || !believe_elder(d, m, v, channel) ||
+            ending)
             return;
-        if (strcmp(m->state, "waiting") != 0 && strcmp(m->state, "running") != 0)
-            return;             /* one that is ending */
         if (d->elder[0] == '\0') {
             char id[4 * MPB_PLANNER_ID_MAX + 1], exp[160];
             mpb_escape(m->daemon_id, id, sizeof id);
@@ -80,8 +83,8 @@ static void on_status(mpbd *d, const mpb_daemon_status_t *m,
         mpbd_reject(d, channel, mpb_auth_verdict_text(v));
         return;
     }
-    if (strcmp(m->state, "waiting") != 0 && strcmp(m->state, "running") != 0)
-        return;                 /* one that is ending */
+    if (ending)
+        return;
     /* A younger one: it stops once it hears this one. Answering needs no
      * trust: a replayed status costs one status more. */
     if (strcmp(d->younger_logged, m->daemon_id) != 0) {
