@@ -5,7 +5,8 @@
 # a dead planner's announcements, acknowledgements and results replayed to
 # it get that planner no run and record no crash; a live planner's results
 # replayed to the daemon that stored them add no row. Every replayed
-# message is counted as rejected.
+# message is counted as rejected. A daemon started beside a running one
+# still stops, and a log given to --replay is still read.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -89,6 +90,16 @@ done
     replay "$work/first.lcm" 'MPB_STATUS'
 } >"$work/replayed-first" 2>"$work/replay-first.err" &
 replayer=$!
+# Meanwhile, a daemon started beside it with the same secret stops, as
+# without one: the running daemon's answer to its status echoes it, so
+# it is believed where a replayed status is not.
+mpb_timeout 20 "$daemon" --secret-file "$work/secret" -d "$work/beside.db" \
+    "$work/exp.yaml" >"$work/beside.log" 2>&1
+check "a daemon started beside it with the same secret exits 1" eq $? 1
+check "... naming the running one" \
+    grep -q "stopped: another mpbenchd, mpbenchd@" "$work/beside.log"
+check "... having sent no request" eq "$(sqlite3 "$work/beside.db" \
+    "SELECT count(*) FROM runs WHERE attempts > 0")" 0
 # 3. Results of the new planner, stored already, played again to the
 #    daemon that stored them while it still runs.
 done_before=$(q "SELECT count(*) FROM runs WHERE state = 'done'")
@@ -109,7 +120,7 @@ check "... and the dead planner's announcements" \
 mpb_wait $second 60
 check "the restarted daemon completes its runs" eq $? 0
 check "... not stopped by the replayed status" \
-    sh -c "! grep -q 'another mpbenchd' '$work/second.log'"
+    sh -c "! grep -q 'stopped: another mpbenchd' '$work/second.log'"
 check "every run is done once" \
     eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 40
 check "no row was added" eq "$(q "SELECT count(*) FROM runs")" 40
