@@ -245,4 +245,10 @@ check "the kit's trailer is the protocol's test vector" test "$(head -1 "$work/v
 check "... believed once, then a replay; on another channel a wrong tag" \
     test "$(tail -1 "$work/vector.out")" = "[0, 2, 3]"
 
+head -c 5 /dev/urandom >"$work/short-secret"
+mpb_timeout 10 "$planner" --secret-file "$work/short-secret" >"$work/short.log" 2>&1
+check "a secret shorter than 16 bytes is refused, as by the C kit" \
+    test $? -eq 1 -a "$(cat "$work/short.log")" = \
+    "mpb-planner-python: $work/short-secret: a secret needs at least 16 bytes, this has 5"
+
 mpb_finish

@@ -80,7 +80,11 @@ class Auth:
 
     def __init__(self, path):
         with open(path, "rb") as f:
-            self.key = hashlib.blake2b(f.read(), digest_size=32).digest()
+            secret = f.read()
+        if len(secret) < 16:        # as the C library says it
+            raise ValueError(f"{path}: a secret needs at least 16 bytes, "
+                             f"this has {len(secret)}")
+        self.key = hashlib.blake2b(secret, digest_size=32).digest()
         self.instance = 0
         while self.instance == 0:
             self.instance = int.from_bytes(os.urandom(8), "big")
