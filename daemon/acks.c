@@ -29,7 +29,9 @@ void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
     };
     /* A result that names no valid planner cannot be answered. */
     if (mpb_ack_channel(planner_id, channel, sizeof channel) == MPB_OK)
-        mpb_publish_ack(d->lcm, d->auth, channel, &ack);
+        mpb_publish_ack(d->lcm, d->auth, d->auth != NULL
+                            ? mpbd_planner_instance(d, planner_id) : 0,
+                        channel, &ack);
 }
 
 static mpbd_ack_due *push(mpbd_ack_due **arr, int *num, int *cap)

@@ -86,6 +86,8 @@ typedef struct mpbd_planner {
     double  heartbeat_s;
     double  last_seen;       /* monotonic s */
     int     gone;
+    uint64_t instance;       /* its process's, from its announcements
+                                (auth.h): what messages to it echo */
 } mpbd_planner;
 
 /* A run not yet done, as the scheduler holds it. */
@@ -148,6 +150,12 @@ typedef struct mpbd_counters {
 typedef struct mpbd {
     lcm_t           *lcm;
     mpb_auth        *auth;           /* NULL: messages are not authenticated */
+    uint64_t         msg_from;       /* the sender instance of the message
+                                        being handled (mpbd_message_ok) */
+    /* The younger daemon whose status the next status answers (echoes),
+     * so that it may believe it (daemons.c); 0 if none. */
+    uint64_t         status_echo;
+    int              requested;      /* a request has gone out */
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result, *sub_status;
     mpb_store       *store;
@@ -205,8 +213,9 @@ typedef struct mpbd {
     int64_t          started_utime;  /* the same moment, wall clock us */
     /* An older daemon heard on the LCM URL, as the log names it: then
      * this one stops (daemons.c). */
-    char             elder[256];
+    char             elder[640];
     char             younger_logged[MPB_PLANNER_ID_MAX + 1];
+    char             ignored_elder[MPB_PLANNER_ID_MAX + 1];
     double           last_status;
     double           last_wait_log;
     double           last_bad_announce_log;
@@ -218,6 +227,8 @@ void mpbd_planners_subscribe(mpbd *d);
 int  mpbd_planners_expire(mpbd *d, double now);
 int  mpbd_planner_offers(const mpbd_planner *p, const char *name,
                          const char *algorithm);
+/* The instance (auth.h) of the planner with this id, 0 if unknown. */
+uint64_t mpbd_planner_instance(const mpbd *d, const char *id);
 void mpbd_planners_free(mpbd *d);
 
 /* daemons.c */
@@ -291,9 +302,12 @@ int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
 int  mpbd_recently_done(const mpbd *d, const char *uid);
 
 /* inbox.c: the length of a received message to decode, or 0 if it is not
- * authentic or well-formed (then counted and logged) */
+ * authentic, fresh and well-formed (then counted and logged); its sender's
+ * instance (auth.h) in d->msg_from */
 size_t mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
                        const char *channel);
+/* Count a message received on channel as rejected, and log why. */
+void mpbd_reject(mpbd *d, const char *channel, const char *why);
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);

@@ -11,6 +11,8 @@
  * a younger daemon's status answers at once with its own, and the younger
  * one stops on hearing it. Daemons with different secrets (auth.h) do not
  * hear each other, and need not: their planners do not answer each other.
+ * A status the daemon cannot trust does not stop it once it has sent a
+ * request (believe_elder()).
  */
 #include <stdio.h>
 #include <string.h>
@@ -18,30 +20,86 @@
 #include "daemon.h"
 #include "mpb_daemon_status_t.h"
 
-static void on_status(mpbd *d, const mpb_daemon_status_t *m, double now)
+/* 1 if this daemon may believe that the daemon whose status it holds
+ * started first and runs: then it stops. With a secret, the status must
+ * be fresh (auth.h): the elder's answer to this one's status echoes it,
+ * while a recorded status replayed echoes another. Without one, anybody
+ * on the network may send any status: it is believed only before this
+ * daemon's first request, when stopping loses nothing (a daemon that has
+ * sent requests goes on; docs/reliability.md). */
+static int believe_elder(mpbd *d, const mpb_daemon_status_t *m,
+                         mpb_auth_verdict v, const char *channel)
+{
+    if (d->auth != NULL) {
+        if (v == MPB_AUTH_FRESH)
+            return 1;
+        mpbd_reject(d, channel, mpb_auth_verdict_text(v));
+        return 0;
+    }
+    if (!d->requested)
+        return 1;
+    if (strcmp(d->ignored_elder, m->daemon_id) != 0) {
+        snprintf(d->ignored_elder, sizeof d->ignored_elder, "%s",
+                 m->daemon_id);
+        char id[4 * MPB_PLANNER_ID_MAX + 1];
+        mpb_escape(m->daemon_id, id, sizeof id);
+        mpbd_log("a status from %s says it started on this LCM URL before "
+                 "this one: ignored, since this one has sent requests "
+                 "already and without --secret-file a status may be forged",
+                 id);
+    }
+    d->count.rejected++;
+    return 0;
+}
+
+static void on_status(mpbd *d, const mpb_daemon_status_t *m,
+                      mpb_auth_verdict v, const mpb_auth_info *info,
+                      const char *channel, double now)
 {
     if (strcmp(m->daemon_id, d->daemon_id) == 0 ||
-        (strcmp(m->state, "waiting") != 0 && strcmp(m->state, "running") != 0))
-        return;                 /* itself, or one that is ending */
+        (d->auth != NULL && info->instance == mpb_auth_instance(d->auth)))
+        return;                 /* itself */
+    int ending = strcmp(m->state, "waiting") != 0 &&
+                 strcmp(m->state, "running") != 0;
     int64_t theirs = mpb_daemon_started_utime(m);
     if (mpb_daemon_started_before(theirs, m->daemon_id, d->started_utime,
                                   d->daemon_id)) {
-        if (d->elder[0] == '\0')
+        /* One that is ending is no concern; with a secret, one that
+         * cannot be believed is counted all the same (a replay). */
+        if ((ending && d->auth == NULL) || !believe_elder(d, m, v, channel) ||
+            ending)
+            return;
+        if (d->elder[0] == '\0') {
+            char id[4 * MPB_PLANNER_ID_MAX + 1], exp[160];
+            mpb_escape(m->daemon_id, id, sizeof id);
+            mpb_escape(m->experiment, exp, sizeof exp);
             snprintf(d->elder, sizeof d->elder, "%s (experiment '%s', "
-                     "started %.1f s before this one)", m->daemon_id,
-                     m->experiment, (double)(d->started_utime - theirs) * 1e-6);
+                     "started %.1f s before this one)", id, exp,
+                     (double)(d->started_utime - theirs) * 1e-6);
+        }
         return;
     }
-    /* A younger one: it stops once it hears this one. */
+    if (v == MPB_AUTH_REPLAYED) {
+        mpbd_reject(d, channel, mpb_auth_verdict_text(v));
+        return;
+    }
+    if (ending)
+        return;
+    /* A younger one: it stops once it hears this one. Answering needs no
+     * trust: a replayed status costs one status more. */
     if (strcmp(d->younger_logged, m->daemon_id) != 0) {
+        char id[4 * MPB_PLANNER_ID_MAX + 1], exp[160];
+        mpb_escape(m->daemon_id, id, sizeof id);
+        mpb_escape(m->experiment, exp, sizeof exp);
         mpbd_log("another mpbenchd, %s (experiment '%s'), started on this "
-                 "LCM URL after this one: it stops", m->daemon_id,
-                 m->experiment);
+                 "LCM URL after this one: it stops", id, exp);
         snprintf(d->younger_logged, sizeof d->younger_logged, "%s",
                  m->daemon_id);
     }
     /* At once, whenever this one published last: the younger one waits
-     * MPBD_LISTEN_S for it, and publishes once a second itself. */
+     * MPBD_LISTEN_S for it, and publishes once a second itself. With a
+     * secret, the answer echoes it, so that it can believe it. */
+    d->status_echo = info->instance;
     mpbd_status_publish(d, d->num_planners ? "running" : "waiting", now);
 }
 
@@ -50,14 +108,17 @@ static void on_status_raw(const lcm_recv_buf_t *rbuf, const char *channel,
 {
     mpbd *d = user;
     mpb_daemon_status_t m;
+    mpb_auth_info info;
     size_t len;
-    /* Checked quietly: a daemon with another secret, or none, is no
-     * concern of this one, and its status is not a rejected message. */
-    if (!mpb_auth_check(d->auth, channel, rbuf->data, rbuf->data_size, &len) ||
+    /* A daemon with another secret, or none, is no concern of this one,
+     * and its status is not a rejected message: checked quietly. */
+    mpb_auth_verdict v = mpb_auth_open(d->auth, channel, rbuf->data,
+                                       rbuf->data_size, &len, &info);
+    if (v == MPB_AUTH_BAD_TAG ||
         !mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, NULL, 0) ||
         mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
-    on_status(d, &m, mpb_monotonic_s());
+    on_status(d, &m, v, &info, channel, mpb_monotonic_s());
     mpb_daemon_status_t_decode_cleanup(&m);
 }
 

@@ -3,12 +3,14 @@
  * store, and the single-threaded poll loop that drives everything else.
  */
 #include <errno.h>
+#include <math.h>
 #include <getopt.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "daemon.h"
@@ -30,7 +32,8 @@ static void usage(FILE *out)
 "trajectory they return, and stores everything in an SQLite database. Exits\n"
 "when every run is done. Started again on the same database, it resumes an\n"
 "unfinished experiment of the same name and file content, unless its robot\n"
-"or scene files have changed since.\n"
+"or scene files have changed since; on a complete one, it says so and exits\n"
+"0 without running anything (--again runs it once more).\n"
 "\n"
 "options:\n"
 "  -d, --db PATH         database file (default: mpbench.db)\n"
@@ -43,6 +46,8 @@ static void usage(FILE *out)
 "                        F (planners need the same file); messages without\n"
 "                        the right tag are rejected\n"
 "      --new             start a new experiment even if one can be resumed\n"
+"      --again           if the experiment is complete, run it once more as a\n"
+"                        new experiment (an unfinished one is resumed)\n"
 "      --check           check the experiment file and exit\n"
 "      --replay LOG      rebuild the experiment's results from LOG, an\n"
 "                        lcm-logger log of a live run, into a new experiment\n"
@@ -58,7 +63,7 @@ typedef struct options {
     const char *db, *lcm_url, *experiment, *secret_file;
     const char *replay;              /* --replay LOG, or NULL */
     double resolution;
-    int fresh, check, verbose;
+    int fresh, again, check, verbose;
 } options;
 
 static int parse_options(int argc, char **argv, options *o)
@@ -68,6 +73,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"lcm-url", required_argument, NULL, 'u'},
         {"resolution", required_argument, NULL, 'r'},
         {"new", no_argument, NULL, 'N'},
+        {"again", no_argument, NULL, 'A'},
         {"secret-file", required_argument, NULL, 'S'},
         {"check", no_argument, NULL, 'C'},
         {"replay", required_argument, NULL, 'R'},
@@ -95,6 +101,7 @@ static int parse_options(int argc, char **argv, options *o)
             }
             break;
         case 'N': o->fresh = 1; break;
+        case 'A': o->again = 1; break;
         case 'S': o->secret_file = optarg; break;
         case 'C': o->check = 1; break;
         case 'R': o->replay = optarg; break;
@@ -215,6 +222,69 @@ static int cannot_resume(mpbd *d, const char *db)
         return 1;
     }
     return ic.differs;
+}
+
+typedef struct complete_find {
+    const mpbd_experiment *e;
+    int64_t id;
+    double finished;
+} complete_find;
+
+static int find_complete(void *ud, const mpb_experiment_row *row)
+{
+    complete_find *cf = ud;
+    if (strcmp(row->name, cf->e->name) == 0 && row->config_hash != NULL &&
+        strcmp(row->config_hash, cf->e->hash) == 0 && !isnan(row->finished)) {
+        cf->id = row->id;       /* in id order: the newest, at the end */
+        cf->finished = row->finished;
+    }
+    return 0;
+}
+
+/*
+ * 1 if this file's experiment is complete in the database and none of it
+ * is unfinished: said in one line, for the caller to exit 0 having run
+ * nothing. -1 on a database error (said too), else 0.
+ */
+static int complete_already(mpbd *d, const char *db)
+{
+    int64_t id;
+    complete_find cf = {d->exp, 0, 0.0};
+    int rc = mpb_store_experiment_find_unfinished(d->store, d->exp->name,
+                                                  d->exp->hash, &id);
+    if (rc == MPB_OK)
+        return 0;
+    if (rc == MPB_ENOTFOUND)
+        rc = mpb_store_experiments(d->store, find_complete, &cf);
+    if (rc != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s: %s\n", db, mpb_store_errmsg(d->store));
+        return -1;
+    }
+    if (cf.id == 0)
+        return 0;
+    mpb_run_counts c = {0};
+    mpb_store_run_counts(d->store, cf.id, &c);
+    char when[32] = "";
+    time_t t = (time_t)cf.finished;
+    struct tm tm;
+    if (localtime_r(&t, &tm) != NULL)
+        strftime(when, sizeof when, "%Y-%m-%d %H:%M", &tm);
+    printf("mpbenchd: %s: experiment '%s' (id %lld) is complete: %d runs, "
+           "%d succeeded, %d crashed, finished %s; nothing to do (--again "
+           "runs it once more)\n", db, d->exp->name, (long long)cf.id,
+           c.total, c.succeeded, c.crashed, when);
+    return 1;
+}
+
+/* Runs not done, as a resume counts them: the database's count, which a
+ * transaction that failed left as it was (a result stored in it is not
+ * done); in memory if the database cannot tell. */
+static long runs_left(mpbd *d)
+{
+    mpb_run_counts c;
+    if (mpb_store_run_counts(d->store, d->experiment_id, &c) == MPB_OK)
+        return (long)c.total - c.done;
+    return d->total_pending + d->num_flights + d->num_acks;
 }
 
 /* Everything the experiment is made of, written idempotently: a resumed
@@ -388,7 +458,7 @@ static void log_latency(const mpbd *d)
 int main(int argc, char **argv)
 {
     options o;
-    char err[1024], host[64] = "";
+    char err[1024], host[256] = "";
     mpbd d = {0};
     int rc, exit_code = 1;
 
@@ -419,11 +489,27 @@ int main(int argc, char **argv)
     d.resolution = o.resolution;
     d.verbose = o.verbose;
     gethostname(host, sizeof host - 1);
-    snprintf(d.daemon_id, sizeof d.daemon_id, "mpbenchd@%.60s:%ld", host,
-             (long)getpid());
+    mpb_planner_id_make("mpbenchd", host, (long)getpid(), d.daemon_id,
+                        sizeof d.daemon_id);
 
     if (o.replay && mpbd_replay_log_readable(o.replay) != 0)
         goto out;
+    /* LCM before the database: a daemon that cannot talk to its planners
+     * writes nothing (a replay talks to none). What it subscribes to, and
+     * nothing else: its own requests and acknowledgements, and malformed
+     * datagrams, are dropped by the kernel, not after a wake-up of LCM's
+     * thread (lcm_filter.h). Statuses pass, its own once a second with
+     * them, for the other daemons' (daemons.c). */
+    static const char *const wanted[] = {MPB_CHANNEL_ANNOUNCE,
+                                         MPB_CHANNEL_RESULT, MPB_CHANNEL_ACK,
+                                         MPB_CHANNEL_STATUS};
+    int filtered = 0;
+    if (!o.replay &&
+        (d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 4, &filtered)) == NULL) {
+        fprintf(stderr, "mpbenchd: cannot start LCM on %s (no multicast "
+                        "route? see README)\n", o.lcm_url);
+        goto out;
+    }
     d.db_path = o.db;
     if ((rc = mpb_store_open(o.db, 0, &d.store)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
@@ -442,6 +528,13 @@ int main(int argc, char **argv)
     /* A replay always fills a new experiment of its own. */
     if (!(o.fresh || o.replay) && cannot_resume(&d, o.db))
         goto out;
+    if (!(o.fresh || o.replay || o.again)) {
+        int complete = complete_already(&d, o.db);
+        if (complete != 0) {
+            exit_code = complete > 0 ? 0 : 1;
+            goto out;
+        }
+    }
     if ((rc = setup_experiment(&d, o.fresh || o.replay)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s: %s\n", o.db, mpb_store_errmsg(d.store));
         goto out;
@@ -462,26 +555,12 @@ int main(int argc, char **argv)
         d.count.crashed = before.crashed;
         d.count.failed = before.done - before.succeeded - before.crashed;
     }
-    /* What it subscribes to, and nothing else: its own requests and
-     * acknowledgements, and malformed datagrams, are dropped by the
-     * kernel, not after a wake-up of LCM's thread (lcm_filter.h).
-     * Statuses pass, its own once a second with them, for the other
-     * daemons' (daemons.c). */
-    static const char *const wanted[] = {MPB_CHANNEL_ANNOUNCE,
-                                         MPB_CHANNEL_RESULT, MPB_CHANNEL_ACK,
-                                         MPB_CHANNEL_STATUS};
-    int filtered = 0;
-    if ((d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 4, &filtered)) == NULL) {
-        fprintf(stderr, "mpbenchd: cannot start LCM on %s (no multicast "
-                        "route? see README)\n", o.lcm_url);
-        goto out;
-    }
-    if (!filtered)
-        mpbd_log("%s", MPB_LCM_UNFILTERED);
     mpbd_planners_subscribe(&d);
     mpbd_scheduler_subscribe(&d);
     mpbd_results_subscribe(&d);
     mpbd_daemons_subscribe(&d);
+    if (d.lcm != NULL && !filtered)
+        mpbd_log("%s", MPB_LCM_UNFILTERED);
 
     struct sigaction sa = {.sa_handler = on_signal};
     sigemptyset(&sa.sa_mask);
@@ -526,8 +605,7 @@ int main(int argc, char **argv)
     } else if (rc > 0) {
         mpbd_status_publish(&d, "stopped", mpb_monotonic_s());
         mpbd_log("stopped by signal %d with %ld runs left; run the same "
-                 "command to resume", (int)stop_signal,
-                 d.total_pending + d.num_flights);
+                 "command to resume", (int)stop_signal, runs_left(&d));
         exit_code = 128 + (int)stop_signal;
     } else {
         mpbd_status_publish(&d, "stopped", mpb_monotonic_s());
@@ -542,8 +620,7 @@ int main(int argc, char **argv)
                      "ends", d.elder, o.lcm_url);
         else
             mpbd_log("stopped by a database error with %ld runs left; run "
-                     "the same command to resume",
-                     d.total_pending + d.num_flights);
+                     "the same command to resume", runs_left(&d));
     }
 out:
     if (d.lcm) {

@@ -39,16 +39,17 @@ static const char *announce_fault(const mpb_planner_announce_t *m,
 {
     const char *id = m->planner_id;
     size_t n = strlen(id);
+    char shown[4 * 40 + 4];
     if (n == 0)
         return "its planner id is empty";
     if (n > MPB_PLANNER_ID_MAX) {
-        snprintf(why, len, "planner id '%.40s...' is %zu characters long, "
-                 "more than %d", id, n, MPB_PLANNER_ID_MAX);
+        snprintf(why, len, "planner id '%s' is %zu characters long, more "
+                 "than %d", mpb_escape(id, shown, 44), n, MPB_PLANNER_ID_MAX);
         return why;
     }
     if (!mpb_planner_id_is_valid(id)) {
         snprintf(why, len, "planner id '%s' has characters outside "
-                 "[A-Za-z0-9_.:@-]", id);
+                 "[A-Za-z0-9_.:@-]", mpb_escape(id, shown, sizeof shown));
         return why;
     }
     if (m->name[0] == '\0') {
@@ -95,7 +96,9 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
         strcpy(p->id, m->planner_id);
         snprintf(p->host, sizeof p->host, "%s", m->host);
         set_offer(p, m);
-        mpbd_log("planner %s joined (%s, %d algorithm%s)", p->id, m->language,
+        char language[4 * 32 + 4];
+        mpbd_log("planner %s joined (%s, %d algorithm%s)", p->id,
+                 mpb_escape(m->language, language, sizeof language),
                  m->num_algorithms, m->num_algorithms == 1 ? "" : "s");
     } else if (p->gone) {
         set_offer(p, m);
@@ -117,6 +120,7 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
     }
     p->heartbeat_s = m->heartbeat_ms > 0 ? m->heartbeat_ms / 1000.0 : 0.5;
     p->last_seen = now;
+    p->instance = d->msg_from;
     int index = (int)(p - d->planners);
     int num_active = m->num_active > 0 ? m->num_active : 0;
     mpbd_planner_working_on(d, index, m->active_runs, num_active);
@@ -163,6 +167,14 @@ int mpbd_planner_offers(const mpbd_planner *p, const char *name,
     for (int i = 0; i < p->num_algorithms; i++)
         if (strcmp(p->algorithms[i], algorithm) == 0)
             return 1;
+    return 0;
+}
+
+uint64_t mpbd_planner_instance(const mpbd *d, const char *id)
+{
+    for (int i = 0; i < d->num_planners; i++)
+        if (strcmp(d->planners[i].id, id) == 0)
+            return d->planners[i].instance;
     return 0;
 }
 

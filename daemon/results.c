@@ -43,9 +43,13 @@ static void reject(mpbd *d, const char *why, const mpb_plan_result_t *m)
 {
     d->count.rejected++;
     /* A flood of strays must not become a flood of log lines. */
-    if (d->count.rejected <= 10 || d->count.rejected % 1000 == 0)
-        mpbd_log("rejected result %.32s from %.96s: %s (%ld rejected so far)",
-                 m->run_id, m->planner_id, why, d->count.rejected);
+    if (d->count.rejected <= 10 || d->count.rejected % 1000 == 0) {
+        char run[4 * 32 + 4], planner[4 * MPB_PLANNER_ID_MAX + 4];
+        mpbd_log("rejected result %s from %s: %s (%ld rejected so far)",
+                 mpb_escape(m->run_id, run, sizeof run),
+                 mpb_escape(m->planner_id, planner, sizeof planner), why,
+                 d->count.rejected);
+    }
 }
 
 /* Check and measure one stage. */
@@ -397,13 +401,15 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
             d->count.succeeded++;
         else
             d->count.failed++;
-        if (d->verbose)
-            mpbd_log("run %lld %s: %s, verdict %s: %s%.400s",
+        if (d->verbose) {
+            char why[404];
+            mpbd_log("run %lld %s: %s, verdict %s: %s%s",
                      (long long)f->run.id, d->exp->configs[f->run.config].name,
                      rec.status, m->num_stages > 0
                          ? stages[m->num_stages - 1].verdict : "none",
                      rec.success ? "success" : "not a success: ",
-                     rec.success ? "" : rec.message);
+                     rec.success ? "" : mpb_escape(rec.message, why, sizeof why));
+        }
     }
 done:
     for (int i = 0; owned && i < m->num_stages + m->num_values; i++)

@@ -156,7 +156,8 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
     for (int i = 0; i < rq.num_stored; i++)
         stored[i] = stored_ids[i];
     rq.stored = stored;
-    return mpb_publish_request(d->lcm, d->auth, channel, &rq);
+    d->requested = 1;
+    return mpb_publish_request(d->lcm, d->auth, p->instance, channel, &rq);
 }
 
 /* Send the next run of config c to planner p (to wait in its queue if

@@ -39,7 +39,8 @@ void mpbd_status_publish(mpbd *d, const char *state, double now)
             .last_seen_s = now - p->last_seen,
         };
     }
-    mpb_publish_status(d->lcm, d->auth, MPB_CHANNEL_STATUS, &st);
+    mpb_publish_status(d->lcm, d->auth, d->status_echo, MPB_CHANNEL_STATUS, &st);
+    d->status_echo = 0;
     free(seen);
     d->last_status = now;
 }

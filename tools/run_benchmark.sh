@@ -139,7 +139,8 @@ done
 status=0
 for experiment in "$@"; do
     echo "run_benchmark: running $experiment"
-    if ! "$MPB_BUILD/daemon/mpbenchd" -d "$db" "$experiment"; then
+    # --again: an experiment run to its end before is run once more.
+    if ! "$MPB_BUILD/daemon/mpbenchd" --again -d "$db" "$experiment"; then
         echo "run_benchmark: mpbenchd failed on $experiment" >&2
         status=1
         continue

@@ -15,6 +15,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
+#include "mpb_daemon_status_t.h"
 #include "mpb_planner_announce_t.h"
 #include "mpb_run_ack_t.h"
 
@@ -50,7 +51,7 @@ typedef struct mpb__server {
     lcm_t *lcm;
     mpb_auth *auth;             /* NULL: messages are not authenticated */
     char id[MPB_PLANNER_ID_MAX + 1];
-    char host[MPB_PLANNER_ID_MAX + 1];
+    char host[256];
     char request_channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
     char ack_channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
     int heartbeat_ms;
@@ -72,6 +73,10 @@ typedef struct mpb__server {
     int quit;
     int announce_now;
     double waiting_until;           /* the thread sleeps until; 0: awake */
+    /* With a secret: the instance of the daemon last heard (auth.h),
+     * which every message echoes; 0 before any, when the planner does
+     * not announce (no daemon would believe it). */
+    uint64_t daemon;
 } mpb__server;
 
 /* ---- results ----------------------------------------------------------- */
@@ -215,48 +220,29 @@ static int mpb__result_fill_strings(mpb_plan_result_t *res)
 
 /* ---- the planner id ---------------------------------------------------- */
 
-static int mpb__name_char_ok(char c)
-{
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-           (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-';
-}
-
 static int mpb__make_id(mpb__server *s, char *err, size_t errlen)
 {
     const char *name = s->def->name;
-    size_t nlen = name != NULL ? strlen(name) : 0;
-    if (nlen == 0 || nlen > 32) {
-        snprintf(err, errlen, "planner name must be 1 to 32 characters");
-        return MPB_EINVAL;
-    }
-    for (size_t i = 0; i < nlen; i++)
-        if (!mpb__name_char_ok(name[i])) {
-            snprintf(err, errlen, "planner name '%s' may hold only "
-                     "letters, digits and '_' '.' '-'", name);
-            return MPB_EINVAL;
-        }
-
     char host[256];
     if (gethostname(host, sizeof host) != 0)
         host[0] = '\0';
     host[sizeof host - 1] = '\0';
+    if (mpb_planner_id_make(name, host, (long)getpid(), s->id,
+                            sizeof s->id) != MPB_OK) {
+        if (name == NULL || strlen(name) == 0 || strlen(name) > 32)
+            snprintf(err, errlen, "planner name must be 1 to 32 characters");
+        else
+            snprintf(err, errlen, "planner name '%s' may hold only "
+                     "letters, digits and '_' '.' '-'", name);
+        return MPB_EINVAL;
+    }
+    /* The host as announced: whole, in the id's characters. */
     for (char *p = host; *p != '\0'; p++)
-        if (!mpb__name_char_ok(*p))
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') ||
+              (*p >= '0' && *p <= '9') || strchr("_.-", *p) != NULL))
             *p = '-';
-    if (host[0] == '\0')
-        snprintf(host, sizeof host, "localhost");
-
-    char pid[24];
-    snprintf(pid, sizeof pid, "%ld", (long)getpid());
-    /* name '@' host ':' pid must fit: shorten the host if needed. */
-    size_t room = MPB_PLANNER_ID_MAX - nlen - 2 - strlen(pid);
-    if (strlen(host) > room)
-        host[room] = '\0';
-    int n1 = snprintf(s->host, sizeof s->host, "%s", host);
-    int n2 = snprintf(s->id, sizeof s->id, "%s@%s:%s", name, host, pid);
-    if (n1 < 0 || (size_t)n1 >= sizeof s->host || n2 < 0 ||
-        (size_t)n2 >= sizeof s->id || !mpb_planner_id_is_valid(s->id) ||
-        mpb_request_channel(s->id, s->request_channel,
+    snprintf(s->host, sizeof s->host, "%s", host[0] ? host : "localhost");
+    if (mpb_request_channel(s->id, s->request_channel,
                             sizeof s->request_channel) != MPB_OK ||
         mpb_ack_channel(s->id, s->ack_channel, sizeof s->ack_channel) != MPB_OK) {
         snprintf(err, errlen, "cannot make a planner id from '%s'", s->id);
@@ -277,7 +263,10 @@ static void mpb__announce(mpb__server *s)
     pthread_mutex_lock(&s->mu);
     memcpy(active, s->active, sizeof active);
     closed = s->closed;
+    uint64_t daemon = s->daemon;
     pthread_mutex_unlock(&s->mu);
+    if (s->auth != NULL && daemon == 0)
+        return;
 
     mpb_planner_announce_t a;
     memset(&a, 0, sizeof a);
@@ -294,7 +283,7 @@ static void mpb__announce(mpb__server *s)
     a.capacity = closed ? 0 : 1;
     a.num_active = active[0] != '\0' ? 1 : 0;
     a.active_runs = active_list;
-    mpb_publish_announce(s->lcm, s->auth, MPB_CHANNEL_ANNOUNCE, &a);
+    mpb_publish_announce(s->lcm, s->auth, daemon, MPB_CHANNEL_ANNOUNCE, &a);
 }
 
 static void mpb__ack(mpb__server *s, const char *run_id, int kind);
@@ -373,6 +362,27 @@ static void mpb__set_active(mpb__server *s, const char *run_id, int closed)
 
 /* ---- messages ---------------------------------------------------------- */
 
+static uint64_t mpb__daemon(mpb__server *s)
+{
+    pthread_mutex_lock(&s->mu);
+    uint64_t d = s->daemon;
+    pthread_mutex_unlock(&s->mu);
+    return d;
+}
+
+/* With a secret: messages echo daemon from now on; a daemon not echoed
+ * before hears an announcement at once. */
+static void mpb__set_daemon(mpb__server *s, uint64_t daemon)
+{
+    pthread_mutex_lock(&s->mu);
+    if (s->daemon != daemon) {
+        s->daemon = daemon;
+        s->announce_now = 1;
+        pthread_cond_signal(&s->cond);
+    }
+    pthread_mutex_unlock(&s->mu);
+}
+
 static void mpb__ack(mpb__server *s, const char *run_id, int kind)
 {
     mpb_run_ack_t a;
@@ -381,7 +391,7 @@ static void mpb__ack(mpb__server *s, const char *run_id, int kind)
     a.run_id = (char *)run_id;
     a.sender_id = s->id;
     a.kind = (int8_t)kind;
-    mpb_publish_ack(s->lcm, s->auth, MPB_CHANNEL_ACK, &a);
+    mpb_publish_ack(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_ACK, &a);
 }
 
 /* The kept result of run_id, or NULL. Newest first: the run asked about is
@@ -401,7 +411,8 @@ static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
  * not an error: it counts as a lost message, which the re-sends cover. */
 static void mpb__send(mpb__server *s, mpb__kept *k)
 {
-    mpb_publish_result(s->lcm, s->auth, MPB_CHANNEL_RESULT, &k->res);
+    mpb_publish_result(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_RESULT,
+                       &k->res);
     k->next_send_s = mpb_monotonic_s() + MPB__RESEND_S;
     if (k->sends_left > 0)
         k->sends_left--;
@@ -550,11 +561,17 @@ static void mpb__on_request_raw(const lcm_recv_buf_t *rbuf,
 {
     mpb__server *s = user;
     mpb_plan_request_t m;
+    mpb_auth_info info;
     size_t len;
-    if (!mpb_auth_check(s->auth, channel, rbuf->data, rbuf->data_size, &len) ||
+    /* With a secret, only a request from a daemon heard lately that
+     * echoes this process, not had before: a replay is dropped. */
+    if (mpb_auth_open(s->auth, channel, rbuf->data, rbuf->data_size, &len,
+                      &info) != MPB_AUTH_FRESH ||
         !mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, len, NULL, 0) ||
         mpb_plan_request_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
+    if (s->auth != NULL)
+        mpb__set_daemon(s, info.instance);
     mpb__on_request(rbuf, channel, &m, user);
     mpb_plan_request_t_decode_cleanup(&m);
 }
@@ -578,13 +595,37 @@ static void mpb__on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
 {
     mpb__server *s = user;
     mpb_run_ack_t m;
+    mpb_auth_info info;
     size_t len;
-    if (!mpb_auth_check(s->auth, channel, rbuf->data, rbuf->data_size, &len) ||
+    if (mpb_auth_open(s->auth, channel, rbuf->data, rbuf->data_size, &len,
+                      &info) != MPB_AUTH_FRESH ||
         !mpb_wire_check(MPB_WIRE_RUN_ACK, rbuf->data, len, NULL, 0) ||
         mpb_run_ack_t_decode(rbuf->data, 0, (int)len, &m) < 0)
         return;
     mpb__on_ack(rbuf, channel, &m, user);
     mpb_run_ack_t_decode_cleanup(&m);
+}
+
+/* With a secret: a daemon's status names the instance to echo. Its
+ * freshness cannot be shown (a status echoes no planner), but a replayed
+ * one costs at most a planner unknown to the daemon a few announcements
+ * it does not believe, until the daemon's next status. */
+static void mpb__on_status_raw(const lcm_recv_buf_t *rbuf,
+                               const char *channel, void *user)
+{
+    mpb__server *s = user;
+    mpb_daemon_status_t m;
+    mpb_auth_info info;
+    size_t len;
+    mpb_auth_verdict v = mpb_auth_open(s->auth, channel, rbuf->data,
+                                       rbuf->data_size, &len, &info);
+    if ((v != MPB_AUTH_FRESH && v != MPB_AUTH_UNPROVEN) ||
+        !mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, NULL, 0) ||
+        mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+        return;
+    if (strcmp(m.state, "waiting") == 0 || strcmp(m.state, "running") == 0)
+        mpb__set_daemon(s, info.instance);
+    mpb_daemon_status_t_decode_cleanup(&m);
 }
 
 /* ---- the loop ---------------------------------------------------------- */
@@ -691,13 +732,17 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
 
     const char *url = lcm_url != NULL ? lcm_url : MPB_DEFAULT_LCM_URL;
     /* The other planners' requests and acknowledgements, every result,
-     * announcement and status, and every malformed datagram: dropped by
-     * the kernel, not after a wake-up of LCM's thread in this process
-     * (lcm_filter.h). Without the filter the same messages arrive and are
-     * ignored, but a malformed datagram can crash LCM's thread. */
-    const char *mine[] = {s->request_channel, s->ack_channel};
+     * announcement and (without a secret) status, and every malformed
+     * datagram: dropped by the kernel, not after a wake-up of LCM's thread
+     * in this process (lcm_filter.h). Without the filter the same messages
+     * arrive and are ignored, but a malformed datagram can crash LCM's
+     * thread. With a secret the daemon's status passes, for the instance
+     * to echo (auth.h). */
+    const char *mine[] = {s->request_channel, s->ack_channel,
+                          MPB_CHANNEL_STATUS};
     int filtered = 0;
-    s->lcm = mpb_lcm_create_keeping(url, mine, 2, &filtered);
+    s->lcm = mpb_lcm_create_keeping(url, mine, s->auth != NULL ? 3 : 2,
+                                    &filtered);
     if (s->lcm == NULL) {
         snprintf(err, errlen, "cannot join LCM at %s (udpm needs a multicast "
                  "route, e.g. 'ip route add 224.0.0.0/4 dev lo')", url);
@@ -710,12 +755,17 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
         lcm_subscribe(s->lcm, s->request_channel, mpb__on_request_raw, s);
     lcm_subscription_t *asub =
         lcm_subscribe(s->lcm, s->ack_channel, mpb__on_ack_raw, s);
-    if (rsub == NULL || asub == NULL) {
+    /* With a secret, the daemons' status: the instance to echo. */
+    lcm_subscription_t *ssub = s->auth == NULL ? NULL :
+        lcm_subscribe(s->lcm, MPB_CHANNEL_STATUS, mpb__on_status_raw, s);
+    if (rsub == NULL || asub == NULL || (s->auth != NULL && ssub == NULL)) {
         snprintf(err, errlen, "cannot subscribe to LCM channels");
         if (rsub != NULL)
             lcm_unsubscribe(s->lcm, rsub);
         if (asub != NULL)
             lcm_unsubscribe(s->lcm, asub);
+        if (ssub != NULL)
+            lcm_unsubscribe(s->lcm, ssub);
         lcm_destroy(s->lcm);
         mpb_auth_free(s->auth);
         free(s);
@@ -762,6 +812,8 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
             mpb_result_clear(&s->kept[i].res);
     lcm_unsubscribe(s->lcm, rsub);
     lcm_unsubscribe(s->lcm, asub);
+    if (ssub != NULL)
+        lcm_unsubscribe(s->lcm, ssub);
     lcm_destroy(s->lcm);
     pthread_cond_destroy(&s->cond);
     pthread_mutex_destroy(&s->mu);

@@ -67,6 +67,102 @@ int mpb_planner_id_is_valid(const char *id)
     return n > 0;
 }
 
+static int name_char_ok(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+           (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-';
+}
+
+int mpb_planner_id_make(const char *name, const char *host, long pid,
+                        char *out, size_t outlen)
+{
+    char h[MPB_PLANNER_ID_MAX + 1], pidtext[24];
+    size_t nlen = name != NULL ? strlen(name) : 0;
+    if (outlen > 0)
+        out[0] = '\0';
+    if (nlen == 0 || nlen > 32 || outlen < MPB_PLANNER_ID_MAX + 1)
+        return MPB_EINVAL;
+    for (size_t i = 0; i < nlen; i++)
+        if (!name_char_ok(name[i]))
+            return MPB_EINVAL;
+    if (host == NULL || host[0] == '\0')
+        host = "localhost";
+    snprintf(pidtext, sizeof pidtext, "%ld", pid);
+    /* name '@' host ':' pid; the name and pid leave room for 10 or more. */
+    size_t room = MPB_PLANNER_ID_MAX - nlen - 2 - strlen(pidtext);
+    size_t hlen = strlen(host), keep = hlen <= room ? hlen : room - 9;
+    for (size_t i = 0; i < keep; i++)
+        h[i] = name_char_ok(host[i]) ? host[i] : '-';
+    h[keep] = '\0';
+    if (keep < hlen) {
+        char hash[MPB_HASH_SIZE];
+        mpb_hash_hex(host, hlen, hash);
+        snprintf(h + keep, sizeof h - keep, "-%.8s", hash);
+    }
+    snprintf(out, outlen, "%s@%s:%s", name, h, pidtext);
+    return MPB_OK;
+}
+
+/* The bytes of the character at u (one for a byte that starts no valid
+ * UTF-8: no overlong form, no surrogate, nothing past U+10FFFF), and
+ * whether it may be shown as it is. */
+static int escape_next(const unsigned char *u, int *shown)
+{
+    int len = u[0] < 0x80 ? 1 : u[0] >= 0xc2 && u[0] <= 0xdf ? 2
+              : u[0] >= 0xe0 && u[0] <= 0xef ? 3
+              : u[0] >= 0xf0 && u[0] <= 0xf4 ? 4 : 0;
+    unsigned c = len == 1 ? u[0] : u[0] & (0x7fu >> len);
+    for (int i = 1; i < len; i++) {
+        if ((u[i] & 0xc0) != 0x80) {
+            len = 0;
+            break;
+        }
+        c = c << 6 | (u[i] & 0x3fu);
+    }
+    if ((len == 3 && (c < 0x800 || (c >= 0xd800 && c <= 0xdfff))) ||
+        (len == 4 && (c < 0x10000 || c > 0x10ffff)))
+        len = 0;
+    *shown = len > 0 && c >= 0x20 && c != 0x7f && c != '\\' &&
+             !(c >= 0x80 && c <= 0x9f);
+    return len > 0 ? len : 1;
+}
+
+char *mpb_escape(const char *s, char *out, size_t outlen)
+{
+    const unsigned char *u = (const unsigned char *)s;
+    size_t o = 0, whole = 0;
+    int shown;
+    if (outlen == 0)
+        return out;
+    for (const unsigned char *p = u; *p != '\0';) {
+        int len = escape_next(p, &shown);
+        whole += shown ? (size_t)len : 4 * (size_t)len;
+        p += len;
+    }
+    /* Cut short: room for "..." after the last character that fits. */
+    size_t room = whole < outlen ? outlen - 1 : outlen > 4 ? outlen - 4 : 0;
+    while (*u != '\0') {
+        int len = escape_next(u, &shown);
+        size_t n = shown ? (size_t)len : 4 * (size_t)len;
+        if (o + n > room)
+            break;
+        for (int i = 0; i < len; i++, u++) {
+            if (shown)
+                out[o++] = (char)*u;
+            else {
+                snprintf(out + o, 5, "\\x%02x", *u);
+                o += 4;
+            }
+        }
+    }
+    if (*u != '\0' && o + 3 < outlen) {
+        memcpy(out + o, "...", 3);
+        o += 3;
+    }
+    out[o] = '\0';
+    return out;
+}
+
 /* A planner's own channel: prefix + id, for a valid id that fits. */
 static int planner_channel(const char *prefix, const char *planner_id,
                            char *out, size_t outlen)

@@ -91,6 +91,35 @@ check "the same command then resumes it to the end" eq $? 0
 check "... every run done once" \
     eq "$(q "SELECT count(*) FROM runs WHERE state = 'done' AND attempts >= 1")" 120
 
+# ---- a full disk --------------------------------------------------------
+# A 3 MB tmpfs in a mount namespace of its own, filled while quick runs
+# (one result in nearly every transaction) are stored: the commit fails.
+# The runs left that the daemon names are those its resume finds to do.
+MPB_QUERIES='{name: small_move, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}' \
+mpb_planar_experiment "$work/full.yaml" "name: full, runs: 3000, time_limit: 2.0" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.002}}"
+mkdir "$work/small"
+unshare -m sh -c '
+    . "$MPB_SOURCE/tests/integration/lib.sh"
+    work=$1 daemon=$2 DB=$1/small/full.db
+    mount -t tmpfs -o size=3m tmpfs "$work/small" || exit 1
+    "$daemon" -d "$DB" "$work/full.yaml" >"$work/full.log" 2>&1 &
+    pid=$!
+    mpb_wait_count "$DB" 300 30 "SELECT count(*) FROM runs WHERE state = '"'done'"'"
+    dd if=/dev/zero of="$work/small/fill" bs=4k 2>/dev/null
+    mpb_wait $pid 30
+    echo $? >"$work/full.exit"
+    rm "$work/small/fill"
+    mpb_timeout 2 "$daemon" -d "$DB" "$work/full.yaml" >"$work/full2.log" 2>&1
+    umount "$work/small"
+' sh "$work" "$daemon"
+check "a daemon whose disk is full exits 1" eq "$(cat "$work/full.exit")" 1
+check "... naming the error" grep -q "commit: database or disk is full" "$work/full.log"
+left=$(sed -n 's/.*stopped by a database error with \([0-9]*\) runs left.*/\1/p' "$work/full.log")
+to_do=$(sed -n 's/.*(id 1): \([0-9]*\) of 3000 runs to do.*/\1/p' "$work/full2.log")
+check "... and the runs left it names ($left) are those its resume does ($to_do)" \
+    test -n "$left" -a "$left" = "$to_do"
+
 # ---- a second daemon on the same database ----------------------------------
 DB=$work/shared.db
 start_daemon first "$DB"

@@ -75,10 +75,10 @@ check "mpb report exits 0" eq $? 0
 check "the report has a column for each configuration" \
     sh -c "grep -q 'ompl/RRTConnect' '$work/report.txt' && grep -q 'ompl/RRT ' '$work/report.txt' && grep -q 'null/straight_line' '$work/report.txt'"
 
-# Running again on the finished experiment starts a new one; nothing of the
-# first is touched.
+# Running again on the finished experiment with --again starts a new one;
+# nothing of the first is touched.
 before=$(q "SELECT count(*), sum(success) FROM runs WHERE experiment_id = 1")
-mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$exp" >"$work/daemon2.log" 2>&1
+mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" --again -d "$DB" "$exp" >"$work/daemon2.log" 2>&1
 check "a second run of the experiment completes" eq $? 0
 check "... as a second experiment" eq "$(q 'SELECT count(*) FROM experiments')" 2
 check "... leaving the first one's runs as they were" \

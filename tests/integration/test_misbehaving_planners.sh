@@ -101,7 +101,7 @@ for id in "raw bad@vm:1" "$long@vm:1"; do
     rm -f "$work/badid.db"
     case $id in
     raw*) want="planner id 'raw bad@vm:1' has characters outside \[A-Za-z0-9_.:@-\]" ;;
-    *)    want="planner id 'pppppppppppppppppppppppppppppppppppppppp...' is 105 characters long, more than 96" ;;
+    *)    want="planner id 'pppppppppppppppppppppppppppppppppppppppp...' is 105 characters long, more than 51" ;;
     esac
     check "bad id ${id%%@*}: logged once, with why" \
         eq "$(grep -c "rejected an announcement: $want" "$work/badid.log")" 1

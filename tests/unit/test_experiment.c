@@ -229,12 +229,12 @@ static void a_planner_family_must_fit_an_id(void **state)
              "scenes: [{name: s, format: planar, text: \"\", " QUERIES "}]\n"
              "planners: [{planner: %s, algorithms: [a]}]\n", long_name);
     assert_null(load_text(text));
-    snprintf(what, sizeof what, "planner '%.40s...' is longer than 92 "
-             "characters: no planner id (name@host:pid, at most 96) can hold "
+    snprintf(what, sizeof what, "planner '%.40s...' is longer than 47 "
+             "characters: no planner id (name@host:pid, at most 51) can hold "
              "it", long_name);
     assert_error("4:22", what);
-    /* 92 characters and every character an id may hold are fine. */
-    long_name[92] = '\0';
+    /* 47 characters and every character an id may hold are fine. */
+    long_name[47] = '\0';
     snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n" ROBOT
              "scenes: [{name: s, format: planar, text: \"\", " QUERIES "}]\n"
              "planners: [{planner: %s, algorithms: [a]}, "

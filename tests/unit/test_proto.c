@@ -37,10 +37,13 @@ static void planner_ids_are_channel_safe(void **state)
     assert_false(mpb_planner_id_is_valid("a.*"));   /* a regex in a channel */
     assert_false(mpb_planner_id_is_valid("x\n"));
     memset(long_id, 'a', sizeof long_id - 1);
-    long_id[sizeof long_id - 1] = '\0';             /* 97 characters */
+    long_id[sizeof long_id - 1] = '\0';             /* 52 characters */
     assert_false(mpb_planner_id_is_valid(long_id));
-    long_id[MPB_PLANNER_ID_MAX] = '\0';             /* 96 */
+    long_id[MPB_PLANNER_ID_MAX] = '\0';             /* 51 */
     assert_true(mpb_planner_id_is_valid(long_id));
+    /* The longest id's channel is as long as LCM takes. */
+    assert_int_equal(mpb_request_channel(long_id, ch, sizeof ch), MPB_OK);
+    assert_int_equal(strlen(ch), MPB_CHANNEL_MAX);
 
     assert_int_equal(mpb_request_channel("null@h:1", ch, sizeof ch), MPB_OK);
     assert_string_equal(ch, "MPB_REQUEST_null@h:1");
@@ -93,6 +96,65 @@ static void statuses_have_names(void **state)
     assert_string_equal(mpb_err_name(MPB_EPARSE), "MPB_EPARSE");
 }
 
+/* Ids for any host name: within LCM's channel limit, readable, and
+ * different for two long hosts that begin alike. */
+static void planner_ids_fit_any_host(void **state)
+{
+    (void)state;
+    char a[MPB_PLANNER_ID_MAX + 1], b[MPB_PLANNER_ID_MAX + 1], ch[80];
+    const char *vm = "ip-172-31-10-20.eu-central-1.compute.internal";
+    assert_int_equal(mpb_planner_id_make("ompl", "lab-1", 1234, a, sizeof a),
+                     MPB_OK);
+    assert_string_equal(a, "ompl@lab-1:1234");
+    assert_int_equal(mpb_planner_id_make("null", "a b", 7, a, sizeof a), MPB_OK);
+    assert_string_equal(a, "null@a-b:7");
+    assert_int_equal(mpb_planner_id_make("null", "", 7, a, sizeof a), MPB_OK);
+    assert_string_equal(a, "null@localhost:7");
+    /* The longest name and pid with a cloud VM's host: its first
+     * characters, then 8 hex digits of the hash of all of it. */
+    const char *name32 = "abcdefghijklmnopqrstuvwxyz012345";
+    assert_int_equal(mpb_planner_id_make(name32, vm, 4194304, a, sizeof a),
+                     MPB_OK);
+    assert_true(mpb_planner_id_is_valid(a));
+    assert_int_equal(strlen(a), MPB_PLANNER_ID_MAX);
+    char hash[MPB_HASH_SIZE], want[128];
+    mpb_hash_hex(vm, strlen(vm), hash);
+    snprintf(want, sizeof want, "%s@ip-172-31-10-20.eu-central-1.-%.8s"
+             ":4194304", "ompl", hash);
+    assert_int_equal(mpb_planner_id_make("ompl", vm, 4194304, a, sizeof a),
+                     MPB_OK);
+    assert_string_equal(a, want);
+    assert_int_equal(mpb_request_channel(a, ch, sizeof ch), MPB_OK);
+    assert_true(strlen(ch) <= MPB_CHANNEL_MAX);
+    /* Two hosts alike but for their ends. */
+    assert_int_equal(mpb_planner_id_make("ompl", "ip-172-31-10-20.eu-central-1."
+                     "compute.internal.other", 4194304, b, sizeof b), MPB_OK);
+    assert_string_not_equal(a, b);
+    assert_int_equal(mpb_planner_id_make("", "h", 1, a, sizeof a), MPB_EINVAL);
+    assert_int_equal(mpb_planner_id_make("a b", "h", 1, a, sizeof a), MPB_EINVAL);
+    assert_string_equal(a, "");
+}
+
+/* Text from the network, as a log shows it. */
+static void text_is_escaped_for_a_log(void **state)
+{
+    (void)state;
+    char out[128];
+    assert_string_equal(mpb_escape("c++", out, sizeof out), "c++");
+    assert_string_equal(mpb_escape("\x1b[31mred\nfake", out, sizeof out),
+                        "\\x1b[31mred\\x0afake");
+    assert_string_equal(mpb_escape("a\\b\x7f", out, sizeof out),
+                        "a\\x5cb\\x7f");
+    /* UTF-8 kept; C1 controls, invalid bytes, overlong forms escaped. */
+    assert_string_equal(mpb_escape("\xe8\xa1\x8c \xc2\x9b \xff \xc0\xaf", out,
+                                   sizeof out),
+                        "\xe8\xa1\x8c \\xc2\\x9b \\xff \\xc0\\xaf");
+    /* Cut before an escape, never inside one. */
+    assert_string_equal(mpb_escape("abcdef", out, 7), "abcdef");
+    assert_string_equal(mpb_escape("abcdefg", out, 7), "abc...");
+    assert_string_equal(mpb_escape("ab\ncd", out, 8), "ab...");
+}
+
 static void the_first_daemon_is_the_earliest_started(void **state)
 {
     (void)state;
@@ -115,6 +177,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(run_ids_are_hex_and_distinct),
         cmocka_unit_test(planner_ids_are_channel_safe),
+        cmocka_unit_test(planner_ids_fit_any_host),
+        cmocka_unit_test(text_is_escaped_for_a_log),
         cmocka_unit_test(hashes_are_blake2b_128),
         cmocka_unit_test(stage_sizes_must_agree),
         cmocka_unit_test(statuses_have_names),

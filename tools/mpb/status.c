@@ -265,18 +265,66 @@ static void close_line(follower *f)
     }
 }
 
+static void follow(follower *f, const mpb_daemon_status_t *st);
+
+/* Escape s (mpb_escape) into the buffer at *at, which has room. */
+static char *escaped(const char *s, char **at)
+{
+    char *out = *at;
+    size_t n = 4 * strlen(s) + 1;
+    mpb_escape(s, out, n);
+    *at += strlen(out) + 1;
+    return out;
+}
+
+/*
+ * A status is any process's to send: followed with every string as a
+ * terminal may show it, control characters and invalid UTF-8 as \xNN,
+ * so that none can move the cursor, clear the screen or add a line.
+ */
 static void on_status(const lcm_recv_buf_t *rbuf, const char *channel,
                       const mpb_daemon_status_t *st, void *ud)
 {
     follower *f = ud;
-    char line[LINE_MAX_LEN];
     (void)rbuf;
     (void)channel;
 
-    if (f->ended || st->experiment == NULL || st->state == NULL)
+    if (f->ended || st->experiment == NULL || st->state == NULL ||
+        st->daemon_id == NULL)
         return;
     if (f->experiment != NULL && strcmp(st->experiment, f->experiment) != 0)
         return;
+    int np = st->num_planners > 0 ? st->num_planners : 0;
+    size_t room = 4 * (strlen(st->experiment) + strlen(st->state) +
+                       strlen(st->daemon_id)) + 3;
+    for (int i = 0; i < np; i++)
+        room += 4 * (strlen(st->planners[i].planner_id) +
+                     strlen(st->planners[i].name)) + 2;
+    char *buf = malloc(room), *at = buf;
+    mpb_planner_seen_t *seen = calloc((size_t)np + 1, sizeof *seen);
+    if (buf == NULL || seen == NULL) {
+        free(buf);
+        free(seen);
+        return;
+    }
+    mpb_daemon_status_t safe = *st;
+    safe.experiment = escaped(st->experiment, &at);
+    safe.state = escaped(st->state, &at);
+    safe.daemon_id = escaped(st->daemon_id, &at);
+    for (int i = 0; i < np; i++) {
+        seen[i] = st->planners[i];
+        seen[i].planner_id = escaped(st->planners[i].planner_id, &at);
+        seen[i].name = escaped(st->planners[i].name, &at);
+    }
+    safe.planners = seen;
+    follow(f, &safe);
+    free(seen);
+    free(buf);
+}
+
+static void follow(follower *f, const mpb_daemon_status_t *st)
+{
+    char line[LINE_MAX_LEN];
     /* One daemon: another started beside it on the URL stops at once, and
      * its "stopped" is not the end of this one's experiment. The one that
      * stays is the first to start, which answers a younger one at once:

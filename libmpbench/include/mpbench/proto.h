@@ -34,8 +34,13 @@ extern "C" {
 /* Hex content hash: 128-bit BLAKE2b, 32 hex digits and a NUL. */
 #define MPB_HASH_SIZE 33
 
-/* Longest planner id accepted; an id must be a channel-safe word. */
-#define MPB_PLANNER_ID_MAX 96
+/* LCM's longest channel name (LCM_MAX_CHANNEL_NAME_LENGTH). */
+#define MPB_CHANNEL_MAX 63
+
+/* Longest planner id accepted; an id must be a channel-safe word, and
+ * the longest channel named after one, MPB_REQUEST_<id>, must fit in
+ * MPB_CHANNEL_MAX. */
+#define MPB_PLANNER_ID_MAX (MPB_CHANNEL_MAX - (int)sizeof MPB_CHANNEL_REQUEST_PREFIX + 1)
 
 /* Fill out with a new unguessable run id. Returns MPB_OK or MPB_EIO. */
 int mpb_run_id_new(char out[MPB_RUN_ID_SIZE]);
@@ -52,11 +57,36 @@ void mpb_hash_hex(const void *data, size_t len, char out[MPB_HASH_SIZE]);
  */
 int mpb_planner_id_is_valid(const char *id);
 
+/*
+ * Write the id of process pid of planner family name on host into out
+ * (size outlen, at least MPB_PLANNER_ID_MAX + 1): name@host:pid, every
+ * character of host outside [A-Za-z0-9_.-] as '-' (an empty host as
+ * "localhost"). A host too long for the id to fit MPB_PLANNER_ID_MAX keeps
+ * as many of its first characters as fit, then '-' and the first 8 hex
+ * digits of mpb_hash_hex() of the whole host name as given, so that ids
+ * stay readable and two long hosts with the same beginning still differ.
+ * MPB_EINVAL if name is empty, holds a character outside [A-Za-z0-9_.-],
+ * or is longer than 32 characters; out is then "".
+ */
+int mpb_planner_id_make(const char *name, const char *host, long pid,
+                        char *out, size_t outlen);
+
 /* Write MPB_CHANNEL_REQUEST_PREFIX + planner_id into out (size outlen). */
 int mpb_request_channel(const char *planner_id, char *out, size_t outlen);
 
 /* Write MPB_CHANNEL_ACK_PREFIX + planner_id into out (size outlen). */
 int mpb_ack_channel(const char *planner_id, char *out, size_t outlen);
+
+/*
+ * Copy text from the network into out (size outlen) for a log line or a
+ * terminal: valid UTF-8 as it is, but control characters (C0, DEL, C1),
+ * backslash and bytes that are not valid UTF-8 as \xNN (a code point
+ * U+0080..U+009F as the \xNN of each of its two bytes), so that what a
+ * peer sent can add no line, colour or cursor move. Text that does not fit
+ * ends in "..." (an escape is never cut). An out of 4 * strlen(s) + 1
+ * bytes always holds it whole. Returns out.
+ */
+char *mpb_escape(const char *s, char *out, size_t outlen);
 
 /* Microseconds since the epoch (CLOCK_REALTIME), for utime fields. */
 int64_t mpb_utime_now(void);

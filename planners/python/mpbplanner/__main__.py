@@ -44,6 +44,9 @@ def main(argv=None):
         print(f"mpb-planner-python: cannot read {args.secret_file}: "
               f"{e.strerror}", file=sys.stderr)
         return 1
+    except ValueError as e:
+        print(f"mpb-planner-python: {e}", file=sys.stderr)
+        return 1
     try:
         node = Node(args.name, ALGORITHMS, args.lcm_url, auth, args.verbose)
     except Exception as e:

@@ -27,7 +27,8 @@ import threading
 import time
 import traceback
 
-from mpb import plan_request_t, plan_result_t, planner_announce_t, run_ack_t
+from mpb import (daemon_status_t, plan_request_t, plan_result_t,
+                 planner_announce_t, run_ack_t)
 
 from .sockfilter import filtered_lcm
 
@@ -36,8 +37,10 @@ ACK = "MPB_ACK"
 RESULT = "MPB_RESULT"
 HEARTBEAT_S = 0.5
 RESEND_S = 0.2
+STATUS = "MPB_STATUS"
 TAG_BYTES = 32
-PLANNER_ID_MAX = 96
+TRAILER_BYTES = 24 + TAG_BYTES
+PLANNER_ID_MAX = 51         # MPB_REQUEST_<id> within LCM's 63 characters
 MESSAGE_MAX = 1000          # characters of an exception kept in a message
 
 
@@ -52,35 +55,84 @@ def name_error(name):
 
 
 def planner_id(name, host, pid):
-    """name@host:pid, with the host's other characters as '-' and the host
-    shortened so that the id fits in PLANNER_ID_MAX characters."""
-    host = re.sub(r"[^A-Za-z0-9_.-]", "-", host) or "localhost"
+    """name@host:pid within PLANNER_ID_MAX characters, as the C kit makes it
+    (mpb_planner_id_make() in proto.h): the host's characters outside
+    [A-Za-z0-9_.-] as '-'; a host too long keeps its first characters,
+    then '-' and 8 hex digits of the BLAKE2b-128 hash of the whole host."""
     room = PLANNER_ID_MAX - len(name) - 2 - len(str(pid))
-    return f"{name}@{host[:room]}:{pid}"
+    host = host or "localhost"
+    if len(host) > room:
+        digest = hashlib.blake2b(host.encode(), digest_size=16).hexdigest()
+        host = host[:room - 9] + "-" + digest[:8]
+    host = re.sub(r"[^A-Za-z0-9_.-]", "-", host)
+    return f"{name}@{host}:{pid}"
 
 
 class Auth:
-    """The optional shared secret (docs/protocol.md, "Authentication"): an
-    HMAC-SHA-512-256 tag after each message, keyed with the BLAKE2b-256 hash
-    of the secret file, over the channel, a NUL byte and the encoding."""
+    """The optional shared secret (docs/protocol.md, "Authentication"):
+    after each message, a trailer of this process's instance, a counter and
+    the instance it answers (8 bytes each, big-endian), then a tag: the
+    first 32 bytes of HMAC-SHA-512, keyed with the BLAKE2b-256 hash of the
+    secret file, over the channel, a NUL byte, the encoding and those 24
+    bytes. A receiver believes a sender once it echoes the receiver's
+    instance, and drops any counter of it had before (a replay)."""
+
+    FRESH, UNPROVEN, REPLAYED, BAD_TAG = range(4)
 
     def __init__(self, path):
         with open(path, "rb") as f:
-            self.key = hashlib.blake2b(f.read(), digest_size=32).digest()
+            secret = f.read()
+        if len(secret) < 16:        # as the C library says it
+            raise ValueError(f"{path}: a secret needs at least 16 bytes, "
+                             f"this has {len(secret)}")
+        self.key = hashlib.blake2b(secret, digest_size=32).digest()
+        self.instance = 0
+        while self.instance == 0:
+            self.instance = int.from_bytes(os.urandom(8), "big")
+        self.counter = 0
+        self.lock = threading.Lock()
+        self.peers = {}          # instance -> [highest counter, bits below]
 
     def tag(self, channel, data):
         mac = hmac.new(self.key, channel.encode() + b"\0" + data, hashlib.sha512)
         return mac.digest()[:TAG_BYTES]
 
-    def seal(self, channel, data):
-        return data + self.tag(channel, data)
+    def seal(self, channel, data, echo=0):
+        with self.lock:
+            self.counter += 1
+            counter = self.counter
+        head = (self.instance.to_bytes(8, "big") + counter.to_bytes(8, "big")
+                + echo.to_bytes(8, "big"))
+        return data + head + self.tag(channel, data + head)
 
     def open(self, channel, data):
-        """The message without its tag, or None if the tag is wrong."""
-        if len(data) < TAG_BYTES:
-            return None
-        body, tag = data[:-TAG_BYTES], data[-TAG_BYTES:]
-        return body if hmac.compare_digest(tag, self.tag(channel, body)) else None
+        """(verdict, message without its trailer, sender instance)."""
+        if len(data) < TRAILER_BYTES:
+            return self.BAD_TAG, None, 0
+        body, head = data[:-TRAILER_BYTES], data[-TRAILER_BYTES:-TAG_BYTES]
+        if not hmac.compare_digest(data[-TAG_BYTES:],
+                                   self.tag(channel, body + head)):
+            return self.BAD_TAG, None, 0
+        sender = int.from_bytes(head[:8], "big")
+        counter = int.from_bytes(head[8:16], "big")
+        echo = int.from_bytes(head[16:], "big")
+        with self.lock:
+            peer = self.peers.get(sender)
+            if peer is None:
+                if echo != self.instance:
+                    return self.UNPROVEN, body, sender
+                self.peers[sender] = [counter, 1]
+                return self.FRESH, body, sender
+            top, seen = peer
+            if counter > top:
+                shift = counter - top
+                peer[:] = [counter, 1 if shift >= 64 else (seen << shift | 1) & (2**64 - 1)]
+                return self.FRESH, body, sender
+            k = top - counter
+            if k >= 64 or seen >> k & 1:
+                return self.REPLAYED, body, sender
+            peer[1] = seen | 1 << k
+            return self.FRESH, body, sender
 
 
 class Node:
@@ -95,10 +147,12 @@ class Node:
             raise ValueError(error)
         self.host = socket.gethostname()
         self.planner_id = planner_id(name, self.host, os.getpid())
-        # Its two channels, and no malformed datagram (sockfilter.py).
+        # Its two channels (and with a secret the daemon's status, for
+        # the instance to echo), and no malformed datagram (sockfilter.py).
         request = "MPB_REQUEST_" + self.planner_id
         ack = ACK + "_" + self.planner_id
-        self.lc, filtered = filtered_lcm(url, [request, ack])
+        self.lc, filtered = filtered_lcm(
+            url, [request, ack] + ([STATUS] if auth is not None else []))
         if not filtered:
             print("mpb-planner-python: warning: LCM's receive socket has no "
                   "filter (not a udpm:// URL, or the kernel refused it): a "
@@ -112,7 +166,11 @@ class Node:
         self.unacked = {}        # run id -> next time to re-send its result
         self.active = []
         self.stopping = False
+        self.announce_now = False
+        self.daemon = 0          # with auth: the daemon's instance to echo
         self.lc.subscribe(request, self._on_request)
+        if auth is not None:     # the daemon's instance, from its status
+            self.lc.subscribe(STATUS, self._on_status)
         # The daemon acknowledges our results on a channel of our own.
         self.lc.subscribe(ack, self._on_ack)
 
@@ -123,9 +181,13 @@ class Node:
     # ---- sending ---------------------------------------------------------
 
     def _publish(self, channel, data):
-        self.lc.publish(channel, self.auth.seal(channel, data) if self.auth else data)
+        if self.auth:
+            data = self.auth.seal(channel, data, self.daemon)
+        self.lc.publish(channel, data)
 
     def _announce(self):
+        if self.auth and not self.daemon:
+            return                  # no daemon would believe it yet
         a = planner_announce_t()
         a.utime = int(time.time() * 1e6)
         a.planner_id, a.name, a.host = self.planner_id, self.name, self.host
@@ -147,12 +209,30 @@ class Node:
     # ---- receiving (LCM thread) -------------------------------------------
 
     def _unseal(self, channel, data):
+        """The message to decode, if authentic and fresh (a request or an
+        acknowledgement from a daemon that echoes this process)."""
         if self.auth is None:
             return data
-        body = self.auth.open(channel, data)
-        if body is None:
-            self.log(f"dropped a message on {channel} without a valid tag")
+        verdict, body, sender = self.auth.open(channel, data)
+        if verdict != Auth.FRESH:
+            self.log(f"dropped a message on {channel}: "
+                     f"{['', 'not shown fresh', 'a replay', 'no valid tag'][verdict]}")
+            return None
+        if channel.startswith("MPB_REQUEST_"):
+            self.daemon = sender
         return body
+
+    def _on_status(self, channel, data):
+        verdict, body, sender = self.auth.open(channel, data)
+        if verdict not in (Auth.FRESH, Auth.UNPROVEN):
+            return
+        try:
+            st = daemon_status_t.decode(body)
+        except Exception:
+            return
+        if st.state in ("waiting", "running") and sender != self.daemon:
+            self.daemon = sender
+            self.announce_now = True
 
     def _on_request(self, channel, data):
         data = self._unseal(channel, data)
@@ -197,7 +277,8 @@ class Node:
         next_announce = 0.0
         while not self.stopping:
             now = time.monotonic()
-            if now >= next_announce:
+            if now >= next_announce or self.announce_now:
+                self.announce_now = False
                 self._announce()
                 next_announce = now + HEARTBEAT_S
             with self.lock:

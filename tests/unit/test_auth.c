@@ -1,0 +1,154 @@
+/* test_auth.c - the authenticated trailer (auth.h): the test vector of
+ * docs/protocol.md, and which messages a receiver believes. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+
+/* A secret file with these bytes, loaded. */
+static mpb_auth *load(const char *bytes)
+{
+    char path[] = "/tmp/mpb-test-auth-XXXXXX", err[256];
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, bytes, strlen(bytes)), (ssize_t)strlen(bytes));
+    close(fd);
+    mpb_auth *a = NULL;
+    assert_int_equal(mpb_auth_load(path, &a, err, sizeof err), MPB_OK);
+    unlink(path);
+    return a;
+}
+
+static void hex(const unsigned char *b, size_t n, char *out)
+{
+    for (size_t i = 0; i < n; i++)
+        sprintf(out + 2 * i, "%02x", b[i]);
+}
+
+/* The example of docs/protocol.md, "Authentication": computed there with
+ * Python's hashlib and hmac, so that it checks libsodium's
+ * crypto_auth_hmacsha512256 is HMAC-SHA-512 cut to 32 bytes. */
+static void the_protocol_test_vector(void **state)
+{
+    (void)state;
+    mpb_auth *a = load("mpbench test vector secret");
+    mpb_run_ack_t ack = {.utime = 1,
+                         .run_id = "0123456789abcdef0123456789abcdef",
+                         .sender_id = "null@h:1", .kind = 0};
+    unsigned char enc[256], trailer[MPB_AUTH_TRAILER_SIZE];
+    char text[2 * sizeof enc + 1];
+    int n = mpb_run_ack_t_encode(enc, 0, sizeof enc, &ack);
+    assert_int_equal(n, 67);
+    hex(enc, (size_t)n, text);
+    assert_string_equal(text,
+        "00196a85a0d70eff000000000000000100000021303132333435363738396162"
+        "636465663031323334353637383961626364656600000000096e756c6c40683a"
+        "310000");
+    mpb_auth_trailer(a, "MPB_ACK", enc, (size_t)n, 0x0123456789abcdefULL, 1,
+                     0xfedcba9876543210ULL, trailer);
+    hex(trailer, sizeof trailer, text);
+    assert_string_equal(text,
+        "0123456789abcdef0000000000000001fedcba9876543210"
+        "abcdde89fe6c4044f4f8f4b55acae43bcdd531a996f290f02468d5440009d9f3");
+    mpb_auth_free(a);
+}
+
+/* A message as a peer with auth b sends it, into buf; its length. */
+static size_t sealed(mpb_auth *b, uint64_t counter, uint64_t echo,
+                     unsigned char *buf)
+{
+    memcpy(buf, "message", 7);
+    mpb_auth_trailer(b, "CH", buf, 7, mpb_auth_instance(b), counter, echo,
+                     buf + 7);
+    return 7 + MPB_AUTH_TRAILER_SIZE;
+}
+
+static void a_sender_is_believed_once_it_echoes_the_receiver(void **state)
+{
+    (void)state;
+    mpb_auth *me = load("the same secret, 32 bytes long..");
+    mpb_auth *peer = load("the same secret, 32 bytes long..");
+    mpb_auth *other = load("another secret of 32 bytes......");
+    unsigned char buf[128];
+    size_t len, n;
+    mpb_auth_info info;
+    uint64_t mine = mpb_auth_instance(me);
+    assert_true(mine != 0);
+    assert_true(mine != mpb_auth_instance(peer));
+
+    /* Echoing another process (a recorded message played again to a new
+     * one), or none: not believed, nor remembered. */
+    n = sealed(peer, 1, 12345, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_UNPROVEN);
+    assert_int_equal(len, 7);
+    assert_true(info.instance == mpb_auth_instance(peer));
+    assert_true(info.counter == 1 && info.echo == 12345);
+    n = sealed(peer, 2, 0, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_UNPROVEN);
+    /* Echoing this one: believed, and from then on by its counter. */
+    n = sealed(peer, 5, mine, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_FRESH);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_REPLAYED);
+    n = sealed(peer, 7, 0, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_FRESH);
+    /* Reordered by UDP: 6 comes after 7, once; 2 was sent before 5. */
+    n = sealed(peer, 6, 0, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_FRESH);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_REPLAYED);
+    n = sealed(peer, 2, mine, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_FRESH);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_REPLAYED);
+    /* More than 64 behind the newest: too old to tell, so refused. */
+    n = sealed(peer, 100, 0, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_FRESH);
+    n = sealed(peer, 36, 0, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_REPLAYED);
+    /* Another secret, another channel, a changed byte, a short message. */
+    n = sealed(other, 200, mine, buf);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_BAD_TAG);
+    n = sealed(peer, 201, 0, buf);
+    assert_int_equal(mpb_auth_open(me, "CX", buf, n, &len, &info),
+                     MPB_AUTH_BAD_TAG);
+    buf[8] ^= 1;        /* the instance */
+    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+                     MPB_AUTH_BAD_TAG);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, MPB_AUTH_TRAILER_SIZE - 1,
+                                   &len, &info), MPB_AUTH_BAD_TAG);
+    /* Without a secret, everything passes whole. */
+    assert_int_equal(mpb_auth_open(NULL, "CH", buf, 9, &len, &info),
+                     MPB_AUTH_FRESH);
+    assert_int_equal(len, 9);
+    assert_true(mpb_auth_instance(NULL) == 0);
+    mpb_auth_free(me);
+    mpb_auth_free(peer);
+    mpb_auth_free(other);
+    mpb_auth_free(NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(the_protocol_test_vector),
+        cmocka_unit_test(a_sender_is_believed_once_it_echoes_the_receiver),
+    };
+    return cmocka_run_group_tests_name("auth", tests, NULL, NULL);
+}
