@@ -500,9 +500,10 @@ static int check_state(loader *L, const mpbd_experiment *e, int scene,
             return fail_at(L, where, "%s: joint %s = %g is outside its limits "
                            "[%g, %g]", what, e->joint_names[j], q[j], lo, hi);
     }
-    if (mpb_world_in_collision(w, q))
-        return fail_at(L, where, "%s is in collision in scene '%s'", what,
-                       e->scenes[scene].name);
+    char contact[200];
+    if (mpb_world_contact(w, q, contact, sizeof contact) != 0)
+        return fail_at(L, where, "%s is in collision in scene '%s'%s%s", what,
+                       e->scenes[scene].name, contact[0] ? ": " : "", contact);
     return 0;
 }
 

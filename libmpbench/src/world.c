@@ -234,3 +234,28 @@ int mpb_world_goal_contains(mpb_world *w, const mpb_goal *g, const double *q,
         return 0;
     return w->provider->goal_region(w->impl, g, q, detail, len);
 }
+
+int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len)
+{
+    mpb__set_err(what, len, "%s", "");
+    if (!w || !q || !all_finite(w, q))
+        return MPB_EINVAL;
+    if (!w->provider->contact)
+        return w->provider->in_collision(w->impl, q) ? 1 : 0;
+    return w->provider->contact(w->impl, q, what, len);
+}
+
+int mpb_world_num_allowed_pairs(const mpb_world *w)
+{
+    if (!w || !w->provider->num_allowed)
+        return 0;
+    return w->provider->num_allowed(w->impl);
+}
+
+int mpb_world_allowed_pair(const mpb_world *w, int i,
+                           mpb_world_acm_pair *out)
+{
+    if (!w || !out || !w->provider->allowed_pair)
+        return MPB_EINVAL;
+    return w->provider->allowed_pair(w->impl, i, out);
+}

@@ -10,6 +10,9 @@
  * the forearm. With the shoulder panned to -1.2 rad or +0.5 rad the arm
  * points away from it (its line passes > 0.25 m from the box), but the
  * straight joint-space segment between the two passes pan = 0.
+ *
+ * The robot text is the URDF followed by its SRDF (pr2_right_arm.srdf),
+ * which allows the pairs the test robot's crude shapes make touch.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -49,7 +52,14 @@ static char *urdf;
 static int setup(void **state)
 {
     (void)state;
-    urdf = test_read_file(MPB_TEST_DATA "/pr2_right_arm.urdf");
+    char *u = test_read_file(MPB_TEST_DATA "/pr2_right_arm.urdf");
+    char *s = test_read_file(MPB_TEST_DATA "/pr2_right_arm.srdf");
+    urdf = malloc(strlen(u) + strlen(s) + 1);
+    assert_non_null(urdf);
+    strcpy(urdf, u);
+    strcat(urdf, s);
+    free(u);
+    free(s);
     return 0;
 }
 
