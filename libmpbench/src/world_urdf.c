@@ -16,8 +16,9 @@
  * MoveIt's setup assistant does (acm_generate()). Pairs of fixed links
  * never change and are never checked.
  *
- * Mesh collision shapes are looked for in the directories of the
- * environment variable MPB_MESH_PATH (colon-separated).
+ * Mesh collision shapes (package://NAME/path, relative paths) are looked
+ * for in the folders of MPB_MESH_PATH, then of ROS_PACKAGE_PATH (each
+ * colon-separated; a folder holds NAME/ or is NAME itself), all of them.
  */
 #include <math.h>
 #include <stdio.h>
@@ -81,37 +82,99 @@ static void urdf_close(void *impl)
     free(u);
 }
 
-/* The directories of MPB_MESH_PATH, split in place in buf. */
-static int mesh_dirs(char *buf, size_t len, const char **dirs, int max)
+/* Where meshes are looked for: the folders of MPB_MESH_PATH, then those
+ * of ROS_PACKAGE_PATH, as many as they hold. */
+typedef struct mesh_search {
+    char        *buf[2];      /* copies of the two variables, split */
+    const char **dirs;
+    int          num_dirs;
+    int          from_env[2]; /* how many came from each */
+} mesh_search;
+
+static const char *const mesh_vars[2] = {"MPB_MESH_PATH", "ROS_PACKAGE_PATH"};
+
+static void mesh_search_free(mesh_search *m)
 {
-    const char *env = getenv("MPB_MESH_PATH");
-    int n = 0;
-    if (!env || !*env)
-        return 0;
-    snprintf(buf, len, "%s", env);
-    for (char *s = strtok(buf, ":"); s && n < max; s = strtok(NULL, ":"))
-        dirs[n++] = s;
-    return n;
+    free(m->buf[0]);
+    free(m->buf[1]);
+    free(m->dirs);
+}
+
+static int mesh_search_init(mesh_search *m)
+{
+    memset(m, 0, sizeof *m);
+    size_t cap = 1;
+    for (int v = 0; v < 2; v++) {
+        const char *env = getenv(mesh_vars[v]);
+        if (!env)
+            continue;
+        if (!(m->buf[v] = strdup(env)))
+            return MPB_ENOMEM;
+        for (const char *c = env; *c; c++)
+            cap += *c == ':';
+        cap++;
+    }
+    if (!(m->dirs = calloc(cap, sizeof *m->dirs)))
+        return MPB_ENOMEM;
+    for (int v = 0; v < 2; v++) {
+        char *save = NULL;
+        for (char *d = m->buf[v] ? strtok_r(m->buf[v], ":", &save) : NULL; d;
+             d = strtok_r(NULL, ":", &save)) {
+            m->dirs[m->num_dirs++] = d;
+            m->from_env[v]++;
+        }
+    }
+    return MPB_OK;
+}
+
+/* After a mesh was not found: the variables and the folders tried, the
+ * first few of each, into err after what mpb_mesh_load() said. */
+static void mesh_not_found(const mesh_search *m, char *err, size_t errlen)
+{
+    char what[1024];
+    size_t n = 0;
+    int first = 0;
+    n += (size_t)snprintf(what + n, sizeof what - n, "; looked in");
+    for (int v = 0; v < 2; v++) {
+        int k = m->from_env[v];
+        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                              "%s %s (", v ? " and" : "", mesh_vars[v]);
+        if (k == 0)
+            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                                  "%s", getenv(mesh_vars[v]) ? "empty" : "not set");
+        for (int i = 0; i < k && i < 3; i++)
+            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                                  "%s%s", i ? ", " : "", m->dirs[first + i]);
+        if (k > 3)
+            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                                  " and %d more: %d folders", k - 3, k);
+        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0, ")");
+        first += k;
+    }
+    size_t len = strlen(err);
+    if (len < errlen)
+        mpb__set_err(err + len, errlen - len, "%s", what);
 }
 
 /* The geometry of a robot collision shape; loads a mesh if needed. */
-static int shape_geometry(urdf_world *u, const mpb_robot_collision *c,
-                          mpb_geometry *g, char *err, size_t errlen)
+static int shape_geometry(urdf_world *u, const mesh_search *ms,
+                          const mpb_robot_collision *c, mpb_geometry *g,
+                          char *err, size_t errlen)
 {
     memset(g, 0, sizeof *g);
     g->type = c->type;
     memcpy(g->dims, c->dims, sizeof g->dims);
     if (c->type != MPB_SHAPE_MESH)
         return MPB_OK;
-    char buf[4096];
-    const char *dirs[32];
-    int nd = mesh_dirs(buf, sizeof buf, dirs, 32);
     mpb_mesh *m = NULL;
     mpb_mesh **grown = realloc(u->meshes, (size_t)(u->num_meshes + 1) * sizeof *grown);
     if (!grown)
         return MPB_ENOMEM;
     u->meshes = grown;
-    int rc = mpb_mesh_load(c->mesh_uri, dirs, nd, c->mesh_scale, &m, err, errlen);
+    int rc = mpb_mesh_load(c->mesh_uri, ms->dirs, ms->num_dirs, c->mesh_scale,
+                           &m, err, errlen);
+    if (rc == MPB_ENOTFOUND)
+        mesh_not_found(ms, err, errlen);
     if (rc != MPB_OK)
         return rc;
     u->meshes[u->num_meshes++] = m;
@@ -125,35 +188,42 @@ static int shape_geometry(urdf_world *u, const mpb_robot_collision *c,
 static int add_robot(urdf_world *u, char *err, size_t errlen)
 {
     const mpb_robot *r = u->robot;
+    mesh_search ms;
     u->moving = calloc((size_t)u->num_links + 1, sizeof *u->moving);
     if (!u->moving)
         return MPB_ENOMEM;
-    for (int l = 0; l < u->num_links; l++) {
+    if (mesh_search_init(&ms) != MPB_OK) {
+        mesh_search_free(&ms);
+        return MPB_ENOMEM;
+    }
+    int rc = MPB_OK;
+    for (int l = 0; l < u->num_links && rc == MPB_OK; l++) {
         const mpb_robot_link *link = mpb_robot_get_link(r, l);
-        int rc = MPB_OK;
         for (int k = 0; k < link->num_collisions && rc == MPB_OK; k++) {
             const mpb_robot_collision *c =
                 mpb_robot_get_collision(r, link->first_collision + k);
             mpb_geometry g;
-            rc = shape_geometry(u, c, &g, err, errlen);
+            rc = shape_geometry(u, &ms, c, &g, err, errlen);
             if (rc != MPB_OK)
-                return rc;
+                break;
             rc = mpb_collision_add_movable(u->coll, l, &g, &c->origin);
+            if (rc != MPB_OK)
+                mpb__set_err(err, errlen, "robot link '%s': %s", link->name,
+                             mpb_collision_errmsg(u->coll));
         }
         if (rc == MPB_OK && link->num_collisions > 0 && !link->moves) {
             rc = mpb_collision_set_pose(u->coll, l, &u->poses[l]);
             if (rc == MPB_OK)
                 rc = mpb_collision_set_self_only(u->coll, l, 1);
+            if (rc != MPB_OK)
+                mpb__set_err(err, errlen, "robot link '%s': %s", link->name,
+                             mpb_collision_errmsg(u->coll));
         }
-        if (rc != MPB_OK) {
-            mpb__set_err(err, errlen, "robot link '%s': %s", link->name,
-                         mpb_collision_errmsg(u->coll));
-            return rc;
-        }
-        if (link->moves && link->num_collisions > 0)
+        if (rc == MPB_OK && link->moves && link->num_collisions > 0)
             u->moving[u->num_moving++] = l;
     }
-    return MPB_OK;
+    mesh_search_free(&ms);
+    return rc;
 }
 
 /* Is link l a body of the collision world (has it shapes)? */
