@@ -491,11 +491,20 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
 static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
                       yaml_node_t *where)
 {
-    char why[256];
-    int rc = mpb_world_open_group(sc->robot_format, sc->robot,
-                                  sc->scene_format, sc->scene,
-                                  (const char *const *)e->group, e->num_group,
-                                  &sc->world, why, sizeof why);
+    char why[512], dir[4096] = "";
+    /* The robot file's folder: where its meshes are looked for last. */
+    if (e->robot_file) {
+        snprintf(dir, sizeof dir, "%s", e->robot_file);
+        char *slash = strrchr(dir, '/');
+        if (slash)
+            slash[1] = '\0';
+        else
+            snprintf(dir, sizeof dir, ".");
+    }
+    int rc = mpb_world_open_group_in(sc->robot_format, sc->robot,
+                                     dir[0] ? dir : NULL, sc->scene_format,
+                                     sc->scene, (const char *const *)e->group,
+                                     e->num_group, &sc->world, why, sizeof why);
     const char *goes_with = mpb_world_scene_format(sc->robot_format);
     if (rc == MPB_EUNSUPPORTED &&
         (goes_with == NULL || strcmp(goes_with, sc->scene_format) != 0)) {

@@ -60,6 +60,8 @@ typedef struct mpb__world_provider {
 
 struct mpb_world {
     const mpb__world_provider *provider;
+    const char    *robot_dir;     /* while open runs: the folder of the
+                                     robot's file, or NULL (the caller's) */
     void          *impl;          /* the provider's state */
     int            num_joints;
     int            cap;

@@ -18,7 +18,8 @@
  *
  * Mesh collision shapes (package://NAME/path, relative paths) are looked
  * for in the folders of MPB_MESH_PATH, then of ROS_PACKAGE_PATH (each
- * colon-separated; a folder holds NAME/ or is NAME itself), all of them.
+ * colon-separated; a folder holds NAME/ or is NAME itself), all of them,
+ * then in the URDF's folder when the caller names it.
  */
 #include <math.h>
 #include <stdio.h>
@@ -59,6 +60,7 @@ typedef struct urdf_world {
     int            num_pairs;
     mpb__srdf      srdf;         /* owns the SRDF's reasons */
     int            from_srdf;    /* 1 if the ACM came from an SRDF */
+    const char    *robot_dir;    /* while opening: the URDF's folder */
 } urdf_world;
 
 static void urdf_close(void *impl)
@@ -83,12 +85,14 @@ static void urdf_close(void *impl)
 }
 
 /* Where meshes are looked for: the folders of MPB_MESH_PATH, then those
- * of ROS_PACKAGE_PATH, as many as they hold. */
+ * of ROS_PACKAGE_PATH, as many as they hold, then the URDF's folder when
+ * the caller gave it. */
 typedef struct mesh_search {
     char        *buf[2];      /* copies of the two variables, split */
     const char **dirs;
     int          num_dirs;
     int          from_env[2]; /* how many came from each */
+    const char  *robot_dir;   /* the URDF's folder, last; or NULL */
 } mesh_search;
 
 static const char *const mesh_vars[2] = {"MPB_MESH_PATH", "ROS_PACKAGE_PATH"};
@@ -100,10 +104,10 @@ static void mesh_search_free(mesh_search *m)
     free(m->dirs);
 }
 
-static int mesh_search_init(mesh_search *m)
+static int mesh_search_init(mesh_search *m, const char *robot_dir)
 {
     memset(m, 0, sizeof *m);
-    size_t cap = 1;
+    size_t cap = 2;
     for (int v = 0; v < 2; v++) {
         const char *env = getenv(mesh_vars[v]);
         if (!env)
@@ -124,6 +128,8 @@ static int mesh_search_init(mesh_search *m)
             m->from_env[v]++;
         }
     }
+    if (robot_dir && *robot_dir)
+        m->dirs[m->num_dirs++] = m->robot_dir = robot_dir;
     return MPB_OK;
 }
 
@@ -151,6 +157,9 @@ static void mesh_not_found(const mesh_search *m, char *err, size_t errlen)
         n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0, ")");
         first += k;
     }
+    if (m->robot_dir)
+        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                              " and the URDF's folder (%s)", m->robot_dir);
     size_t len = strlen(err);
     if (len < errlen)
         mpb__set_err(err + len, errlen - len, "%s", what);
@@ -192,7 +201,7 @@ static int add_robot(urdf_world *u, char *err, size_t errlen)
     u->moving = calloc((size_t)u->num_links + 1, sizeof *u->moving);
     if (!u->moving)
         return MPB_ENOMEM;
-    if (mesh_search_init(&ms) != MPB_OK) {
+    if (mesh_search_init(&ms, u->robot_dir) != MPB_OK) {
         mesh_search_free(&ms);
         return MPB_ENOMEM;
     }
@@ -576,6 +585,7 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     if (!u)
         return MPB_ENOMEM;
     w->impl = u;
+    u->robot_dir = w->robot_dir;
     if (joints == NULL || num_joints < 1) {
         mpb__set_err(err, errlen, "robot: a urdf world needs the joints of "
                      "its planning group");
@@ -634,6 +644,7 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     if (rc == MPB_OK)
         rc = add_scene(u, err, errlen);
     free(q0);
+    u->robot_dir = NULL;
     return rc;
 }
 

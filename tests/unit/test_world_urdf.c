@@ -253,12 +253,13 @@ static void a_bad_attachment_is_named_on_its_line(void **state)
 }
 
 /* Open the mesh arm with the two search variables as given (NULL:
- * unset); the return code, the message in err. */
-static int open_mesh_arm(const char *mesh_path, const char *ros_path,
-                         char *err, size_t errlen)
+ * unset) and the URDF's folder (NULL: not given); the return code, the
+ * message in err. */
+static int open_mesh_arm_in(const char *mesh_path, const char *ros_path,
+                            const char *robot_dir, char *err, size_t errlen)
 {
     static const char *const j[] = {"j"};
-    char *text = test_read_file(MPB_TEST_DATA "/mesh_arm.urdf");
+    char *text = test_read_file(MPB_TEST_DATA "/meshes/mesh_arm.urdf");
     if (mesh_path)
         setenv("MPB_MESH_PATH", mesh_path, 1);
     else
@@ -268,8 +269,8 @@ static int open_mesh_arm(const char *mesh_path, const char *ros_path,
     else
         unsetenv("ROS_PACKAGE_PATH");
     mpb_world *w = NULL;
-    int rc = mpb_world_open_group("urdf", text, "moveit-scene", "(empty)\n.\n",
-                                  j, 1, &w, err, errlen);
+    int rc = mpb_world_open_group_in("urdf", text, robot_dir, "moveit-scene",
+                                     "(empty)\n.\n", j, 1, &w, err, errlen);
     if (rc == MPB_OK) {
         /* The cube is where the URDF puts it: 0.5 m out along the arm. */
         double q[1] = {0};
@@ -280,6 +281,12 @@ static int open_mesh_arm(const char *mesh_path, const char *ros_path,
     unsetenv("MPB_MESH_PATH");
     unsetenv("ROS_PACKAGE_PATH");
     return rc;
+}
+
+static int open_mesh_arm(const char *mesh_path, const char *ros_path,
+                         char *err, size_t errlen)
+{
+    return open_mesh_arm_in(mesh_path, ros_path, NULL, err, errlen);
 }
 
 static void meshes_are_found_through_both_variables(void **state)
@@ -314,6 +321,15 @@ static void meshes_are_found_through_both_variables(void **state)
                                 "more: 39 folders)"));
     snprintf(many + strlen(many), sizeof many - strlen(many), "%s", root);
     assert_int_equal(open_mesh_arm(many, NULL, err, sizeof err), MPB_OK);
+
+    /* Last, the URDF's folder, when the caller knows it (mpbenchd does):
+     * it holds mesh_pkg here. */
+    assert_int_equal(open_mesh_arm_in(NULL, NULL, root, err, sizeof err), MPB_OK);
+    assert_int_equal(open_mesh_arm_in("/a", NULL, MPB_TEST_DATA, err, sizeof err),
+                     MPB_ENOTFOUND);
+    assert_non_null(strstr(err, "looked in MPB_MESH_PATH (/a) and "
+                                "ROS_PACKAGE_PATH (not set) and the URDF's "
+                                "folder (" MPB_TEST_DATA ")"));
 }
 
 int main(void)

@@ -194,9 +194,17 @@ int cmd_srdf(int argc, char **argv)
     snprintf(text, ulen + slen + 2, "%s%s%s", urdf,
              srdf && ulen > 0 && urdf[ulen - 1] != '\n' ? "\n" : "",
              srdf ? srdf : "");
-    if (mpb_world_open_group("urdf", text, "moveit-scene", "(no scene)\n.\n",
-                             (const char *const *)names, num_joints, &w, err,
-                             sizeof err) != MPB_OK) {
+    /* The URDF's folder: where its meshes are looked for last. */
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", urdf_path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        slash[1] = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    if (mpb_world_open_group_in("urdf", text, dir, "moveit-scene",
+                                "(no scene)\n.\n", (const char *const *)names,
+                                num_joints, &w, err, sizeof err) != MPB_OK) {
         /* "srdf line 3: ..." is the SRDF file's line 3. */
         if (srdf && strncmp(err, "srdf ", 5) == 0)
             fprintf(stderr, "mpb %s: %s: %s\n", CMD, srdf_path, err + 5);

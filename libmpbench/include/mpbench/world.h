@@ -78,6 +78,18 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
                          const char *const *joints, int num_joints,
                          mpb_world **out, char *err, size_t errlen);
 
+/*
+ * As mpb_world_open_group(), for a robot read from a file in the folder
+ * robot_dir (may be NULL): the last place the robot's meshes are looked
+ * for, after MPB_MESH_PATH and ROS_PACKAGE_PATH (docs/scenes.md). The
+ * folder is used while opening only.
+ */
+int mpb_world_open_group_in(const char *robot_format, const char *robot_text,
+                            const char *robot_dir, const char *scene_format,
+                            const char *scene_text, const char *const *joints,
+                            int num_joints, mpb_world **out, char *err,
+                            size_t errlen);
+
 void mpb_world_close(mpb_world *w);
 
 /*
