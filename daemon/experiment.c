@@ -1193,13 +1193,15 @@ int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len)
         strcmp(e->scenes[0].robot_format, "urdf") != 0)
         return 0;
     mpb_world *w = e->scenes[0].world;
-    int n = mpb_world_num_allowed_pairs(w), adjacent = 0, dflt = 0, never = 0;
+    int n = mpb_world_num_allowed_pairs(w), adjacent = 0, dflt = 0, always = 0;
+    int never = 0;
     for (int i = 0; i < n; i++) {
         mpb_world_acm_pair p;
         if (mpb_world_allowed_pair(w, i, &p) != MPB_OK)
             continue;
         adjacent += strcmp(p.reason, "Adjacent") == 0;
         dflt += strcmp(p.reason, "Default") == 0;
+        always += strcmp(p.reason, "Always") == 0;
         never += strcmp(p.reason, "Never") == 0;
     }
     char joints[1024] = "";
@@ -1209,10 +1211,10 @@ int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len)
                                  j ? "," : "", e->joint_names[j]);
     snprintf(buf, len, "robot has no srdf: self-collision matrix generated "
              "as MoveIt's setup assistant does, %d pairs allowed (%d adjacent, "
-             "%d in collision at the default state, %d never in collision in "
-             "%d random states); review it with 'mpb srdf %s -j %s -o "
-             "robot.srdf' and give the file as the robot's srdf", n, adjacent,
-             dflt, never, MPB_WORLD_ACM_SAMPLES,
+             "%d in collision at the default state, %d nearly always, %d "
+             "never in %d random states); review it with 'mpb srdf %s -j %s "
+             "-o robot.srdf' and give the file as the robot's srdf", n,
+             adjacent, dflt, always, never, MPB_WORLD_ACM_SAMPLES,
              e->robot_file ? e->robot_file : "ROBOT.urdf", joints);
     return 1;
 }

@@ -37,7 +37,11 @@
 /* The reasons a pair is allowed, as MoveIt's setup assistant writes them. */
 static const char REASON_ADJACENT[] = "Adjacent";
 static const char REASON_DEFAULT[] = "Default";
+static const char REASON_ALWAYS[] = "Always";
 static const char REASON_NEVER[] = "Never";
+
+/* The setup assistant's batch for "Always" pairs (its SMALL_TRIAL_COUNT). */
+#define ACM_BATCH 200
 
 typedef struct urdf_world {
     mpb_robot     *robot;
@@ -383,16 +387,19 @@ static void default_state(const mpb_robot *r, double *q)
 
 /*
  * The rest of MoveIt's setup assistant's matrix, after the adjacent pairs:
- * the pairs in collision at the default state ("Default"), then the pairs
- * never in collision in MPB_WORLD_ACM_SAMPLES random states from a fixed
- * seed ("Never"). Pairs of fixed links are decided by the default state
- * alone: they never move.
+ * the pairs in collision at the default state ("Default"), the pairs in
+ * collision nearly always ("Always"), then the pairs never in collision in
+ * MPB_WORLD_ACM_SAMPLES random states ("Never"), all drawn from a fixed
+ * seed. Pairs of fixed links are decided by the default state alone: they
+ * never move.
  */
 static int acm_generate(urdf_world *u, const double *q0)
 {
     const mpb_robot *r = u->robot;
     int n = u->num_links, nj = mpb_robot_num_joints(r), rc = MPB_OK;
     int *cand = malloc(((size_t)n * (size_t)n + 1) * 2 * sizeof *cand);
+    int *count = NULL;
+    unsigned char *seen = NULL;
     double *q = malloc(((size_t)nj + 1) * sizeof *q);
     if (!cand || !q) {
         free(cand);
@@ -425,8 +432,61 @@ static int acm_generate(urdf_world *u, const double *q0)
                 nc++;
             }
         }
-    /* Each pair seen in collision leaves the candidates. */
     uint64_t rng = MPB_WORLD_ACM_SEED;
+    /* "Always": batches of ACM_BATCH random states; a pair in collision in
+     * more than 95 % of a batch is allowed, until a batch allows none.
+     * A pair seen in collision here is no "Never" pair. */
+    count = calloc((size_t)nc + 1, sizeof *count);
+    seen = calloc((size_t)nc + 1, 1);
+    if (!count || !seen) {
+        rc = MPB_ENOMEM;
+        goto done;
+    }
+    for (int found = 1; found && nc > 0;) {
+        memset(count, 0, (size_t)nc * sizeof *count);
+        for (int s = 0; s < ACM_BATCH; s++) {
+            mpb_robot_random_config(r, &rng, q);
+            if (place(u, q) != MPB_OK) {
+                rc = MPB_EINVAL;
+                goto done;
+            }
+            for (int i = 0; i < nc; i++) {
+                int hit = mpb_collision_check_pair(u->coll, cand[2 * i],
+                                                   cand[2 * i + 1]);
+                if (hit < 0) {
+                    rc = hit;
+                    goto done;
+                }
+                count[i] += hit;
+                seen[i] |= (unsigned char)hit;
+            }
+        }
+        found = 0;
+        for (int i = 0; i < nc;) {
+            if (count[i] * 100 <= ACM_BATCH * 95) {
+                i++;
+                continue;
+            }
+            acm_allow(u, cand[2 * i], cand[2 * i + 1], REASON_ALWAYS);
+            found = 1;
+            nc--;
+            cand[2 * i] = cand[2 * nc];
+            cand[2 * i + 1] = cand[2 * nc + 1];
+            count[i] = count[nc];
+            seen[i] = seen[nc];
+        }
+    }
+    for (int i = 0; i < nc;) {
+        if (!seen[i]) {
+            i++;
+            continue;
+        }
+        nc--;
+        cand[2 * i] = cand[2 * nc];
+        cand[2 * i + 1] = cand[2 * nc + 1];
+        seen[i] = seen[nc];
+    }
+    /* "Never": each pair seen in collision leaves the candidates. */
     for (int s = 0; s < MPB_WORLD_ACM_SAMPLES && nc > 0; s++) {
         mpb_robot_random_config(r, &rng, q);
         if (place(u, q) != MPB_OK) {
@@ -452,6 +512,8 @@ static int acm_generate(urdf_world *u, const double *q0)
         acm_allow(u, cand[2 * i], cand[2 * i + 1], REASON_NEVER);
 done:
     free(cand);
+    free(count);
+    free(seen);
     free(q);
     return rc;
 }
