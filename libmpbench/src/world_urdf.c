@@ -577,8 +577,9 @@ static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
 /*
  * The robot text is a URDF, perhaps followed by an SRDF: the SRDF begins
  * on the line after the one where the URDF's root element ends (its first
- * "</robot>" outside comments). *urdf_len is the URDF's length, *srdf the
- * SRDF's text or NULL when only blanks and comments follow.
+ * "</robot>" outside comments), or right after it if more follows on that
+ * line. *urdf_len is the URDF's length, *srdf the SRDF's text or NULL when
+ * only blanks and comments follow.
  */
 static void split_srdf(const char *text, size_t *urdf_len, const char **srdf)
 {
@@ -596,19 +597,22 @@ static void split_srdf(const char *text, size_t *urdf_len, const char **srdf)
             const char *e = strchr(p, '>');
             if (!e)
                 return;
-            const char *nl = strchr(e, '\n');
-            if (!nl)
-                return;
-            *urdf_len = (size_t)(nl + 1 - text);
+            /* The next line, or right after the tag if more follows on
+             * its line. */
+            const char *start = e + 1;
+            while (*start == ' ' || *start == '\t' || *start == '\r')
+                start++;
+            start = *start == '\n' ? start + 1 : e + 1;
+            *urdf_len = (size_t)(start - text);
             /* An SRDF only if an element follows, not just comments. */
-            for (const char *t = nl + 1; *t; t++) {
+            for (const char *t = start; *t; t++) {
                 if (strncmp(t, "<!--", 4) == 0) {
                     const char *ce = strstr(t + 4, "-->");
                     if (!ce)
                         break;
                     t = ce + 2;
                 } else if (*t == '<') {
-                    *srdf = nl + 1;
+                    *srdf = start;
                     return;
                 }
             }

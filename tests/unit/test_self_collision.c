@@ -252,6 +252,23 @@ static void a_bad_srdf_is_named_with_its_line(void **state)
                     "</robot>\n", "srdf line 2: disable_collisions has no link2");
     expect_bad_srdf("<semantic/>\n", "srdf line 1: the root element is "
                     "<semantic>, not <robot>");
+
+    /* An SRDF on the URDF's last line is read all the same. */
+    static const char tail[] = "</robot><robot name='f'><disable_collisions "
+                               "link1='arm1' link2='arm3'/></robot>\n";
+    char *urdf = test_read_file(MPB_TEST_DATA "/folding_arm.urdf");
+    char *u = malloc(strlen(urdf) + sizeof tail);
+    assert_non_null(u);
+    strcpy(u, urdf);
+    free(urdf);
+    char *end = strstr(u, "</robot>\n");
+    assert_non_null(end);
+    strcpy(end, tail);
+    mpb_world *w = open_text(u, folding, 3);
+    double folded[3] = {0, 2.64, 1.9};
+    assert_int_equal(mpb_world_in_collision(w, folded), 0);
+    mpb_world_close(w);
+    free(u);
 }
 
 int main(void)
