@@ -361,7 +361,7 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
 {
     /* Each its own: a robot has no name or queries, a scene no joints. */
     static const char *const robot_keys[] = {"format", "file", "text",
-                                             "joints", NULL};
+                                             "joints", "srdf", NULL};
     static const char *const scene_keys[] = {"format", "file", "text", "name",
                                              "queries", "joints", NULL};
     const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
@@ -399,6 +399,54 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
     if (strlen(*text) != len)
         return fail_at(L, file, "%s: not a text file (a NUL byte at offset "
                        "%zu)", path, strlen(*text));
+    return 0;
+}
+
+/*
+ * The robot's SRDF, `srdf:` a file relative to the experiment file: its
+ * text goes into the robot text, on the line after the URDF (world.h),
+ * for the world of every scene and every planner.
+ */
+static int load_srdf(loader *L, mpbd_experiment *e, char **robot)
+{
+    yaml_node_t *n = get(L, L->robot, "srdf");
+    if (n == NULL)
+        return 0;
+    const char *f = scalar(n);
+    if (f == NULL || f[0] == '\0')
+        return fail_at(L, n, "srdf must be the path of a file");
+    const char *format = scalar(get(L, L->robot, "format"));
+    if (format == NULL || strcmp(format, "urdf") != 0)
+        return fail_at(L, n, "srdf goes with a urdf robot only");
+    char path[4096];
+    snprintf(path, sizeof path, "%s%s", f[0] == '/' ? "" : L->dir, f);
+    if ((e->srdf_file = strdup(path)) == NULL)
+        return fail_at(L, n, "out of memory");
+    size_t len;
+    char *srdf = slurp(path, &len);
+    if (srdf == NULL)
+        return fail_at(L, n, "cannot read srdf file %s: %s", path,
+                       strerror(errno));
+    if (strlen(srdf) != len) {
+        fail_at(L, n, "%s: not a text file (a NUL byte at offset %zu)", path,
+                strlen(srdf));
+        free(srdf);
+        return -1;
+    }
+    size_t rl = strlen(*robot);
+    int nl = rl > 0 && (*robot)[rl - 1] != '\n';
+    char *both = malloc(rl + (size_t)nl + len + 1);
+    if (both == NULL) {
+        free(srdf);
+        return fail_at(L, n, "out of memory");
+    }
+    memcpy(both, *robot, rl);
+    if (nl)
+        both[rl] = '\n';
+    memcpy(both + rl + nl, srdf, len + 1);
+    free(srdf);
+    free(*robot);
+    *robot = both;
     return 0;
 }
 
@@ -443,11 +491,20 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
 static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
                       yaml_node_t *where)
 {
-    char why[256];
-    int rc = mpb_world_open_group(sc->robot_format, sc->robot,
-                                  sc->scene_format, sc->scene,
-                                  (const char *const *)e->group, e->num_group,
-                                  &sc->world, why, sizeof why);
+    char why[512], dir[4096] = "";
+    /* The robot file's folder: where its meshes are looked for last. */
+    if (e->robot_file) {
+        snprintf(dir, sizeof dir, "%s", e->robot_file);
+        char *slash = strrchr(dir, '/');
+        if (slash)
+            slash[1] = '\0';
+        else
+            snprintf(dir, sizeof dir, ".");
+    }
+    int rc = mpb_world_open_group_in(sc->robot_format, sc->robot,
+                                     dir[0] ? dir : NULL, sc->scene_format,
+                                     sc->scene, (const char *const *)e->group,
+                                     e->num_group, &sc->world, why, sizeof why);
     const char *goes_with = mpb_world_scene_format(sc->robot_format);
     if (rc == MPB_EUNSUPPORTED &&
         (goes_with == NULL || strcmp(goes_with, sc->scene_format) != 0)) {
@@ -462,9 +519,12 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
     if (rc != MPB_OK) {
         /* Name the file the fault is in, when it came from one. */
         const char *file = strncmp(why, "scene", 5) == 0 ? sc->scene_file
-                                                         : e->robot_file;
+                           : strncmp(why, "srdf", 4) == 0 ? e->srdf_file
+                                                          : e->robot_file;
+        /* "srdf line 3: ..." in the SRDF file is its "line 3: ...". */
+        const char *what = file != NULL && file == e->srdf_file ? why + 5 : why;
         if (file != NULL)
-            return fail_at(L, where, "scene '%s': %s: %s", sc->name, file, why);
+            return fail_at(L, where, "scene '%s': %s: %s", sc->name, file, what);
         return fail_at(L, where, "scene '%s': %s", sc->name, why);
     }
     int nj = mpb_world_num_joints(sc->world);
@@ -500,9 +560,10 @@ static int check_state(loader *L, const mpbd_experiment *e, int scene,
             return fail_at(L, where, "%s: joint %s = %g is outside its limits "
                            "[%g, %g]", what, e->joint_names[j], q[j], lo, hi);
     }
-    if (mpb_world_in_collision(w, q))
-        return fail_at(L, where, "%s is in collision in scene '%s'", what,
-                       e->scenes[scene].name);
+    char contact[200];
+    if (mpb_world_contact(w, q, contact, sizeof contact) != 0)
+        return fail_at(L, where, "%s is in collision in scene '%s'%s%s", what,
+                       e->scenes[scene].name, contact[0] ? ": " : "", contact);
     return 0;
 }
 
@@ -675,6 +736,7 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
                          "a mapping of format and file or text")) == NULL ||
         load_model(L, L->robot, "robot", &robot_format, &robot,
                    &e->robot_file) != 0 ||
+        load_srdf(L, e, &robot) != 0 ||
         load_group(L, e, get(L, L->robot, "joints")) != 0)
         goto done;
     e->num_scenes = 0;
@@ -1082,6 +1144,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
     free(e->group);
     free(e->wraps);
     free(e->robot_file);
+    free(e->srdf_file);
     free(e->scenes);
     free(e->queries);
     free(e->configs);
@@ -1122,4 +1185,36 @@ int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,
     h = mix(h ^ (uint64_t)repetition);
     /* Keep it positive and within 31 bits: every planner's RNG takes it. */
     return (int64_t)(h & 0x7fffffff);
+}
+
+int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len)
+{
+    if (e->num_scenes < 1 || e->srdf_file != NULL ||
+        strcmp(e->scenes[0].robot_format, "urdf") != 0)
+        return 0;
+    mpb_world *w = e->scenes[0].world;
+    int n = mpb_world_num_allowed_pairs(w), adjacent = 0, dflt = 0, always = 0;
+    int never = 0;
+    for (int i = 0; i < n; i++) {
+        mpb_world_acm_pair p;
+        if (mpb_world_allowed_pair(w, i, &p) != MPB_OK)
+            continue;
+        adjacent += strcmp(p.reason, "Adjacent") == 0;
+        dflt += strcmp(p.reason, "Default") == 0;
+        always += strcmp(p.reason, "Always") == 0;
+        never += strcmp(p.reason, "Never") == 0;
+    }
+    char joints[1024] = "";
+    size_t used = 0;
+    for (int j = 0; j < e->num_joints && used < sizeof joints; j++)
+        used += (size_t)snprintf(joints + used, sizeof joints - used, "%s%s",
+                                 j ? "," : "", e->joint_names[j]);
+    snprintf(buf, len, "robot has no srdf: self-collision matrix generated "
+             "as MoveIt's setup assistant does, %d pairs allowed (%d adjacent, "
+             "%d in collision at the default state, %d nearly always, %d "
+             "never in %d random states); review it with 'mpb srdf %s -j %s "
+             "-o robot.srdf' and give the file as the robot's srdf", n,
+             adjacent, dflt, always, never, MPB_WORLD_ACM_SAMPLES,
+             e->robot_file ? e->robot_file : "ROBOT.urdf", joints);
+    return 1;
 }

@@ -68,6 +68,7 @@ typedef struct mpbd_experiment {
     int     queue_at_planner;/* requests waiting at each busy planner */
 
     char   *robot_file;      /* where the robot was read from, or NULL */
+    char   *srdf_file;       /* robot.srdf, resolved, or NULL */
     char  **group;           /* robot.joints as written, or NULL */
     int     num_group;
     int     num_joints;
@@ -90,6 +91,13 @@ typedef struct mpbd_experiment {
 mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen);
 
 void mpbd_experiment_free(mpbd_experiment *e);
+
+/*
+ * When the robot has no SRDF and its allowed-collision matrix was
+ * generated (world.h): 1 and one line in buf saying how many pairs were
+ * allowed for which reason and how to write them out for review; else 0.
+ */
+int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len);
 
 /*
  * The goal of q as verify.h describes goals, for mpb_verify_path(). The

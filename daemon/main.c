@@ -470,6 +470,8 @@ int main(int argc, char **argv)
         return 1;
     }
     d.runs_total = (int)count_runs(d.exp);
+    if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
+        mpbd_log("%s", err);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
                "%d run%s\n", o.experiment, d.exp->num_scenes,

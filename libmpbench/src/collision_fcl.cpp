@@ -145,6 +145,7 @@ bool plane_unit(const double dims[4], fcl::Vector3d &n, double &dist)
 struct Movable {
     int                  id;
     bool                 enabled;
+    bool                 self_only = false; /* in self checks only */
     std::vector<int>     shapes;          /* indices in mshapes */
     std::vector<int>     allowed_statics; /* static ids it may touch */
     mpb_pose             pose;
@@ -555,7 +556,7 @@ bool robot_box(const mpb_collision *c, Box3 &all)
 {
     bool any = false;
     for (const Movable &m : c->movables)
-        if (m.enabled && !m.shapes.empty()) {
+        if (m.enabled && !m.self_only && !m.shapes.empty()) {
             if (any)
                 box_add(all, m.box);
             else
@@ -874,6 +875,30 @@ bool nearest_points(mpb_collision *c, const Obj *a, const Obj *b, double dist,
     pa = swap ? p2 : p1;
     pb = swap ? p1 : p2;
     return true;
+}
+
+/* Do movable bodies mi and mj touch? Their boxes, then each pair of
+ * shapes whose boxes overlap and whose bounding spheres meet, through
+ * FCL's narrow phase. */
+bool bodies_touch(mpb_collision *c, const Movable &mi, const Movable &mj)
+{
+    if (!overlap(mi.box, mj.box))
+        return false;
+    for (int si : mi.shapes) {
+        const Shape &shi = c->mshapes[(size_t)si];
+        for (int sj : mj.shapes) {
+            const Shape &shj = c->mshapes[(size_t)sj];
+            if (!overlap(shi.box, shj.box) || spheres_apart(shi, shj))
+                continue;
+            sync(shi);
+            sync(shj);
+            c->cres.clear();
+            fcl::collide(shi.obj.get(), shj.obj.get(), c->creq, c->cres);
+            if (c->cres.isCollision())
+                return true;
+        }
+    }
+    return false;
 }
 
 } // namespace
@@ -1213,7 +1238,7 @@ int mpb_collision_check(mpb_collision *c, int *movable, int *static_id)
             among = c->cand.size() <= MPB__FEW;
         }
         for (const Movable &m : c->movables) {
-            if (!m.enabled)
+            if (!m.enabled || m.self_only)
                 continue;
             for (int si : m.shapes) {
                 const Shape &ms = c->mshapes[(size_t)si];
@@ -1259,31 +1284,43 @@ int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
         for (const auto &pr : c->self_pairs) {
             const Movable &mi = c->movables[(size_t)pr.first];
             const Movable &mj = c->movables[(size_t)pr.second];
-            if (!mi.enabled || !mj.enabled || !overlap(mi.box, mj.box))
+            if (!mi.enabled || !mj.enabled || !bodies_touch(c, mi, mj))
                 continue;
-            for (int si : mi.shapes) {
-                const Shape &shi = c->mshapes[(size_t)si];
-                for (int sj : mj.shapes) {
-                    const Shape &shj = c->mshapes[(size_t)sj];
-                    if (!overlap(shi.box, shj.box) || spheres_apart(shi, shj))
-                        continue;
-                    sync(shi);
-                    sync(shj);
-                    c->cres.clear();
-                    fcl::collide(shi.obj.get(), shj.obj.get(), c->creq, c->cres);
-                    if (c->cres.isCollision()) {
-                        int x = mi.id, y = mj.id;
-                        if (a)
-                            *a = x < y ? x : y;
-                        if (b)
-                            *b = x < y ? y : x;
-                        return 1;
-                    }
-                }
-            }
+            int x = mi.id, y = mj.id;
+            if (a)
+                *a = x < y ? x : y;
+            if (b)
+                *b = x < y ? y : x;
+            return 1;
         }
         return 0;
     });
+}
+
+int mpb_collision_check_pair(mpb_collision *c, int movable_a, int movable_b)
+{
+    if (!c)
+        return MPB_EINVAL;
+    Movable *ma = c->find_or_err(movable_a);
+    Movable *mb = ma ? c->find_or_err(movable_b) : nullptr;
+    if (!ma || !mb)
+        return MPB_ENOTFOUND;
+    if (ma == mb) {
+        c->set_err("collision: a body cannot be paired with itself (%d)", movable_a);
+        return MPB_EINVAL;
+    }
+    return guarded(c, [&]() -> int { return bodies_touch(c, *ma, *mb) ? 1 : 0; });
+}
+
+int mpb_collision_set_self_only(mpb_collision *c, int id, int self_only)
+{
+    if (!c)
+        return MPB_EINVAL;
+    Movable *m = c->find_or_err(id);
+    if (!m)
+        return MPB_ENOTFOUND;
+    m->self_only = self_only != 0;
+    return MPB_OK;
 }
 
 int mpb_collision_distance(mpb_collision *c, int want_points,
@@ -1316,7 +1353,7 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
             const Shape &ms = c->mshapes[(size_t)c->seed_m];
             const Shape &ss = c->sshapes[(size_t)c->seed_s];
             const Movable &mv = c->movables[(size_t)ms.body];
-            if (mv.enabled && !allowed_static(&mv, ss.body)) {
+            if (mv.enabled && !mv.self_only && !allowed_static(&mv, ss.body)) {
                 sync(ms);
                 q.best = pair_distance(c, ms.obj.get(), ss.obj.get());
                 q.best_m = q.seed_m = ms.obj.get();
@@ -1337,7 +1374,7 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
         for (const Movable &m : c->movables) {
             if (q.best <= 0.0)
                 break;
-            if (!m.enabled)
+            if (!m.enabled || m.self_only)
                 continue;
             q.m = &m;
             for (int si : m.shapes) {
@@ -1420,8 +1457,8 @@ int mpb__collision_check_brute(mpb_collision *c)
             const Movable &m = c->movables[i];
             if (!m.enabled)
                 continue;
-            for (int si : m.shapes) {
-                const Shape &ms = c->mshapes[(size_t)si];
+            for (size_t k = 0; !m.self_only && k < m.shapes.size(); k++) {
+                const Shape &ms = c->mshapes[(size_t)m.shapes[k]];
                 for (const Shape &ss : c->sshapes) {
                     if (allowed_static(&m, ss.body))
                         continue;
@@ -1461,7 +1498,7 @@ double mpb__collision_distance_brute(mpb_collision *c)
         return std::numeric_limits<double>::quiet_NaN();
     int rc = guarded(c, [&]() -> int {
         for (const Movable &m : c->movables) {
-            if (!m.enabled)
+            if (!m.enabled || m.self_only)
                 continue;
             for (int si : m.shapes) {
                 const Shape &ms = c->mshapes[(size_t)si];

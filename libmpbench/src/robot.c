@@ -596,6 +596,27 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip)
 }
 
 /*
+ * The link below base with the most active joints between them (the first
+ * in depth-first order of those), or base itself when none has any.
+ */
+static int deepest_tip(const mpb__urdf_model *m, int base)
+{
+    int best = base, most = 0;
+    for (int l = 0; l < m->num_links; l++) {
+        if (!is_ancestor(m, base, l))
+            continue;
+        int n = 0;
+        for (int i = l; i != base && i >= 0; i = m->links[i].parent)
+            n += is_active_type(m->links[i].type);
+        if (n > most) {
+            most = n;
+            best = l;
+        }
+    }
+    return best;
+}
+
+/*
  * Parse the text and build a robot, the group either from base/tip names
  * or from joint names. Messages come out as "<prefix>: ...".
  */
@@ -632,7 +653,9 @@ static int load(const char *text, const char *base_name, const char *tip_name,
                          base_name);
             goto fail;
         }
-        tip = find_link(m, tip_name);
+        tip = tip_name ? find_link(m, tip_name) : deepest_tip(m, base);
+        if (!tip_name)
+            tip_name = m->links[tip].name;
         if (tip < 0) {
             mpb__set_err(msg, sizeof msg, "tip link '%.*s' not found", NAME_SHOWN,
                          tip_name);
@@ -732,8 +755,8 @@ int mpb_robot_load_urdf(const char *urdf_text, const char *base_link,
     mpb__set_err(err, errlen, "%s", "");
     if (out)
         *out = NULL;
-    if (!urdf_text || !tip_link || !out) {
-        mpb__set_err(err, errlen, "urdf: text, tip link and out are required");
+    if (!urdf_text || !out) {
+        mpb__set_err(err, errlen, "urdf: text and out are required");
         return MPB_EINVAL;
     }
     return load(urdf_text, base_link, tip_link, NULL, 0, "urdf", out, err,

@@ -406,15 +406,9 @@ int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
 
 } // namespace
 
-extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
-                               char *err, size_t errlen)
+/* See robot_urdf.h. */
+extern "C" int mpb__xml_precheck(const char *text, char *err, size_t errlen)
 {
-    mpb__set_err(err, errlen, "%s", "");
-    if (!m)
-        return MPB_EINVAL;
-    std::memset(m, 0, sizeof *m);
-    if (!text)
-        return MPB_EINVAL;
     const char *s = text;
     while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
         s++;
@@ -439,7 +433,22 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
         return MPB_EPARSE;
     }
 
-    int rc = MPB_OK;
+    return MPB_OK;
+}
+
+extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
+                               char *err, size_t errlen)
+{
+    mpb__set_err(err, errlen, "%s", "");
+    if (!m)
+        return MPB_EINVAL;
+    std::memset(m, 0, sizeof *m);
+    if (!text)
+        return MPB_EINVAL;
+    int rc = mpb__xml_precheck(text, err, errlen);
+    if (rc != MPB_OK)
+        return rc;
+
     try {
         /* urdfdom parses with TinyXML but passes on only its message;
          * parse once more ourselves for the line and column. */

@@ -52,6 +52,14 @@ typedef struct mpb__urdf_model {
 int mpb__urdf_parse(const char *text, mpb__urdf_model *m, char *err,
                     size_t errlen);
 
+/*
+ * What TinyXML is not trusted with, checked before it parses an XML text
+ * (URDF or SRDF): MPB_OK, or MPB_EPARSE with one line in err ("empty
+ * document", "not XML ...", "line 3, column 7: not UTF-8", "XML nested
+ * too deeply ...").
+ */
+int mpb__xml_precheck(const char *text, char *err, size_t errlen);
+
 /* Free everything *m holds and zero it. */
 void mpb__urdf_model_clear(mpb__urdf_model *m);
 

@@ -63,14 +63,27 @@ static double joint_dist(const mpb_world *w, int j, double a, double b)
 /* A guard against never finishing, not a practical limit. */
 #define MAX_STEPS 1e9
 
+/* ": " and the bodies in contact at q, where the world names them. */
+static void contact(mpb_world *w, const double *q, char *what, size_t len)
+{
+    char names[120];
+    if (mpb_world_contact(w, q, names, sizeof names) > 0 && names[0])
+        snprintf(what, len, ": %s", names);
+    else
+        what[0] = '\0';
+}
+
 /* Collision along the path, each segment in steps of at most resolution. */
 static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
                            int nj, double resolution, mpb_verdict *out)
 {
-    if (mpb_world_in_collision(w, wp))
+    char what[sizeof out->detail];
+    if (mpb_world_in_collision(w, wp)) {
+        contact(w, wp, what, sizeof what);
         return verdict(out, MPB_VERDICT_COLLISION, 0, num_waypoints > 1
-                       ? "segment 0 collides at s=0 (waypoint 0)"
-                       : "waypoint 0 collides");
+                       ? "segment 0 collides at s=0 (waypoint 0)%s"
+                       : "waypoint 0 collides%s", what);
+    }
     double *q = malloc((size_t)nj * sizeof *q);
     double *d = malloc((size_t)nj * sizeof *d);
     if (!q || !d) {
@@ -103,9 +116,10 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
                 p = q;
             }
             if (mpb_world_in_collision(w, p)) {
+                contact(w, p, what, sizeof what);
                 verdict(out, MPB_VERDICT_COLLISION, i,
-                        "segment %d collides at s=%.4g (waypoints %d-%d)",
-                        i, s / k, i, i + 1);
+                        "segment %d collides at s=%.4g (waypoints %d-%d)%s",
+                        i, s / k, i, i + 1, what);
                 break;
             }
         }

@@ -83,6 +83,17 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
                          const char *const *joints, int num_joints,
                          mpb_world **out, char *err, size_t errlen)
 {
+    return mpb_world_open_group_in(robot_format, robot_text, NULL,
+                                   scene_format, scene_text, joints,
+                                   num_joints, out, err, errlen);
+}
+
+int mpb_world_open_group_in(const char *robot_format, const char *robot_text,
+                            const char *robot_dir, const char *scene_format,
+                            const char *scene_text, const char *const *joints,
+                            int num_joints, mpb_world **out, char *err,
+                            size_t errlen)
+{
     mpb__set_err(err, errlen, "%s", "");
     if (!out)
         return MPB_EINVAL;
@@ -115,6 +126,7 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
         return MPB_ENOMEM;
     }
     w->provider = p;
+    w->robot_dir = robot_dir;
     if (num_joints < 0 || (num_joints > 0 && joints == NULL)) {
         free(w);
         mpb__set_err(err, errlen, "world: bad joint list");
@@ -126,6 +138,7 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
         mpb__set_err(err, errlen, "robot: no joints");
         rc = MPB_EPARSE;
     }
+    w->robot_dir = NULL;        /* the caller's: only for open */
     if (rc != MPB_OK) {
         if (rc == MPB_ENOMEM)
             mpb__set_err(err, errlen, "world: out of memory");
@@ -233,4 +246,29 @@ int mpb_world_goal_contains(mpb_world *w, const mpb_goal *g, const double *q,
     if (!all_finite(w, q))
         return 0;
     return w->provider->goal_region(w->impl, g, q, detail, len);
+}
+
+int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len)
+{
+    mpb__set_err(what, len, "%s", "");
+    if (!w || !q || !all_finite(w, q))
+        return MPB_EINVAL;
+    if (!w->provider->contact)
+        return w->provider->in_collision(w->impl, q) ? 1 : 0;
+    return w->provider->contact(w->impl, q, what, len);
+}
+
+int mpb_world_num_allowed_pairs(const mpb_world *w)
+{
+    if (!w || !w->provider->num_allowed)
+        return 0;
+    return w->provider->num_allowed(w->impl);
+}
+
+int mpb_world_allowed_pair(const mpb_world *w, int i,
+                           mpb_world_acm_pair *out)
+{
+    if (!w || !out || !w->provider->allowed_pair)
+        return MPB_EINVAL;
+    return w->provider->allowed_pair(w->impl, i, out);
 }

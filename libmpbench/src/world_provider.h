@@ -45,10 +45,23 @@ typedef struct mpb__world_provider {
 
     /* Where the end effector is at q, in the robot's frame (m). */
     void   (*ee_position)(void *impl, const double *q, double xyz[3]);
+
+    /*
+     * Optional: 1 if the robot at q is in collision, with a phrase in what
+     * naming the bodies in contact ("self-collision between a and b"), 0
+     * if free, negative on error. NULL: no names to give.
+     */
+    int    (*contact)(void *impl, const double *q, char *what, size_t len);
+
+    /* Optional: the allowed-collision matrix (world.h); NULL: none. */
+    int    (*num_allowed)(void *impl);
+    int    (*allowed_pair)(void *impl, int i, mpb_world_acm_pair *out);
 } mpb__world_provider;
 
 struct mpb_world {
     const mpb__world_provider *provider;
+    const char    *robot_dir;     /* while open runs: the folder of the
+                                     robot's file, or NULL (the caller's) */
     void          *impl;          /* the provider's state */
     int            num_joints;
     int            cap;

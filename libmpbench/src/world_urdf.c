@@ -4,18 +4,22 @@
  * (collision.h). The planning group is named by its joints.
  *
  * Bodies in the collision world:
- *   movable id = link index        each link that moves with the group
+ *   movable id = link index        each link with shapes; the links that
+ *                                  do not move are placed once and are
+ *                                  self-only (no part of the clearance)
  *   movable id = num_links + k     scene object k when attached to a link
  *   static id  = k                 scene object k
- *   static id  = ROBOT_STATIC + l  each robot link that does not move
- * Self-collision skips adjacent links and every pair already touching at
- * the reference configuration (all joints at the middle of their limits,
- * continuous ones at 0), the "default" pairs MoveIt's setup assistant
- * disables; robot links never collide with the robot's own static links
- * they are attached to.
+ * Self-collision is MoveIt's: every pair of links is checked, the moving
+ * against the fixed ones too, unless the allowed-collision matrix (ACM)
+ * allows it. The ACM is the SRDF's <disable_collisions> pairs plus the
+ * adjacent links when the robot text carries an SRDF, else generated as
+ * MoveIt's setup assistant does (acm_generate()). Pairs of fixed links
+ * never change and are never checked.
  *
- * Mesh collision shapes are looked for in the directories of the
- * environment variable MPB_MESH_PATH (colon-separated).
+ * Mesh collision shapes (package://NAME/path, relative paths) are looked
+ * for in the folders of MPB_MESH_PATH, then of ROS_PACKAGE_PATH (each
+ * colon-separated; a folder holds NAME/ or is NAME itself), all of them,
+ * then in the URDF's folder when the caller names it.
  */
 #include <math.h>
 #include <stdio.h>
@@ -27,9 +31,17 @@
 #include "mpbench/robot.h"
 #include "mpbench/scene.h"
 #include "errbuf.h"
+#include "srdf.h"
 #include "world_provider.h"
 
-#define ROBOT_STATIC 500000
+/* The reasons a pair is allowed, as MoveIt's setup assistant writes them. */
+static const char REASON_ADJACENT[] = "Adjacent";
+static const char REASON_DEFAULT[] = "Default";
+static const char REASON_ALWAYS[] = "Always";
+static const char REASON_NEVER[] = "Never";
+
+/* The setup assistant's batch for "Always" pairs (its SMALL_TRIAL_COUNT). */
+#define ACM_BATCH 200
 
 typedef struct urdf_world {
     mpb_robot     *robot;
@@ -45,6 +57,14 @@ typedef struct urdf_world {
     mpb_mesh     **meshes;       /* loaded for the robot's mesh shapes */
     int            num_meshes;
     int            ee_link;      /* see mpb_world_ee_position() */
+    const char   **allowed;      /* num_links^2: why link a may touch b,
+                                    NULL where it may not */
+    int           *pairs;        /* the allowed pairs a < b, 2 a pair, in
+                                    order of a then b */
+    int            num_pairs;
+    mpb__srdf      srdf;         /* owns the SRDF's reasons */
+    int            from_srdf;    /* 1 if the ACM came from an SRDF */
+    const char    *robot_dir;    /* while opening: the URDF's folder */
 } urdf_world;
 
 static void urdf_close(void *impl)
@@ -62,40 +82,112 @@ static void urdf_close(void *impl)
     free(u->moving);
     free(u->attached);
     free(u->attached_link);
+    free(u->allowed);
+    free(u->pairs);
+    mpb__srdf_clear(&u->srdf);
     free(u);
 }
 
-/* The directories of MPB_MESH_PATH, split in place in buf. */
-static int mesh_dirs(char *buf, size_t len, const char **dirs, int max)
+/* Where meshes are looked for: the folders of MPB_MESH_PATH, then those
+ * of ROS_PACKAGE_PATH, as many as they hold, then the URDF's folder when
+ * the caller gave it. */
+typedef struct mesh_search {
+    char        *buf[2];      /* copies of the two variables, split */
+    const char **dirs;
+    int          num_dirs;
+    int          from_env[2]; /* how many came from each */
+    const char  *robot_dir;   /* the URDF's folder, last; or NULL */
+} mesh_search;
+
+static const char *const mesh_vars[2] = {"MPB_MESH_PATH", "ROS_PACKAGE_PATH"};
+
+static void mesh_search_free(mesh_search *m)
 {
-    const char *env = getenv("MPB_MESH_PATH");
-    int n = 0;
-    if (!env || !*env)
-        return 0;
-    snprintf(buf, len, "%s", env);
-    for (char *s = strtok(buf, ":"); s && n < max; s = strtok(NULL, ":"))
-        dirs[n++] = s;
-    return n;
+    free(m->buf[0]);
+    free(m->buf[1]);
+    free(m->dirs);
+}
+
+static int mesh_search_init(mesh_search *m, const char *robot_dir)
+{
+    memset(m, 0, sizeof *m);
+    size_t cap = 2;
+    for (int v = 0; v < 2; v++) {
+        const char *env = getenv(mesh_vars[v]);
+        if (!env)
+            continue;
+        if (!(m->buf[v] = strdup(env)))
+            return MPB_ENOMEM;
+        for (const char *c = env; *c; c++)
+            cap += *c == ':';
+        cap++;
+    }
+    if (!(m->dirs = calloc(cap, sizeof *m->dirs)))
+        return MPB_ENOMEM;
+    for (int v = 0; v < 2; v++) {
+        char *save = NULL;
+        for (char *d = m->buf[v] ? strtok_r(m->buf[v], ":", &save) : NULL; d;
+             d = strtok_r(NULL, ":", &save)) {
+            m->dirs[m->num_dirs++] = d;
+            m->from_env[v]++;
+        }
+    }
+    if (robot_dir && *robot_dir)
+        m->dirs[m->num_dirs++] = m->robot_dir = robot_dir;
+    return MPB_OK;
+}
+
+/* After a mesh was not found: the variables and the folders tried, the
+ * first few of each, into err after what mpb_mesh_load() said. */
+static void mesh_not_found(const mesh_search *m, char *err, size_t errlen)
+{
+    char what[1024];
+    size_t n = 0;
+    int first = 0;
+    n += (size_t)snprintf(what + n, sizeof what - n, "; looked in");
+    for (int v = 0; v < 2; v++) {
+        int k = m->from_env[v];
+        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                              "%s %s (", v ? " and" : "", mesh_vars[v]);
+        if (k == 0)
+            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                                  "%s", getenv(mesh_vars[v]) ? "empty" : "not set");
+        for (int i = 0; i < k && i < 3; i++)
+            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                                  "%s%s", i ? ", " : "", m->dirs[first + i]);
+        if (k > 3)
+            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                                  " and %d more: %d folders", k - 3, k);
+        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0, ")");
+        first += k;
+    }
+    if (m->robot_dir)
+        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
+                              " and the URDF's folder (%s)", m->robot_dir);
+    size_t len = strlen(err);
+    if (len < errlen)
+        mpb__set_err(err + len, errlen - len, "%s", what);
 }
 
 /* The geometry of a robot collision shape; loads a mesh if needed. */
-static int shape_geometry(urdf_world *u, const mpb_robot_collision *c,
-                          mpb_geometry *g, char *err, size_t errlen)
+static int shape_geometry(urdf_world *u, const mesh_search *ms,
+                          const mpb_robot_collision *c, mpb_geometry *g,
+                          char *err, size_t errlen)
 {
     memset(g, 0, sizeof *g);
     g->type = c->type;
     memcpy(g->dims, c->dims, sizeof g->dims);
     if (c->type != MPB_SHAPE_MESH)
         return MPB_OK;
-    char buf[4096];
-    const char *dirs[32];
-    int nd = mesh_dirs(buf, sizeof buf, dirs, 32);
     mpb_mesh *m = NULL;
     mpb_mesh **grown = realloc(u->meshes, (size_t)(u->num_meshes + 1) * sizeof *grown);
     if (!grown)
         return MPB_ENOMEM;
     u->meshes = grown;
-    int rc = mpb_mesh_load(c->mesh_uri, dirs, nd, c->mesh_scale, &m, err, errlen);
+    int rc = mpb_mesh_load(c->mesh_uri, ms->dirs, ms->num_dirs, c->mesh_scale,
+                           &m, err, errlen);
+    if (rc == MPB_ENOTFOUND)
+        mesh_not_found(ms, err, errlen);
     if (rc != MPB_OK)
         return rc;
     u->meshes[u->num_meshes++] = m;
@@ -103,56 +195,54 @@ static int shape_geometry(urdf_world *u, const mpb_robot_collision *c,
     return MPB_OK;
 }
 
-/* Every link's collision shapes into the collision world. */
+/* Every link's collision shapes into the collision world: each link with
+ * shapes is a movable body; those that do not move stand where the static
+ * poses put them and take part in self checks only. */
 static int add_robot(urdf_world *u, char *err, size_t errlen)
 {
     const mpb_robot *r = u->robot;
+    mesh_search ms;
     u->moving = calloc((size_t)u->num_links + 1, sizeof *u->moving);
     if (!u->moving)
         return MPB_ENOMEM;
-    for (int l = 0; l < u->num_links; l++) {
+    if (mesh_search_init(&ms, u->robot_dir) != MPB_OK) {
+        mesh_search_free(&ms);
+        return MPB_ENOMEM;
+    }
+    int rc = MPB_OK;
+    for (int l = 0; l < u->num_links && rc == MPB_OK; l++) {
         const mpb_robot_link *link = mpb_robot_get_link(r, l);
-        for (int k = 0; k < link->num_collisions; k++) {
+        for (int k = 0; k < link->num_collisions && rc == MPB_OK; k++) {
             const mpb_robot_collision *c =
                 mpb_robot_get_collision(r, link->first_collision + k);
             mpb_geometry g;
-            int rc = shape_geometry(u, c, &g, err, errlen);
+            rc = shape_geometry(u, &ms, c, &g, err, errlen);
             if (rc != MPB_OK)
-                return rc;
-            if (link->moves) {
-                rc = mpb_collision_add_movable(u->coll, l, &g, &c->origin);
-            } else {
-                mpb_pose at;
-                mpb_pose_mul(&u->poses[l], &c->origin, &at);
-                rc = mpb_collision_add_static(u->coll, ROBOT_STATIC + l, &g, &at);
-            }
-            if (rc != MPB_OK) {
+                break;
+            rc = mpb_collision_add_movable(u->coll, l, &g, &c->origin);
+            if (rc != MPB_OK)
                 mpb__set_err(err, errlen, "robot link '%s': %s", link->name,
                              mpb_collision_errmsg(u->coll));
-                return rc;
-            }
         }
-        if (link->moves && link->num_collisions > 0)
+        if (rc == MPB_OK && link->num_collisions > 0 && !link->moves) {
+            rc = mpb_collision_set_pose(u->coll, l, &u->poses[l]);
+            if (rc == MPB_OK)
+                rc = mpb_collision_set_self_only(u->coll, l, 1);
+            if (rc != MPB_OK)
+                mpb__set_err(err, errlen, "robot link '%s': %s", link->name,
+                             mpb_collision_errmsg(u->coll));
+        }
+        if (rc == MPB_OK && link->moves && link->num_collisions > 0)
             u->moving[u->num_moving++] = l;
     }
-    /* A moving link may rest on the static link it hangs from, and on the
-     * robot's other static links (the base it is mounted on). */
-    for (int i = 0; i < u->num_moving; i++)
-        for (int l = 0; l < u->num_links; l++)
-            if (!mpb_robot_get_link(r, l)->moves &&
-                mpb_robot_get_link(r, l)->num_collisions > 0)
-                mpb_collision_allow_static(u->coll, u->moving[i], ROBOT_STATIC + l);
-    return MPB_OK;
+    mesh_search_free(&ms);
+    return rc;
 }
 
-/* The moving link whose body carries link l's shapes: l itself if it has
- * shapes, else -1. */
-static int is_moving_body(const urdf_world *u, int l)
+/* Is link l a body of the collision world (has it shapes)? */
+static int has_body(const urdf_world *u, int l)
 {
-    for (int i = 0; i < u->num_moving; i++)
-        if (u->moving[i] == l)
-            return 1;
-    return 0;
+    return l >= 0 && mpb_robot_get_link(u->robot, l)->num_collisions > 0;
 }
 
 static int add_scene(urdf_world *u, char *err, size_t errlen)
@@ -201,11 +291,11 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
         }
         if (o->num_shapes == 0)
             continue;
-        if (is_moving_body(u, l))
+        if (has_body(u, l))
             mpb_collision_allow_pair(u->coll, id, l);
         for (int t = 0; t < o->num_touch_links; t++) {
             int tl = mpb_robot_link_index(u->robot, o->touch_links[t]);
-            if (is_moving_body(u, tl))
+            if (has_body(u, tl))
                 mpb_collision_allow_pair(u->coll, id, tl);
         }
         u->attached[u->num_attached] = k;
@@ -227,27 +317,310 @@ static int place(urdf_world *u, const double *q)
     return MPB_OK;
 }
 
-/* Allow adjacent links, and every pair touching at the reference pose. */
-static int allow_default_pairs(urdf_world *u, const double *ref)
+/* ---- the allowed-collision matrix ------------------------------------ */
+
+static const char **acm_at(urdf_world *u, int a, int b)
+{
+    return &u->allowed[(size_t)a * (size_t)u->num_links + (size_t)b];
+}
+
+/* Allow the pair (a, b) for `reason`, unless it is allowed already. */
+static void acm_allow(urdf_world *u, int a, int b, const char *reason)
+{
+    if (a == b || *acm_at(u, a, b))
+        return;
+    *acm_at(u, a, b) = *acm_at(u, b, a) = reason;
+}
+
+/*
+ * Adjacent links, as MoveIt's setup assistant finds them: parent and child
+ * are connected, whatever the joint (fixed ones too); then, again and
+ * again until nothing changes, every two links connected to a link without
+ * shapes are connected to each other. Adjacent are the connected pairs of
+ * links that both have shapes.
+ */
+static int acm_adjacent(urdf_world *u)
+{
+    int n = u->num_links;
+    unsigned char *g = calloc((size_t)n * (size_t)n + 1, 1);
+    if (!g)
+        return MPB_ENOMEM;
+    for (int l = 0; l < n; l++) {
+        int p = mpb_robot_get_link(u->robot, l)->parent;
+        if (p >= 0)
+            g[(size_t)l * n + p] = g[(size_t)p * n + l] = 1;
+    }
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (int l = 0; l < n; l++) {
+            if (has_body(u, l))
+                continue;
+            for (int i = 0; i < n; i++)
+                for (int j = i + 1; g[(size_t)l * n + i] && j < n; j++)
+                    if (g[(size_t)l * n + j] && i != j && !g[(size_t)i * n + j]) {
+                        g[(size_t)i * n + j] = g[(size_t)j * n + i] = 1;
+                        changed = 1;
+                    }
+        }
+    }
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++)
+            if (g[(size_t)i * n + j] && has_body(u, i) && has_body(u, j))
+                acm_allow(u, i, j, REASON_ADJACENT);
+    free(g);
+    return MPB_OK;
+}
+
+/*
+ * MoveIt's default state: each joint at 0 when 0 is within its limits,
+ * else at the middle of them (RobotState::setToDefaultValues()).
+ */
+static void default_state(const mpb_robot *r, double *q)
+{
+    for (int j = 0; j < mpb_robot_num_joints(r); j++) {
+        const mpb_robot_joint *jt = mpb_robot_get_joint(r, j);
+        int zero_ok = jt->type == MPB_JOINT_CONTINUOUS ||
+                      (jt->lo <= 0.0 && 0.0 <= jt->hi);
+        q[j] = zero_ok ? 0.0 : 0.5 * (jt->lo + jt->hi);
+    }
+}
+
+/*
+ * The rest of MoveIt's setup assistant's matrix, after the adjacent pairs:
+ * the pairs in collision at the default state ("Default"), the pairs in
+ * collision nearly always ("Always"), then the pairs never in collision in
+ * MPB_WORLD_ACM_SAMPLES random states ("Never"), all drawn from a fixed
+ * seed. Pairs of fixed links are decided by the default state alone: they
+ * never move.
+ */
+static int acm_generate(urdf_world *u, const double *q0)
 {
     const mpb_robot *r = u->robot;
-    for (int i = 0; i < u->num_moving; i++) {
-        int l = u->moving[i];
-        /* The nearest ancestor with shapes is its neighbour. */
-        for (int p = mpb_robot_get_link(r, l)->parent; p >= 0;
-             p = mpb_robot_get_link(r, p)->parent)
-            if (mpb_robot_get_link(r, p)->num_collisions > 0) {
-                if (is_moving_body(u, p))
-                    mpb_collision_allow_pair(u->coll, l, p);
-                break;
-            }
+    int n = u->num_links, nj = mpb_robot_num_joints(r), rc = MPB_OK;
+    int *cand = malloc(((size_t)n * (size_t)n + 1) * 2 * sizeof *cand);
+    int *count = NULL;
+    unsigned char *seen = NULL;
+    double *q = malloc(((size_t)nj + 1) * sizeof *q);
+    if (!cand || !q) {
+        free(cand);
+        free(q);
+        return MPB_ENOMEM;
     }
-    if (place(u, ref) != MPB_OK)
-        return MPB_EINVAL;
-    int a, b, guard = 0, rc;
-    while ((rc = mpb_collision_check_self(u->coll, &a, &b)) == 1 && guard++ < 10000)
-        mpb_collision_allow_pair(u->coll, a, b);
-    return rc < 0 ? rc : MPB_OK;
+    if (place(u, q0) != MPB_OK) {
+        rc = MPB_EINVAL;
+        goto done;
+    }
+    int nc = 0;
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; has_body(u, a) && b < n; b++) {
+            if (!has_body(u, b) || *acm_at(u, a, b))
+                continue;
+            int hit = mpb_collision_check_pair(u->coll, a, b);
+            if (hit < 0) {
+                rc = hit;
+                goto done;
+            }
+            const mpb_robot_link *la = mpb_robot_get_link(r, a);
+            const mpb_robot_link *lb = mpb_robot_get_link(r, b);
+            if (hit)
+                acm_allow(u, a, b, REASON_DEFAULT);
+            else if (!la->moves && !lb->moves)
+                acm_allow(u, a, b, REASON_NEVER);
+            else {
+                cand[2 * nc] = a;
+                cand[2 * nc + 1] = b;
+                nc++;
+            }
+        }
+    uint64_t rng = MPB_WORLD_ACM_SEED;
+    /* "Always": batches of ACM_BATCH random states; a pair in collision in
+     * more than 95 % of a batch is allowed, until a batch allows none.
+     * A pair seen in collision here is no "Never" pair. */
+    count = calloc((size_t)nc + 1, sizeof *count);
+    seen = calloc((size_t)nc + 1, 1);
+    if (!count || !seen) {
+        rc = MPB_ENOMEM;
+        goto done;
+    }
+    for (int found = 1; found && nc > 0;) {
+        memset(count, 0, (size_t)nc * sizeof *count);
+        for (int s = 0; s < ACM_BATCH; s++) {
+            mpb_robot_random_config(r, &rng, q);
+            if (place(u, q) != MPB_OK) {
+                rc = MPB_EINVAL;
+                goto done;
+            }
+            for (int i = 0; i < nc; i++) {
+                int hit = mpb_collision_check_pair(u->coll, cand[2 * i],
+                                                   cand[2 * i + 1]);
+                if (hit < 0) {
+                    rc = hit;
+                    goto done;
+                }
+                count[i] += hit;
+                seen[i] |= (unsigned char)hit;
+            }
+        }
+        found = 0;
+        for (int i = 0; i < nc;) {
+            if (count[i] * 100 <= ACM_BATCH * 95) {
+                i++;
+                continue;
+            }
+            acm_allow(u, cand[2 * i], cand[2 * i + 1], REASON_ALWAYS);
+            found = 1;
+            nc--;
+            cand[2 * i] = cand[2 * nc];
+            cand[2 * i + 1] = cand[2 * nc + 1];
+            count[i] = count[nc];
+            seen[i] = seen[nc];
+        }
+    }
+    for (int i = 0; i < nc;) {
+        if (!seen[i]) {
+            i++;
+            continue;
+        }
+        nc--;
+        cand[2 * i] = cand[2 * nc];
+        cand[2 * i + 1] = cand[2 * nc + 1];
+        seen[i] = seen[nc];
+    }
+    /* "Never": each pair seen in collision leaves the candidates. */
+    for (int s = 0; s < MPB_WORLD_ACM_SAMPLES && nc > 0; s++) {
+        mpb_robot_random_config(r, &rng, q);
+        if (place(u, q) != MPB_OK) {
+            rc = MPB_EINVAL;
+            goto done;
+        }
+        for (int i = 0; i < nc;) {
+            int hit = mpb_collision_check_pair(u->coll, cand[2 * i], cand[2 * i + 1]);
+            if (hit < 0) {
+                rc = hit;
+                goto done;
+            }
+            if (hit) {
+                nc--;
+                cand[2 * i] = cand[2 * nc];
+                cand[2 * i + 1] = cand[2 * nc + 1];
+            } else {
+                i++;
+            }
+        }
+    }
+    for (int i = 0; i < nc; i++)
+        acm_allow(u, cand[2 * i], cand[2 * i + 1], REASON_NEVER);
+done:
+    free(cand);
+    free(count);
+    free(seen);
+    free(q);
+    return rc;
+}
+
+/* The SRDF's pairs; a link it names that the robot lacks is an error. */
+static int acm_from_srdf(urdf_world *u, char *err, size_t errlen)
+{
+    for (int i = 0; i < u->srdf.num_pairs; i++) {
+        const mpb__srdf_pair *p = &u->srdf.pairs[i];
+        int a = mpb_robot_link_index(u->robot, p->link1);
+        int b = mpb_robot_link_index(u->robot, p->link2);
+        if (a < 0 || b < 0) {
+            mpb__set_err(err, errlen, "srdf line %d: disable_collisions names "
+                         "link '%.80s', which is not a link of the robot",
+                         p->line, a < 0 ? p->link1 : p->link2);
+            return MPB_EPARSE;
+        }
+        acm_allow(u, a, b, p->reason);
+    }
+    return MPB_OK;
+}
+
+/*
+ * Build the matrix (from the SRDF, or generated), list its pairs, and let
+ * the collision world skip them, and every pair of fixed links.
+ */
+static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
+{
+    int n = u->num_links, rc;
+    u->allowed = calloc((size_t)n * (size_t)n + 1, sizeof *u->allowed);
+    if (!u->allowed)
+        return MPB_ENOMEM;
+    if (u->from_srdf && (rc = acm_from_srdf(u, err, errlen)) != MPB_OK)
+        return rc;
+    if ((rc = acm_adjacent(u)) != MPB_OK)
+        return rc;
+    if (!u->from_srdf && (rc = acm_generate(u, q0)) != MPB_OK) {
+        mpb__set_err(err, errlen, "robot: self-collision matrix: %s",
+                     mpb_collision_errmsg(u->coll));
+        return rc;
+    }
+    u->pairs = malloc(((size_t)n * (size_t)n + 1) * sizeof *u->pairs);
+    if (!u->pairs)
+        return MPB_ENOMEM;
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++) {
+            int fixed = !mpb_robot_get_link(u->robot, a)->moves &&
+                        !mpb_robot_get_link(u->robot, b)->moves;
+            if (*acm_at(u, a, b)) {
+                u->pairs[2 * u->num_pairs] = a;
+                u->pairs[2 * u->num_pairs + 1] = b;
+                u->num_pairs++;
+            }
+            if ((*acm_at(u, a, b) || fixed) && has_body(u, a) && has_body(u, b) &&
+                (rc = mpb_collision_allow_pair(u->coll, a, b)) != MPB_OK)
+                return rc;
+        }
+    return MPB_OK;
+}
+
+/*
+ * The robot text is a URDF, perhaps followed by an SRDF: the SRDF begins
+ * on the line after the one where the URDF's root element ends (its first
+ * "</robot>" outside comments), or right after it if more follows on that
+ * line. *urdf_len is the URDF's length, *srdf the SRDF's text or NULL when
+ * only blanks and comments follow.
+ */
+static void split_srdf(const char *text, size_t *urdf_len, const char **srdf)
+{
+    const char *p = text;
+    *urdf_len = strlen(text);
+    *srdf = NULL;
+    while (*p) {
+        if (strncmp(p, "<!--", 4) == 0) {
+            const char *e = strstr(p + 4, "-->");
+            if (!e)
+                return;
+            p = e + 3;
+        } else if (strncmp(p, "</robot", 7) == 0 && (p[7] == '>' ||
+                   p[7] == ' ' || p[7] == '\t' || p[7] == '\r' || p[7] == '\n')) {
+            const char *e = strchr(p, '>');
+            if (!e)
+                return;
+            /* The next line, or right after the tag if more follows on
+             * its line. */
+            const char *start = e + 1;
+            while (*start == ' ' || *start == '\t' || *start == '\r')
+                start++;
+            start = *start == '\n' ? start + 1 : e + 1;
+            *urdf_len = (size_t)(start - text);
+            /* An SRDF only if an element follows, not just comments. */
+            for (const char *t = start; *t; t++) {
+                if (strncmp(t, "<!--", 4) == 0) {
+                    const char *ce = strstr(t + 4, "-->");
+                    if (!ce)
+                        break;
+                    t = ce + 2;
+                } else if (*t == '<') {
+                    *srdf = start;
+                    return;
+                }
+            }
+            return;
+        } else {
+            p++;
+        }
+    }
 }
 
 /* The chain's tip, followed down fixed joints while there is one child. */
@@ -278,13 +651,33 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     if (!u)
         return MPB_ENOMEM;
     w->impl = u;
+    u->robot_dir = w->robot_dir;
     if (joints == NULL || num_joints < 1) {
         mpb__set_err(err, errlen, "robot: a urdf world needs the joints of "
                      "its planning group");
         return MPB_EINVAL;
     }
-    if ((rc = mpb_robot_load_urdf_joints(robot_text, joints, num_joints,
-                                         &u->robot, err, errlen)) != MPB_OK)
+    size_t urdf_len;
+    const char *srdf;
+    split_srdf(robot_text, &urdf_len, &srdf);
+    if (srdf) {
+        char why[256];
+        if ((rc = mpb__srdf_parse(srdf, &u->srdf, why, sizeof why)) != MPB_OK) {
+            mpb__set_err(err, errlen, "srdf %s", why);
+            return rc;
+        }
+        u->from_srdf = 1;
+        char *urdf = strndup(robot_text, urdf_len);
+        if (!urdf)
+            return MPB_ENOMEM;
+        rc = mpb_robot_load_urdf_joints(urdf, joints, num_joints, &u->robot,
+                                        err, errlen);
+        free(urdf);
+    } else {
+        rc = mpb_robot_load_urdf_joints(robot_text, joints, num_joints,
+                                        &u->robot, err, errlen);
+    }
+    if (rc != MPB_OK)
         return rc;
     if ((rc = mpb_scene_parse(scene_text, &u->scene, err, errlen)) != MPB_OK)
         return rc;
@@ -293,30 +686,31 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     u->num_links = mpb_robot_num_links(u->robot);
     u->ee_link = find_ee_link(u->robot);
     u->poses = calloc((size_t)u->num_links + 1, sizeof *u->poses);
-    double *ref = calloc((size_t)num_joints, sizeof *ref);
-    if (!u->poses || !ref) {
-        free(ref);
+    double *q0 = calloc((size_t)num_joints, sizeof *q0);
+    if (!u->poses || !q0) {
+        free(q0);
         return MPB_ENOMEM;
     }
+    default_state(u->robot, q0);
     for (int j = 0; j < num_joints; j++) {
         const mpb_robot_joint *jt = mpb_robot_get_joint(u->robot, j);
-        ref[j] = jt->type == MPB_JOINT_CONTINUOUS ? 0.0 : 0.5 * (jt->lo + jt->hi);
         rc = mpb__world_add_joint(w, jt->name, strlen(jt->name), jt->lo, jt->hi,
                                   jt->type == MPB_JOINT_CONTINUOUS);
         if (rc != MPB_OK) {
-            free(ref);
+            free(q0);
             return rc;
         }
     }
     /* Static links' poses, once. */
-    rc = mpb_robot_fk(u->robot, ref, u->poses);
+    rc = mpb_robot_fk(u->robot, q0, u->poses);
     if (rc == MPB_OK)
         rc = add_robot(u, err, errlen);
     if (rc == MPB_OK)
-        rc = add_scene(u, err, errlen);
+        rc = build_acm(u, q0, err, errlen);
     if (rc == MPB_OK)
-        rc = allow_default_pairs(u, ref);
-    free(ref);
+        rc = add_scene(u, err, errlen);
+    free(q0);
+    u->robot_dir = NULL;
     return rc;
 }
 
@@ -328,6 +722,62 @@ static int urdf_in_collision(void *impl, const double *q)
     if (mpb_collision_check(u->coll, NULL, NULL) != 0)
         return 1;   /* a collision, or an error: not known to be free */
     return mpb_collision_check_self(u->coll, NULL, NULL) != 0;
+}
+
+/* A body of the collision world by name: a link, or an attached object. */
+static const char *body_name(const urdf_world *u, int movable, const char **kind)
+{
+    *kind = "";
+    if (movable >= 0 && movable < u->num_links)
+        return mpb_robot_get_link(u->robot, movable)->name;
+    *kind = "attached object ";
+    const mpb_scene_object *o = mpb_scene_object_at(u->scene, movable - u->num_links);
+    return o ? o->id : "?";
+}
+
+static int urdf_contact(void *impl, const double *q, char *what, size_t len)
+{
+    urdf_world *u = impl;
+    int m, st, a, b, hit;
+    const char *ka, *kb;
+    if (place(u, q) != MPB_OK)
+        return MPB_EINVAL;
+    if ((hit = mpb_collision_check(u->coll, &m, &st)) != 0) {
+        if (hit < 0)
+            return hit;
+        const mpb_scene_object *o = mpb_scene_object_at(u->scene, st);
+        const char *name = body_name(u, m, &ka);
+        mpb__set_err(what, len, "%s%s touches scene object %s", ka, name,
+                     o ? o->id : "?");
+        return 1;
+    }
+    if ((hit = mpb_collision_check_self(u->coll, &a, &b)) != 0) {
+        if (hit < 0)
+            return hit;
+        const char *na = body_name(u, a, &ka), *nb = body_name(u, b, &kb);
+        mpb__set_err(what, len, "self-collision between %s%s and %s%s", ka, na,
+                     kb, nb);
+        return 1;
+    }
+    return 0;
+}
+
+static int urdf_num_allowed(void *impl)
+{
+    return ((urdf_world *)impl)->num_pairs;
+}
+
+static int urdf_allowed_pair(void *impl, int i, mpb_world_acm_pair *out)
+{
+    urdf_world *u = impl;
+    if (i < 0 || i >= u->num_pairs)
+        return MPB_EINVAL;
+    int a = u->pairs[2 * i], b = u->pairs[2 * i + 1];
+    out->link1 = mpb_robot_get_link(u->robot, a)->name;
+    out->link2 = mpb_robot_get_link(u->robot, b)->name;
+    out->reason = *acm_at(u, a, b);
+    out->from_srdf = u->from_srdf;
+    return MPB_OK;
 }
 
 static double urdf_clearance(void *impl, const double *q)
@@ -390,6 +840,9 @@ const mpb__world_provider mpb__world_urdf = {
     .clearance    = urdf_clearance,
     .goal_region  = urdf_goal_region,
     .ee_position  = urdf_ee_position,
+    .contact      = urdf_contact,
+    .num_allowed  = urdf_num_allowed,
+    .allowed_pair = urdf_allowed_pair,
 };
 
 struct mpb_collision *mpb__urdf_collision(mpb_world *w)

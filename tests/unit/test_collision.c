@@ -18,6 +18,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
+#include "collision_internal.h"
 #include "mpbench/mesh.h"
 #include "mpbench/pose.h"
 
@@ -659,6 +660,51 @@ static void test_allowed_pairs(void **state)
     mpb_collision_destroy(c);
 }
 
+/* A self-only body (a robot's fixed link): in self checks, not against
+ * the statics nor in the distance; a pair checked whatever is allowed. */
+static void test_self_only_bodies(void **state)
+{
+    (void)state;
+    mpb_collision *c = new_world();
+    mpb_geometry base = box(0.6, 0.6, 0.3), s = sphere(0.1);
+    mpb_geometry floor = box(10, 10, 0.1);
+    mpb_pose fp = at(0, 0, -0.05), bp = at(0, 0, 0.15), sp = at(0.35, 0, 0.15);
+    ok(c, mpb_collision_add_static(c, 0, &floor, &fp));
+    ok(c, mpb_collision_add_movable(c, 1, &base, NULL));   /* on the floor */
+    ok(c, mpb_collision_set_pose(c, 1, &bp));
+    ok(c, mpb_collision_add_movable(c, 2, &s, NULL));      /* in the base */
+    ok(c, mpb_collision_set_pose(c, 2, &sp));
+    mpb_collision_distance_result res;
+    int m, st, a, b;
+    assert_int_equal(mpb_collision_check(c, &m, &st), 1);  /* base on floor */
+    assert_int_equal(m, 1);
+    ok(c, mpb_collision_set_self_only(c, 1, 1));
+    assert_int_equal(mpb_collision_check(c, NULL, NULL), 0);
+    /* the sphere's bottom at z 0.05, the floor's top at 0 */
+    assert_near(distance_of(c, &res), 0.05, 1e-9);
+    assert_int_equal(res.movable, 2);
+    assert_int_equal(mpb__collision_check_brute(c), 1);  /* the self pair */
+    assert_near(mpb__collision_distance_brute(c), 0.05, 1e-9);
+    assert_int_equal(mpb_collision_check_self(c, &a, &b), 1);
+    assert_int_equal(a, 1);
+    assert_int_equal(b, 2);
+    ok(c, mpb_collision_allow_pair(c, 1, 2));
+    assert_int_equal(mpb_collision_check_self(c, NULL, NULL), 0);
+    assert_int_equal(mpb__collision_check_brute(c), 0);
+    assert_int_equal(mpb_collision_check_pair(c, 2, 1), 1);
+    mpb_pose away = at(1, 0, 0.5);
+    ok(c, mpb_collision_set_pose(c, 2, &away));
+    assert_int_equal(mpb_collision_check_pair(c, 1, 2), 0);
+    assert_int_equal(mpb_collision_check_pair(c, 1, 1), MPB_EINVAL);
+    assert_int_equal(mpb_collision_check_pair(c, 1, 7), MPB_ENOTFOUND);
+    assert_int_equal(mpb_collision_set_self_only(c, 7, 1), MPB_ENOTFOUND);
+    /* back in every query */
+    ok(c, mpb_collision_set_self_only(c, 1, 0));
+    assert_int_equal(mpb_collision_check(c, &m, &st), 1);
+    assert_int_equal(m, 1);
+    mpb_collision_destroy(c);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -838,6 +884,7 @@ int main(void)
         cmocka_unit_test(test_mesh_twin),
         cmocka_unit_test(test_bodies),
         cmocka_unit_test(test_allowed_pairs),
+        cmocka_unit_test(test_self_only_bodies),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_timing),
     };

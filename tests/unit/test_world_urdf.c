@@ -10,6 +10,9 @@
  * the forearm. With the shoulder panned to -1.2 rad or +0.5 rad the arm
  * points away from it (its line passes > 0.25 m from the box), but the
  * straight joint-space segment between the two passes pan = 0.
+ *
+ * The robot text is the URDF followed by its SRDF (pr2_right_arm.srdf),
+ * which allows the pairs the test robot's crude shapes make touch.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -49,7 +52,14 @@ static char *urdf;
 static int setup(void **state)
 {
     (void)state;
-    urdf = test_read_file(MPB_TEST_DATA "/pr2_right_arm.urdf");
+    char *u = test_read_file(MPB_TEST_DATA "/pr2_right_arm.urdf");
+    char *s = test_read_file(MPB_TEST_DATA "/pr2_right_arm.srdf");
+    urdf = malloc(strlen(u) + strlen(s) + 1);
+    assert_non_null(urdf);
+    strcpy(urdf, u);
+    strcat(urdf, s);
+    free(u);
+    free(s);
     return 0;
 }
 
@@ -242,9 +252,90 @@ static void a_bad_attachment_is_named_on_its_line(void **state)
     }
 }
 
+/* Open the mesh arm with the two search variables as given (NULL:
+ * unset) and the URDF's folder (NULL: not given); the return code, the
+ * message in err. */
+static int open_mesh_arm_in(const char *mesh_path, const char *ros_path,
+                            const char *robot_dir, char *err, size_t errlen)
+{
+    static const char *const j[] = {"j"};
+    char *text = test_read_file(MPB_TEST_DATA "/meshes/mesh_arm.urdf");
+    if (mesh_path)
+        setenv("MPB_MESH_PATH", mesh_path, 1);
+    else
+        unsetenv("MPB_MESH_PATH");
+    if (ros_path)
+        setenv("ROS_PACKAGE_PATH", ros_path, 1);
+    else
+        unsetenv("ROS_PACKAGE_PATH");
+    mpb_world *w = NULL;
+    int rc = mpb_world_open_group_in("urdf", text, robot_dir, "moveit-scene",
+                                     "(empty)\n.\n", j, 1, &w, err, errlen);
+    if (rc == MPB_OK) {
+        /* The cube is where the URDF puts it: 0.5 m out along the arm. */
+        double q[1] = {0};
+        assert_int_equal(mpb_world_in_collision(w, q), 0);
+    }
+    mpb_world_close(w);
+    free(text);
+    unsetenv("MPB_MESH_PATH");
+    unsetenv("ROS_PACKAGE_PATH");
+    return rc;
+}
+
+static int open_mesh_arm(const char *mesh_path, const char *ros_path,
+                         char *err, size_t errlen)
+{
+    return open_mesh_arm_in(mesh_path, ros_path, NULL, err, errlen);
+}
+
+static void meshes_are_found_through_both_variables(void **state)
+{
+    (void)state;
+    char err[1024];
+    const char *root = MPB_TEST_DATA "/meshes";
+    const char *pkg = MPB_TEST_DATA "/meshes/mesh_pkg";
+    /* A folder that holds the package, or that is the package (as ROS). */
+    assert_int_equal(open_mesh_arm(root, NULL, err, sizeof err), MPB_OK);
+    assert_int_equal(open_mesh_arm(pkg, NULL, err, sizeof err), MPB_OK);
+    assert_int_equal(open_mesh_arm(NULL, root, err, sizeof err), MPB_OK);
+    assert_int_equal(open_mesh_arm("/nonexistent", pkg, err, sizeof err), MPB_OK);
+
+    /* Neither: the message names both variables. */
+    assert_int_equal(open_mesh_arm(NULL, NULL, err, sizeof err), MPB_ENOTFOUND);
+    assert_non_null(strstr(err, "mesh 'package://mesh_pkg/meshes/cube.stl': "
+                                "not found"));
+    assert_non_null(strstr(err, "looked in MPB_MESH_PATH (not set) and "
+                                "ROS_PACKAGE_PATH (not set)"));
+    assert_int_equal(open_mesh_arm("/a:/b", "", err, sizeof err), MPB_ENOTFOUND);
+    assert_non_null(strstr(err, "looked in MPB_MESH_PATH (/a, /b) and "
+                                "ROS_PACKAGE_PATH (empty)"));
+
+    /* No limit on the folders: the package in the 40th is found, and 40
+     * folders tried are said as such. */
+    char many[4096] = "";
+    for (int i = 1; i < 40; i++)
+        snprintf(many + strlen(many), sizeof many - strlen(many), "/no/%d:", i);
+    assert_int_equal(open_mesh_arm(many, NULL, err, sizeof err), MPB_ENOTFOUND);
+    assert_non_null(strstr(err, "MPB_MESH_PATH (/no/1, /no/2, /no/3 and 36 "
+                                "more: 39 folders)"));
+    snprintf(many + strlen(many), sizeof many - strlen(many), "%s", root);
+    assert_int_equal(open_mesh_arm(many, NULL, err, sizeof err), MPB_OK);
+
+    /* Last, the URDF's folder, when the caller knows it (mpbenchd does):
+     * it holds mesh_pkg here. */
+    assert_int_equal(open_mesh_arm_in(NULL, NULL, root, err, sizeof err), MPB_OK);
+    assert_int_equal(open_mesh_arm_in("/a", NULL, MPB_TEST_DATA, err, sizeof err),
+                     MPB_ENOTFOUND);
+    assert_non_null(strstr(err, "looked in MPB_MESH_PATH (/a) and "
+                                "ROS_PACKAGE_PATH (not set) and the URDF's "
+                                "folder (" MPB_TEST_DATA ")"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(meshes_are_found_through_both_variables),
         cmocka_unit_test(joints_and_limits_come_from_the_urdf),
         cmocka_unit_test(the_box_collides_with_the_forearm_only_at_pan_zero),
         cmocka_unit_test(a_segment_through_the_box_is_rejected_at_that_segment),

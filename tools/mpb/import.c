@@ -55,37 +55,6 @@ static void usage(FILE *out)
         "bad command line.\n");
 }
 
-static char *read_all(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL)
-        return NULL;
-    size_t cap = 1 << 16, n = 0, got;
-    char *buf = malloc(cap + 1);
-    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
-        n += got;
-        if (n == cap) {
-            char *b = realloc(buf, (cap *= 2) + 1);
-            if (b == NULL) {
-                free(buf);
-                buf = NULL;
-            } else {
-                buf = b;
-            }
-        }
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return NULL;
-    }
-    if (buf)
-        buf[n] = '\0';     /* the text is used as a string too */
-    *len = n;
-    return buf;
-}
-
 /* ---- one planner's runs --------------------------------------------------- */
 
 /* Where a planner's properties are, looked up once per planner. */
@@ -351,7 +320,7 @@ static int load(const char *path, loaded *l)
     int rc;
     *l = (loaded){0};
     errno = 0;
-    if ((l->text = read_all(path, &len)) == NULL) {
+    if ((l->text = tool_read_file(path, &len)) == NULL) {
         fprintf(stderr, "mpb " CMD ": cannot read %s: %s\n", path,
                 errno ? strerror(errno) : "out of memory");
         return 0;

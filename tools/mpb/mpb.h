@@ -20,7 +20,8 @@
     X(status, "follow a running experiment: progress, rate, time left, planners") \
     X(spy,    "start lcm-spy with mpbench's message types, to watch the traffic") \
     X(export, "write results for Planner Arena (and OMPL's tools)")          \
-    X(import, "read OMPL and MoveIt benchmark logs into a database")
+    X(import, "read OMPL and MoveIt benchmark logs into a database")        \
+    X(srdf,   "write a robot's self-collision matrix as an SRDF, for review")
 
 #define MPB__TOOL_DECLARE(name, summary) int cmd_##name(int argc, char **argv);
 MPB_TOOL_COMMANDS(MPB__TOOL_DECLARE)
@@ -39,6 +40,12 @@ enum {
  * mpb_store_close().
  */
 mpb_store *tool_open_readonly(const char *cmd, const char *path);
+
+/*
+ * The whole file at path, NUL-terminated (its length, without the NUL, in
+ * *len), to free(); NULL with errno set when it cannot be read.
+ */
+char *tool_read_file(const char *path, size_t *len);
 
 /* Parse a whole decimal integer > 0 (an id); 0 on success, -1 if not one. */
 int tool_parse_id(const char *text, int64_t *out);

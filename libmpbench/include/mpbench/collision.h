@@ -157,6 +157,17 @@ int mpb_collision_set_pose(mpb_collision *c, int id, const mpb_pose *pose);
 int mpb_collision_set_enabled(mpb_collision *c, int id, int enabled);
 
 /*
+ * Make the movable body `id` take part in self checks only (self_only = 1)
+ * or in every query (0, the default): mpb_collision_check() and
+ * mpb_collision_distance() skip a self-only body, mpb_collision_check_self()
+ * and mpb_collision_check_pair() do not. For a robot's fixed links: the
+ * moving links must not pass through them, but they stand where the robot
+ * stands (on the floor, say) and are no part of the clearance to the
+ * environment. MPB_OK or MPB_ENOTFOUND.
+ */
+int mpb_collision_set_self_only(mpb_collision *c, int id, int self_only);
+
+/*
  * Let movable bodies a and b touch: mpb_collision_check_self() skips the
  * pair. MPB_OK; MPB_ENOTFOUND for an unknown body; MPB_EINVAL for a == b.
  */
@@ -186,6 +197,15 @@ int mpb_collision_check(mpb_collision *c, int *movable, int *static_id);
  * (*a < *b), 0 if none, negative on error as above.
  */
 int mpb_collision_check_self(mpb_collision *c, int *a, int *b);
+
+/*
+ * Do the movable bodies a and b touch where they are now, whatever
+ * mpb_collision_allow_pair() and mpb_collision_set_enabled() say? 1 if
+ * so, 0 if not; MPB_ENOTFOUND for an unknown body, MPB_EINVAL for a == b,
+ * another negative code on error as above. For building an
+ * allowed-collision matrix pair by pair.
+ */
+int mpb_collision_check_pair(mpb_collision *c, int a, int b);
 
 typedef struct mpb_collision_distance_result {
     double distance;         /* m: >= 0; 0 when some pair overlaps;

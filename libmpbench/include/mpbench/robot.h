@@ -114,7 +114,9 @@ typedef struct mpb_robot_collision {
  * Load the URDF text (NUL-terminated) with the planning group from
  * base_link down to tip_link: the active joints are the revolute,
  * continuous and prismatic joints on the path between them, base first.
- * base_link NULL means the URDF's root link.
+ * base_link NULL means the URDF's root link; tip_link NULL the link below
+ * the base with the most active joints above it (the first in depth-first
+ * order of those): the robot's longest chain.
  *
  * On success *out is a new robot, freed with mpb_robot_free(). On failure
  * *out is NULL and err (if not NULL) holds one line starting "urdf: ":
@@ -124,7 +126,7 @@ typedef struct mpb_robot_collision {
  *                    below base_link, no active joint between them, a zero
  *                    or non-finite axis, lower > upper, a bad geometry;
  *   MPB_EUNSUPPORTED a floating or planar joint inside the chain;
- *   MPB_EINVAL       NULL urdf_text, tip_link or out; MPB_ENOMEM.
+ *   MPB_EINVAL       NULL urdf_text or out; MPB_ENOMEM.
  * urdfdom's console output is captured while parsing (console_bridge's
  * handler is swapped for the duration, under a lock), never printed.
  */

@@ -27,6 +27,19 @@
  *             .scene file, scene format "moveit-scene" (scene.h); meshes
  *             through assimp, collision and distance through FCL
  *             (collision.h). The planning group is named by its joints.
+ *             The robot text may go on, on the line after the URDF's
+ *             closing </robot>, with the robot's SRDF (MoveIt's semantic
+ *             description); its line numbers in messages ("srdf line 7:
+ *             ...") count from there. Of the SRDF, the <disable_collisions
+ *             link1= link2=/> pairs are read (every one, whatever its
+ *             reason); groups, group states, virtual and passive joints
+ *             are not (yet). Self-collision follows MoveIt: every pair of
+ *             links is checked, a moving link against the robot's fixed
+ *             links too, unless the allowed-collision matrix (ACM) allows
+ *             the pair; two fixed links are never checked. The ACM is the
+ *             SRDF's pairs plus the adjacent links; without an SRDF it is
+ *             generated as MoveIt's setup assistant does (see
+ *             mpb_world_allowed_pair()). Clearance is to the scene only.
  *
  * A world is not thread-safe; use one per thread.
  */
@@ -65,6 +78,18 @@ int mpb_world_open_group(const char *robot_format, const char *robot_text,
                          const char *const *joints, int num_joints,
                          mpb_world **out, char *err, size_t errlen);
 
+/*
+ * As mpb_world_open_group(), for a robot read from a file in the folder
+ * robot_dir (may be NULL): the last place the robot's meshes are looked
+ * for, after MPB_MESH_PATH and ROS_PACKAGE_PATH (docs/scenes.md). The
+ * folder is used while opening only.
+ */
+int mpb_world_open_group_in(const char *robot_format, const char *robot_text,
+                            const char *robot_dir, const char *scene_format,
+                            const char *scene_text, const char *const *joints,
+                            int num_joints, mpb_world **out, char *err,
+                            size_t errlen);
+
 void mpb_world_close(mpb_world *w);
 
 /*
@@ -88,13 +113,15 @@ const unsigned char *mpb_world_joint_wraps(const mpb_world *w);
 /*
  * 1 if the robot at q (num_joints values) touches an obstacle (or itself,
  * where the format models that), 0 if free. Touching counts: in collision
- * exactly when mpb_world_clearance() <= 0. A non-finite q counts as in
+ * with the scene exactly when mpb_world_clearance() <= 0 (self-collision
+ * has no part in the clearance). A non-finite q counts as in
  * collision; NULL w or q gives MPB_EINVAL (nonzero, so still "not free").
  */
 int mpb_world_in_collision(mpb_world *w, const double *q);
 
 /*
- * Smallest distance (m) from the robot at q to any obstacle; 0 or less when
+ * Smallest distance (m) from the robot's moving links (and what they
+ * carry) to any obstacle of the scene; 0 or less when
  * in collision, +INFINITY in an empty scene, NaN for a non-finite q (or NULL
  * w or q).
  */
@@ -108,6 +135,57 @@ double mpb_world_clearance(mpb_world *w, const double *q);
  * for NULL arguments or a non-finite q.
  */
 int mpb_world_ee_position(mpb_world *w, const double *q, double xyz[3]);
+
+/*
+ * The allowed-collision matrix of a "urdf" world: the pairs of links that
+ * may touch, in the robot's link order (robot.h: depth-first from the
+ * root) of link1, then of link2, link1 before link2. From an SRDF: its
+ * <disable_collisions> pairs with their reasons as written, and every
+ * adjacent pair it leaves out ("Adjacent"). Generated (no SRDF), as
+ * MoveIt's setup assistant does, each pair for the first reason that holds:
+ *   "Adjacent"  parent and child links, across any joint, fixed ones
+ *               included; a link without collision shapes joins its
+ *               neighbours (both links of a pair have shapes);
+ *   "Default"   in collision at the default state, MoveIt's: every joint
+ *               of the group at 0 when 0 is within its limits, else at the
+ *               middle of them;
+ *   "Always"    in collision in more than 95 % of a batch of 200 random
+ *               states, batches drawn until one adds no pair;
+ *   "Never"     in collision in none of MPB_WORLD_ACM_SAMPLES random
+ *               states (uniform within the limits; the generator of
+ *               robot.h, seeded with MPB_WORLD_ACM_SEED, so the same robot
+ *               gives the same matrix on every run). Two fixed links are
+ *               "Never" unless they touch at the default state.
+ * Only the group's joints move; the others hold their values (robot.h).
+ * All the states come from one generator seeded with MPB_WORLD_ACM_SEED.
+ */
+#define MPB_WORLD_ACM_SAMPLES 10000   /* the setup assistant's default */
+#define MPB_WORLD_ACM_SEED    1
+
+typedef struct mpb_world_acm_pair {
+    const char *link1, *link2;  /* owned by the world */
+    const char *reason;         /* "Adjacent", "Default", "Always",
+                                   "Never", or the SRDF's reason
+                                   attribute ("" if none) */
+    int         from_srdf;      /* 1 if the matrix came from an SRDF */
+} mpb_world_acm_pair;
+
+/* How many pairs the matrix allows; 0 for a world without one (planar). */
+int mpb_world_num_allowed_pairs(const mpb_world *w);
+
+/* Pair i (0 .. count-1) into *out: MPB_OK, or MPB_EINVAL out of range. */
+int mpb_world_allowed_pair(const mpb_world *w, int i,
+                           mpb_world_acm_pair *out);
+
+/*
+ * Is the robot at q in collision, and with what? 1 with one phrase in what
+ * (may be NULL) naming the bodies in contact ("self-collision between
+ * r_gripper_palm_link and torso_lift_link", "r_forearm_link touches scene
+ * object table"); 0 if free; negative on error (MPB_EINVAL for NULL w or
+ * q, a non-finite q). Worlds that cannot name bodies (planar) answer as
+ * mpb_world_in_collision() with what empty.
+ */
+int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len);
 
 struct mpb_goal;
 
