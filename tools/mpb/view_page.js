@@ -211,25 +211,55 @@ let trail = null;
 // The end effector: the last moving robot body.
 const tipIndex = data.moving.length - 1;
 
+// The configuration where the verifier found the collision: the robot there,
+// its body in contact solid red, the others see-through (solid when the
+// slider is on that frame, in place of the robot), and the obstacle it
+// touches tinted red and outlined, so that the arm stays visible inside it.
+const contactParts = [];
+const ghostMat = material(COLORS.collision, 0.16);
+const redMat = material(COLORS.collision, 1, { emissive: 0x7a0000 });
+const contactObstacleMat = material(COLORS.contactObstacle, 0.5, { emissive: 0x401000 });
 function highlightContact() {
-  for (const o of staticObjects) if (o) o.traverse((m) => { if (m.userData.orig) { m.material = m.userData.orig; delete m.userData.orig; } });
+  for (const o of staticObjects) {
+    if (!o) continue;
+    o.traverse((m) => { if (m.userData.orig) { m.material = m.userData.orig; delete m.userData.orig; } });
+    for (const e of o.children.filter((c) => c.userData.outline)) o.remove(e);
+  }
   collisionGroup.clear();
+  contactParts.length = 0;
   if (!stage.collision) return;
   const [a, b] = stage.collision.bodies;
-  const red = material(COLORS.collision, 1, { emissive: 0x7a0000 });
-  const ghost = material(COLORS.collision, 0.18);
-  const c = makeRobot(ghost);
+  const c = makeRobot(ghostMat);
   scene.remove(c);
   placeRobot(c, stage.collisionPoses);
   c.userData.parts.forEach((o) => {
-    if (o.userData.body === a || o.userData.body === b)
-      o.traverse((m) => { if (m.isMesh) m.material = red; });
+    const touching = o.userData.body === a || o.userData.body === b;
+    o.traverse((m) => { if (m.isMesh) m.material = touching ? redMat : ghostMat; });
+    if (!touching) contactParts.push(o);
+    else {
+      // A halo around the body in contact, to find it among the others.
+      const sphere = new THREE.Box3().setFromObject(o).getBoundingSphere(new THREE.Sphere());
+      const halo = new THREE.Mesh(new THREE.SphereGeometry(Math.max(sphere.radius * 1.6, 0.04), 32, 16),
+        material(COLORS.collision, 0.22));
+      halo.position.copy(sphere.center);
+      collisionGroup.add(halo);
+    }
   });
   collisionGroup.add(c);
-  // An obstacle (or a robot body that does not move) in contact, in red too.
   for (const i of [a, b]) {
     const o = staticObjects[i];
-    if (o) o.traverse((m) => { if (m.isMesh) { m.userData.orig = m.material; m.material = material(COLORS.contactObstacle, 1, { emissive: 0x5a1000 }); } });
+    if (!o) continue;
+    for (const m of [...o.children]) {
+      if (!m.isMesh) continue;
+      m.userData.orig = m.material;
+      m.material = contactObstacleMat;
+      const edges = new THREE.LineSegments(new THREE.EdgesGeometry(m.geometry, 30),
+        new THREE.LineBasicMaterial({ color: COLORS.collision }));
+      edges.position.copy(m.position);
+      edges.quaternion.copy(m.quaternion);
+      edges.userData.outline = true;
+      o.add(edges);
+    }
   }
 }
 
@@ -286,6 +316,12 @@ function setFrame(f) {
   $('slider').value = frame;
   robot.visible = stage.frames > 0;
   if (stage.frames > 0) placeRobot(robot, stage.poseArray, frame);
+  // On the frame of the collision, the red robot stands in for the robot.
+  const atCollision = !!stage.collision && frame === stage.fail_frame &&
+    $('show-collision').checked;
+  if (atCollision) robot.visible = false;
+  for (const o of contactParts)
+    o.traverse((m) => { if (m.isMesh) m.material = atCollision ? robotMat : ghostMat; });
   const at = stage.frames > 0 ? stage.frameAt[frame] : 0;
   $('frame').textContent = 'frame ' + (frame + 1) + '/' + stage.frames +
     ', waypoint ' + (Number.isInteger(at) ? at : at.toFixed(2)) + ' of ' + (stage.waypoints - 1);
@@ -296,6 +332,7 @@ function applyVisibility() {
   startRobot.visible = $('show-start').checked;
   goalGroup.visible = $('show-goal').checked;
   collisionGroup.visible = $('show-collision').checked;
+  setFrame(frame);
   if (trail) trail.visible = $('show-trail').checked;
   sceneGroup.visible = $('show-scene').checked;
   render();
@@ -361,7 +398,7 @@ $('play').addEventListener('click', () => {
 
 // ---- camera: fit the robot's reach and what it touches; drag to orbit ----------
 const target = new THREE.Vector3();
-let radius = 2, azimuth = -2.2, elevation = 0.5;
+let radius = 2, azimuth = -2.6, elevation = 0.85;
 function fitCamera() {
   const box = new THREE.Box3();
   for (const g of [robot, startRobot, collisionGroup, goalGroup]) box.expandByObject(g);
@@ -369,7 +406,7 @@ function fitCamera() {
   if (box.isEmpty()) box.expandByObject(world);
   const size = box.getSize(new THREE.Vector3());
   box.getCenter(target);
-  radius = Math.max(size.length() * 1.25, 0.5);
+  radius = Math.max(size.length() * 1.1, 0.5);
 }
 function placeCamera() {
   camera.position.set(
