@@ -95,6 +95,21 @@ check "without -o it writes a new file and says where" \
 check "... and that there is no display here" \
     test "$(printf '%s\n' "$out" | grep -c 'no display here')" = 1
 
+# Runs chosen by name: one is drawn as a run id would be; the failed ones
+# of the experiment, one page each with an index linking them.
+"$mpb" view "$DB" --query through_the_counter -o "$work/by-name.html" >/dev/null 2>&1
+check "--query with one run writes its page" eq $? 0
+check "... the same run's" \
+    test "$(grep -o '"run":{"id":[0-9]*' "$work/by-name.html")" = "\"run\":{\"id\":$run"
+"$mpb" view "$DB" --failed --planner null/straight_line -o "$work/failed" >"$work/failed.out" 2>&1
+check "--failed writes a folder of pages" eq $? 0
+check "... a page for the failed run with stages" test -s "$work/failed/run-$run.html"
+check "... none for the one without" \
+    test "$(ls "$work/failed" | grep -c '^run-.*html$')" = 1
+check "... an index that links the page" grep -q "href=\"run-$run.html\"" "$work/failed/index.html"
+check "... and lists the run without stages with its reason" \
+    grep -q "straight_line needs a joint-space goal" "$work/failed/index.html"
+
 # Bad input: one line, exit 1, no page, the database as it was.
 before=$(md5sum <"$DB")
 bad() {   # bad NAME EXIT PATTERN ARGS...
@@ -116,6 +131,8 @@ bad "a database that is not mpbench's" 1 "other.db" "$work/other.db" 1
 check "... which is left as it was" test "$(sqlite3 "$work/other.db" "SELECT x FROM t")" = 1
 bad "a database that is not there" 1 "nothing.db: No such file" "$work/nothing.db" 1
 bad "a run id that is not a number" 2 "RUN is a run id (a number), not 'x'" "$DB" x
+bad "a query no run has" 1 "no finished run of experiment 1 for query 'none'" "$DB" --query none
+bad "a run id and a selection" 2 "a run id, or --experiment" "$DB" 1 --failed
 MPB_THREE_JS=$work/none.js bad "three.js missing" 1 "cannot read three.js at $work/none.js" "$DB" "$run"
 check "the database is as it was" test "$(md5sum <"$DB")" = "$before"
 

@@ -32,23 +32,36 @@ static void usage(FILE *out)
 {
     fprintf(out,
         "usage: mpb view [-o FILE] DB RUN\n"
+        "       mpb view [-o PATH] [-e ID] [-s SCENE] [-q QUERY] [-p PLANNER]\n"
+        "                [--failed] DB\n"
         "\n"
-        "Draw run RUN (its id in the database DB, as mpb report and the\n"
-        "results view give it) in 3-D: one self-contained HTML file that\n"
-        "opens in a browser offline, without mpbench. It shows the scene and\n"
-        "the robot with the geometry the verifier checks (primitives and\n"
-        "meshes), the start, the goal (the robot at a joint goal, or a goal\n"
-        "region's box and orientation cone), and every stage the planner\n"
-        "returned, each selectable, animated with a slider and a play\n"
-        "button. A stage that failed verification shows the verdict; for a\n"
-        "collision, the configuration where the verifier found it with the\n"
-        "two bodies that touch there in red.\n"
+        "Draw run RUN (its id in the database DB, as the results view gives\n"
+        "it) in 3-D: one self-contained HTML file that opens in a browser\n"
+        "offline, without mpbench. It shows the scene and the robot with the\n"
+        "geometry the verifier checks (primitives and meshes), the start, the\n"
+        "goal (the robot at a joint goal, or a goal region's box and\n"
+        "orientation cone), and every stage the planner returned, each\n"
+        "selectable, animated with a slider and a play button. A stage that\n"
+        "failed verification shows the verdict; for a collision, the\n"
+        "configuration where the verifier found it, with the two bodies that\n"
+        "touch there in red.\n"
+        "\n"
+        "Without RUN, the finished runs of an experiment that the options\n"
+        "name: one run is drawn as RUN would be; several are drawn one page\n"
+        "each (run-ID.html) with an index.html listing them all, into the\n"
+        "folder PATH (made if missing).\n"
         "\n"
         "Options:\n"
-        "  -o, --output FILE  write the page to FILE (replaced if it exists);\n"
-        "                     default: a new file in $TMPDIR (or /tmp), whose\n"
-        "                     path is printed\n"
-        "  -h, --help         this text\n"
+        "  -o, --output PATH    write the page to PATH (replaced if it exists);\n"
+        "                       default: a new file (or folder) in $TMPDIR or\n"
+        "                       /tmp, whose path is printed\n"
+        "  -e, --experiment ID  runs of experiment ID (default: the newest)\n"
+        "  -s, --scene NAME     runs in that scene\n"
+        "  -q, --query NAME     runs of that query\n"
+        "  -p, --planner NAME   runs of that planner configuration\n"
+        "                       (\"ompl/RRTConnect\", as mpb report names it)\n"
+        "  -f, --failed         runs that are no success\n"
+        "  -h, --help           this text\n"
         "\n"
         "three.js is read from $MPB_THREE_JS if set, else from mpbench's data\n"
         "folder (share/mpbench/" THREE_JS_NAME "), else from the source\n"
@@ -57,8 +70,8 @@ static void usage(FILE *out)
         "describes the page.\n"
         "\n"
         "Exit status: 0 on success, 1 on an error (an unknown run, a run with\n"
-        "no stages, a database that is not mpbench's), 2 on a bad command\n"
-        "line.\n");
+        "no stages, no run that the options name, a database that is not\n"
+        "mpbench's), 2 on a bad command line.\n");
 }
 
 /* ---- small helpers ---------------------------------------------------- */
@@ -432,6 +445,40 @@ done:
     return rc;
 }
 
+/* Everything v holds. */
+static void view_free(view_run *v)
+{
+    mpb_bodies_close(v->bodies);
+    mpb_world_close(v->world);
+    for (int i = 0; i < 8; i++)
+        free(v->strs[i]);
+    free(v->experiment);
+    free(v->scene);
+    free(v->query);
+    free(v->robot_format);
+    for (int j = 0; j < v->num_joints; j++)
+        free(v->joint_names ? v->joint_names[j] : NULL);
+    free(v->joint_names);
+    free(v->start);
+    free(v->goal_joints);
+    free(v->goal_link);
+    free(v->moving);
+    free(v->static_poses);
+    free(v->start_poses);
+    free(v->goal_poses);
+    for (int i = 0; i < v->num_stages; i++) {
+        view_stage *st = &v->stages[i];
+        free(st->name);
+        free(st->verdict);
+        free(st->detail);
+        free(st->frame_at);
+        free(st->poses);
+        free(st->collision_poses);
+    }
+    free(v->stages);
+    memset(v, 0, sizeof *v);
+}
+
 /* ---- output ----------------------------------------------------------- */
 
 /* Write the page to path, through a temporary file beside it. */
@@ -460,46 +507,328 @@ static int write_to(const view_run *v, const char *three, const char *path)
     return 0;
 }
 
-/* A new file in $TMPDIR for the page; its path in buf. */
-static int write_temporary(const view_run *v, const char *three, char *buf,
-                           size_t len)
+static const char *tmp_dir(void)
 {
     const char *dir = getenv("TMPDIR");
-    snprintf(buf, len, "%s/mpb-view-run%lld-XXXXXX.html",
-             dir && *dir ? dir : "/tmp", (long long)v->run.run_id);
-    int fd = mkstemps(buf, 5);
-    if (fd < 0) {
-        fprintf(stderr, "mpb " CMD ": cannot make a file in %s: %s\n",
-                dir && *dir ? dir : "/tmp", strerror(errno));
+    return dir && *dir ? dir : "/tmp";
+}
+
+/* Tell where the page (or the index of pages) is and how to open it. */
+static void say_where(const char *path)
+{
+    const char *display = getenv("DISPLAY"), *wayland =
+        getenv("WAYLAND_DISPLAY");
+    printf("wrote %s\n", path);
+    if ((display && *display) || (wayland && *wayland))
+        printf("open it in a browser: xdg-open %s\n", path);
+    else
+        printf("no display here: copy it to a machine with a browser "
+               "and open it there (it needs no network)\n");
+}
+
+/*
+ * Read run run_id and make it ready to draw into *v. 0, or -1 after one
+ * line on stderr; 1 (with why filled, nothing printed) when the run has no
+ * stages, which a list of runs notes rather than fails on.
+ */
+static int view_load(mpb_store *s, const char *db, int64_t run_id,
+                     view_run *v, char *why, size_t whylen)
+{
+    char err[512] = "";
+    scene_text t = {v, NULL, NULL, NULL};
+    int rc = mpb_store_run_get(s, run_id, on_run, v), status = -1;
+    if (rc == MPB_ENOTFOUND) {
+        fprintf(stderr, "mpb " CMD ": %s: no run %lld\n", db,
+                (long long)run_id);
         return -1;
     }
-    FILE *f = fdopen(fd, "w");
-    int bad = !f || view_write_page(v, three, f) != 0;
-    bad |= f ? fclose(f) != 0 : close(fd) != 0;
-    if (bad) {
-        fprintf(stderr, "mpb " CMD ": cannot write %s: %s\n", buf,
-                strerror(errno));
-        remove(buf);
+    if (rc == MPB_OK)
+        rc = mpb_store_experiment_get(s, v->run.experiment_id, on_experiment,
+                                      v);
+    if (rc == MPB_OK)
+        rc = mpb_store_scenes(s, v->run.experiment_id, on_scene, &t);
+    if (rc == MPB_OK || rc == 1)
+        rc = mpb_store_queries(s, v->run.scene_id, on_query, v);
+    if (rc == MPB_OK || rc == 1)
+        rc = mpb_store_run_stages(s, run_id, on_stage, v);
+    if (rc != MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": %s: run %lld: %s\n", db,
+                (long long)run_id, mpb_store_errmsg(s));
+        goto out;
+    }
+    if (!v->scene || !v->query) {
+        fprintf(stderr, "mpb " CMD ": %s: run %lld: its %s is not in the "
+                "database\n", db, (long long)run_id, v->scene ? "query"
+                                                              : "scene");
+        goto out;
+    }
+    if (v->num_stages == 0) {
+        snprintf(why, whylen, "run %lld has no stages to draw (%s%s%s)",
+                 (long long)run_id,
+                 *v->run.status ? v->run.status : v->run.state,
+                 *v->run.message ? ": " : "", v->run.message);
+        status = 1;
+        goto out;
+    }
+    double res = 0.0;
+    v->resolution = DEFAULT_RESOLUTION;
+    if (mpb_store_experiment_resolution(s, v->run.experiment_id, &res) ==
+            MPB_OK && res > 0) {
+        v->resolution = res;
+        v->resolution_known = 1;
+    }
+    if (prepare(v, &t, err, sizeof err) != 0) {
+        fprintf(stderr, "mpb " CMD ": %s: run %lld: scene '%s': %s\n", db,
+                (long long)run_id, v->scene, err);
+        goto out;
+    }
+    status = 0;
+out:
+    free(t.robot);
+    free(t.scene);
+    free(t.scene_format);
+    return status;
+}
+
+static int on_nothing(void *ud, const mpb_experiment_row *row)
+{
+    (void)ud;
+    (void)row;
+    return 0;
+}
+
+/* ---- choosing runs: --experiment, --scene, --query, --planner, --failed -- */
+
+typedef struct selection {
+    const char *scene, *query, *planner;
+    int         failed;
+    mpb_store  *store;
+    int64_t    *runs;
+    int         num_runs, cap_runs;
+    /* names by id, of the experiment's configurations, scenes, queries */
+    int64_t    *ids;
+    char      **names;
+    int         num_names, cap_names;
+} selection;
+
+static void add_name(selection *sel, int64_t id, const char *name)
+{
+    if (sel->num_names == sel->cap_names) {
+        sel->cap_names = sel->cap_names ? 2 * sel->cap_names : 64;
+        sel->ids = realloc(sel->ids, (size_t)sel->cap_names * sizeof *sel->ids);
+        sel->names = realloc(sel->names,
+                             (size_t)sel->cap_names * sizeof *sel->names);
+        if (!sel->ids || !sel->names) {
+            fprintf(stderr, "mpb " CMD ": out of memory\n");
+            exit(MPB_EXIT_ERROR);
+        }
+    }
+    sel->ids[sel->num_names] = id;
+    sel->names[sel->num_names++] = dup_or_die(name);
+}
+
+/* Ids of the three kinds are kept apart by sign and offset: configurations
+ * as they are, scenes negated, queries past 2^52. */
+#define SCENE_KEY(id) (-(id))
+#define QUERY_KEY(id) ((id) + ((int64_t)1 << 52))
+
+static const char *name_of(const selection *sel, int64_t key)
+{
+    for (int i = 0; i < sel->num_names; i++)
+        if (sel->ids[i] == key)
+            return sel->names[i];
+    return "";
+}
+
+static int on_config_name(void *ud, const mpb_planner_config_row *row)
+{
+    add_name(ud, row->id, row->name);
+    return 0;
+}
+
+static int on_query_name(void *ud, const mpb_query_row *row)
+{
+    add_name(ud, QUERY_KEY(row->id), row->name);
+    return 0;
+}
+
+static int on_scene_name(void *ud, const mpb_scene_row *row)
+{
+    selection *sel = ud;
+    add_name(sel, SCENE_KEY(row->id), row->name);
+    return mpb_store_queries(sel->store, row->id, on_query_name, sel);
+}
+
+static int on_result(void *ud, const mpb_result_row *row)
+{
+    selection *sel = ud;
+    if ((sel->failed && row->success) ||
+        (sel->scene && strcmp(sel->scene,
+                              name_of(sel, SCENE_KEY(row->scene_id))) != 0) ||
+        (sel->query && strcmp(sel->query,
+                              name_of(sel, QUERY_KEY(row->query_id))) != 0) ||
+        (sel->planner && strcmp(sel->planner,
+                                name_of(sel, row->planner_config_id)) != 0))
+        return 0;
+    if (sel->num_runs == sel->cap_runs) {
+        sel->cap_runs = sel->cap_runs ? 2 * sel->cap_runs : 64;
+        sel->runs = realloc(sel->runs, (size_t)sel->cap_runs * sizeof *sel->runs);
+        if (!sel->runs) {
+            fprintf(stderr, "mpb " CMD ": out of memory\n");
+            exit(MPB_EXIT_ERROR);
+        }
+    }
+    sel->runs[sel->num_runs++] = row->run_id;
+    return 0;
+}
+
+/* The finished runs of the experiment that the selection names, in run
+ * order, into sel->runs. 0, or -1 after one line. */
+static int select_runs(mpb_store *s, const char *db, int64_t experiment,
+                       selection *sel)
+{
+    sel->store = s;
+    int rc = mpb_store_planner_configs(s, experiment, on_config_name, sel);
+    if (rc == MPB_OK)
+        rc = mpb_store_scenes(s, experiment, on_scene_name, sel);
+    if (rc == MPB_OK)
+        rc = mpb_store_results(s, experiment, 0, NULL, NULL, 0, on_result,
+                               sel);
+    if (rc != MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": %s: %s\n", db, mpb_store_errmsg(s));
         return -1;
     }
     return 0;
+}
+
+static void selection_free(selection *sel)
+{
+    for (int i = 0; i < sel->num_names; i++)
+        free(sel->names[i]);
+    free(sel->names);
+    free(sel->ids);
+    free(sel->runs);
+}
+
+/* An index page (index.html) of one page per run, written into dir. */
+static int write_many(mpb_store *s, const char *db, int64_t experiment,
+                      const selection *sel, const char *three,
+                      const char *dir)
+{
+    char path[4200];
+    int n = snprintf(path, sizeof path, "%s/index.html", dir);
+    FILE *index = n > 0 && (size_t)n < sizeof path ? fopen(path, "w") : NULL;
+    if (!index) {
+        fprintf(stderr, "mpb " CMD ": cannot write %s: %s\n", path,
+                strerror(errno));
+        return -1;
+    }
+    fprintf(index, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta "
+            "charset=\"utf-8\"><title>mpb view: experiment %lld</title>\n"
+            "<style>body{font:14px/1.4 system-ui,sans-serif;margin:20px;"
+            "color:#1d2433}table{border-collapse:collapse}td,th{padding:"
+            "3px 10px;border-bottom:1px solid #d5dae3;text-align:left}"
+            "</style></head><body>\n<h1>Experiment %lld: %d run%s</h1>\n"
+            "<table><tr><th>run</th><th>planner</th><th>scene</th>"
+            "<th>query</th><th>rep.</th><th>outcome</th><th>message</th>"
+            "</tr>\n", (long long)experiment, (long long)experiment,
+            sel->num_runs, sel->num_runs == 1 ? "" : "s");
+    int written = 0, rc = 0;
+    for (int i = 0; i < sel->num_runs && rc == 0; i++) {
+        view_run v = {0};
+        char why[512] = "";
+        int got = view_load(s, db, sel->runs[i], &v, why, sizeof why);
+        if (got < 0) {
+            rc = -1;
+            break;
+        }
+        char page[64];
+        snprintf(page, sizeof page, "run-%lld.html", (long long)sel->runs[i]);
+        n = snprintf(path, sizeof path, "%s/%s", dir, page);
+        if (got == 0 && (n < 0 || (size_t)n >= sizeof path ||
+                         write_to(&v, three, path) != 0))
+            rc = -1;
+        written += got == 0;
+        fputs("<tr><td>", index);
+        if (got == 0)
+            fprintf(index, "<a href=\"%s\">%lld</a>", page,
+                    (long long)sel->runs[i]);
+        else
+            fprintf(index, "%lld", (long long)sel->runs[i]);
+        fputs("</td><td>", index);
+        view_html_text(index, v.run.planner_config ? v.run.planner_config : "");
+        fputs("</td><td>", index);
+        view_html_text(index, v.scene ? v.scene : "");
+        fputs("</td><td>", index);
+        view_html_text(index, v.query ? v.query : "");
+        fprintf(index, "</td><td>%d</td><td>", v.run.repetition);
+        view_html_text(index, v.run.success == 1 ? "success"
+                         : v.run.verdict && *v.run.verdict ? v.run.verdict
+                         : v.run.status ? v.run.status : "");
+        fputs("</td><td>", index);
+        view_html_text(index, got == 0 ? (v.run.message ? v.run.message : "") : why);
+        fputs("</td></tr>\n", index);
+        view_free(&v);
+    }
+    fputs("</table>\n</body></html>\n", index);
+    if (fclose(index) != 0 && rc == 0) {
+        fprintf(stderr, "mpb " CMD ": cannot write %s/index.html: %s\n", dir,
+                strerror(errno));
+        rc = -1;
+    }
+    if (rc == 0)
+        printf("%d page%s, one per run with stages\n", written,
+               written == 1 ? "" : "s");
+    return rc;
 }
 
 int cmd_view(int argc, char **argv)
 {
     static const struct option longopts[] = {
         {"output", required_argument, NULL, 'o'},
+        {"experiment", required_argument, NULL, 'e'},
+        {"scene", required_argument, NULL, 's'},
+        {"query", required_argument, NULL, 'q'},
+        {"planner", required_argument, NULL, 'p'},
+        {"failed", no_argument, NULL, 'f'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     const char *output = NULL;
-    int opt;
+    selection sel = {0};
+    int64_t experiment = 0;
+    int opt, selecting = 0;
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":o:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":o:e:s:q:p:fh", longopts,
+                              NULL)) != -1) {
         switch (opt) {
         case 'o':
             output = optarg;
+            break;
+        case 'e':
+            if (tool_parse_id(optarg, &experiment) != 0) {
+                fprintf(stderr, "mpb " CMD ": --experiment wants an "
+                        "experiment id (a number), not '%s'\n", optarg);
+                return MPB_EXIT_USAGE;
+            }
+            selecting = 1;
+            break;
+        case 's':
+            sel.scene = optarg;
+            selecting = 1;
+            break;
+        case 'q':
+            sel.query = optarg;
+            selecting = 1;
+            break;
+        case 'p':
+            sel.planner = optarg;
+            selecting = 1;
+            break;
+        case 'f':
+            sel.failed = 1;
+            selecting = 1;
             break;
         case 'h':
             usage(stdout);
@@ -508,22 +837,29 @@ int cmd_view(int argc, char **argv)
             return tool_option_error(CMD, opt, argv);
         }
     }
-    if (argc - optind < 2) {
-        fprintf(stderr, "mpb " CMD ": wants a database and a run id (try "
-                "'mpb " CMD " --help')\n");
+    int want = selecting ? 1 : 2;
+    if (argc - optind < want) {
+        fprintf(stderr, "mpb " CMD ": wants a database and %s (try 'mpb "
+                CMD " --help')\n", selecting ? "nothing more" : "a run id");
         return MPB_EXIT_USAGE;
     }
-    if (argc - optind > 2)
-        return tool_extra_argument(CMD, argv[optind + 2]);
+    if (argc - optind > 2 || (selecting && argc - optind > 1)) {
+        if (selecting && argc - optind == 2)
+            fprintf(stderr, "mpb " CMD ": a run id, or --experiment, "
+                    "--scene, --query, --planner, --failed: not both\n");
+        else
+            return tool_extra_argument(CMD, argv[optind + 2]);
+        return MPB_EXIT_USAGE;
+    }
     const char *db = argv[optind];
-    int64_t run_id;
-    if (tool_parse_id(argv[optind + 1], &run_id) != 0) {
+    int64_t run_id = 0;
+    if (!selecting && tool_parse_id(argv[optind + 1], &run_id) != 0) {
         fprintf(stderr, "mpb " CMD ": RUN is a run id (a number), not '%s'\n",
                 argv[optind + 1]);
         return MPB_EXIT_USAGE;
     }
 
-    char where[4096], err[512] = "";
+    char where[4096], path[4200];
     char *three = load_three(where, sizeof where);
     if (!three) {
         fprintf(stderr, "mpb " CMD ": cannot read three.js at %s: %s (run "
@@ -536,75 +872,93 @@ int cmd_view(int argc, char **argv)
         free(three);
         return MPB_EXIT_ERROR;
     }
+    int status = MPB_EXIT_ERROR;
+    if (selecting) {
+        if (experiment == 0 &&
+            mpb_store_experiment_latest(s, &experiment) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": %s holds no experiment\n", db);
+            goto out;
+        }
+        if (mpb_store_experiment_get(s, experiment, on_nothing, NULL) ==
+                MPB_ENOTFOUND) {
+            fprintf(stderr, "mpb " CMD ": %s: no experiment %lld\n", db,
+                    (long long)experiment);
+            goto out;
+        }
+        if (select_runs(s, db, experiment, &sel) != 0)
+            goto out;
+        if (sel.num_runs == 0) {
+            fprintf(stderr, "mpb " CMD ": %s: no finished%s run of "
+                    "experiment %lld%s%s%s%s%s%s%s%s%s\n", db,
+                    sel.failed ? " failed" : "", (long long)experiment,
+                    sel.scene ? " in scene '" : "", sel.scene ? sel.scene : "",
+                    sel.scene ? "'" : "", sel.query ? " for query '" : "",
+                    sel.query ? sel.query : "", sel.query ? "'" : "",
+                    sel.planner ? " by '" : "", sel.planner ? sel.planner : "",
+                    sel.planner ? "'" : "");
+            goto out;
+        }
+        if (sel.num_runs > 1) {
+            /* A folder of pages and their index. */
+            if (output) {
+                if (mkdir(output, 0777) != 0 && errno != EEXIST) {
+                    fprintf(stderr, "mpb " CMD ": cannot make %s: %s\n",
+                            output, strerror(errno));
+                    goto out;
+                }
+                snprintf(path, sizeof path, "%s", output);
+            } else {
+                snprintf(path, sizeof path, "%s/mpb-view-experiment%lld-XXXXXX",
+                         tmp_dir(), (long long)experiment);
+                if (!mkdtemp(path)) {
+                    fprintf(stderr, "mpb " CMD ": cannot make a folder in "
+                            "%s: %s\n", tmp_dir(), strerror(errno));
+                    goto out;
+                }
+            }
+            if (write_many(s, db, experiment, &sel, three, path) != 0)
+                goto out;
+            size_t n = strlen(path);
+            snprintf(path + n, sizeof path - n, "/index.html");
+            say_where(path);
+            status = MPB_EXIT_OK;
+            goto out;
+        }
+        run_id = sel.runs[0];
+    }
+
     view_run v = {0};
-    scene_text t = {&v, NULL, NULL, NULL};
-    int rc = mpb_store_run_get(s, run_id, on_run, &v), status = MPB_EXIT_ERROR;
-    if (rc == MPB_ENOTFOUND) {
-        fprintf(stderr, "mpb " CMD ": %s: no run %lld\n", db,
-                (long long)run_id);
-        goto out;
+    char why[512] = "";
+    int got = view_load(s, db, run_id, &v, why, sizeof why);
+    if (got == 1)
+        fprintf(stderr, "mpb " CMD ": %s: %s\n", db, why);
+    if (got == 0) {
+        if (output) {
+            if (write_to(&v, three, output) == 0) {
+                printf("wrote %s\n", output);
+                status = MPB_EXIT_OK;
+            }
+        } else {
+            snprintf(path, sizeof path, "%s/mpb-view-run%lld-XXXXXX.html",
+                     tmp_dir(), (long long)run_id);
+            int fd = mkstemps(path, 5);
+            if (fd < 0) {
+                fprintf(stderr, "mpb " CMD ": cannot make a file in %s: %s\n",
+                        tmp_dir(), strerror(errno));
+            } else {
+                close(fd);
+                if (write_to(&v, three, path) == 0) {
+                    say_where(path);
+                    status = MPB_EXIT_OK;
+                } else {
+                    remove(path);
+                }
+            }
+        }
     }
-    if (rc == MPB_OK)
-        rc = mpb_store_experiment_get(s, v.run.experiment_id, on_experiment,
-                                      &v);
-    if (rc == MPB_OK)
-        rc = mpb_store_scenes(s, v.run.experiment_id, on_scene, &t);
-    if (rc == MPB_OK || rc == 1)
-        rc = mpb_store_queries(s, v.run.scene_id, on_query, &v);
-    if (rc == MPB_OK || rc == 1)
-        rc = mpb_store_run_stages(s, run_id, on_stage, &v);
-    if (rc != MPB_OK) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld: %s\n", db,
-                (long long)run_id, mpb_store_errmsg(s));
-        goto out;
-    }
-    if (!v.scene || !v.query) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld: its %s is not in the "
-                "database\n", db, (long long)run_id, v.scene ? "query"
-                                                             : "scene");
-        goto out;
-    }
-    if (v.num_stages == 0) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld has no stages to draw "
-                "(%s%s%s)\n", db, (long long)run_id,
-                *v.run.status ? v.run.status : v.run.state,
-                *v.run.message ? ": " : "", v.run.message);
-        goto out;
-    }
-    double res = 0.0;
-    v.resolution = DEFAULT_RESOLUTION;
-    if (mpb_store_experiment_resolution(s, v.run.experiment_id, &res) ==
-            MPB_OK && res > 0) {
-        v.resolution = res;
-        v.resolution_known = 1;
-    }
-    if (prepare(&v, &t, err, sizeof err) != 0) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld: scene '%s': %s\n", db,
-                (long long)run_id, v.scene, err);
-        goto out;
-    }
-    if (output) {
-        if (write_to(&v, three, output) != 0)
-            goto out;
-        printf("wrote %s\n", output);
-    } else {
-        char path[4200];
-        if (write_temporary(&v, three, path, sizeof path) != 0)
-            goto out;
-        const char *display = getenv("DISPLAY"), *wayland =
-            getenv("WAYLAND_DISPLAY");
-        printf("wrote %s\n", path);
-        if ((display && *display) || (wayland && *wayland))
-            printf("open it in a browser: xdg-open %s\n", path);
-        else
-            printf("no display here: copy it to a machine with a browser "
-                   "and open it there (it needs no network)\n");
-    }
-    status = MPB_EXIT_OK;
+    view_free(&v);
 out:
-    /* What the page was made of; the process ends next. */
-    mpb_bodies_close(v.bodies);
-    mpb_world_close(v.world);
+    selection_free(&sel);
     mpb_store_close(s);
     free(three);
     return status;

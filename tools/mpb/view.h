@@ -58,4 +58,7 @@ typedef struct view_run {
  */
 int view_write_page(const view_run *v, const char *three_js, FILE *out);
 
+/* Text into HTML: < > & " escaped. */
+void view_html_text(FILE *f, const char *s);
+
 #endif

@@ -328,7 +328,7 @@ static void template_to(FILE *f, const char **at, const char *marker)
     *at += n + (m ? strlen(marker) : 0);
 }
 
-static void html_text(FILE *f, const char *s)
+void view_html_text(FILE *f, const char *s)
 {
     for (; *s; s++) {
         if (*s == '<')
@@ -337,6 +337,8 @@ static void html_text(FILE *f, const char *s)
             fputs("&gt;", f);
         else if (*s == '&')
             fputs("&amp;", f);
+        else if (*s == '"')
+            fputs("&quot;", f);
         else
             fputc(*s, f);
     }
@@ -350,7 +352,7 @@ int view_write_page(const view_run *v, const char *three_js, FILE *f)
              (long long)v->run.run_id, v->run.planner_config, v->scene,
              v->query);
     template_to(f, &at, "@TITLE@");
-    html_text(f, title);
+    view_html_text(f, title);
     template_to(f, &at, "@DATA@");
     if (json_run(f, v) != 0)
         return -1;
