@@ -3,9 +3,10 @@
 # (the null planner's, found in collision by the verifier) is written as a
 # page, opened in a real headless Chromium with every request but the file
 # refused, and checked there (view_check.js): no console errors, a 3-D view
-# that is not blank, a slider that moves the robot, the verifier's message
-# and the two bodies in contact on the page. The same for a planar run. A
-# page with a broken script fails the same checks. Bad input (an unknown
+# that is not blank, a slider that moves the robot, a goal that is drawn,
+# the verifier's message and the two bodies in contact on the page. The
+# same for a planar run, and for a valid OMPL run to a goal region. A page
+# with a broken script fails the same checks. Bad input (an unknown
 # run, a run with no stages, a database that is not mpbench's) gets one
 # line and exit 1, and no page.
 #
@@ -63,6 +64,25 @@ check "... the message it looked for is the verifier's" test -n "$detail"
 if [ -n "${MPB_VIEW_SCREENSHOT:-}" ] && [ -f "$work/kitchen.png" ]; then
     cp "$work/kitchen.png" "$MPB_VIEW_SCREENSHOT"
 fi
+
+# A goal region (its box and orientation cone): a real OMPL run, valid.
+RDB=$work/region.db
+sed -e 's/name: kitchen-view/name: region-view/' -e '/through_the_counter/d' \
+    -e 's/planner: null, algorithms: \[straight_line\]/planner: ompl, algorithms: [RRTConnect]/' \
+    "$work/kitchen.yaml" >"$work/region.yaml"
+mpb_spawn "$work/ompl.log" "$MPB_BUILD/planners/ompl/mpb-planner-ompl"
+mpb_timeout 60 "$MPB_BUILD/daemon/mpbenchd" -d "$RDB" "$work/region.yaml" >"$work/region.log" 2>&1
+check "the region experiment completes" eq $? 0
+check "... its run valid" test "$(sqlite3 "$RDB" "SELECT verdict FROM runs")" = valid
+"$mpb" view "$RDB" 1 -o "$work/region.html" >/dev/null 2>&1
+check "mpb view writes the region goal's page" eq $? 0
+check "... with the goal region in it" \
+    grep -q '"goal":{"kind":"region","link":"r_gripper_tool_frame","center":\[0.62,-0.08,1\]' "$work/region.html"
+node "$MPB_SOURCE/tests/integration/view_check.js" "$work/region.html" \
+    "valid" "$work/region.png" valid >"$work/region.out" 2>&1
+status=$?
+sed 's/^/    /' "$work/region.out"
+check "headless Chromium: every check of the region page passes" eq $status 0
 
 # The checks can fail: the same page with its script broken.
 sed 's/setStage(firstBad);/setStage(firstBad); undefinedFunction();/' \

@@ -174,8 +174,13 @@ if (data.goal && data.goal.kind === 'joints') {
     new THREE.LineBasicMaterial({ color: COLORS.goal }));
   edges.position.copy(box.position);
   goalGroup.add(edges);
+  // A 2 cm box is hard to find at the scale of a room: a halo marks it.
+  const halo = new THREE.Mesh(new THREE.SphereGeometry(Math.max(3 * Math.max(...h), 0.05), 32, 16),
+    material(COLORS.goal, 0.18));
+  halo.position.copy(box.position);
+  goalGroup.add(halo);
   const tol = Math.min(Math.max(...data.goal.tolerance), Math.PI / 2 - 0.01);
-  const len = 0.15;
+  const len = 0.2;
   const coneGeo = new THREE.ConeGeometry(Math.max(len * Math.tan(tol), 0.004), len, 32, 1, true);
   coneGeo.translate(0, -len / 2, 0);      // apex at the origin, opening along -y
   coneGeo.rotateZ(Math.PI / 2);           // ... along +x
@@ -184,9 +189,8 @@ if (data.goal && data.goal.kind === 'joints') {
   const [r, p, y] = data.goal.rpy;
   cone.quaternion.setFromEuler(new THREE.Euler(r, p, y, 'ZYX'));
   goalGroup.add(cone);
-  const axis = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), len * 1.2, COLORS.goal);
-  axis.position.copy(cone.position);
-  axis.quaternion.copy(cone.quaternion);
+  const axis = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0).applyQuaternion(cone.quaternion),
+    cone.position, len * 1.3, COLORS.goal, 0.03, 0.015);
   goalGroup.add(axis);
 }
 
