@@ -16,6 +16,7 @@
 
 /* Where a body comes from, to place it and to map collision ids to it. */
 typedef struct body_src {
+    int first_shape; /* its shapes: first_shape .. + num_shapes - 1 */
     int link;        /* urdf: the link it is, or carries it; planar: link */
     int object;      /* urdf: scene object index, -1 for a link */
     mpb_pose fixed;  /* a world object's pose (or a carried one's offset in
@@ -56,9 +57,8 @@ static int add_body(mpb_bodies *b, const char *name, int robot, int moves,
         b->src = ns;
         b->cap = cap;
     }
-    /* shapes holds, for now, the index of the first shape. */
-    b->bodies[b->num] = (mpb_body){name, robot, moves, 0,
-                                   (const mpb_body_shape *)(size_t)b->num_shapes};
+    b->bodies[b->num] = (mpb_body){name, robot, moves, 0, NULL};
+    src.first_shape = b->num_shapes;
     b->src[b->num++] = src;
     return MPB_OK;
 }
@@ -87,7 +87,7 @@ static int add_shape(mpb_bodies *b, const mpb_geometry *g,
 static void fix_shapes(mpb_bodies *b)
 {
     for (int i = 0; i < b->num; i++)
-        b->bodies[i].shapes = b->shapes + (size_t)b->bodies[i].shapes;
+        b->bodies[i].shapes = b->shapes + b->src[i].first_shape;
 }
 
 static int open_urdf(mpb_bodies *b)

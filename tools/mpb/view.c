@@ -273,9 +273,8 @@ static int on_stage(void *ud, const mpb_stage_record *st)
     if (st->num_joints == v->num_joints && st->num_waypoints > 0) {
         s->num_waypoints = st->num_waypoints;
         size_t n = (size_t)st->num_waypoints * (size_t)st->num_joints;
-        double *wp = alloc_or_die(n, sizeof *wp);
-        memcpy(wp, st->waypoints, n * sizeof *wp);
-        s->poses = (float *)wp;   /* the waypoints, until frames replace them */
+        s->waypoints = alloc_or_die(n, sizeof *s->waypoints);
+        memcpy(s->waypoints, st->waypoints, n * sizeof *s->waypoints);
     }
     return 0;
 }
@@ -353,8 +352,8 @@ static int find_collision(view_run *v, const double *wp, int n, int seg,
 static int make_frames(view_run *v, view_stage *s, mpb_pose *all)
 {
     int n = s->num_waypoints, nj = v->num_joints;
-    double *wp = (double *)s->poses;
-    s->poses = NULL;
+    double *wp = s->waypoints;
+    s->waypoints = NULL;
     if (n == 0)
         return 0;
     int per = n >= SMOOTH_FRAMES || n < 2 ? 1
@@ -450,7 +449,7 @@ static void view_free(view_run *v)
 {
     mpb_bodies_close(v->bodies);
     mpb_world_close(v->world);
-    for (int i = 0; i < 8; i++)
+    for (int i = 0; i < 6; i++)
         free(v->strs[i]);
     free(v->experiment);
     free(v->scene);
@@ -471,6 +470,7 @@ static void view_free(view_run *v)
         free(st->name);
         free(st->verdict);
         free(st->detail);
+        free(st->waypoints);
         free(st->frame_at);
         free(st->poses);
         free(st->collision_poses);

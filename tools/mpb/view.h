@@ -15,6 +15,7 @@ typedef struct view_stage {
     char   *name, *verdict, *detail;
     int     valid, segment;        /* segment: the verdict's, -1 if none */
     int     num_waypoints;
+    double *waypoints;             /* as stored; freed once framed */
     int     num_frames;            /* waypoints, and samples between them
                                       when there are few */
     float  *frame_at;              /* per frame: waypoint index + fraction */
@@ -29,7 +30,7 @@ typedef struct view_stage {
 
 typedef struct view_run {
     mpb_run_detail run;            /* strings copied into strs */
-    char          *strs[8];
+    char          *strs[6];
     char          *experiment, *scene, *query, *robot_format;
     int            num_joints;
     char         **joint_names;
