@@ -5,7 +5,7 @@
  * arm among a pillar and a box. The bodies are the robot's links with
  * their collision shapes and the scene's objects, placed where forward
  * kinematics puts them, and the pair in contact is the one the world's
- * check finds.
+ * check finds. A link with a mesh gives the mesh as the world loaded it.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -14,6 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -238,6 +240,74 @@ static void planar_bodies_are_capsules_and_prisms(void **state)
     mpb_world_close(w);
 }
 
+/* fk3.urdf's l3 has a mesh, package://mpbench_test/meshes/tool.stl scaled
+ * by 0.001 0.002 0.003: here a tetrahedron of unit edges, found through
+ * MPB_MESH_PATH as mpbenchd finds it. */
+static void a_mesh_link_is_its_mesh_as_loaded(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/test_bodies-XXXXXX", path[256];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/mpbench_test", dir);
+    assert_int_equal(mkdir(path, 0700), 0);
+    snprintf(path, sizeof path, "%s/mpbench_test/meshes", dir);
+    assert_int_equal(mkdir(path, 0700), 0);
+    snprintf(path, sizeof path, "%s/mpbench_test/meshes/tool.stl", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    static const int tri[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    static const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    fputs("solid tool\n", f);
+    for (int t = 0; t < 4; t++) {
+        fputs("facet normal 0 0 0\nouter loop\n", f);
+        for (int k = 0; k < 3; k++)
+            fprintf(f, "vertex %g %g %g\n", v[tri[t][k]][0], v[tri[t][k]][1],
+                    v[tri[t][k]][2]);
+        fputs("endloop\nendfacet\n", f);
+    }
+    fputs("endsolid tool\n", f);
+    fclose(f);
+    setenv("MPB_MESH_PATH", dir, 1);
+
+    char *fk3 = test_read_file(MPB_TEST_DATA "/fk3.urdf");
+    static const char *const fk3_joints[] = {"j1", "j2", "j3"};
+    mpb_world *w = NULL;
+    mpb_bodies *b = NULL;
+    char err[256];
+    int rc = mpb_world_open_group("urdf", fk3, "moveit-scene", "", fk3_joints,
+                                  3, &w, err, sizeof err);
+    if (rc != MPB_OK)
+        fail_msg("open: %s", err);
+    assert_int_equal(mpb_bodies_open(w, &b, err, sizeof err), MPB_OK);
+    int l3 = find(b, "l3");
+    assert_true(l3 >= 0);
+    const mpb_body *body = mpb_bodies_get(b, l3);
+    assert_int_equal(body->num_shapes, 1);
+    const mpb_geometry *g = &body->shapes[0].geometry;
+    assert_int_equal(g->type, MPB_SHAPE_MESH);
+    assert_non_null(g->mesh);
+    assert_int_equal(g->mesh->num_triangles, 4);
+    /* As checked: scaled, so x <= 0.001, y <= 0.002, z <= 0.003. */
+    double hi[3] = {0};
+    for (int i = 0; i < g->mesh->num_vertices; i++)
+        for (int k = 0; k < 3; k++)
+            hi[k] = fmax(hi[k], g->mesh->vertices[3 * i + k]);
+    assert_float_equal(hi[0], 0.001, 1e-9);
+    assert_float_equal(hi[1], 0.002, 1e-9);
+    assert_float_equal(hi[2], 0.003, 1e-9);
+    assert_float_equal(body->shapes[0].offset.t[0], 0.1, 1e-12);
+    mpb_bodies_close(b);
+    mpb_world_close(w);
+    free(fk3);
+    unsetenv("MPB_MESH_PATH");
+    remove(path);
+    snprintf(path, sizeof path, "%s/mpbench_test/meshes", dir);
+    rmdir(path);
+    snprintf(path, sizeof path, "%s/mpbench_test", dir);
+    rmdir(path);
+    rmdir(dir);
+}
+
 static void bad_arguments_are_refused(void **state)
 {
     (void)state;
@@ -261,6 +331,7 @@ int main(void)
         cmocka_unit_test(urdf_bodies_are_the_links_and_objects_where_fk_puts_them),
         cmocka_unit_test(the_urdf_contact_is_a_link_and_the_box),
         cmocka_unit_test(planar_bodies_are_capsules_and_prisms),
+        cmocka_unit_test(a_mesh_link_is_its_mesh_as_loaded),
         cmocka_unit_test(bad_arguments_are_refused),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
