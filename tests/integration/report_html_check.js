@@ -22,7 +22,7 @@ function check(name, ok, detail) {
     executablePath: process.env.MPB_CHROMIUM || '/usr/bin/chromium',
     args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
            '--disable-background-networking', '--disable-component-update',
-           '--disable-sync', '--enable-unsafe-swiftshader'],
+           '--disable-sync'],
   });
   const context = await browser.newContext({ viewport: { width: 1200, height: 800 } });
   const requests = [];

@@ -66,7 +66,7 @@ async function pixels(page, png, other) {
     headless: true,
     args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
            '--disable-background-networking', '--disable-component-update',
-           '--disable-sync', '--enable-unsafe-swiftshader'],
+           '--disable-sync'],
   });
   const context = await browser.newContext({ viewport: { width: 1200, height: 760 } });
   const requests = [];
@@ -126,6 +126,32 @@ async function pixels(page, png, other) {
   const again = await slide(0);
   const same = await pixels(page, first, again);
   check('... and back to where it was', same.differ < 0.0005, JSON.stringify(same));
+
+  // The play button moves the slider on by itself (no time is checked:
+  // it only has to get past the first frame, within a minute).
+  await slide(0);
+  await page.click('#play');
+  let played = false;
+  for (let i = 0; i < 600 && !played; i++) {
+    played = await page.evaluate(() => window.mpbView.frame > 0);
+    if (!played) await new Promise((r) => setTimeout(r, 100));
+  }
+  await page.click('#play');   // pause (or play again if it ended: harmless)
+  check('the play button animates the run', played);
+
+  // Every stage can be chosen: the panel then gives its own number of
+  // waypoints (the stages of the runs checked here all differ in it).
+  const stages = await page.evaluate(() => Array.from(
+    document.querySelectorAll('#stage option')).map((o) => o.textContent));
+  const counts = [];
+  for (let i = 0; i < stages.length; i++) {
+    await page.selectOption('#stage', String(i));
+    const shown = await page.evaluate(() => document.getElementById('verdict').innerText);
+    counts.push((shown.match(/(\d+) waypoints/) || [])[1]);
+  }
+  check('each of the ' + stages.length + ' stages can be chosen (' + stages.join(', ') + ')',
+        counts.every((c) => c) && new Set(counts).size === stages.length, counts.join(' '));
+  await page.selectOption('#stage', String(Math.max(0, stages.findIndex((s) => s.includes('(')))));
 
   // The goal: hiding it changes the picture.
   async function toggle(id) {
