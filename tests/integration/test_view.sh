@@ -108,6 +108,15 @@ status=$?
 sed 's/^/    /' "$work/planar.out"
 check "headless Chromium: every check of the planar page passes" eq $status 0
 
+# A stage with a NaN in it (as a forged result may have) is listed with
+# its verdict, not drawn, and the rest of the page is written.
+cp "$DB" "$work/nan.db"
+sqlite3 "$work/nan.db" "UPDATE stages SET waypoints = X'000000000000F87F$(printf '0000000000000000%.0s' $(seq 13))', verdict = 'not_finite', verdict_detail = 'waypoint 0 joint r_shoulder_pan_joint is nan' WHERE run_id = $run"
+"$mpb" view "$work/nan.db" "$run" -o "$work/nan.html" >/dev/null 2>&1
+check "a stage with a NaN still gets a page" eq $? 0
+check "... the stage listed with its verdict, no frame drawn" \
+    grep -q '"verdict":"not_finite","detail":"waypoint 0 joint r_shoulder_pan_joint is nan","segment":0,"waypoints":0,"frames":0' "$work/nan.html"
+
 # Without -o: a new file, its path said, and that there is no display.
 out=$(env -u DISPLAY -u WAYLAND_DISPLAY TMPDIR="$work" "$mpb" view "$DB" "$run")
 check "without -o it writes a new file and says where" \

@@ -354,8 +354,15 @@ static int make_frames(view_run *v, view_stage *s, mpb_pose *all)
     int n = s->num_waypoints, nj = v->num_joints;
     double *wp = s->waypoints;
     s->waypoints = NULL;
-    if (n == 0)
+    /* A stage with a NaN or infinite value (verdict not_finite) has no
+     * configuration to draw at that waypoint: it is listed, not drawn. */
+    for (size_t i = 0; i < (size_t)n * (size_t)nj; i++)
+        if (!isfinite(wp[i]))
+            n = s->num_waypoints = 0;
+    if (n == 0) {
+        free(wp);
         return 0;
+    }
     int per = n >= SMOOTH_FRAMES || n < 2 ? 1
             : (SMOOTH_FRAMES + n - 2) / (n - 1);
     s->num_frames = (n - 1) * per + 1;

@@ -197,6 +197,8 @@ if (data.goal && data.goal.kind === 'joints') {
 // ---- the floor ---------------------------------------------------------------
 const grid = new THREE.GridHelper(extent * 2, 20, 0xb0b7c3, 0xd5dae3);
 grid.rotateX(Math.PI / 2);
+// The planar world's prisms stand on z = 0 halfway: the floor goes under them.
+if (data.format === 'planar') grid.position.z = -new THREE.Box3().setFromObject(sceneGroup).getSize(new THREE.Vector3()).z / 2;
 scene.add(grid);
 
 // ---- stages ------------------------------------------------------------------
@@ -295,7 +297,7 @@ function describe(s) {
     lines.push('at s=' + s.collision.s.toFixed(4) + ' of segment ' + s.segment +
       ', checked every ' + data.resolution + ' rad' + (data.resolution_known ? '' : ' (assumed)'));
   }
-  lines.push(s.waypoints + ' waypoints');
+  lines.push(s.waypoints ? s.waypoints + ' waypoints' : 'no waypoints to draw');
   for (const t of lines) {
     const d = document.createElement('div');
     d.textContent = t;
@@ -327,7 +329,8 @@ function setFrame(f) {
   for (const o of contactParts)
     o.traverse((m) => { if (m.isMesh) m.material = atCollision ? robotMat : ghostMat; });
   const at = stage.frames > 0 ? stage.frameAt[frame] : 0;
-  $('frame').textContent = 'frame ' + (frame + 1) + '/' + stage.frames +
+  $('frame').textContent = stage.frames === 0 ? 'no waypoints to draw' :
+    'frame ' + (frame + 1) + '/' + stage.frames +
     ', waypoint ' + (Number.isInteger(at) ? at : at.toFixed(2)) + ' of ' + (stage.waypoints - 1);
   render();
 }
