@@ -730,16 +730,26 @@ static int write_many(mpb_store *s, const char *db, int64_t experiment,
                 strerror(errno));
         return -1;
     }
-    fprintf(index, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta "
-            "charset=\"utf-8\"><title>mpb view: experiment %lld</title>\n"
+    view_run e = {0};   /* for the experiment's name */
+    mpb_store_experiment_get(s, experiment, on_experiment, &e);
+    fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+          "<title>mpb view: ", index);
+    view_html_text(index, e.experiment ? e.experiment : "");
+    fprintf(index, " (experiment %lld)</title>\n"
             "<style>body{font:14px/1.4 system-ui,sans-serif;margin:20px;"
             "color:#1d2433}table{border-collapse:collapse}td,th{padding:"
             "3px 10px;border-bottom:1px solid #d5dae3;text-align:left}"
-            "</style></head><body>\n<h1>Experiment %lld: %d run%s</h1>\n"
+            "</style></head><body>\n<h1>", (long long)experiment);
+    view_html_text(index, e.experiment ? e.experiment : "");
+    fprintf(index, " (experiment %lld): %d run%s</h1>\n"
+            "<p>%s, drawn by mpb view: each linked page is one run in 3-D."
+            "</p>\n"
             "<table><tr><th>run</th><th>planner</th><th>scene</th>"
             "<th>query</th><th>rep.</th><th>outcome</th><th>message</th>"
-            "</tr>\n", (long long)experiment, (long long)experiment,
-            sel->num_runs, sel->num_runs == 1 ? "" : "s");
+            "</tr>\n", (long long)experiment,
+            sel->num_runs, sel->num_runs == 1 ? "" : "s",
+            sel->failed ? "The runs that are no success" : "The runs chosen");
+    free(e.experiment);
     int written = 0, rc = 0;
     for (int i = 0; i < sel->num_runs && rc == 0; i++) {
         view_run v = {0};
