@@ -52,6 +52,48 @@ typedef struct view_run {
     int            num_stages;
 } view_run;
 
+/* calloc and strdup that end mpb with one line when memory runs out. */
+void *view_calloc(size_t n, size_t size);
+char *view_strdup(const char *s);
+
+/*
+ * Read run run_id from s (db names it in messages) and make it ready to
+ * draw into *v: 0; -1 after one line on stderr; 1 with why filled and
+ * nothing printed when the run has no stages (a list of runs notes that
+ * rather than fails). Free *v with view_free() in every case.
+ */
+int view_load(mpb_store *s, const char *db, int64_t run_id, view_run *v,
+              char *why, size_t whylen);
+void view_free(view_run *v);
+
+/* Write the page of v to path, through path.tmp renamed; 0, or -1 after
+ * one line on stderr. */
+int view_write_file(const view_run *v, const char *three, const char *path);
+
+/* Runs chosen by name (view_select.c). */
+typedef struct selection {
+    const char *scene, *query, *planner;
+    int         failed;
+    mpb_store  *store;
+    int64_t    *runs;
+    int         num_runs, cap_runs;
+    /* names by id, of the experiment's configurations, scenes, queries */
+    int64_t    *ids;
+    char      **names;
+    int         num_names, cap_names;
+} selection;
+
+/* The finished runs of the experiment that sel names, in run order, into
+ * sel->runs; 0, or -1 after one line. */
+int view_select_runs(mpb_store *s, const char *db, int64_t experiment,
+                     selection *sel);
+void view_selection_free(selection *sel);
+
+/* One page per run of sel into dir, and dir/index.html listing them all;
+ * 0, or -1 after one line. */
+int view_write_many(mpb_store *s, const char *db, int64_t experiment,
+                    const selection *sel, const char *three, const char *dir);
+
 /*
  * Write the page for run v to out: the HTML, the run's data as JSON, and
  * three.js (three_js, the module's source) inlined. 0, or -1 on a write
