@@ -11,7 +11,8 @@
 # line and exit 1, and no page.
 #
 # MPB_VIEW_SCREENSHOT=FILE keeps the kitchen page's screenshot there (how
-# docs/images/view-kitchen.png is made).
+# docs/images/view-kitchen.png is made); MPB_KEEP=1 keeps the work folder
+# (the pages, the screenshots) to look at.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
