@@ -1,7 +1,9 @@
 # mpbench - the front door. CMake does the building; this file names the
 # everyday commands:
-#   make deps   install the Debian packages mpbench needs, and the PyPI lcm
-#               package into .venv for the Python planner (idempotent)
+#   make deps   install the Debian packages mpbench needs, the PyPI lcm
+#               package into .venv for the Python planner, and three.js and
+#               playwright-core from npm into .cache/web with Debian's
+#               chromium for the HTML views (idempotent)
 #   make        build everything into build/
 #   make test   deps, build, run every test (unit and integration)
 #   make demo   deps, build, run the demo benchmark, print its report
@@ -28,6 +30,7 @@ configure:
 deps:
 	@sh tools/deps.sh
 	@sh tools/python_env.sh
+	@sh tools/web_env.sh
 
 test: deps
 	$(MAKE) all

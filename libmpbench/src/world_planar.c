@@ -544,3 +544,58 @@ int mpb__planar_points(const mpb_world *w, const double *q, double *xy)
     forward(w->impl, q, xy);
     return MPB_OK;
 }
+
+int mpb__planar_get_model(const mpb_world *w, mpb__planar_model *out)
+{
+    if (!w || !out || w->provider != &mpb__world_planar)
+        return MPB_EINVAL;
+    const planar *p = w->impl;
+    *out = (mpb__planar_model){p->n, {p->bx, p->by}, p->radius, p->length,
+                               p->num_circles, p->num_boxes};
+    return MPB_OK;
+}
+
+int mpb__planar_obstacle(const mpb_world *w, int k, double v[4])
+{
+    if (!w || !v || w->provider != &mpb__world_planar)
+        return MPB_EINVAL;
+    const planar *p = w->impl;
+    if (k >= 0 && k < p->num_circles) {
+        const circle *c = &p->circles[k];
+        v[0] = c->cx, v[1] = c->cy, v[2] = c->r, v[3] = 0.0;
+        return MPB_OK;
+    }
+    k -= p->num_circles;
+    if (k < 0 || k >= p->num_boxes)
+        return MPB_EINVAL;
+    const box *b = &p->boxes[k];
+    v[0] = b->xmin, v[1] = b->ymin, v[2] = b->xmax, v[3] = b->ymax;
+    return MPB_OK;
+}
+
+int mpb__planar_contact(mpb_world *w, const double *q, int *link,
+                        int *obstacle)
+{
+    if (!w || !q || w->provider != &mpb__world_planar)
+        return MPB_EINVAL;
+    planar *p = w->impl;
+    forward(p, q, p->xy);
+    for (int i = 0; i < p->n; i++) {
+        double ax = p->xy[2 * i], ay = p->xy[2 * i + 1];
+        double bx = p->xy[2 * i + 2], by = p->xy[2 * i + 3];
+        for (int k = 0; k < p->num_circles; k++) {
+            const circle *c = &p->circles[k];
+            double reach = c->r + p->radius;
+            if (seg_point2(ax, ay, bx, by, c->cx, c->cy) <= reach * reach) {
+                *link = i, *obstacle = k;
+                return 1;
+            }
+        }
+        for (int k = 0; k < p->num_boxes; k++)
+            if (capsule_box(ax, ay, bx, by, p->radius, &p->boxes[k])) {
+                *link = i, *obstacle = p->num_circles + k;
+                return 1;
+            }
+    }
+    return 0;
+}

@@ -96,4 +96,45 @@ int mpb__planar_points(const mpb_world *w, const double *q, double *xy);
 struct mpb_collision;
 struct mpb_collision *mpb__urdf_collision(mpb_world *w);
 
+/*
+ * Planar only, for bodies.c: the arm and its obstacles as parsed. length
+ * (n values) is owned by w. Obstacles are numbered circles first, then
+ * boxes. MPB_EINVAL if w is not a planar world.
+ */
+typedef struct mpb__planar_model {
+    int           n;             /* joints = links */
+    double        base[2];
+    double        radius;        /* of every link's capsule */
+    const double *length;
+    int           num_circles, num_boxes;
+} mpb__planar_model;
+int mpb__planar_get_model(const mpb_world *w, mpb__planar_model *out);
+/* Obstacle k: a circle's cx cy r (v[3] = 0) or a box's xmin ymin xmax ymax. */
+int mpb__planar_obstacle(const mpb_world *w, int k, double v[4]);
+/* The first link and obstacle that touch at q (1), or 0 if q is free; the
+ * same tests, in the same order, as the world's own collision check. */
+int mpb__planar_contact(mpb_world *w, const double *q, int *link,
+                        int *obstacle);
+
+/*
+ * URDF only, for bodies.c: the parts of the world (owned by it). The
+ * collision world's ids are those written at the top of world_urdf.c:
+ * movable = link index, or num_links + k for scene object k when attached;
+ * static = k for scene object k, or robot_static + link for a robot link
+ * that does not move. meshes are the robot's mesh shapes in the order of
+ * mpb_robot_get_collision(). MPB_EINVAL if w is not a urdf world.
+ */
+struct mpb_robot;
+struct mpb_scene;
+struct mpb_mesh;
+typedef struct mpb__urdf_model {
+    struct mpb_robot     *robot;
+    struct mpb_scene     *scene;
+    struct mpb_collision *coll;
+    struct mpb_mesh     **meshes;
+    int                   num_meshes;
+    int                   robot_static;
+} mpb__urdf_model;
+int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out);
+
 #endif /* MPB_WORLD_PROVIDER_H */

@@ -851,3 +851,13 @@ struct mpb_collision *mpb__urdf_collision(mpb_world *w)
         return NULL;
     return ((urdf_world *)w->impl)->coll;
 }
+
+int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out)
+{
+    if (!w || !out || w->provider != &mpb__world_urdf || !w->impl)
+        return MPB_EINVAL;
+    urdf_world *u = w->impl;
+    *out = (mpb__urdf_model){u->robot, u->scene, u->coll, u->meshes,
+                             u->num_meshes, ROBOT_STATIC};
+    return MPB_OK;
+}

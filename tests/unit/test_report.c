@@ -800,10 +800,10 @@ static void bad_command_lines_exit_2(void **state)
     assert_int_equal(o.status, 2);
     run(&o, "stderr", "report '%s' '%s'", f->db, f->db);
     assert_int_equal(o.status, 2);
-    run(&o, "stderr", "report --format html '%s'", f->db);
+    run(&o, "stderr", "report --format xml '%s'", f->db);
     assert_int_equal(o.status, 2);
-    assert_string_equal(o.text, "mpb report: unknown format 'html' (text, "
-                                "markdown, csv, latex or json)\n");
+    assert_string_equal(o.text, "mpb report: unknown format 'xml' (text, "
+                                "markdown, csv, latex, json or html)\n");
     run(&o, "stderr", "report --format");
     assert_int_equal(o.status, 2);
     run(&o, "stderr", "nosuchcommand");

@@ -68,6 +68,7 @@ static const struct {
     [FORMAT_CSV] = {"csv", report_write_csv},
     [FORMAT_LATEX] = {"latex", report_write_latex},
     [FORMAT_JSON] = {"json", report_write_json},
+    {"html", report_write_html},    /* report_html.c */
 };
 #define NUM_FORMATS ((int)(sizeof formats / sizeof formats[0]))
 
@@ -570,6 +571,7 @@ int cmd_report(int argc, char **argv)
         return MPB_EXIT_USAGE;
     }
     path = argv[optind];
+    r.db_path = path;
     if (experiment != NULL && tool_parse_id(experiment, &experiment_id) != 0) {
         fprintf(stderr, "mpb " CMD ": --experiment wants an experiment id "
                 "(a number), not '%s'\n", experiment);

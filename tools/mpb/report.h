@@ -75,6 +75,7 @@ typedef struct report {
     int         scene_index;    /* scene whose queries are being listed */
     column     *cells;          /* num_configs x num_queries */
     long        staged;         /* successful runs with stage metrics */
+    const char *db_path;        /* the database: report_html.c reads runs */
     int         nomem;
 } report;
 
@@ -109,6 +110,7 @@ int report_write_markdown(const report *r, FILE *out);
 int report_write_csv(const report *r, FILE *out);
 int report_write_latex(const report *r, FILE *out);
 int report_write_json(const report *r, FILE *out);
+int report_write_html(const report *r, FILE *out);   /* report_html.c */
 
 /* `--findings`: what the tables say, and whether the paper's qualitative
  * findings hold (report_findings.c). */

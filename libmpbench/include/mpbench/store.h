@@ -352,6 +352,39 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
                       int (*cb)(void *ud, const mpb_result_row *row),
                       void *ud);
 
+/* ---- one run, whole (store_run_read.c), for `mpb view` -------------- */
+
+typedef struct mpb_run_detail {
+    int64_t     run_id, experiment_id, planner_config_id, query_id;
+    int64_t     scene_id;       /* the query's scene */
+    int         repetition;
+    const char *state;          /* "pending", "sent" or "done" */
+    const char *planner_config; /* the configuration's name */
+    const char *planner_id;     /* "" where the database has none */
+    const char *status, *message, *verdict;   /* the same */
+    int         success;        /* 1, 0, or -1 while the run is not done */
+    double      time_total;     /* s; NaN if none */
+} mpb_run_detail;
+
+/*
+ * Call cb once with the run of that id. MPB_ENOTFOUND (cb not called, the
+ * message "no run N") if there is none; else cb's return or MPB_OK.
+ */
+int mpb_store_run_get(mpb_store *s, int64_t run_id,
+                      int (*cb)(void *ud, const mpb_run_detail *row),
+                      void *ud);
+
+/*
+ * Call cb for each stage of the run, in the planner's order, with its
+ * waypoints (num_waypoints 0 and waypoints NULL where the stored blob does
+ * not hold num_waypoints * num_joints values) and verdict; metrics are not
+ * read (num_metrics 0). A run without stages calls cb never and returns
+ * MPB_OK.
+ */
+int mpb_store_run_stages(mpb_store *s, int64_t run_id,
+                         int (*cb)(void *ud, const mpb_stage_record *stage),
+                         void *ud);
+
 /* ---- exporting: Planner Arena and OMPL (store_export*.c, store_pa*) -----
  *
  * An experiment's finished runs as OMPL's benchmark tools and Planner Arena

@@ -1,0 +1,67 @@
+#!/bin/sh
+# mpb report --format html: one self-contained page of an experiment (a
+# planar one: the null planner, whose line over the pillar fails, beside
+# OMPL's RRTConnect and RRT): the paper's table with each configuration,
+# the plots of mpb plot inlined as SVG, the findings, and every failed
+# run linked to its mpb view page. Opened in headless Chromium, with the
+# pages of mpb view --failed beside it: the plots show, and the first
+# link opens a drawn 3-D view. Without gnuplot the page is still written
+# and says why it has no plots.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+mpb_enter_netns "$0" "$@"
+
+work=$(mktemp -d)
+trap 'mpb_stop_all; rm -rf "$work"' EXIT
+DB=$work/report.db
+mpb=$MPB_BUILD/tools/mpb
+export MPB_WEB_MODULES="$MPB_SOURCE/.cache/web/node_modules"
+
+MPB_QUERIES='{name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01}
+{name: over_the_pillar, start: [0, 0, 0], goal: [2.6, 0, 0], tolerance: 0.01}' \
+    mpb_planar_experiment "$work/exp.yaml" "name: html-report, runs: 3, time_limit: 2" \
+    "{planner: null, algorithms: [straight_line]}" \
+    "{planner: ompl, algorithms: [RRTConnect, RRT]}"
+mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
+mpb_spawn "$work/ompl.log" "$MPB_BUILD/planners/ompl/mpb-planner-ompl"
+mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1
+check "the experiment completes" eq $? 0
+
+mkdir "$work/site" "$work/tmp"
+TMPDIR=$work/tmp "$mpb" report --format html "$DB" >"$work/site/report.html" 2>"$work/report.err"
+check "mpb report --format html writes the page" eq $? 0
+check "... saying nothing on stderr" test ! -s "$work/report.err"
+page=$work/site/report.html
+for c in null/straight_line ompl/RRTConnect ompl/RRT; do
+    check "... the table has a column for $c" grep -q "<th>$c</th>" "$page"
+done
+check "... the success rates of the text report" \
+    grep -q '<tr><td>s_r (%)</td><td>50.0</td><td>100.0</td><td>100.0</td></tr>' "$page"
+check "... six plots inlined as SVG (time, success, four path metrics)" \
+    test "$(grep -c '^<svg' "$page")" = 6
+check "... and no file of theirs left behind" test -z "$(ls "$work/tmp")"
+failed=$(q "SELECT group_concat(id, ' ') FROM runs WHERE success = 0")
+check "three runs failed (the null planner's over the pillar)" \
+    test "$(echo $failed | wc -w)" = 3
+for id in $failed; do
+    check "... run $id is linked to its view" grep -q "href=\"views/run-$id.html\"" "$page"
+done
+check "... no successful run is" \
+    test "$(grep -o 'href="views/run-[0-9]*.html"' "$page" | wc -l)" = 3
+check "... the findings are there" grep -q 'What the tables say' "$page"
+
+"$mpb" view --failed -o "$work/site/views" "$DB" >/dev/null 2>&1
+check "mpb view --failed writes the pages the links name" eq $? 0
+node "$MPB_SOURCE/tests/integration/report_html_check.js" "$page" 6 >"$work/check.out" 2>&1
+status=$?
+sed 's/^/    /' "$work/check.out"
+check "headless Chromium: the report and its first link pass every check" eq $status 0
+
+# Without gnuplot: the page, saying why there are no plots.
+PATH=/nonexistent "$mpb" report --format html "$DB" >"$work/noplot.html" 2>"$work/noplot.err"
+check "without gnuplot the page is still written" eq $? 0
+check "... without plots" test "$(grep -c '<svg' "$work/noplot.html")" = 0
+check "... saying why" grep -q 'No plots: mpb plot did not draw them' "$work/noplot.html"
+check "... and mpb plot's own line on stderr" grep -q 'gnuplot' "$work/noplot.err"
+
+mpb_finish

@@ -1,0 +1,387 @@
+/*
+ * report_html.c - `mpb report --format html`: an experiment as one
+ * self-contained HTML page: the paper's tables per scene (the numbers of
+ * the text report), what they say (--findings' text), the plots of `mpb
+ * plot` inlined as SVG, and per scene the runs that are no success, each
+ * linked to its `mpb view` page (views/run-ID.html beside the report).
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "plot.h"
+#include "report.h"
+#include "view.h"
+
+/* Failed runs listed per scene; the rest are counted. */
+#define MAX_FAILED_LISTED 200
+
+static const char STYLE[] =
+    "body{font:14px/1.45 system-ui,sans-serif;color:#1d2433;margin:0;"
+    "background:#eef1f5}main{max-width:1100px;margin:0 auto;padding:16px 24px;"
+    "background:#fff}h1{font-size:22px}h2{font-size:18px;margin-top:32px;"
+    "border-bottom:2px solid #1d2433}h3{font-size:15px}table{border-collapse:"
+    "collapse;margin:8px 0}th,td{padding:3px 10px;border-bottom:1px solid "
+    "#d5dae3;text-align:right}th:first-child,td:first-child{text-align:left}"
+    "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;"
+    "overflow:auto}.note{color:#5b6579}.plots{display:grid;grid-template-columns:"
+    "1fr 1fr;gap:8px}.plots svg{max-width:100%;height:auto;"
+    "display:block;margin:8px 0}\n";
+
+#define H(text) view_html_text(out, (text) ? (text) : "")
+
+/* ---- the tables ---------------------------------------------------------- */
+
+static int write_table(const report *r, int si, FILE *out)
+{
+    int nc = r->num_configs;
+    column *cols = calloc((size_t)nc + 1, sizeof *cols);
+    char (*text)[CELL_TEXT] = calloc((size_t)report_num_rows * (size_t)nc + 1,
+                                     sizeof *text);
+    int *visible = calloc((size_t)report_num_rows + 1, sizeof *visible);
+    if (!cols || !text || !visible) {
+        free(cols);
+        free(text);
+        free(visible);
+        return MPB_ENOMEM;
+    }
+    long finished = report_scene_columns(r, si, cols);
+    report_cells(r, cols, text, visible);
+    fprintf(out, "<p>%ld finished run%s", finished, finished == 1 ? "" : "s");
+    if (r->scenes[si].unfinished > 0)
+        fprintf(out, "; <b>%d more not finished yet, not counted here</b>",
+                r->scenes[si].unfinished);
+    fputs(".</p>\n<table><tr><th>Metric</th>", out);
+    for (int c = 0; c < nc; c++) {
+        fputs("<th>", out);
+        H(r->configs[c].name);
+        fputs("</th>", out);
+    }
+    fputs("</tr>\n", out);
+    for (int i = 0; i < report_num_rows; i++) {
+        if (!visible[i])
+            continue;
+        fputs("<tr><td>", out);
+        H(report_rows[i].label);
+        fputs("</td>", out);
+        for (int c = 0; c < nc; c++) {
+            fputs("<td>", out);
+            H(text[(size_t)i * nc + c]);
+            fputs("</td>", out);
+        }
+        fputs("</tr>\n", out);
+    }
+    fputs("</table>\n", out);
+    free(cols);
+    free(text);
+    free(visible);
+    return MPB_OK;
+}
+
+/* ---- the findings: the text --findings writes ------------------------------ */
+
+static int write_findings(const report *r, FILE *out)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&buf, &len);
+    if (!mem)
+        return MPB_ENOMEM;
+    int rc = report_write_findings(r, mem);
+    fclose(mem);
+    if (rc == MPB_OK) {
+        fputs("<h2>What the tables say</h2>\n<pre>", out);
+        H(buf);
+        fputs("</pre>\n", out);
+    }
+    free(buf);
+    return rc;
+}
+
+/* ---- the plots: `mpb plot --format svg` into a temporary folder ----------- */
+
+typedef struct plots {
+    char   dir[256];
+    char **paths;       /* as mpb plot printed them, scene by scene */
+    int    n;
+    char   why[256];    /* why there are none, if so */
+} plots;
+
+static void plots_make(const report *r, plots *p)
+{
+    const char *tmp = getenv("TMPDIR");
+    snprintf(p->dir, sizeof p->dir, "%s/mpb-report-XXXXXX",
+             tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(p->dir)) {
+        snprintf(p->why, sizeof p->why, "no temporary folder: %s",
+                 strerror(errno));
+        p->dir[0] = '\0';
+        return;
+    }
+    int fds[2];
+    if (pipe(fds) != 0) {
+        snprintf(p->why, sizeof p->why, "%s", strerror(errno));
+        return;
+    }
+    char id[32];
+    snprintf(id, sizeof id, "%lld", (long long)r->experiment_id);
+    pid_t pid = fork();
+    if (pid == 0) {
+        dup2(fds[1], 1);
+        close(fds[0]);
+        close(fds[1]);
+        /* Its messages stay on stderr: a missing gnuplot is said there. */
+        execl("/proc/self/exe", "mpb", "plot", "--experiment", id,
+              "--format", "svg", "-o", p->dir, r->db_path, (char *)NULL);
+        _exit(127);
+    }
+    close(fds[1]);
+    FILE *in = pid > 0 ? fdopen(fds[0], "r") : NULL;
+    char line[4096];
+    while (in && fgets(line, sizeof line, in)) {
+        line[strcspn(line, "\n")] = '\0';
+        char **grown = realloc(p->paths, (size_t)(p->n + 1) * sizeof *grown);
+        if (!grown || !(grown[p->n] = strdup(line))) {
+            free(grown);
+            break;
+        }
+        p->paths = grown;
+        p->n++;
+    }
+    if (in)
+        fclose(in);
+    else
+        close(fds[0]);
+    int status = 0;
+    if (pid > 0)
+        waitpid(pid, &status, 0);
+    if (pid < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        snprintf(p->why, sizeof p->why, "mpb plot did not draw them (its "
+                 "message is above; it needs gnuplot)");
+}
+
+static void plots_free(plots *p)
+{
+    for (int i = 0; i < p->n; i++) {
+        remove(p->paths[i]);
+        free(p->paths[i]);
+    }
+    free(p->paths);
+    if (p->dir[0])
+        rmdir(p->dir);
+}
+
+/* The SVG file inline: from its <svg element on. */
+static void inline_svg(FILE *out, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return;
+    char buf[65536];
+    size_t n;
+    int started = 0;
+    while ((n = fread(buf, 1, sizeof buf - 1, f)) > 0) {
+        buf[n] = '\0';
+        const char *at = buf;
+        if (!started) {
+            const char *svg = strstr(buf, "<svg");
+            if (!svg)
+                continue;
+            at = svg;
+            started = 1;
+        }
+        fwrite(at, 1, n - (size_t)(at - buf), out);
+    }
+    fclose(f);
+}
+
+/* The plots of scene si: the files named plot-PART-... */
+static void write_plots(const report *r, int si, const plots *p, FILE *out)
+{
+    char part[PLOT_PART_MAX + 8], prefix[PLOT_PART_MAX + 16];
+    plot_file_part(part, sizeof part, r->scenes[si].name);
+    snprintf(prefix, sizeof prefix, "/plot-%s-", part);
+    int any = 0;
+    for (int i = 0; i < p->n; i++) {
+        if (!strstr(p->paths[i], prefix))
+            continue;
+        if (!any)
+            fputs("<h3>Plots</h3>\n<div class=\"plots\">\n", out);
+        any = 1;
+        inline_svg(out, p->paths[i]);
+        fputc('\n', out);
+    }
+    if (any)
+        fputs("</div>\n", out);
+}
+
+/* ---- the runs that are no success ---------------------------------------- */
+
+typedef struct failed {
+    const report *r;
+    mpb_store    *store;
+    int           listed, more;
+    FILE         *out;
+    char        **query_names;  /* by index into r->queries */
+    int64_t      *ids;          /* the scene's runs listed */
+} failed;
+
+static const char *query_name(const failed *f, int64_t id)
+{
+    for (int i = 0; i < f->r->num_queries; i++)
+        if (f->r->queries[i].id == id)
+            return f->query_names[i] ? f->query_names[i] : "";
+    return "";
+}
+
+static int on_query_name(void *ud, const mpb_query_row *q)
+{
+    failed *f = ud;
+    for (int i = 0; i < f->r->num_queries; i++)
+        if (f->r->queries[i].id == q->id && !f->query_names[i])
+            f->query_names[i] = strdup(q->name);
+    return 0;
+}
+
+static int on_failed_run(void *ud, const mpb_run_detail *d)
+{
+    failed *f = ud;
+    FILE *out = f->out;
+    fprintf(out, "<tr><td><a href=\"views/run-%lld.html\">%lld</a></td>"
+            "<td class=\"l\">", (long long)d->run_id, (long long)d->run_id);
+    H(d->planner_config);
+    fputs("</td><td class=\"l\">", out);
+    H(query_name(f, d->query_id));
+    fprintf(out, "</td><td>%d</td><td class=\"l\">", d->repetition);
+    H(*d->verdict && strcmp(d->verdict, "valid") != 0 ? d->verdict : d->status);
+    fputs("</td><td class=\"l\">", out);
+    H(d->message);
+    fputs("</td></tr>\n", out);
+    return 0;
+}
+
+/* Collect the ids of the scene's runs that are no success. */
+static int on_result(void *ud, const mpb_result_row *row)
+{
+    failed *f = ud;
+    if (row->success)
+        return 0;
+    if (f->listed == MAX_FAILED_LISTED) {
+        f->more++;
+        return 0;
+    }
+    f->ids[f->listed++] = row->run_id;
+    return 0;
+}
+
+static int write_failed(failed *f, int si)
+{
+    const report *r = f->r;
+    f->listed = f->more = 0;
+    int rc = mpb_store_results(f->store, r->experiment_id, r->scenes[si].id,
+                               NULL, NULL, 0, on_result, f);
+    if (rc != MPB_OK || f->listed == 0)
+        return rc;
+    FILE *out = f->out;
+    fputs("<h3>Runs that are no success</h3>\n<table><tr><th>run</th>"
+          "<th class=\"l\">planner</th><th class=\"l\">query</th>"
+          "<th>rep.</th><th class=\"l\">outcome</th><th class=\"l\">"
+          "message</th></tr>\n", out);
+    for (int i = 0; i < f->listed && rc == MPB_OK; i++)
+        rc = mpb_store_run_get(f->store, f->ids[i], on_failed_run, f);
+    fputs("</table>\n", out);
+    if (f->more)
+        fprintf(out, "<p class=\"note\">... and %d more.</p>\n", f->more);
+    return rc;
+}
+
+/* ---- the page -------------------------------------------------------------- */
+
+int report_write_html(const report *r, FILE *out)
+{
+    int rc = MPB_OK;
+    char date[64] = "";
+    time_t created = (time_t)r->created;
+    struct tm tm;
+    if (gmtime_r(&created, &tm))
+        strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", &tm);
+    fputs("<!DOCTYPE html>\n<!-- Written by mpb report --format html "
+          "(mpbench). -->\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+          "<title>", out);
+    H(r->experiment_name);
+    fprintf(out, " (%lld): mpbench report</title>\n<style>%s</style></head>"
+            "<body><main>\n<h1>Experiment ", (long long)r->experiment_id,
+            STYLE);
+    H(r->experiment_name);
+    fprintf(out, " (%lld)</h1>\n<p class=\"note\">", (long long)r->experiment_id);
+    fprintf(out, "%d run%s per query, time limit %g s; started %s on ",
+            r->runs_per_query, r->runs_per_query == 1 ? "" : "s",
+            r->time_limit, date);
+    H(r->host);
+    fputs(", mpbench ", out);
+    H(r->version);
+    fputs(". Means over successful runs; sigma: the standard deviation per "
+          "query, averaged over the scene's queries; path metrics of ", out);
+    if (r->stage) {
+        fputs("stage '", out);
+        H(r->stage);
+        fputs("'", out);
+    } else {
+        fputs("each run's final stage", out);
+    }
+    fputs(" (docs/reports.md).</p>\n", out);
+
+    plots p = {0};
+    plots_make(r, &p);
+    failed f = {.r = r, .out = out};
+    f.ids = calloc(MAX_FAILED_LISTED, sizeof *f.ids);
+    f.query_names = calloc((size_t)r->num_queries + 1, sizeof *f.query_names);
+    if (!f.ids || !f.query_names) {
+        rc = MPB_ENOMEM;
+        goto done;
+    }
+    if (mpb_store_open(r->db_path, 1, &f.store) != MPB_OK) {
+        rc = MPB_EIO;
+        goto done;
+    }
+    for (int si = 0; si < r->num_scenes && rc == MPB_OK; si++)
+        rc = mpb_store_queries(f.store, r->scenes[si].id, on_query_name, &f);
+    for (int si = 0; si < r->num_scenes && rc == MPB_OK; si++) {
+        fputs("<h2>Scene ", out);
+        H(r->scenes[si].name);
+        fputs("</h2>\n", out);
+        if ((rc = write_table(r, si, out)) == MPB_OK)
+            write_plots(r, si, &p, out);
+        if (rc == MPB_OK)
+            rc = write_failed(&f, si);
+    }
+    if (rc == MPB_OK && p.why[0]) {
+        fputs("<p class=\"note\">No plots: ", out);
+        H(p.why);
+        fputs(".</p>\n", out);
+    }
+    if (rc == MPB_OK)
+        rc = write_findings(r, out);
+    if (rc == MPB_OK) {
+        fprintf(out, "<p class=\"note\">The run links open the pages that "
+                "<code>mpb view --failed --experiment %lld -o views ",
+                (long long)r->experiment_id);
+        H(r->db_path);
+        fputs("</code> writes into <code>views/</code> beside this file: "
+              "each run in 3-D, where it failed and why.</p>\n", out);
+        fputs("</main></body></html>\n", out);
+    }
+done:
+    mpb_store_close(f.store);
+    if (f.query_names)
+        for (int i = 0; i < r->num_queries; i++)
+            free(f.query_names[i]);
+    free(f.query_names);
+    free(f.ids);
+    plots_free(&p);
+    return rc;
+}
