@@ -326,11 +326,11 @@ static int urdf_movable_body(const mpb_bodies *b, int id)
                              : b->object_body[id - b->num_links];
 }
 
+/* The body of a urdf static id: a scene object (the robot's fixed links
+ * are self-only movable bodies, world_urdf.c). */
 static int urdf_static_body(const mpb_bodies *b, int id)
 {
-    return id >= b->model.robot_static
-               ? b->link_body[id - b->model.robot_static]
-               : b->object_body[id];
+    return b->object_body[id];
 }
 
 int mpb_bodies_contact(mpb_bodies *b, const double *q, int *a, int *c)

@@ -119,9 +119,9 @@ int mpb__planar_contact(mpb_world *w, const double *q, int *link,
 /*
  * URDF only, for bodies.c: the parts of the world (owned by it). The
  * collision world's ids are those written at the top of world_urdf.c:
- * movable = link index, or num_links + k for scene object k when attached;
- * static = k for scene object k, or robot_static + link for a robot link
- * that does not move. meshes are the robot's mesh shapes in the order of
+ * movable = link index (the links that do not move are self-only bodies),
+ * or num_links + k for scene object k when attached; static = k for scene
+ * object k. meshes are the robot's mesh shapes in the order of
  * mpb_robot_get_collision(). MPB_EINVAL if w is not a urdf world.
  */
 struct mpb_robot;
@@ -133,7 +133,6 @@ typedef struct mpb__urdf_model {
     struct mpb_collision *coll;
     struct mpb_mesh     **meshes;
     int                   num_meshes;
-    int                   robot_static;
 } mpb__urdf_model;
 int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out);
 

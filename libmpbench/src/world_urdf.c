@@ -858,6 +858,6 @@ int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out)
         return MPB_EINVAL;
     urdf_world *u = w->impl;
     *out = (mpb__urdf_model){u->robot, u->scene, u->coll, u->meshes,
-                             u->num_meshes, ROBOT_STATIC};
+                             u->num_meshes};
     return MPB_OK;
 }

@@ -62,7 +62,10 @@ static char *urdf;
 static int setup(void **state)
 {
     (void)state;
-    urdf = test_read_file(MPB_TEST_DATA "/pr2_right_arm.urdf");
+    /* With its SRDF, which allows the pairs its crude shapes make touch
+     * (test_world_urdf.c). */
+    urdf = test_read_robot(MPB_TEST_DATA "/pr2_right_arm.urdf",
+                           MPB_TEST_DATA "/pr2_right_arm.srdf");
     return 0;
 }
 

@@ -8,6 +8,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static char *test_read_file(const char *path)
 {
@@ -22,6 +23,20 @@ static char *test_read_file(const char *path)
     assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
     fclose(f);
     return s;
+}
+
+/* A robot text as the daemon sends it: the URDF, then its SRDF. */
+static inline char *test_read_robot(const char *urdf_path, const char *srdf_path)
+{
+    char *u = test_read_file(urdf_path);
+    char *s = test_read_file(srdf_path);
+    char *text = malloc(strlen(u) + strlen(s) + 1);
+    assert_non_null(text);
+    strcpy(text, u);
+    strcat(text, s);
+    free(u);
+    free(s);
+    return text;
 }
 
 #endif

@@ -52,14 +52,8 @@ static char *urdf;
 static int setup(void **state)
 {
     (void)state;
-    char *u = test_read_file(MPB_TEST_DATA "/pr2_right_arm.urdf");
-    char *s = test_read_file(MPB_TEST_DATA "/pr2_right_arm.srdf");
-    urdf = malloc(strlen(u) + strlen(s) + 1);
-    assert_non_null(urdf);
-    strcpy(urdf, u);
-    strcat(urdf, s);
-    free(u);
-    free(s);
+    urdf = test_read_robot(MPB_TEST_DATA "/pr2_right_arm.urdf",
+                           MPB_TEST_DATA "/pr2_right_arm.srdf");
     return 0;
 }
 
