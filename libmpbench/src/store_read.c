@@ -267,6 +267,8 @@ static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
         .time_raw = col_double(st, 7),
         .time_other = col_double(st, 8),
         .metrics = w->metrics,
+        .stage_valid = sqlite3_column_type(st, 13) == SQLITE_NULL
+                           ? -1 : sqlite3_column_int(st, 13) != 0,
     };
     for (int i = 0; i < w->num_names; i++)
         w->metrics[i] = NAN;
@@ -408,7 +410,7 @@ static int results_packed(mpb_store *s, int64_t experiment_id,
 #define PACKED_SQL(scene_where)                                             \
     "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
     " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
-    " r.final_stage, r.final_metrics"                                      \
+    " r.final_stage, r.final_metrics, NULL, NULL, r.valid"                 \
     " FROM runs r WHERE r.experiment_id = ?1 AND r.state = 'done'"         \
     scene_where " ORDER BY r.id"
     static const char one_scene[] = PACKED_SQL(
@@ -490,10 +492,12 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
 #define RESULTS_SQL(scene_where)                                            \
     "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
     " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
-    " coalesce(?3, r.final_stage), m.name, m.value, q.scene_id"            \
+    " coalesce(?3, r.final_stage), m.name, m.value, q.scene_id, st.valid"  \
     " FROM runs r JOIN queries q ON q.id = r.query_id"                     \
     " LEFT JOIN metrics m ON m.run_id = r.id"                              \
     "  AND m.stage = coalesce(?3, r.final_stage)"                          \
+    " LEFT JOIN stages st ON st.run_id = r.id"                             \
+    "  AND st.name = coalesce(?3, r.final_stage)"                          \
     " WHERE r.experiment_id = ?1 AND r.state = 'done'" scene_where         \
     " ORDER BY r.id"
     static const char one_scene[] = RESULTS_SQL(" AND q.scene_id = ?2");

@@ -33,20 +33,21 @@ typedef struct run_spec {
     double len, smooth;
     int    waypoints;
     double clearance;           /* < 0: not measured */
+    int    raw_bad;             /* the raw stage failed verification */
 } run_spec;
 
 static const run_spec runs[] = {
-    /* cfg q  rep done ok  total raw   other raw_len len   smooth wp  clear */
-    {A, K1, 0, 1, 1, 1.0,  0.9,  0.1, 10.0, 2.0,  0.1,  10, -1},
-    {A, K2, 0, 1, 1, 4.0,  3.6,  0.4, 40.0, 5.0,  0.5,  40, -1},
-    {B, K1, 0, 1, 1, 0.5,  0.3,  0.2, -1.0, 3.0,  1.5,  8,  -1},
-    {A, K1, 1, 1, 1, 2.0,  1.8,  0.2, 20.0, 4.0,  0.2,  20, -1},
-    {A, K2, 1, 1, 1, 6.0,  5.4,  0.6, 60.0, 5.0,  0.7,  50, -1},
-    {B, K2, 0, 1, 0, 0.7,  0.5,  0.2, -1.0, 77.0, 7.7,  77, -1},
-    {A, K1, 2, 1, 1, 3.0,  2.7,  0.3, 30.0, 6.0,  0.3,  30, -1},
-    {A, K2, 2, 1, 0, 60.0, 59.5, 0.5, -1.0, 99.0, 9.9,  99, -1},
-    {A, T1, 0, 1, 1, 7.0,  6.0,  1.0, -1.0, 8.0,  0.4,  12, 0.05},
-    {B, K2, 1, 0, 0, 0.0,  0.0,  0.0, -1.0, 0.0,  0.0,  0,  -1},
+    /* cfg q  rep done ok  total raw   other raw_len len   smooth wp  clear raw_bad */
+    {A, K1, 0, 1, 1, 1.0,  0.9,  0.1, 10.0, 2.0,  0.1,  10, -1, 0},
+    {A, K2, 0, 1, 1, 4.0,  3.6,  0.4, 40.0, 5.0,  0.5,  40, -1, 0},
+    {B, K1, 0, 1, 1, 0.5,  0.3,  0.2, -1.0, 3.0,  1.5,  8,  -1, 0},
+    {A, K1, 1, 1, 1, 2.0,  1.8,  0.2, 20.0, 4.0,  0.2,  20, -1, 0},
+    {A, K2, 1, 1, 1, 6.0,  5.4,  0.6, 60.0, 5.0,  0.7,  50, -1, 1},
+    {B, K2, 0, 1, 0, 0.7,  0.5,  0.2, -1.0, 77.0, 7.7,  77, -1, 0},
+    {A, K1, 2, 1, 1, 3.0,  2.7,  0.3, 30.0, 6.0,  0.3,  30, -1, 0},
+    {A, K2, 2, 1, 0, 60.0, 59.5, 0.5, -1.0, 99.0, 9.9,  99, -1, 0},
+    {A, T1, 0, 1, 1, 7.0,  6.0,  1.0, -1.0, 8.0,  0.4,  12, 0.05, 0},
+    {B, K2, 1, 0, 0, 0.0,  0.0,  0.0, -1.0, 0.0,  0.0,  0,  -1, 0},
 };
 #define NUM_RUNS ((int)(sizeof runs / sizeof runs[0]))
 
@@ -82,7 +83,8 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
                          {"waypoints", r->waypoints}, {"time", 0.02},
                          {"clearance", r->clearance}};
     mpb_stage_record st[2] = {
-        {.name = "raw", .valid = 1, .verdict = "valid", .verdict_segment = -1,
+        {.name = "raw", .valid = !r->raw_bad,
+         .verdict = r->raw_bad ? "collision" : "valid", .verdict_segment = -1,
          .num_metrics = 2, .metrics = raw_m},
         {.name = "smoothed", .valid = r->success,
          .verdict = r->success ? "valid" : "collision", .verdict_segment = -1,
@@ -159,7 +161,7 @@ static void write_newer(mpb_store *s)
     assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
     assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &run), 1);
-    run_spec r = {0, 0, 0, 1, 1, 0.25, 0.2496, 0.0004, -1.0, 1.0, 0.0, 2, -1};
+    run_spec r = {0, 0, 0, 1, 1, 0.25, 0.2496, 0.0004, -1.0, 1.0, 0.0, 2, -1, 0};
     finish(s, run, &r);
 }
 
@@ -183,7 +185,7 @@ static void write_odd(mpb_store *s)
     assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
     assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &run), 1);
-    run_spec r = {0, 0, 0, 1, 1, 2.0, 1.5, 0.5, -1.0, 1.0, 0.0, 2, -1};
+    run_spec r = {0, 0, 0, 1, 1, 2.0, 1.5, 0.5, -1.0, 1.0, 0.0, 2, -1, 0};
     finish(s, run, &r);
 }
 
@@ -384,10 +386,14 @@ static void a_chosen_stage_gives_its_own_metrics(void **state)
     run(&o, "stdout", "report --stage raw --experiment=1 '%s'", f->db);
     assert_int_equal(o.status, 0);
     assert_non_null(strstr(o.text, "stage 'raw'"));
-    /* A's raw lengths 10, 20, 30 | 40, 60: mean 32, sigma (10 + 14.1421)/2;
-     * times do not depend on the stage. B has no raw stage. */
-    assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", A), "32.000");
-    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", A), "12.071");
+    /* A's raw lengths 10, 20, 30 | 40, and 60 whose raw stage failed
+     * verification: mean 25, sigma (10 + 0)/2; times do not depend on the
+     * stage. B has no raw stage. */
+    assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", A), "25.000");
+    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", A), "5.000");
+    assert_non_null(strstr(o.text, "\nompl/RRTConnect: 1 successful run "
+                           "whose stage 'raw' failed verification, its path "
+                           "metrics not counted above\n"));
     assert_string_equal(cell(&o, KITCHEN, "kappa' (Mean, rad^2)", A), "-");
     assert_string_equal(cell(&o, KITCHEN, "tau_t (Mean, s)", A), "3.200");
     assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", B), "-");
@@ -442,7 +448,7 @@ static void tiny_values_and_wide_names(void **state)
         assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query, 0, c), MPB_OK);
         assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &ids[c]), 1);
         run_spec r = {0, 0, 0, 1, 1, c ? 5.21e-7 : 0.004895, 0, 0, -1.0, 1.0,
-                      0.0, 2, -1};
+                      0.0, 2, -1, 0};
         finish(s, ids[c], &r);
     }
     mpb_store_close(s);
@@ -611,7 +617,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
     /* --stage changes the path metrics only. */
     run(&o, "stdout", "report -f csv -e 1 --stage raw '%s'", f->db);
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "path_length,rad,32,12.0710678118655,5,1\n"));
+                                   "path_length,rad,25,5,4,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1\n"));
 

@@ -97,7 +97,9 @@ static void usage(FILE *out)
         "  -e, --experiment ID  report on experiment ID (default: the newest)\n"
         "  -s, --stage NAME     path metrics of stage NAME (raw, shortcut,\n"
         "                       smoothed, ...) instead of each run's final\n"
-        "                       stage\n"
+        "                       stage; only where that stage passed\n"
+        "                       verification (the others are counted below\n"
+        "                       the table)\n"
         "  -f, --format FORMAT  text (the default), markdown, csv (one row per\n"
         "                       scene, planner and metric), latex (a table per\n"
         "                       scene) or json; docs/reports.md describes each\n"
@@ -252,6 +254,13 @@ static int on_result(void *ud, const mpb_result_row *row)
     add_sample(&c->m[M_TT], row->time_total);
     add_sample(&c->m[M_TR], row->time_raw);
     add_sample(&c->m[M_TO], row->time_other);
+    /* A stage that failed verification inside a successful run (a raw
+     * path through an obstacle, shortcut afterwards) is no path to
+     * measure: counted, not averaged. */
+    if (row->stage_valid == 0) {
+        c->stage_invalid++;
+        return 0;
+    }
     for (int k = 0; k < M_COUNT - FIRST_STORED; k++)
         add_sample(&c->m[FIRST_STORED + k], row->metrics[k]);
     if (row->num_named > 0)
@@ -320,7 +329,7 @@ long report_scene_columns(const report *r, int si, column *cols)
 {
     long finished = 0;
     for (int c = 0; c < r->num_configs; c++) {
-        cols[c].finished = cols[c].succeeded = 0;
+        cols[c].finished = cols[c].succeeded = cols[c].stage_invalid = 0;
         for (int k = 0; k < M_COUNT; k++)
             mpb_grouped_init(&cols[c].m[k]);
         for (int q = 0; q < r->num_queries; q++) {
@@ -330,6 +339,7 @@ long report_scene_columns(const report *r, int si, column *cols)
                                          (size_t)q];
             cols[c].finished += cl->finished;
             cols[c].succeeded += cl->succeeded;
+            cols[c].stage_invalid += cl->stage_invalid;
             for (int k = 0; k < M_COUNT; k++)
                 mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
         }
@@ -473,6 +483,13 @@ static int print_scene(const report *r, int si, FILE *out)
         }
         fputc('\n', out);
     }
+    for (int c = 0; c < nc; c++)
+        if (cols[c].stage_invalid > 0)
+            fprintf(out, "%s: %ld successful run%s whose stage '%s' failed "
+                    "verification, its path metrics not counted above\n",
+                    r->configs[c].name, cols[c].stage_invalid,
+                    cols[c].stage_invalid == 1 ? "" : "s",
+                    r->stage ? r->stage : "?");
     if (r->scenes[si].unfinished > 0)
         fprintf(out, "%d more run%s not finished yet, not counted above\n",
                 r->scenes[si].unfinished,

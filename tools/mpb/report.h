@@ -41,6 +41,8 @@ extern const int report_num_rows;
 /* One planner configuration on one query, or (folded) on one scene. */
 typedef struct column {
     long        finished, succeeded;
+    long        stage_invalid;  /* successful runs whose --stage failed
+                                   verification: its metrics left out */
     mpb_grouped m[M_COUNT];     /* successful runs */
 } column;
 

@@ -329,6 +329,10 @@ typedef struct mpb_result_row {
                                   (NULL if the run has none) */
     const double *metrics;     /* one value per name asked for, in that
                                   order; NaN where the stage lacks it */
+    int         stage_valid;   /* 1 if that stage passed verification, 0
+                                  if it failed (a run's earlier stage may
+                                  fail while its final one passes), -1 if
+                                  the run has no such stage */
     int         num_named;     /* 0 if that stage has no metrics */
     const mpb_named *named;    /* every metric of that stage, by name */
 } mpb_result_row;
