@@ -390,7 +390,12 @@ static void a_chosen_stage_gives_its_own_metrics(void **state)
      * verification: mean 25, sigma (10 + 0)/2; times do not depend on the
      * stage. B has no raw stage. */
     assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", A), "25.000");
-    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", A), "5.000");
+    /* k2's one raw path is no spread measured: the sigma is marked. */
+    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", A), "5.000*");
+    assert_non_null(strstr(o.text, "\n* sigma counts a query with one "
+                           "successful run as 0 spread\n"));
+    /* TABLETOP has no sigma, so no mark. */
+    assert_null(strstr(strstr(o.text, "TABLETOP"), "*"));
     assert_non_null(strstr(o.text, "\nompl/RRTConnect: 1 successful run "
                            "whose stage 'raw' failed verification, its path "
                            "metrics not counted above\n"));
@@ -398,6 +403,10 @@ static void a_chosen_stage_gives_its_own_metrics(void **state)
     assert_string_equal(cell(&o, KITCHEN, "tau_t (Mean, s)", A), "3.200");
     assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", B), "-");
     assert_string_equal(cell(&o, KITCHEN, "s_r (%)", B), "50.0");
+    run(&o, "stdout", "report -f markdown --stage raw -e 1 '%s'", f->db);
+    assert_non_null(strstr(o.text, "| l_p (sigma, rad) | 5.000\\* |"));
+    assert_non_null(strstr(o.text, "\n\\* sigma counts a query with one "
+                           "successful run as 0 spread.\n"));
 }
 
 static void the_newest_experiment_is_the_default(void **state)

@@ -89,7 +89,8 @@ static void usage(FILE *out)
         "  waypoints            number of waypoints\n"
         "  s_r                  successful runs / finished runs (%%)\n"
         "Means are over successful runs; sigma is the standard deviation of\n"
-        "each query's successful runs, averaged over the scene's queries.\n"
+        "each query's successful runs, averaged over the scene's queries;\n"
+        "a sigma marked * counts a query with one successful run as 0.\n"
         "'-' marks a value there is nothing to compute from (a sigma from\n"
         "fewer than two successful runs, too).\n"
         "\n"
@@ -353,6 +354,12 @@ double report_sigma(const mpb_grouped *g)
     return g->n < 2 ? NAN : mpb_grouped_stddev(g);
 }
 
+int report_sigma_single(const mpb_grouped *g)
+{
+    int groups = g->groups + (g->g_n > 0);
+    return groups - mpb_grouped_measured(g);
+}
+
 double report_row_value(const table_row *tr, const column *c)
 {
     switch (tr->what) {
@@ -410,10 +417,25 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
         for (int c = 0; c < nc; c++) {
             double v = report_row_value(tr, &cols[c]);
             format_value(text[i * nc + c], decimals, v);
+            if (tr->what == SHOW_SIGMA && !isnan(v) &&
+                report_sigma_single(&cols[c].m[tr->metric]) > 0)
+                strcat(text[i * nc + c], SIGMA_SINGLE_MARK);
             any |= !isnan(v) || cols[c].m[tr->metric].n > 0;  /* measured */
         }
         visible[i] = !tr->optional || any;
     }
+}
+
+int report_any_single(const column *cols, char (*text)[CELL_TEXT],
+                      const int *visible, int nc)
+{
+    (void)cols;
+    for (int i = 0; i < report_num_rows; i++)
+        if (visible[i] && report_rows[i].what == SHOW_SIGMA)
+            for (int c = 0; c < nc; c++)
+                if (strstr(text[i * nc + c], SIGMA_SINGLE_MARK) != NULL)
+                    return 1;
+    return 0;
 }
 
 /* ---- text ------------------------------------------------------------------ */
@@ -490,6 +512,8 @@ static int print_scene(const report *r, int si, FILE *out)
                     r->configs[c].name, cols[c].stage_invalid,
                     cols[c].stage_invalid == 1 ? "" : "s",
                     r->stage ? r->stage : "?");
+    if (report_any_single(cols, text, visible, nc))
+        fputs(SIGMA_SINGLE_NOTE "\n", out);
     if (r->scenes[si].unfinished > 0)
         fprintf(out, "%d more run%s not finished yet, not counted above\n",
                 r->scenes[si].unfinished,

@@ -84,6 +84,15 @@ typedef struct report {
  * where there is no spread to compute. */
 double report_sigma(const mpb_grouped *g);
 
+/* How many of g's groups (queries) have one sample: the paper's sigma
+ * counts each as 0 spread, which is convention, not measurement. */
+int report_sigma_single(const mpb_grouped *g);
+
+/* A sigma cell with such queries ends with this mark; the note says why. */
+#define SIGMA_SINGLE_MARK "*"
+#define SIGMA_SINGLE_NOTE "* sigma counts a query with one successful run " \
+                          "as 0 spread"
+
 /* The value a row shows for a column; NaN when there is nothing. */
 double report_row_value(const table_row *tr, const column *c);
 
@@ -103,6 +112,10 @@ long report_scene_columns(const report *r, int si, column *cols);
  */
 void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
                   int *visible);
+
+/* Whether some visible sigma cell of report_cells() is marked. */
+int report_any_single(const column *cols, char (*text)[CELL_TEXT],
+                      const int *visible, int nc);
 
 /* The writers. Each returns MPB_OK or MPB_ENOMEM; output errors are found
  * by the caller with ferror(). */
