@@ -64,6 +64,10 @@ check "the straight line's length is exactly sqrt(0.3^2+0.2^2+0.1^2)" \
     eq "$(q "SELECT abs(path_length - 0.374165738677394) < 1e-9 FROM results WHERE planner = 'null/straight_line' AND query = 'small_move'")" 1
 check "every stage of every run has a path length and smoothness" \
     eq "$(q "SELECT count(*) FROM stages s WHERE NOT EXISTS (SELECT 1 FROM metrics m WHERE m.run_id = s.run_id AND m.stage = s.name AND m.name = 'path_length') OR NOT EXISTS (SELECT 1 FROM metrics m WHERE m.run_id = s.run_id AND m.stage = s.name AND m.name = 'smoothness')")" 0
+check "... and a resampled smoothness, which the report shows" \
+    eq "$(q "SELECT count(*) FROM stages s WHERE NOT EXISTS (SELECT 1 FROM metrics m WHERE m.run_id = s.run_id AND m.stage = s.name AND m.name = 'smoothness_resampled')")" 0
+"$MPB_BUILD/tools/mpb" report "$DB" | grep -q "^kappa'_r (Mean, rad^2)"
+check "... in a row of its own" eq $? 0
 check "waypoints are stored whole" \
     eq "$(q "SELECT count(*) FROM stages WHERE length(waypoints) != 8 * num_waypoints * num_joints")" 0
 check "times are recorded for every run" \

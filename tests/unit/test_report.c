@@ -597,9 +597,9 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
         "unfinished\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
-    /* 2 scenes x 2 configurations x (8 metrics + the success rate), and
+    /* 2 scenes x 2 configurations x (9 metrics + the success rate), and
      * the header: always the same rows, empty where nothing was measured. */
-    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 9);
+    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 10);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1\n"));
@@ -640,7 +640,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "                r['metric'], r['mean'], r['n']]))\n",
         "report -f csv '%s'", f->odd);
     assert_int_equal(o.status, 0);
-    assert_string_equal(o.text, "9\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
+    assert_string_equal(o.text, "10\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
                                 "time_total|2|1\n");
 }
 
@@ -716,6 +716,7 @@ static void json_holds_every_number_by_name(void **state)
         "    path_length 4.4 1.0 5\n"
         "    ee_path_length None None 0\n"
         "    smoothness 0.36 0.120711 5\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints 30.0 8.535534 5\n"
         "  ara/ARAstar ara ARAstar eps=100 2 1 0.5\n"
         "    time_total 0.5 None 1\n"
@@ -725,6 +726,7 @@ static void json_holds_every_number_by_name(void **state)
         "    path_length 3.0 None 1\n"
         "    ee_path_length None None 0\n"
         "    smoothness 1.5 None 1\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints 8.0 None 1\n"
         "TABLETOP 1 0\n"
         "  ompl/RRTConnect ompl RRTConnect  1 1 1.0\n"
@@ -735,6 +737,7 @@ static void json_holds_every_number_by_name(void **state)
         "    path_length 8.0 None 1\n"
         "    ee_path_length None None 0\n"
         "    smoothness 0.4 None 1\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints 12.0 None 1\n"
         "  ara/ARAstar ara ARAstar eps=100 0 0 None\n"
         "    time_total None None 0\n"
@@ -744,6 +747,7 @@ static void json_holds_every_number_by_name(void **state)
         "    path_length None None 0\n"
         "    ee_path_length None None 0\n"
         "    smoothness None None 0\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints None None 0\n");
 
     /* A stage asked for is named; strings are escaped. */

@@ -28,6 +28,7 @@ const metric_info report_metrics[M_COUNT] = {
     [M_LP] = {"path_length", "rad"},
     [M_LE] = {"ee_path_length", "m"},
     [M_KAPPA] = {"smoothness", "rad^2"},
+    [M_KAPPA_R] = {"smoothness_resampled", "rad^2"},
     [M_WP] = {"waypoints", ""},
 };
 
@@ -46,13 +47,16 @@ const table_row report_rows[] = {
     {"l_e (sigma, m)",        "$l_e$ ($\\sigma$, m)",           M_LE,    SHOW_SIGMA, 1, -1},
     {"kappa' (Mean, rad^2)",  "$\\kappa'$ (Mean, rad$^2$)",     M_KAPPA, SHOW_MEAN,  0, -1},
     {"kappa' (sigma, rad^2)", "$\\kappa'$ ($\\sigma$, rad$^2$)", M_KAPPA, SHOW_SIGMA, 0, -1},
+    {"kappa'_r (Mean, rad^2)", "$\\kappa'_r$ (Mean, rad$^2$)",  M_KAPPA_R, SHOW_MEAN, 1, -1},
+    {"kappa'_r (sigma, rad^2)", "$\\kappa'_r$ ($\\sigma$, rad$^2$)", M_KAPPA_R, SHOW_SIGMA, 1, -1},
     {"waypoints (Mean)",      "waypoints (Mean)",               M_WP,    SHOW_MEAN,  0, 1},
     {"s_r (%)",               "$s_r$ (\\%)",                    0,       SHOW_RATE,  0, 1},
 };
 const int report_num_rows = (int)(sizeof report_rows / sizeof report_rows[0]);
 
 static const char *const stored_names[M_COUNT - FIRST_STORED] = {
-    "clearance", "path_length", "ee_path_length", "smoothness", "waypoints",
+    "clearance", "path_length", "ee_path_length", "smoothness",
+    "smoothness_resampled", "waypoints",
 };
 
 typedef enum {
@@ -86,6 +90,8 @@ static void usage(FILE *out)
         "  l_p                  joint-space path length (rad)\n"
         "  l_e                  end-effector path length (m), when measured\n"
         "  kappa'               smoothness: mean squared turning angle\n"
+        "  kappa'_r             the same of the path cut into 100 equal\n"
+        "                       pieces, whatever its waypoints, when measured\n"
         "  waypoints            number of waypoints\n"
         "  s_r                  successful runs / finished runs (%%)\n"
         "Means are over successful runs; sigma is the standard deviation of\n"

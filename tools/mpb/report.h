@@ -12,7 +12,8 @@
 #include "mpb.h"
 
 /* What is averaged: the run's times, then the stage metrics it reads. */
-enum { M_TT, M_TR, M_TO, M_DN, M_LP, M_LE, M_KAPPA, M_WP, M_COUNT };
+enum { M_TT, M_TR, M_TO, M_DN, M_LP, M_LE, M_KAPPA, M_KAPPA_R, M_WP,
+       M_COUNT };
 #define FIRST_STORED M_DN
 
 /* A metric's name in the machine-readable formats (its name in the
