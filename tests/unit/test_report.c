@@ -456,8 +456,9 @@ static void tiny_values_and_wide_names(void **state)
     for (int c = 0; c < 2; c++) {
         assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query, 0, c), MPB_OK);
         assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &ids[c]), 1);
+        /* kappa' 2.17e-30: the rounding a straight path once gave. */
         run_spec r = {0, 0, 0, 1, 1, c ? 5.21e-7 : 0.004895, 0, 0, -1.0, 1.0,
-                      0.0, 2, -1, 0};
+                      c ? 2.17e-30 : 0.0, 2, -1, 0};
         finish(s, ids[c], &r);
     }
     mpb_store_close(s);
@@ -468,6 +469,10 @@ static void tiny_values_and_wide_names(void **state)
     const char *title = "Scene S\u00e4ule - experiment tiny";
     assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 0), "0.004895");
     assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 1), "5.21e-07");
+    /* Rounding noise is no data: 0 beside 0, not 2.17e-30 beside
+     * 0.000000. */
+    assert_string_equal(cell(&o, title, "kappa' (Mean, rad^2)", 0), "0.000");
+    assert_string_equal(cell(&o, title, "kappa' (Mean, rad^2)", 1), "0.000");
     /* The header, the rule and a row: the same number of characters. */
     const char *head = strstr(o.text, "\nMetric");
     assert_non_null(head);

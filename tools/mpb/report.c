@@ -381,6 +381,16 @@ double report_row_value(const table_row *tr, const column *c)
     return NAN;
 }
 
+/* A mean or sigma smaller than this in magnitude is the rounding of
+ * floating-point arithmetic (a straight path's kappa' of 2e-30 in a
+ * database written before it was 0), not a measurement: it prints as 0. */
+#define NOISE 1e-12
+
+static double denoise(double v)
+{
+    return fabs(v) < NOISE ? 0.0 : v;
+}
+
 /*
  * Decimals for a row of the general format: 3, as the paper's 2 would
  * hide today's millisecond plans, or more, up to 6, so that the row's
@@ -391,7 +401,7 @@ static int row_decimals(const column *cols, int n, const table_row *tr)
 {
     int decimals = 3;
     for (int i = 0; i < n; i++) {
-        double v = report_row_value(tr, &cols[i]);
+        double v = denoise(report_row_value(tr, &cols[i]));
         if (isnan(v) || v == 0.0 || isinf(v))
             continue;
         int d = 2 - (int)floor(log10(fabs(v)));
@@ -422,7 +432,7 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
         int any = 0;
         for (int c = 0; c < nc; c++) {
             double v = report_row_value(tr, &cols[c]);
-            format_value(text[i * nc + c], decimals, v);
+            format_value(text[i * nc + c], decimals, denoise(v));
             if (tr->what == SHOW_SIGMA && !isnan(v) &&
                 report_sigma_single(&cols[c].m[tr->metric]) > 0)
                 strcat(text[i * nc + c], SIGMA_SINGLE_MARK);
