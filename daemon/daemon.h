@@ -134,10 +134,14 @@ typedef struct mpbd_unrecorded {
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
 } mpbd_unrecorded;
 
-/* Runs' latency, request first sent to result committed (latency.c). */
-#define MPBD_LATENCY_MAX_US 65536
+/* Runs' latency, request first sent to result committed (latency.c):
+ * 65536 counters of 1 us, then of 1 ms, then of 1 s, then one for all
+ * longer than MPBD_LATENCY_MAX_US (about 18 hours). */
+#define MPBD_LATENCY_TIER   65536
+#define MPBD_LATENCY_TIERS  3
+#define MPBD_LATENCY_MAX_US (65536L * 1000000L)
 typedef struct mpbd_latency {
-    uint32_t *count;         /* [us], the last one for all longer */
+    uint32_t *count;         /* MPBD_LATENCY_TIERS tiers, then longer */
     uint64_t  n;
 } mpbd_latency;
 
