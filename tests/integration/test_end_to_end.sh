@@ -47,6 +47,15 @@ for algo in RRTConnect RRT; do
                  WHERE c.name = 'ompl/$algo' AND s.name IN ('raw', 'shortcut', 'smoothed')")" 18
 done
 
+# The OMPL planner builds the one world once: its first run reports that
+# on its own (world_setup_time), outside tau_t, and the report shows it.
+check "the OMPL planner reports its one world's setup once" \
+    eq "$(q "SELECT count(*) FROM planner_values v JOIN runs r ON r.id = v.run_id
+             JOIN planner_configs c ON c.id = r.planner_config_id
+             WHERE c.planner = 'ompl' AND v.name = 'world_setup_time' AND v.value >= 0")" 1
+"$MPB_BUILD/tools/mpb" report "$DB" | grep -q "^world setup (Mean, s)"
+check "... and mpb report shows it in a row of its own" eq $? 0
+
 # The straight line through the pillar is rejected by mpbench's own check,
 # although the null planner claims success.
 check "the null planner's line through the pillar is a claimed success" \

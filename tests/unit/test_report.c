@@ -73,6 +73,9 @@ static int find_ids(void *ud, const mpb_run_row *row)
     return 0;
 }
 
+/* The world setup time the next finish() reports, then NaN (none). */
+static double next_world_setup = NAN;
+
 static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
 {
     char uid[32];
@@ -97,6 +100,13 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
         .time_total = r->total, .time_raw = r->raw, .time_other = r->other,
         .num_stages = has_raw ? 2 : 1, .stages = has_raw ? st : st + 1,
     };
+    mpb_named values[] = {{"collision checks", 12.0},
+                          {"world_setup_time", next_world_setup}};
+    if (!isnan(next_world_setup)) {
+        rec.num_values = 2;
+        rec.values = values;
+    }
+    next_world_setup = NAN;
     assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
 }
 
@@ -459,6 +469,10 @@ static void tiny_values_and_wide_names(void **state)
         /* kappa' 2.17e-30: the rounding a straight path once gave. */
         run_spec r = {0, 0, 0, 1, 1, c ? 5.21e-7 : 0.004895, 0, 0, -1.0, 1.0,
                       c ? 2.17e-30 : 0.0, 2, -1, 0};
+        /* The first run of x/plain built the world: 0.508 s, outside its
+         * tau_t. */
+        if (c == 1)
+            next_world_setup = 0.508;
         finish(s, ids[c], &r);
     }
     mpb_store_close(s);
@@ -469,6 +483,8 @@ static void tiny_values_and_wide_names(void **state)
     const char *title = "Scene S\u00e4ule - experiment tiny";
     assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 0), "0.004895");
     assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 1), "5.21e-07");
+    assert_string_equal(cell(&o, title, "world setup (Mean, s)", 0), "-");
+    assert_string_equal(cell(&o, title, "world setup (Mean, s)", 1), "0.508");
     /* Rounding noise is no data: 0 beside 0, not 2.17e-30 beside
      * 0.000000. */
     assert_string_equal(cell(&o, title, "kappa' (Mean, rad^2)", 0), "0.000");
@@ -602,9 +618,9 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
         "unfinished\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
-    /* 2 scenes x 2 configurations x (9 metrics + the success rate), and
+    /* 2 scenes x 2 configurations x (10 metrics + the success rate), and
      * the header: always the same rows, empty where nothing was measured. */
-    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 10);
+    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 11);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1\n"));
@@ -645,7 +661,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "                r['metric'], r['mean'], r['n']]))\n",
         "report -f csv '%s'", f->odd);
     assert_int_equal(o.status, 0);
-    assert_string_equal(o.text, "10\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
+    assert_string_equal(o.text, "11\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
                                 "time_total|2|1\n");
 }
 
@@ -717,6 +733,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_total 3.2 1.207107 5\n"
         "    time_raw 2.88 1.086396 5\n"
         "    time_other 0.32 0.120711 5\n"
+        "    world_setup_time None None 0\n"
         "    clearance None None 0\n"
         "    path_length 4.4 1.0 5\n"
         "    ee_path_length None None 0\n"
@@ -727,6 +744,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_total 0.5 None 1\n"
         "    time_raw 0.3 None 1\n"
         "    time_other 0.2 None 1\n"
+        "    world_setup_time None None 0\n"
         "    clearance None None 0\n"
         "    path_length 3.0 None 1\n"
         "    ee_path_length None None 0\n"
@@ -738,6 +756,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_total 7.0 None 1\n"
         "    time_raw 6.0 None 1\n"
         "    time_other 1.0 None 1\n"
+        "    world_setup_time None None 0\n"
         "    clearance 0.05 None 1\n"
         "    path_length 8.0 None 1\n"
         "    ee_path_length None None 0\n"
@@ -748,6 +767,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_total None None 0\n"
         "    time_raw None None 0\n"
         "    time_other None None 0\n"
+        "    world_setup_time None None 0\n"
         "    clearance None None 0\n"
         "    path_length None None 0\n"
         "    ee_path_length None None 0\n"

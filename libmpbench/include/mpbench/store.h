@@ -324,6 +324,8 @@ typedef struct mpb_result_row {
     int         success;       /* solved in time and verified valid */
     const char *status;        /* the planner's status name */
     double      time_total, time_raw, time_other; /* tau_t, tau_r, tau_o, s */
+    double      world_setup_time; /* the planner's MPB_WORLD_SETUP_TIME
+                                     value (s, outside tau_t), NaN if none */
     const char *stage;         /* the stage the metrics are read from: the
                                   one asked for, else the run's final stage
                                   (NULL if the run has none) */
