@@ -178,6 +178,9 @@ check "kit: a solve() that raises is FAILED with the exception, not a crash" \
 check "kit: ... and the planner goes on: the other runs solved" \
     eq "$(q "SELECT count(*) FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
              WHERE c.name = 'kit/line#fine' AND r.status = 'solved'")" 2
+check "kit: a solve() that keeps no time gets the kit's, not 0 s" \
+    eq "$(q "SELECT count(*) FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
+             WHERE c.name = 'kit/line#fine' AND r.time_total > 0")" 2
 check "kit: the traceback is on the planner's stderr" \
     grep -q "ZeroDivisionError" "$work/kit-planner.log"
 cat >"$work/forge-kit.py" <<'EOT'
