@@ -3,7 +3,8 @@
  * from the planner). A path is num_waypoints joint vectors of num_joints
  * values each, stored row after row: waypoint i, joint j is
  * wp[i * num_joints + j]. Definitions, units and edge cases are in
- * docs/metrics.md; they follow Table I of the paper in shared/reference.
+ * docs/metrics.md; they follow Table I of Cohen, Sucan and Chitta, "A
+ * Generic Infrastructure for Benchmarking Motion Planners" (IROS 2012).
  */
 #ifndef MPBENCH_METRICS_H
 #define MPBENCH_METRICS_H
