@@ -9,6 +9,7 @@
  *   status.c     the MPB_STATUS message
  *   acks.c       acknowledging stored results: on requests, or alone
  *   latency.c    each run's latency, request to commit, as a histogram
+ *   thin.c       obstacles thinner than the verification step can see
  *   inbox.c      checking messages before they are decoded
  *   replay.c     --replay: results from an LCM log instead of the network
  *   daemons.c    other daemons on the same LCM URL: the younger one stops
@@ -279,6 +280,13 @@ int  mpbd_owed_take(mpbd *d, const char *planner_id,
                     char (*ids)[MPB_RUN_ID_SIZE], int max);
 /* Send alone those owed acknowledgements whose time is up (all: every one). */
 void mpbd_owed_send(mpbd *d, double now, int all);
+
+/* thin.c: the robot's lever arm (m per rad of joint-space motion, an
+ * estimate) in scene i, and one line per obstacle part thinner than
+ * resolution x that, given to out; returns how many. */
+double mpbd_lever_arm(const mpbd_experiment *e, int scene);
+int    mpbd_warn_thin(const mpbd_experiment *e, double resolution,
+                      void (*out)(void *ud, const char *line), void *ud);
 
 /* latency.c */
 int  mpbd_latency_init(mpbd_latency *l);
