@@ -449,10 +449,8 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
     }
 }
 
-int report_any_single(const column *cols, char (*text)[CELL_TEXT],
-                      const int *visible, int nc)
+int report_any_single(char (*text)[CELL_TEXT], const int *visible, int nc)
 {
-    (void)cols;
     for (int i = 0; i < report_num_rows; i++)
         if (visible[i] && report_rows[i].what == SHOW_SIGMA)
             for (int c = 0; c < nc; c++)
@@ -535,7 +533,7 @@ static int print_scene(const report *r, int si, FILE *out)
                     r->configs[c].name, cols[c].stage_invalid,
                     cols[c].stage_invalid == 1 ? "" : "s",
                     r->stage ? r->stage : "?");
-    if (report_any_single(cols, text, visible, nc))
+    if (report_any_single(text, visible, nc))
         fputs(SIGMA_SINGLE_NOTE "\n", out);
     if (r->scenes[si].unfinished > 0)
         fprintf(out, "%d more run%s not finished yet, not counted above\n",

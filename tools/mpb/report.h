@@ -116,8 +116,7 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
                   int *visible);
 
 /* Whether some visible sigma cell of report_cells() is marked. */
-int report_any_single(const column *cols, char (*text)[CELL_TEXT],
-                      const int *visible, int nc);
+int report_any_single(char (*text)[CELL_TEXT], const int *visible, int nc);
 
 /* The writers. Each returns MPB_OK or MPB_ENOMEM; output errors are found
  * by the caller with ferror(). */

@@ -122,7 +122,7 @@ int report_write_markdown(const report *r, FILE *out)
             }
             fputc('\n', out);
         }
-        if (report_any_single(t.cols, t.text, t.visible, nc)) {
+        if (report_any_single(t.text, t.visible, nc)) {
             fputc('\n', out);
             md_text(SIGMA_SINGLE_NOTE ".", out);
             fputc('\n', out);
@@ -272,7 +272,7 @@ int report_write_latex(const report *r, FILE *out)
             fputs("; path metrics of stage ", out);
             tex_text(r->stage, out);
         }
-        if (report_any_single(t.cols, t.text, t.visible, nc)) {
+        if (report_any_single(t.text, t.visible, nc)) {
             fputs("; ", out);
             tex_text(SIGMA_SINGLE_NOTE, out);
         }
