@@ -7,6 +7,8 @@
  * estimated as the largest end-effector displacement per radian of
  * joint-space motion, from the Jacobian (by finite differences) at the
  * queries' starts and at configurations spread over the joint limits.
+ * The planar arm's links are judged too (a thin link passes through an
+ * obstacle as well); a URDF robot's links are not yet.
  */
 #include <math.h>
 #include <stdio.h>
@@ -153,16 +155,44 @@ static int thin_moveit(const mpbd_scene *sc, double limit, double res,
     return n;
 }
 
+/* The planar arm's links: capsules of link_radius, 2 x that thick. */
+static int thin_planar_robot(const mpbd_scene *sc, double limit, double res,
+                             double lever, void (*out)(void *, const char *),
+                             void *ud)
+{
+    for (const char *p = sc->robot; p != NULL && *p; ) {
+        const char *end = strchr(p, '\n');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        char buf[256], line[512];
+        double r;
+        snprintf(buf, sizeof buf, "%.*s", (int)(len < 255 ? len : 255), p);
+        if (sscanf(buf, " link_radius %lf", &r) == 1 && 2 * r < limit) {
+            snprintf(line, sizeof line, "the robot's links are %.3g m thick "
+                     "(link_radius %g), less than the %.3g m they may move "
+                     "between two verification samples (%g rad x %.3g "
+                     "m/rad): a path may pass them through an obstacle "
+                     "unseen", 2 * r, r, limit, res, lever);
+            out(ud, line);
+            return 1;
+        }
+        p = end ? end + 1 : NULL;
+    }
+    return 0;
+}
+
 int mpbd_warn_thin(const mpbd_experiment *e, double resolution,
                    void (*out)(void *ud, const char *line), void *ud)
 {
-    int n = 0;
+    int n = 0, robot_said = 0;
     for (int i = 0; i < e->num_scenes; i++) {
         const mpbd_scene *sc = &e->scenes[i];
         double lever = mpbd_lever_arm(e, i);
         double limit = resolution * lever;
         if (!(limit > 0))
             continue;
+        if (!robot_said && strcmp(sc->robot_format, "planar") == 0)
+            n += robot_said = thin_planar_robot(sc, limit, resolution, lever,
+                                                out, ud);
         if (strcmp(sc->scene_format, "planar") == 0)
             n += thin_planar(sc, limit, resolution, lever, out, ud);
         else if (strcmp(sc->scene_format, "moveit-scene") == 0)

@@ -200,6 +200,12 @@ check "... and of no other" eq "$(grep -c warning "$work/thin.err")" 2
 "$daemon" --check -r 0.005 "$work/thin.yaml" >/dev/null 2>"$work/thin-fine.err"
 check "at half the step the circle is thick enough: one warning" \
     eq "$(grep -c warning "$work/thin-fine.err")" 1
+# A planar arm of 2 mm links: those are thin too, said once.
+sed 's/^link_radius .*/link_radius 0.001/' "$MPB_SOURCE/scenes/planar/arm3.robot" >"$work/thin.robot"
+sed "s|file: $MPB_SOURCE/scenes/planar/arm3.robot|file: thin.robot|" "$work/thin.yaml" >"$work/thin-arm.yaml"
+"$daemon" --check "$work/thin-arm.yaml" >/dev/null 2>"$work/thin-arm.err"
+check "a planar arm with 2 mm links is warned of once" \
+    eq "$(grep -c "warning: the robot's links are 0.002 m thick (link_radius 0.001), less than the 0.0142 m" "$work/thin-arm.err")" 1
 "$daemon" --check "$MPB_SOURCE/scenes/experiments/paper-demo.yaml" >/dev/null 2>"$work/paper.err"
 check "the paper's scenes have no part too thin" test ! -s "$work/paper.err"
 # A MoveIt scene with a 2 mm plate, for the PR2's arm.
