@@ -9,6 +9,7 @@
  *   status.c     the MPB_STATUS message
  *   acks.c       acknowledging stored results: on requests, or alone
  *   latency.c    each run's latency, request to commit, as a histogram
+ *   thin.c       obstacles thinner than the verification step can see
  *   inbox.c      checking messages before they are decoded
  *   replay.c     --replay: results from an LCM log instead of the network
  *   daemons.c    other daemons on the same LCM URL: the younger one stops
@@ -136,10 +137,14 @@ typedef struct mpbd_unrecorded {
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
 } mpbd_unrecorded;
 
-/* Runs' latency, request first sent to result committed (latency.c). */
-#define MPBD_LATENCY_MAX_US 65536
+/* Runs' latency, request first sent to result committed (latency.c):
+ * 65536 counters of 1 us, then of 1 ms, then of 1 s, then one for all
+ * longer than MPBD_LATENCY_MAX_US (about 18 hours). */
+#define MPBD_LATENCY_TIER   65536
+#define MPBD_LATENCY_TIERS  3
+#define MPBD_LATENCY_MAX_US (65536L * 1000000L)
 typedef struct mpbd_latency {
-    uint32_t *count;         /* [us], the last one for all longer */
+    uint32_t *count;         /* MPBD_LATENCY_TIERS tiers, then longer */
     uint64_t  n;
 } mpbd_latency;
 
@@ -286,6 +291,13 @@ int  mpbd_owed_take(mpbd *d, const char *planner_id,
                     char (*ids)[MPB_RUN_ID_SIZE], int max);
 /* Send alone those owed acknowledgements whose time is up (all: every one). */
 void mpbd_owed_send(mpbd *d, double now, int all);
+
+/* thin.c: the robot's lever arm (m per rad of joint-space motion, an
+ * estimate) in scene i, and one line per obstacle part thinner than
+ * resolution x that, given to out; returns how many. */
+double mpbd_lever_arm(const mpbd_experiment *e, int scene);
+int    mpbd_warn_thin(const mpbd_experiment *e, double resolution,
+                      void (*out)(void *ud, const char *line), void *ud);
 
 /* latency.c */
 int  mpbd_latency_init(mpbd_latency *l);

@@ -33,15 +33,45 @@ static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
 #endif
     ;
 
+/*
+ * s as text that is safe to print on one line: control bytes, DEL and
+ * bytes that are not UTF-8 become \xNN (a file's binary bytes are never
+ * echoed to a terminal); well-formed UTF-8 is kept.
+ */
+static void escape_text(const char *s, char *out, size_t n)
+{
+    size_t o = 0;
+    const unsigned char *p = (const unsigned char *)s;
+    while (*p && o + 5 < n) {
+        int len = *p < 0x80 ? 1 : (*p & 0xE0) == 0xC0 && *p >= 0xC2 ? 2
+                : (*p & 0xF0) == 0xE0 ? 3 : (*p & 0xF8) == 0xF0 && *p <= 0xF4
+                ? 4 : 0;
+        for (int k = 1; k < len; k++)
+            if ((p[k] & 0xC0) != 0x80)
+                len = 0;
+        if (len == 1 && *p >= 0x20 && *p != 0x7f) {
+            out[o++] = (char)*p++;
+        } else if (len > 1 && o + (size_t)len < n) {
+            memcpy(out + o, p, (size_t)len);
+            o += (size_t)len;
+            p += len;
+        } else {
+            o += (size_t)snprintf(out + o, n - o, "\\x%02x", *p++);
+        }
+    }
+    out[o] = '\0';
+}
+
 static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
 {
-    char what[512];
+    char raw[512], what[2048];
     va_list ap;
     if (L->failed)
         return -1;
     va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
+    vsnprintf(raw, sizeof raw, fmt, ap);
     va_end(ap);
+    escape_text(raw, what, sizeof what);
     if (n != NULL)
         snprintf(L->err, L->errlen, "%s:%lu:%lu: %s", L->path,
                  (unsigned long)n->start_mark.line + 1,
@@ -517,14 +547,25 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
         return fail_at(L, at ? at : where, "%s", what);
     }
     if (rc != MPB_OK) {
-        /* Name the file the fault is in, when it came from one. */
-        const char *file = strncmp(why, "scene", 5) == 0 ? sc->scene_file
-                           : strncmp(why, "srdf", 4) == 0 ? e->srdf_file
-                                                          : e->robot_file;
-        /* "srdf line 3: ..." in the SRDF file is its "line 3: ...". */
-        const char *what = file != NULL && file == e->srdf_file ? why + 5 : why;
-        if (file != NULL)
-            return fail_at(L, where, "scene '%s': %s: %s", sc->name, file, what);
+        /* Name the file the fault is in, when it came from one, and point
+         * at the key that names it: a fault of the robot's (its URDF or
+         * SRDF) is at the robot's key, whichever scene it was loaded with. */
+        if (strncmp(why, "scene", 5) != 0) {
+            int in_srdf = strncmp(why, "srdf", 4) == 0;
+            const char *file = in_srdf ? e->srdf_file : e->robot_file;
+            /* "srdf line 3: ..." in the SRDF file is its "line 3: ...". */
+            const char *what = in_srdf && file != NULL ? why + 5 : why;
+            yaml_node_t *at = get(L, L->robot, in_srdf ? "srdf" : "file");
+            if (at == NULL)
+                at = get(L, L->robot, "text");
+            if (file != NULL)
+                return fail_at(L, at ? at : L->robot, "robot: %s: %s", file,
+                               what);
+            return fail_at(L, at ? at : L->robot, "robot: %s", why);
+        }
+        if (sc->scene_file != NULL)
+            return fail_at(L, where, "scene '%s': %s: %s", sc->name,
+                           sc->scene_file, why);
         return fail_at(L, where, "scene '%s': %s", sc->name, why);
     }
     int nj = mpb_world_num_joints(sc->world);

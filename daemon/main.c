@@ -455,6 +455,13 @@ static void log_latency(const mpbd *d)
              (unsigned long long)d->latency.n);
 }
 
+/* A warning about the experiment, on stderr, at --check and at load. */
+static void warn_line(void *ud, const char *line)
+{
+    (void)ud;
+    mpbd_log("warning: %s", line);
+}
+
 int main(int argc, char **argv)
 {
     options o;
@@ -472,6 +479,7 @@ int main(int argc, char **argv)
     d.runs_total = (int)count_runs(d.exp);
     if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
         mpbd_log("%s", err);
+    mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
                "%d run%s\n", o.experiment, d.exp->num_scenes,

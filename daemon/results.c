@@ -15,8 +15,9 @@
 #include "mpb_run_ack_t.h"
 
 /* Metrics per stage; keep in step with docs/metrics.md. */
-enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS, M_CLEARANCE,
-       M_MIN_CLEARANCE, M_EE_PATH_LENGTH, M_COUNT };
+enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS,
+       M_SMOOTHNESS_RESAMPLED, M_CLEARANCE, M_MIN_CLEARANCE,
+       M_EE_PATH_LENGTH, M_COUNT };
 
 /* Per stage, what the store needs, owned here for the length of a result. */
 typedef struct stage_work {
@@ -101,6 +102,9 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
         w->metrics[nm++] = (mpb_named){"smoothness",
             mpb_smoothness(st->waypoints, st->num_waypoints, st->num_joints,
                            e->wraps)};
+        w->metrics[nm++] = (mpb_named){"smoothness_resampled",
+            mpb_smoothness_resampled(st->waypoints, st->num_waypoints,
+                                     st->num_joints, e->wraps)};
         double mean, least;
         mpb_path_clearances(world, st->waypoints, st->num_waypoints,
                             st->num_joints, &mean, &least);

@@ -6,7 +6,9 @@
 #
 # LCM traffic stays on this machine: as root (or where user namespaces are
 # allowed) in a private network namespace; otherwise on the host's loopback
-# with ttl=0, which needs a multicast route (see README).
+# with ttl=0, which needs a multicast route (see README). With --lcm-url (or
+# MPB_LCM_URL) it runs on that URL in the host's own network instead, so
+# that planners started apart and `mpb status` can join.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 MPB_BUILD=${MPB_BUILD:-$root/build}
@@ -29,9 +31,19 @@ Options:
   -r, --record FILE    also record all LCM traffic with lcm-logger into
                        FILE (mpbenchd --replay rebuilds a database from it)
   -l, --logs DIR       planner and daemon logs (default: BUILD/run-logs)
+  -u, --lcm-url URL    run on this LCM URL in this machine's own network
+                       (default: \$MPB_LCM_URL); planners of your own and
+                       'mpb status --lcm-url URL' can then join. With
+                       --planners none, only your planners run.
   -h, --help           print this help
 
-Environment: MPB_BUILD, the build tree (default: build/).
+Without --lcm-url, as root (or where user namespaces are allowed), the
+daemon and the planners run in a private network namespace of their own:
+nothing outside it, not your own planners nor 'mpb status', can reach
+them. Otherwise they use LCM's default URL on this machine.
+
+Environment: MPB_BUILD, the build tree (default: build/); MPB_LCM_URL, as
+--lcm-url.
 EOF
 }
 
@@ -41,6 +53,7 @@ copies=1
 format=text
 record=""
 logs=$MPB_BUILD/run-logs
+lcm_url=${MPB_LCM_URL:-}
 # Option $1 needs a value: $2 is the number of words from it on.
 value() {
     [ "$2" -ge 2 ] || {
@@ -50,7 +63,7 @@ value() {
 }
 while [ $# -gt 0 ]; do
     case $1 in
-        -d|--db|-p|--planners|-n|--copies|-f|--format|-r|--record|-l|--logs)
+        -d|--db|-p|--planners|-n|--copies|-f|--format|-r|--record|-l|--logs|-u|--lcm-url)
             value "$1" $# ;;
     esac
     case $1 in
@@ -60,6 +73,7 @@ while [ $# -gt 0 ]; do
         -f|--format) format=$2; shift 2 ;;
         -r|--record) record=$2; shift 2 ;;
         -l|--logs) logs=$2; shift 2 ;;
+        -u|--lcm-url) lcm_url=$2; shift 2 ;;
         -h|--help) usage; exit 0 ;;
         --) shift; break ;;
         -*) echo "run_benchmark: unknown option '$1' (try --help)" >&2; exit 2 ;;
@@ -98,7 +112,9 @@ planner_program() {
     esac
 }
 
-if [ -z "$planners" ]; then
+if [ "$planners" = none ]; then
+    planners=" "    # the caller's own, on --lcm-url
+elif [ -z "$planners" ]; then
     for p in null ompl arastar python; do
         [ -x "$(planner_program $p)" ] && planners="$planners $p"
     done
@@ -114,8 +130,10 @@ for p in $planners; do
     }
 done
 
-if [ -n "${MPB_IN_NETNS:-}" ] || [ "$(id -u)" -eq 0 ] || unshare -rn true 2>/dev/null; then
-    mpb_enter_netns "$0" -d "$db" -p "$(echo $planners | tr ' ' ',')" \
+if [ -z "$lcm_url" ] &&
+   { [ -n "${MPB_IN_NETNS:-}" ] || [ "$(id -u)" -eq 0 ] || unshare -rn true 2>/dev/null; }; then
+    plist=$(echo $planners | tr ' ' ',')
+    mpb_enter_netns "$0" -d "$db" -p "${plist:-none}" \
         -n "$copies" -f "$format" ${record:+-r "$record"} -l "$logs" -- "$@"
 fi
 
@@ -124,14 +142,17 @@ trap mpb_stop_all EXIT INT TERM
 
 if [ -n "$record" ]; then
     echo "run_benchmark: recording LCM traffic into $record"
-    mpb_spawn "$logs/lcm-logger.log" lcm-logger --quiet --force "$record"
+    mpb_spawn "$logs/lcm-logger.log" lcm-logger --quiet --force \
+        ${lcm_url:+--lcm-url="$lcm_url"} "$record"
     sleep 0.5   # subscribed before the first request goes out
 fi
-echo "run_benchmark: starting planners:$planners (logs in $logs)"
+[ -z "$lcm_url" ] || echo "run_benchmark: on LCM URL $lcm_url"
+echo "run_benchmark: starting planners:${planners% } (logs in $logs)"
 for p in $planners; do
     i=1
     while [ "$i" -le "$copies" ]; do
-        mpb_spawn "$logs/$p-$i.log" "$(planner_program "$p")"
+        mpb_spawn "$logs/$p-$i.log" "$(planner_program "$p")" \
+            ${lcm_url:+--lcm-url "$lcm_url"}
         i=$((i + 1))
     done
 done
@@ -140,7 +161,8 @@ status=0
 for experiment in "$@"; do
     echo "run_benchmark: running $experiment"
     # --again: an experiment run to its end before is run once more.
-    if ! "$MPB_BUILD/daemon/mpbenchd" --again -d "$db" "$experiment"; then
+    if ! "$MPB_BUILD/daemon/mpbenchd" --again ${lcm_url:+--lcm-url "$lcm_url"} \
+         -d "$db" "$experiment"; then
         echo "run_benchmark: mpbenchd failed on $experiment" >&2
         status=1
         continue

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifndef M_PI
@@ -11,6 +12,11 @@
 
 /* A segment at most this long (joint-space norm) has no direction. */
 #define MPB__ZERO_SEGMENT 1e-12
+
+/* A turn smaller than this (rad) is the rounding of two unit vectors that
+ * point the same way, not a turn: it counts as 0. Its square, 1e-18 rad^2,
+ * is below anything a report shows. */
+#define MPB__ZERO_ANGLE 1e-9
 
 double mpb_joint_delta(double a, double b, int wraps)
 {
@@ -68,7 +74,30 @@ static double segment_angle(const double *wp, int a, double la, int b,
         dm += (u - v) * (u - v);
         dp += (u + v) * (u + v);
     }
-    return 2.0 * atan2(sqrt(dm), sqrt(dp));
+    double angle = 2.0 * atan2(sqrt(dm), sqrt(dp));
+    return angle < MPB__ZERO_ANGLE ? 0.0 : angle;
+}
+
+/* The angle between vectors u and v of lengths lu, lv > 0, as above. */
+static double vector_angle(const double *u, double lu, const double *v,
+                           double lv, int n)
+{
+    double dm = 0.0, dp = 0.0;
+    for (int j = 0; j < n; j++) {
+        double a = u[j] / lu, b = v[j] / lv;
+        dm += (a - b) * (a - b);
+        dp += (a + b) * (a + b);
+    }
+    double angle = 2.0 * atan2(sqrt(dm), sqrt(dp));
+    return angle < MPB__ZERO_ANGLE ? 0.0 : angle;
+}
+
+static double norm(const double *v, int n)
+{
+    double sq = 0.0;
+    for (int j = 0; j < n; j++)
+        sq += v[j] * v[j];
+    return sqrt(sq);
 }
 
 double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
@@ -95,6 +124,73 @@ double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
         n++;
     }
     return n < 2 ? 0.0 : sum / n;
+}
+
+/*
+ * The path cut into MPB_SMOOTHNESS_SEGMENTS pieces of equal joint-space
+ * length, each piece taken as the vector from its start to its end (the
+ * sum of the parts of the waypoint segments it covers, so continuous
+ * joints need no care), and kappa' of those vectors. Where the pieces
+ * fall depends only on the path's shape, never on its waypoints.
+ */
+double mpb_smoothness_resampled(const double *wp, int num_waypoints,
+                                int num_joints, mpb_joint_wrap continuous)
+{
+    if (!wp || num_waypoints < 3 || num_joints < 1)
+        return 0.0;
+    double total = mpb_path_length(wp, num_waypoints, num_joints, continuous);
+    if (isnan(total))
+        return NAN;
+    if (!(total > MPB__ZERO_SEGMENT))
+        return 0.0;
+    const int m = MPB_SMOOTHNESS_SEGMENTS;
+    double *buf = calloc(3 * (size_t)num_joints, sizeof *buf);
+    if (buf == NULL)
+        return NAN;
+    double *piece = buf, *prev = buf + num_joints, *d = buf + 2 * num_joints;
+    double prev_len = 0.0, sum = 0.0, start = 0.0;  /* start: of segment i */
+    int k = 0;              /* the piece being filled, [0, m) */
+    for (int i = 0; i + 1 < num_waypoints; i++) {
+        const double *a = wp + (size_t)i * (size_t)num_joints;
+        double len = 0.0;
+        for (int j = 0; j < num_joints; j++) {
+            d[j] = mpb_joint_delta(a[j], a[j + num_joints],
+                                   continuous && continuous[j]);
+            len += d[j] * d[j];
+        }
+        len = sqrt(len);
+        if (!(len > MPB__ZERO_SEGMENT))
+            continue;
+        double end = start + len, at = start;
+        /* Close every piece whose end, (k + 1) total / m, lies in this
+         * segment; the last piece closes after the last segment. */
+        while (k + 1 < m && (double)(k + 1) * total / m <= end) {
+            double b = (double)(k + 1) * total / m;
+            for (int j = 0; j < num_joints; j++)
+                piece[j] += (b - at) / len * d[j];
+            double plen = norm(piece, num_joints);
+            if (k > 0 && plen > MPB__ZERO_SEGMENT && prev_len > 0.0) {
+                double an = vector_angle(prev, prev_len, piece, plen,
+                                         num_joints);
+                sum += an * an;
+            }
+            memcpy(prev, piece, sizeof *piece * (size_t)num_joints);
+            prev_len = plen;
+            memset(piece, 0, sizeof *piece * (size_t)num_joints);
+            at = b;
+            k++;
+        }
+        for (int j = 0; j < num_joints; j++)
+            piece[j] += (end - at) / len * d[j];
+        start = end;
+    }
+    double plen = norm(piece, num_joints);
+    if (plen > MPB__ZERO_SEGMENT && prev_len > 0.0) {
+        double an = vector_angle(prev, prev_len, piece, plen, num_joints);
+        sum += an * an;
+    }
+    free(buf);
+    return sum / m;
 }
 
 void mpb_path_clearances(mpb_world *w, const double *wp, int num_waypoints,

@@ -399,7 +399,8 @@ static int parse_shape(parser *ps, mpb_scene_shape *sh)
         g->type = MPB_SHAPE_PLANE;
         rc = read_nums(ps, d, 4, "plane needs <a> <b> <c> <d>");
         if (rc == MPB_OK && d[0] == 0 && d[1] == 0 && d[2] == 0)
-            return fail(ps, sh->line, "plane: the normal (a, b, c) is zero");
+            return fail(ps, ps->last_line, "plane: the normal (a, b, c) is "
+                        "zero");
     } else if (tok_is(&t, "mesh")) {
         g->type = MPB_SHAPE_MESH;
         rc = parse_mesh(ps, sh);
@@ -408,10 +409,13 @@ static int parse_shape(parser *ps, mpb_scene_shape *sh)
     }
     if (rc != MPB_OK)
         return rc;
-    /* the collision world's rules (collision.h), checked here with a line */
+    /* the collision world's rules (collision.h), checked here with a line:
+     * the dimensions' own (MoveIt writes them below the shape's name), a
+     * mesh's at its name */
     char why[160];
     if (mpb_geometry_check(g, why, sizeof why) != MPB_OK)
-        return fail(ps, sh->line, "%s", why);
+        return fail(ps, g->type == MPB_SHAPE_MESH ? sh->line : ps->last_line,
+                    "%s", why);
     rc = read_pose(ps, &sh->pose, "shape");
     if (rc != MPB_OK)
         return rc;

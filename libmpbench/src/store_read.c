@@ -267,6 +267,9 @@ static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
         .time_raw = col_double(st, 7),
         .time_other = col_double(st, 8),
         .metrics = w->metrics,
+        .stage_valid = sqlite3_column_type(st, 13) == SQLITE_NULL
+                           ? -1 : sqlite3_column_int(st, 13) != 0,
+        .world_setup_time = col_double(st, 14),
     };
     for (int i = 0; i < w->num_names; i++)
         w->metrics[i] = NAN;
@@ -394,6 +397,15 @@ static int64_t query_scene(query_scenes *qs, int64_t query_id)
     return 0;
 }
 
+/* The planner's world setup time of run r (MPB_WORLD_SETUP_TIME of
+ * planner.h) for the statement that joins the metrics: one seek of
+ * planner_values' key (run_id, name), NULL for the runs that built no
+ * world. The packed walk reads runs.world_setup_time instead, where the
+ * database has that column. */
+#define WORLD_SETUP                                                         \
+    "(SELECT v.value FROM planner_values v WHERE v.run_id = r.id"          \
+    " AND v.name = 'world_setup_time')"
+
 /*
  * The results walk over the final stages' packed metrics: one row per run,
  * no join. *absent is set if the database has no runs.final_metrics column
@@ -405,23 +417,33 @@ static int results_packed(mpb_store *s, int64_t experiment_id,
                           int (*cb)(void *ud, const mpb_result_row *row),
                           void *ud, int *absent)
 {
-#define PACKED_SQL(scene_where)                                             \
+#define PACKED_SQL(setup, scene_where)                                      \
     "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
     " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
-    " r.final_stage, r.final_metrics"                                      \
+    " r.final_stage, r.final_metrics, NULL, NULL, r.valid, " setup         \
     " FROM runs r WHERE r.experiment_id = ?1 AND r.state = 'done'"         \
     scene_where " ORDER BY r.id"
-    static const char one_scene[] = PACKED_SQL(
-        " AND r.query_id IN (SELECT id FROM queries WHERE scene_id = ?2)");
-    static const char all_scenes[] = PACKED_SQL("");
+#define IN_SCENE " AND r.query_id IN (SELECT id FROM queries WHERE scene_id = ?2)"
+    /* Without runs.world_setup_time (a database made before it, opened
+     * read-only), from planner_values, one seek per run. */
+    static const char *const sql[2][2] = {
+        {PACKED_SQL("r.world_setup_time", ""),
+         PACKED_SQL("r.world_setup_time", IN_SCENE)},
+        {PACKED_SQL(WORLD_SETUP, ""), PACKED_SQL(WORLD_SETUP, IN_SCENE)},
+    };
+#undef IN_SCENE
 #undef PACKED_SQL
     query_scenes qs = {0};
     sqlite3_stmt *st = NULL, *old = NULL;
     int rc, step = SQLITE_DONE, stop = 0;
 
-    if (sqlite3_prepare_v2(s->db, scene_id > 0 ? one_scene : all_scenes, -1,
-                           &st, NULL) != SQLITE_OK) {
-        sqlite3_finalize(st);
+    for (int k = 0; k < 2 && st == NULL; k++)
+        if (sqlite3_prepare_v2(s->db, sql[k][scene_id > 0], -1, &st,
+                               NULL) != SQLITE_OK) {
+            sqlite3_finalize(st);
+            st = NULL;
+        }
+    if (st == NULL) {
         *absent = 1;
         return MPB_OK;
     }
@@ -490,10 +512,13 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
 #define RESULTS_SQL(scene_where)                                            \
     "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
     " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
-    " coalesce(?3, r.final_stage), m.name, m.value, q.scene_id"            \
+    " coalesce(?3, r.final_stage), m.name, m.value, q.scene_id, st.valid," \
+    " " WORLD_SETUP                                                         \
     " FROM runs r JOIN queries q ON q.id = r.query_id"                     \
     " LEFT JOIN metrics m ON m.run_id = r.id"                              \
     "  AND m.stage = coalesce(?3, r.final_stage)"                          \
+    " LEFT JOIN stages st ON st.run_id = r.id"                             \
+    "  AND st.name = coalesce(?3, r.final_stage)"                          \
     " WHERE r.experiment_id = ?1 AND r.state = 'done'" scene_where         \
     " ORDER BY r.id"
     static const char one_scene[] = RESULTS_SQL(" AND q.scene_id = ?2");

@@ -316,6 +316,12 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
     sqlite3_bind_double(st, 12, r->time_other);
     sqlite3_bind_double(st, 13, r->wall_time);
     sqlite3_bind_double(st, 16, mpb__store_now());
+    /* The planner's world setup time, also kept on the run's row, where
+     * a report reads it without a lookup per run. */
+    for (int i = 0; i < r->num_values; i++)
+        if (r->values[i].name != NULL &&
+            strcmp(r->values[i].name, "world_setup_time") == 0)
+            sqlite3_bind_double(st, 17, r->values[i].value);
     if (sqlite3_step(st) != SQLITE_DONE)
         return mpb__store_db_fail(s, "finish run");
     if (sqlite3_changes(s->db) == 0) {

@@ -2,6 +2,7 @@
 #include "mpbench/mpbench.h"
 
 #include <math.h>
+#include <string.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,6 +54,23 @@ static int bad_args(mpb_verdict *out, int rc, const char *why)
     if (out)
         verdict(out, MPB_VERDICT_UNSUPPORTED, -1, "cannot verify: %s", why);
     return rc;
+}
+
+/*
+ * The significant digits that print a and b differently (%.*g), from 6 up
+ * to 17, which tells any two doubles apart: a value just past its limit
+ * must not read as equal to it ("2.5 is outside [-2.5, 2.5]").
+ */
+static int digits_apart(double a, double b)
+{
+    char x[40], y[40];
+    for (int p = 6; p < 17; p++) {
+        snprintf(x, sizeof x, "%.*g", p, a);
+        snprintf(y, sizeof y, "%.*g", p, b);
+        if (strcmp(x, y) != 0)
+            return p;
+    }
+    return 17;
 }
 
 static double joint_dist(const mpb_world *w, int j, double a, double b)
@@ -171,22 +189,26 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
     /* START */
     for (int j = 0; j < nj; j++) {
         double e = joint_dist(w, j, start[j], wp[j]);
-        if (!(e <= start_tolerance))
+        if (!(e <= start_tolerance)) {
+            int p = digits_apart(e, start_tolerance);
             return verdict(out, MPB_VERDICT_START, 0, "waypoint 0 joint "
-                           "'%.40s' is %.6g from the start (tolerance %.6g)",
-                           w->joint_names[j], e, start_tolerance);
+                           "'%.40s' is %.*g from the start (tolerance %.*g)",
+                           w->joint_names[j], p, e, p, start_tolerance);
+        }
     }
 
     /* GOAL; a kind the world cannot check is decided last (UNSUPPORTED). */
     if (goal->kind == MPB_GOAL_JOINTS) {
         for (int j = 0; j < nj; j++) {
             double e = joint_dist(w, j, goal->joints[j], last[j]);
-            if (!(e <= goal->joint_tolerance))
+            if (!(e <= goal->joint_tolerance)) {
+                int p = digits_apart(e, goal->joint_tolerance);
                 return verdict(out, MPB_VERDICT_GOAL, num_waypoints - 1,
-                               "waypoint %d (the last) joint '%.40s' is %.6g "
-                               "from the goal (tolerance %.6g)",
-                               num_waypoints - 1, w->joint_names[j], e,
+                               "waypoint %d (the last) joint '%.40s' is %.*g "
+                               "from the goal (tolerance %.*g)",
+                               num_waypoints - 1, w->joint_names[j], p, e, p,
                                goal->joint_tolerance);
+            }
         }
     } else {
         char why[sizeof out->detail - 40];
@@ -202,10 +224,13 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
     for (int i = 0; i < num_waypoints; i++)
         for (int j = 0; j < nj; j++) {
             double v = wp[(size_t)i * nj + j];
-            if (!w->wraps[j] && (v < w->lo[j] || v > w->hi[j]))
+            if (!w->wraps[j] && (v < w->lo[j] || v > w->hi[j])) {
+                int p = digits_apart(v, v < w->lo[j] ? w->lo[j] : w->hi[j]);
                 return verdict(out, MPB_VERDICT_JOINT_LIMIT, i, "waypoint %d "
-                               "joint '%.40s' = %.6g is outside [%.6g, %.6g]",
-                               i, w->joint_names[j], v, w->lo[j], w->hi[j]);
+                               "joint '%.40s' = %.*g is outside [%.*g, %.*g]",
+                               i, w->joint_names[j], p, v, p, w->lo[j], p,
+                               w->hi[j]);
+            }
         }
 
     /* COLLISION */

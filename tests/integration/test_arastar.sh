@@ -56,6 +56,8 @@ check "every run stores tau_other > 0 (voxel grid and BFS)" \
     eq "$(q "SELECT count(*) FROM results WHERE time_other > 0 AND time_total >= time_other")" 4
 check "each path is a real search: more than start and goal" \
     eq "$(q "SELECT count(*) FROM stages WHERE name = 'raw' AND num_waypoints > 2")" 4
+check "each run reports its world's setup on its own (nothing is cached)" \
+    eq "$(q "SELECT count(*) FROM planner_values WHERE name = 'world_setup_time' AND value > 0")" 4
 check "the search reports its expansions and generated states" \
     eq "$(q "SELECT count(*) FROM planner_values WHERE name IN ('expansions', 'states generated') AND value > 0")" 8
 check "deterministic: both runs of each query return the same path" \

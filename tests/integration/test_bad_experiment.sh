@@ -178,6 +178,48 @@ planners: [{planner: null, algorithms: [a]}]
 EOT
 bad_case bad_scene.yaml "broken.scene: scene line 7"
 
+# ---- obstacles thinner than the verification step ---------------------------
+# At 0.01 rad the planar arm's tip moves up to 1.42 m/rad x 0.01 rad; a
+# 2 mm box and an 8 mm circle can be passed through between two samples,
+# the 0.3 m pillar cannot. A warning each, at --check and at load; the
+# experiment is still good (exit 0).
+printf 'circle 0.0 0.8 0.15\nbox 0.0 -0.9 0.3 0.001\ncircle 0.5 0.5 0.004\n' >"$work/thin.scene"
+MPB_QUERIES='{name: q, start: [0, 0, 0], goal: [0.1, 0, 0], tolerance: 0.01}'
+cat >"$work/thin.yaml" <<EOT
+experiment: {name: thin, runs: 1, time_limit: 1}
+robot: {format: planar, file: $MPB_SOURCE/scenes/planar/arm3.robot}
+scenes: [{name: thin, format: planar, file: thin.scene, queries: [$MPB_QUERIES]}]
+planners: [{planner: null, algorithms: [straight_line]}]
+EOT
+"$daemon" --check "$work/thin.yaml" >"$work/thin.out" 2>"$work/thin.err"
+check "--check of a scene with thin obstacles exits 0" eq $? 0
+check "... warning of each thin one, by its line, with the numbers" \
+    sh -c "grep -q \"warning: scene 'thin': the box of line 2 is 0.002 m thick, less than the 0.0142 m the end effector may move between two verification samples (0.01 rad x 1.42 m/rad)\" '$work/thin.err' &&
+           grep -q \"the circle of line 3 is 0.008 m thick\" '$work/thin.err'"
+check "... and of no other" eq "$(grep -c warning "$work/thin.err")" 2
+"$daemon" --check -r 0.005 "$work/thin.yaml" >/dev/null 2>"$work/thin-fine.err"
+check "at half the step the circle is thick enough: one warning" \
+    eq "$(grep -c warning "$work/thin-fine.err")" 1
+# A planar arm of 2 mm links: those are thin too, said once.
+sed 's/^link_radius .*/link_radius 0.001/' "$MPB_SOURCE/scenes/planar/arm3.robot" >"$work/thin.robot"
+sed "s|file: $MPB_SOURCE/scenes/planar/arm3.robot|file: thin.robot|" "$work/thin.yaml" >"$work/thin-arm.yaml"
+"$daemon" --check "$work/thin-arm.yaml" >/dev/null 2>"$work/thin-arm.err"
+check "a planar arm with 2 mm links is warned of once" \
+    eq "$(grep -c "warning: the robot's links are 0.002 m thick (link_radius 0.001), less than the 0.0142 m" "$work/thin-arm.err")" 1
+"$daemon" --check "$MPB_SOURCE/scenes/experiments/paper-demo.yaml" >/dev/null 2>"$work/paper.err"
+check "the paper's scenes have no part too thin" test ! -s "$work/paper.err"
+# A MoveIt scene with a 2 mm plate, for the PR2's arm.
+printf 'thin\n* plate\n0 0 0\n0 0 0 1\n1\nbox\n0.5 0.5 0.002\n1.5 -1.5 0.2\n0 0 0 1\n0 0 0 0\n0\n.\n' >"$work/plate.scene"
+cat >"$work/plate.yaml" <<EOT
+experiment: {name: plate, runs: 1, time_limit: 1}
+robot: {format: urdf, file: $MPB_SOURCE/scenes/robots/pr2_right_arm.urdf, joints: [r_shoulder_pan_joint, r_shoulder_lift_joint, r_upper_arm_roll_joint, r_elbow_flex_joint, r_forearm_roll_joint, r_wrist_flex_joint, r_wrist_roll_joint]}
+scenes: [{name: plated, format: moveit-scene, file: plate.scene, queries: [{name: q, start: [-1.2, 1.1, -1.5, -1.9, 0, -0.6, 0], goal: [-1.2, 1.1, -1.5, -1.9, 0, -0.6, 0.1]}]}]
+planners: [{planner: null, algorithms: [straight_line]}]
+EOT
+"$daemon" --check "$work/plate.yaml" >/dev/null 2>"$work/plate.err"
+check "a MoveIt scene's thin box is named by its object and line" \
+    grep -q "warning: scene 'plated': object 'plate' (shape of line 6) is 0.002 m thick" "$work/plate.err"
+
 out=$("$daemon" -d "$DB" "$work/nosuch.yaml" 2>&1)
 check "a missing experiment file is refused" test $? -ne 0
 check "... with a message naming it" \

@@ -47,6 +47,15 @@ for algo in RRTConnect RRT; do
                  WHERE c.name = 'ompl/$algo' AND s.name IN ('raw', 'shortcut', 'smoothed')")" 18
 done
 
+# The OMPL planner builds the one world once: its first run reports that
+# on its own (world_setup_time), outside tau_t, and the report shows it.
+check "the OMPL planner reports its one world's setup once" \
+    eq "$(q "SELECT count(*) FROM planner_values v JOIN runs r ON r.id = v.run_id
+             JOIN planner_configs c ON c.id = r.planner_config_id
+             WHERE c.planner = 'ompl' AND v.name = 'world_setup_time' AND v.value >= 0")" 1
+"$MPB_BUILD/tools/mpb" report "$DB" | grep -q "^world setup (Mean, s)"
+check "... and mpb report shows it in a row of its own" eq $? 0
+
 # The straight line through the pillar is rejected by mpbench's own check,
 # although the null planner claims success.
 check "the null planner's line through the pillar is a claimed success" \
@@ -64,6 +73,10 @@ check "the straight line's length is exactly sqrt(0.3^2+0.2^2+0.1^2)" \
     eq "$(q "SELECT abs(path_length - 0.374165738677394) < 1e-9 FROM results WHERE planner = 'null/straight_line' AND query = 'small_move'")" 1
 check "every stage of every run has a path length and smoothness" \
     eq "$(q "SELECT count(*) FROM stages s WHERE NOT EXISTS (SELECT 1 FROM metrics m WHERE m.run_id = s.run_id AND m.stage = s.name AND m.name = 'path_length') OR NOT EXISTS (SELECT 1 FROM metrics m WHERE m.run_id = s.run_id AND m.stage = s.name AND m.name = 'smoothness')")" 0
+check "... and a resampled smoothness, which the report shows" \
+    eq "$(q "SELECT count(*) FROM stages s WHERE NOT EXISTS (SELECT 1 FROM metrics m WHERE m.run_id = s.run_id AND m.stage = s.name AND m.name = 'smoothness_resampled')")" 0
+"$MPB_BUILD/tools/mpb" report "$DB" | grep -q "^kappa'_r (Mean, rad^2)"
+check "... in a row of its own" eq $? 0
 check "waypoints are stored whole" \
     eq "$(q "SELECT count(*) FROM stages WHERE length(waypoints) != 8 * num_waypoints * num_joints")" 0
 check "times are recorded for every run" \

@@ -23,6 +23,8 @@ pc=$(find "$prefix" -name libmpbench.pc)
 libdir=$(dirname "$(dirname "$pc")")
 echo "# libdir: $libdir"
 for f in bin/mpbenchd bin/mpb bin/mpb-planner-null bin/mpb-planner-ompl \
+         bin/mpb-planner-python share/mpbench/python/mpbplanner/node.py \
+         share/mpbench/python/mpb/plan_result_t.py \
          include/mpbench/mpbench.h include/mpbench/planner.h \
          include/mpbench/lcmtypes/mpb_plan_request_t.h \
          include/mpbench/lcmtypes/mpb/plan_request_t.hpp \

@@ -49,6 +49,8 @@ check "planar: the experiment completes" eq $? 0
 check "planar: 10 runs stored" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 10
 check "planar: every run verified valid" \
     eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 10
+check "planar: the world's setup is reported once, by the first run" \
+    eq "$(q "SELECT count(*) FROM planner_values WHERE name = 'world_setup_time'")" 1
 check "planar: raw and shortcut stages" \
     eq "$(q "SELECT count(DISTINCT name) FROM stages WHERE name IN ('raw', 'shortcut')")" 2
 check "planar: the shortcut stage is never longer" \
@@ -176,6 +178,9 @@ check "kit: a solve() that raises is FAILED with the exception, not a crash" \
 check "kit: ... and the planner goes on: the other runs solved" \
     eq "$(q "SELECT count(*) FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
              WHERE c.name = 'kit/line#fine' AND r.status = 'solved'")" 2
+check "kit: a solve() that keeps no time gets the kit's, not 0 s" \
+    eq "$(q "SELECT count(*) FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
+             WHERE c.name = 'kit/line#fine' AND r.time_total > 0")" 2
 check "kit: the traceback is on the planner's stderr" \
     grep -q "ZeroDivisionError" "$work/kit-planner.log"
 cat >"$work/forge-kit.py" <<'EOT'

@@ -34,6 +34,29 @@ check "a second call runs the finished experiment again, as a new one" \
 check "... and keeps the first one's runs" \
     eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 16
 
+# --lcm-url: on the caller's own URL, in the caller's network (here a
+# namespace of the test's own), where a planner started apart joins; with
+# --planners none the script starts none of its own.
+mpb_planar_experiment "$work/own.yaml" "name: own, runs: 3, time_limit: 2" \
+    "{planner: null, algorithms: [straight_line]}"
+unshare -n sh -c '
+    ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 9
+    url="udpm://239.255.76.67:7667?ttl=0"
+    "$1/planners/null/mpb-planner-null" --lcm-url "$url" --name null >"$2/own-planner.log" 2>&1 &
+    p=$!
+    MPB_BUILD=$1 timeout 60 sh "$3" -u "$url" -p none -d "$2/own.db" \
+        -l "$2/own-logs" "$2/own.yaml" >"$2/own.out" 2>&1
+    rc=$?
+    kill $p
+    exit $rc' _ "$MPB_BUILD" "$work" "$script"
+check "--lcm-url with --planners none: a planner of the caller's own runs the experiment" eq $? 0
+check "... all 3 runs done, by that one planner" \
+    test "$(sqlite3 "$work/own.db" "SELECT count(*) || ' ' || count(DISTINCT planner_id) FROM runs WHERE state = 'done'")" = "3 1"
+check "... and no planner of the script's own started" \
+    sh -c "! ls '$work/own-logs' | grep -q 'null-1'"
+check "--help says what the private namespace keeps out" \
+    sh -c "sh '$script' --help | grep -q 'not your own planners nor'"
+
 err=$(sh "$script" --bogus "$work/exp.yaml" 2>&1)
 check "an unknown option exits 2" eq $? 2
 check "... in one line" eq "$(printf '%s\n' "$err" | wc -l)" 1
@@ -48,7 +71,7 @@ check "an unknown report format exits 2" eq $? 2
 check "... in one line naming it" \
     eq "$(printf '%s\n' "$err" | grep -c "unknown format 'xml'")" 1
 check "... before anything ran" sh -c "! [ -e '$work/never.db' ] && ! [ -e '$work/never-logs' ]"
-for opt in -d --db -p -n -f --format -r -l; do
+for opt in -d --db -p -n -f --format -r -l -u --lcm-url; do
     err=$(sh "$script" "$opt" 2>&1)
     check "$opt without a value exits 2" eq $? 2
     check "... in one line naming it" test "$err" = \

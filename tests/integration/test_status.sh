@@ -165,4 +165,32 @@ echo "# last line: $last"
 check "... whose done line counts the runs of both sessions" \
     sh -c "echo '$last' | grep -q '^stopped: done, 80/80 runs (100%), $succeeded succeeded, $failed failed, $crashed crashed, '"
 
+# ---- long planner names on an 80-column terminal ---------------------------
+# Three families whose names do not fit beside the numbers: the line names
+# whole ones and counts the rest, never a name cut short.
+mpb_stop_all
+fams="a_planner_family_name_one a_planner_family_name_two a_planner_family_name_three"
+set --
+for f in $fams; do
+    mpb_spawn "$work/$f.log" "$null" --name "$f"
+    set -- "$@" "{planner: $f, algorithms: [straight_line], params: {delay: 0.2}}"
+done
+mpb_planar_experiment "$work/names.yaml" "name: names, runs: 4, time_limit: 2.0" "$@"
+COLUMNS=80 script -qfec "'$mpb' status --timeout 30" "$work/names.out" >/dev/null 2>&1 &
+tty=$!
+sleep 0.3
+mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$work/names.db" \
+    "$work/names.yaml" >"$work/daemon4.log" 2>&1
+check "the experiment of long-named planners completes" eq $? 0
+wait $tty
+tr '\r' '\n' <"$work/names.out" | sed 's/\x1b\[K//g' | grep '^\[' >"$work/names.lines"
+check "... mpb status drew its line on the terminal" test -s "$work/names.lines"
+# What follows the last double space: whole names (then a count of the
+# rest), a count of planners, or, with no room for that, the time field.
+awk -F '  ' '{ print $NF }' "$work/names.lines" >"$work/names.ends"
+check "... each line ends in whole planner names, a count of them or a time" \
+    sh -c "! grep -Evx '(a_planner_family_name_(one|two|three)(, a_planner_family_name_(one|two|three))*(, \+[0-9]+ more)?|([0-9]+|no) planners|in [0-9.]+ s|[0-9:]+ s left|[a-z]+)' '$work/names.ends'"
+check "... no line longer than 79 columns" \
+    sh -c "awk 'length > 79 { bad = 1 } END { exit bad }' '$work/names.lines'"
+
 mpb_finish

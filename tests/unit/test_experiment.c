@@ -169,7 +169,8 @@ static void an_unknown_format_is_pointed_at(void **state)
 }
 
 /* A robot fault the world calls unsupported that is no format (a mesh
- * URI's scheme) is the robot file's, named, not the scene's format's. */
+ * URI's scheme) is the robot file's, named at the robot's key, not the
+ * scene's format's nor the scene's. */
 static void an_unsupported_robot_is_not_a_format(void **state)
 {
     char path[128], text[1024], want[512];
@@ -188,8 +189,44 @@ static void an_unsupported_robot_is_not_a_format(void **state)
              "scenes: [{name: s, format: moveit-scene, text: \"\", " QUERIES
              "}]\n" PLANNERS);
     assert_null(load_text(text));
-    snprintf(want, sizeof want, "%s/e.yaml:3:10: scene 's': %s: ", dir, path);
+    snprintf(want, sizeof want, "%s/e.yaml:2:29: robot: %s: ", dir, path);
     if (strncmp(err, want, strlen(want)) != 0 || !strstr(err, "http"))
+        fail_msg("'%s' does not start '%s'", err, want);
+}
+
+/* A fault in the robot file is reported at the robot's key (line 2), not
+ * at the scene it was first loaded with; the file's binary bytes are
+ * escaped, never echoed; in the scene file, at the scene. */
+static void faults_are_where_their_file_is_named(void **state)
+{
+    char path[128], text[1024], want[512];
+    FILE *f;
+    (void)state;
+    snprintf(path, sizeof path, "%s/bin.robot", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fputs("link_radius 0.1\njoint a -1 1 1\nbogus\x02\xfe\x1b[2J 1\n", f);
+    assert_int_equal(fclose(f), 0);
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             "robot: {format: planar, file: bin.robot}\n"
+             "scenes: [{name: s, format: planar, text: \"\", " QUERIES
+             "}]\n" PLANNERS);
+    assert_null(load_text(text));
+    snprintf(want, sizeof want, "%s/e.yaml:2:31: robot: %s: robot line 3: "
+             "unknown item 'bogus\\x02\\xfe\\x1b[2J'", dir, path);
+    if (strncmp(err, want, strlen(want)) != 0)
+        fail_msg("'%s' does not start '%s'", err, want);
+    /* UTF-8 is text: kept as it is. */
+    snprintf(path, sizeof path, "%s/utf8.scene", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fputs("circle 0 0 S\xc3\xa4ule\n", f);
+    assert_int_equal(fclose(f), 0);
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             ROBOT "scenes: [{name: s, format: planar, file: utf8.scene, "
+             QUERIES "}]\n" PLANNERS);
+    assert_null(load_text(text));
+    snprintf(want, sizeof want, "%s/e.yaml:3:10: scene 's': %s: scene line 1",
+             dir, path);
+    if (strncmp(err, want, strlen(want)) != 0 || !strstr(err, "S\xc3\xa4ule"))
         fail_msg("'%s' does not start '%s'", err, want);
 }
 
@@ -252,6 +289,7 @@ int main(void)
         cmocka_unit_test(a_scene_without_queries_has_a_line),
         cmocka_unit_test(an_unknown_format_is_pointed_at),
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
+        cmocka_unit_test(faults_are_where_their_file_is_named),
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),
     };

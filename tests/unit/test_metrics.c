@@ -181,6 +181,66 @@ static mpb_world *one_link(const char *joint)
     return w;
 }
 
+/*
+ * The same right-angled path, (0,0) (1,0) (1,1), with each segment cut into
+ * ten by collinear waypoints: kappa' = (pi/2)^2 / n falls tenfold, from
+ * n = 2 to n = 20; kappa'_r does not move. The corner lies at length 1 of
+ * 2, the end of piece 50 of 100: the whole (pi/2)^2, over 100.
+ */
+static void test_smoothness_resampled_ignores_collinear_waypoints(void **state)
+{
+    (void)state;
+    const double sparse[] = {0, 0, 1, 0, 1, 1};
+    double dense[21 * 2];
+    for (int i = 0; i <= 10; i++) {
+        dense[2 * i] = i / 10.0;
+        dense[2 * i + 1] = 0.0;
+        dense[2 * (10 + i)] = 1.0;
+        dense[2 * (10 + i) + 1] = i / 10.0;
+    }
+    double right = (M_PI / 2) * (M_PI / 2);
+    assert_near(mpb_smoothness(sparse, 3, 2, NULL), right / 2, EPS);
+    assert_near(mpb_smoothness(dense, 21, 2, NULL), right / 20, EPS);
+    assert_near(mpb_smoothness_resampled(sparse, 3, 2, NULL), right / 100,
+                EPS);
+    assert_near(mpb_smoothness_resampled(dense, 21, 2, NULL), right / 100,
+                EPS);
+}
+
+/* A corner inside a piece: (0,0) (1.01,0) (1.01,0.99), length 2, pieces of
+ * 0.02; the piece from 1.00 to 1.02 is (0.01, 0.01), at pi/4 to both of
+ * its neighbours: 2 (pi/4)^2 = (pi/2)^2 / 2, over 100. */
+static void test_smoothness_resampled_corner_inside_a_piece(void **state)
+{
+    (void)state;
+    const double wp[] = {0, 0, 1.01, 0, 1.01, 0.99};
+    double right = (M_PI / 2) * (M_PI / 2);
+    assert_near(mpb_smoothness_resampled(wp, 3, 2, NULL), right / 200, 1e-9);
+    /* Degenerate paths, as mpb_smoothness(). */
+    assert_near(mpb_smoothness_resampled(wp, 2, 2, NULL), 0.0, 0.0);
+    const double still[] = {1, 1, 1, 1, 1, 1};
+    assert_near(mpb_smoothness_resampled(still, 3, 2, NULL), 0.0, 0.0);
+    const double bad[] = {0, 0, NAN, 0, 1, 1};
+    assert_true(isnan(mpb_smoothness_resampled(bad, 3, 2, NULL)));
+}
+
+/* A straight 7-joint path cut at 37 waypoints whose values are not exact in
+ * binary: the unit vectors differ in their last bits, and the angle between
+ * them (about 1e-16 rad) is rounding, not turning. Both measures give 0,
+ * not 1e-30 that a report would print as data. */
+static void test_smoothness_of_a_straight_path_is_zero(void **state)
+{
+    (void)state;
+    const double a[7] = {0.1, -1.3, 2.7, 0.33, -0.7, 1.9, -2.2};
+    const double b[7] = {-0.9, 0.4, -1.1, 1.7, 0.05, -2.3, 1.3};
+    double wp[37 * 7];
+    for (int i = 0; i < 37; i++)
+        for (int j = 0; j < 7; j++)
+            wp[i * 7 + j] = a[j] + (b[j] - a[j]) * (i / 36.0);
+    assert_true(mpb_smoothness(wp, 37, 7, NULL) == 0.0);
+    assert_true(mpb_smoothness_resampled(wp, 37, 7, NULL) == 0.0);
+}
+
 static void test_clearance_mean_and_min(void **state)
 {
     (void)state;
@@ -235,6 +295,9 @@ int main(void)
         cmocka_unit_test(test_smoothness_zero_length_dropped),
         cmocka_unit_test(test_smoothness_angles),
         cmocka_unit_test(test_smoothness_continuous),
+        cmocka_unit_test(test_smoothness_resampled_ignores_collinear_waypoints),
+        cmocka_unit_test(test_smoothness_resampled_corner_inside_a_piece),
+        cmocka_unit_test(test_smoothness_of_a_straight_path_is_zero),
         cmocka_unit_test(test_clearance_mean_and_min),
         cmocka_unit_test(test_ee_path_length_follows_the_arc),
     };

@@ -33,20 +33,21 @@ typedef struct run_spec {
     double len, smooth;
     int    waypoints;
     double clearance;           /* < 0: not measured */
+    int    raw_bad;             /* the raw stage failed verification */
 } run_spec;
 
 static const run_spec runs[] = {
-    /* cfg q  rep done ok  total raw   other raw_len len   smooth wp  clear */
-    {A, K1, 0, 1, 1, 1.0,  0.9,  0.1, 10.0, 2.0,  0.1,  10, -1},
-    {A, K2, 0, 1, 1, 4.0,  3.6,  0.4, 40.0, 5.0,  0.5,  40, -1},
-    {B, K1, 0, 1, 1, 0.5,  0.3,  0.2, -1.0, 3.0,  1.5,  8,  -1},
-    {A, K1, 1, 1, 1, 2.0,  1.8,  0.2, 20.0, 4.0,  0.2,  20, -1},
-    {A, K2, 1, 1, 1, 6.0,  5.4,  0.6, 60.0, 5.0,  0.7,  50, -1},
-    {B, K2, 0, 1, 0, 0.7,  0.5,  0.2, -1.0, 77.0, 7.7,  77, -1},
-    {A, K1, 2, 1, 1, 3.0,  2.7,  0.3, 30.0, 6.0,  0.3,  30, -1},
-    {A, K2, 2, 1, 0, 60.0, 59.5, 0.5, -1.0, 99.0, 9.9,  99, -1},
-    {A, T1, 0, 1, 1, 7.0,  6.0,  1.0, -1.0, 8.0,  0.4,  12, 0.05},
-    {B, K2, 1, 0, 0, 0.0,  0.0,  0.0, -1.0, 0.0,  0.0,  0,  -1},
+    /* cfg q  rep done ok  total raw   other raw_len len   smooth wp  clear raw_bad */
+    {A, K1, 0, 1, 1, 1.0,  0.9,  0.1, 10.0, 2.0,  0.1,  10, -1, 0},
+    {A, K2, 0, 1, 1, 4.0,  3.6,  0.4, 40.0, 5.0,  0.5,  40, -1, 0},
+    {B, K1, 0, 1, 1, 0.5,  0.3,  0.2, -1.0, 3.0,  1.5,  8,  -1, 0},
+    {A, K1, 1, 1, 1, 2.0,  1.8,  0.2, 20.0, 4.0,  0.2,  20, -1, 0},
+    {A, K2, 1, 1, 1, 6.0,  5.4,  0.6, 60.0, 5.0,  0.7,  50, -1, 1},
+    {B, K2, 0, 1, 0, 0.7,  0.5,  0.2, -1.0, 77.0, 7.7,  77, -1, 0},
+    {A, K1, 2, 1, 1, 3.0,  2.7,  0.3, 30.0, 6.0,  0.3,  30, -1, 0},
+    {A, K2, 2, 1, 0, 60.0, 59.5, 0.5, -1.0, 99.0, 9.9,  99, -1, 0},
+    {A, T1, 0, 1, 1, 7.0,  6.0,  1.0, -1.0, 8.0,  0.4,  12, 0.05, 0},
+    {B, K2, 1, 0, 0, 0.0,  0.0,  0.0, -1.0, 0.0,  0.0,  0,  -1, 0},
 };
 #define NUM_RUNS ((int)(sizeof runs / sizeof runs[0]))
 
@@ -72,6 +73,9 @@ static int find_ids(void *ud, const mpb_run_row *row)
     return 0;
 }
 
+/* The world setup time the next finish() reports, then NaN (none). */
+static double next_world_setup = NAN;
+
 static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
 {
     char uid[32];
@@ -82,7 +86,8 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
                          {"waypoints", r->waypoints}, {"time", 0.02},
                          {"clearance", r->clearance}};
     mpb_stage_record st[2] = {
-        {.name = "raw", .valid = 1, .verdict = "valid", .verdict_segment = -1,
+        {.name = "raw", .valid = !r->raw_bad,
+         .verdict = r->raw_bad ? "collision" : "valid", .verdict_segment = -1,
          .num_metrics = 2, .metrics = raw_m},
         {.name = "smoothed", .valid = r->success,
          .verdict = r->success ? "valid" : "collision", .verdict_segment = -1,
@@ -95,6 +100,13 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
         .time_total = r->total, .time_raw = r->raw, .time_other = r->other,
         .num_stages = has_raw ? 2 : 1, .stages = has_raw ? st : st + 1,
     };
+    mpb_named values[] = {{"collision checks", 12.0},
+                          {"world_setup_time", next_world_setup}};
+    if (!isnan(next_world_setup)) {
+        rec.num_values = 2;
+        rec.values = values;
+    }
+    next_world_setup = NAN;
     assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
 }
 
@@ -159,7 +171,7 @@ static void write_newer(mpb_store *s)
     assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
     assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &run), 1);
-    run_spec r = {0, 0, 0, 1, 1, 0.25, 0.2496, 0.0004, -1.0, 1.0, 0.0, 2, -1};
+    run_spec r = {0, 0, 0, 1, 1, 0.25, 0.2496, 0.0004, -1.0, 1.0, 0.0, 2, -1, 0};
     finish(s, run, &r);
 }
 
@@ -183,7 +195,7 @@ static void write_odd(mpb_store *s)
     assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
     assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &run), 1);
-    run_spec r = {0, 0, 0, 1, 1, 2.0, 1.5, 0.5, -1.0, 1.0, 0.0, 2, -1};
+    run_spec r = {0, 0, 0, 1, 1, 2.0, 1.5, 0.5, -1.0, 1.0, 0.0, 2, -1, 0};
     finish(s, run, &r);
 }
 
@@ -384,14 +396,27 @@ static void a_chosen_stage_gives_its_own_metrics(void **state)
     run(&o, "stdout", "report --stage raw --experiment=1 '%s'", f->db);
     assert_int_equal(o.status, 0);
     assert_non_null(strstr(o.text, "stage 'raw'"));
-    /* A's raw lengths 10, 20, 30 | 40, 60: mean 32, sigma (10 + 14.1421)/2;
-     * times do not depend on the stage. B has no raw stage. */
-    assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", A), "32.000");
-    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", A), "12.071");
+    /* A's raw lengths 10, 20, 30 | 40, and 60 whose raw stage failed
+     * verification: mean 25, sigma (10 + 0)/2; times do not depend on the
+     * stage. B has no raw stage. */
+    assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", A), "25.000");
+    /* k2's one raw path is no spread measured: the sigma is marked. */
+    assert_string_equal(cell(&o, KITCHEN, "l_p (sigma, rad)", A), "5.000*");
+    assert_non_null(strstr(o.text, "\n* sigma counts a query with one "
+                           "successful run as 0 spread\n"));
+    /* TABLETOP has no sigma, so no mark. */
+    assert_null(strstr(strstr(o.text, "TABLETOP"), "*"));
+    assert_non_null(strstr(o.text, "\nompl/RRTConnect: 1 successful run "
+                           "whose stage 'raw' failed verification, its path "
+                           "metrics not counted above\n"));
     assert_string_equal(cell(&o, KITCHEN, "kappa' (Mean, rad^2)", A), "-");
     assert_string_equal(cell(&o, KITCHEN, "tau_t (Mean, s)", A), "3.200");
     assert_string_equal(cell(&o, KITCHEN, "l_p (Mean, rad)", B), "-");
     assert_string_equal(cell(&o, KITCHEN, "s_r (%)", B), "50.0");
+    run(&o, "stdout", "report -f markdown --stage raw -e 1 '%s'", f->db);
+    assert_non_null(strstr(o.text, "| l_p (sigma, rad) | 5.000\\* |"));
+    assert_non_null(strstr(o.text, "\n\\* sigma counts a query with one "
+                           "successful run as 0 spread.\n"));
 }
 
 static void the_newest_experiment_is_the_default(void **state)
@@ -441,8 +466,13 @@ static void tiny_values_and_wide_names(void **state)
     for (int c = 0; c < 2; c++) {
         assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query, 0, c), MPB_OK);
         assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &ids[c]), 1);
+        /* kappa' 2.17e-30: the rounding a straight path once gave. */
         run_spec r = {0, 0, 0, 1, 1, c ? 5.21e-7 : 0.004895, 0, 0, -1.0, 1.0,
-                      0.0, 2, -1};
+                      c ? 2.17e-30 : 0.0, 2, -1, 0};
+        /* The first run of x/plain built the world: 0.508 s, outside its
+         * tau_t. */
+        if (c == 1)
+            next_world_setup = 0.508;
         finish(s, ids[c], &r);
     }
     mpb_store_close(s);
@@ -453,6 +483,12 @@ static void tiny_values_and_wide_names(void **state)
     const char *title = "Scene S\u00e4ule - experiment tiny";
     assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 0), "0.004895");
     assert_string_equal(cell(&o, title, "tau_t (Mean, s)", 1), "5.21e-07");
+    assert_string_equal(cell(&o, title, "world setup (Mean, s)", 0), "-");
+    assert_string_equal(cell(&o, title, "world setup (Mean, s)", 1), "0.508");
+    /* Rounding noise is no data: 0 beside 0, not 2.17e-30 beside
+     * 0.000000. */
+    assert_string_equal(cell(&o, title, "kappa' (Mean, rad^2)", 0), "0.000");
+    assert_string_equal(cell(&o, title, "kappa' (Mean, rad^2)", 1), "0.000");
     /* The header, the rule and a row: the same number of characters. */
     const char *head = strstr(o.text, "\nMetric");
     assert_non_null(head);
@@ -582,9 +618,9 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
         "unfinished\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
-    /* 2 scenes x 2 configurations x (8 metrics + the success rate), and
+    /* 2 scenes x 2 configurations x (10 metrics + the success rate), and
      * the header: always the same rows, empty where nothing was measured. */
-    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 9);
+    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 11);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1\n"));
@@ -611,7 +647,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
     /* --stage changes the path metrics only. */
     run(&o, "stdout", "report -f csv -e 1 --stage raw '%s'", f->db);
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "path_length,rad,32,12.0710678118655,5,1\n"));
+                                   "path_length,rad,25,5,4,1\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1\n"));
 
@@ -625,7 +661,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "                r['metric'], r['mean'], r['n']]))\n",
         "report -f csv '%s'", f->odd);
     assert_int_equal(o.status, 0);
-    assert_string_equal(o.text, "9\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
+    assert_string_equal(o.text, "11\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
                                 "time_total|2|1\n");
 }
 
@@ -697,38 +733,46 @@ static void json_holds_every_number_by_name(void **state)
         "    time_total 3.2 1.207107 5\n"
         "    time_raw 2.88 1.086396 5\n"
         "    time_other 0.32 0.120711 5\n"
+        "    world_setup_time None None 0\n"
         "    clearance None None 0\n"
         "    path_length 4.4 1.0 5\n"
         "    ee_path_length None None 0\n"
         "    smoothness 0.36 0.120711 5\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints 30.0 8.535534 5\n"
         "  ara/ARAstar ara ARAstar eps=100 2 1 0.5\n"
         "    time_total 0.5 None 1\n"
         "    time_raw 0.3 None 1\n"
         "    time_other 0.2 None 1\n"
+        "    world_setup_time None None 0\n"
         "    clearance None None 0\n"
         "    path_length 3.0 None 1\n"
         "    ee_path_length None None 0\n"
         "    smoothness 1.5 None 1\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints 8.0 None 1\n"
         "TABLETOP 1 0\n"
         "  ompl/RRTConnect ompl RRTConnect  1 1 1.0\n"
         "    time_total 7.0 None 1\n"
         "    time_raw 6.0 None 1\n"
         "    time_other 1.0 None 1\n"
+        "    world_setup_time None None 0\n"
         "    clearance 0.05 None 1\n"
         "    path_length 8.0 None 1\n"
         "    ee_path_length None None 0\n"
         "    smoothness 0.4 None 1\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints 12.0 None 1\n"
         "  ara/ARAstar ara ARAstar eps=100 0 0 None\n"
         "    time_total None None 0\n"
         "    time_raw None None 0\n"
         "    time_other None None 0\n"
+        "    world_setup_time None None 0\n"
         "    clearance None None 0\n"
         "    path_length None None 0\n"
         "    ee_path_length None None 0\n"
         "    smoothness None None 0\n"
+        "    smoothness_resampled None None 0\n"
         "    waypoints None None 0\n");
 
     /* A stage asked for is named; strings are escaped. */

@@ -186,8 +186,10 @@ static void test_paper_findings(void **state)
                 "ompl/RRTConnect (20 rad)");
     assert_says("[holds in part] RRTConnect is the fastest sampling-based "
                 "planner outside the narrow passage (1 of 2 scenes)");
-    assert_says("kitchen: ompl/RRTConnect 1.5 s, next ompl/RRT (4 s)");
-    assert_says("tabletop: ompl/RRTConnect 1.5 s, beaten by ompl/RRT (0.5 s)");
+    assert_says("kitchen: ompl/RRTConnect 1.5 s (success 100%), next ompl/RRT (4 s, "
+                "success 100%)");
+    assert_says("tabletop: ompl/RRTConnect 1.5 s (success 100%), beaten by ompl/RRT "
+                "(0.5 s, success 100%)");
     assert_says("[holds] the narrow passage is the hardest environment "
                 "(2 of 2 measures)");
     assert_says("lowest success rate: narrow_passage (40%; next kitchen 100%)");
@@ -201,12 +203,15 @@ static void test_scene_lines(void **state)
     (void)state;
     assert_int_equal(run_tool("--findings"), 0);
     /* kitchen: mean times 1.5 (RRTC), 4 (RRT), 3.5 (ARA*). */
-    assert_says("kitchen: success 100%; fastest ompl/RRTConnect (tau_t 1.5 s); "
-                "shortest paths arastar/ARAstar (l_p 8 rad); least spread in "
-                "l_p arastar/ARAstar (sigma 0 rad).");
-    /* narrow: one path each for RRTConnect and ARA*: no spread named. */
+    assert_says("kitchen: success 100%; fastest ompl/RRTConnect (tau_t 1.5 s, "
+                "success 100%); shortest paths arastar/ARAstar (l_p 8 rad, "
+                "success 100%); least spread in l_p arastar/ARAstar (sigma 0 "
+                "rad, success 100%).");
+    /* narrow: one path each for RRTConnect and ARA*: no spread named;
+     * RRTConnect solved one run of two, ARA* its one. */
     assert_says("narrow_passage: success 40%; fastest arastar/ARAstar (tau_t "
-                "6 s); shortest paths ompl/RRTConnect (l_p 20 rad).\n");
+                "6 s, success 100%); shortest paths ompl/RRTConnect (l_p 20 "
+                "rad, success 50%).\n");
 }
 
 /* Findings are sentences: with another format they would break it. */
@@ -312,7 +317,83 @@ static void test_what_cannot_fail_is_not_checked(void **state)
                 "ompl/RRTConnect (11 rad)");
     assert_says("[not checked] RRTConnect is the fastest sampling-based "
                 "planner outside the narrow passage (0 of 0 scenes)");
-    assert_says("least spread in l_p ompl/RRTConnect (sigma 1.41 rad).");
+    assert_says("least spread in l_p ompl/RRTConnect (sigma 1.41 rad, success "
+                "100%).");
+}
+
+/* A one-scene, one-query experiment "name" of the configurations cfg
+ * (name, planner, algorithm; n_cfg of them) and the runs spec (their cfg
+ * the index into cfg, scene unused), stored and finished; its id. */
+static int64_t one_scene_experiment(const char *name,
+                                    const char *const (*cfg)[3], int n_cfg,
+                                    const run_spec *spec, int n_spec)
+{
+    mpb_store *s;
+    int64_t exp, cfg_ids[8], scene, query;
+    assert_true(n_cfg <= 8 && n_spec <= 16);
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    mpb_experiment_info e = {name, "x.yaml", "h", "text", 3, 60.0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    for (int c = 0; c < n_cfg; c++)
+        assert_int_equal(mpb_store_planner_config_add(s, exp, cfg[c][0],
+                         cfg[c][1], cfg[c][2], "", &cfg_ids[c]), MPB_OK);
+    mpb_scene_info si = {"narrow_passage", "planar", "r", "r", "planar",
+                         "narrow", "narrow"};
+    assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    for (int i = 0; i < n_spec; i++)
+        assert_int_equal(mpb_store_run_add(s, exp, cfg_ids[spec[i].cfg], query,
+                                           spec[i].rep, i + 1), MPB_OK);
+    mpb_run_row rows[17] = {{0}};
+    assert_int_equal(mpb_store_runs_unfinished(s, exp, collect_rows, rows),
+                     MPB_OK);
+    assert_int_equal(rows[0].attempts, n_spec);
+    for (int i = 0; i < n_spec; i++)
+        finish_run(s, rows[i + 1].id, &spec[i]);
+    mpb_store_close(s);
+    return exp;
+}
+
+/* ARA* alone: its paths are the shortest of one, which is no finding. */
+static void test_shortest_of_one_is_not_checked(void **state)
+{
+    (void)state;
+    static const char *const cfg[][3] = {{"arastar/ARAstar", "arastar",
+                                          "ARAstar"}};
+    const run_spec spec[] = {{0, 0, 0, 1, 2.0, 8.0}};
+    int64_t exp = one_scene_experiment("alone", cfg, 1, spec, 1);
+    char args[64];
+    snprintf(args, sizeof args, "--findings -e %lld", (long long)exp);
+    assert_int_equal(run_tool(args), 0);
+    assert_says("[not checked] ARA* has the shortest paths (0 of 0 scenes)");
+    assert_says("narrow_passage: sigma(l_p) - (no query run twice); l_p 8 "
+                "rad, no other planner's path to compare\n");
+    assert_null(strstr(out, "nan"));
+}
+
+/*
+ * RRT solves 2 of 3 runs, quickly; RRTConnect all 3, more slowly. The
+ * fastest is named among the planners with the best success rate, and
+ * the faster one that failed runs is said beside it with its rate.
+ */
+static void test_fastest_among_the_most_successful(void **state)
+{
+    (void)state;
+    static const char *const cfg[][3] = {
+        {"ompl/RRT", "ompl", "RRT"}, {"ompl/RRTConnect", "ompl", "RRTConnect"}};
+    const run_spec spec[] = {
+        {0, 0, 0, 1, 0.5, 9.0}, {0, 0, 1, 1, 0.5, 9.0}, {0, 0, 2, 0, 60.0, 0.0},
+        {1, 0, 0, 1, 1.0, 9.0}, {1, 0, 1, 1, 1.0, 9.0}, {1, 0, 2, 1, 1.0, 9.0}};
+    int64_t exp = one_scene_experiment("narrow", cfg, 2, spec, 6);
+    char args[64];
+    snprintf(args, sizeof args, "--findings -e %lld", (long long)exp);
+    assert_int_equal(run_tool(args), 0);
+    assert_says("narrow_passage: success 83%; fastest ompl/RRTConnect (tau_t "
+                "1 s, success 100%; ompl/RRT faster, 0.5 s, at 67% success)");
 }
 
 static void test_tables_alone_without_option(void **state)
@@ -340,6 +421,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_nothing_finished),
         cmocka_unit_test(test_what_cannot_fail_is_not_checked),
         cmocka_unit_test(test_findings_with_text_only),
+        cmocka_unit_test(test_shortest_of_one_is_not_checked),
+        cmocka_unit_test(test_fastest_among_the_most_successful),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

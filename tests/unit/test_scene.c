@@ -326,7 +326,10 @@ static const bad_case BAD[] = {
     { "s\n* a\n0 0 0\n0 0 0 1\n1\ntorus 1 2\n", 6, "shape type" },
     { "s\n* a\n0 0 0\n0 0 0 1\n-1\n", 5, "number of shapes" },
     { "s\n* a\n0 0 0\n0 0 0 1\nthree\n", 5, "number of shapes" },
-    { "s\n* a\n0 0 0\n0 0 0 1\n1\nsphere\n-0.5\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n", 6, "negative" },
+    /* A bad dimension is on its own line, below the shape's name. */
+    { "s\n* a\n0 0 0\n0 0 0 1\n1\nsphere\n-0.5\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n", 7, "negative" },
+    { "s\n* a\n0 0 0\n0 0 0 1\n1\nbox\n1 0 1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n", 7, "below" },
+    { "s\n* a\n0 0 0\n0 0 0 1\n1\nplane\n0 0 0 1\n", 7, "normal" },
     { "s\n* a\n0 0 0\n0 0 0 1\n1\nbox 1 0 1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n", 6, "below" },
     { "s\n* a\n0 0 0\n0 0 0 1\n1\nmesh 3 1\n0 0 0\n1 0 0\n0 1e6 0\n0 1 2\n", 6, "beyond" },
     { "s\n* a\n0 0\n1e7\n0 0 0 1\n", 4, "position: 1e+07 is beyond" },

@@ -183,6 +183,27 @@ static void test_joint_limit(void **state)
     expect(&v, MPB_VERDICT_JOINT_LIMIT, 1, "waypoint 1", "'j2'");
 }
 
+/* A value just past its bound is printed with the digits that tell the
+ * two apart, not as the bound itself ("2.5 is outside [-2.5, 2.5]"). */
+static void test_numbers_at_the_boundary_differ(void **state)
+{
+    const double goal[] = { -2, 0 };
+    const double wp[] = { -1, 0,  -1.5, nextafter(2.5, 3.0),  -2, 0 };
+    mpb_verdict v = run(*state, goal, wp, 3, RES);
+    expect(&v, MPB_VERDICT_JOINT_LIMIT, 1,
+           "= 2.5000000000000004 is outside [-2.5, 2.5]", NULL);
+    /* 1e-9 past the goal tolerance of 0.01. */
+    const double wp2[] = { -1, 0,  -2, TOL + 1e-9 };
+    v = run(*state, goal, wp2, 2, RES);
+    expect(&v, MPB_VERDICT_GOAL, 1, "is 0.010000001 from the goal "
+           "(tolerance 0.01)", NULL);
+    /* Far apart, six digits as before. */
+    const double wp3[] = { -0.9, 0,  -2, 0 };
+    v = run(*state, goal, wp3, 2, RES);
+    expect(&v, MPB_VERDICT_START, 0, "is 0.1 from the start (tolerance "
+           "0.01)", NULL);
+}
+
 static void test_start(void **state)
 {
     /* Begins at j1 = -0.9, 0.1 from the start -1. */
@@ -331,6 +352,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_goal, setup, teardown),
         cmocka_unit_test_setup_teardown(test_not_finite, setup, teardown),
         cmocka_unit_test_setup_teardown(test_joint_limit, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_numbers_at_the_boundary_differ,
+                                        setup, teardown),
         cmocka_unit_test_setup_teardown(test_start, setup, teardown),
         cmocka_unit_test_setup_teardown(test_empty_and_size, setup, teardown),
         cmocka_unit_test_setup_teardown(test_order, setup, teardown),

@@ -24,10 +24,12 @@ const metric_info report_metrics[M_COUNT] = {
     [M_TT] = {"time_total", "s"},
     [M_TR] = {"time_raw", "s"},
     [M_TO] = {"time_other", "s"},
+    [M_WS] = {"world_setup_time", "s"},
     [M_DN] = {"clearance", "m"},
     [M_LP] = {"path_length", "rad"},
     [M_LE] = {"ee_path_length", "m"},
     [M_KAPPA] = {"smoothness", "rad^2"},
+    [M_KAPPA_R] = {"smoothness_resampled", "rad^2"},
     [M_WP] = {"waypoints", ""},
 };
 
@@ -38,6 +40,7 @@ const table_row report_rows[] = {
     {"tau_r (sigma, s)",      "$\\tau_r$ ($\\sigma$, s)",       M_TR,    SHOW_SIGMA, 0, -1},
     {"tau_o (Mean, s)",       "$\\tau_o$ (Mean, s)",            M_TO,    SHOW_MEAN,  0, -1},
     {"tau_o (sigma, s)",      "$\\tau_o$ ($\\sigma$, s)",       M_TO,    SHOW_SIGMA, 0, -1},
+    {"world setup (Mean, s)", "world setup (Mean, s)",         M_WS,    SHOW_MEAN,  1, -1},
     {"d_n (Mean, m)",         "$d_n$ (Mean, m)",                M_DN,    SHOW_MEAN,  1, -1},
     {"d_n (sigma, m)",        "$d_n$ ($\\sigma$, m)",           M_DN,    SHOW_SIGMA, 1, -1},
     {"l_p (Mean, rad)",       "$l_p$ (Mean, rad)",              M_LP,    SHOW_MEAN,  0, -1},
@@ -46,13 +49,16 @@ const table_row report_rows[] = {
     {"l_e (sigma, m)",        "$l_e$ ($\\sigma$, m)",           M_LE,    SHOW_SIGMA, 1, -1},
     {"kappa' (Mean, rad^2)",  "$\\kappa'$ (Mean, rad$^2$)",     M_KAPPA, SHOW_MEAN,  0, -1},
     {"kappa' (sigma, rad^2)", "$\\kappa'$ ($\\sigma$, rad$^2$)", M_KAPPA, SHOW_SIGMA, 0, -1},
+    {"kappa'_r (Mean, rad^2)", "$\\kappa'_r$ (Mean, rad$^2$)",  M_KAPPA_R, SHOW_MEAN, 1, -1},
+    {"kappa'_r (sigma, rad^2)", "$\\kappa'_r$ ($\\sigma$, rad$^2$)", M_KAPPA_R, SHOW_SIGMA, 1, -1},
     {"waypoints (Mean)",      "waypoints (Mean)",               M_WP,    SHOW_MEAN,  0, 1},
     {"s_r (%)",               "$s_r$ (\\%)",                    0,       SHOW_RATE,  0, 1},
 };
 const int report_num_rows = (int)(sizeof report_rows / sizeof report_rows[0]);
 
 static const char *const stored_names[M_COUNT - FIRST_STORED] = {
-    "clearance", "path_length", "ee_path_length", "smoothness", "waypoints",
+    "clearance", "path_length", "ee_path_length", "smoothness",
+    "smoothness_resampled", "waypoints",
 };
 
 typedef enum {
@@ -83,14 +89,20 @@ static void usage(FILE *out)
         "Benchmarking Motion Planners\": one table per scene, one column per\n"
         "planner configuration. Rows:\n"
         "  tau_t, tau_r, tau_o  total, planning and other time (s)\n"
+        "  world setup          the planner's loading of the robot and scene,\n"
+        "                       outside tau_t, over the runs that loaded one\n"
+        "                       (s), when reported\n"
         "  d_n                  clearance (m), when measured\n"
         "  l_p                  joint-space path length (rad)\n"
         "  l_e                  end-effector path length (m), when measured\n"
         "  kappa'               smoothness: mean squared turning angle\n"
+        "  kappa'_r             the same of the path cut into 100 equal\n"
+        "                       pieces, whatever its waypoints, when measured\n"
         "  waypoints            number of waypoints\n"
         "  s_r                  successful runs / finished runs (%%)\n"
         "Means are over successful runs; sigma is the standard deviation of\n"
-        "each query's successful runs, averaged over the scene's queries.\n"
+        "each query's successful runs, averaged over the scene's queries;\n"
+        "a sigma marked * counts a query with one successful run as 0.\n"
         "'-' marks a value there is nothing to compute from (a sigma from\n"
         "fewer than two successful runs, too).\n"
         "\n"
@@ -98,13 +110,17 @@ static void usage(FILE *out)
         "  -e, --experiment ID  report on experiment ID (default: the newest)\n"
         "  -s, --stage NAME     path metrics of stage NAME (raw, shortcut,\n"
         "                       smoothed, ...) instead of each run's final\n"
-        "                       stage\n"
+        "                       stage; only where that stage passed\n"
+        "                       verification (the others are counted below\n"
+        "                       the table)\n"
         "  -f, --format FORMAT  text (the default), markdown, csv (one row per\n"
         "                       scene, planner and metric), latex (a table per\n"
         "                       scene) or json; docs/reports.md describes each\n"
         "  -F, --findings       after the tables, what they say: per scene the\n"
-        "                       fastest planner, the shortest and the steadiest\n"
-        "                       paths, the hardest scene, and whether the\n"
+        "                       fastest planner (of those with the best success\n"
+        "                       rate), the shortest and the steadiest paths,\n"
+        "                       each with its success rate, the hardest scene,\n"
+        "                       and whether the\n"
         "                       paper's findings hold (ARA* paths, RRTConnect's\n"
         "                       speed, the narrow passage); with the text\n"
         "                       format only (another --format is refused)\n"
@@ -245,12 +261,21 @@ static int on_result(void *ud, const mpb_result_row *row)
         return 0;   /* cannot happen: the database's keys forbid it */
     column *c = &r->cells[(size_t)ci * (size_t)r->num_queries + (size_t)qi];
     c->finished++;
+    /* A world is built before the run, whatever becomes of it. */
+    add_sample(&c->m[M_WS], row->world_setup_time);
     if (!row->success)
         return 0;
     c->succeeded++;
     add_sample(&c->m[M_TT], row->time_total);
     add_sample(&c->m[M_TR], row->time_raw);
     add_sample(&c->m[M_TO], row->time_other);
+    /* A stage that failed verification inside a successful run (a raw
+     * path through an obstacle, shortcut afterwards) is no path to
+     * measure: counted, not averaged. */
+    if (row->stage_valid == 0) {
+        c->stage_invalid++;
+        return 0;
+    }
     for (int k = 0; k < M_COUNT - FIRST_STORED; k++)
         add_sample(&c->m[FIRST_STORED + k], row->metrics[k]);
     if (row->num_named > 0)
@@ -319,7 +344,7 @@ long report_scene_columns(const report *r, int si, column *cols)
 {
     long finished = 0;
     for (int c = 0; c < r->num_configs; c++) {
-        cols[c].finished = cols[c].succeeded = 0;
+        cols[c].finished = cols[c].succeeded = cols[c].stage_invalid = 0;
         for (int k = 0; k < M_COUNT; k++)
             mpb_grouped_init(&cols[c].m[k]);
         for (int q = 0; q < r->num_queries; q++) {
@@ -329,6 +354,7 @@ long report_scene_columns(const report *r, int si, column *cols)
                                          (size_t)q];
             cols[c].finished += cl->finished;
             cols[c].succeeded += cl->succeeded;
+            cols[c].stage_invalid += cl->stage_invalid;
             for (int k = 0; k < M_COUNT; k++)
                 mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
         }
@@ -340,6 +366,12 @@ long report_scene_columns(const report *r, int si, column *cols)
 double report_sigma(const mpb_grouped *g)
 {
     return g->n < 2 ? NAN : mpb_grouped_stddev(g);
+}
+
+int report_sigma_single(const mpb_grouped *g)
+{
+    int groups = g->groups + (g->g_n > 0);
+    return groups - mpb_grouped_measured(g);
 }
 
 double report_row_value(const table_row *tr, const column *c)
@@ -357,6 +389,16 @@ double report_row_value(const table_row *tr, const column *c)
     return NAN;
 }
 
+/* A mean or sigma smaller than this in magnitude is the rounding of
+ * floating-point arithmetic (a straight path's kappa' of 2e-30 in a
+ * database written before it was 0), not a measurement: it prints as 0. */
+#define NOISE 1e-12
+
+static double denoise(double v)
+{
+    return fabs(v) < NOISE ? 0.0 : v;
+}
+
 /*
  * Decimals for a row of the general format: 3, as the paper's 2 would
  * hide today's millisecond plans, or more, up to 6, so that the row's
@@ -367,7 +409,7 @@ static int row_decimals(const column *cols, int n, const table_row *tr)
 {
     int decimals = 3;
     for (int i = 0; i < n; i++) {
-        double v = report_row_value(tr, &cols[i]);
+        double v = denoise(report_row_value(tr, &cols[i]));
         if (isnan(v) || v == 0.0 || isinf(v))
             continue;
         int d = 2 - (int)floor(log10(fabs(v)));
@@ -398,11 +440,24 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
         int any = 0;
         for (int c = 0; c < nc; c++) {
             double v = report_row_value(tr, &cols[c]);
-            format_value(text[i * nc + c], decimals, v);
+            format_value(text[i * nc + c], decimals, denoise(v));
+            if (tr->what == SHOW_SIGMA && !isnan(v) &&
+                report_sigma_single(&cols[c].m[tr->metric]) > 0)
+                strcat(text[i * nc + c], SIGMA_SINGLE_MARK);
             any |= !isnan(v) || cols[c].m[tr->metric].n > 0;  /* measured */
         }
         visible[i] = !tr->optional || any;
     }
+}
+
+int report_any_single(char (*text)[CELL_TEXT], const int *visible, int nc)
+{
+    for (int i = 0; i < report_num_rows; i++)
+        if (visible[i] && report_rows[i].what == SHOW_SIGMA)
+            for (int c = 0; c < nc; c++)
+                if (strstr(text[i * nc + c], SIGMA_SINGLE_MARK) != NULL)
+                    return 1;
+    return 0;
 }
 
 /* ---- text ------------------------------------------------------------------ */
@@ -472,6 +527,15 @@ static int print_scene(const report *r, int si, FILE *out)
         }
         fputc('\n', out);
     }
+    for (int c = 0; c < nc; c++)
+        if (cols[c].stage_invalid > 0)
+            fprintf(out, "%s: %ld successful run%s whose stage '%s' failed "
+                    "verification, its path metrics not counted above\n",
+                    r->configs[c].name, cols[c].stage_invalid,
+                    cols[c].stage_invalid == 1 ? "" : "s",
+                    r->stage ? r->stage : "?");
+    if (report_any_single(text, visible, nc))
+        fputs(SIGMA_SINGLE_NOTE "\n", out);
     if (r->scenes[si].unfinished > 0)
         fprintf(out, "%d more run%s not finished yet, not counted above\n",
                 r->scenes[si].unfinished,

@@ -12,7 +12,8 @@
 #include "mpb.h"
 
 /* What is averaged: the run's times, then the stage metrics it reads. */
-enum { M_TT, M_TR, M_TO, M_DN, M_LP, M_LE, M_KAPPA, M_WP, M_COUNT };
+enum { M_TT, M_TR, M_TO, M_WS, M_DN, M_LP, M_LE, M_KAPPA, M_KAPPA_R, M_WP,
+       M_COUNT };
 #define FIRST_STORED M_DN
 
 /* A metric's name in the machine-readable formats (its name in the
@@ -41,7 +42,10 @@ extern const int report_num_rows;
 /* One planner configuration on one query, or (folded) on one scene. */
 typedef struct column {
     long        finished, succeeded;
-    mpb_grouped m[M_COUNT];     /* successful runs */
+    long        stage_invalid;  /* successful runs whose --stage failed
+                                   verification: its metrics left out */
+    mpb_grouped m[M_COUNT];     /* successful runs; M_WS: every finished
+                                   run that built a world */
 } column;
 
 typedef struct config_ref {
@@ -83,6 +87,15 @@ typedef struct report {
  * where there is no spread to compute. */
 double report_sigma(const mpb_grouped *g);
 
+/* How many of g's groups (queries) have one sample: the paper's sigma
+ * counts each as 0 spread, which is convention, not measurement. */
+int report_sigma_single(const mpb_grouped *g);
+
+/* A sigma cell with such queries ends with this mark; the note says why. */
+#define SIGMA_SINGLE_MARK "*"
+#define SIGMA_SINGLE_NOTE "* sigma counts a query with one successful run " \
+                          "as 0 spread"
+
 /* The value a row shows for a column; NaN when there is nothing. */
 double report_row_value(const table_row *tr, const column *c);
 
@@ -102,6 +115,9 @@ long report_scene_columns(const report *r, int si, column *cols);
  */
 void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
                   int *visible);
+
+/* Whether some visible sigma cell of report_cells() is marked. */
+int report_any_single(char (*text)[CELL_TEXT], const int *visible, int nc);
 
 /* The writers. Each returns MPB_OK or MPB_ENOMEM; output errors are found
  * by the caller with ferror(). */

@@ -102,11 +102,36 @@ static void summarise(const report *r, int s, scene_summary *out)
     out->time = tn > 0 ? tsum / (double)tn : NAN;
 }
 
+static double rate_of(const column *c)
+{
+    return c->finished > 0 ? (double)c->succeeded / (double)c->finished : NAN;
+}
+
+/*
+ * The fastest configuration among those with the scene's best success
+ * rate: a planner that failed runs its rivals solved is not the fastest
+ * for having timed only its easy ones. -1 if none solved a run.
+ */
+static int fastest_of_most_successful(const report *r, const column *cols)
+{
+    double best = -1.0;
+    for (int c = 0; c < r->num_configs; c++)
+        if (cols[c].m[M_TT].n > 0 && rate_of(&cols[c]) > best)
+            best = rate_of(&cols[c]);
+    int fast = -1;
+    for (int c = 0; c < r->num_configs; c++)
+        if (cols[c].m[M_TT].n > 0 && rate_of(&cols[c]) == best &&
+            (fast < 0 || mean_of(&cols[c], M_TT) < mean_of(&cols[fast], M_TT)))
+            fast = c;
+    return fast;
+}
+
 static void print_scene_findings(const report *r, int s,
                                  const scene_summary *sum, FILE *out)
 {
     const column *cols = sum->cols;
-    int fast = argmin(r, cols, mean_of, M_TT, NULL, NULL);
+    int fast = fastest_of_most_successful(r, cols);
+    int any_fast = argmin(r, cols, mean_of, M_TT, NULL, NULL);
     int shortest = argmin(r, cols, mean_of, M_LP, NULL, NULL);
     int steady = argmin(r, cols, measured_sigma_of, M_LP, NULL, NULL);
     if (isnan(sum->success)) {
@@ -115,15 +140,25 @@ static void print_scene_findings(const report *r, int s,
     }
     fprintf(out, "  %s: success %.0f%%", r->scenes[s].name,
             100.0 * sum->success);
-    if (fast >= 0)
-        fprintf(out, "; fastest %s (tau_t %.3g s)", r->configs[fast].name,
-                mean_of(&cols[fast], M_TT));
+    if (fast >= 0) {
+        fprintf(out, "; fastest %s (tau_t %.3g s, success %.0f%%",
+                r->configs[fast].name, mean_of(&cols[fast], M_TT),
+                100.0 * rate_of(&cols[fast]));
+        if (any_fast != fast && mean_of(&cols[any_fast], M_TT) <
+                                    mean_of(&cols[fast], M_TT))
+            fprintf(out, "; %s faster, %.3g s, at %.0f%% success",
+                    r->configs[any_fast].name, mean_of(&cols[any_fast], M_TT),
+                    100.0 * rate_of(&cols[any_fast]));
+        fputc(')', out);
+    }
     if (shortest >= 0)
-        fprintf(out, "; shortest paths %s (l_p %.3g rad)",
-                r->configs[shortest].name, mean_of(&cols[shortest], M_LP));
+        fprintf(out, "; shortest paths %s (l_p %.3g rad, success %.0f%%)",
+                r->configs[shortest].name, mean_of(&cols[shortest], M_LP),
+                100.0 * rate_of(&cols[shortest]));
     if (steady >= 0)
-        fprintf(out, "; least spread in l_p %s (sigma %.3g rad)",
-                r->configs[steady].name, sigma_of(&cols[steady], M_LP));
+        fprintf(out, "; least spread in l_p %s (sigma %.3g rad, success "
+                "%.0f%%)", r->configs[steady].name,
+                sigma_of(&cols[steady], M_LP), 100.0 * rate_of(&cols[steady]));
     fputs(".\n", out);
 }
 
@@ -141,7 +176,8 @@ static const char *verdict(int held, int checked)
 static void check_search_planner(const report *r, const scene_summary *sums,
                                  FILE *out)
 {
-    int spread_held = 0, short_held = 0, checked = 0, spread_checked = 0;
+    int spread_held = 0, short_held = 0, short_checked = 0;
+    int spread_checked = 0;
     char detail[2048] = "";
     size_t used = 0;
     for (int s = 0; s < r->num_scenes; s++) {
@@ -149,30 +185,36 @@ static void check_search_planner(const report *r, const scene_summary *sums,
         int ara = argmin(r, cols, mean_of, M_LP, is_family, SEARCH_FAMILY);
         if (ara < 0)
             continue;
-        checked++;
         double sd = measured_sigma_of(&cols[ara], M_LP);  /* NaN: no repeat */
         spread_checked += !isnan(sd);
         spread_held += !isnan(sd) && sd <= ZERO_SPREAD;
         char sd_text[48] = "- (no query run twice)";
         if (!isnan(sd))
             snprintf(sd_text, sizeof sd_text, "%.3g rad", sd);
+        /* Shortest of one is no finding: with no other planner's path
+         * the scene is not checked. */
         int other = argmin(r, cols, mean_of, M_LP, not_family, SEARCH_FAMILY);
-        int shortest = other < 0 || mean_of(&cols[ara], M_LP) <=
-                                        mean_of(&cols[other], M_LP);
-        short_held += shortest;
+        char other_text[160] = ", no other planner's path to compare";
+        if (other >= 0) {
+            int shortest = mean_of(&cols[ara], M_LP) <=
+                           mean_of(&cols[other], M_LP);
+            short_checked++;
+            short_held += shortest;
+            snprintf(other_text, sizeof other_text, ", %s %s (%.3g rad)",
+                     shortest ? "next" : "beaten by", r->configs[other].name,
+                     mean_of(&cols[other], M_LP));
+        }
         if (used < sizeof detail)
             used += (size_t)snprintf(detail + used, sizeof detail - used,
-                "      %s: sigma(l_p) %s; l_p %.3g rad%s%s (%.3g rad)\n",
+                "      %s: sigma(l_p) %s; l_p %.3g rad%s\n",
                 r->scenes[s].name, sd_text, mean_of(&cols[ara], M_LP),
-                other < 0 ? "" : shortest ? ", next " : ", beaten by ",
-                other < 0 ? "" : r->configs[other].name,
-                other < 0 ? NAN : mean_of(&cols[other], M_LP));
+                other_text);
     }
     fprintf(out, "  [%s] ARA* has zero spread in path length (%d of %d scenes)\n",
             verdict(spread_held, spread_checked), spread_held,
             spread_checked);
     fprintf(out, "  [%s] ARA* has the shortest paths (%d of %d scenes)\n",
-            verdict(short_held, checked), short_held, checked);
+            verdict(short_held, short_checked), short_held, short_checked);
     fputs(detail, out);
 }
 
@@ -214,10 +256,12 @@ static void check_fastest(const report *r, const scene_summary *sums,
         held += fastest;
         if (used < sizeof detail)
             used += (size_t)snprintf(detail + used, sizeof detail - used,
-                "      %s: %s %.3g s, %s %s (%.3g s)\n", r->scenes[s].name,
+                "      %s: %s %.3g s (success %.0f%%), %s %s (%.3g s, "
+                "success %.0f%%)\n", r->scenes[s].name,
                 r->configs[rrtc].name, mean_of(&cols[rrtc], M_TT),
+                100.0 * rate_of(&cols[rrtc]),
                 fastest ? "next" : "beaten by", r->configs[other].name,
-                mean_of(&cols[other], M_TT));
+                mean_of(&cols[other], M_TT), 100.0 * rate_of(&cols[other]));
     }
     fprintf(out, "  [%s] RRTConnect is the fastest sampling-based planner "
             "outside the narrow passage (%d of %d scenes)\n",

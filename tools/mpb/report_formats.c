@@ -115,8 +115,16 @@ int report_write_markdown(const report *r, FILE *out)
             fputs("| ", out);
             md_text(report_rows[i].label, out);
             fputs(" |", out);
-            for (int c = 0; c < nc; c++)
-                fprintf(out, " %s |", t.text[i * nc + c]);
+            for (int c = 0; c < nc; c++) {
+                fputc(' ', out);
+                md_text(t.text[i * nc + c], out);
+                fputs(" |", out);
+            }
+            fputc('\n', out);
+        }
+        if (report_any_single(t.text, t.visible, nc)) {
+            fputc('\n', out);
+            md_text(SIGMA_SINGLE_NOTE ".", out);
             fputc('\n', out);
         }
         if (r->scenes[si].unfinished > 0)
@@ -263,6 +271,10 @@ int report_write_latex(const report *r, FILE *out)
         if (r->stage) {
             fputs("; path metrics of stage ", out);
             tex_text(r->stage, out);
+        }
+        if (report_any_single(t.text, t.visible, nc)) {
+            fputs("; ", out);
+            tex_text(SIGMA_SINGLE_NOTE, out);
         }
         fputs(".}\n  \\label{tab:mpb-", out);
         tex_key(r->experiment_name, out);

@@ -189,6 +189,56 @@ static void describe(const mpb_daemon_status_t *st, char *buf, size_t n)
     describe_planners(st, buf, n, 1);
 }
 
+/* The planners as describe_planners() lists them, in at most room
+ * columns (names are ASCII): whole names while they fit, then "+N more";
+ * "N planners" when not even the first fits; nothing when that does not
+ * either. Never a name cut short. */
+static void describe_planners_fit(const mpb_daemon_status_t *st, char *buf,
+                                  size_t n, int room)
+{
+    char all[LINE_MAX_LEN] = "";
+    describe_planners(st, all, sizeof all, 0);
+    if ((int)strlen(all) <= room) {
+        append(buf, n, "%s", all);
+        return;
+    }
+    /* Items are separated by ", "; a name holds no comma. */
+    int items = 1;
+    for (const char *p = all; (p = strstr(p, ", ")) != NULL; p += 2)
+        items++;
+    char fit[LINE_MAX_LEN] = "";
+    int shown = 0;
+    const char *item = all;
+    while (shown < items) {
+        const char *end = strstr(item, ", ");
+        int len = end ? (int)(end - item) : (int)strlen(item);
+        char more[32];
+        snprintf(more, sizeof more, ", +%d more", items - shown - 1);
+        int need = (int)strlen(fit) + (shown ? 2 : 0) + len +
+                   (shown + 1 < items ? (int)strlen(more) : 0);
+        if (need > room)
+            break;
+        append(fit, sizeof fit, "%s%.*s", shown ? ", " : "", len, item);
+        shown++;
+        item = end ? end + 2 : item + len;
+    }
+    if (shown > 0) {
+        append(buf, n, "%s, +%d more", fit, items - shown);
+        return;
+    }
+    char count[32];
+    snprintf(count, sizeof count, "%d planners", items);
+    if ((int)strlen(count) <= room) {
+        append(buf, n, "%s", count);
+        return;
+    }
+    /* Not even that: the numbers without the planners, and no spaces
+     * left hanging. */
+    size_t len = strlen(buf);
+    while (len > 0 && buf[len - 1] == ' ')
+        buf[--len] = '\0';
+}
+
 static int terminal_width(void)
 {
     struct winsize ws;
@@ -227,7 +277,6 @@ static void describe_tty(const mpb_daemon_status_t *st, int width, char *buf,
     } else {
         append(rest, sizeof rest, "%s  ", st->state);
     }
-    describe_planners(st, rest, sizeof rest, 0);
 
     int bar = width - 70;   /* the same width all along, 10 in 80 columns */
     bar = bar < 10 ? 10 : bar > 30 ? 30 : bar;
@@ -238,6 +287,8 @@ static void describe_tty(const mpb_daemon_status_t *st, int width, char *buf,
     memset(b + fill, '-', (size_t)(bar - fill));
     b[bar] = '\0';
     snprintf(buf, n, "[%s] %s", b, rest);
+    /* The planners in what is left of the line redraw() shows. */
+    describe_planners_fit(st, buf, n, width - 1 - (int)strlen(buf));
 }
 
 /* Redraw the line on the terminal, cut to its width. */

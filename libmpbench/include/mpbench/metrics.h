@@ -3,7 +3,8 @@
  * from the planner). A path is num_waypoints joint vectors of num_joints
  * values each, stored row after row: waypoint i, joint j is
  * wp[i * num_joints + j]. Definitions, units and edge cases are in
- * docs/metrics.md; they follow Table I of the paper in shared/reference.
+ * docs/metrics.md; they follow Table I of Cohen, Sucan and Chitta, "A
+ * Generic Infrastructure for Benchmarking Motion Planners" (IROS 2012).
  */
 #ifndef MPBENCH_METRICS_H
 #define MPBENCH_METRICS_H
@@ -43,6 +44,23 @@ double mpb_path_length(const double *wp, int num_waypoints, int num_joints,
  */
 double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
                       mpb_joint_wrap continuous);
+
+/* The number of equal pieces mpb_smoothness_resampled() cuts a path into. */
+#define MPB_SMOOTHNESS_SEGMENTS 100
+
+/*
+ * kappa'_r: kappa' of the path cut into MPB_SMOOTHNESS_SEGMENTS pieces of
+ * equal joint-space length, so that it does not depend on how densely the
+ * planner placed its waypoints. kappa' falls by the factor by which
+ * collinear waypoints multiply n; kappa'_r does not change. A corner of
+ * angle alpha adds between alpha^2 / 2 and alpha^2 to the sum (all of it
+ * when it falls on a piece's end, split in two otherwise), divided by
+ * MPB_SMOOTHNESS_SEGMENTS. Turns below 1e-9 rad count as 0 here and in
+ * mpb_smoothness() (rounding, not turning). 0 for a path of fewer than
+ * two nonzero segments; NaN if a value is NaN or memory runs out.
+ */
+double mpb_smoothness_resampled(const double *wp, int num_waypoints,
+                                int num_joints, mpb_joint_wrap continuous);
 
 struct mpb_world;
 

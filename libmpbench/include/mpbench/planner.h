@@ -131,6 +131,15 @@ int mpb_result_add_stage(mpb_plan_result_t *res, const char *name,
                          double time, const double *waypoints,
                          int num_waypoints, int num_joints);
 
+/*
+ * The value a planner reports the preparation of a world in (s): parsing
+ * its robot and scene, meshes included, when a request brings one the
+ * planner has not built yet. That time is the world's, not the run's: it
+ * is left out of time_total and time_other (tau_t, tau_o), as OMPL's
+ * Benchmark leaves out its setup, and mpb report shows it on its own.
+ */
+#define MPB_WORLD_SETUP_TIME "world_setup_time"
+
 /* Append one of the planner's own named numbers to res. */
 int mpb_result_add_value(mpb_plan_result_t *res, const char *name,
                          double value);

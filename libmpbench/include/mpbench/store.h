@@ -324,11 +324,17 @@ typedef struct mpb_result_row {
     int         success;       /* solved in time and verified valid */
     const char *status;        /* the planner's status name */
     double      time_total, time_raw, time_other; /* tau_t, tau_r, tau_o, s */
+    double      world_setup_time; /* the planner's MPB_WORLD_SETUP_TIME
+                                     value (s, outside tau_t), NaN if none */
     const char *stage;         /* the stage the metrics are read from: the
                                   one asked for, else the run's final stage
                                   (NULL if the run has none) */
     const double *metrics;     /* one value per name asked for, in that
                                   order; NaN where the stage lacks it */
+    int         stage_valid;   /* 1 if that stage passed verification, 0
+                                  if it failed (a run's earlier stage may
+                                  fail while its final one passes), -1 if
+                                  the run has no such stage */
     int         num_named;     /* 0 if that stage has no metrics */
     const mpb_named *named;    /* every metric of that stage, by name */
 } mpb_result_row;

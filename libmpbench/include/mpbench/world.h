@@ -5,7 +5,8 @@
  *
  * Formats (the robot_format / scene_format strings of a plan request):
  *   "planar"  A planar arm among circles and boxes, the small world of the
- *             walking skeleton and of fast tests. Robot text, one item a line,
+ *             walking skeleton and of fast tests (for users:
+ *             docs/planar-format.md). Robot text, one item a line,
  *             '#' starts a comment:
  *                 base <x> <y>                 (m, optional, default 0 0)
  *                 link_radius <r>              (m, required, >= 0; every

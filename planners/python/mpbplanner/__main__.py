@@ -14,8 +14,17 @@ from .solve import WorldCache, solve
 ALGORITHMS = ["RRTConnect"]
 
 
+class _Parser(argparse.ArgumentParser):
+    """A bad command line in one line, as the other mpbench programs say
+    it (argparse prints the usage too)."""
+
+    def error(self, message):
+        print(f"{self.prog}: {message} (try --help)", file=sys.stderr)
+        sys.exit(2)
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(
+    ap = _Parser(
         prog="mpb-planner-python",
         description="An mpbench planner in Python: answers plan requests "
                     "from mpbenchd with RRT-Connect (stages raw and "
