@@ -240,6 +240,12 @@ void mpbd_planners_free(mpbd *d);
 void mpbd_daemons_subscribe(mpbd *d);
 
 /* scheduler.c */
+/* MPB_OK if every plan request of experiment e fits in an LCM message
+ * (MPB_LCM_MESSAGE_MAX, with the authentication trailer if authenticated),
+ * else MPB_EINVAL and one line in err naming the file, the scene and the
+ * sizes: a larger message would be dropped by every receiver. */
+int  mpbd_requests_fit(const mpbd_experiment *e, int authenticated, char *err,
+                       size_t errlen);
 int  mpbd_scheduler_load(mpbd *d);             /* unfinished runs from the store */
 int  mpbd_scheduler_dispatch(mpbd *d, double now);
 /* Write the runs sent since the last call as sent (attempt, run id,

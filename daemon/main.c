@@ -476,6 +476,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "mpbenchd: %s\n", err);
         return 1;
     }
+    /* A request over the bound would be dropped by every planner. */
+    if (mpbd_requests_fit(d.exp, o.secret_file != NULL, err, sizeof err) !=
+        MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s\n", err);
+        mpbd_experiment_free(d.exp);
+        return 1;
+    }
     d.runs_total = (int)count_runs(d.exp);
     if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
         mpbd_log("%s", err);

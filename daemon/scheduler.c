@@ -25,6 +25,8 @@
 #include <string.h>
 
 #include "daemon.h"
+#include "mpbench/auth.h"
+#include "mpbench/lcm_filter.h"
 #include "mpb_plan_request_t.h"
 #include "mpb_run_ack_t.h"
 
@@ -102,23 +104,22 @@ int mpbd_scheduler_load(mpbd *d)
     return MPB_OK;
 }
 
-static int publish_request(mpbd *d, const mpbd_flight *f)
+/* The request for a run of config c on query q, without what changes
+ * from one send to the next (utime, run_id, planner_id, seed, stored).
+ * It points into e. */
+static void fill_request(const mpbd_experiment *e, int config, int query,
+                         mpb_plan_request_t *rq)
 {
-    const mpbd_experiment *e = d->exp;
-    const mpbd_config *c = &e->configs[f->run.config];
-    const mpbd_query *q = &e->queries[f->run.query];
+    const mpbd_config *c = &e->configs[config];
+    const mpbd_query *q = &e->queries[query];
     const mpbd_scene *s = &e->scenes[q->scene];
-    const mpbd_planner *p = &d->planners[f->planner];
-    char channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
-    mpb_plan_request_t rq = {
-        .utime = mpb_utime_now(),
-        .run_id = (char *)f->run.uid,
-        .planner_id = (char *)p->id,
+    *rq = (mpb_plan_request_t){
+        .run_id = "",
+        .planner_id = "",
         .algorithm = c->algorithm,
         .num_params = (int16_t)c->num_params,
         .params = c->params,
         .time_limit = e->time_limit,
-        .seed = f->run.seed,
         .robot_format = s->robot_format,
         .robot_hash = (char *)s->robot_hash,
         .robot = s->robot,
@@ -137,15 +138,72 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
         },
     };
     if (q->goal_kind == MPB_GOAL_POSE_REGION) {
-        rq.goal = (mpb_goal_t){.kind = MPB_GOAL_T_POSE_REGION,
-                               .link = q->goal_link};
-        memcpy(rq.goal.position, q->position, sizeof q->position);
-        memcpy(rq.goal.position_tolerance, q->position_tolerance,
+        rq->goal = (mpb_goal_t){.kind = MPB_GOAL_T_POSE_REGION,
+                                .link = q->goal_link};
+        memcpy(rq->goal.position, q->position, sizeof q->position);
+        memcpy(rq->goal.position_tolerance, q->position_tolerance,
                sizeof q->position_tolerance);
-        memcpy(rq.goal.orientation_rpy, q->rpy, sizeof q->rpy);
-        memcpy(rq.goal.orientation_tolerance, q->rpy_tolerance,
+        memcpy(rq->goal.orientation_rpy, q->rpy, sizeof q->rpy);
+        memcpy(rq->goal.orientation_tolerance, q->rpy_tolerance,
                sizeof q->rpy_tolerance);
     }
+}
+
+int mpbd_requests_fit(const mpbd_experiment *e, int authenticated, char *err,
+                      size_t errlen)
+{
+    /* The longest a request can be: the longest planner id and a full
+     * load of acknowledgements riding on it. The robot and scene text,
+     * counted once per scene, stand apart from the rest. */
+    static char planner_id[MPB_PLANNER_ID_MAX + 1];
+    static char run_id[MPB_RUN_ID_SIZE];
+    char *stored[MPBD_STORED_MAX];
+    memset(planner_id, 'x', MPB_PLANNER_ID_MAX);
+    memset(run_id, '0', MPB_RUN_ID_SIZE - 1);
+    for (int i = 0; i < MPBD_STORED_MAX; i++)
+        stored[i] = run_id;
+    for (int q = 0; q < e->num_queries; q++) {
+        const mpbd_scene *s = &e->scenes[e->queries[q].scene];
+        size_t robot = strlen(s->robot), scene = strlen(s->scene);
+        size_t rest = 0;
+        for (int c = 0; c < e->num_configs; c++) {
+            mpb_plan_request_t rq;
+            fill_request(e, c, q, &rq);
+            rq.run_id = run_id;
+            rq.planner_id = planner_id;
+            rq.num_stored = MPBD_STORED_MAX;
+            rq.stored = stored;
+            rq.robot = rq.scene = "";
+            size_t n = (size_t)mpb_plan_request_t_encoded_size(&rq);
+            if (n > rest)
+                rest = n;
+        }
+        size_t total = rest + robot + scene +
+                       (authenticated ? MPB_AUTH_TRAILER_SIZE : 0);
+        if (total > MPB_LCM_MESSAGE_MAX) {
+            snprintf(err, errlen,
+                     "%s: scene '%s' (query '%s'): its plan request would be "
+                     "%zu bytes (robot %zu, scene %zu), over the %u-byte "
+                     "bound of an LCM message (MPB_LCM_MESSAGE_MAX)",
+                     e->file, s->name, e->queries[q].name, total, robot,
+                     scene, MPB_LCM_MESSAGE_MAX);
+            return MPB_EINVAL;
+        }
+    }
+    return MPB_OK;
+}
+
+static int publish_request(mpbd *d, const mpbd_flight *f)
+{
+    const mpbd_experiment *e = d->exp;
+    const mpbd_planner *p = &d->planners[f->planner];
+    char channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
+    mpb_plan_request_t rq;
+    fill_request(e, f->run.config, f->run.query, &rq);
+    rq.utime = mpb_utime_now();
+    rq.run_id = (char *)f->run.uid;
+    rq.planner_id = (char *)p->id;
+    rq.seed = f->run.seed;
     if (mpb_request_channel(p->id, channel, sizeof channel) != MPB_OK)
         return MPB_EINVAL;
     /* The planner's stored results ride along (acks.c). If this send

@@ -163,13 +163,9 @@ int mpb_result_set_message(mpb_plan_result_t *res, const char *fmt, ...)
     return MPB_OK;
 }
 
-void mpb_result_clear(mpb_plan_result_t *res)
+/* Free the stages, values and progress of res, leaving none. */
+static void mpb__result_clear_lists(mpb_plan_result_t *res)
 {
-    if (res == NULL)
-        return;
-    free(res->run_id);
-    free(res->planner_id);
-    free(res->message);
     for (int i = 0; i < res->num_stages; i++) {
         free(res->stages[i].name);
         free(res->stages[i].waypoints);
@@ -184,6 +180,22 @@ void mpb_result_clear(mpb_plan_result_t *res)
         free(res->progress[i].values);
     }
     free(res->progress);
+    res->stages = NULL;
+    res->values = NULL;
+    res->progress = NULL;
+    res->num_stages = 0;
+    res->num_values = 0;
+    res->num_progress = 0;
+}
+
+void mpb_result_clear(mpb_plan_result_t *res)
+{
+    if (res == NULL)
+        return;
+    free(res->run_id);
+    free(res->planner_id);
+    free(res->message);
+    mpb__result_clear_lists(res);
     memset(res, 0, sizeof *res);
 }
 
@@ -491,6 +503,21 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
         mpb__result_fill_strings(res) != MPB_OK) {
         mpb_result_clear(res);
         return MPB_ENOMEM;
+    }
+    /* Every receiver drops a message over the bound (lcm_filter.h): send
+     * a failure saying why instead, which the daemon stores. */
+    size_t size = (size_t)mpb_plan_result_t_encoded_size(res) +
+                  (s->auth != NULL ? MPB_AUTH_TRAILER_SIZE : 0);
+    if (size > MPB_LCM_MESSAGE_MAX) {
+        mpb__result_clear_lists(res);
+        res->status = MPB_PLAN_RESULT_T_FAILED;
+        if (mpb_result_set_message(res, "result too large: %zu bytes, over "
+                                   "the %u-byte (16 MiB) bound of an LCM "
+                                   "message", size, MPB_LCM_MESSAGE_MAX) !=
+            MPB_OK) {
+            mpb_result_clear(res);
+            return MPB_ENOMEM;
+        }
     }
     res->utime = mpb_utime_now();
     k->used = 1;

@@ -31,7 +31,9 @@ static void usage(FILE *out)
 "Only joint-space goals are supported; a pose-region goal is answered with\n"
 "INVALID_REQUEST. A request parameter \"delay\" (seconds) makes it sleep that\n"
 "long before answering, as if it were planning: fault tests use it to catch\n"
-"planners in the middle of a run.\n"
+"planners in the middle of a run. A parameter \"waypoints\" (2 to\n"
+"10000000, default 2) makes the stage that many waypoints, evenly from\n"
+"start to goal: tests use it for results too large to send.\n"
 "\n"
 "It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
 "SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
@@ -69,13 +71,33 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
         mpb_result_set_message(res, "straight_line needs a joint-space goal");
         return MPB_EUNSUPPORTED;
     }
+    long m = 2;
+    const char *count = mpb_request_param(req, "waypoints");
+    if (count != NULL) {
+        char *end;
+        errno = 0;
+        m = strtol(count, &end, 10);
+        if (end == count || *end != '\0' || errno != 0 || m < 2 ||
+            m > 10000000) {
+            mpb_result_set_message(res, "waypoints must be a whole number "
+                                        "from 2 to 10000000, not '%.40s'",
+                                   count);
+            return MPB_EINVAL;
+        }
+    }
     int n = req->num_joints;
-    double *wp = malloc(2 * (size_t)n * sizeof *wp);
+    double *wp = malloc((size_t)m * (size_t)n * sizeof *wp);
     if (wp == NULL)
         return MPB_ENOMEM;
-    memcpy(wp, req->start, (size_t)n * sizeof *wp);
-    memcpy(wp + n, req->goal.joints, (size_t)n * sizeof *wp);
-    int rc = mpb_result_add_stage(res, "raw", 0.0, wp, 2, n);
+    /* The ends exactly the start and the goal, as with two waypoints. */
+    for (long i = 0; i < m - 1; i++) {
+        double t = (double)i / (double)(m - 1);
+        for (int j = 0; j < n; j++)
+            wp[i * n + j] = req->start[j] +
+                            t * (req->goal.joints[j] - req->start[j]);
+    }
+    memcpy(wp + (m - 1) * n, req->goal.joints, (size_t)n * sizeof *wp);
+    int rc = mpb_result_add_stage(res, "raw", 0.0, wp, (int)m, n);
     free(wp);
     if (rc != MPB_OK) {
         res->status = MPB_PLAN_RESULT_T_FAILED;

@@ -222,6 +222,46 @@ EOT
 check "a MoveIt scene's thin box is named by its object and line" \
     grep -q "warning: scene 'plated': object 'plate' (shape of line 6) is 0.002 m thick" "$work/plate.err"
 
+# ---- a scene too large for one LCM message ---------------------------------
+# Every receive socket drops a message over MPB_LCM_MESSAGE_MAX (16 MiB),
+# so the plan requests carrying this scene would vanish: refused at load
+# and at --check, with the sizes. A 65-byte comment line doubled 18 times
+# is 17,039,360 bytes.
+printf '# padding to make a scene too large for one LCM message: 0123456\n' >"$work/huge.scene"
+i=0
+while [ "$i" -lt 18 ]; do
+    cat "$work/huge.scene" "$work/huge.scene" >"$work/huge.tmp"
+    mv "$work/huge.tmp" "$work/huge.scene"
+    i=$((i + 1))
+done
+cat >"$work/huge_scene.yaml" <<EOT
+experiment: {name: huge, runs: 1, time_limit: 1}
+robot: {format: planar, file: $base/arm3.robot}
+scenes: [{name: huge, format: planar, file: huge.scene, queries: [{name: q, start: [0, 0, 0], goal: [0.1, 0, 0]}]}]
+planners: [{planner: null, algorithms: [straight_line]}]
+EOT
+bad_case huge_scene.yaml ": scene 'huge' (query 'q'): its plan request would be [0-9]* bytes (robot 228, scene 17039360), over the 16777216-byte bound of an LCM message"
+out=$("$daemon" --check "$work/huge_scene.yaml" 2>&1)
+check "--check refuses it too" test $? -ne 0
+check "... in one line with the sizes" \
+    sh -c "printf '%s\n' \"\$1\" | grep -c 'scene 17039360), over the 16777216-byte bound' | grep -qx 1" _ "$out"
+plain=$(printf '%s' "$out" | sed -n 's/.*would be \([0-9]*\) bytes.*/\1/p')
+head -c 32 /dev/urandom >"$work/secret"
+out=$("$daemon" --check --secret-file "$work/secret" "$work/huge_scene.yaml" 2>&1)
+check "with a secret the request is 56 bytes longer (the trailer)" \
+    sh -c "printf '%s' \"\$1\" | grep -q 'would be $((plain + 56)) bytes'" _ "$out"
+# Cut to exactly the bound without a trailer: good without a secret, one
+# byte per trailer byte too long with one.
+head -c $((17039360 - (plain - 16777216))) "$work/huge.scene" >"$work/huge.tmp"
+mv "$work/huge.tmp" "$work/huge.scene"
+"$daemon" --check "$work/huge_scene.yaml" >/dev/null 2>&1
+check "a request of exactly 16 MiB is accepted" eq $? 0
+out=$("$daemon" --check --secret-file "$work/secret" "$work/huge_scene.yaml" 2>&1)
+check "... but not with the 56-byte trailer of a secret" \
+    sh -c "printf '%s' \"\$1\" | grep -q 'would be 16777272 bytes'" _ "$out"
+rm -f "$work/huge.scene"
+check "database still untouched" test "$(md5sum <"$DB")" = "$sum_before"
+
 out=$("$daemon" -d "$DB" "$work/nosuch.yaml" 2>&1)
 check "a missing experiment file is refused" test $? -ne 0
 check "... with a message naming it" \

@@ -46,7 +46,8 @@ extern "C" {
  * requests, which carry the robot and scene text. liblcm keeps at most
  * 16 MiB of partly received messages in all, so a larger one would push
  * every other out while it arrives. A fragment claiming a larger message
- * is dropped. (The daemon and the planners do not yet refuse to send one.)
+ * is dropped. The daemon refuses an experiment whose requests would be
+ * larger, and the planner kits send a failure instead of such a result.
  */
 #define MPB_LCM_MESSAGE_MAX (16u << 20)
 

@@ -15,8 +15,9 @@ with solve(req) -> plan_result_t. A result whose time_total solve() left
 at 0 gets the time solve() took, by the node's clock. As the C kit does,
 the node answers a
 request for an algorithm it does not offer with INVALID_REQUEST without
-calling solve(), and an exception in solve() with FAILED and the
-exception in the result's message, and goes on serving.
+calling solve(), an exception in solve() with FAILED and the
+exception in the result's message, and a result too large to send (over
+16 MiB encoded) with FAILED saying so, and goes on serving.
 """
 import hashlib
 import hmac
@@ -44,6 +45,8 @@ TAG_BYTES = 32
 TRAILER_BYTES = 24 + TAG_BYTES
 PLANNER_ID_MAX = 51         # MPB_REQUEST_<id> within LCM's 63 characters
 MESSAGE_MAX = 1000          # characters of an exception kept in a message
+LCM_MESSAGE_MAX = 16 << 20  # MPB_LCM_MESSAGE_MAX (lcm_filter.h): every
+                            # mpbench socket drops a larger message
 
 
 def name_error(name):
@@ -327,13 +330,22 @@ class Node:
         res.utime = int(time.time() * 1e6)
         res.run_id, res.planner_id = req.run_id, self.planner_id
         try:
-            return res, res.encode()
+            data = res.encode()
         except Exception as e:          # e.g. num_stages != len(stages)
             res = self._failed(plan_result_t.FAILED, f"the result of solve() "
                                f"cannot be encoded: {type(e).__name__}: {e}")
-            res.utime = int(time.time() * 1e6)
-            res.run_id, res.planner_id = req.run_id, self.planner_id
-            return res, res.encode()
+        else:
+            # Over the bound the daemon would never receive it: a failure
+            # saying why instead, as the C kit sends.
+            size = len(data) + (TRAILER_BYTES if self.auth else 0)
+            if size <= LCM_MESSAGE_MAX:
+                return res, data
+            res = self._failed(plan_result_t.FAILED, f"result too large: "
+                               f"{size} bytes, over the {LCM_MESSAGE_MAX}"
+                               f"-byte (16 MiB) bound of an LCM message")
+        res.utime = int(time.time() * 1e6)
+        res.run_id, res.planner_id = req.run_id, self.planner_id
+        return res, res.encode()
 
     def serve(self, solve):
         """Answer requests with solve(req) -> plan_result_t until stop()."""
