@@ -5,8 +5,11 @@
 # the plots of mpb plot inlined as SVG, the findings, and every failed
 # run linked to its mpb view page. Opened in headless Chromium, with the
 # pages of mpb view --failed beside it: the plots show, and the first
-# link opens a drawn 3-D view. Without gnuplot the page is still written
-# and says why it has no plots.
+# link opens a drawn 3-D view. Every number of every table, read from the
+# page Chromium renders, is the number of mpb report --format json,
+# rounded as the page prints it; a page with one number off fails that
+# check. Without gnuplot the page is still written and says why it has no
+# plots.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -52,10 +55,35 @@ check "... the findings are there" grep -q 'What the tables say' "$page"
 
 "$mpb" view --failed -o "$work/site/views" "$DB" >/dev/null 2>&1
 check "mpb view --failed writes the pages the links name" eq $? 0
-node "$MPB_SOURCE/tests/integration/report_html_check.js" "$page" 6 >"$work/check.out" 2>&1
+"$mpb" report --format json "$DB" >"$work/report.json"
+check "mpb report --format json writes the same numbers as JSON" eq $? 0
+node "$MPB_SOURCE/tests/integration/report_html_check.js" "$page" 6 "$work/report.json" \
+    >"$work/check.out" 2>&1
 status=$?
 sed 's/^/    /' "$work/check.out"
 check "headless Chromium: the report and its first link pass every check" eq $status 0
+check "... its tables checked against the JSON" \
+    grep -q '^ok - every number of every table is the JSON' "$work/check.out"
+
+# One number off, the last digit of its first cell (before any exponent)
+# changed: the check must see it.
+awk '!done && /^<tr><td>tau_t \(Mean, s\)<\/td>/ {
+        i = index($0, "</td><td>") + 8; rest = substr($0, i + 1)
+        cell = substr(rest, 1, index(rest, "</td>") - 1)
+        k = match(cell, /[0-9](e[-+][0-9]+)?$/); d = substr(cell, k, 1)
+        $0 = substr($0, 1, i + k - 1) ((d + 1) % 10) substr(rest, k + 1)
+        done = 1
+    } { print }' "$page" >"$work/site/perturbed.html"
+check "a page with one number of tau_t changed" \
+    test "$(diff "$page" "$work/site/perturbed.html" | grep -c '^>')" = 1
+node "$MPB_SOURCE/tests/integration/report_html_check.js" "$work/site/perturbed.html" 6 \
+    "$work/report.json" >"$work/perturbed.out" 2>&1
+status=$?
+sed 's/^/    /' "$work/perturbed.out"
+check "... fails the check" test $status -ne 0
+check "... on that number" \
+    grep -q "^not ok - every number of every table.*tau_t (Mean, s), null/straight_line: the page" \
+    "$work/perturbed.out"
 
 # Without gnuplot: the page, saying why there are no plots.
 PATH=/nonexistent "$mpb" report --format html "$DB" >"$work/noplot.html" 2>"$work/noplot.err"
