@@ -163,6 +163,12 @@ function check(name, ok, detail) {
   const t = checkTables(tables);
   check('every number of every table is the JSON report\'s (' + t.cells + ' cells)',
         t.bad.length === 0 && t.cells > 0, t.bad.join('; '));
+  const hrefs = await page.evaluate(() => Array.from(document.querySelectorAll('a[href]'))
+    .map((a) => a.getAttribute('href')));
+  const dead = hrefs.filter((h) => !/^[a-z]+:|^#/.test(h) &&
+    !fs.existsSync(path.join(path.dirname(path.resolve(report)), h)));
+  check('every link of the page names a file that is there (' + hrefs.length + ' links)',
+        dead.length === 0 && hrefs.length > 0, 'missing: ' + dead.join(' '));
   const link = page.locator('a[href^="views/run-"]').first();
   check('it links a failed run', await link.count() === 1);
   await link.click();

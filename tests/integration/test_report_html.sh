@@ -3,9 +3,10 @@
 # planar one: the null planner, whose line over the pillar fails, beside
 # OMPL's RRTConnect and RRT): the paper's table with each configuration,
 # the plots of mpb plot inlined as SVG, the findings, and every failed
-# run linked to its mpb view page. Opened in headless Chromium, with the
-# pages of mpb view --failed beside it: the plots show, and the first
-# link opens a drawn 3-D view. Every number of every table, read from the
+# run linked to its mpb view page. Written with -o, the page has those
+# views beside it (views/run-ID.html), one per link; written to stdout, it
+# says how to make them. Opened in headless Chromium: the plots show, and
+# the first link opens a drawn 3-D view. Every number of every table, read from the
 # page Chromium renders, is the number of mpb report --format json,
 # rounded as the page prints it; a page with one number off fails that
 # check. Without gnuplot the page is still written and says why it has no
@@ -31,10 +32,14 @@ mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml" >"$work/d
 check "the experiment completes" eq $? 0
 
 mkdir "$work/site" "$work/tmp"
-TMPDIR=$work/tmp "$mpb" report --format html "$DB" >"$work/site/report.html" 2>"$work/report.err"
-check "mpb report --format html writes the page" eq $? 0
-check "... saying nothing on stderr" test ! -s "$work/report.err"
+TMPDIR=$work/tmp "$mpb" report --format html -o "$work/site/report.html" "$DB" \
+    >"$work/report.out" 2>"$work/report.err"
+check "mpb report --format html -o FILE writes the page" eq $? 0
+check "... saying nothing on stdout or stderr" \
+    test ! -s "$work/report.out" -a ! -s "$work/report.err"
 page=$work/site/report.html
+check "... and nothing else beside it but views/" \
+    test "$(ls "$work/site")" = "$(printf 'report.html\nviews')"
 for c in null/straight_line ompl/RRTConnect ompl/RRT; do
     check "... the table has a column for $c" grep -q "<th>$c</th>" "$page"
 done
@@ -48,15 +53,40 @@ check "three runs failed (the null planner's over the pillar)" \
     test "$(echo $failed | wc -w)" = 3
 for id in $failed; do
     check "... run $id is linked to its view" grep -q "href=\"views/run-$id.html\"" "$page"
+    check "... which is written beside the page" \
+        grep -q "^<!DOCTYPE html>" "$work/site/views/run-$id.html"
 done
 check "... no successful run is" \
     test "$(grep -o 'href="views/run-[0-9]*.html"' "$page" | wc -l)" = 3
+check "... and views/ holds those three pages only" \
+    test "$(ls "$work/site/views" | wc -l)" = 3
 check "... the findings are there" grep -q 'What the tables say' "$page"
 
-"$mpb" view --failed -o "$work/site/views" "$DB" >/dev/null 2>&1
-check "mpb view --failed writes the pages the links name" eq $? 0
+# To stdout, the same page, saying how to make the views.
+TMPDIR=$work/tmp "$mpb" report --format html "$DB" >"$work/stdout.html" 2>"$work/stdout.err"
+check "mpb report --format html to stdout" eq $? 0
+check "... links the same runs" test "$(grep -o 'href="views/run-[0-9]*.html"' "$work/stdout.html")" = \
+    "$(grep -o 'href="views/run-[0-9]*.html"' "$page")"
+check "... and says how to make their views" \
+    grep -q 'id="make-views".*mpb report --format html -o report.html' "$work/stdout.html"
+check "... which the page written with -o does not" test "$(grep -c make-views "$page")" = 0
+
+# A report that cannot be written, or whose views cannot be drawn: one
+# line, exit 1, no page left.
+"$mpb" report --format html -o "$work/missing/report.html" "$DB" >"$work/bad.out" 2>"$work/bad.err"
+check "-o into a missing folder fails" eq $? 1
+check "... with one line" test "$(wc -l <"$work/bad.err")" = 1
+MPB_THREE_JS=/nonexistent "$mpb" report --format html -o "$work/nothree.html" "$DB" \
+    >"$work/bad.out" 2>"$work/bad.err"
+check "-o without three.js for the views fails" eq $? 1
+check "... with one line naming it" grep -q 'cannot read three.js at /nonexistent' "$work/bad.err"
+check "... that line only" test "$(wc -l <"$work/bad.err")" = 1
+check "... leaving no page" test ! -e "$work/nothree.html" -a ! -e "$work/nothree.html.tmp"
+"$mpb" report --format json -o "$work/report-o.json" "$DB" >"$work/json.out"
+check "-o writes the other formats too" eq $? 0
 "$mpb" report --format json "$DB" >"$work/report.json"
 check "mpb report --format json writes the same numbers as JSON" eq $? 0
+check "... the same with -o FILE" cmp -s "$work/report.json" "$work/report-o.json"
 node "$MPB_SOURCE/tests/integration/report_html_check.js" "$page" 6 "$work/report.json" \
     >"$work/check.out" 2>&1
 status=$?
