@@ -2,20 +2,22 @@
 // a real headless Chromium (every request but files refused), and follow
 // its first link to a failed run's view. Used by test_report_html.sh.
 //
-//   node report_html_check.js REPORT.html PLOTS REPORT.json
+//   node report_html_check.js REPORT.html PLOTS REPORT.json [SCREENSHOT.png]
 //
 // PLOTS is how many SVG plots the page must show. REPORT.json is what
 // `mpb report --format json` wrote of the same database: every number of
 // every table the browser renders must be its number, rounded to the
 // decimals the page prints. Prints one "ok - ..." or "not ok - ..." line
-// per check; exits 1 if any failed.
+// per check; exits 1 if any failed. SCREENSHOT.png, if given, gets the
+// top of the page as a 1200 px wide window shows it (how
+// docs/images/report-html.png is made).
 'use strict';
 const path = require('path');
 const { chromium } = require(path.join(process.env.MPB_WEB_MODULES, 'playwright-core'));
 
 const fs = require('fs');
 
-const [report, plots, jsonPath] = process.argv.slice(2);
+const [report, plots, jsonPath, shotPath] = process.argv.slice(2);
 const json = JSON.parse(fs.readFileSync(jsonPath, 'utf8'));
 
 // The rows of the paper's table, by the label the page shows: which
@@ -163,6 +165,10 @@ function check(name, ok, detail) {
   const t = checkTables(tables);
   check('every number of every table is the JSON report\'s (' + t.cells + ' cells)',
         t.bad.length === 0 && t.cells > 0, t.bad.join('; '));
+  if (shotPath) {
+    await page.screenshot({ path: shotPath, fullPage: true });
+    check('a screenshot of the page', fs.statSync(shotPath).size > 10000);
+  }
   const hrefs = await page.evaluate(() => Array.from(document.querySelectorAll('a[href]'))
     .map((a) => a.getAttribute('href')));
   const dead = hrefs.filter((h) => !/^[a-z]+:|^#/.test(h) &&

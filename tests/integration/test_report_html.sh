@@ -6,17 +6,20 @@
 # run linked to its mpb view page. Written with -o, the page has those
 # views beside it (views/run-ID.html), one per link; written to stdout, it
 # says how to make them. Opened in headless Chromium: the plots show, and
-# the first link opens a drawn 3-D view. Every number of every table, read from the
-# page Chromium renders, is the number of mpb report --format json,
-# rounded as the page prints it; a page with one number off fails that
-# check. Without gnuplot the page is still written and says why it has no
-# plots.
+# the first link opens a drawn 3-D view. Every number of every table, read
+# from the page Chromium renders, is the number of mpb report --format
+# json, rounded as the page prints it; a page with one number off fails
+# that check. Without gnuplot the page is still written and says why it
+# has no plots.
+#
+# MPB_REPORT_SCREENSHOT=FILE keeps the screenshot of the page there (how
+# docs/images/report-html.png is made); MPB_KEEP=1 keeps the work folder.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
 
 work=$(mktemp -d)
-trap 'mpb_stop_all; rm -rf "$work"' EXIT
+trap 'mpb_stop_all; [ -n "${MPB_KEEP:-}" ] || rm -rf "$work"' EXIT
 DB=$work/report.db
 mpb=$MPB_BUILD/tools/mpb
 export MPB_WEB_MODULES="$MPB_SOURCE/.cache/web/node_modules"
@@ -88,10 +91,13 @@ check "-o writes the other formats too" eq $? 0
 check "mpb report --format json writes the same numbers as JSON" eq $? 0
 check "... the same with -o FILE" cmp -s "$work/report.json" "$work/report-o.json"
 node "$MPB_SOURCE/tests/integration/report_html_check.js" "$page" 6 "$work/report.json" \
-    >"$work/check.out" 2>&1
+    "$work/report.png" >"$work/check.out" 2>&1
 status=$?
 sed 's/^/    /' "$work/check.out"
 check "headless Chromium: the report and its first link pass every check" eq $status 0
+if [ -n "${MPB_REPORT_SCREENSHOT:-}" ] && [ -f "$work/report.png" ]; then
+    cp "$work/report.png" "$MPB_REPORT_SCREENSHOT"
+fi
 check "... its tables checked against the JSON" \
     grep -q '^ok - every number of every table is the JSON' "$work/check.out"
 

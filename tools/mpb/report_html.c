@@ -30,7 +30,7 @@ static const char STYLE[] =
     "border-bottom:2px solid #1d2433}h3{font-size:15px}table{border-collapse:"
     "collapse;margin:8px 0}th,td{padding:3px 10px;border-bottom:1px solid "
     "#d5dae3;text-align:right}th:first-child,td:first-child{text-align:left}"
-    "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;"
+    "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;white-space:pre-wrap;"
     "overflow:auto}.note{color:#5b6579}.plots{display:grid;grid-template-columns:"
     "1fr 1fr;gap:8px}.plots svg{max-width:100%;height:auto;"
     "display:block;margin:8px 0}\n";
