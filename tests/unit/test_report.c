@@ -874,6 +874,11 @@ static void help_is_clear(void **state)
     assert_non_null(strstr(o.text, "  -o, --output FILE    write the report to "
                                    "FILE"));
     assert_non_null(strstr(o.text, "views/run-ID.html"));
+    /* Every format is listed, html with what it writes. */
+    assert_non_null(strstr(o.text, "scene), json, or html: one self-contained "
+                                   "page\n"));
+    assert_non_null(strstr(o.text, "mpb plot as SVG"));
+    assert_non_null(strstr(o.text, "its mpb view page"));
     assert_non_null(strstr(o.text, "--format FORMAT"));
     assert_non_null(strstr(o.text, "--stage NAME"));
 
