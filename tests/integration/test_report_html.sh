@@ -74,6 +74,24 @@ check "... and says how to make their views" \
     grep -q 'id="make-views".*mpb report --format html -o report.html' "$work/stdout.html"
 check "... which the page written with -o does not" test "$(grep -c make-views "$page")" = 0
 
+# A failed run with no stages (as when a planner returns no path) has no
+# view to draw: no link, and its row says why.
+first=${failed%% *}
+sqlite3 "$DB" ".backup '$work/nostages.db'" &&
+    sqlite3 "$work/nostages.db" "DELETE FROM stages WHERE run_id = $first"
+mkdir "$work/nostages"
+"$mpb" report --format html -o "$work/nostages/report.html" "$work/nostages.db" \
+    >"$work/nostages.out" 2>&1
+check "a report whose failed run $first has no stages is written" eq $? 0
+check "... saying nothing" test ! -s "$work/nostages.out"
+check "... that run not linked" \
+    test "$(grep -c "href=\"views/run-$first.html\"" "$work/nostages/report.html")" = 0
+check "... its row saying why" \
+    grep -q "^<tr><td>$first</td>.*(no view: no stages to draw" "$work/nostages/report.html"
+check "... the other two linked, their views written" \
+    test "$(grep -o 'href="views/run-[0-9]*.html"' "$work/nostages/report.html" | wc -l)" = 2 \
+    -a "$(ls "$work/nostages/views" | wc -l)" = 2
+
 # A report that cannot be written, or whose views cannot be drawn: one
 # line, exit 1, no page left.
 "$mpb" report --format html -o "$work/missing/report.html" "$DB" >"$work/bad.out" 2>"$work/bad.err"
