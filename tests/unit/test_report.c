@@ -870,7 +870,15 @@ static void help_is_clear(void **state)
     assert_int_equal(o.status, 0);
     assert_non_null(strstr(o.text, "usage: mpb report [--experiment ID] "
                                    "[--stage NAME] [--format FORMAT]\n"
-                                   "                  [--findings] DB\n"));
+                                   "                  [--findings] [-o FILE] DB\n"));
+    assert_non_null(strstr(o.text, "  -o, --output FILE    write the report to "
+                                   "FILE"));
+    assert_non_null(strstr(o.text, "views/run-ID.html"));
+    /* Every format is listed, html with what it writes. */
+    assert_non_null(strstr(o.text, "scene), json, or html: one self-contained "
+                                   "page\n"));
+    assert_non_null(strstr(o.text, "mpb plot as SVG"));
+    assert_non_null(strstr(o.text, "its mpb view page"));
     assert_non_null(strstr(o.text, "--format FORMAT"));
     assert_non_null(strstr(o.text, "--stage NAME"));
 

@@ -230,7 +230,7 @@ static void test_findings_with_text_only(void **state)
     assert_int_equal(run_tool("--findings --format text"), 0);
     assert_says("The paper's findings, checked here:");
     assert_int_equal(run_tool("--help"), 0);
-    assert_says("[--findings] DB\n");
+    assert_says("[--findings] [-o FILE] DB\n");
 }
 
 /* An experiment whose one run has not finished: no success rate yet. */

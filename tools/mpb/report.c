@@ -10,13 +10,16 @@
  * file gathers and prints the text tables; report_formats.c writes the
  * same numbers as Markdown, CSV, LaTeX and JSON (docs/reports.md).
  */
+#include <errno.h>
 #include <getopt.h>
+#include <libgen.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "report.h"
+#include "view.h"
 
 #define CMD "report"
 
@@ -82,7 +85,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
         "usage: mpb report [--experiment ID] [--stage NAME] [--format FORMAT]\n"
-        "                  [--findings] DB\n"
+        "                  [--findings] [-o FILE] DB\n"
         "\n"
         "Print the results of an experiment in the database DB as the tables\n"
         "of Cohen, Sucan and Chitta, \"A Generic Infrastructure for\n"
@@ -115,7 +118,12 @@ static void usage(FILE *out)
         "                       the table)\n"
         "  -f, --format FORMAT  text (the default), markdown, csv (one row per\n"
         "                       scene, planner and metric), latex (a table per\n"
-        "                       scene) or json; docs/reports.md describes each\n"
+        "                       scene), json, or html: one self-contained page\n"
+        "                       with the tables, the findings, the plots of\n"
+        "                       mpb plot as SVG (when gnuplot is there) and\n"
+        "                       the runs that are no success, each linked to\n"
+        "                       its mpb view page (see -o); docs/reports.md\n"
+        "                       describes each format\n"
         "  -F, --findings       after the tables, what they say: per scene the\n"
         "                       fastest planner (of those with the best success\n"
         "                       rate), the shortest and the steadiest paths,\n"
@@ -124,6 +132,10 @@ static void usage(FILE *out)
         "                       paper's findings hold (ARA* paths, RRTConnect's\n"
         "                       speed, the narrow passage); with the text\n"
         "                       format only (another --format is refused)\n"
+        "  -o, --output FILE    write the report to FILE (replaced if it\n"
+        "                       exists) instead of stdout; with html, also\n"
+        "                       each linked run's 3-D view into views/ beside\n"
+        "                       FILE (views/run-ID.html), as mpb view draws it\n"
         "  -h, --help           print this help\n"
         "\n"
         "The database is opened read-only; a running mpbenchd may go on\n"
@@ -581,18 +593,21 @@ int cmd_report(int argc, char **argv)
         {"stage", required_argument, NULL, 's'},
         {"format", required_argument, NULL, 'f'},
         {"findings", no_argument, NULL, 'F'},
+        {"output", required_argument, NULL, 'o'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     report r = {0};
-    const char *experiment = NULL, *path;
+    const char *experiment = NULL, *path, *output = NULL;
+    char *three = NULL, *views = NULL, *tmp = NULL;
+    FILE *out = stdout;
     int64_t experiment_id = 0;
     int opt, rc, status = MPB_EXIT_ERROR, fmt = FORMAT_TEXT, findings = 0;
     mpb_store *s = NULL;
 
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":e:s:f:Fh", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":e:s:f:Fo:h", longopts, NULL)) != -1) {
         switch (opt) {
         case 'e':
             experiment = optarg;
@@ -615,6 +630,9 @@ int cmd_report(int argc, char **argv)
             break;
         case 'F':
             findings = 1;
+            break;
+        case 'o':
+            output = optarg;
             break;
         case 'h':
             usage(stdout);
@@ -668,12 +686,57 @@ int cmd_report(int argc, char **argv)
         goto done;
     }
 
-    if ((rc = formats[fmt].write(&r, stdout)) != MPB_OK ||
-        (findings && (rc = report_write_findings(&r, stdout)) != MPB_OK))
+    if (output) {
+        /* Into output.tmp, renamed when whole; an HTML page's failed runs'
+         * views into views/ beside it. */
+        size_t len = strlen(output) + 8;
+        char *copy = strdup(output);
+        if ((tmp = malloc(len)) == NULL || copy == NULL ||
+            (views = malloc(len + strlen("/views"))) == NULL) {
+            free(copy);
+            fprintf(stderr, "mpb " CMD ": out of memory\n");
+            goto done;
+        }
+        snprintf(views, len + strlen("/views"), "%s/views", dirname(copy));
+        free(copy);
+        snprintf(tmp, len, "%s.tmp", output);
+        if (strcmp(formats[fmt].name, "html") == 0) {
+            char where[4096];
+            if ((three = view_load_three(where, sizeof where)) == NULL) {
+                fprintf(stderr, "mpb " CMD ": cannot read three.js at %s for "
+                        "the failed runs' views: %s (run tools/web_env.sh, or "
+                        "set MPB_THREE_JS)\n", where, strerror(errno));
+                goto done;
+            }
+            r.views_dir = views;
+            r.three_js = three;
+        }
+        if ((out = fopen(tmp, "w")) == NULL) {
+            fprintf(stderr, "mpb " CMD ": cannot write %s: %s\n", output,
+                    strerror(errno));
+            out = stdout;
+            goto done;
+        }
+    }
+    if ((rc = formats[fmt].write(&r, out)) != MPB_OK ||
+        (findings && (rc = report_write_findings(&r, out)) != MPB_OK)) {
+        if (rc == REPORT_SAID)
+            goto done;
         goto fail;
-    if (fflush(stdout) != 0 || ferror(stdout)) {
-        fprintf(stderr, "mpb " CMD ": cannot write the report\n");
+    }
+    if (fflush(out) != 0 || ferror(out)) {
+        fprintf(stderr, "mpb " CMD ": cannot write %s: %s\n",
+                output ? output : "the report", strerror(errno));
         goto done;
+    }
+    if (output) {
+        int bad = fclose(out) != 0;
+        out = stdout;
+        if (bad || rename(tmp, output) != 0) {
+            fprintf(stderr, "mpb " CMD ": cannot write %s: %s\n", output,
+                    strerror(errno));
+            goto done;
+        }
     }
     status = MPB_EXIT_OK;
     goto done;
@@ -681,6 +744,13 @@ fail:
     fprintf(stderr, "mpb " CMD ": %s: %s\n", path,
             rc == MPB_ENOMEM ? "out of memory" : mpb_store_errmsg(s));
 done:
+    if (out != stdout)
+        fclose(out);
+    if (tmp && status != MPB_EXIT_OK)
+        remove(tmp);
+    free(tmp);
+    free(views);
+    free(three);
     mpb_store_close(s);
     report_free(&r);
     return status;

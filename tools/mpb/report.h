@@ -80,6 +80,11 @@ typedef struct report {
     column     *cells;          /* num_configs x num_queries */
     long        staged;         /* successful runs with stage metrics */
     const char *db_path;        /* the database: report_html.c reads runs */
+    const char *views_dir;      /* html written to a file: the folder its
+                                   failed runs' views go into (made if
+                                   missing), views/ beside it; NULL when
+                                   the page goes to stdout */
+    const char *three_js;       /* three.js's source, for those views */
     int         nomem;
 } report;
 
@@ -119,7 +124,11 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
 /* Whether some visible sigma cell of report_cells() is marked. */
 int report_any_single(char (*text)[CELL_TEXT], const int *visible, int nc);
 
-/* The writers. Each returns MPB_OK or MPB_ENOMEM; output errors are found
+/* A writer's failure already told on stderr, in one line. */
+#define REPORT_SAID (-1000)
+
+/* The writers. Each returns MPB_OK or MPB_ENOMEM (the HTML one also
+ * REPORT_SAID when a view cannot be written); output errors are found
  * by the caller with ferror(). */
 int report_write_text(const report *r, FILE *out);
 int report_write_markdown(const report *r, FILE *out);

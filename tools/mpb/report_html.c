@@ -4,11 +4,14 @@
  * the text report), what they say (--findings' text), the plots of `mpb
  * plot` inlined as SVG, and per scene the runs that are no success, each
  * linked to its `mpb view` page (views/run-ID.html beside the report).
+ * Written to a file (-o), the report writes those pages too, with the
+ * view code; written to stdout, it says how to make them.
  */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -27,7 +30,7 @@ static const char STYLE[] =
     "border-bottom:2px solid #1d2433}h3{font-size:15px}table{border-collapse:"
     "collapse;margin:8px 0}th,td{padding:3px 10px;border-bottom:1px solid "
     "#d5dae3;text-align:right}th:first-child,td:first-child{text-align:left}"
-    "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;"
+    "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;white-space:pre-wrap;"
     "overflow:auto}.note{color:#5b6579}.plots{display:grid;grid-template-columns:"
     "1fr 1fr;gap:8px}.plots svg{max-width:100%;height:auto;"
     "display:block;margin:8px 0}\n";
@@ -228,6 +231,10 @@ typedef struct failed {
     FILE         *out;
     char        **query_names;  /* by index into r->queries */
     int64_t      *ids;          /* the scene's runs listed */
+    int           linked;       /* the run at hand has a view */
+    const char   *no_view;      /* if not, why not, or NULL */
+    int           told;         /* how to make the views, said */
+    int           views_made;   /* r->views_dir exists */
 } failed;
 
 static const char *query_name(const failed *f, int64_t id)
@@ -251,8 +258,13 @@ static int on_failed_run(void *ud, const mpb_run_detail *d)
 {
     failed *f = ud;
     FILE *out = f->out;
-    fprintf(out, "<tr><td><a href=\"views/run-%lld.html\">%lld</a></td>"
-            "<td class=\"l\">", (long long)d->run_id, (long long)d->run_id);
+    if (f->linked)
+        fprintf(out, "<tr><td><a href=\"views/run-%lld.html\">%lld</a></td>"
+                "<td class=\"l\">", (long long)d->run_id,
+                (long long)d->run_id);
+    else
+        fprintf(out, "<tr><td>%lld</td><td class=\"l\">",
+                (long long)d->run_id);
     H(d->planner_config);
     fputs("</td><td class=\"l\">", out);
     H(query_name(f, d->query_id));
@@ -260,6 +272,11 @@ static int on_failed_run(void *ud, const mpb_run_detail *d)
     H(*d->verdict && strcmp(d->verdict, "valid") != 0 ? d->verdict : d->status);
     fputs("</td><td class=\"l\">", out);
     H(d->message);
+    if (f->no_view) {
+        fputs(" <span class=\"note\">(no view: ", out);
+        H(f->no_view);
+        fputs(")</span>", out);
+    }
     fputs("</td></tr>\n", out);
     return 0;
 }
@@ -278,6 +295,49 @@ static int on_result(void *ud, const mpb_result_row *row)
     return 0;
 }
 
+/* With r->views_dir: the view of run id into it, and whether there is one
+ * to link (a run without stages has none: why says so). MPB_OK, or
+ * REPORT_SAID after one line on stderr. */
+static int write_view(failed *f, int64_t id, char *why, size_t whylen)
+{
+    const report *r = f->r;
+    f->linked = 1;
+    f->no_view = NULL;
+    if (!r->views_dir)
+        return MPB_OK;
+    if (!f->views_made) {
+        if (mkdir(r->views_dir, 0777) != 0 && errno != EEXIST) {
+            fprintf(stderr, "mpb report: cannot make %s: %s\n", r->views_dir,
+                    strerror(errno));
+            return REPORT_SAID;
+        }
+        f->views_made = 1;
+    }
+    view_run v = {0};
+    int got = view_load(f->store, r->db_path, id, &v, why, whylen);
+    int rc = got < 0 ? REPORT_SAID : MPB_OK;
+    if (got == 0) {
+        size_t len = strlen(r->views_dir) + 48;
+        char *path = malloc(len);
+        if (!path)
+            rc = MPB_ENOMEM;
+        else {
+            snprintf(path, len, "%s/run-%lld.html", r->views_dir,
+                     (long long)id);
+            if (view_write_file(&v, r->three_js, path) != 0)
+                rc = REPORT_SAID;
+        }
+        free(path);
+    } else if (got == 1) {
+        /* "run N has no stages to draw (...)": the table names the run. */
+        const char *has = strstr(why, " has ");
+        f->linked = 0;
+        f->no_view = has ? has + 5 : why;
+    }
+    view_free(&v);
+    return rc;
+}
+
 static int write_failed(failed *f, int si)
 {
     const report *r = f->r;
@@ -291,11 +351,33 @@ static int write_failed(failed *f, int si)
           "<th class=\"l\">planner</th><th class=\"l\">query</th>"
           "<th>rep.</th><th class=\"l\">outcome</th><th class=\"l\">"
           "message</th></tr>\n", out);
-    for (int i = 0; i < f->listed && rc == MPB_OK; i++)
-        rc = mpb_store_run_get(f->store, f->ids[i], on_failed_run, f);
+    char why[512];
+    for (int i = 0; i < f->listed && rc == MPB_OK; i++) {
+        why[0] = '\0';
+        rc = write_view(f, f->ids[i], why, sizeof why);
+        if (rc == MPB_OK)
+            rc = mpb_store_run_get(f->store, f->ids[i], on_failed_run, f);
+    }
     fputs("</table>\n", out);
     if (f->more)
         fprintf(out, "<p class=\"note\">... and %d more.</p>\n", f->more);
+    if (r->views_dir) {
+        fputs("<p class=\"note\">A run's number opens its view "
+              "(views/run-ID.html beside this page): the run in 3-D, where "
+              "it failed and why.</p>\n", out);
+    } else if (!f->told) {
+        /* Written to stdout: the views are not there yet. */
+        fputs("<p class=\"note\" id=\"make-views\">The run links open "
+              "views/run-ID.html beside this page, which was written "
+              "without them. Write the page to a file and they are written "
+              "too: <code>mpb report --format html -o report.html ", out);
+        H(r->db_path);
+        fprintf(out, "</code>; or, beside this page, <code>mpb view --failed "
+                "--experiment %lld -o views ", (long long)r->experiment_id);
+        H(r->db_path);
+        fputs("</code>.</p>\n", out);
+        f->told = 1;
+    }
     return rc;
 }
 
@@ -366,15 +448,8 @@ int report_write_html(const report *r, FILE *out)
     }
     if (rc == MPB_OK)
         rc = write_findings(r, out);
-    if (rc == MPB_OK) {
-        fprintf(out, "<p class=\"note\">The run links open the pages that "
-                "<code>mpb view --failed --experiment %lld -o views ",
-                (long long)r->experiment_id);
-        H(r->db_path);
-        fputs("</code> writes into <code>views/</code> beside this file: "
-              "each run in 3-D, where it failed and why.</p>\n", out);
+    if (rc == MPB_OK)
         fputs("</main></body></html>\n", out);
-    }
 done:
     mpb_store_close(f.store);
     if (f.query_names)

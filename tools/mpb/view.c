@@ -99,7 +99,7 @@ static char *read_file(const char *path)
 }
 
 /* three.js, from the first place that has it (see usage()). */
-static char *load_three(char *where, size_t len)
+char *view_load_three(char *where, size_t len)
 {
     char exe[4096];
     const char *env = getenv("MPB_THREE_JS");
@@ -228,7 +228,7 @@ int cmd_view(int argc, char **argv)
     }
 
     char where[4096], path[4200];
-    char *three = load_three(where, sizeof where);
+    char *three = view_load_three(where, sizeof where);
     if (!three) {
         fprintf(stderr, "mpb " CMD ": cannot read three.js at %s: %s (run "
                 "tools/web_env.sh, or set MPB_THREE_JS)\n", where,

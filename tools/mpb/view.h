@@ -66,6 +66,11 @@ int view_load(mpb_store *s, const char *db, int64_t run_id, view_run *v,
               char *why, size_t whylen);
 void view_free(view_run *v);
 
+/* three.js's source, read from the first place that has it ($MPB_THREE_JS,
+ * mpbench's data folder, the source tree's .cache/web); NULL (errno set)
+ * if none has, with where naming the last place tried. */
+char *view_load_three(char *where, size_t len);
+
 /* Write the page of v to path, through path.tmp renamed; 0, or -1 after
  * one line on stderr. */
 int view_write_file(const view_run *v, const char *three, const char *path);
