@@ -86,12 +86,14 @@ check "... saying that the unfinished one with its name is left" \
 "$daemon" -d "$DB" -r 0.5 "$work/exp.yaml" >"$work/coarse.log" 2>&1
 check "a step coarser than 0.1 rad is refused" eq $? 2
 check "... naming the bound" grep -q "<= 0.1, not '0.5'" "$work/coarse.log"
-mpb_timeout 120 "$daemon" -d "$DB" "$work/exp.yaml" >>"$work/daemon.log" 2>&1
+mpb_timeout 120 "$daemon" -d "$DB" "$work/exp.yaml" >"$work/final.log" 2>&1
 check "restarted once more, it completes the experiment" eq $? 0
 check "it resumed rather than starting afresh" \
     eq "$(q 'SELECT count(*) FROM experiments')" 1
+# (Only the last start is sure to live long enough to say so: a kill
+# may come before a slow start, under a sanitizer, has said anything.)
 check "it said it was resuming" \
-    ge "$(grep -c 'resuming experiment' "$work/daemon.log")" 10
+    grep -q "resuming experiment 'restarts' (id 1)" "$work/final.log"
 
 runs="SELECT c.name, q.name, r.repetition, r.seed, r.status, r.success,
              r.verdict, m.value
