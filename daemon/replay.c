@@ -267,6 +267,7 @@ static void record_crashes(replay *r)
             .message = "no result in the log of a finished experiment",
             .time_total = NAN, .time_raw = NAN, .time_other = NAN,
             .wall_time = r->log_now - f->last_send,
+            .verify_time = NAN,
         };
         if (mpb_store_run_finish(d->store, &rec) == MPB_OK) {
             d->count.done++;

@@ -279,6 +279,7 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
         {"time raw", "REAL", K_TIME_RAW},
         {"time other", "REAL", K_TIME_OTHER},
         {"wall time", "REAL", K_WALL},
+        {"verify time", "REAL", K_VERIFY},
         {"solved", "BOOLEAN", K_SOLVED},
         {"claimed success", "BOOLEAN", K_CLAIMED},
         {"approximate solution", "BOOLEAN", K_APPROX},
@@ -431,14 +432,20 @@ int mpb__pa_walker_open(pa_walker **out, mpb_store *s, int64_t experiment_id,
     if (w == NULL)
         return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
     *w = (pa_walker){.s = s, .props = props, .progress = progress};
+#define RUNS_SQL(verify)                                                    \
+        "SELECT r.id, r.planner_config_id, r.query_id, r.status, r.success,"\
+        " r.claimed_success, r.time_total, r.time_raw, r.time_other,"      \
+        " r.wall_time, r.final_stage, " verify                              \
+        " FROM runs r JOIN queries q ON q.id = r.query_id"                 \
+        " WHERE r.experiment_id = ?1 AND r.state = 'done'"                 \
+        " AND (?2 = 0 OR r.query_id = ?2)"                                 \
+        " ORDER BY q.scene_id, r.query_id, r.planner_config_id, r.repetition"
+    /* Without runs.verify_time (a database made before it, opened
+     * read-only), NULL. */
     w->runs = mpb__store_prepare(s,
-        "SELECT r.id, r.planner_config_id, r.query_id, r.status, r.success,"
-        " r.claimed_success, r.time_total, r.time_raw, r.time_other,"
-        " r.wall_time, r.final_stage"
-        " FROM runs r JOIN queries q ON q.id = r.query_id"
-        " WHERE r.experiment_id = ?1 AND r.state = 'done'"
-        " AND (?2 = 0 OR r.query_id = ?2)"
-        " ORDER BY q.scene_id, r.query_id, r.planner_config_id, r.repetition");
+        mpb__store_has_column(s, "runs", "verify_time")
+            ? RUNS_SQL("r.verify_time") : RUNS_SQL("NULL"));
+#undef RUNS_SQL
     w->stages = mpb__store_prepare(s,
         "SELECT name, time, num_waypoints, valid FROM stages WHERE run_id = ?"
         " ORDER BY idx");
@@ -619,6 +626,7 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         case K_TIME_RAW:   v = col_num(r, 7); break;
         case K_TIME_OTHER: v = col_num(r, 8); break;
         case K_WALL:       v = col_num(r, 9); break;
+        case K_VERIFY:     v = col_num(r, 11); break;
         case K_SOLVED:     v = col_num(r, 4); break;
         case K_CLAIMED:    v = col_num(r, 5); break;
         case K_APPROX:

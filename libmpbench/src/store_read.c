@@ -270,6 +270,7 @@ static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
         .stage_valid = sqlite3_column_type(st, 13) == SQLITE_NULL
                            ? -1 : sqlite3_column_int(st, 13) != 0,
         .world_setup_time = col_double(st, 14),
+        .verify_time = col_double(st, 15),
     };
     for (int i = 0; i < w->num_names; i++)
         w->metrics[i] = NAN;
@@ -424,12 +425,16 @@ static int results_packed(mpb_store *s, int64_t experiment_id,
     " FROM runs r WHERE r.experiment_id = ?1 AND r.state = 'done'"         \
     scene_where " ORDER BY r.id"
 #define IN_SCENE " AND r.query_id IN (SELECT id FROM queries WHERE scene_id = ?2)"
-    /* Without runs.world_setup_time (a database made before it, opened
-     * read-only), from planner_values, one seek per run. */
-    static const char *const sql[2][2] = {
-        {PACKED_SQL("r.world_setup_time", ""),
-         PACKED_SQL("r.world_setup_time", IN_SCENE)},
-        {PACKED_SQL(WORLD_SETUP, ""), PACKED_SQL(WORLD_SETUP, IN_SCENE)},
+    /* Without runs.verify_time (a database made before it, opened
+     * read-only), NULL; without runs.world_setup_time either, that from
+     * planner_values, one seek per run. */
+    static const char *const sql[3][2] = {
+        {PACKED_SQL("r.world_setup_time, r.verify_time", ""),
+         PACKED_SQL("r.world_setup_time, r.verify_time", IN_SCENE)},
+        {PACKED_SQL("r.world_setup_time, NULL", ""),
+         PACKED_SQL("r.world_setup_time, NULL", IN_SCENE)},
+        {PACKED_SQL(WORLD_SETUP ", NULL", ""),
+         PACKED_SQL(WORLD_SETUP ", NULL", IN_SCENE)},
     };
 #undef IN_SCENE
 #undef PACKED_SQL
@@ -437,7 +442,7 @@ static int results_packed(mpb_store *s, int64_t experiment_id,
     sqlite3_stmt *st = NULL, *old = NULL;
     int rc, step = SQLITE_DONE, stop = 0;
 
-    for (int k = 0; k < 2 && st == NULL; k++)
+    for (int k = 0; k < 3 && st == NULL; k++)
         if (sqlite3_prepare_v2(s->db, sql[k][scene_id > 0], -1, &st,
                                NULL) != SQLITE_OK) {
             sqlite3_finalize(st);
@@ -509,11 +514,11 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
      * stage, name), one index seek per run. Measured on a million runs
      * with nine metric rows each (2-core VM): 2.6 s for all scenes, where
      * ordering the rows by query for the caller took 5.7 s. */
-#define RESULTS_SQL(scene_where)                                            \
+#define RESULTS_SQL(scene_where, verify)                                    \
     "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
     " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
     " coalesce(?3, r.final_stage), m.name, m.value, q.scene_id, st.valid," \
-    " " WORLD_SETUP                                                         \
+    " " WORLD_SETUP ", " verify                                             \
     " FROM runs r JOIN queries q ON q.id = r.query_id"                     \
     " LEFT JOIN metrics m ON m.run_id = r.id"                              \
     "  AND m.stage = coalesce(?3, r.final_stage)"                          \
@@ -521,8 +526,13 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
     "  AND st.name = coalesce(?3, r.final_stage)"                          \
     " WHERE r.experiment_id = ?1 AND r.state = 'done'" scene_where         \
     " ORDER BY r.id"
-    static const char one_scene[] = RESULTS_SQL(" AND q.scene_id = ?2");
-    static const char all_scenes[] = RESULTS_SQL("");
+    /* Without runs.verify_time (a database made before it, opened
+     * read-only), NULL. */
+    static const char *const sql[2][2] = {
+        {RESULTS_SQL("", "r.verify_time"),
+         RESULTS_SQL(" AND q.scene_id = ?2", "r.verify_time")},
+        {RESULTS_SQL("", "NULL"), RESULTS_SQL(" AND q.scene_id = ?2", "NULL")},
+    };
 #undef RESULTS_SQL
     result_walk w = {.names = names, .num_names = num_names};
     sqlite3_stmt *st = NULL;
@@ -544,8 +554,9 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
             goto done_packed;
         }
     }
-    if ((st = mpb__store_prepare(s, scene_id > 0 ? one_scene
-                                                 : all_scenes)) == NULL) {
+    if ((st = mpb__store_prepare(
+             s, sql[!mpb__store_has_column(s, "runs", "verify_time")]
+                   [scene_id > 0])) == NULL) {
         rc = MPB_EDB;
         goto done;
     }

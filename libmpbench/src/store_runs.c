@@ -316,6 +316,8 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
     sqlite3_bind_double(st, 12, r->time_other);
     sqlite3_bind_double(st, 13, r->wall_time);
     sqlite3_bind_double(st, 16, mpb__store_now());
+    /* NaN (no verification, as of a crash) binds as NULL. */
+    sqlite3_bind_double(st, 18, r->verify_time);
     /* The planner's world setup time, also kept on the run's row, where
      * a report reads it without a lookup per run. */
     for (int i = 0; i < r->num_values; i++)

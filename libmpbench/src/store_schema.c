@@ -92,6 +92,7 @@ const char mpb__schema_v1[] =
     "  final_stage       TEXT,\n"
     "  final_metrics     BLOB,\n"
     "  world_setup_time  REAL,\n"
+    "  verify_time       REAL,\n"
     "  UNIQUE(experiment_id, planner_config_id, query_id, repetition));\n"
     /* By experiment, in run order: what reports and a resume read. Not by
      * state: each change of state would move an entry between three

@@ -20,7 +20,8 @@ check "mpbenchd completes the experiment and exits 0" eq "$status" 0
 [ "$status" -eq 0 ] || cat "$work/daemon.log"
 
 # The daemon's own count of each run's latency, request to commit: every
-# run, and never less than the run's wall_time (request to result in).
+# run, and never less than the run's wall_time (request to result
+# verified and measured).
 lat=$(sed -n 's/.*request sent to result committed: median \([0-9]*\) us.*(\([0-9]*\) runs)$/\1 \2/p' "$work/daemon.log")
 check "the daemon reports the latency of its 14 runs" eq "${lat#* }" 14
 check "... whose median is at least the runs' median wall time" \

@@ -130,6 +130,7 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r, int index)
         .wall_time = r->wall, .num_stages = r->num_stages, .stages = st,
         .num_values = index == 0 ? 4 : 0, .values = values,
         .num_progress = index == 0 ? 5 : 0, .progress = progress,
+        .verify_time = index == 0 ? 0.125 : NAN,
     };
     assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
 }
@@ -530,7 +531,7 @@ static void runs_carry_attributes_from_the_fourth_column(void **state)
     assert_string_equal(columns(db, "runs", 1),
         "id:INTEGER experimentid:INTEGER plannerid:INTEGER "
         "time:REAL time_raw:REAL time_other:REAL wall_time:REAL "
-        "solved:BOOLEAN claimed_success:BOOLEAN approximate_solution:BOOLEAN "
+        "verify_time:REAL solved:BOOLEAN claimed_success:BOOLEAN approximate_solution:BOOLEAN "
         "status:ENUM "
         "solution_time:REAL solution_length:REAL solution_smoothness:REAL "
         "solution_clearance:REAL solution_segments:INTEGER "
@@ -642,7 +643,7 @@ static void stage_values_by_hand(void **state)
     sqlite3 *db = open_out(f);
     /* Run 0: raw (0.5 s, l 10, 11 waypoints), shortcut (l 6, 5),
      * smoothed (l 5, 50 waypoints, clearance 0.05); times 1.5 = 1.25 +
-     * 0.25; wall 1.0; the planner's numbers. */
+     * 0.25; wall 1.0; verified in 0.125 s; the planner's numbers. */
     assert_string_equal(rows(db,
         "SELECT time, time_raw, time_other, wall_time, solution_time,"
         " solution_length, solution_smoothness, solution_clearance,"
@@ -651,10 +652,10 @@ static void stage_values_by_hand(void **state)
         " simplified_solution_time, simplified_solution_length,"
         " simplified_solution_smoothness, simplified_solution_clearance,"
         " simplified_solution_segments, simplified_correct_solution,"
-        " graph_states, planner_solved, planner_time, cost_best"
+        " graph_states, planner_solved, planner_time, cost_best, verify_time"
         " FROM runs WHERE id = 1"),
         "1.5|1.25|0.25|1.0|0.5|10.0|0.4|0.02|10|1|0.1|6.0|4|"
-        "0.2|5.0|0.1|0.05|49|1|24.0|1.0|9.0|5.0\n");
+        "0.2|5.0|0.1|0.05|49|1|24.0|1.0|9.0|5.0|0.125\n");
     /* Run 1: one stage, invalid, no clearance: first and final alike. */
     assert_string_equal(rows(db,
         "SELECT solution_length, simplified_solution_length,"
@@ -931,7 +932,7 @@ static void ompl_logs_one_per_query(void **state)
         "algorithm = RRTConnect\n"
         "planner = ompl\n"
         "range = 0.5\n"
-        "30 properties for each run\n"
+        "31 properties for each run\n"
         "time REAL\n"
         "time raw REAL\n"));
     assert_non_null(strstr(log, "\nsimplified correct solution BOOLEAN\n"
@@ -940,10 +941,10 @@ static void ompl_logs_one_per_query(void **state)
                                 "planner solved REAL\n"
                                 "planner time REAL\n"
                                 "2 runs\n"));
-    /* Run 1 (approximate, one stage): "v; " each, empty for NULL, REALs
-     * exact. */
+    /* Run 1 (approximate, one stage, no verify time): "v; " each, empty
+     * for NULL, REALs exact. */
     assert_non_null(strstr(log,
-        "\n2; 1.75; 0.25; 2; 0; 0; 1; 5; 1.8999999999999999; 3; "
+        "\n2; 1.75; 0.25; 2; ; 0; 0; 1; 5; 1.8999999999999999; 3; "
         "0.20000000000000001; ; 3; 0; ; ; ; ; ; ; 1.8999999999999999; 3; "
         "0.20000000000000001; ; 3; 0; ; ; ; ; \n"));
     /* Run 0's progress, then none for run 1; B's block has an empty line. */

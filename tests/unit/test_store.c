@@ -2,6 +2,7 @@
  * run, and refusing what it must refuse. */
 #include <setjmp.h>
 #include <stdarg.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -276,6 +277,86 @@ static void an_older_results_view_is_replaced(void **state)
                              " 'path_length')"), 3);
 }
 
+static int keep_verify_time(void *ud, const mpb_result_row *row)
+{
+    double *out = ud;
+    out[row->repetition] = row->verify_time;
+    return 0;
+}
+
+/* Finish repetition rep of the fixture's run with the given verify_time. */
+static void finish_with_verify_time(fixture *f, int rep, double verify_time)
+{
+    mpb_run_row rows[3] = {{0}};
+    char uid[33];
+    snprintf(uid, sizeof uid, "%032d", rep + 1);
+    mpb_run_record r = {
+        .run_uid = uid, .planner_id = "p", .status = "failed", .message = "",
+        .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
+        .wall_time = 0.2, .verify_time = verify_time,
+    };
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, rep, 1),
+                     MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows),
+                     MPB_OK);
+    assert_int_equal(rows[0].attempts, 1);
+    r.run_id = rows[1].id;
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, uid, "p"), MPB_OK);
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_OK);
+}
+
+/* runs.verify_time is stored and read back; a database made before it
+ * reads (NaN for its runs) and gets the column when opened for writing,
+ * NULL for the runs it had. */
+static void verify_time_is_stored_and_added_to_an_older_database(void **state)
+{
+    fixture *f = *state;
+    sqlite3 *db;
+    double got[2] = {-1.0, -1.0};
+
+    finish_with_verify_time(f, 0, 0.25);
+    assert_int_equal(peek(f, "SELECT verify_time * 100 FROM runs"), 25);
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, NULL, NULL, 0,
+                                       keep_verify_time, got), MPB_OK);
+    assert_true(got[0] == 0.25);
+    /* Another stage's walk (the join) reads it too. */
+    got[0] = -1.0;
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, "raw", NULL, 0,
+                                       keep_verify_time, got), MPB_OK);
+    assert_true(got[0] == 0.25);
+
+    /* Make it an older database: no runs.verify_time. */
+    mpb_store_close(f->s);
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "ALTER TABLE runs DROP COLUMN verify_time",
+                                  NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+
+    /* Read as it is (a report): no such time. */
+    assert_int_equal(mpb_store_open(f->path, 1, &f->s), MPB_OK);
+    got[0] = -1.0;
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, NULL, NULL, 0,
+                                       keep_verify_time, got), MPB_OK);
+    assert_true(isnan(got[0]));
+    got[0] = -1.0;
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, "raw", NULL, 0,
+                                       keep_verify_time, got), MPB_OK);
+    assert_true(isnan(got[0]));
+    mpb_store_close(f->s);
+
+    /* A writer adds it: NULL for the old run, stored for a new one. */
+    assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM runs WHERE verify_time IS NULL"),
+                     1);
+    finish_with_verify_time(f, 1, 0.5);
+    assert_int_equal(peek(f, "SELECT verify_time * 100 FROM runs"
+                             " WHERE repetition = 1"), 50);
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, NULL, NULL, 0,
+                                       keep_verify_time, got), MPB_OK);
+    assert_true(isnan(got[0]));
+    assert_true(got[1] == 0.5);
+}
+
 /*
  * Another database moved over ours while we write: the check says so, and
  * what we wrote after the move does not end up in the other file (our -wal
@@ -347,6 +428,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(resuming_finds_the_unfinished_experiment, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_state_index_is_dropped, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_results_view_is_replaced, setup, teardown),
+        cmocka_unit_test_setup_teardown(verify_time_is_stored_and_added_to_an_older_database,
+                                        setup, teardown),
         cmocka_unit_test_setup_teardown(a_file_moved_over_ours_is_left_alone, setup, teardown),
         cmocka_unit_test(refuses_what_is_not_its_database),
         cmocka_unit_test_setup_teardown(refuses_a_newer_schema, setup, teardown),

@@ -28,6 +28,7 @@ const metric_info report_metrics[M_COUNT] = {
     [M_TR] = {"time_raw", "s"},
     [M_TO] = {"time_other", "s"},
     [M_WS] = {"world_setup_time", "s"},
+    [M_VT] = {"verify_time", "s"},
     [M_DN] = {"clearance", "m"},
     [M_LP] = {"path_length", "rad"},
     [M_LE] = {"ee_path_length", "m"},
@@ -44,6 +45,7 @@ const table_row report_rows[] = {
     {"tau_o (Mean, s)",       "$\\tau_o$ (Mean, s)",            M_TO,    SHOW_MEAN,  0, -1},
     {"tau_o (sigma, s)",      "$\\tau_o$ ($\\sigma$, s)",       M_TO,    SHOW_SIGMA, 0, -1},
     {"world setup (Mean, s)", "world setup (Mean, s)",         M_WS,    SHOW_MEAN,  1, -1},
+    {"verify (Mean, s)",      "verify (Mean, s)",              M_VT,    SHOW_MEAN,  1, -1},
     {"d_n (Mean, m)",         "$d_n$ (Mean, m)",                M_DN,    SHOW_MEAN,  1, -1},
     {"d_n (sigma, m)",        "$d_n$ ($\\sigma$, m)",           M_DN,    SHOW_SIGMA, 1, -1},
     {"l_p (Mean, rad)",       "$l_p$ (Mean, rad)",              M_LP,    SHOW_MEAN,  0, -1},
@@ -95,6 +97,9 @@ static void usage(FILE *out)
         "  world setup          the planner's loading of the robot and scene,\n"
         "                       outside tau_t, over the runs that loaded one\n"
         "                       (s), when reported\n"
+        "  verify               the daemon's verification and metrics of a\n"
+        "                       run's stages, outside every planner time,\n"
+        "                       over the finished runs (s), when recorded\n"
         "  d_n                  clearance (m), when measured\n"
         "  l_p                  joint-space path length (rad)\n"
         "  l_e                  end-effector path length (m), when measured\n"
@@ -275,6 +280,8 @@ static int on_result(void *ud, const mpb_result_row *row)
     c->finished++;
     /* A world is built before the run, whatever becomes of it. */
     add_sample(&c->m[M_WS], row->world_setup_time);
+    /* So is the daemon's verification of whatever came back. */
+    add_sample(&c->m[M_VT], row->verify_time);
     if (!row->success)
         return 0;
     c->succeeded++;

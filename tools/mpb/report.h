@@ -12,7 +12,7 @@
 #include "mpb.h"
 
 /* What is averaged: the run's times, then the stage metrics it reads. */
-enum { M_TT, M_TR, M_TO, M_WS, M_DN, M_LP, M_LE, M_KAPPA, M_KAPPA_R, M_WP,
+enum { M_TT, M_TR, M_TO, M_WS, M_VT, M_DN, M_LP, M_LE, M_KAPPA, M_KAPPA_R, M_WP,
        M_COUNT };
 #define FIRST_STORED M_DN
 
@@ -45,7 +45,8 @@ typedef struct column {
     long        stage_invalid;  /* successful runs whose --stage failed
                                    verification: its metrics left out */
     mpb_grouped m[M_COUNT];     /* successful runs; M_WS: every finished
-                                   run that built a world */
+                                   run that built a world; M_VT: every
+                                   finished run the daemon verified */
 } column;
 
 typedef struct config_ref {

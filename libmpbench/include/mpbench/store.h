@@ -215,13 +215,17 @@ typedef struct mpb_run_record {
     int         claimed_success;  /* planner said solved */
     int         success;          /* solved in time and verified valid */
     double      time_total, time_raw, time_other; /* tau_t, tau_r, tau_o, s */
-    double      wall_time;        /* request sent to result stored, s */
+    double      wall_time;        /* request sent (or started) to result
+                                     verified and measured, s */
     int         num_stages;
     const mpb_stage_record *stages;
     int         num_values;
     const mpb_named *values;      /* the planner's own numbers */
     int         num_progress;
     const mpb_progress_record *progress;
+    double      verify_time;      /* s the daemon spent verifying and
+                                     measuring the run's stages; NaN (stored
+                                     NULL) where it did none */
 } mpb_run_record;
 
 /*
@@ -337,6 +341,7 @@ typedef struct mpb_result_row {
                                   the run has no such stage */
     int         num_named;     /* 0 if that stage has no metrics */
     const mpb_named *named;    /* every metric of that stage, by name */
+    double      verify_time;   /* runs.verify_time (s), NaN if none */
 } mpb_result_row;
 
 /*
