@@ -31,6 +31,7 @@ const ROWS = {
   'tau_o (Mean, s)': ['time_other', 'mean'],
   'tau_o (sigma, s)': ['time_other', 'sigma'],
   'world setup (Mean, s)': ['world_setup_time', 'mean'],
+  'verify (Mean, s)': ['verify_time', 'mean'],
   'd_n (Mean, m)': ['clearance', 'mean'],
   'd_n (sigma, m)': ['clearance', 'sigma'],
   'l_p (Mean, rad)': ['path_length', 'mean'],
