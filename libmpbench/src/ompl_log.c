@@ -892,3 +892,14 @@ int mpb_ompl_planner_property(const mpb_ompl_planner *p, const char *name)
             return i;
     return -1;
 }
+
+const char *mpb_ompl_status_name(double v)
+{
+    static const char *const name[] = {
+        "failed", "invalid_request", "invalid_request", "invalid_request",
+        "timeout", "approximate", "solved", "crash", "failed", "failed",
+    };
+    if (!(v >= 0 && v <= 9) || v != (double)(int)v)
+        return NULL;
+    return name[(int)v];
+}

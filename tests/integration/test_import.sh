@@ -231,4 +231,51 @@ err=$("$mpb" import -p "$work/direct.db" "$work/wall.log" "$work/wall.log" 2>&1)
 check "an existing Planner Arena database is said once" \
     eq "$(printf '%s\n' "$err" | grep -c exists)" 1
 
+# OMPL's statuses past the ones mpbench has: 0 (unknown), 8 (abort) and
+# 9 (infeasible) are mpbench's "failed", and the log's own number is kept
+# (a planner value) and exported again as it was.
+cat >"$work/st.log" <<'EOT'
+OMPL version 1.5.2
+Experiment st
+0 experiment properties
+Running on h
+Starting at 2026-01-01 00:00:00
+<<<|
+|>>>
+<<<|
+|>>>
+1 is the random seed
+1 seconds per run
+1024 MB per run
+4 runs per planner
+1 seconds spent to collect the data
+1 enum type
+status|Unknown status|Invalid start|Invalid goal|Unrecognized goal type|Timeout|Approximate solution|Exact solution|Crash|Abort|Infeasible
+1 planners
+geometric_RRT
+0 common properties
+7 properties for each run
+simplified correct solution strict BOOLEAN
+simplified solution segments INTEGER
+solution difference REAL
+solution segments INTEGER
+solved BOOLEAN
+status ENUM
+time REAL
+4 runs
+; ; ; ; 0; 0; 0.5; 
+; ; ; ; 0; 8; 0.5; 
+; ; ; ; 0; 9; 0.5; 
+1; 3; 0.25; 7; 1; 6; 0.5; 
+.
+EOT
+"$mpb" import -d "$work/st.db" "$work/st.log" >/dev/null
+check "statuses 0, 8, 9 are failed, 6 solved" \
+    test "$(sqlite3 "$work/st.db" "SELECT group_concat(status, ',') FROM
+              (SELECT status FROM runs ORDER BY repetition)")" = "failed,failed,failed,solved"
+"$mpb" export --planner-arena "$work/st.db" "$work/st-pa.db" >/dev/null
+check "... and are exported as the log's own numbers" \
+    test "$(sqlite3 "$work/st-pa.db" "SELECT group_concat(status, ',') FROM
+              (SELECT status FROM runs ORDER BY id)")" = "0,8,9,6"
+
 mpb_finish
