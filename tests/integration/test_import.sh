@@ -278,4 +278,11 @@ check "... and are exported as the log's own numbers" \
     test "$(sqlite3 "$work/st-pa.db" "SELECT group_concat(status, ',') FROM
               (SELECT status FROM runs ORDER BY id)")" = "0,8,9,6"
 
+# The path properties mpbench has no stage metric for are kept as the
+# planner's values, as every other property.
+check "unmapped solution ... and simplified ... properties are kept" \
+    test "$(sqlite3 "$work/st.db" "SELECT group_concat(name || '=' || value, ',') FROM
+              (SELECT name, value FROM planner_values WHERE name <> 'status' ORDER BY name)")" \
+    = "simplified correct solution strict=1.0,solution difference=0.25"
+
 mpb_finish

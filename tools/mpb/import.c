@@ -90,12 +90,15 @@ static int is_mapped(const char *name)
 {
     static const char *const mapped[] = {
         "time", "solved", "approximate solution", "correct solution",
-        "simplification time", NULL};
+        "solution length", "solution smoothness", "solution clearance",
+        "solution segments", "simplification time",
+        "simplified solution length", "simplified solution smoothness",
+        "simplified solution clearance", "simplified solution segments",
+        "simplified correct solution", NULL};
     for (int i = 0; mapped[i]; i++)
         if (strcmp(name, mapped[i]) == 0)
             return 1;
-    return strncmp(name, "solution ", 9) == 0 ||
-           strncmp(name, "simplified ", 11) == 0;
+    return 0;
 }
 
 static double cell(const mpb_ompl_planner *p, long run, int col)
