@@ -637,7 +637,10 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         case K_STAGE_TIME: v = si ? si->time : NAN; break;
         case K_STAGE_METRIC: v = metric_of(w, si, p->source); break;
         case K_STAGE_SEGMENTS:
-            v = si && si->num_waypoints > 0 ? si->num_waypoints - 1 : NAN;
+            /* An imported run's stages have no waypoints, only the log's
+             * count as the metric "waypoints" (mpb import). */
+            v = si && si->num_waypoints > 0 ? si->num_waypoints - 1
+                                             : metric_of(w, si, "waypoints") - 1;
             break;
         case K_STAGE_VALID: v = si ? si->valid : NAN; break;
         case K_VALUE:

@@ -285,4 +285,10 @@ check "unmapped solution ... and simplified ... properties are kept" \
               (SELECT name, value FROM planner_values WHERE name <> 'status' ORDER BY name)")" \
     = "simplified correct solution strict=1.0,solution difference=0.25"
 
+# Exported again, an imported run's segments are the log's.
+check "solution segments and simplified solution segments are exported" \
+    test "$(sqlite3 "$work/st-pa.db" "SELECT group_concat(coalesce(solution_segments, '-')
+              || '/' || coalesce(simplified_solution_segments, '-'), ',') FROM
+              (SELECT * FROM runs ORDER BY id)")" = "-/-,-/-,-/-,7/3"
+
 mpb_finish
