@@ -291,4 +291,20 @@ check "solution segments and simplified solution segments are exported" \
               || '/' || coalesce(simplified_solution_segments, '-'), ',') FROM
               (SELECT * FROM runs ORDER BY id)")" = "-/-,-/-,-/-,7/3"
 
+# -p writes what OMPL's script would: the version line "OMPL version "
+# (no number) as "OMPL version", and the settings as "line\n;" each.
+"$mpb" import -p "$work/wall-pa.db" "$work/wall.log" >/dev/null
+check "-p: a version without a number is the script's 'OMPL version'" \
+    test "$(sqlite3 "$work/wall-pa.db" "SELECT version FROM experiments")" = "OMPL version"
+want=$(awk '/ common properties$/ {n = $1; s = ""
+                for (k = 0; k < n; k++) {getline; s = s $0 "|;"}
+                print s; exit}' "$work/wall.log")
+check "-p: plannerConfigs.settings in the script's form" \
+    test "$(sqlite3 "$work/wall-pa.db" "SELECT replace(settings, char(10), '|')
+              FROM plannerConfigs ORDER BY id LIMIT 1")" = "$want"
+"$mpb" import -p "$work/st-pa2.db" "$work/st.log" >/dev/null
+check "-p: no common properties, empty settings; a version kept" \
+    test "$(sqlite3 "$work/st-pa2.db" "SELECT quote(settings), version
+              FROM plannerConfigs, experiments")" = "''|OMPL 1.5.2"
+
 mpb_finish
