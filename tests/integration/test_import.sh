@@ -307,4 +307,18 @@ check "-p: no common properties, empty settings; a version kept" \
     test "$(sqlite3 "$work/st-pa2.db" "SELECT quote(settings), version
               FROM plannerConfigs, experiments")" = "''|OMPL 1.5.2"
 
+# The setup block as the script keeps it: every line as it is, its
+# blanks too (OMPL writes "  - signature: 2 1 2 " with a trailing one).
+python3 -c '
+import sqlite3, sys
+lines = open(sys.argv[1]).read().split("\n")
+i = lines.index("<<<|") + 1
+want = ""
+while not lines[i].startswith("|>>>"):
+    want += lines[i] + "\n"; i += 1
+got = sqlite3.connect(sys.argv[2]).execute("SELECT setup FROM experiments").fetchone()[0]
+sys.exit(0 if got == want and want.count(" \n") > 0 else 1)
+' "$work/wall.log" "$work/wall-pa.db"
+check "-p: the setup block is the log's, blanks and all" test $? -eq 0
+
 mpb_finish
