@@ -149,7 +149,8 @@ static int number_line(reader *r, const char *words, double *out)
     return 0;
 }
 
-/* "<<<|" text "|>>>", kept with its line ends. */
+/* "<<<|" text "|>>>", each line as it is in the log (blanks and all,
+ * only "\r\n" read as "\n"), as OMPL's script keeps it. */
 static int block(reader *r, char **out)
 {
     char *s = need_line(r, "'<<<|'");
@@ -163,17 +164,22 @@ static int block(reader *r, char **out)
         return fail(r, "out of memory");
     text[0] = '\0';
     for (;;) {
+        const char *raw = r->p;
         s = need_line(r, "'|>>>'");
         if (s == NULL) {
             free(text);
             return -1;
         }
+        size_t n = (size_t)(r->p - raw);
+        if (n > 0 && raw[n - 1] == '\n')
+            n--;
+        if (n > 0 && raw[n - 1] == '\r')
+            n--;
         /* The end is a line that starts with it, as OMPL's own script
          * reads it: an indented one is text (mpb export --ompl-log writes
          * one so, from a setup that holds a log's). */
         if (s == r->buf && strcmp(s, "|>>>") == 0)
             break;
-        size_t n = strlen(s);
         if (len + n + 2 > cap) {
             cap = 2 * (len + n + 2);
             char *t = realloc(text, cap);
@@ -183,7 +189,7 @@ static int block(reader *r, char **out)
             }
             text = t;
         }
-        memcpy(text + len, s, n);
+        memcpy(text + len, raw, n);
         len += n;
         text[len++] = '\n';
         text[len] = '\0';
@@ -891,4 +897,15 @@ int mpb_ompl_planner_property(const mpb_ompl_planner *p, const char *name)
         if (strcmp(p->properties[i].name, name) == 0)
             return i;
     return -1;
+}
+
+const char *mpb_ompl_status_name(double v)
+{
+    static const char *const name[] = {
+        "failed", "invalid_request", "invalid_request", "invalid_request",
+        "timeout", "approximate", "solved", "crash", "failed", "failed",
+    };
+    if (!(v >= 0 && v <= 9) || v != (double)(int)v)
+        return NULL;
+    return name[(int)v];
 }

@@ -62,8 +62,13 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
         tprog.v[tprog.n++] = (prop){.name = p->progress_properties[k].name,
                                     .type = p->progress_properties[k].type};
     prog = (prop_list){.v = tprog.v + 1, .n = tprog.n - 1};
+    /* The settings as OMPL's script writes them, each line with its end
+     * and then ';' ("a = 1\n;b = 2\n;"), so that a log it added and one
+     * added here are one configuration. */
     if (sqlite3_prepare_v2(o->db, "INSERT INTO plannerConfigs (name, settings)"
-                           " VALUES (?, ?)", -1, &st, NULL) != SQLITE_OK) {
+                           " VALUES (?1, CASE ?2 WHEN '' THEN '' ELSE"
+                           " replace(?2, ';', char(10) || ';') || char(10)"
+                           " || ';' END)", -1, &st, NULL) != SQLITE_OK) {
         rc = mpb__pa_fail(o, "prepare plannerConfigs");
         goto done;
     }
@@ -222,7 +227,12 @@ static int write_log(pa_out *o, const mpb_ompl_log *log)
     if (sqlite3_prepare_v2(o->db, "INSERT INTO experiments (name, totaltime,"
                            " timelimit, memorylimit, runcount, version,"
                            " hostname, cpuinfo, date, seed, setup) VALUES"
-                           " (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", -1, &st,
+                           " (?1, ?2, ?3, ?4, ?5,"
+                           /* "OMPL version " (no number) is "OMPL version"
+                            * to OMPL's script, which takes the line's last
+                            * word for the number. */
+                           " CASE instr(?6, ' ') WHEN 0 THEN ?6 || ' version'"
+                           " ELSE ?6 END, ?7, ?8, ?9, ?10, ?11)", -1, &st,
                            NULL) != SQLITE_OK)
         return mpb__pa_fail(o, "prepare experiments");
     sqlite3_bind_text(st, 1, log->experiment, -1, SQLITE_STATIC);

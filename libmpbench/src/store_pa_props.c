@@ -632,11 +632,23 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         case K_APPROX:
             v = status ? strcmp(status, "approximate") == 0 : NAN;
             break;
-        case K_STATUS:     v = status_value(status); break;
+        case K_STATUS:
+            v = status_value(status);
+            /* An imported run keeps the log's own number as its value
+             * "status": OMPL's 0, 8 and 9 are all mpbench's "failed". */
+            for (int i = 0; status && i < w->num_v; i++)
+                if (strcmp(w->v[i].name, "status") == 0 &&
+                    mpb_ompl_status_name(w->v[i].value) != NULL &&
+                    strcmp(mpb_ompl_status_name(w->v[i].value), status) == 0)
+                    v = w->v[i].value;
+            break;
         case K_STAGE_TIME: v = si ? si->time : NAN; break;
         case K_STAGE_METRIC: v = metric_of(w, si, p->source); break;
         case K_STAGE_SEGMENTS:
-            v = si && si->num_waypoints > 0 ? si->num_waypoints - 1 : NAN;
+            /* An imported run's stages have no waypoints, only the log's
+             * count as the metric "waypoints" (mpb import). */
+            v = si && si->num_waypoints > 0 ? si->num_waypoints - 1
+                                             : metric_of(w, si, "waypoints") - 1;
             break;
         case K_STAGE_VALID: v = si ? si->valid : NAN; break;
         case K_VALUE:

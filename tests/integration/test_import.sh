@@ -231,4 +231,94 @@ err=$("$mpb" import -p "$work/direct.db" "$work/wall.log" "$work/wall.log" 2>&1)
 check "an existing Planner Arena database is said once" \
     eq "$(printf '%s\n' "$err" | grep -c exists)" 1
 
+# OMPL's statuses past the ones mpbench has: 0 (unknown), 8 (abort) and
+# 9 (infeasible) are mpbench's "failed", and the log's own number is kept
+# (a planner value) and exported again as it was.
+cat >"$work/st.log" <<'EOT'
+OMPL version 1.5.2
+Experiment st
+0 experiment properties
+Running on h
+Starting at 2026-01-01 00:00:00
+<<<|
+|>>>
+<<<|
+|>>>
+1 is the random seed
+1 seconds per run
+1024 MB per run
+4 runs per planner
+1 seconds spent to collect the data
+1 enum type
+status|Unknown status|Invalid start|Invalid goal|Unrecognized goal type|Timeout|Approximate solution|Exact solution|Crash|Abort|Infeasible
+1 planners
+geometric_RRT
+0 common properties
+7 properties for each run
+simplified correct solution strict BOOLEAN
+simplified solution segments INTEGER
+solution difference REAL
+solution segments INTEGER
+solved BOOLEAN
+status ENUM
+time REAL
+4 runs
+; ; ; ; 0; 0; 0.5; 
+; ; ; ; 0; 8; 0.5; 
+; ; ; ; 0; 9; 0.5; 
+1; 3; 0.25; 7; 1; 6; 0.5; 
+.
+EOT
+"$mpb" import -d "$work/st.db" "$work/st.log" >/dev/null
+check "statuses 0, 8, 9 are failed, 6 solved" \
+    test "$(sqlite3 "$work/st.db" "SELECT group_concat(status, ',') FROM
+              (SELECT status FROM runs ORDER BY repetition)")" = "failed,failed,failed,solved"
+"$mpb" export --planner-arena "$work/st.db" "$work/st-pa.db" >/dev/null
+check "... and are exported as the log's own numbers" \
+    test "$(sqlite3 "$work/st-pa.db" "SELECT group_concat(status, ',') FROM
+              (SELECT status FROM runs ORDER BY id)")" = "0,8,9,6"
+
+# The path properties mpbench has no stage metric for are kept as the
+# planner's values, as every other property.
+check "unmapped solution ... and simplified ... properties are kept" \
+    test "$(sqlite3 "$work/st.db" "SELECT group_concat(name || '=' || value, ',') FROM
+              (SELECT name, value FROM planner_values WHERE name <> 'status' ORDER BY name)")" \
+    = "simplified correct solution strict=1.0,solution difference=0.25"
+
+# Exported again, an imported run's segments are the log's.
+check "solution segments and simplified solution segments are exported" \
+    test "$(sqlite3 "$work/st-pa.db" "SELECT group_concat(coalesce(solution_segments, '-')
+              || '/' || coalesce(simplified_solution_segments, '-'), ',') FROM
+              (SELECT * FROM runs ORDER BY id)")" = "-/-,-/-,-/-,7/3"
+
+# -p writes what OMPL's script would: the version line "OMPL version "
+# (no number) as "OMPL version", and the settings as "line\n;" each.
+"$mpb" import -p "$work/wall-pa.db" "$work/wall.log" >/dev/null
+check "-p: a version without a number is the script's 'OMPL version'" \
+    test "$(sqlite3 "$work/wall-pa.db" "SELECT version FROM experiments")" = "OMPL version"
+want=$(awk '/ common properties$/ {n = $1; s = ""
+                for (k = 0; k < n; k++) {getline; s = s $0 "|;"}
+                print s; exit}' "$work/wall.log")
+check "-p: plannerConfigs.settings in the script's form" \
+    test "$(sqlite3 "$work/wall-pa.db" "SELECT replace(settings, char(10), '|')
+              FROM plannerConfigs ORDER BY id LIMIT 1")" = "$want"
+"$mpb" import -p "$work/st-pa2.db" "$work/st.log" >/dev/null
+check "-p: no common properties, empty settings; a version kept" \
+    test "$(sqlite3 "$work/st-pa2.db" "SELECT quote(settings), version
+              FROM plannerConfigs, experiments")" = "''|OMPL 1.5.2"
+
+# The setup block as the script keeps it: every line as it is, its
+# blanks too (OMPL writes "  - signature: 2 1 2 " with a trailing one).
+python3 -c '
+import sqlite3, sys
+lines = open(sys.argv[1]).read().split("\n")
+i = lines.index("<<<|") + 1
+want = ""
+while not lines[i].startswith("|>>>"):
+    want += lines[i] + "\n"; i += 1
+got = sqlite3.connect(sys.argv[2]).execute("SELECT setup FROM experiments").fetchone()[0]
+sys.exit(0 if got == want and want.count(" \n") > 0 else 1)
+' "$work/wall.log" "$work/wall-pa.db"
+check "-p: the setup block is the log's, blanks and all" test $? -eq 0
+
 mpb_finish

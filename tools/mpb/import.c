@@ -89,13 +89,16 @@ static columns find_columns(const mpb_ompl_planner *p)
 static int is_mapped(const char *name)
 {
     static const char *const mapped[] = {
-        "time", "solved", "approximate solution", "correct solution", "status",
-        "simplification time", NULL};
+        "time", "solved", "approximate solution", "correct solution",
+        "solution length", "solution smoothness", "solution clearance",
+        "solution segments", "simplification time",
+        "simplified solution length", "simplified solution smoothness",
+        "simplified solution clearance", "simplified solution segments",
+        "simplified correct solution", NULL};
     for (int i = 0; mapped[i]; i++)
         if (strcmp(name, mapped[i]) == 0)
             return 1;
-    return strncmp(name, "solution ", 9) == 0 ||
-           strncmp(name, "simplified ", 11) == 0;
+    return 0;
 }
 
 static double cell(const mpb_ompl_planner *p, long run, int col)
@@ -103,19 +106,12 @@ static double cell(const mpb_ompl_planner *p, long run, int col)
     return col < 0 ? NAN : p->values[(size_t)run * (size_t)p->num_properties + (size_t)col];
 }
 
-/* OMPL's status enum (Benchmark.cpp's order) as mpbench's status names. */
+/* OMPL's status enum as mpbench's status names; the log's own number is
+ * kept as the planner value "status". */
 static const char *status_of(double v, int solved)
 {
-    /* Only the enum's own values are names; anything else (NaN, huge) is not. */
-    switch (v >= 0 && v <= 7 ? (int)v : -1) {
-    case 1: case 2: case 3: return "invalid_request";
-    case 4: return "timeout";
-    case 5: return "approximate";
-    case 6: return "solved";
-    case 7: return "crash";
-    case 0: return "failed";
-    }
-    return solved ? "solved" : "timeout";
+    const char *name = mpb_ompl_status_name(v);
+    return name ? name : solved ? "solved" : "timeout";
 }
 
 /* Append a metric if the log has it. */
