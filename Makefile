@@ -3,7 +3,9 @@
 #   make deps   install the Debian packages mpbench needs, the PyPI lcm
 #               package into .venv for the Python planner, and three.js and
 #               playwright-core from npm into .cache/web with Debian's
-#               chromium for the HTML views (idempotent)
+#               chromium for the HTML views, and the robots and
+#               MotionBenchMaker problems of PyPI's vamp-planner 0.6.4
+#               into .cache/robots (tools/robot_data.sh) (idempotent)
 #   make        build everything into build/
 #   make test   deps, build, run every test (unit and integration)
 #   make demo   deps, build, run the demo benchmark, print its report
@@ -31,6 +33,7 @@ deps:
 	@sh tools/deps.sh
 	@sh tools/python_env.sh
 	@sh tools/web_env.sh
+	@sh tools/robot_data.sh >/dev/null
 
 test: deps
 	$(MAKE) all
