@@ -204,7 +204,7 @@ fail:
  * SQLite's automatic checkpoint runs inside the commit that takes the WAL
  * past 1000 pages: that commit copies the WAL into the database and syncs
  * both, and a run's latency goes from a few hundred microseconds to several
- * milliseconds once every hundred runs (docs/performance-history.md,
+ * milliseconds once every hundred runs (bench/results/history.md,
  * change 1). Instead, a
  * writable handle turns the automatic checkpoint off, and a thread of its
  * own, on a connection of its own, checkpoints:

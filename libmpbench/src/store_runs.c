@@ -231,7 +231,7 @@ static int write_stage(mpb_store *s, int64_t run_id, int idx,
 
     /* Up to MPB__METRIC_ROWS_MAX rows per statement: one statement's
      * overhead (reset, bind, step, its journal) instead of one per metric
-     * (callgrind, docs/performance-history.md). Rows in order, so that a repeated
+     * (callgrind, bench/results/history.md). Rows in order, so that a repeated
      * name ends with its last value, as one INSERT OR REPLACE each did. */
     for (int i = 0; i < sg->num_metrics;) {
         int k = sg->num_metrics - i;

@@ -67,11 +67,11 @@ const char mpb__schema_v1[] =
     "  seed              INTEGER NOT NULL,\n"
     "  state             TEXT NOT NULL DEFAULT 'pending'\n"
     /* Not "state IN (...)": SQLite builds a temporary index of the list
-     * for every row it checks, twice per run (docs/performance-history.md, change 4). */
+     * for every row it checks, twice per run (bench/results/history.md, change 4). */
     "                    CHECK(state = 'pending' OR state = 'sent'\n"
     "                          OR state = 'done'),\n"
     /* Not UNIQUE: runs are found by id, and an index of a random key costs
-     * a page of its own in every commit (docs/performance-history.md,
+     * a page of its own in every commit (bench/results/history.md,
      * change 10). */
     "  run_uid           TEXT,\n"
     "  attempts          INTEGER NOT NULL DEFAULT 0,\n"

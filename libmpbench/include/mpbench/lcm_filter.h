@@ -17,7 +17,7 @@
  * group, its sender included, and each one wakes the process's LCM
  * receive thread, which reads it, looks up the channel and drops it. In a
  * benchmark of quick planners most messages are for someone else, and
- * those wake-ups cost more CPU than the work (docs/performance-history.md,
+ * those wake-ups cost more CPU than the work (bench/results/history.md,
  * change 15). A filter given channel names passes a short message ("LC02")
  * only if its channel is one of them, exactly. The fragments of a long
  * message ("LC03") all pass if they are valid: only the first names its
