@@ -161,6 +161,16 @@ typedef struct input_check {
     int         differs;
 } input_check;
 
+/* Whether two robot texts differ in their URDF, the text up to its first
+ * </robot>: 0 when only what follows it (the SRDF, world.h) differs. */
+static int urdf_part_differs(const char *a, const char *b)
+{
+    const char *ea = strstr(a, "</robot>"), *eb = strstr(b, "</robot>");
+    if (ea == NULL || eb == NULL)
+        return 1;
+    return ea - a != eb - b || memcmp(a, b, (size_t)(ea - a)) != 0;
+}
+
 /* The experiment file names its robot and scene files; their text is not
  * part of its hash, so an edit to one of them since the experiment began is
  * found here, scene by scene, against what the database keeps. */
@@ -173,9 +183,12 @@ static int compare_scene(void *ud, const mpb_scene_row *row)
         if (strcmp(sc->name, row->name) != 0)
             continue;
         const char *what = NULL, *file = NULL;
-        if (strcmp(sc->robot_hash, row->robot_hash) != 0)
+        if (strcmp(sc->robot_hash, row->robot_hash) != 0) {
             what = "robot", file = e->robot_file;
-        else if (strcmp(sc->scene_hash, row->scene_hash) != 0)
+            if (e->srdf_file != NULL && row->robot != NULL &&
+                !urdf_part_differs(sc->robot, row->robot))
+                what = "robot SRDF", file = e->srdf_file;
+        } else if (strcmp(sc->scene_hash, row->scene_hash) != 0)
             what = "scene", file = sc->scene_file;
         if (what == NULL)
             return 0;

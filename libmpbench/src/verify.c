@@ -84,7 +84,7 @@ static double joint_dist(const mpb_world *w, int j, double a, double b)
 /* ": " and the bodies in contact at q, where the world names them. */
 static void contact(mpb_world *w, const double *q, char *what, size_t len)
 {
-    char names[120];
+    char names[400];      /* two link names of up to ~190 characters */
     if (mpb_world_contact(w, q, names, sizeof names) > 0 && names[0])
         snprintf(what, len, ": %s", names);
     else
@@ -181,7 +181,7 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
         for (int j = 0; j < nj; j++)
             if (!isfinite(wp[(size_t)i * nj + j]))
                 return verdict(out, MPB_VERDICT_NOT_FINITE, i, "waypoint %d "
-                               "joint '%.40s' is %g", i, w->joint_names[j],
+                               "joint '%.200s' is %g", i, w->joint_names[j],
                                wp[(size_t)i * nj + j]);
 
     const double *last = wp + (size_t)(num_waypoints - 1) * (size_t)nj;
@@ -192,7 +192,7 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
         if (!(e <= start_tolerance)) {
             int p = digits_apart(e, start_tolerance);
             return verdict(out, MPB_VERDICT_START, 0, "waypoint 0 joint "
-                           "'%.40s' is %.*g from the start (tolerance %.*g)",
+                           "'%.200s' is %.*g from the start (tolerance %.*g)",
                            w->joint_names[j], p, e, p, start_tolerance);
         }
     }
@@ -204,7 +204,7 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
             if (!(e <= goal->joint_tolerance)) {
                 int p = digits_apart(e, goal->joint_tolerance);
                 return verdict(out, MPB_VERDICT_GOAL, num_waypoints - 1,
-                               "waypoint %d (the last) joint '%.40s' is %.*g "
+                               "waypoint %d (the last) joint '%.200s' is %.*g "
                                "from the goal (tolerance %.*g)",
                                num_waypoints - 1, w->joint_names[j], p, e, p,
                                goal->joint_tolerance);
@@ -227,7 +227,7 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
             if (!w->wraps[j] && (v < w->lo[j] || v > w->hi[j])) {
                 int p = digits_apart(v, v < w->lo[j] ? w->lo[j] : w->hi[j]);
                 return verdict(out, MPB_VERDICT_JOINT_LIMIT, i, "waypoint %d "
-                               "joint '%.40s' = %.*g is outside [%.*g, %.*g]",
+                               "joint '%.200s' = %.*g is outside [%.*g, %.*g]",
                                i, w->joint_names[j], p, v, p, w->lo[j], p,
                                w->hi[j]);
             }

@@ -107,4 +107,22 @@ out=$("$mpb" srdf -s "$work/unknown.srdf" "$urdf" 2>&1)
 check "mpb srdf says the same of it" test "$out" = \
     "mpb srdf: $work/unknown.srdf: line $line: disable_collisions names link 'r_forarm_link', which is not a link of the robot"
 
+# An unfinished experiment whose SRDF changed since: not resumed, and the
+# message names the SRDF, not the URDF (their texts travel as one).
+RDB=$work/resume.db
+cp "$work/one.srdf" "$work/kept.srdf"
+experiment "$work/resume.yaml" resume "$side_a" "$side_b" kept.srdf
+sed -i 's/planner: null,/planner: nobody,/' "$work/resume.yaml"
+"$daemon" -d "$RDB" "$work/resume.yaml" >"$work/resume.log" 2>&1 &
+pid=$!
+mpb_wait_count "$RDB" 1 20 'SELECT count(*) FROM runs'
+check "an experiment with no planner begins" eq $? 0
+kill -TERM $pid 2>/dev/null
+wait $pid 2>/dev/null
+echo "<!-- reviewed -->" >>"$work/kept.srdf"
+out=$(mpb_timeout 30 "$daemon" -d "$RDB" "$work/resume.yaml" 2>&1)
+check "resuming it with its SRDF edited is refused" test $? -ne 0
+check "... naming the SRDF" test "$out" = \
+    "mpbenchd: $RDB: experiment 'resume' (id 1) began with another robot SRDF for scene 'empty' ($work/kept.srdf has changed since): restore it to resume, or start a new experiment with --new"
+
 mpb_finish

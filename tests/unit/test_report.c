@@ -625,40 +625,41 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
     assert_int_equal(o.status, 0);
     const char *header =
         "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
-        "unfinished\n";
+        "unfinished,sigma_single\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
     /* 2 scenes x 2 configurations x (11 metrics + the success rate), and
      * the header: always the same rows, empty where nothing was measured. */
     assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 12);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "time_total,s,3.2,1.20710678118655,5,1\n"));
+                                   "time_total,s,3.2,1.20710678118655,5,1,0\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "path_length,rad,4.4,1,5,1\n"));
+                                   "path_length,rad,4.4,1,5,1,0\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "waypoints,,30,"));
     /* 5 of 6 finished runs; B: 1 of 2. */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "success_rate,,0.833333333333333,,6,1\n"));
+                                   "success_rate,,0.833333333333333,,6,1,\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
-                                   "success_rate,,0.5,,2,1\n"));
+                                   "success_rate,,0.5,,2,1,\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
-                                   "time_total,s,0.5,,1,1\n"));
+                                   "time_total,s,0.5,,1,1,\n"));
     /* Not measured, never run: empty values, n = 0. */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "clearance,m,,,0,1\n"));
+                                   "clearance,m,,,0,1,\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ompl/RRTConnect,"
-                                   "clearance,m,0.05,,1,0\n"));
+                                   "clearance,m,0.05,,1,0,\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
-                                   "time_total,s,,,0,0\n"));
+                                   "time_total,s,,,0,0,\n"));
     assert_non_null(strstr(o.text, "\n1,paper,TABLETOP,ara/ARAstar,"
-                                   "success_rate,,,,0,0\n"));
+                                   "success_rate,,,,0,0,\n"));
     /* --stage changes the path metrics only. */
     run(&o, "stdout", "report -f csv -e 1 --stage raw '%s'", f->db);
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "path_length,rad,25,5,4,1\n"));
+                                   "path_length,rad,25,5,4,1,1\n"));
+    /* ... where K2 keeps one valid raw stage: its 0 spread is marked. */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
-                                   "time_total,s,3.2,1.20710678118655,5,1\n"));
+                                   "time_total,s,3.2,1.20710678118655,5,1,0\n"));
 
     /* A CSV reader gets the names back whole. */
     python_on_report(f, &o,
@@ -730,7 +731,8 @@ static void json_holds_every_number_by_name(void **state)
         "              else round(float(p['success_rate']), 6))\n"
         "        for k, m in p['metrics'].items():\n"
         "            f = lambda x: None if x is None else round(float(x), 6)\n"
-        "            print('   ', k, f(m['mean']), f(m['sigma']), m['n'])\n",
+        "            print('   ', k, f(m['mean']), f(m['sigma']), m['n'],\n"
+        "                  m['sigma_single'])\n",
         "report --format json --experiment 1 '%s'", f->db);
     assert_int_equal(o.status, 0);
     /* The values of the text tables above, unrounded; never-run and
@@ -739,54 +741,65 @@ static void json_holds_every_number_by_name(void **state)
         "1 1 paper 3 60.0 None rad^2\n"
         "KITCHEN 8 1\n"
         "  ompl/RRTConnect ompl RRTConnect  6 5 0.833333\n"
-        "    time_total 3.2 1.207107 5\n"
-        "    time_raw 2.88 1.086396 5\n"
-        "    time_other 0.32 0.120711 5\n"
-        "    world_setup_time None None 0\n"
-        "    verify_time None None 0\n"
-        "    clearance None None 0\n"
-        "    path_length 4.4 1.0 5\n"
-        "    ee_path_length None None 0\n"
-        "    smoothness 0.36 0.120711 5\n"
-        "    smoothness_resampled None None 0\n"
-        "    waypoints 30.0 8.535534 5\n"
+        "    time_total 3.2 1.207107 5 0\n"
+        "    time_raw 2.88 1.086396 5 0\n"
+        "    time_other 0.32 0.120711 5 0\n"
+        "    world_setup_time None None 0 None\n"
+        "    verify_time None None 0 None\n"
+        "    clearance None None 0 None\n"
+        "    path_length 4.4 1.0 5 0\n"
+        "    ee_path_length None None 0 None\n"
+        "    smoothness 0.36 0.120711 5 0\n"
+        "    smoothness_resampled None None 0 None\n"
+        "    waypoints 30.0 8.535534 5 0\n"
         "  ara/ARAstar ara ARAstar eps=100 2 1 0.5\n"
-        "    time_total 0.5 None 1\n"
-        "    time_raw 0.3 None 1\n"
-        "    time_other 0.2 None 1\n"
-        "    world_setup_time None None 0\n"
-        "    verify_time None None 0\n"
-        "    clearance None None 0\n"
-        "    path_length 3.0 None 1\n"
-        "    ee_path_length None None 0\n"
-        "    smoothness 1.5 None 1\n"
-        "    smoothness_resampled None None 0\n"
-        "    waypoints 8.0 None 1\n"
+        "    time_total 0.5 None 1 None\n"
+        "    time_raw 0.3 None 1 None\n"
+        "    time_other 0.2 None 1 None\n"
+        "    world_setup_time None None 0 None\n"
+        "    verify_time None None 0 None\n"
+        "    clearance None None 0 None\n"
+        "    path_length 3.0 None 1 None\n"
+        "    ee_path_length None None 0 None\n"
+        "    smoothness 1.5 None 1 None\n"
+        "    smoothness_resampled None None 0 None\n"
+        "    waypoints 8.0 None 1 None\n"
         "TABLETOP 1 0\n"
         "  ompl/RRTConnect ompl RRTConnect  1 1 1.0\n"
-        "    time_total 7.0 None 1\n"
-        "    time_raw 6.0 None 1\n"
-        "    time_other 1.0 None 1\n"
-        "    world_setup_time None None 0\n"
-        "    verify_time None None 0\n"
-        "    clearance 0.05 None 1\n"
-        "    path_length 8.0 None 1\n"
-        "    ee_path_length None None 0\n"
-        "    smoothness 0.4 None 1\n"
-        "    smoothness_resampled None None 0\n"
-        "    waypoints 12.0 None 1\n"
+        "    time_total 7.0 None 1 None\n"
+        "    time_raw 6.0 None 1 None\n"
+        "    time_other 1.0 None 1 None\n"
+        "    world_setup_time None None 0 None\n"
+        "    verify_time None None 0 None\n"
+        "    clearance 0.05 None 1 None\n"
+        "    path_length 8.0 None 1 None\n"
+        "    ee_path_length None None 0 None\n"
+        "    smoothness 0.4 None 1 None\n"
+        "    smoothness_resampled None None 0 None\n"
+        "    waypoints 12.0 None 1 None\n"
         "  ara/ARAstar ara ARAstar eps=100 0 0 None\n"
-        "    time_total None None 0\n"
-        "    time_raw None None 0\n"
-        "    time_other None None 0\n"
-        "    world_setup_time None None 0\n"
-        "    verify_time None None 0\n"
-        "    clearance None None 0\n"
-        "    path_length None None 0\n"
-        "    ee_path_length None None 0\n"
-        "    smoothness None None 0\n"
-        "    smoothness_resampled None None 0\n"
-        "    waypoints None None 0\n");
+        "    time_total None None 0 None\n"
+        "    time_raw None None 0 None\n"
+        "    time_other None None 0 None\n"
+        "    world_setup_time None None 0 None\n"
+        "    verify_time None None 0 None\n"
+        "    clearance None None 0 None\n"
+        "    path_length None None 0 None\n"
+        "    ee_path_length None None 0 None\n"
+        "    smoothness None None 0 None\n"
+        "    smoothness_resampled None None 0 None\n"
+        "    waypoints None None 0 None\n");
+
+    /* In the raw stage K2 keeps one valid run: path_length's sigma counts
+     * that query as 0 spread, and says so. */
+    python_on_report(f, &o,
+        "import json, sys\n"
+        "d = json.load(open(sys.argv[1]))\n"
+        "m = d['scenes'][0]['planners'][0]['metrics']['path_length']\n"
+        "print(m['n'], m['sigma'], m['sigma_single'])\n",
+        "report -f json -e 1 --stage raw '%s'", f->db);
+    assert_int_equal(o.status, 0);
+    assert_string_equal(o.text, "4 5 1\n");
 
     /* A stage asked for is named; strings are escaped. */
     python_on_report(f, &o,

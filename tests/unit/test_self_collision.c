@@ -196,6 +196,64 @@ static void an_srdf_gives_its_pairs_and_the_adjacent_ones(void **state)
     free(text);
 }
 
+/* text with every "from" replaced by "to"; malloc'd. */
+static char *replace_all(const char *text, const char *from, const char *to)
+{
+    size_t n = 0, lf = strlen(from), lt = strlen(to);
+    for (const char *p = text; (p = strstr(p, from)) != NULL; p += lf)
+        n++;
+    char *out = malloc(strlen(text) + n * lt + 1), *o = out;
+    assert_non_null(out);
+    for (const char *p = text, *hit; ; p = hit + lf) {
+        hit = strstr(p, from);
+        size_t keep = hit ? (size_t)(hit - p) : strlen(p);
+        memcpy(o, p, keep);
+        o += keep;
+        if (!hit)
+            break;
+        memcpy(o, to, lt);
+        o += lt;
+    }
+    *o = '\0';
+    return out;
+}
+
+static void long_link_names_come_whole_in_the_verdict(void **state)
+{
+    (void)state;
+    /* Links named as generated URDFs may name them (xacro prefixes): over
+     * 120 characters each, both whole in the verdict of a collision (the
+     * straight line folds arm2 into the post). */
+    char a1[128], a3[128];
+    snprintf(a1, sizeof a1, "%0100d_second_segment_link", 2);
+    snprintf(a3, sizeof a3, "%0100d_upright_post_link", 0);
+    char *u = test_read_file(MPB_TEST_DATA "/folding_arm.urdf");
+    char *t1 = replace_all(u, "\"arm2\"", "\"ARM_ONE\"");
+    char *t2 = replace_all(t1, "\"post\"", "\"ARM_THREE\"");
+    char *t3 = replace_all(t2, "ARM_ONE", a1);
+    char *text = replace_all(t3, "ARM_THREE", a3);
+    mpb_world *w = open_text(text, folding, 3);
+    double start[3] = {0, 0, 0}, folded[3] = {0, 2.64, 1.9}, path[2 * 3];
+    memcpy(path, start, sizeof start);
+    memcpy(path + 3, folded, sizeof folded);
+    mpb_goal goal = {.kind = MPB_GOAL_JOINTS, .joints = folded,
+                     .joint_tolerance = 0.01};
+    mpb_verdict v;
+    assert_int_equal(mpb_verify_path(w, start, 0.01, &goal, path, 2, 3, 0.01,
+                                     &v), MPB_OK);
+    assert_int_equal(v.code, MPB_VERDICT_COLLISION);
+    char want[400];
+    snprintf(want, sizeof want, "self-collision between %s and %s", a1, a3);
+    if (strstr(v.detail, want) == NULL)
+        fail_msg("verdict '%s'", v.detail);
+    mpb_world_close(w);
+    free(text);
+    free(t3);
+    free(t2);
+    free(t1);
+    free(u);
+}
+
 static void a_pair_nearly_always_in_collision_is_allowed(void **state)
 {
     (void)state;
@@ -278,6 +336,7 @@ int main(void)
         cmocka_unit_test(the_generated_matrix_keeps_gripper_and_torso_checked),
         cmocka_unit_test(an_srdf_gives_its_pairs_and_the_adjacent_ones),
         cmocka_unit_test(a_pair_nearly_always_in_collision_is_allowed),
+        cmocka_unit_test(long_link_names_come_whole_in_the_verdict),
         cmocka_unit_test(a_bad_srdf_is_named_with_its_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

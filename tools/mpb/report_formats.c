@@ -177,8 +177,11 @@ int report_write_csv(const report *r, FILE *out)
 {
     /* unfinished: the scene's runs not finished yet, on each of its rows,
      * so that a partial experiment cannot pass for a whole one. */
+    /* sigma_single: of the queries sigma averages over, how many had one
+     * successful run and count as 0 spread (the text tables' '*'). Last,
+     * so that readers of the older columns by position still read them. */
     fputs("experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
-          "unfinished\n", out);
+          "unfinished,sigma_single\n", out);
     for (int si = 0; si < r->num_scenes; si++) {
         scene_table t = {0};
         if (scene_table_make(r, si, &t) != MPB_OK)
@@ -190,16 +193,20 @@ int report_write_csv(const report *r, FILE *out)
                               report_metrics[k].unit, out);
                 csv_number(mpb_grouped_mean(&col->m[k]), out);
                 fputc(',', out);
-                csv_number(report_sigma(&col->m[k]), out);
-                fprintf(out, ",%ld,%d\n", col->m[k].n,
+                double sigma = report_sigma(&col->m[k]);
+                csv_number(sigma, out);
+                fprintf(out, ",%ld,%d,", col->m[k].n,
                         r->scenes[si].unfinished);
+                if (!isnan(sigma))
+                    fprintf(out, "%d", report_sigma_single(&col->m[k]));
+                fputc('\n', out);
             }
             /* The success rate: a fraction of the n finished runs. */
             csv_row_start(r, si, c, "success_rate", "", out);
             csv_number(col->finished > 0 ? (double)col->succeeded /
                                                (double)col->finished
                                          : NAN, out);
-            fprintf(out, ",,%ld,%d\n", col->finished,
+            fprintf(out, ",,%ld,%d,\n", col->finished,
                     r->scenes[si].unfinished);
         }
         scene_table_free(&t);
@@ -398,8 +405,15 @@ int report_write_json(const report *r, FILE *out)
                 fprintf(out, "%s\n            \"%s\": {\"mean\": ",
                         k ? "," : "", report_metrics[k].key);
                 json_number(mpb_grouped_mean(&col->m[k]), out);
+                double sigma = report_sigma(&col->m[k]);
                 fputs(", \"sigma\": ", out);
-                json_number(report_sigma(&col->m[k]), out);
+                json_number(sigma, out);
+                /* As the CSV's sigma_single: null where sigma is. */
+                fputs(", \"sigma_single\": ", out);
+                if (isnan(sigma))
+                    fputs("null", out);
+                else
+                    fprintf(out, "%d", report_sigma_single(&col->m[k]));
                 fprintf(out, ", \"n\": %ld}", col->m[k].n);
             }
             fputs("\n          }\n        }", out);

@@ -35,6 +35,7 @@ typedef struct view_run {
     int            num_joints;
     char         **joint_names;
     double        *start;
+    double         tolerance;      /* per joint, at the start and a joint goal */
     int            goal_kind;      /* mpb_goal_kind */
     double        *goal_joints;    /* joint goals */
     char          *goal_link;      /* region goals */
@@ -64,6 +65,14 @@ char *view_strdup(const char *s);
  */
 int view_load(mpb_store *s, const char *db, int64_t run_id, view_run *v,
               char *why, size_t whylen);
+/*
+ * As view_load(), without what only a page needs: the run, its query, its
+ * stages with their waypoints, and the world it was verified in
+ * (v->world), for `mpb verify`; messages start "mpb CMD:". The same
+ * returns.
+ */
+int view_read(const char *cmd, mpb_store *s, const char *db, int64_t run_id,
+              view_run *v, char *why, size_t whylen);
 void view_free(view_run *v);
 
 /* three.js's source, read from the first place that has it ($MPB_THREE_JS,

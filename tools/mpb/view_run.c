@@ -123,6 +123,7 @@ static int on_query(void *ud, const mpb_query_row *q)
         v->joint_names[n++] = view_strdup(s);
     free(names);
     v->start = parse_numbers(q->start, v->num_joints);
+    v->tolerance = q->goal_tolerance;
     v->goal_kind = q->goal_kind;
     if (q->goal_kind == MPB_GOAL_JOINTS) {
         v->goal_joints = parse_numbers(q->goal_joints, v->num_joints);
@@ -291,14 +292,10 @@ static int make_frames(view_run *v, view_stage *s, mpb_pose *all)
     return rc;
 }
 
-/* The world, its bodies, and every pose the page needs. */
-static int prepare(view_run *v, scene_text *t, char *err, size_t errlen)
+/* The world's bodies, and every pose the page needs. */
+static int prepare(view_run *v, char *err, size_t errlen)
 {
-    int rc = mpb_world_open_group(v->robot_format, t->robot, t->scene_format,
-                                  t->scene, (const char *const *)v->joint_names,
-                                  v->num_joints, &v->world, err, errlen);
-    if (rc != MPB_OK)
-        return -1;
+    int rc;
     if (mpb_bodies_open(v->world, &v->bodies, err, errlen) != MPB_OK)
         return -1;
     int nb = mpb_bodies_count(v->bodies);
@@ -372,14 +369,14 @@ void view_free(view_run *v)
     memset(v, 0, sizeof *v);
 }
 
-int view_load(mpb_store *s, const char *db, int64_t run_id,
-                     view_run *v, char *why, size_t whylen)
+int view_read(const char *cmd, mpb_store *s, const char *db, int64_t run_id,
+              view_run *v, char *why, size_t whylen)
 {
     char err[512] = "";
     scene_text t = {v, NULL, NULL, NULL};
     int rc = mpb_store_run_get(s, run_id, on_run, v), status = -1;
     if (rc == MPB_ENOTFOUND) {
-        fprintf(stderr, "mpb " CMD ": %s: no run %lld\n", db,
+        fprintf(stderr, "mpb %s: %s: no run %lld\n", cmd, db,
                 (long long)run_id);
         return -1;
     }
@@ -393,13 +390,13 @@ int view_load(mpb_store *s, const char *db, int64_t run_id,
     if (rc == MPB_OK || rc == 1)
         rc = mpb_store_run_stages(s, run_id, on_stage, v);
     if (rc != MPB_OK) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld: %s\n", db,
+        fprintf(stderr, "mpb %s: %s: run %lld: %s\n", cmd, db,
                 (long long)run_id, mpb_store_errmsg(s));
         goto out;
     }
     if (!v->scene || !v->query) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld: its %s is not in the "
-                "database\n", db, (long long)run_id, v->scene ? "query"
+        fprintf(stderr, "mpb %s: %s: run %lld: its %s is not in the "
+                "database\n", cmd, db, (long long)run_id, v->scene ? "query"
                                                               : "scene");
         goto out;
     }
@@ -418,8 +415,11 @@ int view_load(mpb_store *s, const char *db, int64_t run_id,
         v->resolution = res;
         v->resolution_known = 1;
     }
-    if (prepare(v, &t, err, sizeof err) != 0) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld: scene '%s': %s\n", db,
+    if (mpb_world_open_group(v->robot_format, t.robot, t.scene_format,
+                             t.scene, (const char *const *)v->joint_names,
+                             v->num_joints, &v->world, err, sizeof err)
+            != MPB_OK) {
+        fprintf(stderr, "mpb %s: %s: run %lld: scene '%s': %s\n", cmd, db,
                 (long long)run_id, v->scene, err);
         goto out;
     }
@@ -429,6 +429,21 @@ out:
     free(t.scene);
     free(t.scene_format);
     return status;
+}
+
+int view_load(mpb_store *s, const char *db, int64_t run_id, view_run *v,
+              char *why, size_t whylen)
+{
+    int status = view_read(CMD, s, db, run_id, v, why, whylen);
+    if (status != 0)
+        return status;
+    char err[512] = "";
+    if (prepare(v, err, sizeof err) != 0) {
+        fprintf(stderr, "mpb " CMD ": %s: run %lld: scene '%s': %s\n", db,
+                (long long)run_id, v->scene, err);
+        return -1;
+    }
+    return 0;
 }
 
 /* ---- output ----------------------------------------------------------- */

@@ -54,7 +54,7 @@ typedef struct mpb_verdict {
                               segment i joining waypoints i and i+1;
                               NOT_FINITE, START, GOAL, JOINT_LIMIT: the
                               waypoint, 0-based; -1 otherwise */
-    char detail[160];      /* one line, e.g. "segment 3 collides at s=0.42
+    char detail[512];      /* one line, e.g. "segment 3 collides at s=0.42
                               (waypoints 3-4)"; names the joint where one is
                               at fault */
 } mpb_verdict;

@@ -1,0 +1,221 @@
+/*
+ * verify.c - `mpb verify`: an experiment's stored runs checked again by this
+ * mpbench's verifier and world model, every stage of every finished run,
+ * and each verdict that changes listed. The database is only read. It is
+ * what tells, after mpbench's world model changed (the whole-body
+ * self-collision, an SRDF's matrix), which stored successes still hold.
+ */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "view.h"
+
+#define CMD "verify"
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+        "usage: mpb verify [-e ID] [-r STEP] DB\n"
+        "\n"
+        "Check the finished runs of an experiment in the database DB again,\n"
+        "with this mpbench's verifier and world model: every stage of every\n"
+        "run, against its query's start and goal, the joint limits and\n"
+        "collisions (the scene and the robot's own body) every STEP rad.\n"
+        "Each stage whose verdict now differs from the stored one is listed,\n"
+        "one line each:\n"
+        "\n"
+        "  run 41 kitchen/counter_cup ompl/RRT stage simplified: stored valid,\n"
+        "  now collision: segment 3 ... self-collision between A and B\n"
+        "\n"
+        "then one line of totals: the runs that were successes and no longer\n"
+        "are, and how many of them go through the robot's own body. The\n"
+        "database is not changed. Use it after upgrading mpbench or editing a\n"
+        "robot's SRDF, to see what the stored results still say.\n"
+        "\n"
+        "Options:\n"
+        "  -e, --experiment ID  the experiment (default: the newest)\n"
+        "  -r, --resolution STEP  the collision step in rad (default: the\n"
+        "                       one the experiment was verified at, else 0.01)\n"
+        "  -h, --help           this text\n"
+        "\n"
+        "Meshes of a URDF robot are found as mpbenchd finds them\n"
+        "($MPB_MESH_PATH, $ROS_PACKAGE_PATH).\n"
+        "\n"
+        "Exit status: 0 when every verdict is the stored one, 1 when some\n"
+        "differ or on an error (a database that is not mpbench's, no such\n"
+        "experiment, a world that no longer opens), 2 on a bad command line.\n");
+}
+
+typedef struct totals {
+    long runs, stages, changed_stages, changed_runs;
+    long successes, lost, lost_self, gained;
+} totals;
+
+static int on_nothing(void *ud, const mpb_experiment_row *row)
+{
+    (void)ud;
+    (void)row;
+    return 0;
+}
+
+/* The run's goal as the verifier takes it; points into v. */
+static mpb_goal goal_of(const view_run *v)
+{
+    mpb_goal g = {.kind = v->goal_kind, .joints = v->goal_joints,
+                  .joint_tolerance = v->tolerance, .link = v->goal_link};
+    for (int i = 0; i < 3; i++) {
+        g.position[i] = v->goal_region[i];
+        g.position_tolerance[i] = v->goal_region[3 + i];
+        g.orientation_rpy[i] = v->goal_region[6 + i];
+        g.orientation_tolerance[i] = v->goal_region[9 + i];
+    }
+    return g;
+}
+
+/* One run: each stage verified again; 0, or -1 after one line. */
+static int verify_run(mpb_store *s, const char *db, int64_t run_id,
+                      double step, totals *t)
+{
+    view_run v = {0};
+    char why[512] = "";
+    int got = view_read(CMD, s, db, run_id, &v, why, sizeof why);
+    if (got != 0) {
+        view_free(&v);
+        return got < 0 ? -1 : 0;    /* no stages: nothing to check */
+    }
+    double res = step > 0 ? step : v.resolution;
+    mpb_goal goal = goal_of(&v);
+    int final_valid = -1, final_self = 0, changed = 0;
+    t->runs++;
+    for (int i = 0; i < v.num_stages; i++) {
+        const view_stage *st = &v.stages[i];
+        /* Waypoints not stored whole (the wrong size, none): nothing to
+         * check again, and the stored verdict stands. */
+        if (st->num_waypoints == 0)
+            continue;
+        mpb_verdict now;
+        int rc = mpb_verify_path(v.world, v.start, v.tolerance, &goal,
+                                 st->waypoints, st->num_waypoints,
+                                 v.num_joints, res, &now);
+        if (rc != MPB_OK && rc != MPB_EINVAL) {
+            fprintf(stderr, "mpb " CMD ": %s: run %lld stage %s: %s\n", db,
+                    (long long)run_id, st->name, mpb_strerror(rc));
+            view_free(&v);
+            return -1;
+        }
+        const char *name = mpb_verdict_name(now.code);
+        int valid = now.code == MPB_VERDICT_VALID;
+        t->stages++;
+        if (i == v.num_stages - 1) {
+            final_valid = valid;
+            final_self = strstr(now.detail, "self-collision") != NULL;
+        }
+        if (strcmp(name, st->verdict) == 0)
+            continue;
+        changed = 1;
+        t->changed_stages++;
+        printf("run %lld %s/%s %s stage %s: stored %s, now %s%s%s\n",
+               (long long)run_id, v.scene, v.query, v.run.planner_config,
+               st->name, st->verdict, name, now.detail[0] ? ": " : "",
+               now.detail);
+    }
+    t->changed_runs += changed;
+    if (v.run.success == 1) {
+        t->successes++;
+        if (final_valid == 0) {
+            t->lost++;
+            t->lost_self += final_self;
+        }
+    } else if (v.run.success == 0 && final_valid == 1 && changed) {
+        t->gained++;
+    }
+    view_free(&v);
+    return 0;
+}
+
+int cmd_verify(int argc, char **argv)
+{
+    static const struct option longopts[] = {
+        {"experiment", required_argument, NULL, 'e'},
+        {"resolution", required_argument, NULL, 'r'},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    int64_t experiment = 0;
+    double step = 0;
+    int opt;
+    optind = 1;
+    opterr = 0;
+    while ((opt = getopt_long(argc, argv, ":e:r:h", longopts, NULL)) != -1) {
+        switch (opt) {
+        case 'e':
+            if (tool_parse_id(optarg, &experiment) != 0) {
+                fprintf(stderr, "mpb " CMD ": --experiment wants an "
+                        "experiment id (a number), not '%s'\n", optarg);
+                return MPB_EXIT_USAGE;
+            }
+            break;
+        case 'r': {
+            char *end;
+            step = strtod(optarg, &end);
+            if (end == optarg || *end || !(step > 0) || step > 1) {
+                fprintf(stderr, "mpb " CMD ": --resolution wants a step in "
+                        "rad, more than 0 and at most 1, not '%s'\n", optarg);
+                return MPB_EXIT_USAGE;
+            }
+            break;
+        }
+        case 'h':
+            usage(stdout);
+            return MPB_EXIT_OK;
+        default:
+            return tool_option_error(CMD, opt, argv);
+        }
+    }
+    if (argc - optind < 1) {
+        fprintf(stderr, "mpb " CMD ": wants a database (try 'mpb " CMD
+                " --help')\n");
+        return MPB_EXIT_USAGE;
+    }
+    if (argc - optind > 1)
+        return tool_extra_argument(CMD, argv[optind + 1]);
+    const char *db = argv[optind];
+    mpb_store *s = tool_open_readonly(CMD, db);
+    if (!s)
+        return MPB_EXIT_ERROR;
+    int status = MPB_EXIT_ERROR;
+    selection sel = {0};
+    if (experiment == 0 && mpb_store_experiment_latest(s, &experiment) !=
+            MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": %s holds no experiment\n", db);
+        goto out;
+    }
+    if (mpb_store_experiment_get(s, experiment, on_nothing, NULL) ==
+            MPB_ENOTFOUND) {
+        fprintf(stderr, "mpb " CMD ": %s: no experiment %lld\n", db,
+                (long long)experiment);
+        goto out;
+    }
+    if (view_select_runs(s, db, experiment, &sel) != 0)
+        goto out;
+    totals t = {0};
+    for (int i = 0; i < sel.num_runs; i++)
+        if (verify_run(s, db, sel.runs[i], step, &t) != 0)
+            goto out;
+    printf("experiment %lld: %ld runs with stages, %ld stages verified "
+           "again; %ld "
+           "stages of %ld runs changed verdict; %ld of %ld successes no "
+           "longer hold (%ld through the robot's own body)",
+           (long long)experiment, t.runs, t.stages, t.changed_stages,
+           t.changed_runs, t.lost, t.successes, t.lost_self);
+    if (t.gained)
+        printf("; %ld failed runs now verify", t.gained);
+    printf("\n");
+    status = t.changed_stages ? MPB_EXIT_ERROR : MPB_EXIT_OK;
+out:
+    view_selection_free(&sel);
+    mpb_store_close(s);
+    return status;
+}
