@@ -672,6 +672,14 @@ extern "C" int solve(void *user, const mpb_plan_request_t *req, mpb_plan_result_
         res->status = MPB_PLAN_RESULT_T_FAILED;
         mpb_result_set_message(res, "%s", e.what());
         return MPB_OK;
+    } catch (const std::bad_alloc &) {
+        // Past the request's memory_limit (RLIMIT_DATA, set by the kit
+        // around solve()), or the machine's: MEMORY, with the peak the
+        // kit measures. What OMPL allocated is freed by now.
+        mpb_result_clear(res);
+        res->status = MPB_PLAN_RESULT_T_MEMORY;
+        mpb_result_set_message(res, "out of memory (std::bad_alloc)");
+        return MPB_OK;
     } catch (const std::exception &e) {
         what = e.what();
         mpb_result_clear(res);
