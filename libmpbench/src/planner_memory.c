@@ -25,6 +25,20 @@
 #endif
 #ifdef MPB__ASAN
 void __sanitizer_set_death_callback(void (*callback)(void));
+
+/*
+ * In a sanitized build, an allocation past the memory limit must fail
+ * as malloc does (NULL, std::bad_alloc), as the kit expects: ASan's
+ * default is a report of it, which itself needs memory the limit
+ * refuses, fails a CHECK and leaves the process hung mid-run. ASan reads
+ * this from a program linking the kit before ASAN_OPTIONS, which can
+ * still set it otherwise.
+ */
+const char *__asan_default_options(void);
+const char *__asan_default_options(void)
+{
+    return "allocator_may_return_null=1";
+}
 #endif
 
 /*
