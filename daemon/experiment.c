@@ -484,7 +484,8 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     static const char *const keys[] = {"name", "runs", "time_limit", "seed",
                                        "retries", "runs_per_host",
-                                       "queue_at_planner", NULL};
+                                       "queue_at_planner", "memory_limit",
+                                       NULL};
     yaml_node_t *m = need(L, root, "experiment", YAML_MAPPING_NODE,
                           "a mapping of name, runs, time_limit, seed");
     yaml_node_t *n;
@@ -514,6 +515,15 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
         parse_int_in(L, n, "queue_at_planner", 0, MPBD_QUEUE_AT_PLANNER_MAX,
                      &e->queue_at_planner))
         return -1;
+    /* MB over what the planner process held when the run began
+     * (docs/experiment-format.md); the planner enforces it. */
+    if ((n = get(L, m, "memory_limit")) != NULL) {
+        if (parse_double(L, n, "memory_limit", &e->memory_limit) != 0)
+            return -1;
+        if (!(e->memory_limit > 0 && e->memory_limit <= 1048576))
+            return fail_at(L, n, "memory_limit must be MB above 0 and at "
+                           "most 1048576 (1 TB), not '%s'", scalar(n));
+    }
     return 0;
 }
 

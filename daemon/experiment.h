@@ -66,6 +66,7 @@ typedef struct mpbd_experiment {
     int     retries;         /* extra attempts for a run whose planner crashed */
     int     runs_per_host;   /* runs at once on one host (timings skew otherwise) */
     int     queue_at_planner;/* requests waiting at each busy planner */
+    double  memory_limit;    /* MB a run's planning may add, 0: none */
 
     char   *robot_file;      /* where the robot was read from, or NULL */
     char   *srdf_file;       /* robot.srdf, resolved, or NULL */

@@ -268,6 +268,7 @@ static void record_crashes(replay *r)
             .time_total = NAN, .time_raw = NAN, .time_other = NAN,
             .wall_time = r->log_now - f->last_send,
             .verify_time = NAN,
+            .memory = NAN,
         };
         if (mpb_store_run_finish(d->store, &rec) == MPB_OK) {
             d->count.done++;

@@ -307,7 +307,8 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
      * crash, and a number outside the list means nothing. */
     int status = m->status;
     if (status < MPB_PLAN_RESULT_T_SOLVED ||
-        status > MPB_PLAN_RESULT_T_INVALID_REQUEST) {
+        status > MPB_PLAN_RESULT_T_MEMORY ||
+        status == MPB_PLAN_RESULT_T_CRASH) {
         note(&nt, "status %d (%s) is not a planner's to send: recorded as "
              "failed", (int)m->status,
              status == MPB_PLAN_RESULT_T_CRASH ? "crash, set by the daemon alone"
@@ -398,6 +399,8 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
          * taken on arrival, it left the verification out. */
         .wall_time = verified - f->sent_at,
         .verify_time = verified - verify_start,
+        /* The planner's peak (MB); not measured: NULL. */
+        .memory = m->memory > 0 && isfinite(m->memory) ? m->memory : NAN,
         .num_stages = m->num_stages,
         .stages = stages,
         .num_values = m->num_values,
@@ -501,6 +504,16 @@ void mpbd_results_subscribe(mpbd *d)
 
 int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
 {
+    /* Under a memory limit a planner that died of it says so in its
+     * last words (a MEMORY result, stored before this); one killed
+     * outright (SIGKILL, the OOM killer) cannot: say what may be. */
+    char limited[512];
+    if (d->exp->memory_limit > 0) {
+        snprintf(limited, sizeof limited, "%s (under memory_limit %g MB; a "
+                 "planner killed outright, as by the OOM killer, leaves no "
+                 "last words)", why, d->exp->memory_limit);
+        why = limited;
+    }
     if (f->run.attempts <= d->exp->retries) {
         int rc = mpb_store_run_retry(d->store, f->run.id, f->run.uid, why);
         if (rc == MPB_OK && mpbd_requeue(d, &f->run) == MPB_OK) {
@@ -524,6 +537,7 @@ int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
         .time_total = NAN, .time_raw = NAN, .time_other = NAN,
         .wall_time = mpb_monotonic_s() - f->sent_at,
         .verify_time = NAN,
+        .memory = NAN,
     };
     int rc = mpb_store_run_finish(d->store, &rec);
     if (rc == MPB_OK) {

@@ -10,6 +10,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/auth.h"
+#include "auth_internal.h"
 
 /* A sender instance believed, and the counters had from it: bit k of seen
  * is counter top - k. */
@@ -213,10 +214,8 @@ const char *mpb_auth_verdict_text(mpb_auth_verdict v)
     return "?";
 }
 
-/* Publish len encoded bytes in buf (which has room for a trailer), then
- * free it. */
-static int send_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                        const char *channel, unsigned char *buf, int len)
+int mpb__publish_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
+                         const char *channel, unsigned char *buf, int len)
 {
     size_t total = (size_t)len;
     if (a != NULL) {
@@ -225,9 +224,18 @@ static int send_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
                          buf + len);
         total += MPB_AUTH_TRAILER_SIZE;
     }
-    int rc = lcm_publish(lcm, channel, buf, (unsigned int)total);
+    return lcm_publish(lcm, channel, buf, (unsigned int)total) == 0
+               ? MPB_OK : MPB_ELCM;
+}
+
+/* Publish len encoded bytes in buf (which has room for a trailer), then
+ * free it. */
+static int send_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
+                        const char *channel, unsigned char *buf, int len)
+{
+    int rc = mpb__publish_encoded(lcm, a, echo, channel, buf, len);
     free(buf);
-    return rc == 0 ? MPB_OK : MPB_ELCM;
+    return rc;
 }
 
 #define MPB__PUBLISH(T, lcm, a, echo, channel, m)                            \

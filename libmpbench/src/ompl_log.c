@@ -904,8 +904,9 @@ const char *mpb_ompl_status_name(double v)
     static const char *const name[] = {
         "failed", "invalid_request", "invalid_request", "invalid_request",
         "timeout", "approximate", "solved", "crash", "failed", "failed",
+        "invalid_request", "memory",    /* mpbench's own (mpb export) */
     };
-    if (!(v >= 0 && v <= 9) || v != (double)(int)v)
+    if (!(v >= 0 && v <= 11) || v != (double)(int)v)
         return NULL;
     return name[(int)v];
 }

@@ -18,6 +18,7 @@
 #include "mpb_daemon_status_t.h"
 #include "mpb_planner_announce_t.h"
 #include "mpb_run_ack_t.h"
+#include "planner_memory.h"
 
 /* How many finished runs are remembered, to answer a repeated request. */
 #define MPB__RESULTS_KEPT 64
@@ -298,6 +299,43 @@ static void mpb__announce(mpb__server *s)
     mpb_publish_announce(s->lcm, s->auth, daemon, MPB_CHANNEL_ANNOUNCE, &a);
 }
 
+/*
+ * The announcement a process dying under its memory limit sends as its
+ * last words (planner_memory.h): closing (capacity 0), still working on
+ * run_id. Encoded now, with room for a trailer, since the dying cannot
+ * allocate; caller frees. NULL when out of memory.
+ */
+static unsigned char *mpb__closing_announce(mpb__server *s,
+                                            const char *run_id, int *len)
+{
+    const mpb_planner_def *d = s->def;
+    char *active_list[1] = { (char *)run_id };
+    mpb_planner_announce_t a;
+    memset(&a, 0, sizeof a);
+    a.utime = mpb_utime_now();
+    a.planner_id = s->id;
+    a.name = (char *)d->name;
+    a.host = s->host;
+    a.pid = (int32_t)getpid();
+    a.language = (char *)(d->language != NULL ? d->language : "");
+    a.version = (char *)(d->version != NULL ? d->version : "");
+    a.heartbeat_ms = s->heartbeat_ms;
+    a.num_algorithms = (int16_t)d->num_algorithms;
+    a.algorithms = (char **)d->algorithms;
+    a.capacity = 0;
+    a.num_active = 1;
+    a.active_runs = active_list;
+    int n = mpb_planner_announce_t_encoded_size(&a);
+    unsigned char *buf = n > 0 ? malloc((size_t)n + MPB_AUTH_TRAILER_SIZE)
+                               : NULL;
+    if (buf != NULL && mpb_planner_announce_t_encode(buf, 0, n, &a) != n) {
+        free(buf);
+        buf = NULL;
+    }
+    *len = n;
+    return buf;
+}
+
 static void mpb__ack(mpb__server *s, const char *run_id, int kind);
 
 /*
@@ -476,7 +514,22 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
         res->status = MPB_PLAN_RESULT_T_INVALID_REQUEST;
         mpb_result_set_message(res, "%s", bad);
     } else {
+        /* The planning's peak memory and its limit (docs/protocol.md,
+         * "Memory"): measured and enforced around solve() alone. */
+        mpb__memwatch mw;
+        char unlimited[160] = "";
+        int ann_len = 0;
+        unsigned char *ann = req->memory_limit > 0
+            ? mpb__closing_announce(s, req->run_id, &ann_len) : NULL;
+        mpb__mem_begin(&mw, req->memory_limit, unlimited, sizeof unlimited);
+        mpb__last_words_arm(&mw, s->lcm, s->auth, mpb__daemon(s),
+                            req->run_id, s->id, ann, ann_len);
         int rc = s->def->solve(s->def->user, req, res);
+        mpb__last_words_disarm();
+        double peak = mpb__mem_end(&mw);
+        free(ann);
+        if (!(res->memory > 0))
+            res->memory = peak;
         /* The run id and planner id are ours, whatever solve() did. */
         if (res->run_id == NULL || strcmp(res->run_id, req->run_id) != 0) {
             free(res->run_id);
@@ -486,18 +539,35 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
             free(res->planner_id);
             res->planner_id = mpb__strdup(s->id);
         }
-        if (rc < 0) {
+        if (rc == MPB_ENOMEM) {
+            /* An allocation failed: under a limit, the limit's doing. */
+            res->status = MPB_PLAN_RESULT_T_MEMORY;
+            if (res->message == NULL || res->message[0] == '\0') {
+                if (mw.limit_mb > 0)
+                    mpb_result_set_message(res, "out of memory under the "
+                                           "memory_limit of %g MB",
+                                           mw.limit_mb);
+                else
+                    mpb_result_set_message(res, "out of memory");
+            }
+        } else if (rc < 0) {
             res->status = MPB_PLAN_RESULT_T_INVALID_REQUEST;
             if (res->message == NULL || res->message[0] == '\0')
                 mpb_result_set_message(res, "planner refused the request (%s)",
                                        mpb_err_name(rc));
         } else if (res->status < MPB_PLAN_RESULT_T_SOLVED ||
-                   res->status > MPB_PLAN_RESULT_T_INVALID_REQUEST) {
+                   res->status > MPB_PLAN_RESULT_T_MEMORY ||
+                   res->status == MPB_PLAN_RESULT_T_CRASH) {
             mpb_result_set_message(res, "planner set status %d; %s",
                                    (int)res->status,
                                    res->message != NULL ? res->message : "");
             res->status = MPB_PLAN_RESULT_T_FAILED;
         }
+        /* A limit asked for and not set: the run says so. */
+        if (unlimited[0] != '\0')
+            mpb_result_set_message(res, "%s%s%s", unlimited,
+                                   res->message && res->message[0] ? "; " : "",
+                                   res->message ? res->message : "");
     }
     if (res->run_id == NULL || res->planner_id == NULL ||
         mpb__result_fill_strings(res) != MPB_OK) {

@@ -206,6 +206,7 @@ const char *mpb_status_name(int status)
     case MPB_PLAN_RESULT_T_FAILED:          return "failed";
     case MPB_PLAN_RESULT_T_INVALID_REQUEST: return "invalid_request";
     case MPB_PLAN_RESULT_T_CRASH:           return "crash";
+    case MPB_PLAN_RESULT_T_MEMORY:          return "memory";
     }
     return "unknown";
 }

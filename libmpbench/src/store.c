@@ -27,7 +27,8 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
         " planner_id = ?3, status = ?4, message = ?5, claimed_success = ?6,"
         " valid = ?7, verdict = ?8, success = ?9, time_total = ?10,"
         " time_raw = ?11, time_other = ?12, wall_time = ?13, final_stage = ?14,"
-        " final_metrics = ?15, world_setup_time = ?17, verify_time = ?18"
+        " final_metrics = ?15, world_setup_time = ?17, verify_time = ?18,"
+        " memory = ?19"
         " WHERE id = ?1 AND run_uid = ?2 AND state != 'done'",
     [MPB__ST_STAGE_INSERT] =
         "INSERT OR REPLACE INTO stages(run_id, idx, name, time, num_waypoints,"
@@ -165,10 +166,12 @@ static int create_schema(mpb_store *s)
      * one made before experiments.resolution, NULL: not known; one made
      * before runs.world_setup_time, NULL: its runs' planner_values hold
      * the value, if a planner reported it; one made before runs.verify_time,
-     * NULL: the daemon's verification was not timed. */
+     * NULL: the daemon's verification was not timed; one made before
+     * runs.memory, NULL: no planner reported its memory. */
     if ((rc = add_missing_column(s, "runs", "final_metrics", "BLOB")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "world_setup_time", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "verify_time", "REAL")) != MPB_OK ||
+        (rc = add_missing_column(s, "runs", "memory", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_link", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK)

@@ -23,7 +23,7 @@
 
 /* What fills a property. */
 typedef enum {
-    K_TIME, K_TIME_RAW, K_TIME_OTHER, K_WALL, K_VERIFY, K_SOLVED, K_CLAIMED, K_APPROX,
+    K_TIME, K_TIME_RAW, K_TIME_OTHER, K_WALL, K_VERIFY, K_MEMORY, K_SOLVED, K_CLAIMED, K_APPROX,
     K_STATUS, K_STAGE_TIME, K_STAGE_METRIC, K_STAGE_SEGMENTS, K_STAGE_VALID,
     K_VALUE
 } prop_kind;
@@ -52,9 +52,11 @@ typedef struct name_list {
 
 /*
  * The status enum: OMPL's PlannerStatus values and names (0-9, as OMPL
- * 1.5+ and its Benchmark class write them), and one of mpbench's own.
+ * 1.5+ and its Benchmark class write them), and two of mpbench's own:
+ * 10 "Invalid request", 11 "Out of memory" (a run stopped by the
+ * experiment's memory_limit).
  */
-#define MPB__PA_NUM_STATUS 11
+#define MPB__PA_NUM_STATUS 12
 extern const char *const mpb__pa_status_enum[MPB__PA_NUM_STATUS];
 
 /* Experiment parameters added after the twelve columns Planner Arena

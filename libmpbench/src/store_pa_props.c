@@ -24,6 +24,7 @@ const char *const mpb__pa_status_enum[] = {
     "Unknown status", "Invalid start", "Invalid goal",
     "Unrecognized goal type", "Timeout", "Approximate solution",
     "Exact solution", "Crash", "Abort", "Infeasible", "Invalid request",
+    "Out of memory",
 };
 
 const char *const mpb__pa_exp_params[][2] = {
@@ -36,7 +37,7 @@ static int status_value(const char *status)
 {
     static const struct { const char *name; int value; } map[] = {
         {"solved", 6}, {"approximate", 5}, {"timeout", 4}, {"crash", 7},
-        {"failed", 8}, {"invalid_request", 10},
+        {"failed", 8}, {"invalid_request", 10}, {"memory", 11},
     };
     for (size_t i = 0; status && i < sizeof map / sizeof map[0]; i++)
         if (strcmp(status, map[i].name) == 0)
@@ -280,6 +281,8 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
         {"time other", "REAL", K_TIME_OTHER},
         {"wall time", "REAL", K_WALL},
         {"verify time", "REAL", K_VERIFY},
+        /* OMPL's Benchmark's name, which Planner Arena plots. */
+        {"memory", "REAL", K_MEMORY},
         {"solved", "BOOLEAN", K_SOLVED},
         {"claimed success", "BOOLEAN", K_CLAIMED},
         {"approximate solution", "BOOLEAN", K_APPROX},
@@ -440,11 +443,15 @@ int mpb__pa_walker_open(pa_walker **out, mpb_store *s, int64_t experiment_id,
         " WHERE r.experiment_id = ?1 AND r.state = 'done'"                 \
         " AND (?2 = 0 OR r.query_id = ?2)"                                 \
         " ORDER BY q.scene_id, r.query_id, r.planner_config_id, r.repetition"
-    /* Without runs.verify_time (a database made before it, opened
-     * read-only), NULL. */
-    w->runs = mpb__store_prepare(s,
-        mpb__store_has_column(s, "runs", "verify_time")
-            ? RUNS_SQL("r.verify_time") : RUNS_SQL("NULL"));
+    /* Without runs.memory, or runs.verify_time too (a database made
+     * before them, opened read-only), NULL. */
+    static const char *const runs_sql[4] = {
+        RUNS_SQL("r.verify_time, r.memory"), RUNS_SQL("r.verify_time, NULL"),
+        RUNS_SQL("NULL, r.memory"), RUNS_SQL("NULL, NULL"),
+    };
+    w->runs = mpb__store_prepare(s, runs_sql[
+        2 * !mpb__store_has_column(s, "runs", "verify_time") +
+        !mpb__store_has_column(s, "runs", "memory")]);
 #undef RUNS_SQL
     w->stages = mpb__store_prepare(s,
         "SELECT name, time, num_waypoints, valid FROM stages WHERE run_id = ?"
@@ -627,6 +634,7 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         case K_TIME_OTHER: v = col_num(r, 8); break;
         case K_WALL:       v = col_num(r, 9); break;
         case K_VERIFY:     v = col_num(r, 11); break;
+        case K_MEMORY:     v = col_num(r, 12); break;
         case K_SOLVED:     v = col_num(r, 4); break;
         case K_CLAIMED:    v = col_num(r, 5); break;
         case K_APPROX:

@@ -271,6 +271,7 @@ static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
                            ? -1 : sqlite3_column_int(st, 13) != 0,
         .world_setup_time = col_double(st, 14),
         .verify_time = col_double(st, 15),
+        .memory = col_double(st, 16),
     };
     for (int i = 0; i < w->num_names; i++)
         w->metrics[i] = NAN;
@@ -425,24 +426,33 @@ static int results_packed(mpb_store *s, int64_t experiment_id,
     " FROM runs r WHERE r.experiment_id = ?1 AND r.state = 'done'"         \
     scene_where " ORDER BY r.id"
 #define IN_SCENE " AND r.query_id IN (SELECT id FROM queries WHERE scene_id = ?2)"
-    /* Without runs.verify_time (a database made before it, opened
-     * read-only), NULL; without runs.world_setup_time either, that from
-     * planner_values, one seek per run. */
-    static const char *const sql[3][2] = {
-        {PACKED_SQL("r.world_setup_time, r.verify_time", ""),
-         PACKED_SQL("r.world_setup_time, r.verify_time", IN_SCENE)},
-        {PACKED_SQL("r.world_setup_time, NULL", ""),
-         PACKED_SQL("r.world_setup_time, NULL", IN_SCENE)},
-        {PACKED_SQL(WORLD_SETUP ", NULL", ""),
-         PACKED_SQL(WORLD_SETUP ", NULL", IN_SCENE)},
+    /* Without runs.memory or runs.verify_time (a database made before
+     * them, opened read-only), NULL; without runs.world_setup_time
+     * either, that from planner_values, one seek per run. */
+#define ALL "r.world_setup_time, r.verify_time, r.memory"
+#define NO_MEMORY "r.world_setup_time, r.verify_time, NULL"
+#define NO_VERIFY "r.world_setup_time, NULL, NULL"
+#define NO_SETUP WORLD_SETUP ", NULL, NULL"
+#define ONLY_MEMORY "r.world_setup_time, NULL, r.memory"
+    static const char *const sql[5][2] = {
+        {PACKED_SQL(ALL, ""), PACKED_SQL(ALL, IN_SCENE)},
+        {PACKED_SQL(NO_MEMORY, ""), PACKED_SQL(NO_MEMORY, IN_SCENE)},
+        {PACKED_SQL(ONLY_MEMORY, ""), PACKED_SQL(ONLY_MEMORY, IN_SCENE)},
+        {PACKED_SQL(NO_VERIFY, ""), PACKED_SQL(NO_VERIFY, IN_SCENE)},
+        {PACKED_SQL(NO_SETUP, ""), PACKED_SQL(NO_SETUP, IN_SCENE)},
     };
+#undef ALL
+#undef NO_MEMORY
+#undef NO_VERIFY
+#undef NO_SETUP
+#undef ONLY_MEMORY
 #undef IN_SCENE
 #undef PACKED_SQL
     query_scenes qs = {0};
     sqlite3_stmt *st = NULL, *old = NULL;
     int rc, step = SQLITE_DONE, stop = 0;
 
-    for (int k = 0; k < 3 && st == NULL; k++)
+    for (int k = 0; k < 5 && st == NULL; k++)
         if (sqlite3_prepare_v2(s->db, sql[k][scene_id > 0], -1, &st,
                                NULL) != SQLITE_OK) {
             sqlite3_finalize(st);
@@ -526,13 +536,16 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
     "  AND st.name = coalesce(?3, r.final_stage)"                          \
     " WHERE r.experiment_id = ?1 AND r.state = 'done'" scene_where         \
     " ORDER BY r.id"
-    /* Without runs.verify_time (a database made before it, opened
-     * read-only), NULL. */
-    static const char *const sql[2][2] = {
-        {RESULTS_SQL("", "r.verify_time"),
-         RESULTS_SQL(" AND q.scene_id = ?2", "r.verify_time")},
-        {RESULTS_SQL("", "NULL"), RESULTS_SQL(" AND q.scene_id = ?2", "NULL")},
+    /* Without runs.verify_time or runs.memory (a database made before
+     * it, opened read-only), NULL. */
+#define IN_SCENE " AND q.scene_id = ?2"
+#define BOTH(cols) {RESULTS_SQL("", cols), RESULTS_SQL(IN_SCENE, cols)}
+    static const char *const sql[4][2] = {
+        BOTH("r.verify_time, r.memory"), BOTH("r.verify_time, NULL"),
+        BOTH("NULL, r.memory"), BOTH("NULL, NULL"),
     };
+#undef BOTH
+#undef IN_SCENE
 #undef RESULTS_SQL
     result_walk w = {.names = names, .num_names = num_names};
     sqlite3_stmt *st = NULL;
@@ -554,9 +567,9 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
             goto done_packed;
         }
     }
-    if ((st = mpb__store_prepare(
-             s, sql[!mpb__store_has_column(s, "runs", "verify_time")]
-                   [scene_id > 0])) == NULL) {
+    int cols = 2 * !mpb__store_has_column(s, "runs", "verify_time") +
+               !mpb__store_has_column(s, "runs", "memory");
+    if ((st = mpb__store_prepare(s, sql[cols][scene_id > 0])) == NULL) {
         rc = MPB_EDB;
         goto done;
     }

@@ -2,6 +2,7 @@
  * store_runs.c - the life of a run in the database: pending, sent (with the
  * attempt's random id), done with its stages, metrics and values.
  */
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -318,6 +319,12 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
     sqlite3_bind_double(st, 16, mpb__store_now());
     /* NaN (no verification, as of a crash) binds as NULL. */
     sqlite3_bind_double(st, 18, r->verify_time);
+    /* Not reported (NaN), or no size: NULL. 0 is a size (an OMPL log's
+     * memory is the growth of the process over the run). */
+    if (r->memory >= 0 && isfinite(r->memory))
+        sqlite3_bind_double(st, 19, r->memory);
+    else
+        sqlite3_bind_null(st, 19);
     /* The planner's world setup time, also kept on the run's row, where
      * a report reads it without a lookup per run. */
     for (int i = 0; i < r->num_values; i++)

@@ -93,6 +93,7 @@ const char mpb__schema_v1[] =
     "  final_metrics     BLOB,\n"
     "  world_setup_time  REAL,\n"
     "  verify_time       REAL,\n"
+    "  memory            REAL,\n"
     "  UNIQUE(experiment_id, planner_config_id, query_id, repetition));\n"
     /* By experiment, in run order: what reports and a resume read. Not by
      * state: each change of state would move an entry between three

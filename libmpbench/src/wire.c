@@ -135,7 +135,7 @@ static void request(cursor *c)
         string(c);                         /* params: key, value */
         string(c);
     }
-    doubles(c, 2);                         /* time_limit, seed */
+    doubles(c, 3);                         /* time_limit, seed, memory_limit */
     for (int k = 0; k < 6; k++)
         string(c);                         /* robot and scene: format, hash, text */
     int64_t nj = count(c, 2, 5 + 8);
@@ -162,7 +162,7 @@ static void result(cursor *c)
     string(c); string(c);                  /* run_id, planner_id */
     skip(c, 1);                            /* status */
     string(c);                             /* message */
-    doubles(c, 2);                         /* time_total, time_other */
+    doubles(c, 3);                         /* time_total, time_other, memory */
     for (int64_t i = count(c, 2, 5 + 8 + 10); i > 0 && !c->bad; i--)
         stage(c);
     for (int64_t i = count(c, 2, 5 + 8); i > 0 && !c->bad; i--)

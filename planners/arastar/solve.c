@@ -301,8 +301,11 @@ static int solve_run(run *r, const ara_context *ctx,
     case ARA_START_INVALID:
         return fail(res, MPB_PLAN_RESULT_T_FAILED, "the start state collides");
     case ARA_NOMEM:
+        /* Past the request's memory_limit, or the machine's. */
+        return fail(res, MPB_PLAN_RESULT_T_MEMORY, "out of memory: the "
+                    "search's states could not be allocated");
     default:
-        return fail(res, MPB_PLAN_RESULT_T_FAILED, "out of memory");
+        return fail(res, MPB_PLAN_RESULT_T_FAILED, "unknown outcome");
     }
 }
 

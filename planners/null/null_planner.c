@@ -33,7 +33,12 @@ static void usage(FILE *out)
 "long before answering, as if it were planning: fault tests use it to catch\n"
 "planners in the middle of a run. A parameter \"waypoints\" (2 to\n"
 "10000000, default 2) makes the stage that many waypoints, evenly from\n"
-"start to goal: tests use it for results too large to send.\n"
+"start to goal: tests use it for results too large to send. A parameter\n"
+"\"allocate\" (MB, 0 to 65536) makes it allocate and touch that much memory,\n"
+"in 1 MB blocks, and free it before answering: tests use it for the run's\n"
+"peak memory and the experiment's memory_limit. An allocation that fails\n"
+"is answered as MEMORY, or with \"out_of_memory\" = \"abort\" kills the\n"
+"process with abort(), as an uncaught std::bad_alloc would.\n"
 "\n"
 "It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
 "SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
@@ -47,6 +52,40 @@ static void usage(FILE *out)
 "                  (the daemon must use the same file)\n"
 "  --help          show this text\n",
             MPB_DEFAULT_LCM_URL);
+}
+
+/* Allocate and touch mb MB in 1 MB blocks, then free them: what a
+ * planner's search would hold at its peak. A failed allocation is
+ * MPB_ENOMEM (the kit reports MEMORY), or abort() when asked. */
+static int allocate_mb(const mpb_plan_request_t *req, mpb_plan_result_t *res,
+                       const char *text)
+{
+    char *end;
+    errno = 0;
+    long mb = strtol(text, &end, 10);
+    if (end == text || *end != '\0' || errno != 0 || mb < 0 || mb > 65536) {
+        mpb_result_set_message(res, "allocate must be MB from 0 to 65536, "
+                                    "not '%.40s'", text);
+        return MPB_EINVAL;
+    }
+    const char *oom = mpb_request_param(req, "out_of_memory");
+    int die = oom != NULL && strcmp(oom, "abort") == 0;
+    char **blocks = calloc((size_t)mb + 1, sizeof *blocks);
+    int rc = blocks != NULL ? MPB_OK : MPB_ENOMEM;
+    for (long i = 0; rc == MPB_OK && i < mb; i++) {
+        if ((blocks[i] = malloc(1 << 20)) == NULL)
+            rc = MPB_ENOMEM;
+        else
+            memset(blocks[i], (int)(i & 0x7f) + 1, 1 << 20);
+    }
+    if (rc != MPB_OK && die)
+        abort();
+    for (long i = 0; blocks != NULL && i < mb; i++)
+        free(blocks[i]);
+    free(blocks);
+    if (rc != MPB_OK)
+        mpb_result_set_message(res, "could not allocate %ld MB", mb);
+    return rc;
 }
 
 static int solve_straight_line(void *user, const mpb_plan_request_t *req,
@@ -66,6 +105,13 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
         struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
         while (nanosleep(&ts, &ts) != 0 && errno == EINTR && !g_stop)
             ;
+    }
+    const char *allocate = mpb_request_param(req, "allocate");
+    if (allocate != NULL) {
+        int rc = allocate_mb(req, res, allocate);
+        res->time_total = mpb_monotonic_s() - t0;
+        if (rc != MPB_OK)
+            return rc;
     }
     if (req->goal.kind != MPB_GOAL_T_JOINTS) {
         mpb_result_set_message(res, "straight_line needs a joint-space goal");

@@ -27,6 +27,7 @@
 #include <mutex>
 #include <new>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <ompl/base/Planner.h>
@@ -671,6 +672,25 @@ extern "C" int solve(void *user, const mpb_plan_request_t *req, mpb_plan_result_
         // Keep the times and values measured so far: only the status changes.
         res->status = MPB_PLAN_RESULT_T_FAILED;
         mpb_result_set_message(res, "%s", e.what());
+        return MPB_OK;
+    } catch (const std::bad_alloc &) {
+        // Past the request's memory_limit (RLIMIT_DATA, set by the kit
+        // around solve()), or the machine's: MEMORY, with the peak the
+        // kit measures. What OMPL allocated is freed by now.
+        mpb_result_clear(res);
+        res->status = MPB_PLAN_RESULT_T_MEMORY;
+        mpb_result_set_message(res, "out of memory (std::bad_alloc)");
+        return MPB_OK;
+    } catch (const std::system_error &e) {
+        // A thread OMPL starts (PRM's roadmap, a timed termination
+        // condition) needs its stack, 8 MB, which the limit counts: its
+        // EAGAIN is memory too. Any other system error is a failure.
+        const bool memory = e.code() == std::errc::resource_unavailable_try_again ||
+                            e.code() == std::errc::not_enough_memory;
+        mpb_result_clear(res);
+        res->status = memory ? MPB_PLAN_RESULT_T_MEMORY : MPB_PLAN_RESULT_T_FAILED;
+        mpb_result_set_message(res, "%s: %s", memory ? "out of memory" : "exception",
+                               e.what());
         return MPB_OK;
     } catch (const std::exception &e) {
         what = e.what();

@@ -54,7 +54,8 @@ int main(int argc, char **argv)
         {"shortcut", 0.0005, 2, 3, 6, bad},
     };
     mpb_plan_result_t res = {1, "0123456789abcdef0123456789abcdef", "null@h:1",
-                             0, "", 0.002, 0.0001, 2, stages, 1, &val, 1, &prog};
+                             0, "", 0.002, 0.0001, 3.5, 2, stages, 1, &val, 1,
+                             &prog};
     ENCODE(mpb_plan_result_t, res, dir, "result", 0);
 
     char *algos[] = {"RRTConnect", "RRT"};

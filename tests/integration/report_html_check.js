@@ -32,6 +32,7 @@ const ROWS = {
   'tau_o (sigma, s)': ['time_other', 'sigma'],
   'world setup (Mean, s)': ['world_setup_time', 'mean'],
   'verify (Mean, s)': ['verify_time', 'mean'],
+  'memory (Mean, MB)': ['memory', 'mean'],
   'd_n (Mean, m)': ['clearance', 'mean'],
   'd_n (sigma, m)': ['clearance', 'sigma'],
   'l_p (Mean, rad)': ['path_length', 'mean'],

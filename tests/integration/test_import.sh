@@ -76,6 +76,38 @@ check "per planner, the same runs and averages as the log" \
     cmp -s "$work/log.means" "$work/arena.means"
 [ $FAILS -eq 0 ] || { echo "# log:"; cat "$work/log.means"; echo "# arena:"; cat "$work/arena.means"; }
 
+# OMPL's "memory REAL" (MB) is the run's memory (runs.memory), and
+# Planner Arena's "memory" again, every run's to the last digit printed.
+cat >"$work/memory.py" <<'EOT'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+i = next(k for k, l in enumerate(lines) if l.endswith(" planners"))
+out = []
+n = int(lines[i].split()[0]); i += 1
+for _ in range(n):
+    i += 1                                  # the planner's name
+    c = int(lines[i].split()[0]); i += 1 + c
+    p = int(lines[i].split()[0]); i += 1
+    props = [lines[i + k].rsplit(" ", 1)[0] for k in range(p)]; i += p
+    r = int(lines[i].split()[0]); i += 1
+    m = props.index("memory")
+    out += ["%.9g" % float(lines[i + k].split(";")[m]) for k in range(r)]
+    i += r
+    while lines[i] != ".":
+        i += 1
+    i += 1
+print(len(out), ",".join(sorted(out)))
+EOT
+log_memory=$(python3 "$work/memory.py" "$work/wall.log")
+mem_of() { sqlite3 "$1" "SELECT count(memory) || ' ' || group_concat(m, ',') FROM
+                          (SELECT printf('%.9g', memory) AS m, memory FROM $2 ORDER BY m)"; }
+check "import -d: every run's memory is the log's (${log_memory%% *} runs)" \
+    test "$(mem_of "$DB" runs)" = "$log_memory"
+check "... and not a planner value as well" \
+    eq "$(q "SELECT count(*) FROM planner_values WHERE name = 'memory'")" 0
+check "export --planner-arena: memory again, the log's" \
+    test "$(mem_of "$A" runs)" = "$log_memory"
+
 # Straight into Planner Arena (mpb import -p), as OMPL's script writes it:
 # the planners keep the log's names, and the rows are the log's.
 "$mpb" import -p "$work/direct.db" "$work/wall.log" >/dev/null
@@ -177,6 +209,8 @@ sqlite3 "$work/again.db" "SELECT c.name, count(*), printf('%.9g', avg(r.time_tot
                             FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
                            GROUP BY c.name" | sed 's/^.*\///' | sort >"$work/again.means"
 check "... with the same runs and averages" cmp -s "$work/log.means" "$work/again.means"
+check "... and the same memory, run by run" \
+    test "$(mem_of "$work/again.db" runs)" = "$log_memory"
 
 # A log cut short, and a file that is no log: one line naming where, and
 # nothing added to the database.

@@ -256,4 +256,27 @@ check "a secret shorter than 16 bytes is refused, as by the C kit" \
     test $? -eq 1 -a "$(cat "$work/short.log")" = \
     "mpb-planner-python: $work/short-secret: a secret needs at least 16 bytes, this has 5"
 
+# Memory (docs/protocol.md, "Memory"): the kit measures each run's peak
+# and enforces memory_limit; a solve() past it (MemoryError) is answered
+# MEMORY and the planner goes on.
+mpb_planar_experiment "$work/memory.yaml" \
+    "name: memory, runs: 1, time_limit: 5, memory_limit: 96" \
+    "{planner: python, algorithms: [RRTConnect], name: over, params: {allocate: 400}}" \
+    "{planner: python, algorithms: [RRTConnect], name: none}" \
+    "{planner: python, algorithms: [RRTConnect], name: some, params: {allocate: 64}}"
+DB=$work/memory.db
+run_experiment memory "$work/memory.yaml"
+check "memory: the experiment completes" eq $? 0
+pmem() { echo "(SELECT memory FROM runs r JOIN planner_configs c
+            ON c.id = r.planner_config_id WHERE c.name LIKE '%#$1')"; }
+check "memory: the run past the limit is failed for memory" \
+    eq "$(q "SELECT count(*) FROM runs WHERE status = 'memory'
+             AND message LIKE 'out of memory (MemoryError) under the memory_limit of 96 MB'")" 1
+check "memory: ... and the planner went on" \
+    eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved'")" 2
+check "memory: every run has its peak" \
+    eq "$(q "SELECT count(*) FROM runs WHERE memory > 0")" 3
+check "memory: 64 MB more held, over 56 MB more peak" \
+    eq "$(q "SELECT $(pmem some) - $(pmem none) > 56")" 1
+
 mpb_finish

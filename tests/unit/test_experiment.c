@@ -142,6 +142,24 @@ static void numbers_are_decimal(void **state)
     assert_error("3:74", "start must be a number, not '0x0'");
 }
 
+/* memory_limit: MB, 0 (none) when absent; a bad one has its line. */
+static void memory_limit_is_mb_above_0(void **state)
+{
+    mpbd_experiment *e;
+    (void)state;
+    assert_non_null(e = load_settings("time_limit: 1"));
+    assert_true(e->memory_limit == 0);
+    mpbd_experiment_free(e);
+    assert_non_null(e = load_settings("time_limit: 1, memory_limit: 512.5"));
+    assert_true(e->memory_limit == 512.5);
+    mpbd_experiment_free(e);
+    assert_null(load_settings("time_limit: 1, memory_limit: 0"));
+    assert_error("1:52", "memory_limit must be MB above 0 and at most "
+                 "1048576 (1 TB), not '0'");
+    assert_null(load_settings("time_limit: 1, memory_limit: 1GB"));
+    assert_error("1:52", "memory_limit must be a number, not '1GB'");
+}
+
 static void a_scene_without_queries_has_a_line(void **state)
 {
     (void)state;
@@ -286,6 +304,7 @@ int main(void)
         cmocka_unit_test(seed_keeps_every_digit),
         cmocka_unit_test(seed_must_be_a_decimal_integer),
         cmocka_unit_test(numbers_are_decimal),
+        cmocka_unit_test(memory_limit_is_mb_above_0),
         cmocka_unit_test(a_scene_without_queries_has_a_line),
         cmocka_unit_test(an_unknown_format_is_pointed_at),
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),

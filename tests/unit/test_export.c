@@ -131,6 +131,8 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r, int index)
         .num_values = index == 0 ? 4 : 0, .values = values,
         .num_progress = index == 0 ? 5 : 0, .progress = progress,
         .verify_time = index == 0 ? 0.125 : NAN,
+        /* Run 0's planner peaked at 40.25 MB; the others said nothing. */
+        .memory = index == 0 ? 40.25 : NAN,
     };
     assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
 }
@@ -518,7 +520,8 @@ static void planner_configs_and_the_status_enum(void **state)
         "status|7|Crash\n"
         "status|8|Abort\n"
         "status|9|Infeasible\n"
-        "status|10|Invalid request\n");
+        "status|10|Invalid request\n"
+        "status|11|Out of memory\n");
     sqlite3_close(db);
 }
 
@@ -531,7 +534,7 @@ static void runs_carry_attributes_from_the_fourth_column(void **state)
     assert_string_equal(columns(db, "runs", 1),
         "id:INTEGER experimentid:INTEGER plannerid:INTEGER "
         "time:REAL time_raw:REAL time_other:REAL wall_time:REAL "
-        "verify_time:REAL solved:BOOLEAN claimed_success:BOOLEAN approximate_solution:BOOLEAN "
+        "verify_time:REAL memory:REAL solved:BOOLEAN claimed_success:BOOLEAN approximate_solution:BOOLEAN "
         "status:ENUM "
         "solution_time:REAL solution_length:REAL solution_smoothness:REAL "
         "solution_clearance:REAL solution_segments:INTEGER "
@@ -652,10 +655,10 @@ static void stage_values_by_hand(void **state)
         " simplified_solution_time, simplified_solution_length,"
         " simplified_solution_smoothness, simplified_solution_clearance,"
         " simplified_solution_segments, simplified_correct_solution,"
-        " graph_states, planner_solved, planner_time, cost_best, verify_time"
-        " FROM runs WHERE id = 1"),
+        " graph_states, planner_solved, planner_time, cost_best, verify_time,"
+        " memory FROM runs WHERE id = 1"),
         "1.5|1.25|0.25|1.0|0.5|10.0|0.4|0.02|10|1|0.1|6.0|4|"
-        "0.2|5.0|0.1|0.05|49|1|24.0|1.0|9.0|5.0|0.125\n");
+        "0.2|5.0|0.1|0.05|49|1|24.0|1.0|9.0|5.0|0.125|40.25\n");
     /* Run 1: one stage, invalid, no clearance: first and final alike. */
     assert_string_equal(rows(db,
         "SELECT solution_length, simplified_solution_length,"
@@ -925,14 +928,14 @@ static void ompl_logs_one_per_query(void **state)
         "1 enum type\n"
         "status|Unknown status|Invalid start|Invalid goal|"
         "Unrecognized goal type|Timeout|Approximate solution|Exact solution|"
-        "Crash|Abort|Infeasible|Invalid request\n"
+        "Crash|Abort|Infeasible|Invalid request|Out of memory\n"
         "2 planners\n"
         "ompl/RRTConnect\n"
         "3 common properties\n"
         "algorithm = RRTConnect\n"
         "planner = ompl\n"
         "range = 0.5\n"
-        "31 properties for each run\n"
+        "32 properties for each run\n"
         "time REAL\n"
         "time raw REAL\n"));
     assert_non_null(strstr(log, "\nsimplified correct solution BOOLEAN\n"
@@ -941,10 +944,10 @@ static void ompl_logs_one_per_query(void **state)
                                 "planner solved REAL\n"
                                 "planner time REAL\n"
                                 "2 runs\n"));
-    /* Run 1 (approximate, one stage, no verify time): "v; " each, empty
-     * for NULL, REALs exact. */
+    /* Run 1 (approximate, one stage, no verify time, no memory): "v; "
+     * each, empty for NULL, REALs exact. */
     assert_non_null(strstr(log,
-        "\n2; 1.75; 0.25; 2; ; 0; 0; 1; 5; 1.8999999999999999; 3; "
+        "\n2; 1.75; 0.25; 2; ; ; 0; 0; 1; 5; 1.8999999999999999; 3; "
         "0.20000000000000001; ; 3; 0; ; ; ; ; ; ; 1.8999999999999999; 3; "
         "0.20000000000000001; ; 3; 0; ; ; ; ; \n"));
     /* Run 0's progress, then none for run 1; B's block has an empty line. */

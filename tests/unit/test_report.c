@@ -77,6 +77,8 @@ static int find_ids(void *ud, const mpb_run_row *row)
 static double next_world_setup = NAN;
 /* The daemon's verify time the next finish() records, then NaN (none). */
 static double next_verify = NAN;
+/* The planner's peak memory the next finish() records, then NaN. */
+static double next_memory = NAN;
 
 static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
 {
@@ -102,8 +104,10 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
         .time_total = r->total, .time_raw = r->raw, .time_other = r->other,
         .num_stages = has_raw ? 2 : 1, .stages = has_raw ? st : st + 1,
         .verify_time = next_verify,
+        .memory = next_memory,
     };
     next_verify = NAN;
+    next_memory = NAN;
     mpb_named values[] = {{"collision checks", 12.0},
                           {"world_setup_time", next_world_setup}};
     if (!isnan(next_world_setup)) {
@@ -480,6 +484,9 @@ static void tiny_values_and_wide_names(void **state)
         /* The daemon verified the first configuration's run in 0.25 s. */
         if (c == 0)
             next_verify = 0.25;
+        /* ... and its planner peaked at 48.5 MB; the other's said none. */
+        if (c == 0)
+            next_memory = 48.5;
         finish(s, ids[c], &r);
     }
     mpb_store_close(s);
@@ -494,6 +501,8 @@ static void tiny_values_and_wide_names(void **state)
     assert_string_equal(cell(&o, title, "world setup (Mean, s)", 1), "0.508");
     assert_string_equal(cell(&o, title, "verify (Mean, s)", 0), "0.250");
     assert_string_equal(cell(&o, title, "verify (Mean, s)", 1), "-");
+    assert_string_equal(cell(&o, title, "memory (Mean, MB)", 0), "48.500");
+    assert_string_equal(cell(&o, title, "memory (Mean, MB)", 1), "-");
     /* Rounding noise is no data: 0 beside 0, not 2.17e-30 beside
      * 0.000000. */
     assert_string_equal(cell(&o, title, "kappa' (Mean, rad^2)", 0), "0.000");
@@ -627,9 +636,9 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
         "unfinished,sigma_single\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
-    /* 2 scenes x 2 configurations x (11 metrics + the success rate), and
+    /* 2 scenes x 2 configurations x (12 metrics + the success rate), and
      * the header: always the same rows, empty where nothing was measured. */
-    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 12);
+    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 13);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1,0\n"));
@@ -671,7 +680,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "                r['metric'], r['mean'], r['n']]))\n",
         "report -f csv '%s'", f->odd);
     assert_int_equal(o.status, 0);
-    assert_string_equal(o.text, "12\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
+    assert_string_equal(o.text, "13\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
                                 "time_total|2|1\n");
 }
 
@@ -746,6 +755,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_other 0.32 0.120711 5 0\n"
         "    world_setup_time None None 0 None\n"
         "    verify_time None None 0 None\n"
+        "    memory None None 0 None\n"
         "    clearance None None 0 None\n"
         "    path_length 4.4 1.0 5 0\n"
         "    ee_path_length None None 0 None\n"
@@ -758,6 +768,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_other 0.2 None 1 None\n"
         "    world_setup_time None None 0 None\n"
         "    verify_time None None 0 None\n"
+        "    memory None None 0 None\n"
         "    clearance None None 0 None\n"
         "    path_length 3.0 None 1 None\n"
         "    ee_path_length None None 0 None\n"
@@ -771,6 +782,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_other 1.0 None 1 None\n"
         "    world_setup_time None None 0 None\n"
         "    verify_time None None 0 None\n"
+        "    memory None None 0 None\n"
         "    clearance 0.05 None 1 None\n"
         "    path_length 8.0 None 1 None\n"
         "    ee_path_length None None 0 None\n"
@@ -783,6 +795,7 @@ static void json_holds_every_number_by_name(void **state)
         "    time_other None None 0 None\n"
         "    world_setup_time None None 0 None\n"
         "    verify_time None None 0 None\n"
+        "    memory None None 0 None\n"
         "    clearance None None 0 None\n"
         "    path_length None None 0 None\n"
         "    ee_path_length None None 0 None\n"

@@ -357,6 +357,80 @@ static void verify_time_is_stored_and_added_to_an_older_database(void **state)
     assert_true(got[1] == 0.5);
 }
 
+static int keep_memory(void *ud, const mpb_result_row *row)
+{
+    double *out = ud;
+    out[row->repetition] = row->memory;
+    return 0;
+}
+
+/* Finish repetition rep of the fixture's run with the given memory. */
+static void finish_with_memory(fixture *f, int rep, double memory)
+{
+    mpb_run_row rows[3] = {{0}};
+    char uid[33];
+    snprintf(uid, sizeof uid, "%032d", rep + 1);
+    mpb_run_record r = {
+        .run_uid = uid, .planner_id = "p", .status = "memory", .message = "",
+        .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
+        .wall_time = 0.2, .verify_time = NAN, .memory = memory,
+    };
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, rep, 1),
+                     MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows),
+                     MPB_OK);
+    r.run_id = rows[1].id;
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, uid, "p"), MPB_OK);
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_OK);
+}
+
+/* runs.memory (MB) is stored and read back, NaN as NULL and 0 as 0 (an
+ * OMPL log's growth); a database made before it reads (NaN) and gets the
+ * column when opened for writing, NULL for the runs it had. */
+static void memory_is_stored_and_added_to_an_older_database(void **state)
+{
+    fixture *f = *state;
+    sqlite3 *db;
+    double got[3] = {-1.0, -1.0, -1.0};
+
+    finish_with_memory(f, 0, 512.25);
+    finish_with_memory(f, 1, NAN);
+    finish_with_memory(f, 2, 0.0);
+    assert_int_equal(peek(f, "SELECT memory * 100 FROM runs WHERE repetition = 0"),
+                     51225);
+    assert_int_equal(peek(f, "SELECT count(*) FROM runs WHERE memory IS NULL"), 1);
+    assert_int_equal(peek(f, "SELECT count(*) FROM runs WHERE memory = 0"), 1);
+    /* Both walks: the packed one and another stage's join. */
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, NULL, NULL, 0,
+                                       keep_memory, got), MPB_OK);
+    assert_true(got[0] == 512.25 && isnan(got[1]) && got[2] == 0.0);
+    got[0] = -1.0;
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, "raw", NULL, 0,
+                                       keep_memory, got), MPB_OK);
+    assert_true(got[0] == 512.25);
+
+    /* An older database: no runs.memory. */
+    mpb_store_close(f->s);
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "ALTER TABLE runs DROP COLUMN memory",
+                                  NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(mpb_store_open(f->path, 1, &f->s), MPB_OK);
+    got[0] = -1.0;
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, NULL, NULL, 0,
+                                       keep_memory, got), MPB_OK);
+    assert_true(isnan(got[0]));
+    got[0] = -1.0;
+    assert_int_equal(mpb_store_results(f->s, f->exp, 0, "raw", NULL, 0,
+                                       keep_memory, got), MPB_OK);
+    assert_true(isnan(got[0]));
+    mpb_store_close(f->s);
+
+    /* A writer adds it, NULL for the runs there were. */
+    assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM runs WHERE memory IS NULL"), 3);
+}
+
 /*
  * Another database moved over ours while we write: the check says so, and
  * what we wrote after the move does not end up in the other file (our -wal
@@ -429,6 +503,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(an_older_state_index_is_dropped, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_results_view_is_replaced, setup, teardown),
         cmocka_unit_test_setup_teardown(verify_time_is_stored_and_added_to_an_older_database,
+                                        setup, teardown),
+        cmocka_unit_test_setup_teardown(memory_is_stored_and_added_to_an_older_database,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(a_file_moved_over_ours_is_left_alone, setup, teardown),
         cmocka_unit_test(refuses_what_is_not_its_database),

@@ -65,7 +65,7 @@ static int setup(void **state)
     mpb_progress_t prog = {0.1, 1, &v};
     mpb_stage_t st[] = {{"raw", 0.01, 3, 2, 6, wp}, {"empty", 0, 0, 2, 0, NULL}};
     mpb_plan_result_t res = {1, "0123456789abcdef0123456789abcdef", "p@h:1", 0,
-                             "ok", 0.02, 0.001, 2, st, 1, &v, 1, &prog};
+                             "ok", 0.02, 0.001, 12.5, 2, st, 1, &v, 1, &prog};
     char *algos[] = {"RRT", "RRTConnect"};
     mpb_planner_announce_t ann = {1, "p@h:1", "p", "h", 7, "c", "1", 500,
                                   2, algos, 1, 0, NULL};

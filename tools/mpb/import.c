@@ -59,7 +59,7 @@ static void usage(FILE *out)
 
 /* Where a planner's properties are, looked up once per planner. */
 typedef struct columns {
-    int time, solved, approximate, correct, status;
+    int time, solved, approximate, correct, status, memory;
     int length, smoothness, clearance, segments;
     int s_time, s_length, s_smoothness, s_clearance, s_segments, s_correct;
 } columns;
@@ -72,6 +72,7 @@ static columns find_columns(const mpb_ompl_planner *p)
         .approximate = mpb_ompl_planner_property(p, "approximate solution"),
         .correct = mpb_ompl_planner_property(p, "correct solution"),
         .status = mpb_ompl_planner_property(p, "status"),
+        .memory = mpb_ompl_planner_property(p, "memory"),
         .length = mpb_ompl_planner_property(p, "solution length"),
         .smoothness = mpb_ompl_planner_property(p, "solution smoothness"),
         .clearance = mpb_ompl_planner_property(p, "solution clearance"),
@@ -94,7 +95,7 @@ static int is_mapped(const char *name)
         "solution segments", "simplification time",
         "simplified solution length", "simplified solution smoothness",
         "simplified solution clearance", "simplified solution segments",
-        "simplified correct solution", NULL};
+        "simplified correct solution", "memory", NULL};
     for (int i = 0; mapped[i]; i++)
         if (strcmp(name, mapped[i]) == 0)
             return 1;
@@ -194,6 +195,7 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
         .claimed_success = solved, .success = success,
         .time_total = t, .time_raw = t, .time_other = 0.0, .wall_time = NAN,
         .verify_time = NAN,
+        .memory = cell(p, run, c->memory),
         .num_stages = nstages, .stages = st,
         .num_values = nv, .values = values,
         .num_progress = np, .progress = progress,

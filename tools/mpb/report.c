@@ -29,6 +29,7 @@ const metric_info report_metrics[M_COUNT] = {
     [M_TO] = {"time_other", "s"},
     [M_WS] = {"world_setup_time", "s"},
     [M_VT] = {"verify_time", "s"},
+    [M_MEM] = {"memory", "MB"},
     [M_DN] = {"clearance", "m"},
     [M_LP] = {"path_length", "rad"},
     [M_LE] = {"ee_path_length", "m"},
@@ -46,6 +47,7 @@ const table_row report_rows[] = {
     {"tau_o (sigma, s)",      "$\\tau_o$ ($\\sigma$, s)",       M_TO,    SHOW_SIGMA, 0, -1},
     {"world setup (Mean, s)", "world setup (Mean, s)",         M_WS,    SHOW_MEAN,  1, -1},
     {"verify (Mean, s)",      "verify (Mean, s)",              M_VT,    SHOW_MEAN,  1, -1},
+    {"memory (Mean, MB)",     "memory (Mean, MB)",             M_MEM,   SHOW_MEAN,  1, -1},
     {"d_n (Mean, m)",         "$d_n$ (Mean, m)",                M_DN,    SHOW_MEAN,  1, -1},
     {"d_n (sigma, m)",        "$d_n$ ($\\sigma$, m)",           M_DN,    SHOW_SIGMA, 1, -1},
     {"l_p (Mean, rad)",       "$l_p$ (Mean, rad)",              M_LP,    SHOW_MEAN,  0, -1},
@@ -100,6 +102,9 @@ static void usage(FILE *out)
         "  verify               the daemon's verification and metrics of a\n"
         "                       run's stages, outside every planner time,\n"
         "                       over the finished runs (s), when recorded\n"
+        "  memory               the planner process's peak resident memory\n"
+        "                       during the planning, over the finished runs\n"
+        "                       (MB), when reported\n"
         "  d_n                  clearance (m), when measured\n"
         "  l_p                  joint-space path length (rad)\n"
         "  l_e                  end-effector path length (m), when measured\n"
@@ -282,6 +287,9 @@ static int on_result(void *ud, const mpb_result_row *row)
     add_sample(&c->m[M_WS], row->world_setup_time);
     /* So is the daemon's verification of whatever came back. */
     add_sample(&c->m[M_VT], row->verify_time);
+    /* And the planner's peak memory, a run's cost whatever its end: a
+     * run stopped by memory_limit too (as Planner Arena plots it). */
+    add_sample(&c->m[M_MEM], row->memory);
     if (!row->success)
         return 0;
     c->succeeded++;

@@ -12,7 +12,7 @@
 #include "mpb.h"
 
 /* What is averaged: the run's times, then the stage metrics it reads. */
-enum { M_TT, M_TR, M_TO, M_WS, M_VT, M_DN, M_LP, M_LE, M_KAPPA, M_KAPPA_R, M_WP,
+enum { M_TT, M_TR, M_TO, M_WS, M_VT, M_MEM, M_DN, M_LP, M_LE, M_KAPPA, M_KAPPA_R, M_WP,
        M_COUNT };
 #define FIRST_STORED M_DN
 
@@ -46,7 +46,9 @@ typedef struct column {
                                    verification: its metrics left out */
     mpb_grouped m[M_COUNT];     /* successful runs; M_WS: every finished
                                    run that built a world; M_VT: every
-                                   finished run the daemon verified */
+                                   finished run the daemon verified;
+                                   M_MEM: every finished run whose
+                                   planner reported its memory */
 } column;
 
 typedef struct config_ref {

@@ -133,7 +133,9 @@ int mpb_ompl_planner_property(const mpb_ompl_planner *p, const char *name);
  * The mpbench status (mpb_status_name()'s names) nearest to a value of
  * OMPL's base::PlannerStatus: 0 (unknown), 8 (abort) and 9 (infeasible)
  * "failed", 1-3 "invalid_request", 4 "timeout", 5 "approximate", 6
- * "solved", 7 "crash"; NULL for any other value (NaN, non-integers).
+ * "solved", 7 "crash"; and of the two mpb export adds, 10
+ * "invalid_request" and 11 "memory"; NULL for any other value (NaN,
+ * non-integers).
  */
 const char *mpb_ompl_status_name(double ompl_status);
 

@@ -35,14 +35,25 @@ extern "C" {
  * Fill res for req. res arrives zeroed with run_id, planner_id and utime
  * set; fill status, message and times, and add stages and values with the
  * mpb_result_add_* functions (which own what they allocate). Return 0, or a
- * negative code to report INVALID_REQUEST with res->message if set.
+ * negative code to report INVALID_REQUEST with res->message if set;
+ * MPB_ENOMEM (an allocation failed) reports MEMORY instead.
  *
  * Before solve() is called the request has been checked: a valid run id,
  * addressed to this planner, an algorithm from def->algorithms, and for a
  * JOINTS goal as many goal joints as start joints; a request failing these
  * never reaches solve(). utime is set again when the result is published.
- * A status outside SOLVED..INVALID_REQUEST (CRASH is the daemon's) is
- * published as FAILED.
+ * A status outside SOLVED..MEMORY, or CRASH (the daemon's), is published
+ * as FAILED.
+ *
+ * Memory (docs/protocol.md, "Memory"): around solve() alone, the kit
+ * resets the process's peak resident size and reports it after in
+ * res->memory (MB), unless solve() set it above 0. With a request's
+ * memory_limit above 0 it lowers RLIMIT_DATA to the process's data size
+ * plus that many MB for the solve, so that an allocation past it fails
+ * (malloc returns NULL, new throws std::bad_alloc: catch it and return
+ * MPB_ENOMEM or set MEMORY); a process that dies of it anyway (SIGABRT,
+ * SIGSEGV, SIGBUS, a sanitizer's death) having used at least half the
+ * limit publishes a MEMORY result for the run as its last words.
  */
 typedef int (*mpb_solve_fn)(void *user, const mpb_plan_request_t *req,
                             mpb_plan_result_t *res);

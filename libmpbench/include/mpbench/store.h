@@ -226,6 +226,9 @@ typedef struct mpb_run_record {
     double      verify_time;      /* s the daemon spent verifying and
                                      measuring the run's stages; NaN (stored
                                      NULL) where it did none */
+    double      memory;           /* MB, the planner's peak resident
+                                     memory during the planning; NaN
+                                     (stored NULL): not reported */
 } mpb_run_record;
 
 /*
@@ -342,6 +345,7 @@ typedef struct mpb_result_row {
     int         num_named;     /* 0 if that stage has no metrics */
     const mpb_named *named;    /* every metric of that stage, by name */
     double      verify_time;   /* runs.verify_time (s), NaN if none */
+    double      memory;        /* runs.memory (MB), NaN if none */
 } mpb_result_row;
 
 /*

@@ -29,7 +29,8 @@ def main(argv=None):
         description="An mpbench planner in Python: answers plan requests "
                     "from mpbenchd with RRT-Connect (stages raw and "
                     "shortcut). Params: range (rad, default 0.5), "
-                    "resolution (rad, default 0.005).",
+                    "resolution (rad, default 0.005), allocate (MB held "
+                    "while planning, for tests of memory_limit; default 0).",
         epilog="Stops on SIGINT or SIGTERM. Protocol: docs/protocol.md; "
                "how it is written: docs/writing-a-planner.md.")
     ap.add_argument("-u", "--lcm-url", default="",

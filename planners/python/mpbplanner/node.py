@@ -12,7 +12,10 @@ Reusable for any planner in Python (docs/writing-a-planner.md):
     Node(name, algorithms, url).serve(solve)
 
 with solve(req) -> plan_result_t. A result whose time_total solve() left
-at 0 gets the time solve() took, by the node's clock. As the C kit does,
+at 0 gets the time solve() took, by the node's clock; one whose memory
+solve() left at 0 gets the process's peak resident memory during solve()
+(MB), and a request's memory_limit is enforced around solve(), a
+MemoryError answered with MEMORY (memory.py). As the C kit does,
 the node answers a
 request for an algorithm it does not offer with INVALID_REQUEST without
 calling solve(), an exception in solve() with FAILED and the
@@ -33,6 +36,7 @@ import traceback
 from mpb import (daemon_status_t, plan_request_t, plan_result_t,
                  planner_announce_t, run_ack_t)
 
+from .memory import Watch
 from .sockfilter import filtered_lcm
 
 ANNOUNCE = "MPB_ANNOUNCE"
@@ -312,8 +316,18 @@ class Node:
                                f"{', '.join(self.algorithms)})")
         else:
             t0 = time.monotonic()
+            watch = Watch(getattr(req, "memory_limit", 0.0))
             try:
-                res = solve(req)
+                with watch:
+                    res = solve(req)
+            except MemoryError:
+                # Past the request's memory_limit (RLIMIT_DATA, set by
+                # Watch), or the machine's: what solve() held is freed.
+                res = self._failed(plan_result_t.MEMORY, "out of memory "
+                                   "(MemoryError)" + (
+                                       f" under the memory_limit of "
+                                       f"{watch.limit_mb:g} MB"
+                                       if watch.limit_mb > 0 else ""))
             except Exception as e:      # the planner's bug: say so, go on
                 print(f"mpb-planner-python: run {req.run_id[:8]}: solve() "
                       f"raised:\n{traceback.format_exc()}", file=sys.stderr,
@@ -327,6 +341,12 @@ class Node:
                 # solve() kept no time of its own: the kit's clock is the
                 # run's tau_t, never 0 s that would win "fastest".
                 res.time_total = time.monotonic() - t0
+            if not res.memory > 0:
+                res.memory = watch.peak_mb
+            if watch.note:
+                res.message = (watch.note + ("; " + res.message
+                                             if res.message else ""))[
+                                                 :MESSAGE_MAX]
         res.utime = int(time.time() * 1e6)
         res.run_id, res.planner_id = req.run_id, self.planner_id
         try:

@@ -113,6 +113,10 @@ def solve(req, cache):
     try:
         step = _param(req, "range", 0.5, 1e-6)
         resolution = _param(req, "resolution", 0.005, 1e-6)
+        # Tests of the kit's memory measure and limit: hold this many MB,
+        # written (so resident), while planning; past memory_limit the
+        # MemoryError reaches the kit, which answers MEMORY.
+        held = b"\x01" * int(_param(req, "allocate", 0, 0) * 1048576)
         if req.algorithm != "RRTConnect":
             raise InvalidRequest(f"unknown algorithm '{req.algorithm}' "
                                  f"(RRTConnect)")
