@@ -1,0 +1,138 @@
+#!/bin/sh
+# `mpb import -p` against OMPL 1.5.2's own ompl_benchmark_statistics.py:
+# on the same logs they must write the same database, every table and
+# view, every column (name, declared type, order) and every cell with its
+# SQLite type (tests/tools/same_database.py). The logs: one written by
+# OMPL's Benchmark (experiment parameters, three planners, progress, the
+# status enum), and one written here with what OMPL's writer seldom
+# shows (parameters of every type and with '-' in their names, integers
+# past 2^53, nan, inf and empty values, two planners with settings). Both
+# tools also add to each other's databases (-a): a configuration added
+# again is one plannerConfigs row, an enum one set of rows.
+#
+# The script is not part of mpbench: bench/ompl_peer.sh takes it from
+# Debian's source package of the installed OMPL into .cache/ompl-peer
+# (make deps does too). Without it this test fails: it does not skip.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mpb=$MPB_BUILD/tools/mpb
+same="$MPB_SOURCE/tests/tools/same_database.py"
+
+stats=$(sh "$MPB_SOURCE/bench/ompl_peer.sh" "$MPB_SOURCE/.cache/ompl-peer")
+check "OMPL's ompl_benchmark_statistics.py is at hand (bench/ompl_peer.sh)" \
+    test -n "$stats" -a -s "${stats:-/nonexistent}"
+# Debian's python3, which OMPL's package would run it with; it needs no
+# module outside Python's own (matplotlib only for its plots).
+py=/usr/bin/python3
+check "Debian's python3 is installed" test -x "$py"
+[ $FAILS -eq 0 ] || { mpb_finish; exit 1; }
+
+"$MPB_BUILD/tests/mpb-test-ompl-log" "$work/wall.log" 5 0.05
+check "OMPL's Benchmark wrote a log with experiment parameters" \
+    grep -q '^3 experiment properties$' "$work/wall.log"
+
+cat >"$work/edge.log" <<'EOT'
+OMPL version 1.5.2
+Experiment edge
+5 experiment properties
+big INTEGER = 9007199254740993
+max-speed REAL = 2.5
+narrow BOOLEAN = 1
+passage width REAL = 1e-3
+wall_width REAL = 0.25
+Running on host-a
+Starting at 2026-01-02 03:04:05
+<<<|
+a setup
+  with blanks 
+|>>>
+<<<|
+CPU: a test
+|>>>
+18446744073709551615 is the random seed
+2.5 seconds per run
+512 MB per run
+3 runs per planner
+12.75 seconds spent to collect the data
+1 enum type
+status|Unknown status|Invalid start|Invalid goal|Unrecognized goal type|Timeout|Approximate solution|Exact solution|Crash|Abort|Infeasible
+2 planners
+geometric_RRT
+2 common properties
+goal_bias = 0.05
+range = 0
+6 properties for each run
+graph states INTEGER
+solution length REAL
+solved BOOLEAN
+status ENUM
+time REAL
+valid segment count INTEGER
+3 runs
+9007199254740993; 1.5; 1; 6; 0.125; -9223372036854775807; 
+12; nan; 0; 4; 2.5; 0; 
+; inf; 0; 9; 1e-7; 10000000000000000; 
+3 progress properties for each run
+best cost REAL
+iterations INTEGER
+time REAL
+3 runs
+1.5,10,0.05,;inf,20,0.1,;
+,3,0.05,;
+
+.
+geometric_PRM
+1 common properties
+max_nearest_neighbors = 8
+4 properties for each run
+memory REAL
+solved BOOLEAN
+status ENUM
+time REAL
+3 runs
+0.5; 1; 6; 0.25; 
+; 0; 4; 2.5; 
+3; 1; 5; 1.0; 
+.
+EOT
+
+# Each case: the script's database and mpb import -p's, from the same
+# logs, then compared. $1 names the case, the rest are the logs.
+compare() {
+    what=$1; shift
+    rm -f "$work/ompl.db" "$work/mpb.db"
+    "$py" "$stats" -d "$work/ompl.db" "$@" >"$work/ompl.out" 2>&1
+    check "$what: OMPL's script reads the logs" test -s "$work/ompl.db"
+    "$mpb" import -p "$work/mpb.db" "$@" >/dev/null
+    check "$what: mpb import -p reads them" test $? -eq 0
+    "$py" "$same" "$work/ompl.db" "$work/mpb.db" >"$work/diff.out"
+    check "$what: the same database, every table and every cell" test $? -eq 0
+    sed 's/^/# /' "$work/diff.out" | head -n 24
+}
+compare "OMPL's log" "$work/wall.log"
+compare "the edge log" "$work/edge.log"
+compare "three logs, one twice" "$work/wall.log" "$work/edge.log" "$work/wall.log"
+
+# Adding to the other's database (-a): each tool finds the configurations
+# and enums the other wrote.
+rm -f "$work/ompl.db" "$work/a.db" "$work/b.db"
+"$py" "$stats" -d "$work/ompl.db" "$work/wall.log" "$work/edge.log" \
+    "$work/wall.log" >/dev/null 2>&1
+"$py" "$stats" -d "$work/a.db" "$work/wall.log" >/dev/null 2>&1
+"$mpb" import -p "$work/a.db" -a "$work/edge.log" "$work/wall.log" >/dev/null
+check "mpb import -p -a adds to the script's database" test $? -eq 0
+"$py" "$same" "$work/ompl.db" "$work/a.db" >"$work/diff.out"
+check "... as the script would have" test $? -eq 0
+sed 's/^/# /' "$work/diff.out" | head -n 24
+"$mpb" import -p "$work/b.db" "$work/wall.log" "$work/edge.log" >/dev/null
+"$py" "$stats" -a -d "$work/b.db" "$work/wall.log" >/dev/null 2>&1
+"$py" "$same" "$work/ompl.db" "$work/b.db" >"$work/diff.out"
+check "the script adds to mpb import -p's database as to its own" test $? -eq 0
+sed 's/^/# /' "$work/diff.out" | head -n 24
+check "a configuration added again is one row" \
+    eq "$(sqlite3 "$work/b.db" "SELECT count(*) FROM plannerConfigs")" 5
+
+mpb_finish
