@@ -344,7 +344,7 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if (exists && (rc = is_planner_arena(&o)) != MPB_OK)
         goto done;
     if ((rc = mpb__pa_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
-        (rc = mpb__pa_begin(&o)))
+        (rc = mpb__pa_begin(&o, 1)))
         goto done;
     /* Only what was there before can be exported already. */
     int64_t before = 0;

@@ -178,9 +178,10 @@ int mpb__pa_fail(pa_out *o, const char *what);
 /* Run sql (several statements may follow each other). */
 int mpb__pa_exec(pa_out *o, const char *sql, const char *what);
 
-/* Open a transaction, create the tables that are missing and add the
- * status enum, as OMPL's script does before it reads a log. */
-int mpb__pa_begin(pa_out *o);
+/* Open a transaction and create the tables that are missing, as OMPL's
+ * script does before it reads a log; with status_enum, add mpbench's
+ * status enum too (a log brings its own). */
+int mpb__pa_begin(pa_out *o, int status_enum);
 
 /* End what mpb__pa_begin() began and close o->db (if open): with rc
  * MPB_OK the views made anew and the transaction committed, otherwise
@@ -202,6 +203,15 @@ int mpb__pa_prepare_rows(pa_out *o, const char *verb, const char *table,
                          const char *fixed, const char *values,
                          const prop_list *props, int rows,
                          sqlite3_stmt **out);
+
+/* The affinity SQLite gives a column declared type: 'I' INTEGER, 'T'
+ * TEXT, 'B' BLOB, 'R' REAL, 'N' NUMERIC. */
+char mpb__pa_affinity(const char *type);
+
+/* The affinity of the column of each of props in table, as the database
+ * declares it (which an earlier log may have), into out[0..props->n). */
+int mpb__pa_affinities(pa_out *o, const char *table, const prop_list *props,
+                       char *out);
 
 /* A number as the script's text becomes in a column of that affinity:
  * NULL for NaN, an integer (unless the column is REAL) or a real. */

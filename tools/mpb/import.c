@@ -28,7 +28,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
         "usage: mpb import -d DB LOG...\n"
-        "       mpb import -p OUT.db LOG...\n"
+        "       mpb import -p OUT.db [-a] LOG...\n"
         "\n"
         "Read benchmark logs written by OMPL's ompl::tools::Benchmark (or\n"
         "MoveIt's benchmark executor, in the same format) into the mpbench\n"
@@ -43,12 +43,16 @@ static void usage(FILE *out)
         "instead, as OMPL's ompl_benchmark_statistics.py does, without an\n"
         "mpbench database in between: each log is read once and written as\n"
         "it is read, and OUT.db appears only once every log is in it (if\n"
-        "one cannot be read or has an error, it does not appear).\n"
+        "one cannot be read or has an error, it does not appear). With -a,\n"
+        "add to OUT.db, an existing Planner Arena database (the script's -a),\n"
+        "in one transaction: a planner configuration or enum it holds is\n"
+        "not added again.\n"
         "\n"
         "Options:\n"
         "  -d, --db DB               the mpbench database to add to\n"
         "  -p, --planner-arena OUT   the Planner Arena database to write (it\n"
-        "                            must not exist)\n"
+        "                            must not exist, unless -a)\n"
+        "  -a, --append              with -p: add to OUT, which exists\n"
         "  -h, --help                print this help\n"
         "\n"
         "Exit status: 0 when every log was imported, 1 on an error, 2 on a\n"
@@ -397,7 +401,8 @@ static int feed_next(void *ud, const mpb_ompl_log **log)
 
 /* -p: the logs straight into one new Planner Arena database, whole or
  * not at all. */
-static int to_planner_arena(const char *out, int num_logs, char **logs)
+static int to_planner_arena(const char *out, int append, int num_logs,
+                            char **logs)
 {
     arena_feed f = {.logs = logs, .num_logs = num_logs};
     char err[256];
@@ -406,7 +411,8 @@ static int to_planner_arena(const char *out, int num_logs, char **logs)
         fprintf(stderr, "mpb " CMD ": out of memory\n");
         return MPB_EXIT_ERROR;
     }
-    if (mpb_ompl_logs_to_planner_arena(out, 0, feed_next, &f, NULL, err,
+    if (mpb_ompl_logs_to_planner_arena(out, append ? MPB_EXPORT_APPEND : 0,
+                                       feed_next, &f, NULL, err,
                                        sizeof err) != MPB_OK) {
         if (f.bad)      /* the rest checked too, for every error at once */
             check_all(num_logs - f.next, logs + f.next);
@@ -432,20 +438,24 @@ int cmd_import(int argc, char **argv)
     static const struct option longopts[] = {
         {"db", required_argument, NULL, 'd'},
         {"planner-arena", required_argument, NULL, 'p'},
+        {"append", no_argument, NULL, 'a'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     const char *db = NULL, *arena = NULL;
-    int opt;
+    int opt, append = 0;
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":d:p:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":d:p:ah", longopts, NULL)) != -1) {
         switch (opt) {
         case 'd':
             db = optarg;
             break;
         case 'p':
             arena = optarg;
+            break;
+        case 'a':
+            append = 1;
             break;
         case 'h':
             usage(stdout);
@@ -460,8 +470,12 @@ int cmd_import(int argc, char **argv)
                 : db ? "-d or -p, not both" : "into which database? (-d DB or -p OUT.db)");
         return MPB_EXIT_USAGE;
     }
+    if (append && arena == NULL) {
+        fprintf(stderr, "mpb " CMD ": -a is for -p (try 'mpb " CMD " --help')\n");
+        return MPB_EXIT_USAGE;
+    }
     if (arena != NULL)
-        return to_planner_arena(arena, argc - optind, argv + optind);
+        return to_planner_arena(arena, append, argc - optind, argv + optind);
     /* Every log checked before the database is created or opened, then
      * read again as it is imported: one log in memory at a time. */
     int num_logs = argc - optind;
