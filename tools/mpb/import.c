@@ -226,10 +226,25 @@ static int import_log(mpb_store *s, const char *path, const char *text,
         if (log->planners[i].num_runs > most)
             most = log->planners[i].num_runs;
     int64_t exp, scene, query;
+    /* The log's header and experiment properties, for mpb export. */
+    mpb_experiment_param *params = calloc((size_t)log->num_params + 1,
+                                          sizeof *params);
+    if (params == NULL)
+        return MPB_ENOMEM;
+    for (int i = 0; i < log->num_params; i++)
+        params[i] = (mpb_experiment_param){log->params[i].name,
+                                           log->params[i].type,
+                                           log->params[i].value};
+    mpb_log_header header = {
+        .host = log->host, .version = log->version, .started = log->date,
+        .seed = log->seed, .cpuinfo = log->cpuinfo,
+        .total_time = log->total_time, .memory_limit = log->memory_limit,
+        .num_params = log->num_params, .params = params,
+    };
     mpb_experiment_info e = {log->experiment, path, hash, text,
                              (int)(log->runs_per_planner > 0 ? log->runs_per_planner
                                                              : most),
-                             log->time_limit};
+                             log->time_limit, &header};
     mpb_scene_info sc = {log->experiment, "ompl-log", hash,
                          log->setup ? log->setup : "", "ompl-log", hash, ""};
     static const double none[1] = {0.0};
@@ -237,8 +252,9 @@ static int import_log(mpb_store *s, const char *path, const char *text,
                         .joint_names = NULL, .start = none,
                         .goal_kind = MPB_GOAL_JOINTS, .goal_joints = NULL,
                         .goal_tolerance = 0.0};
-    int rc;
-    if ((rc = mpb_store_experiment_create(s, &e, &exp)) != MPB_OK ||
+    int rc = mpb_store_experiment_create(s, &e, &exp);
+    free(params);
+    if (rc != MPB_OK ||
         (rc = mpb_store_scene_add(s, exp, &sc, &scene)) != MPB_OK ||
         (rc = mpb_store_query_add(s, scene, &q, &query)) != MPB_OK)
         return rc;
