@@ -123,9 +123,9 @@ echo "ratio (OMPL's script / mpb import -d + export): ${ratio_db}x"
 
 # The same rows, every cell with its type (tests/tools/same_database.py):
 # -p's database is the script's, every table. The one made through an
-# mpbench database is told apart (same_via_db): its runs and progress,
-# property by property and by value (its planners and experiments are
-# named mpbench's way, its planners' own numbers are reals).
+# mpbench database is told apart (same_via_db): its experiments, runs and
+# progress, property by property and by value (its planners are named
+# mpbench's way, its planners' own numbers are reals).
 same_db() { python3 "$root/tests/tools/same_database.py" "$@" >"$work/same.out"; }
 if same_db "$work/ompl.db" "$work/direct.db"; then
     same=yes
@@ -134,11 +134,11 @@ else
     same=no
     echo "same rows (-p): NO"; head -n 21 "$work/same.out"
 fi
-if same_db --runs-only --values "$work/ompl.db" "$work/arena.db"; then
+if same_db --properties --values "$work/ompl.db" "$work/arena.db"; then
     same_db=yes
-    echo "same runs and progress (-d + export): yes"
+    echo "same experiments, runs and progress (-d + export): yes"
 else
     same_db=no
-    echo "same runs and progress (-d + export): NO"; head -n 21 "$work/same.out"
+    echo "same experiments, runs and progress (-d + export): NO"; head -n 21 "$work/same.out"
 fi
 echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m ompl_s=$o ratio=$ratio paired_ratio=$paired ratio_via_db=$ratio_db same_rows=$same same_via_db=$same_db"

@@ -282,19 +282,6 @@ static int publish(mpb_store *errs, const char *tmp, const char *path)
     return rc;
 }
 
-/* The column OMPL's script gives an experiment parameter: its name's
- * words joined with nothing, '-' as '_'. Caller frees. */
-static char *param_column(const char *name)
-{
-    char *c = malloc(strlen(name) + 1), *d = c;
-    for (; c && *name; name++)
-        if (*name != ' ')
-            *d++ = *name == '-' ? '_' : *name;
-    if (c)
-        *d = '\0';
-    return c;
-}
-
 static int by_name(const void *a, const void *b)
 {
     return strcmp(((const prop *)a)->name, ((const prop *)b)->name);
@@ -351,7 +338,7 @@ static int write_log(pa_out *o, const mpb_ompl_log *log)
     if (params.v == NULL)
         goto done;
     for (int i = 0; i < np; i++) {
-        if ((params.v[i].name = param_column(log->params[i].name)) == NULL)
+        if ((params.v[i].name = mpb__pa_param_column(log->params[i].name)) == NULL)
             goto done;
         params.v[i].type = log->params[i].type;
         cap += strlen(params.v[i].name) + 16;

@@ -108,11 +108,23 @@ void mpb__pa_walker_close(pa_walker *w);
 
 /* ---- what every writer says of an experiment (store_pa_props.c) ------------ */
 
+/* An experiment property as a log writes it: "name TYPE = value". */
+typedef struct exp_param {
+    char *name, *type, *value;
+} exp_param;
+
 typedef struct exp_info {
     int64_t id;
     char   *name, *config_text, *host, *version;
     int     runs_per_query;
     double  time_limit, created;
+    /* An imported log's header (NULL, NaN when the experiment is
+     * mpbench's own): its date as written, seed, CPU block, total time,
+     * memory limit, and its experiment properties. */
+    char   *started, *seed, *cpuinfo;
+    double  total_time, memory_limit;
+    int     num_params;
+    exp_param *params;
 } exp_info;
 
 int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e);
@@ -125,6 +137,15 @@ int mpb__pa_experiment_ids(mpb_store *s, const int64_t *ids, int num_ids,
 
 /* Whitespace to '_': a log's "Experiment NAME" line keeps one word. */
 void mpb__pa_one_word(char *s);
+
+/* The column OMPL's script gives the experiment property of that name:
+ * its words joined with nothing, '-' as '_' ("wall height" is
+ * "wallheight"). Caller frees; NULL when out of memory. */
+char *mpb__pa_param_column(const char *name);
+
+/* The value e's log had for the experiment property whose column is
+ * column (mpb__pa_param_column()), or NULL. */
+const char *mpb__pa_exp_param(const exp_info *e, const char *column);
 
 /* "mpbench 0.1.0" as the experiment recorded it, never empty (Planner
  * Arena sorts and selects by it). */

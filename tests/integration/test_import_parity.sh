@@ -135,4 +135,43 @@ sed 's/^/# /' "$work/diff.out" | head -n 24
 check "a configuration added again is one row" \
     eq "$(sqlite3 "$work/b.db" "SELECT count(*) FROM plannerConfigs")" 5
 
+# The round trip through an mpbench database: mpb import -d, then mpb
+# export --planner-arena, and mpb export --ompl-log read by the script,
+# keep every property each log had, by value: the experiment's header
+# (date, version, total time, seed, memory limit, CPU block, setup, host)
+# and parameters, and every run and progress property (its planners are
+# named mpbench's way, and mpbench adds properties of its own). mpbench
+# keeps a planner's own numbers as reals: the edge log's run integers
+# past 2^53 are left out here (a known limit, docs/planner-arena.md).
+grep -v '^9007199254740993; 1.5; ' "$work/edge.log" | sed \
+    '/^geometric_RRT$/,/^\.$/ s/^12; nan; 0; 4; 2.5; 0; $/12; nan; 0; 4; 2.5; 0; \n5; 1.5; 1; 6; 0.125; -7; /' \
+    >"$work/edge-d.log"
+for log in wall edge-d; do
+    rm -rf "$work/rt.db" "$work/rt-pa.db" "$work/rt-logs" "$work/rt-ompl.db" \
+        "$work/ompl.db"
+    "$py" "$stats" -d "$work/ompl.db" "$work/$log.log" >/dev/null 2>&1
+    "$mpb" import -d "$work/rt.db" "$work/$log.log" >/dev/null &&
+        "$mpb" export --planner-arena "$work/rt.db" "$work/rt-pa.db" >/dev/null
+    check "$log: import -d, export --planner-arena" test $? -eq 0
+    "$py" "$same" --properties --values "$work/ompl.db" "$work/rt-pa.db" \
+        >"$work/diff.out"
+    check "$log: ... keeps every property of the log, with its value" test $? -eq 0
+    sed 's/^/# /' "$work/diff.out" | head -n 24
+    "$mpb" export --ompl-log "$work/rt.db" "$work/rt-logs" >/dev/null &&
+        "$py" "$stats" -d "$work/rt-ompl.db" "$work/rt-logs"/*.log >/dev/null 2>&1
+    check "$log: export --ompl-log, read by OMPL's script" test $? -eq 0
+    "$py" "$same" --properties --values "$work/ompl.db" "$work/rt-ompl.db" \
+        >"$work/diff.out"
+    check "$log: ... keeps every property of the log, with its value" test $? -eq 0
+    sed 's/^/# /' "$work/diff.out" | head -n 24
+done
+check "the header is mpbench's own columns" test "$(sqlite3 "$work/rt.db" \
+    "SELECT started, total_time, seed, memory_limit, cpuinfo, host, version
+       FROM experiments")" = "2026-01-02 03:04:05|12.75|18446744073709551615|512.0|CPU: a test
+|host-a|OMPL 1.5.2"
+check "the parameters are kept as written" test "$(sqlite3 "$work/rt.db" \
+    "SELECT group_concat(name || ' ' || type || ' = ' || value, ',')
+       FROM (SELECT * FROM experiment_params ORDER BY idx)")" = \
+    "big INTEGER = 9007199254740993,max-speed REAL = 2.5,narrow BOOLEAN = 1,passage width REAL = 1e-3,wall_width REAL = 0.25"
+
 mpb_finish

@@ -4,7 +4,7 @@ by cell: the comparison of `mpb import -p` with OMPL's
 ompl_benchmark_statistics.py (tests/integration/test_import_parity.sh,
 bench/import.sh).
 
-  same_database.py [--runs-only [--values]] WANT.db GOT.db
+  same_database.py [--properties [--values]] WANT.db GOT.db
 
 Every table and view of WANT must be in GOT with the same columns (names,
 declared types, in order), the same number of rows, and in each row (in
@@ -12,11 +12,13 @@ rowid order, a view's in all its columns' order) the same value in every
 cell, of the same SQLite type (integer 1 is not real 1.0 nor text '1'),
 reals to the last bit. GOT may have no table that WANT lacks.
 
---runs-only compares what a run is, not how the database names things:
-the tables runs and progress only, the columns of WANT's (GOT may have
-more), without the ids (id, experimentid, plannerid, runid), for the
-round trip through an mpbench database (mpb import -d, mpb export
---planner-arena), whose planners and experiments are named mpbench's way.
+--properties compares what the experiments and runs are, not how the
+database names things: the tables experiments, runs and progress only,
+the columns of WANT's (GOT may have more), without the ids (id,
+experimentid, plannerid, runid) and those WANT never fills (a property
+a log declares and no run measured), for the round trip through an mpbench
+database (mpb import -d, mpb export), whose planners are named mpbench's
+way and whose experiments have mpbench's parameters too.
 --values then takes numbers by value, not type (1 is 1.0): mpbench keeps
 a planner's own numbers as reals.
 
@@ -70,7 +72,7 @@ def rows(db, table, kind, cols):
 
 def main(argv):
     runs_only = values = False
-    if argv and argv[0] == "--runs-only":
+    if argv and argv[0] == "--properties":
         runs_only, argv = True, argv[1:]
         if argv and argv[0] == "--values":
             values, argv = True, argv[1:]
@@ -88,7 +90,7 @@ def main(argv):
     wo, go = objects(want), objects(got)
     names = sorted(wo)
     if runs_only:
-        names = [n for n in names if n in ("runs", "progress")]
+        names = [n for n in names if n in ("experiments", "runs", "progress")]
     else:
         for n in sorted(set(go) - set(wo)):
             differ("%s: only in %s" % (n, argv[1]))
@@ -99,7 +101,9 @@ def main(argv):
         wc, gc = columns(want, name), columns(got, name)
         if runs_only:
             have = {c[0] for c in gc}
-            cols = [c[0] for c in wc if c[0] not in IDS]
+            cols = [c[0] for c in wc if c[0] not in IDS and want.execute(
+                "SELECT 1 FROM %s WHERE %s IS NOT NULL LIMIT 1"
+                % (q(name), q(c[0]))).fetchone()]
             for c in cols:
                 if c not in have:
                     differ("%s.%s: not in %s" % (name, c, argv[1]))
@@ -112,14 +116,19 @@ def main(argv):
             # The cells of the columns both have, still.
             have = {c[0] for c in gc}
             cols = [c[0] for c in wc if c[0] in have]
-        wr = rows(want, name, wo[name], cols).fetchall()
-        gr = rows(got, name, go[name], cols).fetchall()
+        if not cols:        # nothing filled: the rows' count only
+            count = "SELECT count(*) FROM %s" % q(name)
+            wr = [()] * want.execute(count).fetchone()[0]
+            gr = [()] * got.execute(count).fetchone()[0]
+        else:
+            wr = rows(want, name, wo[name], cols).fetchall()
+            gr = rows(got, name, go[name], cols).fetchall()
         if len(wr) != len(gr):
             differ("%s: %d rows, not %d" % (name, len(gr), len(wr)))
         for i, (a, b) in enumerate(zip(wr, gr)):
             for c, x, y in zip(cols, a, b):
                 if values and isinstance(x, (int, float)) and \
-                        isinstance(y, (int, float)) and float(x) == float(y):
+                        isinstance(y, (int, float)) and x == y:
                     continue
                 cx, cy = cell(x), cell(y)
                 if cx[:2] != cy[:2]:

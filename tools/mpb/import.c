@@ -191,12 +191,16 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
                         sample[0], p->progress_properties[k].name, sample[k]};
         }
     }
-    double t = cell(p, run, c->time);
+    /* tau_t is the planning and the simplification, as the time OMPL's
+     * script ranks by (time + simplification_time); tau_r the planning. */
+    double t = cell(p, run, c->time), ts = cell(p, run, c->s_time);
+    double total = isnan(ts) ? t : t + ts;
     mpb_run_record rec = {
         .run_id = run_id, .run_uid = uid, .planner_id = "imported",
         .status = status_of(cell(p, run, c->status), solved), .message = "",
         .claimed_success = solved, .success = success,
-        .time_total = t, .time_raw = t, .time_other = 0.0, .wall_time = NAN,
+        .time_total = total, .time_raw = t, .time_other = isnan(ts) ? 0.0 : ts,
+        .wall_time = NAN,
         .verify_time = NAN,
         .num_stages = nstages, .stages = st,
         .num_values = nv, .values = values,
