@@ -178,6 +178,21 @@ sqlite3 "$work/again.db" "SELECT c.name, count(*), printf('%.9g', avg(r.time_raw
                             FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
                            GROUP BY c.name" | sed 's/^.*\///' | sort >"$work/again.means"
 check "... with the same runs and averages" cmp -s "$work/log.means" "$work/again.means"
+# mpbench's own experiment properties, query and mpbench_experiment, are
+# the log's once imported, and exported again as they were.
+want=$(sed -n 's/^query VARCHAR(512) = //p; s/^mpbench_experiment INTEGER = //p' \
+           "$work"/logs/*.log | paste -sd'|')
+# Imported second, the log's experiment has another id than it says.
+"$mpb" import -d "$work/again2.db" "$work/wall.log" "$work"/logs/*.log >/dev/null
+"$mpb" export --planner-arena -e 2 "$work/again2.db" "$work/again-pa.db" >/dev/null
+check "query and mpbench_experiment are kept through import -d ($want)" \
+    test -n "$want" -a "$(sqlite3 "$work/again-pa.db" \
+        "SELECT query || '|' || mpbench_experiment FROM experiments")" = "$want"
+rm -rf "$work/logs2"
+"$mpb" export --ompl-log -e 2 "$work/again2.db" "$work/logs2" >/dev/null
+check "... and in the log exported again" test "$(sed -n \
+    's/^query VARCHAR(512) = //p; s/^mpbench_experiment INTEGER = //p' \
+    "$work"/logs2/*.log | paste -sd'|')" = "$want"
 
 # A log cut short, and a file that is no log: one line naming where, and
 # nothing added to the database.
