@@ -726,8 +726,12 @@ static int param_line(reader *r, mpb_ompl_log *log)
     char *s = need_line(r, "an experiment property 'name TYPE = value'");
     if (s == NULL)
         return -1;
-    char *eq = strstr(s, " = ");
-    char *sp = NULL;
+    char *eq = strstr(s, " = "), *sp = NULL;
+    const char *value = eq ? eq + 3 : "";
+    size_t n = strlen(s);
+    /* An empty value: the line's trailing blank was trimmed. */
+    if (eq == NULL && n > 2 && strcmp(s + n - 2, " =") == 0)
+        eq = s + n - 2;
     if (eq != NULL) {
         *eq = '\0';
         sp = strrchr(s, ' ');
@@ -750,7 +754,7 @@ static int param_line(reader *r, mpb_ompl_log *log)
             return fail(r, "the experiment property '%.60s' a second time", s);
     mpb_ompl_param *p = &log->params[log->num_params++];
     if ((p->name = dup(r, s)) == NULL || (p->type = dup(r, sp + 1)) == NULL ||
-        (p->value = dup(r, eq + 3)) == NULL)
+        (p->value = dup(r, value)) == NULL)
         return -1;
     return 0;
 }
