@@ -165,6 +165,9 @@ for log in wall edge-d; do
     check "$log: ... keeps every property of the log, with its value" test $? -eq 0
     sed 's/^/# /' "$work/diff.out" | head -n 24
 done
+# A log mpbench wrote (17 significant digits, its own properties and
+# enum) reads the same with both tools too.
+compare "mpb export --ompl-log's log" "$work"/rt-logs/*.log
 check "the header is mpbench's own columns" test "$(sqlite3 "$work/rt.db" \
     "SELECT started, total_time, seed, memory_limit, cpuinfo, host, version
        FROM experiments")" = "2026-01-02 03:04:05|12.75|18446744073709551615|512.0|CPU: a test
