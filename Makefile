@@ -5,7 +5,10 @@
 #               playwright-core from npm into .cache/web with Debian's
 #               chromium for the HTML views, and the robots and
 #               MotionBenchMaker problems of PyPI's vamp-planner 0.6.4
-#               into .cache/robots (tools/robot_data.sh) (idempotent)
+#               into .cache/robots (tools/robot_data.sh), and OMPL's
+#               ompl_benchmark_statistics.py from Debian's source package
+#               of the installed OMPL into .cache/ompl-peer, which the
+#               import parity test runs (bench/ompl_peer.sh) (idempotent)
 #   make        build everything into build/
 #   make test   deps, build, run every test (unit and integration)
 #   make demo   deps, build, run the demo benchmark, print its report
@@ -34,6 +37,7 @@ deps:
 	@sh tools/python_env.sh
 	@sh tools/web_env.sh
 	@sh tools/robot_data.sh >/dev/null
+	@sh bench/ompl_peer.sh >/dev/null
 
 test: deps
 	$(MAKE) all

@@ -6,7 +6,7 @@
 # the same log, on this machine, in the same run. Prints the time of each
 # (-p and the script: the median of MPB_IMPORT_REPS, default 5, taken in
 # turns; through a database: of 3), the ratios, and whether the databases
-# hold the same runs (per planner: count, mean time, mean solved).
+# hold the same rows, cell by cell (tests/tools/same_database.py).
 #
 #   bench/import.sh [RUNS]            (default 50000)
 #
@@ -121,21 +121,24 @@ echo "ratio per pair (script / mpb import -p):$rs, median ${paired}x"
 echo "ratio (OMPL's script / mpb import -p): ${ratio}x"
 echo "ratio (OMPL's script / mpb import -d + export): ${ratio_db}x"
 
-# The same rows: per planner, the run count, mean time and mean solved.
-rows() {
-    sqlite3 "$1" "SELECT replace(p.name, 'geometric_', ''), count(*),
-                         printf('%.9g', avg(r.time)), printf('%.9g', avg(r.solved))
-                    FROM runs r JOIN plannerConfigs p ON p.id = r.plannerid
-                   GROUP BY 1 ORDER BY 1" | sed 's/^[a-z]*\///'
-}
-rows "$work/arena.db" >"$work/mpb.rows"
-rows "$work/direct.db" >"$work/direct.rows"
-rows "$work/ompl.db" >"$work/ompl.rows"
-if cmp -s "$work/mpb.rows" "$work/ompl.rows" && cmp -s "$work/direct.rows" "$work/ompl.rows"; then
+# The same rows, every cell with its type (tests/tools/same_database.py):
+# -p's database is the script's, every table. The one made through an
+# mpbench database is told apart (same_via_db): its experiments, runs and
+# progress, property by property and by value (its planners are named
+# mpbench's way, its planners' own numbers are reals).
+same_db() { python3 "$root/tests/tools/same_database.py" "$@" >"$work/same.out"; }
+if same_db "$work/ompl.db" "$work/direct.db"; then
     same=yes
-    echo "same rows: yes ($(wc -l <"$work/mpb.rows") planners)"
+    echo "same rows (-p): yes, every cell of every table"
 else
     same=no
-    echo "same rows: NO"; diff "$work/mpb.rows" "$work/ompl.rows" || true
+    echo "same rows (-p): NO"; head -n 21 "$work/same.out"
 fi
-echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m ompl_s=$o ratio=$ratio paired_ratio=$paired ratio_via_db=$ratio_db same_rows=$same"
+if same_db --properties --values "$work/ompl.db" "$work/arena.db"; then
+    same_db=yes
+    echo "same experiments, runs and progress (-d + export): yes"
+else
+    same_db=no
+    echo "same experiments, runs and progress (-d + export): NO"; head -n 21 "$work/same.out"
+fi
+echo "RESULT import runs=$RUNS direct_s=$d mpb_s=$m ompl_s=$o ratio=$ratio paired_ratio=$paired ratio_via_db=$ratio_db same_rows=$same same_via_db=$same_db"

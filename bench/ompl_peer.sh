@@ -3,24 +3,24 @@
 # ompl_benchmark_statistics.py, of the OMPL that is installed. Prints its
 # path, or one line on stderr and exit 1 when it cannot be had.
 #
-#   bench/ompl_peer.sh [DIR]     (default $MPB_BUILD/bench-run/peer)
+#   bench/ompl_peer.sh [DIR]     (default .cache/ompl-peer of the sources)
 #
 # The script is not part of mpbench and no Debian package installs it, but
 # Debian's source package of OMPL carries it. This takes that package, of
 # the version of libompl-dev that is installed, from the Debian archive
 # with apt (which checks the archive's signature and every file's hash),
 # into a private apt state under DIR: nothing of the system's apt setup
-# changes. The script is kept in DIR for the next run; the rest is removed.
-# It needs the network, so bench/run.sh calls it before it leaves the
-# network behind (unshare -n).
+# changes. The script is kept in DIR for the next run (and the next build:
+# make deps fetches it, tests/integration/test_import_parity.sh runs it);
+# the rest is removed. It needs the network, so bench/run.sh calls it
+# before it leaves the network behind (unshare -n).
 set -eu
 src=$(cd "$(dirname "$0")/.." && pwd)
-BUILD=${MPB_BUILD:-$src/build}
 case ${1:-} in
 -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
 -*) echo "bench/ompl_peer.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
 esac
-DIR=${1:-$BUILD/bench-run/peer}
+DIR=${1:-$src/.cache/ompl-peer}
 
 fail() { echo "bench/ompl_peer.sh: $*" >&2; exit 1; }
 

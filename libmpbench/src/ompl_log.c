@@ -25,6 +25,8 @@ typedef struct reader {
     long line;                  /* of the line last read */
     char *buf;                  /* that line, NUL-terminated, trimmed */
     size_t cap;
+    const char *raw;            /* that line as written, without its end */
+    size_t raw_len;
     char *err;
     size_t errlen;
     int failed;
@@ -83,6 +85,8 @@ static char *next_line(reader *r)
     }
     memcpy(r->buf, r->p, n);
     r->buf[n] = '\0';
+    r->raw = r->p;
+    r->raw_len = n > 0 && r->p[n - 1] == '\r' ? n - 1 : n;
     r->p = nl ? nl + 1 : r->end;
     r->line++;
     char *s = r->buf;
@@ -331,7 +335,11 @@ static int value_ok(const char *s, char *e, int kind, long limit)
  * the fields. The count of fields found; *extra_empty says whether an
  * (n+1)-th was found, and empty.
  */
-static int run_values(char *s, double *out, int n, int *extra_empty,
+static int keep_exact(reader *r, mpb_ompl_planner *pl, size_t cell,
+                      const char *s, const char *e);
+
+static int run_values(reader *r, mpb_ompl_planner *pl, long run, char *s,
+                      double *out, int n, int *extra_empty,
                       const unsigned char *kinds, const long *limits,
                       int *bad, char **bad_text)
 {
@@ -354,6 +362,11 @@ static int run_values(char *s, double *out, int n, int *extra_empty,
                 *e = '\0';
                 *bad_text = b;
             }
+            /* An integer of more than 15 digits may be past 2^53. */
+            if (e - b > 15 && (kinds[k] == V_INTEGER || kinds[k] == V_ENUM) &&
+                *bad < 0 && keep_exact(r, pl, (size_t)run * (size_t)n + (size_t)k,
+                                       b, e) != 0)
+                return -1;
             out[k] = value_in(b, e);    /* may write a NUL at e */
         } else
             *extra_empty = b == e;
@@ -363,6 +376,34 @@ static int run_values(char *s, double *out, int n, int *extra_empty,
         s = next + 1;
     }
     return k;
+}
+
+/* The integer [s, e) (checked by value_ok()) kept exactly in pl's exact
+ * list when a double would round it. */
+static int keep_exact(reader *r, mpb_ompl_planner *pl, size_t cell,
+                      const char *s, const char *e)
+{
+    char text[32];
+    size_t n = (size_t)(e - s);
+    if (n >= sizeof text)
+        return 0;       /* past 64 bits: value_ok() refuses it */
+    memcpy(text, s, n);
+    text[n] = '\0';
+    errno = 0;
+    long long v = strtoll(text, NULL, 10);
+    if (errno != 0 || (v <= (1LL << 53) && v >= -(1LL << 53)))
+        return 0;
+    /* The list's room doubles when its length reaches a power of 2. */
+    size_t have = (size_t)pl->num_exact;
+    if ((have & (have - 1)) == 0) {
+        mpb_ompl_exact *x = realloc(pl->exact, (have ? 2 * have : 1) *
+                                                   sizeof *x);
+        if (x == NULL)
+            return fail(r, "out of memory");
+        pl->exact = x;
+    }
+    pl->exact[pl->num_exact++] = (mpb_ompl_exact){cell, v};
+    return 0;
 }
 
 /* Each of the n properties' kind of value and, for an ENUM the log
@@ -558,13 +599,23 @@ static int planner_block(reader *r, mpb_ompl_log *log, int index)
             return fail(r, "the planner '%.60s' a second time", pl->name);
     if (count_line(r, "common properties", &n) != 0)
         return -1;
-    size_t len = 0;
+    size_t len = 0, tlen = 0;
     pl->settings = calloc(1, 1);
-    if (pl->settings == NULL)
+    pl->settings_text = calloc(1, 1);
+    if (pl->settings == NULL || pl->settings_text == NULL)
         return fail(r, "out of memory");
     for (long i = 0; i < n; i++) {
         if ((s = need_line(r, "a common property")) == NULL)
             return -1;
+        /* The script's form: the line as written, its end, then ';'. */
+        char *st = realloc(pl->settings_text, tlen + r->raw_len + 3);
+        if (st == NULL)
+            return fail(r, "out of memory");
+        pl->settings_text = st;
+        memcpy(st + tlen, r->raw, r->raw_len);
+        tlen += r->raw_len;
+        memcpy(st + tlen, "\n;", 3);
+        tlen += 2;
         size_t k = strlen(s);
         char *t = realloc(pl->settings, len + k + 2);
         if (t == NULL)
@@ -596,8 +647,11 @@ static int planner_block(reader *r, mpb_ompl_log *log, int index)
             break;
         int extra_empty, bad;
         char *bad_text = NULL;
-        int k = run_values(s, pl->values + (size_t)i * (size_t)np, (int)np,
-                           &extra_empty, kinds, limits, &bad, &bad_text);
+        int k = run_values(r, pl, i, s, pl->values + (size_t)i * (size_t)np,
+                           (int)np, &extra_empty, kinds, limits, &bad,
+                           &bad_text);
+        if (r->failed)
+            break;
         /* The trailing "; " leaves one empty field more. */
         if (k == (int)np + 1 && extra_empty)
             k--;
@@ -666,6 +720,70 @@ static const char *after(const char *s, const char *word)
     return strncmp(s, word, n) == 0 && s[n] == ' ' ? s + n + 1 : NULL;
 }
 
+/* An experiment property "name TYPE = value" into log->params. */
+static int param_line(reader *r, mpb_ompl_log *log)
+{
+    char *s = need_line(r, "an experiment property 'name TYPE = value'");
+    if (s == NULL)
+        return -1;
+    char *eq = strstr(s, " = "), *sp = NULL;
+    const char *value = eq ? eq + 3 : "";
+    size_t n = strlen(s);
+    /* An empty value: the line's trailing blank was trimmed. */
+    if (eq == NULL && n > 2 && strcmp(s + n - 2, " =") == 0)
+        eq = s + n - 2;
+    if (eq != NULL) {
+        *eq = '\0';
+        sp = strrchr(s, ' ');
+    }
+    if (sp == NULL || sp == s) {
+        if (eq)
+            *eq = ' ';
+        return fail(r, "expected an experiment property 'name TYPE = value', "
+                    "found '%.60s'", s);
+    }
+    *sp = '\0';
+    /* The type becomes a column's declared type: a word, maybe with a
+     * size, "VARCHAR(512)". */
+    if (strspn(sp + 1, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+               "0123456789_(),") != strlen(sp + 1))
+        return fail(r, "'%.60s' is not a type (the experiment property "
+                    "'%.60s')", sp + 1, s);
+    for (int i = 0; i < log->num_params; i++)
+        if (strcmp(log->params[i].name, s) == 0)
+            return fail(r, "the experiment property '%.60s' a second time", s);
+    mpb_ompl_param *p = &log->params[log->num_params++];
+    if ((p->name = dup(r, s)) == NULL || (p->type = dup(r, sp + 1)) == NULL ||
+        (p->value = dup(r, value)) == NULL)
+        return -1;
+    return 0;
+}
+
+/* An enum line as written, split at '|', into log->enums. */
+static int enum_line(reader *r, mpb_ompl_log *log)
+{
+    mpb_ompl_enum *en = &log->enums[log->num_enums++];
+    int n = 1;
+    for (size_t i = 0; i < r->raw_len; i++)
+        n += r->raw[i] == '|';
+    if ((en->values = calloc((size_t)n, sizeof *en->values)) == NULL)
+        return fail(r, "out of memory");
+    const char *f = r->raw, *end = r->raw + r->raw_len;
+    for (int i = 0; i < n; i++) {
+        const char *bar = memchr(f, '|', (size_t)(end - f));
+        const char *stop = bar ? bar : end;
+        char *v = strndup(f, (size_t)(stop - f));
+        if (v == NULL)
+            return fail(r, "out of memory");
+        if (i == 0)
+            en->name = v;
+        else
+            en->values[en->num_values++] = v;
+        f = stop + 1;
+    }
+    return 0;
+}
+
 static int header(reader *r, mpb_ompl_log *log)
 {
     char *s = need_line(r, "'OMPL version ...'");
@@ -699,8 +817,10 @@ static int header(reader *r, mpb_ompl_log *log)
             return fail(r, "'%.60s': not a count", s);
         if (k > MAX_PROPERTIES)
             return fail(r, "%ld experiment properties is more than a log holds", k);
+        if ((log->params = calloc(k ? (size_t)k : 1, sizeof *log->params)) == NULL)
+            return fail(r, "out of memory");
         for (long i = 0; i < k; i++)
-            if (need_line(r, "an experiment property") == NULL)
+            if (param_line(r, log) != 0)
                 return -1;
         if ((s = need_line(r, "'Running on HOST'")) == NULL)
             return -1;
@@ -772,7 +892,8 @@ static int header(reader *r, mpb_ompl_log *log)
         if (n > MAX_PROPERTIES)
             return fail(r, "%ld enum types is more than a log holds", n);
         r->enums = calloc(n ? (size_t)n : 1, sizeof *r->enums);
-        if (r->enums == NULL)
+        log->enums = calloc(n ? (size_t)n : 1, sizeof *log->enums);
+        if (r->enums == NULL || log->enums == NULL)
             return fail(r, "out of memory");
         for (long i = 0; i < n; i++) {
             if ((s = need_line(r, "an enum 'name|value|...'")) == NULL)
@@ -780,6 +901,8 @@ static int header(reader *r, mpb_ompl_log *log)
             char *bar = strchr(s, '|');
             if (bar == NULL || bar == s)
                 return fail(r, "expected an enum 'name|value|...', found '%.60s'", s);
+            if (enum_line(r, log) != 0)
+                return -1;
             *bar = '\0';
             long count = 1;
             for (const char *c = bar + 1; *c; c++)
@@ -874,6 +997,8 @@ void mpb_ompl_log_free(mpb_ompl_log *log)
         mpb_ompl_planner *p = &log->planners[i];
         free(p->name);
         free(p->settings);
+        free(p->settings_text);
+        free(p->exact);
         free_properties(p->properties, p->num_properties);
         free(p->values);
         free_properties(p->progress_properties, p->num_progress_properties);
@@ -881,6 +1006,19 @@ void mpb_ompl_log_free(mpb_ompl_log *log)
         free(p->progress);
     }
     free(log->planners);
+    for (int i = 0; log->params && i < log->num_params; i++) {
+        free(log->params[i].name);
+        free(log->params[i].type);
+        free(log->params[i].value);
+    }
+    free(log->params);
+    for (int i = 0; log->enums && i < log->num_enums; i++) {
+        for (int k = 0; k < log->enums[i].num_values; k++)
+            free(log->enums[i].values[k]);
+        free(log->enums[i].values);
+        free(log->enums[i].name);
+    }
+    free(log->enums);
     free(log->version);
     free(log->experiment);
     free(log->host);

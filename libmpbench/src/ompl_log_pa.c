@@ -7,6 +7,7 @@
  */
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,73 @@ static int batch_rows(pa_out *o, int n)
     return rows < 1 ? 1 : rows > PA_BATCH ? PA_BATCH : rows;
 }
 
+/* 1 for the types whose values a log writes as integers. */
+static int integer_type(const char *type)
+{
+    return strcmp(type, "INTEGER") == 0 || strcmp(type, "BOOLEAN") == 0 ||
+           strcmp(type, "ENUM") == 0;
+}
+
+/*
+ * A value as OMPL's script stores it: it binds the log's text, which
+ * SQLite turns into a number by the column's affinity (aff, as
+ * mpb__pa_affinity()): a REAL column holds reals; another holds an
+ * integer's text as an integer, and a real's as a real unless it is a
+ * whole number within 2^51 (SQLite 3.40's sqlite3RealSameAsInt()). exact
+ * is the integer as written when a double would round it (or NULL).
+ */
+static void bind_cell(sqlite3_stmt *st, int i, char aff, int integer,
+                      double v, const long long *exact)
+{
+    if (isnan(v))
+        sqlite3_bind_null(st, i);
+    else if (aff == 'R')
+        sqlite3_bind_double(st, i, v);
+    else if (exact)
+        sqlite3_bind_int64(st, i, *exact);
+    else if (v == floor(v) && (integer ? fabs(v) < 0x1p63
+                                       : fabs(v) < 0x1p51))
+        sqlite3_bind_int64(st, i, (sqlite3_int64)v);
+    else
+        sqlite3_bind_double(st, i, v);
+}
+
+/* The plannerConfigs row of p: the one of its name and settings, as the
+ * script finds it (either tool may have added it), or a new one. */
+static int config_id(pa_out *o, const mpb_ompl_planner *p, int64_t *out)
+{
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(o->db, "SELECT id FROM plannerConfigs WHERE"
+                           " name = ?1 AND settings = ?2", -1, &st,
+                           NULL) != SQLITE_OK)
+        return mpb__pa_fail(o, "prepare plannerConfigs");
+    sqlite3_bind_text(st, 1, p->name, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 2, p->settings_text, -1, SQLITE_STATIC);
+    int step = sqlite3_step(st), rc = MPB_OK;
+    if (step == SQLITE_ROW) {
+        *out = sqlite3_column_int64(st, 0);
+    } else if (step != SQLITE_DONE) {
+        rc = mpb__pa_fail(o, "find a planner configuration");
+    } else {
+        sqlite3_finalize(st);
+        st = NULL;
+        if (sqlite3_prepare_v2(o->db, "INSERT INTO plannerConfigs (name,"
+                               " settings) VALUES (?1, ?2)", -1, &st,
+                               NULL) != SQLITE_OK)
+            return mpb__pa_fail(o, "prepare plannerConfigs");
+        sqlite3_bind_text(st, 1, p->name, -1, SQLITE_STATIC);
+        sqlite3_bind_text(st, 2, p->settings_text, -1, SQLITE_STATIC);
+        if (sqlite3_step(st) != SQLITE_DONE) {
+            rc = mpb__pa_fail(o, "add a planner configuration");
+        } else {
+            *out = sqlite3_last_insert_rowid(o->db);
+            o->counts.planner_configs++;
+        }
+    }
+    sqlite3_finalize(st);
+    return rc;
+}
+
 /* One planner block's runs (and progress) as OMPL's script writes them:
  * the runs in the log's order, then their progress samples. */
 static int write_log_planner(pa_out *o, int64_t experiment_id,
@@ -39,15 +107,16 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
     sqlite3_stmt *st = NULL, *many = NULL;
     prop_list props = {0}, tprog = {0}, prog;
     int64_t planner = 0, *run_ids = NULL;
-    int *real = NULL;
+    char *aff = NULL, *integer = NULL;
     int rc = MPB_ENOMEM;
     int np = p->num_properties, q = p->num_progress_properties;
     int has_progress = q > 1 && p->progress_start != NULL &&
                        p->progress_start[p->num_runs] > 0;
     props.v = calloc((size_t)np + 1, sizeof *props.v);
     tprog.v = calloc((size_t)q + 1, sizeof *tprog.v);
-    real = calloc((size_t)(np > q ? np : q) + 1, sizeof *real);
-    if (props.v == NULL || tprog.v == NULL || real == NULL)
+    aff = calloc((size_t)(np > q ? np : q) + 1, 1);
+    integer = calloc((size_t)(np > q ? np : q) + 1, 1);
+    if (props.v == NULL || tprog.v == NULL || aff == NULL || integer == NULL)
         goto done;
     if (has_progress &&
         (run_ids = malloc(((size_t)p->num_runs + 1) * sizeof *run_ids)) == NULL)
@@ -62,26 +131,8 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
         tprog.v[tprog.n++] = (prop){.name = p->progress_properties[k].name,
                                     .type = p->progress_properties[k].type};
     prog = (prop_list){.v = tprog.v + 1, .n = tprog.n - 1};
-    /* The settings as OMPL's script writes them, each line with its end
-     * and then ';' ("a = 1\n;b = 2\n;"), so that a log it added and one
-     * added here are one configuration. */
-    if (sqlite3_prepare_v2(o->db, "INSERT INTO plannerConfigs (name, settings)"
-                           " VALUES (?1, CASE ?2 WHEN '' THEN '' ELSE"
-                           " replace(?2, ';', char(10) || ';') || char(10)"
-                           " || ';' END)", -1, &st, NULL) != SQLITE_OK) {
-        rc = mpb__pa_fail(o, "prepare plannerConfigs");
+    if ((rc = config_id(o, p, &planner)) != MPB_OK)
         goto done;
-    }
-    sqlite3_bind_text(st, 1, p->name, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 2, p->settings, -1, SQLITE_STATIC);
-    if (sqlite3_step(st) != SQLITE_DONE) {
-        rc = mpb__pa_fail(o, "add a planner configuration");
-        goto done;
-    }
-    planner = sqlite3_last_insert_rowid(o->db);
-    o->counts.planner_configs++;
-    sqlite3_finalize(st);
-    st = NULL;
 
     /* The runs, PA_BATCH a statement, the last few one by one. */
     char ids[64];
@@ -89,6 +140,7 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
              (long long)planner);
     int rows = batch_rows(o, np);
     if ((rc = mpb__pa_ensure_columns(o, "runs", &props, 0)) != MPB_OK ||
+        (rc = mpb__pa_affinities(o, "runs", &props, aff)) != MPB_OK ||
         (rc = mpb__pa_prepare_rows(o, "INSERT", "runs", "experimentid,plannerid", ids,
                            &props, 1, &st)) != MPB_OK ||
         (rows > 1 && p->num_runs >= rows &&
@@ -96,13 +148,19 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
                             &props, rows, &many)) != MPB_OK))
         goto done;
     for (int k = 0; k < np; k++)
-        real[k] = strcmp(props.v[k].type, "REAL") == 0;
+        integer[k] = (char)integer_type(props.v[k].type);
+    long x = 0;         /* the next of p->exact */
     for (long r = 0; r < p->num_runs && rc == MPB_OK;) {
         int k = p->num_runs - r >= rows ? rows : 1;
         sqlite3_stmt *ins = k > 1 ? many : st;
-        const double *v = p->values + (size_t)r * (size_t)np;
-        for (int i = 0; i < k * np; i++)
-            mpb__pa_bind_number(ins, i + 1, real[i % np], v[i]);
+        size_t first = (size_t)r * (size_t)np;
+        const double *v = p->values + first;
+        for (int i = 0; i < k * np; i++) {
+            const long long *exact = NULL;
+            if (x < p->num_exact && p->exact[x].cell == first + (size_t)i)
+                exact = &p->exact[x++].value;
+            bind_cell(ins, i + 1, aff[i % np], integer[i % np], v[i], exact);
+        }
         if (sqlite3_step(ins) != SQLITE_DONE) {
             rc = mpb__pa_fail(o, "add a run");
             break;
@@ -121,6 +179,8 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
     st = many = NULL;
     if (rc == MPB_OK && prog.n > 0)
         rc = mpb__pa_ensure_columns(o, "progress", &prog, 0);
+    if (rc == MPB_OK)
+        rc = mpb__pa_affinities(o, "progress", &tprog, aff);
     if (rc != MPB_OK || !has_progress)
         goto done;
 
@@ -136,7 +196,7 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
                             &tprog, rows, &many)) != MPB_OK))
         goto done;
     for (int k = 0; k < q; k++)
-        real[k] = strcmp(tprog.v[k].type, "REAL") == 0;
+        integer[k] = (char)integer_type(tprog.v[k].type);
     long run = 0;
     for (long i = 0; i < total && rc == MPB_OK;) {
         int k = total - i >= rows ? rows : 1;
@@ -147,7 +207,8 @@ static int write_log_planner(pa_out *o, int64_t experiment_id,
             const double *sample = p->progress + (size_t)(i + b) * (size_t)q;
             sqlite3_bind_int64(ins, b * n + 1, run_ids[run]);
             for (int j = 0; j < q; j++)
-                mpb__pa_bind_number(ins, b * n + 2 + j, real[j], sample[j]);
+                bind_cell(ins, b * n + 2 + j, aff[j], integer[j], sample[j],
+                          NULL);
         }
         if (sqlite3_step(ins) != SQLITE_DONE) {
             rc = mpb__pa_fail(o, "add a progress sample");
@@ -164,7 +225,8 @@ done:
     sqlite3_finalize(many);
     free(props.v);
     free(tprog.v);
-    free(real);
+    free(aff);
+    free(integer);
     free(run_ids);
     return rc;
 }
@@ -220,21 +282,94 @@ static int publish(mpb_store *errs, const char *tmp, const char *path)
     return rc;
 }
 
-/* The log's experiment, then its planner blocks. */
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(((const prop *)a)->name, ((const prop *)b)->name);
+}
+
+/* The log's enums, each unless one of its name is there already (added
+ * by an earlier log), as the script adds them. */
+static int write_enums(pa_out *o, const mpb_ompl_log *log)
+{
+    sqlite3_stmt *find = NULL, *add = NULL;
+    if (sqlite3_prepare_v2(o->db, "SELECT 1 FROM enums WHERE name = ?", -1,
+                           &find, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(o->db, "INSERT INTO enums (name, value, description)"
+                           " VALUES (?, ?, ?)", -1, &add, NULL) != SQLITE_OK) {
+        sqlite3_finalize(find);
+        return mpb__pa_fail(o, "prepare enums");
+    }
+    int rc = MPB_OK;
+    for (int i = 0; i < log->num_enums && rc == MPB_OK; i++) {
+        const mpb_ompl_enum *en = &log->enums[i];
+        sqlite3_reset(find);
+        sqlite3_bind_text(find, 1, en->name, -1, SQLITE_STATIC);
+        int step = sqlite3_step(find);
+        if (step == SQLITE_ROW)
+            continue;
+        if (step != SQLITE_DONE) {
+            rc = mpb__pa_fail(o, "read enums");
+            break;
+        }
+        for (int k = 0; k < en->num_values && rc == MPB_OK; k++) {
+            sqlite3_reset(add);
+            sqlite3_bind_text(add, 1, en->name, -1, SQLITE_STATIC);
+            sqlite3_bind_int(add, 2, k);
+            sqlite3_bind_text(add, 3, en->values[k], -1, SQLITE_STATIC);
+            if (sqlite3_step(add) != SQLITE_DONE)
+                rc = mpb__pa_fail(o, "add an enum");
+        }
+    }
+    sqlite3_finalize(find);
+    sqlite3_finalize(add);
+    return rc;
+}
+
+/* The log's experiment, with its parameters as columns (added in the
+ * order of their names, as the script adds them), then its planner
+ * blocks. */
 static int write_log(pa_out *o, const mpb_ompl_log *log)
 {
-    sqlite3_stmt *st;
-    if (sqlite3_prepare_v2(o->db, "INSERT INTO experiments (name, totaltime,"
-                           " timelimit, memorylimit, runcount, version,"
-                           " hostname, cpuinfo, date, seed, setup) VALUES"
-                           " (?1, ?2, ?3, ?4, ?5,"
-                           /* "OMPL version " (no number) is "OMPL version"
-                            * to OMPL's script, which takes the line's last
-                            * word for the number. */
-                           " CASE instr(?6, ' ') WHEN 0 THEN ?6 || ' version'"
-                           " ELSE ?6 END, ?7, ?8, ?9, ?10, ?11)", -1, &st,
-                           NULL) != SQLITE_OK)
-        return mpb__pa_fail(o, "prepare experiments");
+    sqlite3_stmt *st = NULL;
+    int np = log->num_params, rc = MPB_ENOMEM;
+    prop_list params = {.v = calloc((size_t)np + 1, sizeof(prop)), .n = np};
+    char *sql = NULL;
+    size_t cap = 512;
+    if (params.v == NULL)
+        goto done;
+    for (int i = 0; i < np; i++) {
+        if ((params.v[i].name = mpb__pa_param_column(log->params[i].name)) == NULL)
+            goto done;
+        params.v[i].type = log->params[i].type;
+        cap += strlen(params.v[i].name) + 16;
+    }
+    if ((sql = malloc(cap)) == NULL)
+        goto done;
+    /* The columns in the log's order for the row. */
+    size_t len = (size_t)snprintf(sql, cap, "INSERT INTO experiments (name,"
+                                  " totaltime, timelimit, memorylimit, runcount,"
+                                  " version, hostname, cpuinfo, date, seed,"
+                                  " setup");
+    for (int i = 0; i < np; i++)
+        len += (size_t)snprintf(sql + len, cap - len, ",\"%s\"", params.v[i].name);
+    len += (size_t)snprintf(sql + len, cap - len, ") VALUES (?1, ?2, ?3, ?4,"
+                            " ?5, "
+                            /* "OMPL version " (no number) is "OMPL version"
+                             * to OMPL's script, which takes the line's
+                             * last word for the number. */
+                            "CASE instr(?6, ' ') WHEN 0 THEN ?6 || ' version'"
+                            " ELSE ?6 END, ?7, ?8, ?9, ?10, ?11");
+    for (int i = 0; i < np; i++)
+        len += (size_t)snprintf(sql + len, cap - len, ",?");
+    snprintf(sql + len, cap - len, ")");
+    qsort(params.v, (size_t)np, sizeof *params.v, by_name);
+    if ((rc = mpb__pa_ensure_columns(o, "experiments", &params, 0)) != MPB_OK ||
+        (rc = write_enums(o, log)) != MPB_OK)
+        goto done;
+    if (sqlite3_prepare_v2(o->db, sql, -1, &st, NULL) != SQLITE_OK) {
+        rc = mpb__pa_fail(o, "prepare experiments");
+        goto done;
+    }
     sqlite3_bind_text(st, 1, log->experiment, -1, SQLITE_STATIC);
     sqlite3_bind_double(st, 2, log->total_time);
     sqlite3_bind_double(st, 3, log->time_limit);
@@ -246,15 +381,26 @@ static int write_log(pa_out *o, const mpb_ompl_log *log)
     sqlite3_bind_text(st, 9, log->date, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 10, log->seed, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 11, log->setup, -1, SQLITE_STATIC);
-    int rc = MPB_OK;
+    /* The values as the script binds them, text: the column's affinity
+     * makes them numbers where it does for the script. */
+    for (int i = 0; i < np; i++)
+        sqlite3_bind_text(st, 12 + i, log->params[i].value, -1, SQLITE_STATIC);
+    rc = MPB_OK;
     if (sqlite3_step(st) != SQLITE_DONE)
         rc = mpb__pa_fail(o, "add the experiment");
-    sqlite3_finalize(st);
     int64_t experiment = sqlite3_last_insert_rowid(o->db);
     if (rc == MPB_OK)
         o->counts.experiments++;
     for (int i = 0; i < log->num_planners && rc == MPB_OK; i++)
         rc = write_log_planner(o, experiment, &log->planners[i]);
+done:
+    if (rc == MPB_ENOMEM)
+        mpb__store_fail(o->s, rc, "out of memory");
+    sqlite3_finalize(st);
+    for (int i = 0; params.v && i < np; i++)
+        free(params.v[i].name);
+    free(params.v);
+    free(sql);
     return rc;
 }
 
@@ -305,7 +451,7 @@ int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
     if ((tmp && (rc = mpb__pa_exec(&o, "PRAGMA journal_mode = OFF;"
                                    "PRAGMA synchronous = OFF;"
                                    "PRAGMA locking_mode = EXCLUSIVE", "configure"))) ||
-        (rc = mpb__pa_begin(&o)))
+        (rc = mpb__pa_begin(&o, 0)))
         goto close;
     for (;;) {
         const mpb_ompl_log *log = NULL;

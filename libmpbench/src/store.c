@@ -153,6 +153,23 @@ static int refresh_results_view(mpb_store *s)
                         : exec(s, mpb__schema_results_view, "create results view");
 }
 
+/* The migration step of imported logs' headers: what an OMPL log says of
+ * its experiment beyond mpbench's own columns (docs/schema.md). A
+ * database made before it gets the columns, NULL (not a log's, or not
+ * kept), and the empty table. */
+static int add_log_header(mpb_store *s)
+{
+    static const char *const columns[][2] = {
+        {"started", "TEXT"}, {"total_time", "REAL"}, {"seed", "TEXT"},
+        {"memory_limit", "REAL"}, {"cpuinfo", "TEXT"},
+    };
+    int rc = MPB_OK;
+    for (size_t i = 0; i < sizeof columns / sizeof *columns && rc == MPB_OK; i++)
+        rc = add_missing_column(s, "experiments", columns[i][0], columns[i][1]);
+    return rc != MPB_OK ? rc : exec(s, mpb__schema_experiment_params,
+                                    "create experiment_params");
+}
+
 static int create_schema(mpb_store *s)
 {
     int version, rc;
@@ -174,7 +191,8 @@ static int create_schema(mpb_store *s)
         (rc = add_missing_column(s, "runs", "memory", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_link", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK ||
-        (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK)
+        (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK ||
+        (rc = add_log_header(s)) != MPB_OK)
         goto fail;
     /* The results view is made again when it lacks a column this version
      * gives it (a database made before results.experiment_id). */

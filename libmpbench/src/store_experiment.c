@@ -32,15 +32,41 @@ static int select_id(mpb_store *s, sqlite3_stmt *st, int64_t *id)
     return mpb__store_db_fail(s, "select");
 }
 
+/* An imported log's experiment properties, in its order. */
+static int add_params(mpb_store *s, int64_t id, const mpb_log_header *h)
+{
+    if (h->num_params == 0)
+        return MPB_OK;
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "INSERT INTO experiment_params(experiment_id, idx, name, type, value)"
+        " VALUES (?, ?, ?, ?, ?)");
+    if (st == NULL)
+        return MPB_EDB;
+    int rc = MPB_OK;
+    for (int i = 0; i < h->num_params && rc == MPB_OK; i++) {
+        sqlite3_reset(st);
+        sqlite3_bind_int64(st, 1, id);
+        sqlite3_bind_int(st, 2, i);
+        sqlite3_bind_text(st, 3, h->params[i].name, -1, SQLITE_STATIC);
+        sqlite3_bind_text(st, 4, h->params[i].type, -1, SQLITE_STATIC);
+        sqlite3_bind_text(st, 5, h->params[i].value, -1, SQLITE_STATIC);
+        rc = step_once(s, st, "add an experiment parameter");
+    }
+    sqlite3_finalize(st);
+    return rc;
+}
+
 int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
                                 int64_t *id)
 {
     char host[256] = "";
+    const mpb_log_header *h = e->log;
     sqlite3_stmt *st = mpb__store_prepare(s,
         "INSERT INTO experiments(name, config_file, config_hash, config_text,"
-        " runs_per_query, time_limit, host, version, created)"
+        " runs_per_query, time_limit, host, version, created, started,"
+        " total_time, seed, memory_limit, cpuinfo)"
         " VALUES (?, ?, ?, ?, ?, ?, ?, ?,"
-        " (julianday('now') - 2440587.5) * 86400.0)");
+        " (julianday('now') - 2440587.5) * 86400.0, ?, ?, ?, ?, ?)");
     if (st == NULL)
         return MPB_EDB;
     gethostname(host, sizeof host - 1);
@@ -50,12 +76,23 @@ int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
     sqlite3_bind_text(st, 4, e->config_text, -1, SQLITE_STATIC);
     sqlite3_bind_int(st, 5, e->runs_per_query);
     sqlite3_bind_double(st, 6, e->time_limit);
-    sqlite3_bind_text(st, 7, host, -1, SQLITE_STATIC);
-    sqlite3_bind_text(st, 8, "mpbench " MPB_VERSION_STRING, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 7, h && h->host ? h->host : host, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 8, h && h->version ? h->version
+                             : "mpbench " MPB_VERSION_STRING, -1, SQLITE_STATIC);
+    /* An imported log's header; NULL (unbound) for mpbench's own. */
+    if (h) {
+        sqlite3_bind_text(st, 9, h->started, -1, SQLITE_STATIC);
+        sqlite3_bind_double(st, 10, h->total_time);
+        sqlite3_bind_text(st, 11, h->seed, -1, SQLITE_STATIC);
+        sqlite3_bind_double(st, 12, h->memory_limit);
+        sqlite3_bind_text(st, 13, h->cpuinfo, -1, SQLITE_STATIC);
+    }
     int rc = step_once(s, st, "create experiment");
     sqlite3_finalize(st);
     if (rc == MPB_OK)
         *id = sqlite3_last_insert_rowid(s->db);
+    if (rc == MPB_OK && h)
+        rc = add_params(s, *id, h);
     return rc;
 }
 

@@ -99,6 +99,74 @@ done:
     return rc;
 }
 
+/* 1 for the parameters every export writes (mpb__pa_exp_params). */
+static int reserved_column(const char *column)
+{
+    for (int i = 0; i < MPB__PA_NUM_EXP_PARAMS; i++)
+        if (mpb__pa_same_column(column, mpb__pa_exp_params[i][0]))
+            return 1;
+    return 0;
+}
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(((const prop *)a)->name, ((const prop *)b)->name);
+}
+
+/* The columns of an imported log's experiment properties, named and
+ * added (in the order of their names) as OMPL's script adds them. */
+static int param_columns(pa_out *o, const exp_info *e)
+{
+    prop_list l = {.v = calloc((size_t)e->num_params + 1, sizeof(prop))};
+    int rc = l.v ? MPB_OK : MPB_ENOMEM;
+    for (int i = 0; rc == MPB_OK && i < e->num_params; i++) {
+        char *c = mpb__pa_param_column(e->params[i].name);
+        if (c == NULL)
+            rc = MPB_ENOMEM;
+        else if (reserved_column(c))
+            free(c);
+        else
+            l.v[l.n++] = (prop){.name = c, .type = e->params[i].type};
+    }
+    if (rc == MPB_OK) {
+        qsort(l.v, (size_t)l.n, sizeof *l.v, by_name);
+        rc = mpb__pa_ensure_columns(o, "experiments", &l, 0);
+    } else {
+        mpb__store_fail(o->s, rc, "out of memory");
+    }
+    for (int i = 0; i < l.n; i++)
+        free(l.v[i].name);
+    free(l.v);
+    return rc;
+}
+
+/* Their values in the experiments row id, as text: the column's affinity
+ * makes them what it makes the script's. */
+static int param_values(pa_out *o, const exp_info *e, int64_t id)
+{
+    int rc = MPB_OK;
+    for (int i = 0; rc == MPB_OK && i < e->num_params; i++) {
+        char *c = mpb__pa_param_column(e->params[i].name), sql[600];
+        if (c == NULL)
+            return mpb__store_fail(o->s, MPB_ENOMEM, "out of memory");
+        int skip = reserved_column(c) || strlen(c) > 500;
+        snprintf(sql, sizeof sql, "UPDATE experiments SET \"%s\" = ?"
+                 " WHERE id = ?", c);
+        free(c);
+        if (skip)
+            continue;
+        sqlite3_stmt *st;
+        if (sqlite3_prepare_v2(o->db, sql, -1, &st, NULL) != SQLITE_OK)
+            return mpb__pa_fail(o, "prepare a parameter");
+        sqlite3_bind_text(st, 1, e->params[i].value, -1, SQLITE_STATIC);
+        sqlite3_bind_int64(st, 2, id);
+        if (sqlite3_step(st) != SQLITE_DONE)
+            rc = mpb__pa_fail(o, "write a parameter");
+        sqlite3_finalize(st);
+    }
+    return rc;
+}
+
 /* One mpbench experiment into the open database, whose experiments rows
  * up to id before were there before this export began. */
 static int export_experiment(pa_out *o, int64_t experiment_id,
@@ -127,8 +195,8 @@ static int export_experiment(pa_out *o, int64_t experiment_id,
     if (sqlite3_prepare_v2(o->db,
             "INSERT INTO experiments (name, totaltime, timelimit, memorylimit,"
             " runcount, version, hostname, cpuinfo, date, seed, setup, query,"
-            " mpbench_experiment) VALUES (?1, ?2, ?3, NULL, ?4, ?5, ?6, NULL,"
-            " ?7, NULL, ?8, ?9, ?10)", -1, &add_exp, NULL) != SQLITE_OK) {
+            " mpbench_experiment) VALUES (?1, ?2, ?3, ?11, ?4, ?5, ?6, ?12,"
+            " ?7, ?13, ?8, ?9, ?10)", -1, &add_exp, NULL) != SQLITE_OK) {
         rc = mpb__pa_fail(o, "prepare experiments");
         goto done;
     }
@@ -136,8 +204,16 @@ static int export_experiment(pa_out *o, int64_t experiment_id,
         rc = mpb__store_fail(o->s, MPB_ENOMEM, "out of memory");
         goto done;
     }
-    char date[32];
-    mpb__pa_format_date(e.created, date, sizeof date);
+    char fdate[32];
+    mpb__pa_format_date(e.created, fdate, sizeof fdate);
+    /* An imported log's own date, as it had it. */
+    const char *date = e.started ? e.started : fdate;
+    if ((rc = param_columns(o, &e)) != MPB_OK)
+        goto done;
+    /* A log's own query and mpbench experiment, if it had them (an
+     * exported log imported again). */
+    const char *query = mpb__pa_exp_param(&e, "query");
+    const char *mpbexp = mpb__pa_exp_param(&e, "mpbench_experiment");
     if (sqlite3_prepare_v2(o->db,
             "SELECT 1 FROM experiments WHERE name = ?1 AND query IS ?2 AND"
             " date IS ?3 AND runcount IS ?4 AND hostname IS ?5 AND id <= ?6",
@@ -152,7 +228,8 @@ static int export_experiment(pa_out *o, int64_t experiment_id,
          * this export wrote are other scenes or experiments. */
         sqlite3_reset(present);
         sqlite3_bind_text(present, 1, q->problem, -1, SQLITE_STATIC);
-        sqlite3_bind_text(present, 2, q->query, -1, SQLITE_STATIC);
+        sqlite3_bind_text(present, 2, query ? query : q->query, -1,
+                          SQLITE_STATIC);
         sqlite3_bind_text(present, 3, date, -1, SQLITE_STATIC);
         sqlite3_bind_int(present, 4, e.runs_per_query);
         sqlite3_bind_text(present, 5, e.host, -1, SQLITE_STATIC);
@@ -169,23 +246,43 @@ static int export_experiment(pa_out *o, int64_t experiment_id,
         }
         sqlite3_reset(add_exp);
         sqlite3_bind_text(add_exp, 1, q->problem, -1, SQLITE_STATIC);
-        sqlite3_bind_double(add_exp, 2, q->total_time);
+        sqlite3_bind_double(add_exp, 2, isnan(e.total_time) ? q->total_time
+                                                            : e.total_time);
         if (isnan(e.time_limit))
             sqlite3_bind_null(add_exp, 3);
         else
             sqlite3_bind_double(add_exp, 3, e.time_limit);
         sqlite3_bind_int(add_exp, 4, e.runs_per_query);
-        sqlite3_bind_text(add_exp, 5, mpb__pa_version_of(&e), -1, SQLITE_STATIC);
+        /* An imported log's "OMPL version " without a number: the
+         * script's "OMPL version". */
+        if (e.started && strchr(e.version, ' ') == NULL)
+            sqlite3_bind_text(add_exp, 5, sqlite3_mprintf("%s version",
+                              mpb__pa_version_of(&e)), -1, sqlite3_free);
+        else
+            sqlite3_bind_text(add_exp, 5, mpb__pa_version_of(&e), -1,
+                              SQLITE_STATIC);
         sqlite3_bind_text(add_exp, 6, e.host, -1, SQLITE_STATIC);
         sqlite3_bind_text(add_exp, 7, date, -1, SQLITE_STATIC);
         sqlite3_bind_text(add_exp, 8, q->setup, -1, SQLITE_STATIC);
-        sqlite3_bind_text(add_exp, 9, q->query, -1, SQLITE_STATIC);
-        sqlite3_bind_int64(add_exp, 10, e.id);
+        sqlite3_bind_text(add_exp, 9, query ? query : q->query, -1,
+                          SQLITE_STATIC);
+        if (mpbexp)
+            sqlite3_bind_text(add_exp, 10, mpbexp, -1, SQLITE_STATIC);
+        else
+            sqlite3_bind_int64(add_exp, 10, e.id);
+        if (isnan(e.memory_limit))
+            sqlite3_bind_null(add_exp, 11);
+        else
+            sqlite3_bind_double(add_exp, 11, e.memory_limit);
+        sqlite3_bind_text(add_exp, 12, e.cpuinfo, -1, SQLITE_STATIC);
+        sqlite3_bind_text(add_exp, 13, e.seed, -1, SQLITE_STATIC);
         if (sqlite3_step(add_exp) != SQLITE_DONE) {
             rc = mpb__pa_fail(o, "add an experiment");
             goto done;
         }
         pa_exp[i] = sqlite3_last_insert_rowid(o->db);
+        if ((rc = param_values(o, &e, pa_exp[i])) != MPB_OK)
+            goto done;
         o->counts.experiments++;
     }
 
@@ -344,7 +441,7 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if (exists && (rc = is_planner_arena(&o)) != MPB_OK)
         goto done;
     if ((rc = mpb__pa_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
-        (rc = mpb__pa_begin(&o)))
+        (rc = mpb__pa_begin(&o, 1)))
         goto done;
     /* Only what was there before can be exported already. */
     int64_t before = 0;

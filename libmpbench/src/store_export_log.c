@@ -74,6 +74,16 @@ static void write_setup(FILE *out, const char *text)
     fputs("|>>>\n", out);
 }
 
+/* 1 for the experiment properties mpbench writes itself. */
+static int is_reserved_param(const char *name)
+{
+    char *c = mpb__pa_param_column(name);
+    int r = c && (mpb__pa_same_column(c, "query") ||
+                  mpb__pa_same_column(c, "mpbench_experiment"));
+    free(c);
+    return r;
+}
+
 /* One log: one query of experiment e. */
 static int write_log(mpb_store *s, FILE *out, const exp_info *e,
                      const pa_query *q, const prop_list *props,
@@ -108,19 +118,37 @@ static int write_log(mpb_store *s, FILE *out, const exp_info *e,
     if (rc)
         goto done;
 
-    /* The experiment: OMPL's header, our version as "NAME version X". */
+    /* The experiment: OMPL's header, our version as "NAME version X"; an
+     * imported log's as it had it ("OMPL version " without a number). */
     const char *version = mpb__pa_version_of(e);
     const char *space = strchr(version, ' ');
     if (space)
         fprintf(out, "%.*s version %s\n", (int)(space - version), version,
                 space + 1);
+    else if (e->started)
+        fprintf(out, "%s version \n", version);
     else
         fprintf(out, "mpbench version %s\n", version);
     fprintf(out, "Experiment %s\n", q->problem);
-    fprintf(out, "%d experiment properties\n", MPB__PA_NUM_EXP_PARAMS);
+    /* mpbench's two, unless the log had them (an exported log imported
+     * again): its own values then; then the log's others, in its order. */
+    const char *query = mpb__pa_exp_param(e, "query");
+    const char *mpbexp = mpb__pa_exp_param(e, "mpbench_experiment");
+    int others = 0;
+    for (int i = 0; i < e->num_params; i++)
+        others += !is_reserved_param(e->params[i].name);
+    fprintf(out, "%d experiment properties\n", MPB__PA_NUM_EXP_PARAMS + others);
     fprintf(out, "query VARCHAR(512) = ");
-    log_line(out, q->query);
-    fprintf(out, "mpbench_experiment INTEGER = %lld\n", (long long)e->id);
+    log_line(out, query ? query : q->query);
+    if (mpbexp)
+        fprintf(out, "mpbench_experiment INTEGER = %s\n", mpbexp);
+    else
+        fprintf(out, "mpbench_experiment INTEGER = %lld\n", (long long)e->id);
+    for (int i = 0; i < e->num_params; i++)
+        if (!is_reserved_param(e->params[i].name)) {
+            fprintf(out, "%s %s = ", e->params[i].name, e->params[i].type);
+            log_line(out, e->params[i].value);
+        }
     fprintf(out, "Running on ");
     char host[256];
     snprintf(host, sizeof host, "%s", e->host[0] ? e->host : "UNKNOWN");
@@ -128,14 +156,19 @@ static int write_log(mpb_store *s, FILE *out, const exp_info *e,
     log_line(out, host);
     char date[32];
     mpb__pa_format_date(e->created, date, sizeof date);
-    fprintf(out, "Starting at %s\n", date);
+    fprintf(out, "Starting at ");
+    log_line(out, e->started ? e->started : date);
     write_setup(out, q->setup);
-    fprintf(out, "0 is the random seed\n");
+    if (e->cpuinfo)
+        write_setup(out, e->cpuinfo);
+    fprintf(out, "%s is the random seed\n", e->seed ? e->seed : "0");
     fprintf(out, "%.17g seconds per run\n", isnan(e->time_limit) ? 0.0
                                                                  : e->time_limit);
-    fprintf(out, "0 MB per run\n");
+    fprintf(out, "%.17g MB per run\n", isnan(e->memory_limit) ? 0.0
+                                                              : e->memory_limit);
     fprintf(out, "%d runs per planner\n", e->runs_per_query);
-    fprintf(out, "%.17g seconds spent to collect the data\n", q->total_time);
+    fprintf(out, "%.17g seconds spent to collect the data\n",
+            isnan(e->total_time) ? q->total_time : e->total_time);
     fprintf(out, "1 enum type\nstatus");
     for (int i = 0; i < MPB__PA_NUM_STATUS; i++)
         fprintf(out, "|%s", mpb__pa_status_enum[i]);

@@ -110,11 +110,23 @@ void mpb__pa_walker_close(pa_walker *w);
 
 /* ---- what every writer says of an experiment (store_pa_props.c) ------------ */
 
+/* An experiment property as a log writes it: "name TYPE = value". */
+typedef struct exp_param {
+    char *name, *type, *value;
+} exp_param;
+
 typedef struct exp_info {
     int64_t id;
     char   *name, *config_text, *host, *version;
     int     runs_per_query;
     double  time_limit, created;
+    /* An imported log's header (NULL, NaN when the experiment is
+     * mpbench's own): its date as written, seed, CPU block, total time,
+     * memory limit, and its experiment properties. */
+    char   *started, *seed, *cpuinfo;
+    double  total_time, memory_limit;
+    int     num_params;
+    exp_param *params;
 } exp_info;
 
 int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e);
@@ -127,6 +139,15 @@ int mpb__pa_experiment_ids(mpb_store *s, const int64_t *ids, int num_ids,
 
 /* Whitespace to '_': a log's "Experiment NAME" line keeps one word. */
 void mpb__pa_one_word(char *s);
+
+/* The column OMPL's script gives the experiment property of that name:
+ * its words joined with nothing, '-' as '_' ("wall height" is
+ * "wallheight"). Caller frees; NULL when out of memory. */
+char *mpb__pa_param_column(const char *name);
+
+/* The value e's log had for the experiment property whose column is
+ * column (mpb__pa_param_column()), or NULL. */
+const char *mpb__pa_exp_param(const exp_info *e, const char *column);
 
 /* "mpbench 0.1.0" as the experiment recorded it, never empty (Planner
  * Arena sorts and selects by it). */
@@ -180,9 +201,10 @@ int mpb__pa_fail(pa_out *o, const char *what);
 /* Run sql (several statements may follow each other). */
 int mpb__pa_exec(pa_out *o, const char *sql, const char *what);
 
-/* Open a transaction, create the tables that are missing and add the
- * status enum, as OMPL's script does before it reads a log. */
-int mpb__pa_begin(pa_out *o);
+/* Open a transaction and create the tables that are missing, as OMPL's
+ * script does before it reads a log; with status_enum, add mpbench's
+ * status enum too (a log brings its own). */
+int mpb__pa_begin(pa_out *o, int status_enum);
 
 /* End what mpb__pa_begin() began and close o->db (if open): with rc
  * MPB_OK the views made anew and the transaction committed, otherwise
@@ -204,6 +226,15 @@ int mpb__pa_prepare_rows(pa_out *o, const char *verb, const char *table,
                          const char *fixed, const char *values,
                          const prop_list *props, int rows,
                          sqlite3_stmt **out);
+
+/* The affinity SQLite gives a column declared type: 'I' INTEGER, 'T'
+ * TEXT, 'B' BLOB, 'R' REAL, 'N' NUMERIC. */
+char mpb__pa_affinity(const char *type);
+
+/* The affinity of the column of each of props in table, as the database
+ * declares it (which an earlier log may have), into out[0..props->n). */
+int mpb__pa_affinities(pa_out *o, const char *table, const prop_list *props,
+                       char *out);
 
 /* A number as the script's text becomes in a column of that affinity:
  * NULL for NaN, an integer (unless the column is REAL) or a real. */

@@ -4,6 +4,7 @@
  * makes them, for the writers that fill it (store_export.c from an
  * mpbench store, ompl_log_pa.c from an OMPL log).
  */
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -104,6 +105,48 @@ int mpb__pa_ensure_columns(pa_out *o, const char *table,
     return rc;
 }
 
+char mpb__pa_affinity(const char *type)
+{
+    /* SQLite's rules (datatype3.html, 3.1), in their order. */
+    char up[64];
+    size_t n = 0;
+    for (; type && type[n] && n + 1 < sizeof up; n++)
+        up[n] = (char)toupper((unsigned char)type[n]);
+    up[n] = '\0';
+    if (strstr(up, "INT"))
+        return 'I';
+    if (strstr(up, "CHAR") || strstr(up, "CLOB") || strstr(up, "TEXT"))
+        return 'T';
+    if (n == 0 || strstr(up, "BLOB"))
+        return 'B';
+    if (strstr(up, "REAL") || strstr(up, "FLOA") || strstr(up, "DOUB"))
+        return 'R';
+    return 'N';
+}
+
+int mpb__pa_affinities(pa_out *o, const char *table, const prop_list *props,
+                       char *out)
+{
+    char sql[128];
+    sqlite3_stmt *st;
+    snprintf(sql, sizeof sql, "SELECT name, type FROM pragma_table_info('%s')",
+             table);
+    if (sqlite3_prepare_v2(o->db, sql, -1, &st, NULL) != SQLITE_OK)
+        return mpb__pa_fail(o, "read columns");
+    for (int k = 0; k < props->n; k++)
+        out[k] = 'N';
+    int step;
+    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
+        const char *name = (const char *)sqlite3_column_text(st, 0);
+        const char *type = (const char *)sqlite3_column_text(st, 1);
+        for (int k = 0; name && k < props->n; k++)
+            if (mpb__pa_same_column(name, props->v[k].name))
+                out[k] = mpb__pa_affinity(type);
+    }
+    sqlite3_finalize(st);
+    return step == SQLITE_DONE ? MPB_OK : mpb__pa_fail(o, "read columns");
+}
+
 void mpb__pa_bind_number(sqlite3_stmt *st, int i, int real, double v)
 {
     if (isnan(v))
@@ -197,11 +240,11 @@ static int create_views(pa_out *o)
     return mpb__pa_exec(o, sql, "create a view");
 }
 
-int mpb__pa_begin(pa_out *o)
+int mpb__pa_begin(pa_out *o, int status_enum)
 {
     int rc;
     if ((rc = mpb__pa_exec(o, "BEGIN IMMEDIATE", "begin")) ||
-        (rc = mpb__pa_exec(o, pa_schema, "create the tables")))
+        (rc = mpb__pa_exec(o, pa_schema, "create the tables")) || !status_enum)
         return rc;
     sqlite3_stmt *st;
     if (sqlite3_prepare_v2(o->db, "INSERT OR IGNORE INTO enums (name, value,"

@@ -314,10 +314,34 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
         goto done;
     qsort(metrics.v, (size_t)metrics.n, sizeof *metrics.v, cmp_metric);
 
-    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
+    /* An imported log's runs give back the log's own properties: its
+     * "time" (tau_r: tau_t has the simplification too), its "solved" (the
+     * claim) and its "simplification time" (the final stage's). */
+    int imported = 0;
+    sqlite3_stmt *st = mpb__store_prepare(s, "SELECT 1 FROM scenes WHERE"
+                                          " experiment_id = ?1 AND"
+                                          " robot_format = 'ompl-log'");
+    if (st == NULL) {
+        rc = MPB_EDB;
+        goto done;
+    }
+    sqlite3_bind_int64(st, 1, experiment_id);
+    imported = sqlite3_step(st) == SQLITE_ROW;
+    sqlite3_finalize(st);
+    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++) {
+        prop_kind kind = fixed[i].kind;
+        if (imported && kind == K_TIME)
+            kind = K_TIME_RAW;
+        else if (imported && kind == K_SOLVED)
+            kind = K_CLAIMED;
         if ((rc = prop_add(props, prop_name("", fixed[i].name), fixed[i].type,
-                           fixed[i].kind, ROLE_FIRST, NULL, NULL, NULL)))
+                           kind, ROLE_FIRST, NULL, NULL, NULL)))
             goto done;
+    }
+    if (imported && (rc = prop_add(props, prop_name("", "simplification time"),
+                                   "REAL", K_STAGE_TIME, ROLE_FINAL, NULL,
+                                   NULL, NULL)))
+        goto done;
     if ((rc = add_stage_props(props, "", ROLE_FIRST, NULL, &metrics)))
         goto done;
     for (int i = 0; i < mids.n; i++) {
@@ -688,7 +712,97 @@ void mpb__pa_exp_info_free(exp_info *e)
     free(e->config_text);
     free(e->host);
     free(e->version);
+    free(e->started);
+    free(e->seed);
+    free(e->cpuinfo);
+    for (int i = 0; e->params && i < e->num_params; i++) {
+        free(e->params[i].name);
+        free(e->params[i].type);
+        free(e->params[i].value);
+    }
+    free(e->params);
     *e = (exp_info){0};
+}
+
+char *mpb__pa_param_column(const char *name)
+{
+    char *c = malloc(strlen(name) + 1), *d = c;
+    for (; c && *name; name++)
+        if (*name != ' ')
+            *d++ = *name == '-' ? '_' : *name;
+    if (c)
+        *d = '\0';
+    return c;
+}
+
+const char *mpb__pa_exp_param(const exp_info *e, const char *column)
+{
+    for (int i = 0; i < e->num_params; i++) {
+        char *c = mpb__pa_param_column(e->params[i].name);
+        int same = c && mpb__pa_same_column(c, column);
+        free(c);
+        if (same)
+            return e->params[i].value;
+    }
+    return NULL;
+}
+
+/* A text column copied, NULL for NULL; *oom set when out of memory. */
+static char *col_dup_or_null(sqlite3_stmt *st, int i, int *oom)
+{
+    if (sqlite3_column_type(st, i) == SQLITE_NULL)
+        return NULL;
+    char *c = mpb__pa_col_dup(st, i);
+    *oom |= c == NULL;
+    return c;
+}
+
+/* An imported log's header and experiment properties into e; nothing
+ * for a database made before they were kept. */
+static int read_log_header(mpb_store *s, exp_info *e)
+{
+    e->total_time = e->memory_limit = NAN;
+    if (!mpb__store_has_column(s, "experiments", "started"))
+        return MPB_OK;
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT started, seed, cpuinfo, total_time, memory_limit"
+        " FROM experiments WHERE id = ?");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, e->id);
+    int oom = 0, rc = MPB_OK;
+    if (sqlite3_step(st) == SQLITE_ROW) {
+        e->started = col_dup_or_null(st, 0, &oom);
+        e->seed = col_dup_or_null(st, 1, &oom);
+        e->cpuinfo = col_dup_or_null(st, 2, &oom);
+        e->total_time = col_num(st, 3);
+        e->memory_limit = col_num(st, 4);
+    }
+    sqlite3_finalize(st);
+    if (!oom && mpb__store_has_column(s, "experiment_params", "name")) {
+        st = mpb__store_prepare(s, "SELECT name, type, value FROM"
+                                " experiment_params WHERE experiment_id = ?"
+                                " ORDER BY idx");
+        if (st == NULL)
+            return MPB_EDB;
+        sqlite3_bind_int64(st, 1, e->id);
+        int cap = 0, step;
+        while (!oom && (step = sqlite3_step(st)) == SQLITE_ROW) {
+            if (mpb__grow((void **)&e->params, &cap, e->num_params + 1,
+                          sizeof *e->params)) {
+                oom = 1;
+                break;
+            }
+            exp_param *p = &e->params[e->num_params++];
+            *p = (exp_param){mpb__pa_col_dup(st, 0), mpb__pa_col_dup(st, 1),
+                             mpb__pa_col_dup(st, 2)};
+            oom |= !p->name || !p->type || !p->value;
+        }
+        if (!oom && step != SQLITE_DONE)
+            rc = mpb__store_db_fail(s, "read experiment parameters");
+        sqlite3_finalize(st);
+    }
+    return oom ? mpb__store_fail(s, MPB_ENOMEM, "out of memory") : rc;
 }
 
 int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e)
@@ -711,6 +825,8 @@ int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e)
         e->created = col_num(st, 6);
         if (!e->name || !e->config_text || !e->host || !e->version)
             rc = mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+        else
+            rc = read_log_header(s, e);
     } else if (step == SQLITE_DONE) {
         rc = mpb__store_fail(s, MPB_ENOTFOUND, "no experiment %lld",
                              (long long)id);
@@ -884,6 +1000,34 @@ static char *goal_text(const char *kind, const char *joints,
     return text;
 }
 
+/* q as the imported log e had it: its experiment's name and setup. */
+static int log_problem(mpb_store *s, const exp_info *e, int64_t scene_id,
+                       pa_query *q)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT robot FROM scenes WHERE id = ?");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, scene_id);
+    int rc = MPB_OK;
+    if (sqlite3_step(st) == SQLITE_ROW) {
+        char *setup = mpb__pa_col_dup(st, 0), *name = strdup(e->name);
+        if (setup == NULL || name == NULL) {
+            free(setup);
+            free(name);
+            rc = MPB_ENOMEM;
+        } else {
+            mpb__pa_one_word(name);
+            free(q->setup);
+            free(q->problem);
+            q->setup = setup;
+            q->problem = name;
+        }
+    }
+    sqlite3_finalize(st);
+    return rc;
+}
+
 int mpb__pa_read_queries(mpb_store *s, const exp_info *e, pa_query_list *out)
 {
     scene_problem *scenes = NULL;
@@ -955,6 +1099,10 @@ int mpb__pa_read_queries(mpb_store *s, const exp_info *e, pa_query_list *out)
                      ? "\n" : "",
                  (long long)e->id, q->query, text[0], text[1], goal);
         free(goal);
+        /* An imported log's experiment (one scene, one query) keeps its
+         * name and its setup block (the scene's robot text). */
+        if (e->started && (rc = log_problem(s, e, scene_id, q)) != MPB_OK)
+            break;
     }
     if (rc == MPB_OK && step != SQLITE_DONE)
         rc = mpb__store_db_fail(s, "read queries");

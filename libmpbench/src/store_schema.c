@@ -136,6 +136,19 @@ const char mpb__schema_v1[] =
     "  value  REAL,\n"
     "  PRIMARY KEY(run_id, seq, name)) WITHOUT ROWID;\n";
 
+/* An imported log's experiment properties ("wall_width REAL = 0.6"), in
+ * its order, each part as written; the experiments' columns started,
+ * total_time, seed, memory_limit and cpuinfo come with it (store.c,
+ * add_log_header()). */
+const char mpb__schema_experiment_params[] =
+    "CREATE TABLE IF NOT EXISTS experiment_params(\n"
+    "  experiment_id INTEGER NOT NULL REFERENCES experiments(id),\n"
+    "  idx           INTEGER NOT NULL,\n"
+    "  name          TEXT NOT NULL,\n"
+    "  type          TEXT NOT NULL,\n"
+    "  value         TEXT NOT NULL,\n"
+    "  PRIMARY KEY(experiment_id, idx)) WITHOUT ROWID;\n";
+
 /* For people at the sqlite3 prompt: one row per finished run, with the
  * metrics of its final stage. An experiment run again after it finished
  * gets a new id under the same name, so the id is there to tell them

@@ -198,19 +198,35 @@ check "direct: a failed write fails" test $? -eq 1
 check "direct: ... and leaves no file behind" \
     test -z "$(ls "$work" | grep '^half\.db')"
 
-# Round trip through OMPL's format: the exported log imports to the same.
+# Round trip through OMPL's format: the exported log imports to the same
+# (tau_r is the log's "time"; tau_t adds its simplification time).
 # Its planners come back as mpbench/ompl/NAME, the log being mpbench's;
 # its setup block holds the imported log, whose "|>>>" must not end it.
 "$mpb" export --ompl-log "$DB" "$work/logs" >/dev/null
 "$mpb" import -d "$work/again.db" "$work"/logs/*.log >/dev/null
 check "the exported OMPL log imports again" eq $? 0
-sqlite3 "$work/again.db" "SELECT c.name, count(*), printf('%.9g', avg(r.time_total)),
+sqlite3 "$work/again.db" "SELECT c.name, count(*), printf('%.9g', avg(r.time_raw)),
                                  printf('%.9g', avg(r.success))
                             FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
                            GROUP BY c.name" | sed 's/^.*\///' | sort >"$work/again.means"
 check "... with the same runs and averages" cmp -s "$work/log.means" "$work/again.means"
 check "... and the same memory, run by run" \
     test "$(mem_of "$work/again.db" runs)" = "$log_memory"
+# mpbench's own experiment properties, query and mpbench_experiment, are
+# the log's once imported, and exported again as they were.
+want=$(sed -n 's/^query VARCHAR(512) = //p; s/^mpbench_experiment INTEGER = //p' \
+           "$work"/logs/*.log | paste -sd'|')
+# Imported second, the log's experiment has another id than it says.
+"$mpb" import -d "$work/again2.db" "$work/wall.log" "$work"/logs/*.log >/dev/null
+"$mpb" export --planner-arena -e 2 "$work/again2.db" "$work/again-pa.db" >/dev/null
+check "query and mpbench_experiment are kept through import -d ($want)" \
+    test -n "$want" -a "$(sqlite3 "$work/again-pa.db" \
+        "SELECT query || '|' || mpbench_experiment FROM experiments")" = "$want"
+rm -rf "$work/logs2"
+"$mpb" export --ompl-log -e 2 "$work/again2.db" "$work/logs2" >/dev/null
+check "... and in the log exported again" test "$(sed -n \
+    's/^query VARCHAR(512) = //p; s/^mpbench_experiment INTEGER = //p' \
+    "$work"/logs2/*.log | paste -sd'|')" = "$want"
 
 # A log cut short, and a file that is no log: one line naming where, and
 # nothing added to the database.

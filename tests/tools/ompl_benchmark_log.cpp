@@ -5,7 +5,8 @@
 // Usage: mpb-test-ompl-log OUT.log [RUNS] [SECONDS]
 // A point in the unit square goes around a wall, planned by RRTConnect,
 // RRT and PRM (PRM runs to the time limit: its progress properties are in
-// the log too).
+// the log too). The wall's size and the space's dimension are experiment
+// parameters, as a user of OMPL would record them.
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -48,6 +49,9 @@ int main(int argc, char **argv)
     ss.setStartAndGoalStates(start, goal, 0.01);
 
     ompl::tools::Benchmark bench(ss, "wall");
+    bench.addExperimentParameter("wall_width", "REAL", "0.1");
+    bench.addExperimentParameter("wall height", "REAL", "0.8");
+    bench.addExperimentParameter("dimensions", "INTEGER", "2");
     auto si = ss.getSpaceInformation();
     bench.addPlanner(std::make_shared<og::RRTConnect>(si));
     bench.addPlanner(std::make_shared<og::RRT>(si));

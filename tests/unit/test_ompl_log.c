@@ -174,6 +174,65 @@ static void what_ompl_writes_is_read(void **state)
     read_ok("Starting at 2026-11-22 11:22:29", "Starting at 2026-Nov-22 11:22:29");
 }
 
+/* What OMPL's script keeps, the reader keeps for mpb import: the
+ * experiment properties and the enums as written, the common properties
+ * each as its line, then "\n;", and integers past 2^53 exactly. */
+static void what_the_script_keeps_is_kept(void **state)
+{
+    (void)state;
+    char *text = test_read_file(WALL_LOG);
+    const char *old = "0 experiment properties\n";
+    char *at = strstr(text, old);
+    assert_non_null(at);
+    const char *params = "3 experiment properties\nwall width REAL = 0.6\n"
+                         "max-speed INTEGER = 7\nnote VARCHAR(16) =\n";
+    char *big = strstr(text, "0; 0; 1; 1; 13; 14; ");
+    assert_non_null(big);
+    size_t n = strlen(text) + strlen(params) + 64;
+    char *edited = malloc(n);
+    assert_non_null(edited);
+    snprintf(edited, n, "%.*s%s%.*s0; 0; 1; 1; 9007199254740993; "
+             "-9223372036854775807; %s", (int)(at - text), text, params,
+             (int)(big - at - strlen(old)), at + strlen(old),
+             big + strlen("0; 0; 1; 1; 13; 14; "));
+    mpb_ompl_log *log = NULL;
+    char err[256] = "";
+    if (mpb_ompl_log_parse(edited, strlen(edited), &log, err, sizeof err) !=
+        MPB_OK)
+        fail_msg("%s", err);
+    assert_int_equal(log->num_params, 3);
+    assert_string_equal(log->params[0].name, "wall width");
+    assert_string_equal(log->params[0].type, "REAL");
+    assert_string_equal(log->params[0].value, "0.6");
+    assert_string_equal(log->params[1].name, "max-speed");
+    assert_string_equal(log->params[2].type, "VARCHAR(16)");
+    assert_string_equal(log->params[2].value, "");
+    assert_int_equal(log->num_enums, 1);
+    assert_string_equal(log->enums[0].name, "status");
+    assert_int_equal(log->enums[0].num_values, 9);
+    assert_string_equal(log->enums[0].values[6], "Exact solution");
+    const mpb_ompl_planner *p = &log->planners[0];
+    assert_non_null(strstr(p->settings_text, "intermediate_states = 0\n;"
+                                             "longest_valid_segment_fraction"));
+    assert_int_equal(p->num_exact, 2);
+    assert_int_equal(p->exact[0].cell, 4);
+    assert_true(p->exact[0].value == 9007199254740993LL);
+    assert_int_equal(p->exact[1].cell, 5);
+    assert_true(p->exact[1].value == -9223372036854775807LL);
+    mpb_ompl_log_free(log);
+    free(edited);
+    free(text);
+    refused("0 experiment properties\n", "1 experiment properties\nwidth 0.6\n",
+            "line 4: expected an experiment property 'name TYPE = value', "
+            "found 'width 0.6'");
+    refused("0 experiment properties\n",
+            "1 experiment properties\nwidth REAL); = 0.6\n",
+            "line 4: 'REAL);' is not a type (the experiment property 'width')");
+    refused("0 experiment properties\n",
+            "2 experiment properties\nw REAL = 1\nw REAL = 2\n",
+            "line 5: the experiment property 'w' a second time");
+}
+
 /* What the mpbench and the Planner Arena paths of mpb import took
  * differently is refused here, once, for both. */
 static void what_the_databases_would_refuse(void **state)
@@ -311,6 +370,7 @@ int main(void)
         cmocka_unit_test(planner_count_must_match),
         cmocka_unit_test(values_must_be_of_their_type),
         cmocka_unit_test(what_ompl_writes_is_read),
+        cmocka_unit_test(what_the_script_keeps_is_kept),
         cmocka_unit_test(what_the_databases_would_refuse),
         cmocka_unit_test(logs_are_written_one_at_a_time_whole_or_not_at_all),
     };

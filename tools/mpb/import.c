@@ -28,7 +28,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
         "usage: mpb import -d DB LOG...\n"
-        "       mpb import -p OUT.db LOG...\n"
+        "       mpb import -p OUT.db [-a] LOG...\n"
         "\n"
         "Read benchmark logs written by OMPL's ompl::tools::Benchmark (or\n"
         "MoveIt's benchmark executor, in the same format) into the mpbench\n"
@@ -43,12 +43,16 @@ static void usage(FILE *out)
         "instead, as OMPL's ompl_benchmark_statistics.py does, without an\n"
         "mpbench database in between: each log is read once and written as\n"
         "it is read, and OUT.db appears only once every log is in it (if\n"
-        "one cannot be read or has an error, it does not appear).\n"
+        "one cannot be read or has an error, it does not appear). With -a,\n"
+        "add to OUT.db, an existing Planner Arena database (the script's -a),\n"
+        "in one transaction: a planner configuration or enum it holds is\n"
+        "not added again.\n"
         "\n"
         "Options:\n"
         "  -d, --db DB               the mpbench database to add to\n"
         "  -p, --planner-arena OUT   the Planner Arena database to write (it\n"
-        "                            must not exist)\n"
+        "                            must not exist, unless -a)\n"
+        "  -a, --append              with -p: add to OUT, which exists\n"
         "  -h, --help                print this help\n"
         "\n"
         "Exit status: 0 when every log was imported, 1 on an error, 2 on a\n"
@@ -188,12 +192,16 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
                         sample[0], p->progress_properties[k].name, sample[k]};
         }
     }
-    double t = cell(p, run, c->time);
+    /* tau_t is the planning and the simplification, as the time OMPL's
+     * script ranks by (time + simplification_time); tau_r the planning. */
+    double t = cell(p, run, c->time), ts = cell(p, run, c->s_time);
+    double total = isnan(ts) ? t : t + ts;
     mpb_run_record rec = {
         .run_id = run_id, .run_uid = uid, .planner_id = "imported",
         .status = status_of(cell(p, run, c->status), solved), .message = "",
         .claimed_success = solved, .success = success,
-        .time_total = t, .time_raw = t, .time_other = 0.0, .wall_time = NAN,
+        .time_total = total, .time_raw = t, .time_other = isnan(ts) ? 0.0 : ts,
+        .wall_time = NAN,
         .verify_time = NAN,
         .memory = cell(p, run, c->memory),
         .num_stages = nstages, .stages = st,
@@ -224,10 +232,25 @@ static int import_log(mpb_store *s, const char *path, const char *text,
         if (log->planners[i].num_runs > most)
             most = log->planners[i].num_runs;
     int64_t exp, scene, query;
+    /* The log's header and experiment properties, for mpb export. */
+    mpb_experiment_param *params = calloc((size_t)log->num_params + 1,
+                                          sizeof *params);
+    if (params == NULL)
+        return MPB_ENOMEM;
+    for (int i = 0; i < log->num_params; i++)
+        params[i] = (mpb_experiment_param){log->params[i].name,
+                                           log->params[i].type,
+                                           log->params[i].value};
+    mpb_log_header header = {
+        .host = log->host, .version = log->version, .started = log->date,
+        .seed = log->seed, .cpuinfo = log->cpuinfo,
+        .total_time = log->total_time, .memory_limit = log->memory_limit,
+        .num_params = log->num_params, .params = params,
+    };
     mpb_experiment_info e = {log->experiment, path, hash, text,
                              (int)(log->runs_per_planner > 0 ? log->runs_per_planner
                                                              : most),
-                             log->time_limit};
+                             log->time_limit, &header};
     mpb_scene_info sc = {log->experiment, "ompl-log", hash,
                          log->setup ? log->setup : "", "ompl-log", hash, ""};
     static const double none[1] = {0.0};
@@ -235,8 +258,9 @@ static int import_log(mpb_store *s, const char *path, const char *text,
                         .joint_names = NULL, .start = none,
                         .goal_kind = MPB_GOAL_JOINTS, .goal_joints = NULL,
                         .goal_tolerance = 0.0};
-    int rc;
-    if ((rc = mpb_store_experiment_create(s, &e, &exp)) != MPB_OK ||
+    int rc = mpb_store_experiment_create(s, &e, &exp);
+    free(params);
+    if (rc != MPB_OK ||
         (rc = mpb_store_scene_add(s, exp, &sc, &scene)) != MPB_OK ||
         (rc = mpb_store_query_add(s, scene, &q, &query)) != MPB_OK)
         return rc;
@@ -399,7 +423,8 @@ static int feed_next(void *ud, const mpb_ompl_log **log)
 
 /* -p: the logs straight into one new Planner Arena database, whole or
  * not at all. */
-static int to_planner_arena(const char *out, int num_logs, char **logs)
+static int to_planner_arena(const char *out, int append, int num_logs,
+                            char **logs)
 {
     arena_feed f = {.logs = logs, .num_logs = num_logs};
     char err[256];
@@ -408,7 +433,8 @@ static int to_planner_arena(const char *out, int num_logs, char **logs)
         fprintf(stderr, "mpb " CMD ": out of memory\n");
         return MPB_EXIT_ERROR;
     }
-    if (mpb_ompl_logs_to_planner_arena(out, 0, feed_next, &f, NULL, err,
+    if (mpb_ompl_logs_to_planner_arena(out, append ? MPB_EXPORT_APPEND : 0,
+                                       feed_next, &f, NULL, err,
                                        sizeof err) != MPB_OK) {
         if (f.bad)      /* the rest checked too, for every error at once */
             check_all(num_logs - f.next, logs + f.next);
@@ -434,20 +460,24 @@ int cmd_import(int argc, char **argv)
     static const struct option longopts[] = {
         {"db", required_argument, NULL, 'd'},
         {"planner-arena", required_argument, NULL, 'p'},
+        {"append", no_argument, NULL, 'a'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     const char *db = NULL, *arena = NULL;
-    int opt;
+    int opt, append = 0;
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":d:p:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":d:p:ah", longopts, NULL)) != -1) {
         switch (opt) {
         case 'd':
             db = optarg;
             break;
         case 'p':
             arena = optarg;
+            break;
+        case 'a':
+            append = 1;
             break;
         case 'h':
             usage(stdout);
@@ -462,8 +492,12 @@ int cmd_import(int argc, char **argv)
                 : db ? "-d or -p, not both" : "into which database? (-d DB or -p OUT.db)");
         return MPB_EXIT_USAGE;
     }
+    if (append && arena == NULL) {
+        fprintf(stderr, "mpb " CMD ": -a is for -p (try 'mpb " CMD " --help')\n");
+        return MPB_EXIT_USAGE;
+    }
     if (arena != NULL)
-        return to_planner_arena(arena, argc - optind, argv + optind);
+        return to_planner_arena(arena, append, argc - optind, argv + optind);
     /* Every log checked before the database is created or opened, then
      * read again as it is imported: one log in memory at a time. */
     int num_logs = argc - optind;

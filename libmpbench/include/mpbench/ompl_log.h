@@ -24,7 +24,8 @@
  *   values "v1; v2; ...; "; optionally Q progress properties and N lines
  *   of samples "a,b,;a,b,;"; and a line ".".
  *
- * Values that are empty, "nan" or "inf" read as NaN; BOOLEAN values are
+ * Values that are empty, "nan" or "inf" read as NaN (an INTEGER's past
+ * 2^53 is also kept exactly, in the planner's exact list); BOOLEAN values are
  * 0 or 1 (also written "true"/"false"). A property's type is REAL,
  * INTEGER, BOOLEAN or ENUM, and each value must be one of its type, as
  * OMPL writes it: an INTEGER one of at most 64 bits, an ENUM an index
@@ -47,9 +48,18 @@ typedef struct mpb_ompl_property {
     char *type;                 /* "REAL", "BOOLEAN", "INTEGER", "ENUM", ... */
 } mpb_ompl_property;
 
+/* An integer of a run that a double does not hold exactly (past 2^53),
+ * as written. */
+typedef struct mpb_ompl_exact {
+    size_t    cell;             /* index into the planner's values */
+    long long value;
+} mpb_ompl_exact;
+
 typedef struct mpb_ompl_planner {
     char  *name;                /* "geometric_RRTConnect" */
     char  *settings;            /* common properties, "k = v" joined by ';' */
+    char  *settings_text;       /* the same as OMPL's script stores them:
+                                   each line as written, then "\n;" */
     int    num_properties;
     mpb_ompl_property *properties;
     long   num_runs;
@@ -61,7 +71,24 @@ typedef struct mpb_ompl_planner {
     long  *progress_start;      /* num_runs + 1 offsets into progress, in
                                    samples */
     double *progress;           /* samples x num_progress_properties */
+    long   num_exact;           /* INTEGER values past 2^53, by cell */
+    mpb_ompl_exact *exact;
 } mpb_ompl_planner;
+
+/* An experiment property line "name TYPE = value" (OMPL's experiment
+ * parameters, mpbench's query): each part as written. */
+typedef struct mpb_ompl_param {
+    char *name;                 /* "wall width" */
+    char *type;                 /* "REAL", "INTEGER", ... */
+    char *value;                /* "0.6" */
+} mpb_ompl_param;
+
+/* An enum line "name|value0|value1|...": value i is values[i]. */
+typedef struct mpb_ompl_enum {
+    char  *name;
+    int    num_values;
+    char **values;
+} mpb_ompl_enum;
 
 typedef struct mpb_ompl_log {
     char  *version;             /* "OMPL 1.5.2", "MoveIt 1.1.9", ... */
@@ -72,6 +99,10 @@ typedef struct mpb_ompl_log {
     double memory_limit;        /* MB per run */
     double total_time;          /* s spent collecting the data */
     long   runs_per_planner;    /* -1 when not written */
+    int    num_params;          /* experiment properties, in the log's order */
+    mpb_ompl_param *params;
+    int    num_enums;
+    mpb_ompl_enum *enums;
     int    num_planners;
     mpb_ompl_planner *planners;
 } mpb_ompl_log;

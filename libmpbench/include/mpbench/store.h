@@ -67,6 +67,25 @@ int mpb_store_rollback(mpb_store *s);
 
 /* ---- experiments and what they are made of ----------------------------- */
 
+/* An experiment property of an imported log: "name TYPE = value". */
+typedef struct mpb_experiment_param {
+    const char *name, *type, *value;
+} mpb_experiment_param;
+
+/* What an imported log's header says of its experiment (OMPL's Benchmark
+ * writes it), kept so that `mpb export` writes it back. */
+typedef struct mpb_log_header {
+    const char *host;           /* "Running on HOST" */
+    const char *version;        /* "OMPL 1.5.2" */
+    const char *started;        /* "Starting at DATE", as written */
+    const char *seed;           /* as written */
+    const char *cpuinfo;        /* the block's text, or NULL */
+    double      total_time;     /* s spent to collect the data */
+    double      memory_limit;   /* MB per run */
+    int         num_params;
+    const mpb_experiment_param *params;
+} mpb_log_header;
+
 typedef struct mpb_experiment_info {
     const char *name;
     const char *config_file;   /* path as given */
@@ -74,6 +93,8 @@ typedef struct mpb_experiment_info {
     const char *config_text;   /* the file itself */
     int         runs_per_query;
     double      time_limit;    /* s */
+    const mpb_log_header *log; /* an imported log's; NULL for mpbench's own
+                                  (this host and version) */
 } mpb_experiment_info;
 
 int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
