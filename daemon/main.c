@@ -310,7 +310,7 @@ static int setup_experiment(mpbd *d, int fresh)
     mpb_experiment_info info = {
         .name = e->name, .config_file = e->file, .config_hash = e->hash,
         .config_text = e->text, .runs_per_query = e->runs,
-        .time_limit = e->time_limit,
+        .time_limit = e->time_limit, .memory_limit = e->memory_limit,
     };
 
     if ((rc = mpb_store_begin(s)) != MPB_OK)

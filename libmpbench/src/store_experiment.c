@@ -86,6 +86,8 @@ int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
         sqlite3_bind_text(st, 11, h->seed, -1, SQLITE_STATIC);
         sqlite3_bind_double(st, 12, h->memory_limit);
         sqlite3_bind_text(st, 13, h->cpuinfo, -1, SQLITE_STATIC);
+    } else if (e->memory_limit > 0) {
+        sqlite3_bind_double(st, 12, e->memory_limit);
     }
     int rc = step_once(s, st, "create experiment");
     sqlite3_finalize(st);

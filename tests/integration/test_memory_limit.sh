@@ -92,6 +92,8 @@ print(r["units"]["memory"], m["n"], m["mean"] > 72)' "$work/report.json")" = "MB
 check "mpb export --planner-arena succeeds" eq $? 0
 check "... its runs carry memory, as OMPL's Benchmark writes it" \
     eq "$(sqlite3 "$work/pa.db" "SELECT count(*) FROM runs WHERE memory > 0")" 8
+check "... its experiment the limit, as OMPL's memorylimit" \
+    test "$(sqlite3 "$work/pa.db" "SELECT memorylimit FROM experiments")" = 128.0
 check "... and its status enum names the memory failures" \
     eq "$(sqlite3 "$work/pa.db" "SELECT count(*) FROM runs r JOIN enums e
              ON e.name = 'status' AND e.value = r.status

@@ -155,7 +155,7 @@ static int setup(void **state)
     assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
 
     mpb_experiment_info e = {"paper", "paper.yaml", "h1",
-                             "experiment: {name: paper}\n", 3, 60.0, NULL};
+                             "experiment: {name: paper}\n", 3, 60.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRTConnect",
                                                   "ompl", "RRTConnect",
@@ -188,7 +188,7 @@ static int setup(void **state)
 
     /* Experiment 2, "second": the same configuration A, one run. */
     int64_t exp2, cfg2, scene2, query2, run2 = 0;
-    mpb_experiment_info e2 = {"second", "second.yaml", "h2", "x", 1, 10.0, NULL};
+    mpb_experiment_info e2 = {"second", "second.yaml", "h2", "x", 1, 10.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e2, &exp2), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp2, "ompl/RRTConnect",
                                                   "ompl", "RRTConnect",
@@ -264,7 +264,7 @@ static void mini_experiment(const char *path, const char *name,
     int64_t cfg, scene_id[8];
     assert_true(num_scenes <= 8);
     assert_int_equal(mpb_store_open(path, 0, &s), MPB_OK);
-    mpb_experiment_info e = {name, "mini.yaml", "h", "x", num_runs, 1.0, NULL};
+    mpb_experiment_info e = {name, "mini.yaml", "h", "x", num_runs, 1.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, id), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, *id, "null/straight_line",
                                                   "null", "straight_line", "",

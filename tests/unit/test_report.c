@@ -121,7 +121,7 @@ static void finish(mpb_store *s, int64_t run_id, const run_spec *r)
 static void write_paper(fixture *f, mpb_store *s)
 {
     int64_t exp, scene[2];
-    mpb_experiment_info e = {"paper", "paper.yaml", "h1", "text", 3, 60.0, NULL};
+    mpb_experiment_info e = {"paper", "paper.yaml", "h1", "text", 3, 60.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(exp, 1);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRTConnect",
@@ -163,7 +163,7 @@ static int first_id(void *ud, const mpb_run_row *row)
 static void write_newer(mpb_store *s)
 {
     int64_t exp, cfg, scene, query, run = 0;
-    mpb_experiment_info e = {"newer", "newer.yaml", "h2", "text", 1, 10.0, NULL};
+    mpb_experiment_info e = {"newer", "newer.yaml", "h2", "text", 1, 10.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(exp, 2);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "null/straight_line",
@@ -188,7 +188,7 @@ static void write_newer(mpb_store *s)
 static void write_odd(mpb_store *s)
 {
     int64_t exp, cfg, scene, query, run = 0;
-    mpb_experiment_info e = {"odd \"one\"", "odd.yaml", "h3", "text", 1, 10.0, NULL};
+    mpb_experiment_info e = {"odd \"one\"", "odd.yaml", "h3", "text", 1, 10.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "x/a,b|c*d",
                                                   "x", "a,b|c*d", "k=v",
@@ -458,7 +458,7 @@ static void tiny_values_and_wide_names(void **state)
     int64_t exp, cfg[2], scene, query, ids[2];
     snprintf(path, sizeof path, "%s/tiny.db", f->dir);
     assert_int_equal(mpb_store_open(path, 0, &s), MPB_OK);
-    mpb_experiment_info e = {"tiny", "t.yaml", "h4", "text", 1, 10.0, NULL};
+    mpb_experiment_info e = {"tiny", "t.yaml", "h4", "text", 1, 10.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "x/\u8abf\u6574_\u00fc", "x",
                      "tuned", "", &cfg[0]), MPB_OK);

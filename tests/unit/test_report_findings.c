@@ -107,7 +107,7 @@ static int setup(void **state)
     snprintf(db, sizeof db, "%s/results.db", dir);
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
 
-    mpb_experiment_info e = {"paper", "paper.yaml", "h", "text", 2, 60.0, NULL};
+    mpb_experiment_info e = {"paper", "paper.yaml", "h", "text", 2, 60.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     static const char *const cfg[NUM_CONFIGS][3] = {
         {"ompl/RRTConnect", "ompl", "RRTConnect"},
@@ -240,7 +240,7 @@ static void test_nothing_finished(void **state)
     mpb_store *s;
     int64_t exp, cfg, scene, query;
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
-    mpb_experiment_info e = {"waiting", "w.yaml", "h", "text", 1, 60.0, NULL};
+    mpb_experiment_info e = {"waiting", "w.yaml", "h", "text", 1, 60.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRT", "ompl",
                                                   "RRT", "", &cfg), MPB_OK);
@@ -274,7 +274,7 @@ static void test_what_cannot_fail_is_not_checked(void **state)
     mpb_store *s;
     int64_t exp, cfg[2], scene, query[2], id[3];
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
-    mpb_experiment_info e = {"once", "o.yaml", "h", "text", 2, 60.0, NULL};
+    mpb_experiment_info e = {"once", "o.yaml", "h", "text", 2, 60.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRTConnect",
                      "ompl", "RRTConnect", "", &cfg[0]), MPB_OK);
@@ -332,7 +332,7 @@ static int64_t one_scene_experiment(const char *name,
     int64_t exp, cfg_ids[8], scene, query;
     assert_true(n_cfg <= 8 && n_spec <= 16);
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
-    mpb_experiment_info e = {name, "x.yaml", "h", "text", 3, 60.0, NULL};
+    mpb_experiment_info e = {name, "x.yaml", "h", "text", 3, 60.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
     for (int c = 0; c < n_cfg; c++)
         assert_int_equal(mpb_store_planner_config_add(s, exp, cfg[c][0],

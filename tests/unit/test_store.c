@@ -33,7 +33,7 @@ static int setup(void **state)
     unlink(f->path);
     assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
 
-    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 2, 1.5, NULL};
+    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 2, 1.5, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(f->s, &e, &f->exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(f->s, f->exp, "p/A", "p", "A",
                                                   "", &f->cfg), MPB_OK);

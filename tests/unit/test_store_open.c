@@ -32,7 +32,7 @@ static int setup(void **state)
 
     mpb_store *s;
     int64_t id;
-    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 2, 1.5, NULL};
+    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 2, 1.5, NULL, 0};
     assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
     assert_int_equal(mpb_store_experiment_create(s, &e, &id), MPB_OK);
     mpb_store_close(s);

@@ -117,7 +117,7 @@ static int setup(void **state)
     unlink(f->path);
     assert_int_equal(mpb_store_open(f->path, 0, &f->w), MPB_OK);
 
-    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 3, 1.5, NULL};
+    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 3, 1.5, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(f->w, &e, &f->exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(f->w, f->exp, "p/A", "p",
                                                   "A", "k=1", &f->cfg[0]),
@@ -145,7 +145,7 @@ static int setup(void **state)
 
     /* The other experiment: same names, one successful run. */
     int64_t ocfg, oquery;
-    mpb_experiment_info o = {"other", "other.yaml", "h2", "text2", 1, 9.0, NULL};
+    mpb_experiment_info o = {"other", "other.yaml", "h2", "text2", 1, 9.0, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(f->w, &o, &f->other), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(f->w, f->other, "p/A", "p",
                                                   "A", "", &ocfg), MPB_OK);

@@ -43,7 +43,7 @@ static int setup(void **state)
     close(fd);
     unlink(f->path);
     assert_int_equal(mpb_store_open(f->path, 0, &f->w), MPB_OK);
-    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 2, 1.5, NULL};
+    mpb_experiment_info e = {"exp", "exp.yaml", "h1", "text", 2, 1.5, NULL, 0};
     assert_int_equal(mpb_store_experiment_create(f->w, &e, &f->exp), MPB_OK);
     assert_int_equal(mpb_store_planner_config_add(f->w, f->exp, "ompl/RRT",
                                                   "ompl", "RRT", "", &f->cfg),

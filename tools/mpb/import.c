@@ -250,7 +250,7 @@ static int import_log(mpb_store *s, const char *path, const char *text,
     mpb_experiment_info e = {log->experiment, path, hash, text,
                              (int)(log->runs_per_planner > 0 ? log->runs_per_planner
                                                              : most),
-                             log->time_limit, &header};
+                             log->time_limit, &header, 0};
     mpb_scene_info sc = {log->experiment, "ompl-log", hash,
                          log->setup ? log->setup : "", "ompl-log", hash, ""};
     static const double none[1] = {0.0};

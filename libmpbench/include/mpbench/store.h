@@ -95,6 +95,8 @@ typedef struct mpb_experiment_info {
     double      time_limit;    /* s */
     const mpb_log_header *log; /* an imported log's; NULL for mpbench's own
                                   (this host and version) */
+    double      memory_limit;  /* mpbench's own: MB a run may add, as OMPL's
+                                  memory limit; 0 for none (log: its own) */
 } mpb_experiment_info;
 
 int mpb_store_experiment_create(mpb_store *s, const mpb_experiment_info *e,
