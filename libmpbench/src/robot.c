@@ -860,6 +860,11 @@ void mpb_robot_free(mpb_robot *r)
 
 /* ---- the model ---------------------------------------------------------- */
 
+const mpb__urdf_model *mpb__robot_model(const mpb_robot *r)
+{
+    return r ? &r->model : NULL;
+}
+
 const char *mpb_robot_name(const mpb_robot *r)
 {
     return r ? r->model.name : NULL;
