@@ -607,6 +607,29 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
     return 0;
 }
 
+/*
+ * A start or a joint goal: a list of one number per joint, or, when the
+ * group is a group of the SRDF, the name of one of its group states
+ * ("start: ready"), whose values it takes. n is the node, or NULL when
+ * absent (the fault then at parent).
+ */
+static double *parse_state(loader *L, const mpbd_experiment *e, yaml_node_t *n,
+                           yaml_node_t *parent, const char *what)
+{
+    if (n == NULL || n->type != YAML_SCALAR_NODE || L->srdf == NULL)
+        return parse_vector(L, n ? n : parent, what, e->num_joints);
+    char why[512];
+    double *v = calloc((size_t)e->num_joints + 1, sizeof *v);
+    if (v == NULL)
+        return fail_at(L, n, "out of memory"), NULL;
+    if (mpb_srdf_state_values(L->srdf, L->group, scalar(n), v, why,
+                              sizeof why) != MPB_OK) {
+        free(v);
+        return fail_at(L, n, "%s: %s", what, why), NULL;
+    }
+    return v;
+}
+
 /* A start or goal must be a state the robot can be in: within its joint
  * limits and free of collision. Otherwise no planner can succeed. */
 static int check_state(loader *L, const mpbd_experiment *e, int scene,
@@ -713,7 +736,7 @@ static int load_goal(loader *L, mpbd_experiment *e, int scene, mpbd_query *q,
     if (n != NULL && n->type == YAML_MAPPING_NODE)
         return load_region_goal(L, e, scene, q, n);
     q->goal_kind = MPB_GOAL_JOINTS;
-    if ((q->goal = parse_vector(L, n ? n : query, "goal", e->num_joints)) == NULL)
+    if ((q->goal = parse_state(L, e, n, query, "goal")) == NULL)
         return -1;
     return check_state(L, e, scene, q->goal, "goal", n);
 }
@@ -746,8 +769,7 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
             if (o->scene == scene && strcmp(o->name, q->name) == 0)
                 return fail_at(L, m, "query '%s' appears twice in scene '%s'",
                                q->name, e->scenes[scene].name);
-        if ((q->start = parse_vector(L, get(L, m, "start") ? get(L, m, "start") : m,
-                                     "start", e->num_joints)) == NULL)
+        if ((q->start = parse_state(L, e, get(L, m, "start"), m, "start")) == NULL)
             return -1;
         if (check_state(L, e, scene, q->start, "start", get(L, m, "start")) != 0 ||
             load_goal(L, e, scene, q, m) != 0)

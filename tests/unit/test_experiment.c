@@ -353,6 +353,48 @@ static void a_group_of_the_srdf(void **state)
                  "it as srdf");
 }
 
+/* With group:, a start or goal may name one of the group's states. */
+static void a_group_state_by_name(void **state)
+{
+    (void)state;
+    mpbd_experiment *e = load_panda("  group: panda_arm\n",
+                                    "{name: q, start: ready, goal: extended}");
+    if (e == NULL)
+        fail_msg("%s", err);
+    /* The SRDF's values, as written. */
+    const double ready[7] = {0, -0.785, 0, -2.356, 0, 1.571, 0.785};
+    const double extended[7] = {0, 0, 0, 0, 0, 1.571, 0.785};
+    assert_int_equal(e->num_queries, 1);
+    for (int j = 0; j < 7; j++) {
+        assert_true(e->queries[0].start[j] == ready[j]);
+        assert_true(e->queries[0].goal[j] == extended[j]);
+    }
+    mpbd_experiment_free(e);
+    /* A list still works beside a name. */
+    e = load_panda("  group: panda_arm\n", "{name: q, start: [0, 0, 0, -1.5, "
+                   "0, 1.571, 0.785], goal: ready}");
+    if (e == NULL)
+        fail_msg("%s", err);
+    assert_true(e->queries[0].start[3] == -1.5);
+    assert_true(e->queries[0].goal[3] == -2.356);
+    mpbd_experiment_free(e);
+
+    assert_null(load_panda("  group: panda_arm\n",
+                           "{name: q, start: redy, goal: extended}"));
+    assert_error("12:26", "start: group 'panda_arm' has no group_state 'redy' "
+                 "(it has ready, extended, transport)");
+    assert_null(load_panda("  group: panda_arm\n",
+                           "{name: q, start: ready, goal: open}"));
+    assert_error("12:39", "goal: group_state 'open' is for group 'hand', not "
+                 "'panda_arm'");
+    /* Listed joints: no states to name. */
+    assert_null(load_panda("  joints: [panda_joint1, panda_joint2, panda_joint3, "
+                           "panda_joint4, panda_joint5, panda_joint6, "
+                           "panda_joint7]\n",
+                           "{name: q, start: ready, goal: extended}"));
+    assert_error("12:26", "start must be a list of 7 numbers");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -366,6 +408,7 @@ int main(void)
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),
         cmocka_unit_test(a_group_of_the_srdf),
+        cmocka_unit_test(a_group_state_by_name),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);
 }
