@@ -38,7 +38,8 @@
  *             refused. Of what it says, the world uses its
  *             <disable_collisions link1= link2=/> pairs (every one,
  *             whatever its reason); its virtual joints are held at the
- *             identity (the URDF's root frame is the world's); groups and
+ *             identity (the URDF's root frame is the world's); mimic
+ *             joints follow their leaders (robot.h); groups and
  *             group states are for the caller, who names the group's
  *             joints (srdf.h). Self-collision follows MoveIt: every pair of
  *             links is checked, a moving link against the robot's fixed
