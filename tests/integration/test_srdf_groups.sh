@@ -2,7 +2,8 @@
 # SRDF semantics end to end, on the Panda of tools/robot_data.sh (fetched
 # if missing): `group: panda_arm` and `start: ready` check, run and are
 # stored as a verified success; `mpb srdf -s -g` lists the SRDF's groups,
-# states and end effector and reads back the same; bad SRDFs (truncated,
+# states and end effector and reads back the same; the shipped PR2 arm's
+# groups, given as a chain or tip first, and a state by name; bad SRDFs (truncated,
 # an unknown joint, an unknown link, a group with no joints, a subgroup
 # cycle) are refused in one line naming the SRDF file and line, by a run
 # and by --check, an existing database left byte-identical.
@@ -110,6 +111,40 @@ bad_srdf no_joints "line $line: group 'nothing' has no joints"
 sed 's|<group name="panda_arm"/>|<group name="panda_arm_hand"/>|' "$srdf" >"$work/cycle.srdf"
 line=$(grep -n '<group name="panda_arm_hand"/>' "$work/cycle.srdf" | cut -d: -f1)
 bad_srdf cycle "line $line: group 'panda_arm_hand' contains itself through its subgroups (panda_arm_hand -> panda_arm_hand)"
+
+# The shipped PR2 arm, with the matrix mpb srdf generates for it and
+# groups and states added: a chain from the base to the tool frame is the
+# arm's seven joints (the fixed torso and wrist joints left out); joints
+# named tip first are planned base first; a state by name is its values.
+pr2=$MPB_SOURCE/scenes/robots/pr2_right_arm.urdf
+"$mpb" srdf -o "$work/pr2.srdf" "$pr2"
+sed 's|^</robot>|  <group name="right_arm"><chain base_link="base_link" tip_link="r_gripper_tool_frame"/></group>\
+  <group name="wrist"><joint name="r_wrist_roll_joint"/><joint name="r_wrist_flex_joint"/></group>\
+  <group name="torso"><joint name="torso_lift_joint"/></group>\
+  <group_state name="side_a" group="right_arm">\
+    <joint name="r_shoulder_pan_joint" value="-2.0"/><joint name="r_shoulder_lift_joint" value="1.0"/>\
+    <joint name="r_upper_arm_roll_joint" value="-2.9"/><joint name="r_elbow_flex_joint" value="-1.6"/>\
+    <joint name="r_forearm_roll_joint" value="-0.5"/><joint name="r_wrist_flex_joint" value="0.0"/>\
+    <joint name="r_wrist_roll_joint" value="-2.4"/>\
+  </group_state>\
+</robot>|' "$work/pr2.srdf" >"$work/pr2_groups.srdf"
+cat >"$work/pr2.yaml" <<EOT
+experiment: {name: pr2, runs: 1, time_limit: 5}
+robot: {format: urdf, file: $pr2, srdf: $work/pr2_groups.srdf, group: right_arm}
+scenes:
+  - {name: empty, format: moveit-scene, text: "(empty)\n.\n", queries: [{name: q, start: side_a, goal: [-1.0, 1.0, -3.5, -1.8, -0.3, -0.4, -1.8]}]}
+planners: [{planner: null, algorithms: [straight_line]}]
+EOT
+out=$("$daemon" --check "$work/pr2.yaml" 2>&1)
+check "the PR2 with group: right_arm and start: side_a checks" test "$out" = \
+    "$work/pr2.yaml: ok: 1 scene, 1 query, 1 planner configuration, 1 run"
+"$mpb" srdf -s "$work/pr2_groups.srdf" "$pr2" >"$work/pr2_review.srdf"
+check "... right_arm is the arm's seven joints, base first" grep -q "<!-- group 'right_arm': mpbench plans 7 joints, base first: r_shoulder_pan_joint, r_shoulder_lift_joint, r_upper_arm_roll_joint, r_elbow_flex_joint, r_forearm_roll_joint, r_wrist_flex_joint, r_wrist_roll_joint -->" "$work/pr2_review.srdf"
+check "... wrist, named tip first, is planned base first" grep -q "<!-- group 'wrist': mpbench plans 2 joints, base first: r_wrist_flex_joint, r_wrist_roll_joint -->" "$work/pr2_review.srdf"
+sed 's/group: right_arm/group: torso/' "$work/pr2.yaml" >"$work/pr2_torso.yaml"
+out=$("$daemon" --check "$work/pr2_torso.yaml" 2>&1)
+check "... torso, whose joint is fixed here, is refused at group:" sh -c \
+    "printf '%s\n' \"\$1\" | grep -qx \"mpbenchd: $work/pr2_torso.yaml:2:[0-9]*: group 'torso' has no joint to plan: its joints are fixed, mimic, passive or virtual\"" _ "$out"
 
 # Names the experiment gives that the SRDF lacks: at the experiment's key.
 experiment "$work/redy.yaml" "$srdf" panda_arm redy extended
