@@ -94,7 +94,7 @@ int mpb_srdf_is_passive(const mpb_srdf *s, const char *joint)
 
 /* ---- groups --------------------------------------------------------------- */
 
-/* The joints of the path between links a and b, into in[]. */
+/* The joints of the path between links base and tip, into in[]. */
 static void add_path(const mpb__urdf_model *m, int base, int tip,
                      unsigned char *in)
 {

@@ -6,7 +6,6 @@
  */
 #include "srdf.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -128,7 +127,6 @@ public:
              j = j->NextSiblingElement("joint")) {
             const char *jn = need(j, "name"), *val = need(j, "value");
             char *end = nullptr;
-            errno = 0;
             double v = std::strtod(val, &end);
             while (end && (*end == ' ' || *end == '\t'))
                 end++;
