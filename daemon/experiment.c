@@ -25,6 +25,9 @@ typedef struct loader {
     size_t      errlen;
     int         failed;
     yaml_node_t *robot;      /* the robot: mapping, for errors about it */
+    mpb_srdf   *srdf;        /* with robot.group: the SRDF, for its group
+                                states; else NULL */
+    int         group;       /* with robot.group: its index in srdf */
 } loader;
 
 static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
@@ -391,7 +394,7 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
 {
     /* Each its own: a robot has no name or queries, a scene no joints. */
     static const char *const robot_keys[] = {"format", "file", "text",
-                                             "joints", "srdf", NULL};
+                                             "joints", "group", "srdf", NULL};
     static const char *const scene_keys[] = {"format", "file", "text", "name",
                                              "queries", "joints", NULL};
     const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
@@ -433,9 +436,29 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
 }
 
 /*
+ * A fault of the robot's, its URDF's ("urdf: ...") or its SRDF's ("srdf
+ * line 3: ..."), as the library words it: at the robot's key that names
+ * the file it is in, and naming that file.
+ */
+static int robot_fault(loader *L, const mpbd_experiment *e, const char *why)
+{
+    int in_srdf = strncmp(why, "srdf", 4) == 0;
+    const char *file = in_srdf ? e->srdf_file : e->robot_file;
+    /* "srdf line 3: ..." in the SRDF file is its "line 3: ...". */
+    const char *what = in_srdf && file != NULL ? why + 5 : why;
+    yaml_node_t *at = get(L, L->robot, in_srdf ? "srdf" : "file");
+    if (at == NULL)
+        at = get(L, L->robot, "text");
+    if (file != NULL)
+        return fail_at(L, at ? at : L->robot, "robot: %s: %s", file, what);
+    return fail_at(L, at ? at : L->robot, "robot: %s", why);
+}
+
+/*
  * The robot's SRDF, `srdf:` a file relative to the experiment file: its
  * text goes into the robot text, on the line after the URDF (world.h),
- * for the world of every scene and every planner.
+ * for the world of every scene and every planner. With `group:` it is
+ * read here too, against the URDF, for the group and its states.
  */
 static int load_srdf(loader *L, mpbd_experiment *e, char **robot)
 {
@@ -462,6 +485,13 @@ static int load_srdf(loader *L, mpbd_experiment *e, char **robot)
                 strlen(srdf));
         free(srdf);
         return -1;
+    }
+    if (get(L, L->robot, "group") != NULL) {
+        char why[512];
+        if (mpb_srdf_load(*robot, srdf, &L->srdf, why, sizeof why) != MPB_OK) {
+            free(srdf);
+            return robot_fault(L, e, why);
+        }
     }
     size_t rl = strlen(*robot);
     int nl = rl > 0 && (*robot)[rl - 1] != '\n';
@@ -560,19 +590,8 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
         /* Name the file the fault is in, when it came from one, and point
          * at the key that names it: a fault of the robot's (its URDF or
          * SRDF) is at the robot's key, whichever scene it was loaded with. */
-        if (strncmp(why, "scene", 5) != 0) {
-            int in_srdf = strncmp(why, "srdf", 4) == 0;
-            const char *file = in_srdf ? e->srdf_file : e->robot_file;
-            /* "srdf line 3: ..." in the SRDF file is its "line 3: ...". */
-            const char *what = in_srdf && file != NULL ? why + 5 : why;
-            yaml_node_t *at = get(L, L->robot, in_srdf ? "srdf" : "file");
-            if (at == NULL)
-                at = get(L, L->robot, "text");
-            if (file != NULL)
-                return fail_at(L, at ? at : L->robot, "robot: %s: %s", file,
-                               what);
-            return fail_at(L, at ? at : L->robot, "robot: %s", why);
-        }
+        if (strncmp(why, "scene", 5) != 0)
+            return robot_fault(L, e, why);
         if (sc->scene_file != NULL)
             return fail_at(L, where, "scene '%s': %s: %s", sc->name,
                            sc->scene_file, why);
@@ -596,6 +615,29 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
                        "scenes have %d", sc->name, nj, e->num_joints);
     }
     return 0;
+}
+
+/*
+ * A start or a joint goal: a list of one number per joint, or, when the
+ * group is a group of the SRDF, the name of one of its group states
+ * ("start: ready"), whose values it takes. n is the node, or NULL when
+ * absent (the fault then at parent).
+ */
+static double *parse_state(loader *L, const mpbd_experiment *e, yaml_node_t *n,
+                           yaml_node_t *parent, const char *what)
+{
+    if (n == NULL || n->type != YAML_SCALAR_NODE || L->srdf == NULL)
+        return parse_vector(L, n ? n : parent, what, e->num_joints);
+    char why[512];
+    double *v = calloc((size_t)e->num_joints + 1, sizeof *v);
+    if (v == NULL)
+        return fail_at(L, n, "out of memory"), NULL;
+    if (mpb_srdf_state_values(L->srdf, L->group, scalar(n), v, why,
+                              sizeof why) != MPB_OK) {
+        free(v);
+        return fail_at(L, n, "%s: %s", what, why), NULL;
+    }
+    return v;
 }
 
 /* A start or goal must be a state the robot can be in: within its joint
@@ -704,7 +746,7 @@ static int load_goal(loader *L, mpbd_experiment *e, int scene, mpbd_query *q,
     if (n != NULL && n->type == YAML_MAPPING_NODE)
         return load_region_goal(L, e, scene, q, n);
     q->goal_kind = MPB_GOAL_JOINTS;
-    if ((q->goal = parse_vector(L, n ? n : query, "goal", e->num_joints)) == NULL)
+    if ((q->goal = parse_state(L, e, n, query, "goal")) == NULL)
         return -1;
     return check_state(L, e, scene, q->goal, "goal", n);
 }
@@ -737,8 +779,7 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
             if (o->scene == scene && strcmp(o->name, q->name) == 0)
                 return fail_at(L, m, "query '%s' appears twice in scene '%s'",
                                q->name, e->scenes[scene].name);
-        if ((q->start = parse_vector(L, get(L, m, "start") ? get(L, m, "start") : m,
-                                     "start", e->num_joints)) == NULL)
+        if ((q->start = parse_state(L, e, get(L, m, "start"), m, "start")) == NULL)
             return -1;
         if (check_state(L, e, scene, q->start, "start", get(L, m, "start")) != 0 ||
             load_goal(L, e, scene, q, m) != 0)
@@ -751,10 +792,56 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
     return 0;
 }
 
+/*
+ * `group:` names a group of the SRDF: its active joints, base first, are
+ * the planning group. mpbench plans a serial chain; a group that is not
+ * one is refused, saying why.
+ */
+static int load_srdf_group(loader *L, mpbd_experiment *e, yaml_node_t *n)
+{
+    const char *name = scalar(n);
+    char why[512];
+    if (get(L, L->robot, "joints") != NULL)
+        return fail_at(L, n, "give the planning group as joints or as group, "
+                       "not both");
+    if (name == NULL || *name == '\0')
+        return fail_at(L, n, "group must be the name of a group of the "
+                       "robot's srdf");
+    if (L->srdf == NULL)
+        return fail_at(L, n, "group '%s' names a group of the robot's SRDF: "
+                       "give it as srdf", name);
+    int g = mpb_srdf_group_index(L->srdf, name);
+    if (g < 0) {
+        size_t used = 0;
+        why[0] = '\0';
+        for (int i = 0; i < mpb_srdf_num_groups(L->srdf) && used < sizeof why;
+             i++)
+            used += (size_t)snprintf(why + used, sizeof why - used, "%s%s",
+                                     i ? ", " : "",
+                                     mpb_srdf_get_group(L->srdf, i)->name);
+        return fail_at(L, n, "%s has no group '%s' (%s%s)", e->srdf_file, name,
+                       used ? "its groups: " : "it has none", why);
+    }
+    if (mpb_srdf_group_check(L->srdf, g, why, sizeof why) != MPB_OK)
+        return fail_at(L, n, "%s", why);
+    const mpb_srdf_group *G = mpb_srdf_get_group(L->srdf, g);
+    if ((e->group_name = strdup(name)) == NULL ||
+        (e->group = calloc((size_t)G->num_active + 1, sizeof *e->group)) == NULL)
+        return fail_at(L, n, "out of memory");
+    for (int j = 0; j < G->num_active; j++)
+        if ((e->group[e->num_group++] = strdup(G->active[j])) == NULL)
+            return fail_at(L, n, "out of memory");
+    L->group = g;
+    return 0;
+}
+
 /* The robot's planning group, as a list of joint names (optional for
- * planar robots, whose joints are all in the group). */
+ * planar robots, whose joints are all in the group), or as a group of its
+ * SRDF. */
 static int load_group(loader *L, mpbd_experiment *e, yaml_node_t *n)
 {
+    if (get(L, L->robot, "group") != NULL)
+        return load_srdf_group(L, e, get(L, L->robot, "group"));
     if (n == NULL)
         return 0;
     if (n->type != YAML_SEQUENCE_NODE || count_items(n) == 0)
@@ -1145,11 +1232,13 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err, size_t errlen
         goto fail;
 
     yaml_document_delete(&L.doc);
+    mpb_srdf_free(L.srdf);
     free(L.dir);
     return e;
 fail:
     if (have_doc)
         yaml_document_delete(&L.doc);
+    mpb_srdf_free(L.srdf);
     free(L.dir);
     mpbd_experiment_free(e);
     return NULL;
@@ -1196,6 +1285,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
     free(e->wraps);
     free(e->robot_file);
     free(e->srdf_file);
+    free(e->group_name);
     free(e->scenes);
     free(e->queries);
     free(e->configs);

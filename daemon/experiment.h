@@ -70,8 +70,12 @@ typedef struct mpbd_experiment {
 
     char   *robot_file;      /* where the robot was read from, or NULL */
     char   *srdf_file;       /* robot.srdf, resolved, or NULL */
-    char  **group;           /* robot.joints as written, or NULL */
+    char  **group;           /* the planning group's joints: robot.joints
+                                as written, or robot.group's active
+                                joints base first; NULL if neither */
     int     num_group;
+    char   *group_name;      /* robot.group, the SRDF group planned; NULL
+                                when the joints were listed */
     int     num_joints;
     char  **joint_names;
     unsigned char *wraps;    /* per joint, nonzero for continuous joints */

@@ -1,6 +1,7 @@
 /*
  * robot.c - the robot model: a planning group (serial chain) over a URDF
- * tree, forward kinematics, numerical inverse kinematics (damped least
+ * tree, mimic joints following their leaders, forward kinematics,
+ * numerical inverse kinematics (damped least
  * squares with Levenberg-Marquardt damping and random restarts) and goal
  * regions. The URDF itself is read by the C++ bridge robot_urdf.cpp.
  */
@@ -30,6 +31,9 @@ typedef struct kin {
     mpb_pose       origin;      /* parent frame -> joint frame */
     double         axis[3];     /* unit (active and moving passive joints) */
     int            chain;       /* active joint index, or -1 */
+    int            mimic;       /* a mimic joint: its leader's active joint
+                                   index, or -1 when the leader holds */
+    double         mimic_m, mimic_o; /* value = mimic_m * leader + mimic_o */
     double         passive;     /* value of a passive joint */
     mpb_pose       fixed;       /* passive: origin * motion(passive) */
     /* Shortcuts for the common cases, chosen once (see kin_shortcuts()). */
@@ -249,7 +253,7 @@ static void link_step(const mpb_robot *r, int i, const double *q,
                       const mpb_pose *parent, mpb_pose *out)
 {
     const kin *k = &r->kin[i];
-    if (k->chain < 0) {
+    if (k->chain < 0 && k->mimic < 0) {
         if (k->fixed_pure)
             translate(parent, k->fixed.t, out);
         else
@@ -261,7 +265,7 @@ static void link_step(const mpb_robot *r, int i, const double *q,
         translate(parent, k->origin.t, &a);
     else
         mpb_pose_mul(parent, &k->origin, &a);
-    double v = q[k->chain];
+    double v = k->chain >= 0 ? q[k->chain] : k->mimic_m * q[k->mimic] + k->mimic_o;
     if (k->type == MPB_JOINT_PRISMATIC) {
         double d[3] = { k->axis[0] * v, k->axis[1] * v, k->axis[2] * v };
         translate(&a, d, out);
@@ -465,11 +469,77 @@ static int is_ancestor(const mpb__urdf_model *m, int a, int b)
     return 0;
 }
 
+/* What resolve_mimics() finds, per link (by its parent joint). */
+typedef struct mimics {
+    int    *lead;               /* the leader's child link, or -1 */
+    double *mul, *off;          /* value = mul * leader + off */
+} mimics;
+
+/*
+ * Follow each mimic joint to its final leader, composing multipliers and
+ * offsets on the way. Refuses a leader that is no joint, a mimic or
+ * leader that is not revolute, continuous or prismatic, and a loop.
+ */
+static int resolve_mimics(const mpb__urdf_model *m, mimics *mi, char *err,
+                          size_t errlen)
+{
+    for (int i = 0; i < m->num_links; i++) {
+        mi->lead[i] = -1;
+        mi->mul[i] = 1.0;
+        mi->off[i] = 0.0;
+        /* A fixed joint that names a leader still cannot move. */
+        if (m->links[i].parent < 0 || !m->links[i].mimic ||
+            !is_active_type(m->links[i].type))
+            continue;
+        double a = 1.0, b = 0.0;
+        int at = i;
+        for (int steps = 0; m->links[at].parent >= 0 && m->links[at].mimic &&
+                            is_active_type(m->links[at].type); steps++) {
+            const mpb__urdf_link *x = &m->links[at];
+            int next = find_joint_link(m, x->mimic);
+            if (next < 0) {
+                mpb__set_err(err, errlen, "joint '%.*s' mimics '%.*s', which is "
+                             "not a joint of the URDF", NAME_SHOWN, x->joint,
+                             NAME_SHOWN, x->mimic);
+                return MPB_EPARSE;
+            }
+            if (!is_active_type(m->links[next].type)) {
+                mpb__set_err(err, errlen, "joint '%.*s' (%s) mimics '%.*s' (%s); "
+                             "both must be revolute, continuous or prismatic",
+                             NAME_SHOWN, x->joint, mpb_joint_type_name(x->type),
+                             NAME_SHOWN, x->mimic,
+                             mpb_joint_type_name(m->links[next].type));
+                return MPB_EPARSE;
+            }
+            if (!isfinite(x->mimic_multiplier) || !isfinite(x->mimic_offset)) {
+                mpb__set_err(err, errlen, "joint '%.*s': mimic multiplier or "
+                             "offset is not finite", NAME_SHOWN, x->joint);
+                return MPB_EPARSE;
+            }
+            if (next == i || steps > m->num_links) {
+                mpb__set_err(err, errlen, "joint '%.*s' mimics itself through "
+                             "other mimic joints", NAME_SHOWN, m->links[i].joint);
+                return MPB_EPARSE;
+            }
+            /* v(at) = mm v(next) + mo, so v(i) = a mm v(next) + a mo + b. */
+            b += a * x->mimic_offset;
+            a *= x->mimic_multiplier;
+            at = next;
+        }
+        mi->lead[i] = at;
+        mi->mul[i] = a;
+        mi->off[i] = b;
+    }
+    return MPB_OK;
+}
+
 /*
  * Build r from r->model, the active joints given as the links they move
- * (child[0 .. n-1], top down), base and tip link indices.
+ * (child[0 .. n-1], top down), base and tip link indices, the mimic
+ * joints as resolve_mimics() found them.
  */
-static int build(mpb_robot *r, const int *child, int n, int base, int tip)
+static int build(mpb_robot *r, const int *child, int n, int base, int tip,
+                 const mimics *mi)
 {
     const mpb__urdf_model *m = &r->model;
     int nl = m->num_links;
@@ -508,8 +578,12 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip)
         l->joint = ul->parent >= 0 ? ul->joint : NULL;
         l->joint_type = ul->parent >= 0 ? ul->type : MPB_JOINT_FIXED;
         l->chain_joint = -1;
+        l->mimic_link = mi->lead[i];
+        l->mimic_multiplier = mi->mul[i];
+        l->mimic_offset = mi->off[i];
         k->type = l->joint_type;
         k->chain = -1;
+        k->mimic = -1;
         k->origin = ul->origin;
         if (ul->parent < 0)
             mpb_pose_identity(&k->origin);
@@ -517,9 +591,14 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip)
                          + ul->axis[2] * ul->axis[2]);
         for (int d = 0; d < 3; d++)
             k->axis[d] = an > 0 ? ul->axis[d] / an : 0.0;
-        for (int j = 0; j < n; j++)
+        for (int j = 0; j < n; j++) {
             if (child[j] == i)
                 l->chain_joint = k->chain = j;
+            if (mi->lead[i] >= 0 && child[j] == mi->lead[i])
+                k->mimic = j;
+        }
+        k->mimic_m = mi->mul[i];
+        k->mimic_o = mi->off[i];
         if (k->chain < 0 && (k->type == MPB_JOINT_REVOLUTE
                              || k->type == MPB_JOINT_PRISMATIC))
             k->passive = fmin(fmax(0.0, ul->lo), ul->hi);
@@ -527,7 +606,7 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip)
         kin_shortcuts(k);
         if (l->parent >= 0) {
             const mpb_robot_link *p = &r->links[l->parent];
-            l->moves = p->moves || k->chain >= 0;
+            l->moves = p->moves || k->chain >= 0 || k->mimic >= 0;
             l->num_chain_joints = k->chain >= 0 ? k->chain + 1
                                                 : p->num_chain_joints;
             r->path_len[i] = l->moves ? r->path_len[l->parent] + 1 : 0;
@@ -554,6 +633,14 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip)
         }
     }
     r->num_collisions = ncoll;
+    /* A mimic of a held leader holds the value that follows from it. */
+    for (int i = 0; i < nl; i++) {
+        kin *k = &r->kin[i];
+        if (mi->lead[i] >= 0 && k->mimic < 0) {
+            k->passive = k->mimic_m * r->kin[mi->lead[i]].passive + k->mimic_o;
+            set_fixed(k);
+        }
+    }
 
     /* Paths: the parent's path, then the link itself. */
     r->path_pool = calloc(pool > 0 ? pool : 1, sizeof *r->path_pool);
@@ -607,7 +694,7 @@ static int deepest_tip(const mpb__urdf_model *m, int base)
             continue;
         int n = 0;
         for (int i = l; i != base && i >= 0; i = m->links[i].parent)
-            n += is_active_type(m->links[i].type);
+            n += is_active_type(m->links[i].type) && !m->links[i].mimic;
         if (n > most) {
             most = n;
             best = l;
@@ -627,6 +714,7 @@ static int load(const char *text, const char *base_name, const char *tip_name,
     char msg[512];
     msg[0] = '\0';
     int *child = NULL;
+    mimics mi = {0};
     mpb_robot *r = calloc(1, sizeof *r);
     int rc = MPB_ENOMEM;
     if (!r)
@@ -636,6 +724,16 @@ static int load(const char *text, const char *base_name, const char *tip_name,
         goto fail;
     mpb__urdf_model *m = &r->model;
     rc = validate_model(m, msg, sizeof msg);
+    if (rc != MPB_OK)
+        goto fail;
+    rc = MPB_ENOMEM;
+    size_t nl = m->num_links > 0 ? (size_t)m->num_links : 1;
+    mi.lead = calloc(nl, sizeof *mi.lead);
+    mi.mul = calloc(nl, sizeof *mi.mul);
+    mi.off = calloc(nl, sizeof *mi.off);
+    if (!mi.lead || !mi.mul || !mi.off)
+        goto fail;
+    rc = resolve_mimics(m, &mi, msg, sizeof msg);
     if (rc != MPB_OK)
         goto fail;
 
@@ -677,7 +775,7 @@ static int load(const char *text, const char *base_name, const char *tip_name,
                 rc = MPB_EUNSUPPORTED;
                 goto fail;
             }
-            if (is_active_type(t))
+            if (is_active_type(t) && mi.lead[i] < 0)  /* mimics follow */
                 child[n++] = i;
         }
         for (int a = 0, b = n - 1; a < b; a++, b--) {
@@ -710,6 +808,12 @@ static int load(const char *text, const char *base_name, const char *tip_name,
                              name, mpb_joint_type_name(m->links[c].type));
                 goto fail;
             }
+            if (mi.lead[c] >= 0) {
+                mpb__set_err(msg, sizeof msg, "joint '%.*s' mimics '%.*s' and "
+                             "follows it; a mimic joint cannot be in the group",
+                             NAME_SHOWN, name, NAME_SHOWN, m->links[c].mimic);
+                goto fail;
+            }
             for (int i = 0; i < j; i++)
                 if (child[i] == c) {
                     mpb__set_err(msg, sizeof msg, "joint '%.*s' is named twice",
@@ -728,10 +832,13 @@ static int load(const char *text, const char *base_name, const char *tip_name,
         tip = child[n - 1];
     }
 
-    rc = build(r, child, n, base, tip);
+    rc = build(r, child, n, base, tip, &mi);
     if (rc != MPB_OK)
         goto fail;
     free(child);
+    free(mi.lead);
+    free(mi.mul);
+    free(mi.off);
     *out = r;
     return MPB_OK;
 
@@ -744,6 +851,9 @@ fail:
             if (*c == '\n' || *c == '\r')
                 *c = ' ';
     free(child);
+    free(mi.lead);
+    free(mi.mul);
+    free(mi.off);
     mpb_robot_free(r);
     return rc;
 }
@@ -860,6 +970,11 @@ void mpb_robot_free(mpb_robot *r)
 
 /* ---- the model ---------------------------------------------------------- */
 
+const mpb__urdf_model *mpb__robot_model(const mpb_robot *r)
+{
+    return r ? &r->model : NULL;
+}
+
 const char *mpb_robot_name(const mpb_robot *r)
 {
     return r ? r->model.name : NULL;
@@ -946,12 +1061,18 @@ int mpb_robot_set_passive(mpb_robot *r, const char *joint, double value)
         return MPB_ENOTFOUND;
     kin *k = &r->kin[i];
     const mpb__urdf_link *ul = &r->model.links[i];
-    if (k->chain >= 0 || !isfinite(value) || !is_active_type(k->type))
+    if (k->chain >= 0 || r->links[i].mimic_link >= 0 || !isfinite(value) ||
+        !is_active_type(k->type))
         return MPB_EINVAL;
     if (k->type != MPB_JOINT_CONTINUOUS && (value < ul->lo || value > ul->hi))
         return MPB_EINVAL;
     k->passive = value;
     set_fixed(k);
+    for (int f = 0; f < r->num_links; f++)
+        if (r->links[f].mimic_link == i) {
+            r->kin[f].passive = r->kin[f].mimic_m * value + r->kin[f].mimic_o;
+            set_fixed(&r->kin[f]);
+        }
     compute_static(r);
     return MPB_OK;
 }

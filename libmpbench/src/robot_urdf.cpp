@@ -380,6 +380,11 @@ int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
                 l->hi = j.limits->upper;
                 l->max_velocity = j.limits->velocity;
             }
+            if (j.mimic) {
+                l->mimic = dup_string(j.mimic->joint_name);
+                l->mimic_multiplier = j.mimic->multiplier;
+                l->mimic_offset = j.mimic->offset;
+            }
         }
         std::vector<urdf::CollisionSharedPtr> cs = ul.collision_array;
         if (cs.empty() && ul.collision)
@@ -506,6 +511,7 @@ extern "C" void mpb__urdf_model_clear(mpb__urdf_model *m)
         mpb__urdf_link *l = &m->links[i];
         std::free(l->name);
         std::free(l->joint);
+        std::free(l->mimic);
         for (int k = 0; k < l->num_geoms; k++) {
             std::free(l->geoms[k].mesh_uri);
             std::free(l->geoms[k].name);

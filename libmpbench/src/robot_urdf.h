@@ -34,6 +34,9 @@ typedef struct mpb__urdf_link {
     double         axis[3];     /* as written (urdfdom's default 1 0 0) */
     int            has_limits;
     double         lo, hi, max_velocity;
+    char          *mimic;       /* <mimic joint=>: the joint it follows,
+                                   or NULL */
+    double         mimic_multiplier, mimic_offset; /* value = m * leader + o */
     int            num_geoms;
     mpb__urdf_geom *geoms;
 } mpb__urdf_link;
@@ -62,6 +65,9 @@ int mpb__xml_precheck(const char *text, char *err, size_t errlen);
 
 /* Free everything *m holds and zero it. */
 void mpb__urdf_model_clear(mpb__urdf_model *m);
+
+/* The model a robot was built from (robot.c); owned by the robot. */
+const mpb__urdf_model *mpb__robot_model(const mpb_robot *r);
 
 #ifdef __cplusplus
 }

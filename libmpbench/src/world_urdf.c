@@ -30,6 +30,7 @@
 #include "mpbench/collision.h"
 #include "mpbench/robot.h"
 #include "mpbench/scene.h"
+#include "mpbench/srdf.h"
 #include "errbuf.h"
 #include "srdf.h"
 #include "world_provider.h"
@@ -62,7 +63,7 @@ typedef struct urdf_world {
     int           *pairs;        /* the allowed pairs a < b, 2 a pair, in
                                     order of a then b */
     int            num_pairs;
-    mpb__srdf      srdf;         /* owns the SRDF's reasons */
+    mpb_srdf      *srdf;         /* the SRDF, or NULL; owns its reasons */
     int            from_srdf;    /* 1 if the ACM came from an SRDF */
     const char    *robot_dir;    /* while opening: the URDF's folder */
 } urdf_world;
@@ -72,6 +73,7 @@ static void urdf_close(void *impl)
     urdf_world *u = impl;
     if (!u)
         return;
+    mpb_srdf_free(u->srdf);     /* it borrows the robot's names */
     mpb_collision_destroy(u->coll);
     mpb_scene_free(u->scene);
     mpb_robot_free(u->robot);
@@ -84,7 +86,6 @@ static void urdf_close(void *impl)
     free(u->attached_link);
     free(u->allowed);
     free(u->pairs);
-    mpb__srdf_clear(&u->srdf);
     free(u);
 }
 
@@ -521,8 +522,9 @@ done:
 /* The SRDF's pairs; a link it names that the robot lacks is an error. */
 static int acm_from_srdf(urdf_world *u, char *err, size_t errlen)
 {
-    for (int i = 0; i < u->srdf.num_pairs; i++) {
-        const mpb__srdf_pair *p = &u->srdf.pairs[i];
+    const mpb__srdf *raw = mpb__srdf_raw(u->srdf);
+    for (int i = 0; i < raw->num_pairs; i++) {
+        const mpb__srdf_pair *p = &raw->pairs[i];
         int a = mpb_robot_link_index(u->robot, p->link1);
         int b = mpb_robot_link_index(u->robot, p->link2);
         if (a < 0 || b < 0) {
@@ -661,18 +663,40 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     const char *srdf;
     split_srdf(robot_text, &urdf_len, &srdf);
     if (srdf) {
-        char why[256];
-        if ((rc = mpb__srdf_parse(srdf, &u->srdf, why, sizeof why)) != MPB_OK) {
+        char why[512];
+        mpb__srdf raw;
+        if ((rc = mpb__srdf_parse(srdf, &raw, why, sizeof why)) != MPB_OK) {
             mpb__set_err(err, errlen, "srdf %s", why);
             return rc;
         }
         u->from_srdf = 1;
         char *urdf = strndup(robot_text, urdf_len);
-        if (!urdf)
+        if (!urdf) {
+            mpb__srdf_clear(&raw);
             return MPB_ENOMEM;
+        }
         rc = mpb_robot_load_urdf_joints(urdf, joints, num_joints, &u->robot,
                                         err, errlen);
         free(urdf);
+        if (rc != MPB_OK) {
+            mpb__srdf_clear(&raw);
+            return rc;
+        }
+        /* Its names checked against the robot, as mpb_srdf_load() does. */
+        if ((rc = mpb__srdf_bind_robot(&raw, u->robot, &u->srdf, why,
+                                       sizeof why)) != MPB_OK) {
+            mpb__set_err(err, errlen, "srdf %s", why);
+            return rc;
+        }
+        for (int j = 0; j < num_joints; j++) {
+            int line = mpb_srdf_is_passive(u->srdf, joints[j]);
+            if (line) {
+                mpb__set_err(err, errlen, "srdf line %d: joint '%.80s' is "
+                             "passive; a passive joint cannot be in the group",
+                             line, joints[j]);
+                return MPB_EPARSE;
+            }
+        }
     } else {
         rc = mpb_robot_load_urdf_joints(robot_text, joints, num_joints,
                                         &u->robot, err, errlen);

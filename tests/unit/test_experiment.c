@@ -3,7 +3,9 @@
  * here: numbers read as they are written (a seed beyond 2^53 exactly, no
  * hex, no "inf"), and errors that point at the line at fault. The files of
  * the paper's suite are read in test_paper_scenes.c; the daemon's refusals,
- * database untouched, in tests/integration/test_bad_experiment.sh.
+ * database untouched, in tests/integration/test_bad_experiment.sh. The
+ * planning group named as a group of the Panda's SRDF (the Panda of
+ * tools/robot_data.sh, fetched if missing).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -18,6 +20,7 @@
 #include <cmocka.h>
 
 #include "experiment.h"
+#include "test_files.h"
 
 /* One joint, one empty scene, one query: the smallest valid experiment,
  * with the experiment's settings and the scene's source to fill in. */
@@ -70,7 +73,7 @@ static mpbd_experiment *load_settings(const char *settings)
 /* err is "<dir>/e.yaml:<where>: <what>" */
 static void assert_error(const char *where, const char *what)
 {
-    char want[640];
+    char want[2600];
     snprintf(want, sizeof want, "%s/e.yaml:%s: %s", dir, where, what);
     assert_string_equal(err, want);
 }
@@ -298,6 +301,118 @@ static void a_planner_family_must_fit_an_id(void **state)
     mpbd_experiment_free(e);
 }
 
+/* An experiment of the Panda with its SRDF, the robot's extra keys and
+ * the query as given. */
+static mpbd_experiment *load_panda(const char *robot_keys, const char *query)
+{
+    char text[8192];
+    const char *d = test_robot_data_dir();
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             "robot:\n"
+             "  format: urdf\n"
+             "  file: %.1000s/panda/panda.urdf\n"
+             "  srdf: %.1000s/panda/panda.srdf\n"
+             "%.1000s"
+             "scenes:\n"
+             "  - name: s\n"
+             "    format: moveit-scene\n"
+             "    text: \"(empty)\\n.\\n\"\n"
+             "    queries:\n"
+             "      - %.1000s\n" PLANNERS, d, d, robot_keys, query);
+    return load_text(text);
+}
+
+#define PANDA_Q "{name: q, start: [0, -0.785, 0, -2.356, 0, 1.571, 0.785], " \
+                "goal: [0, 0, 0, -1.5, 0, 1.571, 0.785]}"
+
+/* group: names a group of the SRDF: its active joints, base first. */
+static void a_group_of_the_srdf(void **state)
+{
+    char want[2048];
+    (void)state;
+    mpbd_experiment *e = load_panda("  group: panda_arm\n", PANDA_Q);
+    if (e == NULL)
+        fail_msg("%s", err);
+    assert_string_equal(e->group_name, "panda_arm");
+    assert_int_equal(e->num_joints, 7);
+    assert_int_equal(e->num_group, 7);
+    for (int j = 0; j < 7; j++) {
+        char name[32];
+        snprintf(name, sizeof name, "panda_joint%d", j + 1);
+        assert_string_equal(e->joint_names[j], name);
+        assert_string_equal(e->group[j], name);
+    }
+    mpbd_experiment_free(e);
+    /* Joints listed: no group name. */
+    e = load_panda("  joints: [panda_joint1, panda_joint2, panda_joint3, "
+                   "panda_joint4, panda_joint5, panda_joint6, panda_joint7]\n",
+                   PANDA_Q);
+    assert_non_null(e);
+    assert_null(e->group_name);
+    mpbd_experiment_free(e);
+
+    assert_null(load_panda("  group: arm\n", PANDA_Q));
+    snprintf(want, sizeof want, "%.1000s/panda/panda.srdf has no group 'arm' (its "
+             "groups: panda_arm, hand, panda_arm_hand)", test_robot_data_dir());
+    assert_error("6:10", want);
+    assert_null(load_panda("  group: hand\n", PANDA_Q));
+    assert_error("6:10", "group 'hand' has no joint to plan: its joints are "
+                 "fixed, mimic, passive or virtual");
+    assert_null(load_panda("  group: panda_arm\n  joints: [panda_joint1]\n",
+                           PANDA_Q));
+    assert_error("6:10", "give the planning group as joints or as group, not "
+                 "both");
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n"
+                          "robot: {format: planar, text: \"link_radius 0.01\\n"
+                          "joint a -1 1 0.5\\n\", group: arm}\n"
+                          "scenes: [{name: s, format: planar, text: \"\", "
+                          QUERIES "}]\n" PLANNERS));
+    assert_error("2:78", "group 'arm' names a group of the robot's SRDF: give "
+                 "it as srdf");
+}
+
+/* With group:, a start or goal may name one of the group's states. */
+static void a_group_state_by_name(void **state)
+{
+    (void)state;
+    mpbd_experiment *e = load_panda("  group: panda_arm\n",
+                                    "{name: q, start: ready, goal: extended}");
+    if (e == NULL)
+        fail_msg("%s", err);
+    /* The SRDF's values, as written. */
+    const double ready[7] = {0, -0.785, 0, -2.356, 0, 1.571, 0.785};
+    const double extended[7] = {0, 0, 0, 0, 0, 1.571, 0.785};
+    assert_int_equal(e->num_queries, 1);
+    for (int j = 0; j < 7; j++) {
+        assert_true(e->queries[0].start[j] == ready[j]);
+        assert_true(e->queries[0].goal[j] == extended[j]);
+    }
+    mpbd_experiment_free(e);
+    /* A list still works beside a name. */
+    e = load_panda("  group: panda_arm\n", "{name: q, start: [0, 0, 0, -1.5, "
+                   "0, 1.571, 0.785], goal: ready}");
+    if (e == NULL)
+        fail_msg("%s", err);
+    assert_true(e->queries[0].start[3] == -1.5);
+    assert_true(e->queries[0].goal[3] == -2.356);
+    mpbd_experiment_free(e);
+
+    assert_null(load_panda("  group: panda_arm\n",
+                           "{name: q, start: redy, goal: extended}"));
+    assert_error("12:26", "start: group 'panda_arm' has no group_state 'redy' "
+                 "(it has ready, extended, transport)");
+    assert_null(load_panda("  group: panda_arm\n",
+                           "{name: q, start: ready, goal: open}"));
+    assert_error("12:39", "goal: group_state 'open' is for group 'hand', not "
+                 "'panda_arm'");
+    /* Listed joints: no states to name. */
+    assert_null(load_panda("  joints: [panda_joint1, panda_joint2, panda_joint3, "
+                           "panda_joint4, panda_joint5, panda_joint6, "
+                           "panda_joint7]\n",
+                           "{name: q, start: ready, goal: extended}"));
+    assert_error("12:26", "start must be a list of 7 numbers");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -311,6 +426,8 @@ int main(void)
         cmocka_unit_test(faults_are_where_their_file_is_named),
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),
+        cmocka_unit_test(a_group_of_the_srdf),
+        cmocka_unit_test(a_group_state_by_name),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);
 }

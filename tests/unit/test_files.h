@@ -39,4 +39,41 @@ static inline char *test_read_robot(const char *urdf_path, const char *srdf_path
     return text;
 }
 
+/*
+ * The folder tools/robot_data.sh unpacks the field's robots to (Panda,
+ * UR5, Fetch, Baxter), fetched once if missing; never committed.
+ */
+static inline const char *test_robot_data_dir(void)
+{
+    static char dir[4096];
+    if (dir[0])
+        return dir;
+    const char *script = MPB_TEST_DATA "/../../../tools/robot_data.sh";
+    char cmd[4200];
+    snprintf(cmd, sizeof cmd, "sh '%s' --check || sh '%s' >/dev/null", script,
+             script);
+    if (system(cmd) != 0)
+        fail_msg("tools/robot_data.sh could not fetch the robots");
+    snprintf(cmd, sizeof cmd, "sh '%s'", script);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    if (!fgets(dir, sizeof dir, p))
+        fail_msg("tools/robot_data.sh printed no folder");
+    pclose(p);
+    dir[strcspn(dir, "\n")] = '\0';
+    return dir;
+}
+
+/* <robot>/<robot>.urdf and .srdf of the robot data, read whole. */
+static inline void test_read_robot_data(const char *name, char **urdf,
+                                        char **srdf)
+{
+    char path[4200];
+    const char *dir = test_robot_data_dir();
+    snprintf(path, sizeof path, "%s/%s/%s.urdf", dir, name, name);
+    *urdf = test_read_file(path);
+    snprintf(path, sizeof path, "%s/%s/%s.srdf", dir, name, name);
+    *srdf = test_read_file(path);
+}
+
 #endif

@@ -4,7 +4,10 @@
  * and give back as the robot's `srdf:` in an experiment. Without an SRDF
  * the matrix is the one mpbench generates, as MoveIt's setup assistant
  * does (world.h); with --srdf it is what that SRDF gives (its pairs and
- * the adjacent links), the same way the daemon and the planners read it.
+ * the adjacent links), the same way the daemon and the planners read it,
+ * and before the pairs what mpbench makes of the SRDF's other elements
+ * (srdf.h): its virtual joints, its groups with their joints and whether
+ * mpbench can plan them, group states, end effectors, passive joints.
  */
 #include <errno.h>
 #include <getopt.h>
@@ -14,13 +17,15 @@
 
 #include "mpb.h"
 #include "mpbench/robot.h"
+#include "mpbench/srdf.h"
 
 #define CMD "srdf"
 
 static void usage(FILE *out)
 {
     fprintf(out,
-        "usage: mpb srdf [-j JOINT,JOINT,...] [-s SRDF] [-o OUT] ROBOT.urdf\n"
+        "usage: mpb srdf [-j JOINT,JOINT,... | -g GROUP] [-s SRDF] [-o OUT] "
+        "ROBOT.urdf\n"
         "\n"
         "Write the robot's allowed-collision matrix, the pairs of links whose\n"
         "contact mpbench does not count as self-collision, as an SRDF\n"
@@ -39,8 +44,13 @@ static void usage(FILE *out)
         "                     comma-separated (default: the robot's longest\n"
         "                     chain of revolute, continuous and prismatic\n"
         "                     joints); the others hold still\n"
+        "  -g, --group NAME   the planning group as a group of the SRDF\n"
+        "                     (needs --srdf)\n"
         "  -s, --srdf FILE    the matrix that SRDF gives instead: its pairs\n"
-        "                     and the adjacent links\n"
+        "                     and the adjacent links; before them, for review,\n"
+        "                     what mpbench makes of its virtual joints, groups\n"
+        "                     (their joints, whether mpbench can plan them),\n"
+        "                     group states, end effectors and passive joints\n"
         "  -o, --output OUT   write to OUT (default: standard output)\n"
         "  -h, --help         print this help\n"
         "\n"
@@ -74,8 +84,98 @@ static void put_attr(FILE *f, const char *s)
         }
 }
 
+/* A number as short as it reads back exactly. */
+static void put_number(FILE *f, double v)
+{
+    char buf[64];
+    snprintf(buf, sizeof buf, "%.15g", v);
+    if (strtod(buf, NULL) != v)
+        snprintf(buf, sizeof buf, "%.17g", v);
+    fputs(buf, f);
+}
+
+/* One element with its attributes, name="value" pairs, NULL values left
+ * out, closed with "/>" or ">" (open). */
+static void put_element(FILE *f, const char *indent, const char *tag, int open,
+                        const char *const *attrs)
+{
+    fprintf(f, "%s<%s", indent, tag);
+    for (int i = 0; attrs[i]; i += 2) {
+        if (!attrs[i + 1])
+            continue;
+        fprintf(f, " %s=\"", attrs[i]);
+        put_attr(f, attrs[i + 1]);
+        fputc('"', f);
+    }
+    fputs(open ? ">\n" : "/>\n", f);
+}
+
+/*
+ * The SRDF's other elements as mpbench reads them: each group by its
+ * joints (MoveIt's rules applied, subgroups included: the same joints as
+ * the original's), with a comment saying what mpbench plans of it.
+ */
+static void write_semantics(FILE *f, const mpb_srdf *s)
+{
+    for (int i = 0; i < mpb_srdf_num_virtual_joints(s); i++) {
+        const mpb_srdf_virtual_joint *v = mpb_srdf_get_virtual_joint(s, i);
+        fprintf(f, "  <!-- held at the identity: the root link's frame is "
+                   "the world's -->\n");
+        put_element(f, "  ", "virtual_joint", 0, (const char *const[]){
+            "name", v->name, "type", v->type, "parent_frame", v->parent_frame,
+            "child_link", v->child_link, NULL});
+    }
+    for (int g = 0; g < mpb_srdf_num_groups(s); g++) {
+        const mpb_srdf_group *G = mpb_srdf_get_group(s, g);
+        char why[512];
+        if (mpb_srdf_group_check(s, g, why, sizeof why) == MPB_OK) {
+            fprintf(f, "  <!-- group '");
+            put_attr(f, G->name);
+            fprintf(f, "': mpbench plans %d joint%s, base first:", G->num_active,
+                    G->num_active == 1 ? "" : "s");
+            for (int j = 0; j < G->num_active; j++) {
+                fputs(j ? ", " : " ", f);
+                put_attr(f, G->active[j]);
+            }
+        } else {
+            fprintf(f, "  <!-- not planned by mpbench: ");
+            put_attr(f, why);
+        }
+        fprintf(f, " -->\n");
+        put_element(f, "  ", "group", 1, (const char *const[]){
+            "name", G->name, NULL});
+        for (int j = 0; j < G->num_joints; j++)
+            put_element(f, "    ", "joint", 0, (const char *const[]){
+                "name", G->joints[j], NULL});
+        fprintf(f, "  </group>\n");
+    }
+    for (int i = 0; i < mpb_srdf_num_states(s); i++) {
+        const mpb_srdf_state *S = mpb_srdf_get_state(s, i);
+        put_element(f, "  ", "group_state", 1, (const char *const[]){
+            "name", S->name, "group", S->group, NULL});
+        for (int j = 0; j < S->num_values; j++) {
+            fprintf(f, "    <joint name=\"");
+            put_attr(f, S->joints[j]);
+            fprintf(f, "\" value=\"");
+            put_number(f, S->values[j]);
+            fprintf(f, "\"/>\n");
+        }
+        fprintf(f, "  </group_state>\n");
+    }
+    for (int i = 0; i < mpb_srdf_num_end_effectors(s); i++) {
+        const mpb_srdf_end_effector *e = mpb_srdf_get_end_effector(s, i);
+        put_element(f, "  ", "end_effector", 0, (const char *const[]){
+            "name", e->name, "group", e->group, "parent_link", e->parent_link,
+            "parent_group", e->parent_group, NULL});
+    }
+    for (int i = 0; i < mpb_srdf_num_passive_joints(s); i++)
+        put_element(f, "  ", "passive_joint", 0, (const char *const[]){
+            "name", mpb_srdf_passive_joint(s, i, NULL), NULL});
+}
+
 static int write_srdf(FILE *f, mpb_world *w, const char *robot_name,
-                      const char *urdf_path, const char *srdf_path)
+                      const char *urdf_path, const char *srdf_path,
+                      const mpb_srdf *sem)
 {
     int n = mpb_world_num_allowed_pairs(w);
     fprintf(f, "<?xml version=\"1.0\"?>\n<!--\n  The allowed-collision matrix "
@@ -93,6 +193,8 @@ static int write_srdf(FILE *f, mpb_world *w, const char *robot_name,
                "self-collision.\n-->\n<robot name=\"", n);
     put_attr(f, robot_name);
     fprintf(f, "\">\n");
+    if (sem)
+        write_semantics(f, sem);
     for (int i = 0; i < n; i++) {
         mpb_world_acm_pair p;
         if (mpb_world_allowed_pair(w, i, &p) != MPB_OK)
@@ -113,19 +215,21 @@ int cmd_srdf(int argc, char **argv)
 {
     static const struct option longopts[] = {
         {"joints", required_argument, NULL, 'j'},
+        {"group",  required_argument, NULL, 'g'},
         {"srdf",   required_argument, NULL, 's'},
         {"output", required_argument, NULL, 'o'},
         {"help",   no_argument,       NULL, 'h'},
         {NULL, 0, NULL, 0}
     };
     char *joint_list = NULL;
-    const char *srdf_path = NULL, *out_path = NULL;
+    const char *srdf_path = NULL, *out_path = NULL, *group = NULL;
     int opt;
     opterr = 0;
     optind = 1;
-    while ((opt = getopt_long(argc, argv, ":j:s:o:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":j:g:s:o:h", longopts, NULL)) != -1) {
         switch (opt) {
         case 'j': joint_list = optarg; break;
+        case 'g': group = optarg; break;
         case 's': srdf_path = optarg; break;
         case 'o': out_path = optarg; break;
         case 'h':
@@ -143,6 +247,11 @@ int cmd_srdf(int argc, char **argv)
     const char *urdf_path = argv[optind++];
     if (optind < argc)
         return tool_extra_argument(CMD, argv[optind]);
+    if (group && (joint_list || !srdf_path)) {
+        fprintf(stderr, "mpb %s: --group needs --srdf, and goes without "
+                "--joints\n", CMD);
+        return MPB_EXIT_USAGE;
+    }
 
     enum { MAX_JOINTS = 256 };
     char *names[MAX_JOINTS];
@@ -162,6 +271,7 @@ int cmd_srdf(int argc, char **argv)
     char err[512];
     mpb_robot *robot = NULL;
     mpb_world *w = NULL;
+    mpb_srdf *sem = NULL;
     FILE *f = NULL;
     if (urdf == NULL) {
         fprintf(stderr, "mpb %s: cannot read %s: %s\n", CMD, urdf_path,
@@ -173,15 +283,40 @@ int cmd_srdf(int argc, char **argv)
                 strerror(errno));
         goto done;
     }
+    /* The SRDF read against the URDF: its groups, and the group named. */
+    if (srdf && mpb_srdf_load(urdf, srdf, &sem, err, sizeof err) != MPB_OK) {
+        /* "srdf line 3: ..." is the SRDF file's line 3. */
+        if (strncmp(err, "srdf ", 5) == 0)
+            fprintf(stderr, "mpb %s: %s: %s\n", CMD, srdf_path, err + 5);
+        else
+            fprintf(stderr, "mpb %s: %s: %s\n", CMD, urdf_path, err);
+        goto done;
+    }
+    if (group) {
+        int g = mpb_srdf_group_index(sem, group);
+        if (g < 0) {
+            fprintf(stderr, "mpb %s: %s has no group '%s'\n", CMD, srdf_path,
+                    group);
+            goto done;
+        }
+        if (mpb_srdf_group_check(sem, g, err, sizeof err) != MPB_OK) {
+            fprintf(stderr, "mpb %s: %s: %s\n", CMD, srdf_path, err);
+            goto done;
+        }
+        const mpb_srdf_group *G = mpb_srdf_get_group(sem, g);
+        for (int j = 0; j < G->num_active && j < MAX_JOINTS; j++)
+            names[num_joints++] = (char *)G->active[j];
+    }
     /* The robot alone first: its name, and the group when none is given. */
-    if ((joint_list ? mpb_robot_load_urdf_joints(urdf, (const char *const *)names,
+    if ((joint_list || group ? mpb_robot_load_urdf_joints(urdf,
+                                                 (const char *const *)names,
                                                  num_joints, &robot, err, sizeof err)
                     : mpb_robot_load_urdf(urdf, NULL, NULL, &robot, err,
                                           sizeof err)) != MPB_OK) {
         fprintf(stderr, "mpb %s: %s: %s\n", CMD, urdf_path, err);
         goto done;
     }
-    if (!joint_list) {
+    if (!joint_list && !group) {
         num_joints = mpb_robot_num_joints(robot);
         for (int j = 0; j < num_joints && j < MAX_JOINTS; j++)
             names[j] = (char *)mpb_robot_get_joint(robot, j)->name;
@@ -219,7 +354,7 @@ int cmd_srdf(int argc, char **argv)
                 strerror(errno));
         goto done;
     }
-    if (write_srdf(f, w, mpb_robot_name(robot), urdf_path, srdf_path) != 0 ||
+    if (write_srdf(f, w, mpb_robot_name(robot), urdf_path, srdf_path, sem) != 0 ||
         fflush(f) != 0 || ferror(f)) {
         fprintf(stderr, "mpb %s: cannot write %s: %s\n", CMD,
                 out_path ? out_path : "standard output", strerror(errno));
@@ -233,6 +368,7 @@ done:
         rc = MPB_EXIT_ERROR;
     }
     mpb_world_close(w);
+    mpb_srdf_free(sem);
     mpb_robot_free(robot);
     free(text);
     free(srdf);

@@ -75,6 +75,7 @@ const char *mpb_err_name(int code);
 #include "mpbench/collision.h"
 #include "mpbench/scene.h"
 #include "mpbench/robot.h"
+#include "mpbench/srdf.h"
 #include "mpbench/bodies.h"
 #include "mpbench/ompl_log.h"
 

@@ -16,11 +16,17 @@
  * 0 .. num_joints-1 from base to tip; a configuration q is num_joints
  * values in that order (rad, or m for prismatic joints). Every other joint
  * of the URDF is PASSIVE: it holds a value (0, moved into its limits; see
- * mpb_robot_set_passive()). Fixed joints on the chain are passive too. A
- * link MOVES when an active joint lies between it and the root (the links
- * of the chain below the first active joint and everything attached below
- * them, e.g. a gripper on the tip); every other link is STATIC: its pose is
- * the same for every q (the base, the torso, the other arm ...).
+ * mpb_robot_set_passive()). Fixed joints on the chain are passive too.
+ * A MIMIC joint (URDF <mimic joint= multiplier= offset=>) is neither: it
+ * follows its leader everywhere, value = multiplier * leader + offset
+ * (multiplier 1 and offset 0 when not written), whether the leader is
+ * active or holds a value; a leader that mimics another is followed to
+ * the first joint that does not. A mimic joint is never active. A link
+ * MOVES when an active joint, or a mimic joint of an active leader, lies
+ * between it and the root (the links of the chain below the first active
+ * joint and everything attached below them, e.g. a gripper on the tip and
+ * its mimic fingers); every other link is STATIC: its pose is the same
+ * for every q (the base, the torso, the other arm ...).
  *
  * Ownership. A robot owns every string and array it hands out; they live
  * until mpb_robot_free(). Nothing returned needs freeing by the caller.
@@ -84,11 +90,20 @@ typedef struct mpb_robot_link {
     mpb_joint_type joint_type;  /* of that joint (FIXED at the root) */
     int            chain_joint; /* that joint's index in the chain, or -1 */
     int            moves;       /* 1 if its pose depends on q, else 0 */
-    int            num_chain_joints; /* the active joints that move it are
-                                   0 .. num_chain_joints-1 (0 if static) */
+    int            num_chain_joints; /* the active joints on its path to
+                                   the root are 0 .. num_chain_joints-1
+                                   (0 if static); a mimic joint on the path
+                                   moves it too, and adds none */
     int            first_collision;  /* its shapes: collisions
                                    first_collision .. + num_collisions - 1 */
     int            num_collisions;
+    /* Last, so that the fields above keep their places. */
+    int            mimic_link;  /* its joint is a mimic joint: the link
+                                   whose parent joint it follows in the
+                                   end (the leader's child link); else -1 */
+    double         mimic_multiplier, mimic_offset; /* value = multiplier *
+                                   leader + offset, mimics of mimics
+                                   composed */
 } mpb_robot_link;
 
 /*
@@ -125,6 +140,10 @@ typedef struct mpb_robot_collision {
  *                    element it would skip), a link missing, tip_link not
  *                    below base_link, no active joint between them, a zero
  *                    or non-finite axis, lower > upper, a bad geometry;
+ *                    a mimic joint whose leader is no joint, is not
+ *                    revolute, continuous or prismatic, or is (through
+ *                    other mimics) itself (a fixed joint's <mimic> is
+ *                    ignored: it cannot move);
  *   MPB_EUNSUPPORTED a floating or planar joint inside the chain;
  *   MPB_EINVAL       NULL urdf_text or out; MPB_ENOMEM.
  * urdfdom's console output is captured while parsing (console_bridge's
@@ -140,7 +159,8 @@ int mpb_robot_load_urdf(const char *urdf_text, const char *base_link,
  * below the one before; joints on that path not named become passive. The
  * base link is the first joint's parent, the tip link the last's child.
  * MPB_EPARSE also for an unknown joint name, a name given twice, a fixed,
- * floating or planar joint named, or joints not on one path in order.
+ * floating, planar or mimic joint named, or joints not on one path in
+ * order.
  */
 int mpb_robot_load_urdf_joints(const char *urdf_text,
                                const char *const *joint_names, int num_names,
@@ -194,10 +214,11 @@ const mpb_robot_collision *mpb_robot_get_collision(const mpb_robot *r,
 /*
  * Set the value of a passive joint (rad or m) by its URDF name, e.g. the
  * torso height of a PR2 whose group starts above it; the static link poses
- * are recomputed. MPB_OK; MPB_ENOTFOUND for no such joint; MPB_EINVAL for
- * an active joint, a fixed, floating or planar one, a non-finite value or
- * one outside a revolute or prismatic joint's limits. Not thread-safe (see
- * the top of this file).
+ * are recomputed, and the joints that mimic it follow. MPB_OK;
+ * MPB_ENOTFOUND for no such joint; MPB_EINVAL for an active joint, a
+ * mimic joint (set its leader), a fixed, floating or planar one, a
+ * non-finite value or one outside a revolute or prismatic joint's limits.
+ * Not thread-safe (see the top of this file).
  */
 int mpb_robot_set_passive(mpb_robot *r, const char *joint, double value);
 
@@ -266,8 +287,11 @@ typedef struct mpb_ik_info {
  * point of the link frame; NULL means its origin) is at `target` in the
  * robot frame: the offset point at target->t and the link's rotation
  * target->R (ignored with position_only). Only joints 0 ..
- * num_chain_joints-1 of the link move it; the others keep their value from
- * seed, or the middle of their limits (0 if continuous) without a seed.
+ * num_chain_joints-1 of the link are varied; the others keep their value
+ * from seed, or the middle of their limits (0 if continuous) without a
+ * seed (a mimic joint on the link's path follows its leader's value, so
+ * a link moved by the mimic of a later joint is reached as that joint
+ * holds).
  *
  * Damped least squares with Levenberg-Marquardt damping on the 6-D error
  * (position, rotation vector), steps clamped to the joint limits (a joint

@@ -31,10 +31,17 @@
  *             The robot text may go on, on the line after the URDF's
  *             closing </robot>, with the robot's SRDF (MoveIt's semantic
  *             description); its line numbers in messages ("srdf line 7:
- *             ...") count from there. Of the SRDF, the <disable_collisions
- *             link1= link2=/> pairs are read (every one, whatever its
- *             reason); groups, group states, virtual and passive joints
- *             are not (yet). Self-collision follows MoveIt: every pair of
+ *             ...") count from there. The whole SRDF is read and its
+ *             names checked against the URDF as mpb_srdf_load() (srdf.h)
+ *             does, so a bad one is refused by every process that opens
+ *             the world alike; a passive joint of the SRDF in the group is
+ *             refused. Of what it says, the world uses its
+ *             <disable_collisions link1= link2=/> pairs (every one,
+ *             whatever its reason); its virtual joints are held at the
+ *             identity (the URDF's root frame is the world's); mimic
+ *             joints follow their leaders (robot.h); groups and
+ *             group states are for the caller, who names the group's
+ *             joints (srdf.h). Self-collision follows MoveIt: every pair of
  *             links is checked, a moving link against the robot's fixed
  *             links too, unless the allowed-collision matrix (ACM) allows
  *             the pair; two fixed links are never checked. The ACM is the
