@@ -16,7 +16,11 @@
 #      request waiting at each; 8 planners over 1,000,000 runs each way,
 #      the daemon's memory sampled throughout,
 #   4. verification + metrics, waypoints per second (mpb-bench-verify), for
-#      the planar demo arm and for the PR2 right arm in the kitchen, and timing
+#      the planar demo arm and for the PR2 right arm in the kitchen; a
+#      mesh robot against it (4m, bench/meshspeed.sh: the Panda with its
+#      SRDF and meshes in a MotionBenchMaker scene, when tools/robot_data.sh
+#      has fetched it: a state check's cost over the PR2's, and its
+#      verification + metrics); timing
 #      fidelity: RRTConnect on the first query of the paper's narrow
 #      passage (about 30 ms a run) and of its kitchen (about 2 ms) through
 #      mpbenchd and mpb-planner-ompl vs OMPL's own Benchmark and a bare
@@ -72,10 +76,12 @@ done
 
 if [ "$QUICK" -eq 1 ]; then
     FLOOR_N=2000 LAT_N=2000 LAT_SKIP=200 LAT_ROUNDS=3 LAT_ROUND_N=1000 VERIFY_S=0.3 STORE_N=5000 IMPORT_N=5000
+    MESH_STATES=500 MESH_ROUNDS=4
     : "${FID_N:=200}" "${FID_BLOCKS:=4}" "${FIDNP_N:=60}" "${FIDNP_BLOCKS:=3}"
     : "${TPUT_N:=10000}" "${LONG_N:=$TPUT_N}" "${REPORT_N:=100000}"
 else
     FLOOR_N=20000 LAT_N=20000 LAT_SKIP=1000 LAT_ROUNDS=20 LAT_ROUND_N=5000 VERIFY_S=1 STORE_N=20000 IMPORT_N=50000
+    MESH_STATES=2000 MESH_ROUNDS=10
     : "${FID_N:=5000}" "${FID_BLOCKS:=20}" "${FIDNP_N:=2000}" "${FIDNP_BLOCKS:=20}"
     : "${TPUT_N:=100000}" "${LONG_N:=1000000}" "${REPORT_N:=1000000}"
 fi
@@ -101,14 +107,14 @@ if [ "$IN_NETNS" -eq 0 ]; then
     if grep -q '^[[:space:]]*add_subdirectory(bench)' "$src/CMakeLists.txt"; then
         BENCH_BIN=$BUILD/bench
         cmake --build "$BUILD" -j "$(nproc)" --target mpb-bench-floor \
-            mpb-bench-watch mpb-bench-verify mpb-bench-mkdb >>"$BUILD/bench-build.log" 2>&1 &&
+            mpb-bench-watch mpb-bench-verify mpb-bench-mkdb mpb-bench-meshcheck >>"$BUILD/bench-build.log" 2>&1 &&
         { cmake --build "$BUILD" -j "$(nproc)" --target mpb-bench-fidelity \
             >>"$BUILD/bench-build.log" 2>&1 || true; }
     else
         BENCH_BIN=$BUILD/bench-standalone
         cmake -S "$src/bench" -B "$BENCH_BIN" -DMPB_BUILD="$BUILD" >/dev/null &&
             cmake --build "$BENCH_BIN" -j "$(nproc)" --target mpb-bench-floor \
-                mpb-bench-watch mpb-bench-verify mpb-bench-mkdb \
+                mpb-bench-watch mpb-bench-verify mpb-bench-mkdb mpb-bench-meshcheck \
                 >>"$BUILD/bench-build.log" 2>&1 &&
             { cmake --build "$BENCH_BIN" -j "$(nproc)" --target mpb-bench-fidelity \
                 >>"$BUILD/bench-build.log" 2>&1 ||
@@ -353,6 +359,18 @@ for sp in 0.01 0.1; do
         >"$WORK/verify-pr2-$sp.res"
     collect "$WORK/verify-pr2-$sp.res"
 done
+
+# ---- 4m. meshes at speed ----------------------------------------------------
+# A mesh robot's state check over the PR2's, in one program, interleaved
+# (bench/meshspeed.sh); needs the robot data fetched before (no network
+# here).
+if sh "$src/tools/robot_data.sh" --check; then
+    sh "$src/bench/meshspeed.sh" --bin "$SNAP" --states "$MESH_STATES" \
+        --rounds "$MESH_ROUNDS" --seconds "$VERIFY_S" >"$WORK/meshspeed.log" 2>&1
+    grep -v '^RESULT ' "$WORK/meshspeed.log"; collect "$WORK/meshspeed.log"
+else
+    echo "== 4m. meshes at speed: skipped (no robot data: tools/robot_data.sh)"
+fi
 
 # ---- 4. timing fidelity ------------------------------------------------------
 # RRTConnect on the first query of the paper's narrow passage (FIDNP_N runs

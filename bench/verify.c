@@ -36,6 +36,8 @@ static void usage(FILE *out)
 "  --robot-format F  planar (default) or urdf\n"
 "  --scene-format F  planar (default) or moveit-scene\n"
 "  --joints A,B,...  the planning group (needed for urdf)\n"
+"  --srdf FILE       the robot's SRDF (urdf; its meshes are looked for in\n"
+"                    the URDF's folder last, as mpbenchd does)\n"
 "  --length RAD      joint-space length of the free segment drawn for a\n"
 "                    world other than planar (default 1.0)\n"
 "  --label TEXT      names the world in the output (default: the format)\n"
@@ -161,6 +163,7 @@ static int split_names(char *s, const char **names, int max)
 int main(int argc, char **argv)
 {
     const char *robot_file = NULL, *scene_file = NULL, *label = NULL;
+    const char *srdf_file = NULL;
     const char *robot_format = "planar", *scene_format = "planar";
     char *joints_arg = NULL;
     double spacing = 0.01, resolution = 0.01, secs = 1.0, seg_len = 1.0;
@@ -190,6 +193,7 @@ int main(int argc, char **argv)
         }
         else if (strcmp(a, "--length") == 0) seg_len = atof(v);
         else if (strcmp(a, "--label") == 0) label = v;
+        else if (strcmp(a, "--srdf") == 0) srdf_file = v;
         else {
             usage(stderr);
             return 2;
@@ -204,12 +208,26 @@ int main(int argc, char **argv)
     const char *names[64];
     int num_names = joints_arg ? split_names(joints_arg, names, 64) : 0;
     char *robot = mpbb_slurp(robot_file), *scene = mpbb_slurp(scene_file);
+    if (robot && srdf_file) {       /* the URDF, then the SRDF */
+        char *srdf = mpbb_slurp(srdf_file);
+        char *both = srdf ? malloc(strlen(robot) + strlen(srdf) + 2) : NULL;
+        if (both)
+            sprintf(both, "%s\n%s", robot, srdf);
+        free(srdf);
+        free(robot);
+        robot = both;
+    }
+    /* The robot file's folder, where mpbenchd looks for meshes last. */
+    char dir[4096] = "";
+    const char *slash = strrchr(robot_file, '/');
+    if (slash && (size_t)(slash - robot_file) + 1 < sizeof dir)
+        memcpy(dir, robot_file, (size_t)(slash - robot_file) + 1);
     mpb_world *w = NULL;
-    char err[256];
+    char err[512];
     if (!robot || !scene ||
-        mpb_world_open_group(robot_format, robot, scene_format, scene,
-                             num_names ? names : NULL, num_names, &w, err,
-                             sizeof err) != MPB_OK) {
+        mpb_world_open_group_in(robot_format, robot, dir[0] ? dir : NULL,
+                                scene_format, scene, num_names ? names : NULL,
+                                num_names, &w, err, sizeof err) != MPB_OK) {
         fprintf(stderr, "mpb-bench-verify: cannot open the world: %s\n",
                 robot && scene ? err : "cannot read the files");
         return 1;

@@ -14,6 +14,16 @@
  * overlap, for collision; those whose AABB distance is below the best so
  * far, for distance) in a few instructions each.
  *
+ * Meshes (robot links of real robots): a mesh's BVH model is built once
+ * per world and shared by every shape with the same vertices and
+ * triangles. Before FCL's narrow phase, a movable mesh's pair is ruled
+ * out by a capsule fitted around it and by a plane between its vertices
+ * and the other's (another mesh's vertices, a static's box); a distance
+ * query measures its pairs nearest lower bound first, and skips those
+ * whose bound from the vertices is no better than the best so far. All
+ * are exact bounds with a margin: verdicts and distances are those of
+ * every pair through FCL (tests/unit/test_mesh_reference.c).
+ *
  * What FCL 0.7 gets wrong, and what is done about it (see the tests):
  *   - plane distances crash (libccd) or are wrong (independent GJK): planes
  *     are kept out of FCL and handled here exactly, with support points;
@@ -114,6 +124,16 @@ struct Shape {
     fcl::Vector3d        bcenter;  /* a bounding sphere, own frame */
     double               bradius;
     double               wcenter[3]; /* bcenter in the world, kept current */
+    /* A movable mesh: a capsule that holds every vertex (segment cap[0]
+       to cap[1] in its own frame, radius cap_r), its ends in the world
+       in wcap, kept current. Disjoint from it, the mesh is too. */
+    bool                 has_cap = false;
+    double               cap[2][3], cap_r = 0, wcap[2][3];
+    const fcl::Vector3d *verts = nullptr; /* a mesh's vertices (its BVH's) */
+    int                  num_verts = 0;
+    /* A static: a box that holds it, in its own frame (centre, half
+       sides), for the capsule tests. */
+    double               lbox_c[3] = {0, 0, 0}, lbox_h[3] = {0, 0, 0};
 };
 
 /* A static plane n . x = d in the world frame, |n| = 1. */
@@ -338,6 +358,10 @@ struct mpb_collision {
     fcl::CollisionResultd  cres;
     fcl::DistanceRequestd  dreq;
     fcl::DistanceResultd   dres;
+    std::vector<std::shared_ptr<Geom>> meshes; /* BVH models built so far,
+                                            shared by identical meshes */
+    struct Near { double lower; int shape, leaf; };
+    std::vector<Near>    near;           /* a distance query's pairs */
     char                 err[256] = "";
 
 #if defined(__GNUC__)
@@ -374,6 +398,36 @@ struct mpb_collision {
 };
 
 namespace {
+
+/*
+ * The FCL geometry of g, as make_geometry(); a mesh whose vertices and
+ * triangles equal those of one built before in c gets that BVH model
+ * (the two fingers of a gripper, a link listed twice): built once.
+ */
+std::shared_ptr<Geom> shared_geometry(mpb_collision *c, const mpb_geometry *g)
+{
+    if (g->type != MPB_SHAPE_MESH)
+        return make_geometry(g);
+    const mpb_mesh *m = g->mesh;
+    for (const auto &geom : c->meshes) {
+        auto *b = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(geom.get());
+        if (b->num_vertices != m->num_vertices || b->num_tris != m->num_triangles)
+            continue;
+        bool same = true;
+        for (int i = 0; same && i < m->num_vertices; i++)
+            for (int k = 0; k < 3; k++)
+                same = same && b->vertices[i][k] == m->vertices[3 * i + k];
+        for (int i = 0; same && i < m->num_triangles; i++)
+            for (int k = 0; k < 3; k++)
+                same = same && (long)b->tri_indices[i][k] == (long)m->triangles[3 * i + k];
+        if (same)
+            return geom;
+    }
+    std::shared_ptr<Geom> geom = make_geometry(g);
+    if (geom)
+        c->meshes.push_back(geom);
+    return geom;
+}
 
 /* Per-query state of a distance search. */
 struct Query {
@@ -577,6 +631,302 @@ bool spheres_apart(const Shape &a, const Shape &b)
     return dx * dx + dy * dy + dz * dz > r * r;
 }
 
+/*
+ * The capsule of a movable mesh (s.obj set): for each axis of its own
+ * frame, the line along it through the centre of its local box, the least
+ * radius about that line that holds every vertex, then the shortest
+ * segment on the line that holds them all; the smallest of the three.
+ * Meshes of robot links are mostly long and round: much tighter than
+ * their boxes or spheres, and two capsules are cheap to test.
+ */
+void fit_capsule(Shape &s, const mpb_mesh *m)
+{
+    const fcl::AABBd &box = s.obj->collisionGeometry()->aabb_local;
+    double best = INFINITY;
+    for (int ax = 0; ax < 3; ax++) {
+        int u = (ax + 1) % 3, v = (ax + 2) % 3;
+        double cu = (box.min_[u] + box.max_[u]) / 2;
+        double cv = (box.min_[v] + box.max_[v]) / 2;
+        double r2 = 0;
+        for (int i = 0; i < m->num_vertices; i++) {
+            const double *x = &m->vertices[3 * i];
+            r2 = std::max(r2, (x[u] - cu) * (x[u] - cu) + (x[v] - cv) * (x[v] - cv));
+        }
+        /* a vertex at t along the line, rho from it, is held when the
+           segment reaches t - sqrt(r^2 - rho^2) .. t + sqrt(r^2 - rho^2) */
+        double lo = INFINITY, hi = -INFINITY;
+        for (int i = 0; i < m->num_vertices; i++) {
+            const double *x = &m->vertices[3 * i];
+            double rho2 = (x[u] - cu) * (x[u] - cu) + (x[v] - cv) * (x[v] - cv);
+            double h = std::sqrt(std::max(0.0, r2 - rho2));
+            lo = std::min(lo, x[ax] + h);
+            hi = std::max(hi, x[ax] - h);
+        }
+        if (lo > hi)
+            lo = hi = (lo + hi) / 2;
+        double r = std::sqrt(r2);
+        double vol = r2 * (hi - lo) + 4.0 / 3.0 * r2 * r;  /* over pi */
+        if (!(vol < best))
+            continue;
+        best = vol;
+        for (int e = 0; e < 2; e++) {
+            s.cap[e][ax] = e ? hi : lo;
+            s.cap[e][u] = cu;
+            s.cap[e][v] = cv;
+        }
+        s.cap_r = r;
+    }
+    s.has_cap = std::isfinite(best);
+}
+
+/* A static's box in its own frame (s.obj, s.type, s.dims set). */
+void local_box(Shape &s)
+{
+    const double *d = s.dims;
+    double *h = s.lbox_h;
+    switch (s.type) {
+    case MPB_SHAPE_BOX:
+        h[0] = d[0] / 2, h[1] = d[1] / 2, h[2] = d[2] / 2;
+        break;
+    case MPB_SHAPE_SPHERE:
+        h[0] = h[1] = h[2] = d[0];
+        break;
+    case MPB_SHAPE_CYLINDER:
+    case MPB_SHAPE_CONE:
+        h[0] = h[1] = d[0], h[2] = d[1] / 2;
+        break;
+    case MPB_SHAPE_CAPSULE:
+        h[0] = h[1] = d[0], h[2] = d[1] / 2 + d[0];
+        break;
+    default: {
+        const fcl::AABBd &b = s.obj->collisionGeometry()->aabb_local;
+        for (int k = 0; k < 3; k++) {
+            s.lbox_c[k] = (b.min_[k] + b.max_[k]) / 2;
+            h[k] = (b.max_[k] - b.min_[k]) / 2;
+        }
+        break;
+    }
+    }
+}
+
+/* Capsule tests skip a pair only when it clears by this much (m): far
+ * above FCL's tolerances and rounding, as spheres_apart(). */
+#define MPB__CAP_MARGIN 1e-4
+
+/* The squared distance between segments p0 p1 and q0 q1. */
+double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
+                     const double q1[3])
+{
+    double d1[3], d2[3], r[3];
+    for (int k = 0; k < 3; k++) {
+        d1[k] = p1[k] - p0[k];
+        d2[k] = q1[k] - q0[k];
+        r[k] = p0[k] - q0[k];
+    }
+    auto dot = [](const double *a, const double *b) {
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    };
+    double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r), sp, t;
+    const double tiny = 1e-300;
+    if (a <= tiny && e <= tiny) {
+        sp = t = 0;
+    } else if (a <= tiny) {
+        sp = 0;
+        t = std::clamp(f / e, 0.0, 1.0);
+    } else {
+        double cc = dot(d1, r);
+        if (e <= tiny) {
+            t = 0;
+            sp = std::clamp(-cc / a, 0.0, 1.0);
+        } else {
+            double b = dot(d1, d2), den = a * e - b * b;
+            sp = den > 0 ? std::clamp((b * f - cc * e) / den, 0.0, 1.0) : 0.0;
+            t = (b * sp + f) / e;
+            if (t < 0) {
+                t = 0;
+                sp = std::clamp(-cc / a, 0.0, 1.0);
+            } else if (t > 1) {
+                t = 1;
+                sp = std::clamp((b - cc) / a, 0.0, 1.0);
+            }
+        }
+    }
+    double s2 = 0;
+    for (int k = 0; k < 3; k++) {
+        double x = p0[k] + d1[k] * sp - (q0[k] + d2[k] * t);
+        s2 += x * x;
+    }
+    return s2;
+}
+
+/* Are shape a (with a capsule) and shape b certainly apart: b's capsule,
+ * or else its bounding sphere, clears a's capsule by the margin? */
+bool caps_apart(const Shape &a, const Shape &b)
+{
+    double r = a.cap_r + MPB__CAP_MARGIN;
+    if (b.has_cap) {
+        r += b.cap_r;
+        return seg_seg_dist2(a.wcap[0], a.wcap[1], b.wcap[0], b.wcap[1]) > r * r;
+    }
+    r += b.bradius;
+    return seg_seg_dist2(a.wcap[0], a.wcap[1], b.wcenter, b.wcenter) > r * r;
+}
+
+/* The extent of mesh shape s along world direction d: min and max of
+ * d . x over its vertices x in the world; the vertices at both ends. */
+void mesh_extent(const Shape &s, const double d[3], double &lo, double &hi,
+                 int &ilo, int &ihi)
+{
+    const double *R = s.world.R;
+    double l[3];              /* d in the mesh's frame */
+    for (int k = 0; k < 3; k++)
+        l[k] = R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
+    double off = s.world.t[0] * d[0] + s.world.t[1] * d[1] + s.world.t[2] * d[2];
+    lo = INFINITY, hi = -INFINITY;
+    ilo = ihi = 0;
+    for (int i = 0; i < s.num_verts; i++) {
+        const double *v = s.verts[i].data();
+        double x = v[0] * l[0] + v[1] * l[1] + v[2] * l[2];
+        if (x < lo) {
+            lo = x;
+            ilo = i;
+        }
+        if (x > hi) {
+            hi = x;
+            ihi = i;
+        }
+    }
+    lo += off;
+    hi += off;
+}
+
+/*
+ * Are meshes a and b certainly apart: is there a plane between all the
+ * vertices of one and all of the other, with the margin? Then their
+ * convex hulls are apart, and the triangles within them too. The
+ * directions tried: between the bounding spheres' centres, then a few
+ * times between the vertices that came out nearest along the last one.
+ * Each try is exact on its own, so a poor direction costs time, never a
+ * wrong answer. Mesh pairs of robot links near each other (two links
+ * apart along the arm) are mostly told apart here, where FCL's BVH
+ * traversal went hundreds of box tests deep.
+ */
+bool meshes_apart(const Shape &a, const Shape &b)
+{
+    double d[3];
+    for (int k = 0; k < 3; k++)
+        d[k] = b.wcenter[k] - a.wcenter[k];
+    for (int iter = 0; iter < 3; iter++) {
+        double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!(n > 1e-12))
+            return false;
+        double alo, ahi, blo, bhi;
+        int ialo, iahi, iblo, ibhi;
+        mesh_extent(a, d, alo, ahi, ialo, iahi);
+        mesh_extent(b, d, blo, bhi, iblo, ibhi);
+        if (blo - ahi > MPB__CAP_MARGIN * n)
+            return true;
+        double pa[3], pb[3];
+        const double *va = a.verts[iahi].data(), *vb = b.verts[iblo].data();
+        mpb_pose_apply(&a.world, va, pa);
+        mpb_pose_apply(&b.world, vb, pb);
+        for (int k = 0; k < 3; k++)
+            d[k] = pb[k] - pa[k];
+    }
+    return false;
+}
+
+/*
+ * A lower bound on the distance from mesh a to static ss: the widest gap
+ * between a's vertices and ss's box along one of the box's axes or the
+ * line between their centres (every point of the mesh lies within its
+ * vertices' hull, every point of the static within its box). Some
+ * hundred dot products: far cheaper than the FCL distance it may spare.
+ */
+double mesh_static_lower(const Shape &a, const Shape &ss)
+{
+    const double *R = ss.world.R;
+    double c[3];              /* the box's centre in the world */
+    mpb_pose_apply(&ss.world, ss.lbox_c, c);
+    double gap = -INFINITY;
+    for (int k = 0; k < 4; k++) {
+        double d[3];
+        if (k < 3) {
+            d[0] = R[k], d[1] = R[3 + k], d[2] = R[6 + k];
+        } else {
+            for (int i = 0; i < 3; i++)
+                d[i] = c[i] - a.wcenter[i];
+            double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (!(n > 1e-12))
+                break;
+            for (int i = 0; i < 3; i++)
+                d[i] /= n;
+        }
+        double mid = c[0] * d[0] + c[1] * d[1] + c[2] * d[2], half = 0;
+        for (int j = 0; j < 3; j++)
+            half += ss.lbox_h[j] * std::fabs(R[j] * d[0] + R[3 + j] * d[1] + R[6 + j] * d[2]);
+        double lo, hi;
+        int ilo, ihi;
+        mesh_extent(a, d, lo, hi, ilo, ihi);
+        gap = std::max(gap, std::max(lo - (mid + half), (mid - half) - hi));
+    }
+    return gap - MPB__CAP_MARGIN;
+}
+
+/* The ends of a's capsule in the frame of static ss's box, from its centre. */
+void cap_in_box(const Shape &a, const Shape &ss, double e[2][3])
+{
+    const double *R = ss.world.R;
+    for (int i = 0; i < 2; i++) {
+        double d[3];
+        for (int k = 0; k < 3; k++)
+            d[k] = a.wcap[i][k] - ss.world.t[k];
+        for (int k = 0; k < 3; k++)
+            e[i][k] = R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2] - ss.lbox_c[k];
+    }
+}
+
+/* Does a's capsule certainly miss static ss: its segment misses ss's box
+ * grown by the radius and the margin (which holds every point within
+ * that distance of the box)? */
+bool cap_misses_static(const Shape &a, const Shape &ss)
+{
+    double e[2][3], t0 = 0, t1 = 1;
+    cap_in_box(a, ss, e);
+    for (int k = 0; k < 3; k++) {
+        double h = ss.lbox_h[k] + a.cap_r + MPB__CAP_MARGIN, d = e[1][k] - e[0][k];
+        if (std::fabs(d) < 1e-300) {
+            if (e[0][k] < -h || e[0][k] > h)
+                return true;
+            continue;
+        }
+        double ta = (-h - e[0][k]) / d, tb = (h - e[0][k]) / d;
+        if (ta > tb)
+            std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1)
+            return true;
+    }
+    return false;
+}
+
+/* A lower bound on the distance from a's capsule to static ss: the widest
+ * gap along one axis of ss's box, or to its bounding sphere, less the
+ * radii. */
+double cap_static_lower(const Shape &a, const Shape &ss)
+{
+    double e[2][3], gap = 0;
+    cap_in_box(a, ss, e);
+    for (int k = 0; k < 3; k++) {
+        double lo = std::min(e[0][k], e[1][k]), hi = std::max(e[0][k], e[1][k]);
+        gap = std::max(gap, std::max(lo - ss.lbox_h[k], -ss.lbox_h[k] - hi));
+    }
+    double sph = std::sqrt(seg_seg_dist2(a.wcap[0], a.wcap[1], ss.wcenter,
+                                         ss.wcenter)) - ss.bradius;
+    return std::max(gap, sph) - a.cap_r - MPB__CAP_MARGIN;
+}
+
 /* Does movable shape ms (of body m) collide with the static of leaf i
  * (allowed pairs never)? FCL's narrow phase if their boxes overlap. */
 bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
@@ -584,10 +934,13 @@ bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
     const Leaf &l = c->leaves[(size_t)i];
     if (!overlap(l.box, ms.box) || allowed_static(&m, l.body))
         return false;
+    const Shape &ss = c->sshapes[(size_t)l.shape];
+    if ((ms.has_cap && cap_misses_static(ms, ss)) ||
+        (ms.num_verts > 0 && mesh_static_lower(ms, ss) > 0))
+        return false;
     sync(ms);
     c->cres.clear();
-    fcl::collide(ms.obj.get(), c->sshapes[(size_t)l.shape].obj.get(), c->creq,
-                 c->cres);
+    fcl::collide(ms.obj.get(), ss.obj.get(), c->creq, c->cres);
     return c->cres.isCollision();
 }
 
@@ -641,6 +994,9 @@ void leaf_distance(Query *q, const Shape &ms, int i)
     const Obj *st = c->sshapes[(size_t)l.shape].obj.get();
     if (!(lower < q->best) || (ms.obj.get() == q->seed_m && st == q->seed_s) ||
         allowed_static(q->m, l.body))
+        return;
+    if (ms.has_cap &&
+        !(cap_static_lower(ms, c->sshapes[(size_t)l.shape]) < q->best))
         return;
     sync(ms);
     double d = pair_distance(c, ms.obj.get(), st);
@@ -744,6 +1100,10 @@ void place_shape(Shape &s)
     } else {
         double bc[3] = { s.bcenter[0], s.bcenter[1], s.bcenter[2] };
         mpb_pose_apply(&s.world, bc, s.wcenter);
+    }
+    if (s.has_cap) {
+        mpb_pose_apply(&s.world, s.cap[0], s.wcap[0]);
+        mpb_pose_apply(&s.world, s.cap[1], s.wcap[1]);
     }
 }
 
@@ -888,7 +1248,10 @@ bool bodies_touch(mpb_collision *c, const Movable &mi, const Movable &mj)
         const Shape &shi = c->mshapes[(size_t)si];
         for (int sj : mj.shapes) {
             const Shape &shj = c->mshapes[(size_t)sj];
-            if (!overlap(shi.box, shj.box) || spheres_apart(shi, shj))
+            if (!overlap(shi.box, shj.box) || spheres_apart(shi, shj) ||
+                (shi.has_cap && caps_apart(shi, shj)) ||
+                (shj.has_cap && caps_apart(shj, shi)) ||
+                (shi.num_verts > 0 && shj.num_verts > 0 && meshes_apart(shi, shj)))
                 continue;
             sync(shi);
             sync(shj);
@@ -1057,7 +1420,7 @@ int mpb_collision_add_static(mpb_collision *c, int id, const mpb_geometry *g,
             c->planes.push_back(p);
             return MPB_OK;
         }
-        std::shared_ptr<Geom> geom = make_geometry(g);
+        std::shared_ptr<Geom> geom = shared_geometry(c, g);
         if (!geom) {
             c->set_err("collision: static %d: FCL could not build the %s", id,
                        mpb_shape_type_name(g->type));
@@ -1074,6 +1437,7 @@ int mpb_collision_add_static(mpb_collision *c, int id, const mpb_geometry *g,
         s.type = g->type;
         memcpy(s.dims, g->dims, sizeof s.dims);
         bounding_sphere(s);
+        local_box(s);
         place_shape(s);
         s.stale = false;                /* tf is s.world already */
         c->sshapes.push_back(std::move(s));
@@ -1092,7 +1456,7 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
         int rc = check_args(c, id, g, offset, true);
         if (rc != MPB_OK)
             return rc;
-        std::shared_ptr<Geom> geom = make_geometry(g);
+        std::shared_ptr<Geom> geom = shared_geometry(c, g);
         if (!geom) {
             c->set_err("collision: movable %d: FCL could not build the %s", id,
                        mpb_shape_type_name(g->type));
@@ -1140,6 +1504,12 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
         mpb_pose_mul(&m->pose, &s.offset, &s.world);
         s.obj.reset(new Obj(geom, to_tf(&s.world)));
         bounding_sphere(s);
+        if (g->type == MPB_SHAPE_MESH) {
+            fit_capsule(s, g->mesh);
+            auto *b = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(geom.get());
+            s.verts = b->vertices;
+            s.num_verts = b->num_vertices;
+        }
         s.body = c->movable_index[(size_t)id];
         s.obj->setUserData((void *)(intptr_t)c->mshapes.size());
         c->mshapes.push_back(std::move(s));
@@ -1362,17 +1732,94 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                 best_movable = mv.id;
             }
         }
-        /* With a finite bound, the statics that may be nearer than it to
-           the robot as a whole: for a robot among a few dozen obstacles,
-           few are; each shape then measures those. */
+        /* The statics that may be nearer than the bound to the robot as
+           a whole: for a robot among a few dozen obstacles, few are. */
         Box3 all;
         bool among = false;
-        if (q.best < std::numeric_limits<double>::infinity() && robot_box(c, all)) {
-            gather_near(c, all, q.best);
+        if (robot_box(c, all)) {
+            if (q.best < std::numeric_limits<double>::infinity())
+                gather_near(c, all, q.best);
+            else
+                gather_where(c, [](const Box3 &) { return true; });
             among = c->cand.size() <= MPB__FEW;
         }
+        if (among) {
+            /* Best first: every (shape, static) pair with its cheap lower
+               bound, nearest first, measured until a bound is no better
+               than the best distance so far. The first measured is
+               mostly the nearest: one or two FCL distances, where mesh
+               links measured in body order took dozens. */
+            c->near.clear();
+            c->near.reserve(c->mshapes.size() * c->cand.size());
+            for (const Movable &m : c->movables) {
+                if (!m.enabled || m.self_only)
+                    continue;
+                for (int si : m.shapes) {
+                    const Shape &sh = c->mshapes[(size_t)si];
+                    for (int i : c->cand) {
+                        const Leaf &l = c->leaves[(size_t)i];
+                        const Shape &ss = c->sshapes[(size_t)l.shape];
+                        if (allowed_static(&m, l.body) ||
+                            (sh.obj.get() == q.seed_m && ss.obj.get() == q.seed_s))
+                            continue;
+                        double dx = sh.wcenter[0] - l.center[0],
+                               dy = sh.wcenter[1] - l.center[1],
+                               dz = sh.wcenter[2] - l.center[2];
+                        double lower = std::max(
+                            std::sqrt(box_dist2(l.box, sh.box)),
+                            std::sqrt(dx * dx + dy * dy + dz * dz) - sh.bradius - l.radius);
+                        if (sh.has_cap)
+                            lower = std::max(lower, cap_static_lower(sh, ss));
+                        if (lower < q.best)
+                            c->near.push_back({lower, si, i});
+                    }
+                }
+            }
+            std::sort(c->near.begin(), c->near.end(),
+                      [](const mpb_collision::Near &a, const mpb_collision::Near &b) {
+                          return a.lower < b.lower;
+                      });
+            for (const auto &p : c->near) {
+                if (!(p.lower < q.best) || q.best <= 0.0)
+                    break;
+                const Shape &sh = c->mshapes[(size_t)p.shape];
+                const Leaf &l = c->leaves[(size_t)p.leaf];
+                const Shape &ss = c->sshapes[(size_t)l.shape];
+                const Obj *st = ss.obj.get();
+                if (sh.num_verts > 0 && !(mesh_static_lower(sh, ss) < q.best))
+                    continue;
+                sync(sh);
+                double d = pair_distance(c, sh.obj.get(), st);
+                if (d < q.best) {
+                    q.best = d;
+                    q.best_m = sh.obj.get();
+                    q.best_s = st;
+                    q.static_id = l.body;
+                    best_movable = c->movables[(size_t)sh.body].id;
+                }
+            }
+            for (const Movable &m : c->movables) {
+                if (!m.enabled || m.self_only)
+                    continue;
+                for (int si : m.shapes) {
+                    const Shape &sh = c->mshapes[(size_t)si];
+                    for (const Plane &p : c->planes) {
+                        if (q.best <= 0.0 || allowed_static(&m, p.id))
+                            continue;
+                        double d = plane_distance(sh, p, nullptr, nullptr);
+                        if (d < q.best) {
+                            q.best = d;
+                            q.static_id = p.id;
+                            best_movable = m.id;
+                            best_plane = &p;
+                            best_shape = &sh;
+                        }
+                    }
+                }
+            }
+        }
         for (const Movable &m : c->movables) {
-            if (q.best <= 0.0)
+            if (among || q.best <= 0.0)
                 break;
             if (!m.enabled || m.self_only)
                 continue;
