@@ -391,7 +391,8 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
 {
     /* Each its own: a robot has no name or queries, a scene no joints. */
     static const char *const robot_keys[] = {"format", "file", "text",
-                                             "joints", "srdf", NULL};
+                                             "joints", "srdf", "joint_values",
+                                             NULL};
     static const char *const scene_keys[] = {"format", "file", "text", "name",
                                              "queries", "joints", NULL};
     const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
@@ -699,11 +700,135 @@ static int load_goal(loader *L, mpbd_experiment *e, int scene, mpbd_query *q,
     return check_state(L, e, scene, q->goal, "goal", n);
 }
 
+/* ---- joints held outside the group ---------------------------------- */
+
+/* Give q a value for every held joint known so far: the robot's, or the
+ * world's default for a joint only other queries name. */
+static int held_fill(mpbd_experiment *e, mpbd_query *q)
+{
+    if (q->num_held_set == e->num_held)
+        return 0;
+    double *v = realloc(q->held, ((size_t)e->num_held + 1) * sizeof *v);
+    if (v == NULL)
+        return -1;
+    for (int i = q->num_held_set; i < e->num_held; i++)
+        v[i] = e->held_default[i];
+    q->held = v;
+    q->num_held_set = e->num_held;
+    return 0;
+}
+
+/*
+ * The index of the held joint `name` in e->held_names, added (held at the
+ * world's default, 0 moved into its limits) if new; -1 with one line at
+ * `at` for a joint that cannot be held.
+ */
+static int held_index(loader *L, mpbd_experiment *e, mpb_world *w,
+                      const char *name, yaml_node_t *at)
+{
+    for (int i = 0; i < e->num_held; i++)
+        if (strcmp(e->held_names[i], name) == 0)
+            return i;
+    double lo, hi;
+    int rc = mpb_world_held(w, name, NULL, &lo, &hi);
+    if (rc == MPB_EUNSUPPORTED)
+        return fail_at(L, at, "joint '%s': a %s robot holds no joints "
+                       "outside its group", name, e->scenes[0].robot_format);
+    if (rc == MPB_ENOTFOUND)
+        return fail_at(L, at, "joint '%s' is not a joint of the robot", name);
+    for (int j = 0; rc != MPB_OK && j < e->num_joints; j++)
+        if (strcmp(e->joint_names[j], name) == 0)
+            return fail_at(L, at, "joint '%s' is in the planning group: its "
+                           "value belongs in the start, not held", name);
+    if (rc != MPB_OK)
+        return fail_at(L, at, "joint '%s' cannot hold a value (a fixed, "
+                       "floating or planar joint)", name);
+    char **names = realloc(e->held_names,
+                           ((size_t)e->num_held + 1) * sizeof *names);
+    if (names != NULL)
+        e->held_names = names;
+    double *dflt = realloc(e->held_default,
+                           ((size_t)e->num_held + 1) * sizeof *dflt);
+    if (dflt != NULL)
+        e->held_default = dflt;
+    if (names == NULL || dflt == NULL ||
+        (names[e->num_held] = strdup(name)) == NULL)
+        return fail_at(L, at, "out of memory");
+    dflt[e->num_held] = 0.0 < lo ? lo : 0.0 > hi ? hi : 0.0;
+    return e->num_held++;
+}
+
+/*
+ * Hold joint `name` at v in the world w, into *out (the query's or the
+ * robot's value). With clamp, a value outside the joint's limits is moved
+ * to the nearer one and counted in *clamped; without, it is refused at
+ * `val`. `key` is where the name is written, for an unknown joint.
+ */
+static int hold_one(loader *L, mpbd_experiment *e, mpb_world *w,
+                    const char *name, double v, yaml_node_t *key,
+                    yaml_node_t *val, int clamp, int *clamped, int *index)
+{
+    char why[256];
+    double lo, hi;
+    int i = held_index(L, e, w, name, key);
+    if (i < 0)
+        return -1;
+    if (clamp && mpb_world_held(w, name, NULL, &lo, &hi) == MPB_OK &&
+        (v < lo || v > hi)) {
+        v = v < lo ? lo : hi;
+        (*clamped)++;
+    }
+    const char *names[1] = {name};
+    if (mpb_world_hold(w, names, &v, 1, why, sizeof why) != MPB_OK)
+        return fail_at(L, val, "%s", why);
+    *index = i;
+    return 0;
+}
+
+/* `joint_values: {name: value, ...}`: the robot's held joints, or a
+ * query's own (into q). */
+static int load_joint_values(loader *L, mpbd_experiment *e, mpb_world *w,
+                             yaml_node_t *m, mpbd_query *q)
+{
+    if (m == NULL)
+        return 0;
+    if (m->type != YAML_MAPPING_NODE)
+        return fail_at(L, m, "joint_values must be a mapping of joint: value");
+    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
+         p < m->data.mapping.pairs.top; p++) {
+        yaml_node_t *k = node(L, p->key), *vn = node(L, p->value);
+        double v;
+        int i;
+        if (scalar(k) == NULL || scalar(k)[0] == '\0')
+            return fail_at(L, k, "a joint must be a name");
+        if (parse_double(L, vn, "a joint value", &v) != 0 ||
+            hold_one(L, e, w, scalar(k), v, k, vn, 0, NULL, &i) != 0)
+            return -1;
+        if (q == NULL) {
+            e->held_default[i] = v;
+        } else {
+            if (held_fill(e, q) != 0)
+                return fail_at(L, m, "out of memory");
+            q->held[i] = v;
+        }
+    }
+    return 0;
+}
+
+int mpbd_query_hold(const mpbd_experiment *e, const mpbd_query *q)
+{
+    return mpb_world_hold(e->scenes[q->scene].world,
+                          (const char *const *)e->held_names, q->held,
+                          q->num_held_set < e->num_held ? q->num_held_set
+                                                        : e->num_held,
+                          NULL, 0);
+}
+
 static int load_queries(loader *L, mpbd_experiment *e, int scene,
                         yaml_node_t *scene_map)
 {
     static const char *const keys[] = {"name", "start", "goal", "tolerance",
-                                       NULL};
+                                       "joint_values", NULL};
     yaml_node_t *list = get(L, scene_map, "queries");
     if (list == NULL || list->type != YAML_SEQUENCE_NODE ||
         list->data.sequence.items.top == list->data.sequence.items.start)
@@ -727,6 +852,15 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
             if (o->scene == scene && strcmp(o->name, q->name) == 0)
                 return fail_at(L, m, "query '%s' appears twice in scene '%s'",
                                q->name, e->scenes[scene].name);
+        if (held_fill(e, q) != 0)
+            return fail_at(L, m, "out of memory");
+        if (load_joint_values(L, e, e->scenes[scene].world,
+                              get(L, m, "joint_values"), q) != 0 ||
+            held_fill(e, q) != 0)
+            return -1;
+        if (mpbd_query_hold(e, q) != MPB_OK)
+            return fail_at(L, m, "query '%s': its held joint values do not "
+                           "fit the robot", q->name);
         if ((q->start = parse_vector(L, get(L, m, "start") ? get(L, m, "start") : m,
                                      "start", e->num_joints)) == NULL)
             return -1;
@@ -825,10 +959,21 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
         }
         mpb_hash_hex(sc->robot, strlen(sc->robot), sc->robot_hash);
         mpb_hash_hex(sc->scene, strlen(sc->scene), sc->scene_hash);
-        if (open_world(L, e, sc, m) != 0 ||
-            load_queries(L, e, e->num_scenes - 1, m) != 0)
+        if (open_world(L, e, sc, m) != 0)
+            goto done;
+        if (e->num_scenes == 1 &&
+            load_joint_values(L, e, sc->world, get(L, L->robot, "joint_values"),
+                              NULL) != 0)
+            goto done;
+        if (load_queries(L, e, e->num_scenes - 1, m) != 0)
             goto done;
     }
+    /* Every query holds every joint some query names. */
+    for (int i = 0; i < e->num_queries; i++)
+        if (held_fill(e, &e->queries[i]) != 0) {
+            fail_at(L, list, "out of memory");
+            goto done;
+        }
     rc = 0;
 done:
     free(robot_format);
@@ -1164,6 +1309,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
         free(e->queries[i].start);
         free(e->queries[i].goal);
         free(e->queries[i].goal_link);
+        free(e->queries[i].held);
     }
     for (int i = 0; i < e->num_configs; i++) {
         mpbd_config *c = &e->configs[i];
@@ -1180,6 +1326,10 @@ void mpbd_experiment_free(mpbd_experiment *e)
     for (int j = 0; j < e->num_joints && e->joint_names; j++)
         free(e->joint_names[j]);
     free(e->joint_names);
+    for (int j = 0; j < e->num_held; j++)
+        free(e->held_names[j]);
+    free(e->held_names);
+    free(e->held_default);
     for (int j = 0; j < e->num_group; j++)
         free(e->group[j]);
     free(e->group);

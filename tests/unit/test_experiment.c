@@ -280,6 +280,85 @@ static void a_planner_family_must_fit_an_id(void **state)
     mpbd_experiment_free(e);
 }
 
+/* An arm j that carries a finger on a slide k (0 .. 1, outside the
+ * group): held at 0.5 the finger reaches the box at x = 1 when the arm
+ * points along x. */
+static void write_slide_robot(void)
+{
+    char path[128];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/slide.urdf", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fputs("<robot name='r'><link name='a'/>"
+          "<link name='b'><collision><geometry><box size='0.2 0.2 0.2'/>"
+          "</geometry></collision></link>"
+          "<link name='f'><collision><geometry><sphere radius='0.1'/>"
+          "</geometry></collision></link>"
+          "<joint name='j' type='revolute'><parent link='a'/><child link='b'/>"
+          "<axis xyz='0 0 1'/><limit lower='-2' upper='2' effort='1' "
+          "velocity='1'/></joint>"
+          "<joint name='k' type='prismatic'><parent link='b'/><child link='f'/>"
+          "<origin xyz='0.5 0 0'/><axis xyz='1 0 0'/><limit lower='0' "
+          "upper='1' effort='1' velocity='1'/></joint></robot>\n", f);
+    assert_int_equal(fclose(f), 0);
+}
+
+#define SLIDE_SCENE "\"s\\n* box\\n1 0 0\\n0 0 0 1\\n1\\nbox\\n0.2 0.2 0.2\\n" \
+                    "0 0 0\\n0 0 0 1\\n0 0 0 0\\n0\\n.\\n\""
+
+static mpbd_experiment *load_slide(const char *robot_extra, const char *queries)
+{
+    char text[2048];
+    write_slide_robot();
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             "robot: {format: urdf, file: slide.urdf, joints: [j]%s}\n"
+             "scenes: [{name: s, format: moveit-scene, text: " SLIDE_SCENE
+             ",\n  queries: [%s]}]\n" PLANNERS, robot_extra, queries);
+    return load_text(text);
+}
+
+static void joints_outside_the_group_hold_values(void **state)
+{
+    mpbd_experiment *e;
+    (void)state;
+    /* Held at 0 (the default) the finger is clear of the box. */
+    assert_non_null(e = load_slide("", "{name: q, start: [0], goal: [1]}"));
+    assert_int_equal(e->num_held, 0);
+    mpbd_experiment_free(e);
+    /* The robot's value, and a query's own. */
+    assert_non_null(e = load_slide(", joint_values: {k: 0.5}",
+                                   "{name: q, start: [1.5], goal: [1]},\n"
+                                   "  {name: r, start: [0], goal: [1], "
+                                   "joint_values: {k: 0.1}}"));
+    assert_int_equal(e->num_held, 1);
+    assert_string_equal(e->held_names[0], "k");
+    assert_true(e->held_default[0] == 0.5);
+    assert_true(e->queries[0].held[0] == 0.5);
+    assert_true(e->queries[1].held[0] == 0.1);
+    mpbd_experiment_free(e);
+    /* Held at 0.5 the finger is in the box at j = 0. */
+    assert_null(load_slide(", joint_values: {k: 0.5}",
+                           "{name: q, start: [0], goal: [1]}"));
+    assert_non_null(strstr(err, "start is in collision"));
+    /* A joint only a later query names holds its default in the others. */
+    assert_non_null(e = load_slide("", "{name: q, start: [0], goal: [1]},\n"
+                                   "  {name: r, start: [1.5], goal: [1], "
+                                   "joint_values: {k: 0.5}}"));
+    assert_int_equal(e->num_held, 1);
+    assert_true(e->queries[0].held[0] == 0.0 && e->queries[1].held[0] == 0.5);
+    mpbd_experiment_free(e);
+
+    assert_null(load_slide(", joint_values: {kk: 0.5}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:69", "joint 'kk' is not a joint of the robot");
+    assert_null(load_slide(", joint_values: {j: 0.5}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:69", "joint 'j' is in the planning group: its value "
+                 "belongs in the start, not held");
+    assert_null(load_slide(", joint_values: {k: 1.5}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:72", "joint 'k' = 1.5 is outside its limits [0, 1]");
+    assert_null(load_slide(", joint_values: {k: nan}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:72", "a joint value must be a number, not 'nan'");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -289,6 +368,7 @@ int main(void)
         cmocka_unit_test(a_scene_without_queries_has_a_line),
         cmocka_unit_test(an_unknown_format_is_pointed_at),
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
+        cmocka_unit_test(joints_outside_the_group_hold_values),
         cmocka_unit_test(faults_are_where_their_file_is_named),
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),
