@@ -55,6 +55,10 @@ typedef struct mpbd_query {
     double *held;            /* e->num_held values, one per held joint:
                                 what the query holds them at */
     int     num_held_set;    /* while loading: how many of held are set */
+    /* From a MoveIt request (docs/moveit-problems.md), else NULL / 0: */
+    char   *moveit_group;    /* its group_name */
+    double  planning_time;   /* its allowed_planning_time, s (reported;
+                                the experiment's time_limit rules) */
     int64_t db_id;
 } mpbd_query;
 
@@ -84,6 +88,9 @@ typedef struct mpbd_experiment {
     int     num_held;
     char  **held_names;
     double *held_default;    /* robot.joint_values, else the world's */
+    int     held_clamped;    /* MoveIt joint values moved into their
+                                limits (clamp_joint_values: true) */
+    int     held_ignored;    /* and values of fixed joints skipped */
 
     mpbd_scene  *scenes;
     int          num_scenes;
@@ -108,6 +115,14 @@ void mpbd_experiment_free(mpbd_experiment *e);
  * allowed for which reason and how to write them out for review; else 0.
  */
 int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len);
+
+/*
+ * 1 and one line in buf when queries came from MoveIt problem files and
+ * something of them is worth saying (values clamped into their limits,
+ * planning times that differ from the time limit); else 0.
+ */
+int mpbd_experiment_moveit_note(const mpbd_experiment *e, char *buf,
+                                size_t len);
 
 /*
  * The goal of q as verify.h describes goals, for mpb_verify_path(). The

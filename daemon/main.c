@@ -486,6 +486,8 @@ int main(int argc, char **argv)
     d.runs_total = (int)count_runs(d.exp);
     if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
         mpbd_log("%s", err);
+    if (mpbd_experiment_moveit_note(d.exp, err, sizeof err))
+        mpbd_log("%s", err);
     mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
