@@ -1071,7 +1071,7 @@ static int moveit_query(loader *L, mpbd_experiment *e, int scene,
         goto done;
     for (int j = 0; j < nj; j++)
         if (!set[j]) {
-            at_place(L, req_path, (mpbd_mark){1, 1});
+            at_place(L, req_path, r.start_at);
             fail_at(L, NULL, "start_state: no value for joint '%s' of the "
                     "group (nor in the scene's robot_state)",
                     e->joint_names[j]);
@@ -1082,7 +1082,7 @@ static int moveit_query(loader *L, mpbd_experiment *e, int scene,
                 "robot", name);
         goto done;
     }
-    at_place(L, req_path, (mpbd_mark){1, 1});
+    at_place(L, req_path, r.start_at);
     if (check_state(L, e, scene, q->start, "start", NULL) != 0)
         goto done;
     q->goal_kind = r.goal_kind;

@@ -752,6 +752,9 @@ int mpbd_moveit_request_read(const char *path, mpbd_moveit_request *r,
         number(&R, t, "allowed_planning_time", &r->allowed_planning_time) == 0
         && r->allowed_planning_time < 0)
         fail_at(&R, t, "allowed_planning_time must not be negative");
+    r->start_at = (mpbd_mark){1, 1};
+    if (get(&R, root, "start_state") != NULL)
+        r->start_at = mark_of(get(&R, root, "start_state"));
     if (!R.failed)
         robot_state(&R, get(&R, root, "start_state"), &r->start);
     if (!R.failed && count(goals) != 1)

@@ -42,6 +42,7 @@ typedef struct mpbd_moveit_request {
     mpbd_mark  group_at;
     double     allowed_planning_time;   /* s; 0 if absent */
     mpbd_moveit_joints start;  /* start_state.joint_state */
+    mpbd_mark  start_at;       /* start_state; 1:1 if absent */
 
     mpb_goal_kind goal_kind;
     /* MPB_GOAL_JOINTS: joint_constraints, in file order; a tolerance NaN
