@@ -349,6 +349,10 @@ static int setup_experiment(mpbd *d, int fresh)
             .goal_link = q->goal_link, .goal_region = is_region ? region : NULL,
         };
         rc = mpb_store_query_add(s, e->scenes[q->scene].db_id, &qi, &q->db_id);
+        if (rc == MPB_OK)
+            rc = mpb_store_query_set_held(s, q->db_id, e->num_held,
+                                          (const char *const *)e->held_names,
+                                          q->held);
     }
     /* Repetition first, so that a partial experiment covers every planner
      * and query evenly. */

@@ -165,12 +165,14 @@ static int create_schema(mpb_store *s)
      * one made before experiments.resolution, NULL: not known; one made
      * before runs.world_setup_time, NULL: its runs' planner_values hold
      * the value, if a planner reported it; one made before runs.verify_time,
-     * NULL: the daemon's verification was not timed. */
+     * NULL: the daemon's verification was not timed; one made before
+     * queries.held, NULL: its joints outside the group held defaults. */
     if ((rc = add_missing_column(s, "runs", "final_metrics", "BLOB")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "world_setup_time", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "verify_time", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_link", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK ||
+        (rc = add_missing_column(s, "queries", "held", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK)
         goto fail;
     /* The results view is made again when it lacks a column this version

@@ -65,6 +65,8 @@ check "mpbenchd completes the experiment and exits 0" eq "$status" 0
 check "the straight line, free with the torso at 0, collides with it at 0.3" \
     eq "$(q "SELECT count(*) FROM results WHERE planner = 'null/straight_line'
              AND claimed_success = 1 AND success = 0 AND verdict = 'collision'")" 1
+check "the query's held value is stored with it, exactly" \
+    test "$(q "SELECT held FROM queries")" = "torso_lift_joint=0.29999999999999999"
 for p in ompl/RRTConnect ara/ARAstar python/RRTConnect; do
     check "$p plans round the box at the held height: success, verified" \
         eq "$(q "SELECT count(*) FROM results WHERE planner = '$p' AND success = 1")" 1
