@@ -359,6 +359,84 @@ static void joints_outside_the_group_hold_values(void **state)
     assert_error("2:72", "a joint value must be a number, not 'nan'");
 }
 
+/* A MoveIt scene file with requests (moveit.h), on the slide robot: the
+ * scene's and the start's values of k are held, the request's start
+ * wins, the tightest tolerance rules, pose goals name a link, and the
+ * scene's allowed pairs travel in its robot text. */
+static void moveit_files_become_scenes_and_queries(void **state)
+{
+    char text[2048], p[160];
+    FILE *f;
+    mpbd_experiment *e;
+    (void)state;
+    write_slide_robot();
+    static const struct { const char *name, *text; } files[] = {
+        {"s.yaml", "robot_state: {joint_state: {name: [j, k], position: [0, 0.2]}}\n"
+                   "allowed_collision_matrix: {entry_names: [b, f], "
+                   "entry_values: [[false, true], [true, false]]}\n"
+                   "world: {collision_objects: [{id: box, primitives: [{type: box, "
+                   "dimensions: [0.2, 0.2, 0.2]}], primitive_poses: [{position: [1, 0, 0], "
+                   "orientation: [0, 0, 0, 1]}]}]}\n"},
+        {"r1.yaml", "group_name: arm\nallowed_planning_time: 5\n"
+                    "start_state: {joint_state: {name: [j], position: [1.5]}}\n"
+                    "goal_constraints: [{joint_constraints: [{joint_name: j, "
+                    "position: 1.4, tolerance_above: 0.01, tolerance_below: 0.03}]}]\n"},
+        {"r2.yaml", "start_state: {joint_state: {name: [j, k], position: [1.5, 1.5]}}\n"
+                    "goal_constraints: [{position_constraints: [{link_name: f, "
+                    "constraint_region: {primitives: [{type: box, dimensions: [0.1, 0.1, 0.1]}], "
+                    "primitive_poses: [{position: [0, 0.7, 0], orientation: [0, 0, 0, 1]}]}}]}]\n"},
+        {"r3.yaml", "goal_constraints: [{position_constraints: [{link_name: g, "
+                    "constraint_region: {primitives: [{type: box, dimensions: [0.1, 0.1, 0.1]}], "
+                    "primitive_poses: [{position: [0, 0.7, 0], orientation: [0, 0, 0, 1]}]}}]}]\n"},
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snprintf(p, sizeof p, "%s/%s", dir, files[i].name);
+        assert_non_null(f = fopen(p, "w"));
+        fputs(files[i].text, f);
+        assert_int_equal(fclose(f), 0);
+    }
+#define MOVEIT_EXP(requests, extra)                                          \
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"    \
+             "robot: {format: urdf, file: slide.urdf, joints: [j]}\n"        \
+             "scenes: [{name: m, moveit_scene: s.yaml, requests: [%s]%s}]\n" \
+             PLANNERS, requests, extra)
+    MOVEIT_EXP("r1.yaml, r2.yaml", ", clamp_joint_values: true");
+    assert_non_null(e = load_text(text));
+    assert_int_equal(e->num_scenes, 1);
+    assert_int_equal(e->num_queries, 2);
+    assert_string_equal(e->queries[0].name, "r1");
+    assert_true(e->queries[0].start[0] == 1.5);
+    assert_true(e->queries[0].goal[0] == 1.4);
+    assert_true(e->queries[0].tolerance == 0.01);
+    assert_string_equal(e->queries[0].moveit_group, "arm");
+    assert_true(e->queries[0].planning_time == 5);
+    assert_int_equal(e->num_held, 1);
+    assert_true(e->queries[0].held[0] == 0.2);   /* the scene's */
+    assert_true(e->queries[1].held[0] == 1.0);   /* 1.5, clamped */
+    assert_int_equal(e->held_clamped, 1);
+    assert_int_equal(e->queries[1].goal_kind, MPB_GOAL_POSE_REGION);
+    assert_string_equal(e->queries[1].goal_link, "f");
+    assert_true(e->queries[1].position_tolerance[0] == 0.05);
+    assert_non_null(strstr(e->scenes[0].robot, "<disable_collisions link1=\"b\" "
+                           "link2=\"f\" reason=\"Scene\"/>"));
+    assert_non_null(strstr(e->scenes[0].scene, "* box\n"));
+    mpbd_experiment_free(e);
+
+    /* Without clamping, 1.5 is outside k's limits: at its place. */
+    MOVEIT_EXP("r2.yaml", "");
+    assert_null(load_text(text));
+    snprintf(p, sizeof p, "%s/r2.yaml:1:39: joint 'k' = 1.5 is outside its "
+             "limits [0, 1]", dir);
+    assert_string_equal(err, p);
+    /* An unknown link in a pose goal, at its name. */
+    MOVEIT_EXP("r3.yaml", "");
+    assert_null(load_text(text));
+    snprintf(p, sizeof p, "%s/r3.yaml:1:56: ", dir);
+    if (strncmp(err, p, strlen(p)) != 0 || !strstr(err, "'g'"))
+        fail_msg("%s", err);
+#undef MOVEIT_EXP
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -369,6 +447,7 @@ int main(void)
         cmocka_unit_test(an_unknown_format_is_pointed_at),
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
         cmocka_unit_test(joints_outside_the_group_hold_values),
+        cmocka_unit_test(moveit_files_become_scenes_and_queries),
         cmocka_unit_test(faults_are_where_their_file_is_named),
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),
