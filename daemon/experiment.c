@@ -10,11 +10,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 
 #include <yaml.h>
 
 #include "experiment.h"
+#include "moveit.h"
+#include "mpbench/robot.h"
 
 /* Everything the loader carries, so helpers can report errors in one way. */
 typedef struct loader {
@@ -28,6 +31,11 @@ typedef struct loader {
     mpb_srdf   *srdf;        /* with robot.group: the SRDF, for its group
                                 states; else NULL */
     int         group;       /* with robot.group: its index in srdf */
+    /* Where an error with no node of this file goes while a MoveIt
+     * problem file is read: that file and a place in it (moveit.h). */
+    const char  *place_path;
+    mpbd_mark    place;
+    mpb_robot   *model;      /* the urdf robot, for link names; or NULL */
 } loader;
 
 static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
@@ -79,6 +87,9 @@ static int fail_at(loader *L, const yaml_node_t *n, const char *fmt, ...)
         snprintf(L->err, L->errlen, "%s:%lu:%lu: %s", L->path,
                  (unsigned long)n->start_mark.line + 1,
                  (unsigned long)n->start_mark.column + 1, what);
+    else if (L->place_path != NULL)
+        snprintf(L->err, L->errlen, "%s:%d:%d: %s", L->place_path,
+                 L->place.line, L->place.column, what);
     else
         snprintf(L->err, L->errlen, "%s: %s", L->path, what);
     L->failed = 1;
@@ -253,14 +264,19 @@ static int is_decimal(const char *s, int whole)
     return *s == '\0';
 }
 
+int mpbd_parse_decimal(const char *s, double *out)
+{
+    /* Not errno: strtod() sets ERANGE for 1e-310 too, which is a number. */
+    *out = is_decimal(s, 0) ? strtod(s, NULL) : NAN;
+    return isfinite(*out);
+}
+
 static int parse_double(loader *L, yaml_node_t *n, const char *what, double *out)
 {
     const char *s = scalar(n);
     if (s == NULL)
         return fail_at(L, n, "%s must be a number", what);
-    /* Not errno: strtod() sets ERANGE for 1e-310 too, which is a number. */
-    *out = is_decimal(s, 0) ? strtod(s, NULL) : NAN;
-    if (!isfinite(*out))
+    if (!mpbd_parse_decimal(s, out))
         return fail_at(L, n, "%s must be a number, not '%s'", what, s);
     return 0;
 }
@@ -394,7 +410,8 @@ static int load_model(loader *L, yaml_node_t *m, const char *what,
 {
     /* Each its own: a robot has no name or queries, a scene no joints. */
     static const char *const robot_keys[] = {"format", "file", "text",
-                                             "joints", "group", "srdf", NULL};
+                                             "joints", "group", "srdf",
+                                             "joint_values", NULL};
     static const char *const scene_keys[] = {"format", "file", "text", "name",
                                              "queries", "joints", NULL};
     const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
@@ -751,11 +768,135 @@ static int load_goal(loader *L, mpbd_experiment *e, int scene, mpbd_query *q,
     return check_state(L, e, scene, q->goal, "goal", n);
 }
 
+/* ---- joints held outside the group ---------------------------------- */
+
+/* Give q a value for every held joint known so far: the robot's, or the
+ * world's default for a joint only other queries name. */
+static int held_fill(mpbd_experiment *e, mpbd_query *q)
+{
+    if (q->num_held_set == e->num_held)
+        return 0;
+    double *v = realloc(q->held, ((size_t)e->num_held + 1) * sizeof *v);
+    if (v == NULL)
+        return -1;
+    for (int i = q->num_held_set; i < e->num_held; i++)
+        v[i] = e->held_default[i];
+    q->held = v;
+    q->num_held_set = e->num_held;
+    return 0;
+}
+
+/*
+ * The index of the held joint `name` in e->held_names, added (held at the
+ * world's default, 0 moved into its limits) if new; -1 with one line at
+ * `at` for a joint that cannot be held.
+ */
+static int held_index(loader *L, mpbd_experiment *e, mpb_world *w,
+                      const char *name, yaml_node_t *at)
+{
+    for (int i = 0; i < e->num_held; i++)
+        if (strcmp(e->held_names[i], name) == 0)
+            return i;
+    double lo, hi;
+    int rc = mpb_world_held(w, name, NULL, &lo, &hi);
+    if (rc == MPB_EUNSUPPORTED)
+        return fail_at(L, at, "joint '%s': a %s robot holds no joints "
+                       "outside its group", name, e->scenes[0].robot_format);
+    if (rc == MPB_ENOTFOUND)
+        return fail_at(L, at, "joint '%s' is not a joint of the robot", name);
+    for (int j = 0; rc != MPB_OK && j < e->num_joints; j++)
+        if (strcmp(e->joint_names[j], name) == 0)
+            return fail_at(L, at, "joint '%s' is in the planning group: its "
+                           "value belongs in the start, not held", name);
+    if (rc != MPB_OK)
+        return fail_at(L, at, "joint '%s' cannot hold a value (a fixed, "
+                       "floating or planar joint)", name);
+    char **names = realloc(e->held_names,
+                           ((size_t)e->num_held + 1) * sizeof *names);
+    if (names != NULL)
+        e->held_names = names;
+    double *dflt = realloc(e->held_default,
+                           ((size_t)e->num_held + 1) * sizeof *dflt);
+    if (dflt != NULL)
+        e->held_default = dflt;
+    if (names == NULL || dflt == NULL ||
+        (names[e->num_held] = strdup(name)) == NULL)
+        return fail_at(L, at, "out of memory");
+    dflt[e->num_held] = 0.0 < lo ? lo : 0.0 > hi ? hi : 0.0;
+    return e->num_held++;
+}
+
+/*
+ * Hold joint `name` at v in the world w, into *out (the query's or the
+ * robot's value). With clamp, a value outside the joint's limits is moved
+ * to the nearer one and counted in *clamped; without, it is refused at
+ * `val`. `key` is where the name is written, for an unknown joint.
+ */
+static int hold_one(loader *L, mpbd_experiment *e, mpb_world *w,
+                    const char *name, double v, yaml_node_t *key,
+                    yaml_node_t *val, int clamp, int *clamped, int *index)
+{
+    char why[256];
+    double lo, hi;
+    int i = held_index(L, e, w, name, key);
+    if (i < 0)
+        return -1;
+    if (clamp && mpb_world_held(w, name, NULL, &lo, &hi) == MPB_OK &&
+        (v < lo || v > hi)) {
+        v = v < lo ? lo : hi;
+        (*clamped)++;
+    }
+    const char *names[1] = {name};
+    if (mpb_world_hold(w, names, &v, 1, why, sizeof why) != MPB_OK)
+        return fail_at(L, val, "%s", why);
+    *index = i;
+    return 0;
+}
+
+/* `joint_values: {name: value, ...}`: the robot's held joints, or a
+ * query's own (into q). */
+static int load_joint_values(loader *L, mpbd_experiment *e, mpb_world *w,
+                             yaml_node_t *m, mpbd_query *q)
+{
+    if (m == NULL)
+        return 0;
+    if (m->type != YAML_MAPPING_NODE)
+        return fail_at(L, m, "joint_values must be a mapping of joint: value");
+    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
+         p < m->data.mapping.pairs.top; p++) {
+        yaml_node_t *k = node(L, p->key), *vn = node(L, p->value);
+        double v;
+        int i;
+        if (scalar(k) == NULL || scalar(k)[0] == '\0')
+            return fail_at(L, k, "a joint must be a name");
+        if (parse_double(L, vn, "a joint value", &v) != 0 ||
+            hold_one(L, e, w, scalar(k), v, k, vn, 0, NULL, &i) != 0)
+            return -1;
+        if (q == NULL) {
+            e->held_default[i] = v;
+        } else {
+            if (held_fill(e, q) != 0)
+                return fail_at(L, m, "out of memory");
+            q->held[i] = v;
+        }
+    }
+    return 0;
+}
+
+int mpbd_query_hold(const mpbd_experiment *e, const mpbd_query *q)
+{
+    return mpb_world_hold(e->scenes[q->scene].world,
+                          (const char *const *)e->held_names, q->held,
+                          q->num_held_set < e->num_held ? q->num_held_set
+                                                        : e->num_held,
+                          NULL, 0);
+}
+
 static int load_queries(loader *L, mpbd_experiment *e, int scene,
                         yaml_node_t *scene_map)
 {
     static const char *const keys[] = {"name", "start", "goal", "tolerance",
-                                       NULL};
+                                       "joint_values", NULL};
     yaml_node_t *list = get(L, scene_map, "queries");
     if (list == NULL || list->type != YAML_SEQUENCE_NODE ||
         list->data.sequence.items.top == list->data.sequence.items.start)
@@ -779,6 +920,15 @@ static int load_queries(loader *L, mpbd_experiment *e, int scene,
             if (o->scene == scene && strcmp(o->name, q->name) == 0)
                 return fail_at(L, m, "query '%s' appears twice in scene '%s'",
                                q->name, e->scenes[scene].name);
+        if (held_fill(e, q) != 0)
+            return fail_at(L, m, "out of memory");
+        if (load_joint_values(L, e, e->scenes[scene].world,
+                              get(L, m, "joint_values"), q) != 0 ||
+            held_fill(e, q) != 0)
+            return -1;
+        if (mpbd_query_hold(e, q) != MPB_OK)
+            return fail_at(L, m, "query '%s': its held joint values do not "
+                           "fit the robot", q->name);
         if ((q->start = parse_state(L, e, get(L, m, "start"), m, "start")) == NULL)
             return -1;
         if (check_state(L, e, scene, q->start, "start", get(L, m, "start")) != 0 ||
@@ -860,6 +1010,553 @@ static int load_group(loader *L, mpbd_experiment *e, yaml_node_t *n)
     return 0;
 }
 
+/* After the first scene's world opens: the robot's held joint values,
+ * which need a world to check them against. */
+static int first_world(loader *L, mpbd_experiment *e, mpbd_scene *sc)
+{
+    if (e->num_scenes != 1)
+        return 0;
+    return load_joint_values(L, e, sc->world, get(L, L->robot, "joint_values"),
+                             NULL);
+}
+
+/* ---- MoveIt problems (docs/moveit-problems.md) ----------------------- */
+
+/* Errors with no node here go to this place of a MoveIt file. */
+static void at_place(loader *L, const char *path, mpbd_mark m)
+{
+    L->place_path = path;
+    L->place = m;
+}
+
+/* The robot as robot.h reads it, for link names; NULL for planar. */
+static mpb_robot *robot_model(loader *L, const mpbd_experiment *e,
+                              const char *robot_format, const char *robot)
+{
+    if (L->model == NULL && strcmp(robot_format, "urdf") == 0 &&
+        e->num_group > 0)
+        mpb_robot_load_urdf_joints(robot, (const char *const *)e->group,
+                                   e->num_group, &L->model, NULL, 0);
+    return L->model;
+}
+
+/*
+ * The robot text with a scene's allowed pairs added as SRDF
+ * <disable_collisions reason="Scene"/> elements: inside the robot's SRDF
+ * (before its closing tag), or as an SRDF of their own when it has none.
+ * Each name must be a link of the robot.
+ */
+static char *robot_with_pairs(loader *L, const mpbd_experiment *e,
+                              const char *robot_format, const char *robot,
+                              const char *scene_path,
+                              const mpbd_moveit_scene *ms)
+{
+    if (ms->num_pairs == 0)
+        return strdup(robot);
+    mpb_robot *model = robot_model(L, e, robot_format, robot);
+    for (int i = 0; i < 2 * ms->num_pairs; i++)
+        if (model == NULL || mpb_robot_link_index(model, ms->pairs[i]) < 0) {
+            char esc[256];
+            at_place(L, scene_path, ms->pair_at[i]);
+            fail_at(L, NULL, "allowed_collision_matrix: '%s' is not a link "
+                    "of the robot", mpb_escape(ms->pairs[i], esc, sizeof esc));
+            return NULL;
+        }
+    size_t extra = 64;
+    for (int i = 0; i < 2 * ms->num_pairs; i++)
+        extra += strlen(ms->pairs[i]) + 40;
+    size_t len = strlen(robot);
+    char *out = malloc(len + extra + 64);
+    if (out == NULL)
+        return NULL;
+    /* The SRDF's closing tag is the text's last "</robot" when the
+     * experiment has an SRDF. */
+    const char *close = NULL;
+    if (e->srdf_file != NULL)
+        for (const char *p = strstr(robot, "</robot"); p;
+             p = strstr(p + 1, "</robot"))
+            close = p;
+    size_t head = close ? (size_t)(close - robot) : len;
+    memcpy(out, robot, head);
+    char *w = out + head;
+    if (close == NULL) {
+        if (head > 0 && out[head - 1] != '\n')
+            *w++ = '\n';
+        w += sprintf(w, "<robot name=\"scene\">\n");
+    }
+    for (int i = 0; i < ms->num_pairs; i++)
+        w += sprintf(w, "<disable_collisions link1=\"%s\" link2=\"%s\" "
+                     "reason=\"Scene\"/>\n", ms->pairs[2 * i],
+                     ms->pairs[2 * i + 1]);
+    if (close == NULL)
+        w += sprintf(w, "</robot>\n");
+    strcpy(w, robot + head);
+    return out;
+}
+
+/*
+ * Joint values of a MoveIt robot state: group joints into q (where set),
+ * the others held by the query (clamped into their limits with clamp).
+ */
+static int moveit_state(loader *L, mpbd_experiment *e, mpbd_query *q,
+                        const char *path, const mpbd_moveit_joints *j,
+                        double *group_q, unsigned char *set, int clamp)
+{
+    mpb_world *w = e->scenes[q->scene].world;
+    for (int i = 0; i < j->n; i++) {
+        int g = -1, index;
+        for (int k = 0; k < e->num_joints && g < 0; k++)
+            if (strcmp(e->joint_names[k], j->names[i]) == 0)
+                g = k;
+        at_place(L, path, j->at[i]);
+        if (g >= 0) {
+            group_q[g] = j->values[i];
+            set[g] = 1;
+            continue;
+        }
+        /* A joint the URDF fixes (this Panda's fingers) has no value to
+         * hold: leniently skipped, as a model without that variable
+         * would. */
+        if (clamp && mpb_world_held(w, j->names[i], NULL, NULL, NULL) ==
+                         MPB_EINVAL) {
+            e->held_ignored++;
+            continue;
+        }
+        if (hold_one(L, e, w, j->names[i], j->values[i], NULL, NULL, clamp,
+                     &e->held_clamped, &index) != 0 || held_fill(e, q) != 0)
+            return -1;
+        double v;
+        mpb_world_held(w, j->names[i], &v, NULL, NULL);
+        q->held[index] = v;
+    }
+    return 0;
+}
+
+/* One request of a MoveIt scene: a query. */
+static int moveit_query(loader *L, mpbd_experiment *e, int scene,
+                        const mpbd_moveit_scene *ms, const char *scene_path,
+                        const char *req_path,
+                        const char *name, int clamp, double tolerance)
+{
+    mpbd_moveit_request r;
+    mpbd_query *q = &e->queries[e->num_queries];
+    if (mpbd_moveit_request_read(req_path, &r, L->err, L->errlen) != MPB_OK) {
+        L->failed = 1;
+        return -1;
+    }
+    int rc = -1, nj = e->num_joints;
+    unsigned char *set = calloc((size_t)nj + 1, 1);
+    e->num_queries++;
+    q->scene = scene;
+    q->tolerance = tolerance;
+    q->planning_time = r.allowed_planning_time;
+    q->name = strdup(name);
+    q->start = calloc((size_t)nj + 1, sizeof *q->start);
+    if (set == NULL || q->name == NULL || q->start == NULL ||
+        held_fill(e, q) != 0 ||
+        (r.group_name && (q->moveit_group = strdup(r.group_name)) == NULL)) {
+        fail_at(L, NULL, "out of memory");
+        goto done;
+    }
+    /* A request for another group than the one planned would be solved
+     * for the wrong joints; with joints: listed there is no name to
+     * compare, and the joint names are checked below. */
+    if (e->group_name && r.group_name &&
+        strcmp(e->group_name, r.group_name) != 0) {
+        at_place(L, req_path, r.group_at);
+        fail_at(L, NULL, "group_name '%s' is not the experiment's group '%s'",
+                r.group_name, e->group_name);
+        goto done;
+    }
+    /* The scene's robot state, then the request's start on top of it, as
+     * MoveIt reads a start state: a difference from the scene's. */
+    if (moveit_state(L, e, q, scene_path, &ms->state, q->start, set,
+                     clamp) != 0 ||
+        moveit_state(L, e, q, req_path, &r.start, q->start, set, clamp) != 0)
+        goto done;
+    for (int j = 0; j < nj; j++)
+        if (!set[j]) {
+            at_place(L, req_path, r.start_at);
+            fail_at(L, NULL, "start_state: no value for joint '%s' of the "
+                    "group (nor in the scene's robot_state)",
+                    e->joint_names[j]);
+            goto done;
+        }
+    if (mpbd_query_hold(e, q) != MPB_OK) {
+        fail_at(L, NULL, "query '%s': its held joint values do not fit the "
+                "robot", name);
+        goto done;
+    }
+    at_place(L, req_path, r.start_at);
+    if (check_state(L, e, scene, q->start, "start", NULL) != 0)
+        goto done;
+    q->goal_kind = r.goal_kind;
+    if (r.goal_kind == MPB_GOAL_JOINTS) {
+        double tol = INFINITY;
+        q->goal = calloc((size_t)nj + 1, sizeof *q->goal);
+        if (q->goal == NULL) {
+            fail_at(L, NULL, "out of memory");
+            goto done;
+        }
+        memset(set, 0, (size_t)nj);
+        for (int i = 0; i < r.goal.n; i++) {
+            int g = -1;
+            for (int k = 0; k < nj && g < 0; k++)
+                if (strcmp(e->joint_names[k], r.goal.names[i]) == 0)
+                    g = k;
+            at_place(L, req_path, r.goal.at[i]);
+            if (g < 0) {
+                double v;
+                char esc[256];
+                mpb_escape(r.goal.names[i], esc, sizeof esc);
+                if (mpb_world_held(e->scenes[scene].world, r.goal.names[i],
+                                   &v, NULL, NULL) == MPB_ENOTFOUND)
+                    fail_at(L, NULL, "joint '%s' is not a joint of the robot",
+                            esc);
+                else
+                    fail_at(L, NULL, "joint '%s' is outside the planning "
+                            "group: a goal constrains the group's joints",
+                            esc);
+                goto done;
+            }
+            q->goal[g] = r.goal.values[i];
+            set[g] = 1;
+            double a = r.tolerance_above[i], b = r.tolerance_below[i];
+            if (!isnan(a) && a < tol)
+                tol = a;
+            if (!isnan(b) && b < tol)
+                tol = b;
+        }
+        for (int j = 0; j < nj; j++)
+            if (!set[j]) {
+                at_place(L, req_path, r.goal_at);
+                fail_at(L, NULL, "goal_constraints: no joint constraint on "
+                        "joint '%s' of the group", e->joint_names[j]);
+                goto done;
+            }
+        /* One tolerance per query: the tightest the file gives, so that
+         * every goal mpbench accepts is one MoveIt accepts too. */
+        if (isfinite(tol))
+            q->tolerance = tol > 0 ? tol : 1e-9;
+        at_place(L, req_path, r.goal_at);
+        if (check_state(L, e, scene, q->goal, "goal", NULL) != 0)
+            goto done;
+    } else {
+        char why[256];
+        q->goal_link = r.link;
+        r.link = NULL;
+        memcpy(q->position, r.position, sizeof q->position);
+        memcpy(q->position_tolerance, r.position_tolerance,
+               sizeof q->position_tolerance);
+        memcpy(q->rpy, r.rpy, sizeof q->rpy);
+        memcpy(q->rpy_tolerance, r.rpy_tolerance, sizeof q->rpy_tolerance);
+        mpb_goal g = mpbd_query_goal(q);
+        int in = mpb_world_goal_contains(e->scenes[scene].world, &g, q->start,
+                                         why, sizeof why);
+        at_place(L, req_path, r.link_at);
+        if (in < 0) {
+            fail_at(L, NULL, "%s", why);
+            goto done;
+        }
+    }
+    rc = 0;
+done:
+    L->place_path = NULL;
+    free(set);
+    mpbd_moveit_request_clear(&r);
+    return rc;
+}
+
+/*
+ * One MoveIt scene file with its requests: a scene of the experiment and
+ * one query per request. The scene's robot text carries its allowed
+ * pairs, so every world of its runs has the same matrix.
+ */
+static int moveit_scene(loader *L, mpbd_experiment *e, yaml_node_t *entry,
+                        const char *robot_format, const char *robot,
+                        const char *name, const char *scene_path,
+                        char *const *req_paths, char *const *qnames, int nreq,
+                        int clamp, double tolerance)
+{
+    mpbd_moveit_scene ms;
+    mpbd_scene *sc = &e->scenes[e->num_scenes];
+    if (mpbd_moveit_scene_read(scene_path, name, &ms, L->err, L->errlen)
+        != MPB_OK) {
+        L->failed = 1;
+        return -1;
+    }
+    e->num_scenes++;
+    int rc = -1;
+    for (mpbd_scene *o = e->scenes; o < sc; o++)
+        if (strcmp(o->name, name) == 0) {
+            fail_at(L, entry, "scene '%s' appears twice", name);
+            goto done;
+        }
+    sc->name = strdup(name);
+    sc->scene_format = strdup("moveit-scene");
+    sc->scene_file = strdup(scene_path);
+    sc->robot_format = strdup(robot_format);
+    sc->scene = ms.text;
+    ms.text = NULL;
+    if (!sc->name || !sc->scene_format || !sc->scene_file ||
+        !sc->robot_format) {
+        fail_at(L, entry, "out of memory");
+        goto done;
+    }
+    if ((sc->robot = robot_with_pairs(L, e, robot_format, robot, scene_path,
+                                      &ms)) == NULL) {
+        fail_at(L, entry, "out of memory");
+        goto done;
+    }
+    mpb_hash_hex(sc->robot, strlen(sc->robot), sc->robot_hash);
+    mpb_hash_hex(sc->scene, strlen(sc->scene), sc->scene_hash);
+    if (open_world(L, e, sc, entry) != 0 || first_world(L, e, sc) != 0)
+        goto done;
+    for (int i = 0; i < nreq; i++) {
+        if (moveit_query(L, e, e->num_scenes - 1, &ms, scene_path,
+                         req_paths[i], qnames[i], clamp, tolerance) != 0)
+            goto done;
+    }
+    rc = 0;
+done:
+    L->place_path = NULL;
+    mpbd_moveit_scene_clear(&ms);
+    return rc;
+}
+
+/* A problem set: the NNNN of every sceneNNNN.yaml with a requestNNNN.yaml
+ * beside it, sorted (as numbers: same-width digits sort as text). */
+typedef struct problem_set {
+    char  **ids;
+    int     n;
+} problem_set;
+
+static int id_cmp(const void *a, const void *b)
+{
+    const char *x = *(char *const *)a, *y = *(char *const *)b;
+    size_t lx = strlen(x), ly = strlen(y);
+    return lx != ly ? (lx < ly ? -1 : 1) : strcmp(x, y);
+}
+
+static void problem_set_free(problem_set *ps)
+{
+    for (int i = 0; i < ps->n; i++)
+        free(ps->ids[i]);
+    free(ps->ids);
+    memset(ps, 0, sizeof *ps);
+}
+
+static int problem_set_read(loader *L, yaml_node_t *at, const char *dir,
+                            problem_set *ps)
+{
+    DIR *d = opendir(dir);
+    struct dirent *ent;
+    int cap = 0;
+    memset(ps, 0, sizeof *ps);
+    if (d == NULL)
+        return fail_at(L, at, "cannot read problem set %s: %s", dir,
+                       strerror(errno));
+    while ((ent = readdir(d)) != NULL) {
+        const char *nm = ent->d_name;
+        size_t len = strlen(nm), digits = 0;
+        if (len < 11 || strncmp(nm, "scene", 5) != 0 ||
+            strcmp(nm + len - 5, ".yaml") != 0)
+            continue;
+        for (size_t k = 5; k < len - 5; k++)
+            digits += isdigit((unsigned char)nm[k]) != 0;
+        if (digits != len - 10 || digits > 9)
+            continue;
+        char req[4096];
+        struct stat st;
+        snprintf(req, sizeof req, "%s/request%.*s.yaml", dir, (int)digits,
+                 nm + 5);
+        if (stat(req, &st) != 0)
+            continue;
+        if (ps->n == cap) {
+            char **ids = realloc(ps->ids, (size_t)(cap = cap * 2 + 64) *
+                                              sizeof *ids);
+            if (ids == NULL)
+                break;
+            ps->ids = ids;
+        }
+        if ((ps->ids[ps->n] = strndup(nm + 5, digits)) == NULL)
+            break;
+        ps->n++;
+    }
+    int broke = ent != NULL;
+    closedir(d);
+    if (broke)
+        return fail_at(L, at, "out of memory");
+    if (ps->n == 0)
+        return fail_at(L, at, "problem set %s holds no sceneNNNN.yaml with "
+                       "a requestNNNN.yaml beside it", dir);
+    qsort(ps->ids, (size_t)ps->n, sizeof *ps->ids, id_cmp);
+    return 0;
+}
+
+/* A path from the experiment file's folder. */
+static void path_from(const loader *L, const char *f, char *out, size_t n)
+{
+    snprintf(out, n, "%s%s", f[0] == '/' ? "" : L->dir, f);
+}
+
+/* The keys of a MoveIt entry: `problems: DIR` (with first, count) or
+ * `moveit_scene: FILE` with `requests`. */
+static const char *const moveit_keys[] = {"problems", "first", "count",
+                                          "moveit_scene", "requests", "name",
+                                          "tolerance", "clamp_joint_values",
+                                          NULL};
+
+static int is_moveit_entry(loader *L, yaml_node_t *m)
+{
+    return get(L, m, "problems") != NULL || get(L, m, "moveit_scene") != NULL;
+}
+
+/* How many scenes and queries a MoveIt entry makes (0 on error). */
+static int moveit_entry_size(loader *L, yaml_node_t *m, int *scenes,
+                             int *queries)
+{
+    if (get(L, m, "moveit_scene") != NULL) {
+        *scenes = 1;
+        *queries = (int)count_items(get(L, m, "requests"));
+        return 0;
+    }
+    char dir[4096];
+    problem_set ps;
+    const char *p = scalar(get(L, m, "problems"));
+    if (p == NULL || p[0] == '\0')
+        return fail_at(L, get(L, m, "problems"), "problems must be the path "
+                       "of a folder");
+    path_from(L, p, dir, sizeof dir);
+    if (problem_set_read(L, get(L, m, "problems"), dir, &ps) != 0)
+        return -1;
+    *scenes = *queries = ps.n;
+    problem_set_free(&ps);
+    return 0;
+}
+
+static int load_moveit_entry(loader *L, mpbd_experiment *e, yaml_node_t *m,
+                             const char *robot_format, const char *robot)
+{
+    yaml_node_t *n;
+    int first = 1, num = INT_MAX, clamp = 0, rc = -1;
+    double tolerance = 1e-3;
+    if (only_keys(L, m, moveit_keys) != 0)
+        return -1;
+    if ((get(L, m, "problems") != NULL) == (get(L, m, "moveit_scene") != NULL))
+        return fail_at(L, m, "a MoveIt entry names 'problems' (a folder) or "
+                       "'moveit_scene' (a file), not both");
+    if ((n = get(L, m, "tolerance")) != NULL &&
+        (parse_double(L, n, "tolerance", &tolerance) != 0 ||
+         (tolerance <= 0 && fail_at(L, n, "tolerance must be positive"))))
+        return -1;
+    if ((n = get(L, m, "clamp_joint_values")) != NULL) {
+        const char *b = scalar(n);
+        if (b == NULL || (strcmp(b, "true") != 0 && strcmp(b, "false") != 0))
+            return fail_at(L, n, "clamp_joint_values must be true or false");
+        clamp = strcmp(b, "true") == 0;
+    }
+    if (get(L, m, "moveit_scene") != NULL) {
+        yaml_node_t *reqs = get(L, m, "requests"), *sn = get(L, m,
+                                                             "moveit_scene");
+        char *name = need_string(L, m, "name");
+        if (name == NULL)
+            return -1;
+        if (get(L, m, "first") || get(L, m, "count")) {
+            free(name);
+            return fail_at(L, get(L, m, "first") ? get(L, m, "first")
+                                                 : get(L, m, "count"),
+                           "first and count slice a problem set");
+        }
+        int k = (int)count_items(reqs);
+        char **paths = calloc((size_t)k + 1, sizeof *paths);
+        char **qnames = calloc((size_t)k + 1, sizeof *qnames);
+        char spath[4096];
+        if (scalar(sn) == NULL || scalar(sn)[0] == '\0' || k == 0) {
+            fail_at(L, k == 0 ? (reqs ? reqs : m) : sn, k == 0 ?
+                    "requests must be a non-empty list of MoveIt request "
+                    "files" : "moveit_scene must be the path of a file");
+            goto one_done;
+        }
+        path_from(L, scalar(sn), spath, sizeof spath);
+        for (int i = 0; paths && qnames && i < k; i++) {
+            yaml_node_t *it = node(L, reqs->data.sequence.items.start[i]);
+            const char *f = scalar(it);
+            char p[4096];
+            if (f == NULL || f[0] == '\0') {
+                fail_at(L, it, "a request must be the path of a file");
+                goto one_done;
+            }
+            path_from(L, f, p, sizeof p);
+            const char *base = strrchr(f, '/') ? strrchr(f, '/') + 1 : f;
+            size_t bl = strlen(base);
+            if (bl > 5 && strcmp(base + bl - 5, ".yaml") == 0)
+                bl -= 5;
+            paths[i] = strdup(p);
+            qnames[i] = strndup(base, bl);
+            for (int o = 0; o < i && qnames[i]; o++)
+                if (strcmp(qnames[o], qnames[i]) == 0) {
+                    fail_at(L, it, "query '%s' appears twice in scene '%s'",
+                            qnames[i], name);
+                    goto one_done;
+                }
+        }
+        rc = moveit_scene(L, e, m, robot_format, robot, name, spath, paths,
+                          qnames, k, clamp, tolerance);
+one_done:
+        for (int i = 0; i < k; i++) {
+            free(paths ? paths[i] : NULL);
+            free(qnames ? qnames[i] : NULL);
+        }
+        free(paths);
+        free(qnames);
+        free(name);
+        return rc;
+    }
+
+    char dir[4096];
+    problem_set ps;
+    if (get(L, m, "name") != NULL)
+        return fail_at(L, get(L, m, "name"), "a problem set's scenes are "
+                       "named after its folder and files");
+    if ((n = get(L, m, "first")) &&
+        parse_int_in(L, n, "first", 1, INT_MAX, &first) != 0)
+        return -1;
+    if ((n = get(L, m, "count")) && parse_positive_int(L, n, "count", &num))
+        return -1;
+    path_from(L, scalar(get(L, m, "problems")), dir, sizeof dir);
+    if (problem_set_read(L, get(L, m, "problems"), dir, &ps) != 0)
+        return -1;
+    if (first > ps.n) {
+        fail_at(L, get(L, m, "first"), "first: %d is past the %d problems "
+                "of %s", first, ps.n, dir);
+        problem_set_free(&ps);
+        return -1;
+    }
+    /* The set's name: its folder's ("box_panda"). */
+    char set[256];
+    size_t dl = strlen(dir);
+    while (dl > 1 && dir[dl - 1] == '/')
+        dl--;
+    const char *b = dir + dl;
+    while (b > dir && b[-1] != '/')
+        b--;
+    snprintf(set, sizeof set, "%.*s", (int)(dir + dl - b), b);
+    rc = 0;
+    for (int i = first - 1; rc == 0 && i < ps.n && i - (first - 1) < num;
+         i++) {
+        char name[512], spath[4200], rpath[4200];
+        char *rp = rpath, *qn = name;
+        snprintf(name, sizeof name, "%s/%s", set, ps.ids[i]);
+        snprintf(spath, sizeof spath, "%s/scene%s.yaml", dir, ps.ids[i]);
+        snprintf(rpath, sizeof rpath, "%s/request%s.yaml", dir, ps.ids[i]);
+        rc = moveit_scene(L, e, m, robot_format, robot, name, spath, &rp, &qn,
+                          1, clamp, tolerance);
+    }
+    problem_set_free(&ps);
+    return rc;
+}
+
 static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     char *robot_format = NULL, *robot = NULL;
@@ -878,10 +1575,17 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
         load_group(L, e, get(L, L->robot, "joints")) != 0)
         goto done;
     e->num_scenes = 0;
-    e->scenes = calloc(count_items(list) + 1, sizeof *e->scenes);
+    size_t total_scenes = 0;
     for (yaml_node_item_t *it = list->data.sequence.items.start;
-         it < list->data.sequence.items.top; it++)
-        total_queries += count_items(get(L, node(L, *it), "queries"));
+         it < list->data.sequence.items.top; it++) {
+        yaml_node_t *m = node(L, *it);
+        int ns = 1, nq = (int)count_items(get(L, m, "queries"));
+        if (is_moveit_entry(L, m) && moveit_entry_size(L, m, &ns, &nq) != 0)
+            goto done;
+        total_scenes += (size_t)ns;
+        total_queries += (size_t)nq;
+    }
+    e->scenes = calloc(total_scenes + 1, sizeof *e->scenes);
     e->queries = calloc(total_queries + 1, sizeof *e->queries);
     if (e->scenes == NULL || e->queries == NULL) {
         fail_at(L, list, "out of memory");
@@ -899,6 +1603,11 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
             fail_at(L, m, "a scene must be a mapping of name, format, file "
                           "or text, queries");
             goto done;
+        }
+        if (is_moveit_entry(L, m)) {
+            if (load_moveit_entry(L, e, m, robot_format, robot) != 0)
+                goto done;
+            continue;
         }
         e->num_scenes++;
         if (get(L, m, "joints") != NULL) {
@@ -922,12 +1631,20 @@ static int load_scenes(loader *L, mpbd_experiment *e, yaml_node_t *root)
         }
         mpb_hash_hex(sc->robot, strlen(sc->robot), sc->robot_hash);
         mpb_hash_hex(sc->scene, strlen(sc->scene), sc->scene_hash);
-        if (open_world(L, e, sc, m) != 0 ||
+        if (open_world(L, e, sc, m) != 0 || first_world(L, e, sc) != 0 ||
             load_queries(L, e, e->num_scenes - 1, m) != 0)
             goto done;
     }
+    /* Every query holds every joint some query names. */
+    for (int i = 0; i < e->num_queries; i++)
+        if (held_fill(e, &e->queries[i]) != 0) {
+            fail_at(L, list, "out of memory");
+            goto done;
+        }
     rc = 0;
 done:
+    mpb_robot_free(L->model);
+    L->model = NULL;
     free(robot_format);
     free(robot);
     return rc;
@@ -1263,6 +1980,8 @@ void mpbd_experiment_free(mpbd_experiment *e)
         free(e->queries[i].start);
         free(e->queries[i].goal);
         free(e->queries[i].goal_link);
+        free(e->queries[i].held);
+        free(e->queries[i].moveit_group);
     }
     for (int i = 0; i < e->num_configs; i++) {
         mpbd_config *c = &e->configs[i];
@@ -1279,6 +1998,10 @@ void mpbd_experiment_free(mpbd_experiment *e)
     for (int j = 0; j < e->num_joints && e->joint_names; j++)
         free(e->joint_names[j]);
     free(e->joint_names);
+    for (int j = 0; j < e->num_held; j++)
+        free(e->held_names[j]);
+    free(e->held_names);
+    free(e->held_default);
     for (int j = 0; j < e->num_group; j++)
         free(e->group[j]);
     free(e->group);
@@ -1357,5 +2080,31 @@ int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len)
              "-o robot.srdf' and give the file as the robot's srdf", n,
              adjacent, dflt, always, never, MPB_WORLD_ACM_SAMPLES,
              e->robot_file ? e->robot_file : "ROBOT.urdf", joints);
+    return 1;
+}
+
+int mpbd_experiment_moveit_note(const mpbd_experiment *e, char *buf,
+                                size_t len)
+{
+    int moveit = 0, other_time = 0;
+    double most = 0;
+    for (int i = 0; i < e->num_queries; i++) {
+        const mpbd_query *q = &e->queries[i];
+        if (q->moveit_group == NULL && q->planning_time == 0)
+            continue;
+        moveit++;
+        if (q->planning_time > 0 && q->planning_time != e->time_limit) {
+            other_time++;
+            most = q->planning_time > most ? q->planning_time : most;
+        }
+    }
+    if (moveit == 0 || (e->held_clamped == 0 && e->held_ignored == 0 &&
+                        other_time == 0))
+        return 0;
+    snprintf(buf, len, "%d MoveIt queries: %d joint values moved into their "
+             "limits and %d of fixed joints ignored (clamp_joint_values); %d "
+             "ask for an allowed_planning_time other than the time_limit (up "
+             "to %g s), which rules (%g s)", moveit, e->held_clamped,
+             e->held_ignored, other_time, most, e->time_limit);
     return 1;
 }

@@ -52,6 +52,13 @@ typedef struct mpbd_query {
     double  position[3], position_tolerance[3];  /* box centre, half sizes (m) */
     double  rpy[3], rpy_tolerance[3];            /* rad; a tolerance >= pi
                                                     leaves that angle free */
+    double *held;            /* e->num_held values, one per held joint:
+                                what the query holds them at */
+    int     num_held_set;    /* while loading: how many of held are set */
+    /* From a MoveIt request (docs/moveit-problems.md), else NULL / 0: */
+    char   *moveit_group;    /* its group_name */
+    double  planning_time;   /* its allowed_planning_time, s (reported;
+                                the experiment's time_limit rules) */
     int64_t db_id;
 } mpbd_query;
 
@@ -80,6 +87,16 @@ typedef struct mpbd_experiment {
     char  **joint_names;
     unsigned char *wraps;    /* per joint, nonzero for continuous joints */
 
+    /* Joints outside the group that some query or robot.joint_values
+     * names: each query holds every one (its own value, the robot's, or
+     * the world's default), so that all worlds of a run agree. */
+    int     num_held;
+    char  **held_names;
+    double *held_default;    /* robot.joint_values, else the world's */
+    int     held_clamped;    /* MoveIt joint values moved into their
+                                limits (clamp_joint_values: true) */
+    int     held_ignored;    /* and values of fixed joints skipped */
+
     mpbd_scene  *scenes;
     int          num_scenes;
     mpbd_query  *queries;
@@ -105,10 +122,25 @@ void mpbd_experiment_free(mpbd_experiment *e);
 int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len);
 
 /*
+ * 1 and one line in buf when queries came from MoveIt problem files and
+ * something of them is worth saying (values clamped into their limits,
+ * planning times that differ from the time limit); else 0.
+ */
+int mpbd_experiment_moveit_note(const mpbd_experiment *e, char *buf,
+                                size_t len);
+
+/*
  * The goal of q as verify.h describes goals, for mpb_verify_path(). The
  * result points into q: it lives as long as q does.
  */
 mpb_goal mpbd_query_goal(const mpbd_query *q);
+
+/*
+ * Make the world of q's scene hold q's values of the joints outside the
+ * group (world.h: mpb_world_hold()), before it checks q's paths. MPB_OK,
+ * or the world's code (the values were checked at loading).
+ */
+int mpbd_query_hold(const mpbd_experiment *e, const mpbd_query *q);
 
 /* The seed of one run, derived from the experiment seed and the run's place. */
 int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,

@@ -362,6 +362,10 @@ static int setup_experiment(mpbd *d, int fresh)
             .goal_link = q->goal_link, .goal_region = is_region ? region : NULL,
         };
         rc = mpb_store_query_add(s, e->scenes[q->scene].db_id, &qi, &q->db_id);
+        if (rc == MPB_OK)
+            rc = mpb_store_query_set_held(s, q->db_id, e->num_held,
+                                          (const char *const *)e->held_names,
+                                          q->held);
     }
     /* Repetition first, so that a partial experiment covers every planner
      * and query evenly. */
@@ -498,6 +502,8 @@ int main(int argc, char **argv)
     }
     d.runs_total = (int)count_runs(d.exp);
     if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
+        mpbd_log("%s", err);
+    if (mpbd_experiment_moveit_note(d.exp, err, sizeof err))
         mpbd_log("%s", err);
     mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
     if (o.check) {

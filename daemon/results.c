@@ -318,6 +318,9 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
     /* runs.verify_time: the daemon's verification and metrics of every
      * stage, a cost of the scene (its meshes), not of the planner. */
     double verify_start = mpb_monotonic_s();
+    /* The scene's world holds the joints outside the group as this
+     * query does (its start state may set a Panda's fingers). */
+    mpbd_query_hold(d->exp, q);
     for (int i = 0; i < m->num_stages; i++) {
         measure_stage(d, q, &m->stages[i], &works[i]);
         names[i] = m->stages[i].name;

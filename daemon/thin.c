@@ -51,6 +51,7 @@ double mpbd_lever_arm(const mpbd_experiment *e, int scene)
     double *tmp = q + nj;
     for (int i = 0; i < e->num_queries; i++)
         if (e->queries[i].scene == scene) {
+            mpbd_query_hold(e, &e->queries[i]);   /* its held joints */
             double l = lever_at(w, e->queries[i].start, tmp, nj);
             best = l > best ? l : best;
         }

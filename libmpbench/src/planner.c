@@ -15,6 +15,8 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
+#include "mpbench/robot.h"
+#include "mpbench/world.h"
 #include "mpb_daemon_status_t.h"
 #include "mpb_planner_announce_t.h"
 #include "mpb_run_ack_t.h"
@@ -917,4 +919,34 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     mpb_auth_free(s->auth);
     free(s);
     return rc;
+}
+
+int mpb_request_hold(const mpb_plan_request_t *req, struct mpb_world *w,
+                     struct mpb_robot *r, char *err, size_t errlen)
+{
+    if (err && errlen)
+        err[0] = '\0';
+    if (req == NULL || req->num_held < 0)
+        return MPB_EINVAL;
+    if (req->num_held == 0)
+        return MPB_OK;
+    if (req->held_names == NULL || req->held_values == NULL)
+        return MPB_EINVAL;
+    if (w != NULL) {
+        int rc = mpb_world_hold(w, (const char *const *)req->held_names,
+                                req->held_values, req->num_held, err, errlen);
+        if (rc != MPB_OK)
+            return rc;
+    }
+    for (int i = 0; r != NULL && i < req->num_held; i++) {
+        int rc = mpb_robot_set_passive(r, req->held_names[i],
+                                       req->held_values[i]);
+        if (rc != MPB_OK) {
+            if (err && errlen)
+                snprintf(err, errlen, "joint '%s' cannot be held at %g",
+                         req->held_names[i], req->held_values[i]);
+            return rc;
+        }
+    }
+    return MPB_OK;
 }

@@ -1077,6 +1077,27 @@ int mpb_robot_set_passive(mpb_robot *r, const char *joint, double value)
     return MPB_OK;
 }
 
+int mpb_robot_get_passive(const mpb_robot *r, const char *joint,
+                          double *value, double *lo, double *hi)
+{
+    if (!r || !joint)
+        return MPB_EINVAL;
+    int i = find_joint_link(&r->model, joint);
+    if (i < 0)
+        return MPB_ENOTFOUND;
+    const kin *k = &r->kin[i];
+    if (k->chain >= 0 || !is_active_type(k->type))
+        return MPB_EINVAL;
+    int wraps = k->type == MPB_JOINT_CONTINUOUS;
+    if (value)
+        *value = k->passive;
+    if (lo)
+        *lo = wraps ? -M_PI : r->model.links[i].lo;
+    if (hi)
+        *hi = wraps ? M_PI : r->model.links[i].hi;
+    return MPB_OK;
+}
+
 int mpb_robot_within_limits(const mpb_robot *r, const double *q)
 {
     if (!r || !q)

@@ -184,13 +184,15 @@ static int create_schema(mpb_store *s)
      * before runs.world_setup_time, NULL: its runs' planner_values hold
      * the value, if a planner reported it; one made before runs.verify_time,
      * NULL: the daemon's verification was not timed; one made before
-     * runs.memory, NULL: no planner reported its memory. */
+     * runs.memory, NULL: no planner reported its memory; one made before
+     * queries.held, NULL: its joints outside the group held defaults. */
     if ((rc = add_missing_column(s, "runs", "final_metrics", "BLOB")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "world_setup_time", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "verify_time", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "memory", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_link", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK ||
+        (rc = add_missing_column(s, "queries", "held", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK ||
         (rc = add_log_header(s)) != MPB_OK)
         goto fail;

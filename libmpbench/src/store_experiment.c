@@ -336,6 +336,35 @@ done:
     return rc;
 }
 
+int mpb_store_query_set_held(mpb_store *s, int64_t query_id, int n,
+                             const char *const *names, const double *values)
+{
+    if (n <= 0)
+        return MPB_OK;
+    size_t cap = 1;
+    for (int i = 0; i < n; i++)
+        cap += strlen(names[i]) + 2 + 32;
+    char *text = malloc(cap), *p = text;
+    if (text == NULL)
+        return mpb__store_fail(s, MPB_ENOMEM, "held joints: out of memory");
+    *p = '\0';
+    for (int i = 0; i < n; i++)
+        p += snprintf(p, cap - (size_t)(p - text), "%s%s=%.17g", i ? " " : "",
+                      names[i], values[i]);
+    sqlite3_stmt *up = mpb__store_prepare(s,
+        "UPDATE queries SET held = ? WHERE id = ?");
+    int rc = MPB_EDB;
+    if (up != NULL) {
+        sqlite3_bind_text(up, 1, text, -1, SQLITE_STATIC);
+        sqlite3_bind_int64(up, 2, query_id);
+        rc = sqlite3_step(up) == SQLITE_DONE
+                 ? MPB_OK : mpb__store_db_fail(s, "record held joints");
+        sqlite3_finalize(up);
+    }
+    free(text);
+    return rc;
+}
+
 int mpb_store_run_add(mpb_store *s, int64_t experiment_id,
                       int64_t planner_config_id, int64_t query_id,
                       int repetition, int64_t seed)

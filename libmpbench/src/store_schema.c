@@ -56,6 +56,7 @@ const char mpb__schema_v1[] =
     "  goal_tolerance REAL,\n"
     "  goal_link      TEXT,\n"
     "  goal_region    TEXT,\n"
+    "  held           TEXT,\n"
     "  UNIQUE(scene_id, name));\n"
 
     "CREATE TABLE IF NOT EXISTS runs(\n"

@@ -143,6 +143,10 @@ static void request(cursor *c)
         string(c);                         /* joint_names */
     doubles(c, nj);                        /* start */
     goal(c);
+    int64_t nh = count(c, 2, 5 + 8);
+    for (int64_t i = nh; i > 0 && !c->bad; i--)
+        string(c);                         /* held_names */
+    doubles(c, nh);                        /* held_values */
     for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
         string(c);                         /* stored */
 }

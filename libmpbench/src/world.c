@@ -258,6 +258,32 @@ int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len)
     return w->provider->contact(w->impl, q, what, len);
 }
 
+int mpb_world_hold(mpb_world *w, const char *const *joints,
+                   const double *values, int n, char *err, size_t errlen)
+{
+    mpb__set_err(err, errlen, "%s", "");
+    if (!w || n < 0 || (n > 0 && (!joints || !values)))
+        return MPB_EINVAL;
+    if (n == 0)
+        return MPB_OK;
+    if (!w->provider->hold) {
+        mpb__set_err(err, errlen, "joint '%s': a '%s' robot has no joints "
+                     "outside its group", joints[0], w->provider->robot_format);
+        return MPB_EUNSUPPORTED;
+    }
+    return w->provider->hold(w->impl, joints, values, n, err, errlen);
+}
+
+int mpb_world_held(const mpb_world *w, const char *joint, double *value,
+                   double *lo, double *hi)
+{
+    if (!w || !joint)
+        return MPB_EINVAL;
+    if (!w->provider->held)
+        return MPB_EUNSUPPORTED;
+    return w->provider->held(w->impl, joint, value, lo, hi);
+}
+
 int mpb_world_num_allowed_pairs(const mpb_world *w)
 {
     if (!w || !w->provider->num_allowed)

@@ -53,6 +53,12 @@ typedef struct mpb__world_provider {
      */
     int    (*contact)(void *impl, const double *q, char *what, size_t len);
 
+    /* Optional: joints outside the group (mpb_world_hold()); NULL: none. */
+    int    (*hold)(void *impl, const char *const *joints, const double *values,
+                   int n, char *err, size_t errlen);
+    int    (*held)(void *impl, const char *joint, double *value, double *lo,
+                   double *hi);
+
     /* Optional: the allowed-collision matrix (world.h); NULL: none. */
     int    (*num_allowed)(void *impl);
     int    (*allowed_pair)(void *impl, int i, mpb_world_acm_pair *out);

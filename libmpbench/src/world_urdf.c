@@ -786,6 +786,49 @@ static int urdf_contact(void *impl, const double *q, char *what, size_t len)
     return 0;
 }
 
+static int urdf_held(void *impl, const char *joint, double *value, double *lo,
+                     double *hi)
+{
+    urdf_world *u = impl;
+    return mpb_robot_get_passive(u->robot, joint, value, lo, hi);
+}
+
+/* Hold the joints, then put the links that do not move where they now
+ * are (a PR2's torso lifts the arm's base with it). */
+static int urdf_hold(void *impl, const char *const *joints,
+                     const double *values, int n, char *err, size_t errlen)
+{
+    urdf_world *u = impl;
+    int rc = MPB_OK;
+    for (int i = 0; i < n && rc == MPB_OK; i++) {
+        double lo, hi;
+        const char *j = joints[i] ? joints[i] : "";
+        rc = mpb_robot_get_passive(u->robot, j, NULL, &lo, &hi);
+        if (rc == MPB_ENOTFOUND)
+            mpb__set_err(err, errlen, "joint '%s' is not a joint of the robot",
+                         j);
+        else if (rc != MPB_OK && mpb_robot_joint_index(u->robot, j) >= 0)
+            mpb__set_err(err, errlen, "joint '%s' is in the planning group: "
+                         "its value is the start's, not a held one", j);
+        else if (rc != MPB_OK)
+            mpb__set_err(err, errlen, "joint '%s' cannot hold a value (a "
+                         "fixed, floating or planar joint)", j);
+        else if ((rc = mpb_robot_set_passive(u->robot, j, values[i])) != MPB_OK)
+            mpb__set_err(err, errlen, "joint '%s' = %g is outside its limits "
+                         "[%g, %g]", j, values[i], lo, hi);
+    }
+    double *q0 = calloc((size_t)mpb_robot_num_joints(u->robot) + 1, sizeof *q0);
+    if (!q0)
+        return MPB_ENOMEM;
+    default_state(u->robot, q0);
+    if (mpb_robot_fk(u->robot, q0, u->poses) == MPB_OK)
+        for (int l = 0; l < u->num_links; l++)
+            if (has_body(u, l) && !mpb_robot_get_link(u->robot, l)->moves)
+                mpb_collision_set_pose(u->coll, l, &u->poses[l]);
+    free(q0);
+    return rc;
+}
+
 static int urdf_num_allowed(void *impl)
 {
     return ((urdf_world *)impl)->num_pairs;
@@ -867,6 +910,8 @@ const mpb__world_provider mpb__world_urdf = {
     .contact      = urdf_contact,
     .num_allowed  = urdf_num_allowed,
     .allowed_pair = urdf_allowed_pair,
+    .hold         = urdf_hold,
+    .held         = urdf_held,
 };
 
 struct mpb_collision *mpb__urdf_collision(mpb_world *w)

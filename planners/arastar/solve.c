@@ -197,6 +197,8 @@ static int solve_run(run *r, const ara_context *ctx,
                                         sizeof err);
     if (rc == MPB_OK)
         rc = mpb_scene_parse(req->scene, &r->scene, err, sizeof err);
+    if (rc == MPB_OK)
+        rc = mpb_request_hold(req, r->world, r->robot, err, sizeof err);
     if (rc != MPB_OK) {
         mpb_result_set_message(res, "%s", err[0] ? err : mpb_strerror(rc));
         return rc;

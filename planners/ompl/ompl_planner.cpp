@@ -173,7 +173,8 @@ mpb_robot *cached_robot(CachedWorld &c, const mpb_plan_request_t *req, std::stri
     }
     char msg[256] = "";
     if (mpb_robot_load_urdf_joints(req->robot, req->joint_names, req->num_joints,
-                                   &c.robot, msg, sizeof msg) != MPB_OK) {
+                                   &c.robot, msg, sizeof msg) != MPB_OK ||
+        mpb_request_hold(req, nullptr, c.robot, msg, sizeof msg) != MPB_OK) {
         err = msg;
         return nullptr;
     }
@@ -432,6 +433,11 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
         t0 += setup;
     }
     mpb_world *world = cached->world;
+    // The joints outside the group hold this request's values, in the
+    // world and in the robot for IK, whatever the last request held.
+    char held_err[256];
+    if (mpb_request_hold(req, world, cached->robot, held_err, sizeof held_err) != MPB_OK)
+        throw InvalidRequest(std::string("held joints: ") + held_err);
 
     // perm[i]: the world joint of the request's joint i.
     const int n = mpb_world_num_joints(world);

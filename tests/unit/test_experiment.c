@@ -411,6 +411,161 @@ static void a_group_state_by_name(void **state)
                            "panda_joint7]\n",
                            "{name: q, start: ready, goal: extended}"));
     assert_error("12:26", "start must be a list of 7 numbers");
+/* An arm j that carries a finger on a slide k (0 .. 1, outside the
+ * group): held at 0.5 the finger reaches the box at x = 1 when the arm
+ * points along x. */
+static void write_slide_robot(void)
+{
+    char path[128];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/slide.urdf", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fputs("<robot name='r'><link name='a'/>"
+          "<link name='b'><collision><geometry><box size='0.2 0.2 0.2'/>"
+          "</geometry></collision></link>"
+          "<link name='f'><collision><geometry><sphere radius='0.1'/>"
+          "</geometry></collision></link>"
+          "<joint name='j' type='revolute'><parent link='a'/><child link='b'/>"
+          "<axis xyz='0 0 1'/><limit lower='-2' upper='2' effort='1' "
+          "velocity='1'/></joint>"
+          "<joint name='k' type='prismatic'><parent link='b'/><child link='f'/>"
+          "<origin xyz='0.5 0 0'/><axis xyz='1 0 0'/><limit lower='0' "
+          "upper='1' effort='1' velocity='1'/></joint></robot>\n", f);
+    assert_int_equal(fclose(f), 0);
+}
+
+#define SLIDE_SCENE "\"s\\n* box\\n1 0 0\\n0 0 0 1\\n1\\nbox\\n0.2 0.2 0.2\\n" \
+                    "0 0 0\\n0 0 0 1\\n0 0 0 0\\n0\\n.\\n\""
+
+static mpbd_experiment *load_slide(const char *robot_extra, const char *queries)
+{
+    char text[2048];
+    write_slide_robot();
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             "robot: {format: urdf, file: slide.urdf, joints: [j]%s}\n"
+             "scenes: [{name: s, format: moveit-scene, text: " SLIDE_SCENE
+             ",\n  queries: [%s]}]\n" PLANNERS, robot_extra, queries);
+    return load_text(text);
+}
+
+static void joints_outside_the_group_hold_values(void **state)
+{
+    mpbd_experiment *e;
+    (void)state;
+    /* Held at 0 (the default) the finger is clear of the box. */
+    assert_non_null(e = load_slide("", "{name: q, start: [0], goal: [1]}"));
+    assert_int_equal(e->num_held, 0);
+    mpbd_experiment_free(e);
+    /* The robot's value, and a query's own. */
+    assert_non_null(e = load_slide(", joint_values: {k: 0.5}",
+                                   "{name: q, start: [1.5], goal: [1]},\n"
+                                   "  {name: r, start: [0], goal: [1], "
+                                   "joint_values: {k: 0.1}}"));
+    assert_int_equal(e->num_held, 1);
+    assert_string_equal(e->held_names[0], "k");
+    assert_true(e->held_default[0] == 0.5);
+    assert_true(e->queries[0].held[0] == 0.5);
+    assert_true(e->queries[1].held[0] == 0.1);
+    mpbd_experiment_free(e);
+    /* Held at 0.5 the finger is in the box at j = 0. */
+    assert_null(load_slide(", joint_values: {k: 0.5}",
+                           "{name: q, start: [0], goal: [1]}"));
+    assert_non_null(strstr(err, "start is in collision"));
+    /* A joint only a later query names holds its default in the others. */
+    assert_non_null(e = load_slide("", "{name: q, start: [0], goal: [1]},\n"
+                                   "  {name: r, start: [1.5], goal: [1], "
+                                   "joint_values: {k: 0.5}}"));
+    assert_int_equal(e->num_held, 1);
+    assert_true(e->queries[0].held[0] == 0.0 && e->queries[1].held[0] == 0.5);
+    mpbd_experiment_free(e);
+
+    assert_null(load_slide(", joint_values: {kk: 0.5}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:69", "joint 'kk' is not a joint of the robot");
+    assert_null(load_slide(", joint_values: {j: 0.5}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:69", "joint 'j' is in the planning group: its value "
+                 "belongs in the start, not held");
+    assert_null(load_slide(", joint_values: {k: 1.5}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:72", "joint 'k' = 1.5 is outside its limits [0, 1]");
+    assert_null(load_slide(", joint_values: {k: nan}", "{name: q, start: [0], goal: [1]}"));
+    assert_error("2:72", "a joint value must be a number, not 'nan'");
+}
+
+/* A MoveIt scene file with requests (moveit.h), on the slide robot: the
+ * scene's and the start's values of k are held, the request's start
+ * wins, the tightest tolerance rules, pose goals name a link, and the
+ * scene's allowed pairs travel in its robot text. */
+static void moveit_files_become_scenes_and_queries(void **state)
+{
+    char text[2048], p[160];
+    FILE *f;
+    mpbd_experiment *e;
+    (void)state;
+    write_slide_robot();
+    static const struct { const char *name, *text; } files[] = {
+        {"s.yaml", "robot_state: {joint_state: {name: [j, k], position: [0, 0.2]}}\n"
+                   "allowed_collision_matrix: {entry_names: [b, f], "
+                   "entry_values: [[false, true], [true, false]]}\n"
+                   "world: {collision_objects: [{id: box, primitives: [{type: box, "
+                   "dimensions: [0.2, 0.2, 0.2]}], primitive_poses: [{position: [1, 0, 0], "
+                   "orientation: [0, 0, 0, 1]}]}]}\n"},
+        {"r1.yaml", "group_name: arm\nallowed_planning_time: 5\n"
+                    "start_state: {joint_state: {name: [j], position: [1.5]}}\n"
+                    "goal_constraints: [{joint_constraints: [{joint_name: j, "
+                    "position: 1.4, tolerance_above: 0.01, tolerance_below: 0.03}]}]\n"},
+        {"r2.yaml", "start_state: {joint_state: {name: [j, k], position: [1.5, 1.5]}}\n"
+                    "goal_constraints: [{position_constraints: [{link_name: f, "
+                    "constraint_region: {primitives: [{type: box, dimensions: [0.1, 0.1, 0.1]}], "
+                    "primitive_poses: [{position: [0, 0.7, 0], orientation: [0, 0, 0, 1]}]}}]}]\n"},
+        {"r3.yaml", "goal_constraints: [{position_constraints: [{link_name: g, "
+                    "constraint_region: {primitives: [{type: box, dimensions: [0.1, 0.1, 0.1]}], "
+                    "primitive_poses: [{position: [0, 0.7, 0], orientation: [0, 0, 0, 1]}]}}]}]\n"},
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snprintf(p, sizeof p, "%s/%s", dir, files[i].name);
+        assert_non_null(f = fopen(p, "w"));
+        fputs(files[i].text, f);
+        assert_int_equal(fclose(f), 0);
+    }
+#define MOVEIT_EXP(requests, extra)                                          \
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"    \
+             "robot: {format: urdf, file: slide.urdf, joints: [j]}\n"        \
+             "scenes: [{name: m, moveit_scene: s.yaml, requests: [%s]%s}]\n" \
+             PLANNERS, requests, extra)
+    MOVEIT_EXP("r1.yaml, r2.yaml", ", clamp_joint_values: true");
+    assert_non_null(e = load_text(text));
+    assert_int_equal(e->num_scenes, 1);
+    assert_int_equal(e->num_queries, 2);
+    assert_string_equal(e->queries[0].name, "r1");
+    assert_true(e->queries[0].start[0] == 1.5);
+    assert_true(e->queries[0].goal[0] == 1.4);
+    assert_true(e->queries[0].tolerance == 0.01);
+    assert_string_equal(e->queries[0].moveit_group, "arm");
+    assert_true(e->queries[0].planning_time == 5);
+    assert_int_equal(e->num_held, 1);
+    assert_true(e->queries[0].held[0] == 0.2);   /* the scene's */
+    assert_true(e->queries[1].held[0] == 1.0);   /* 1.5, clamped */
+    assert_int_equal(e->held_clamped, 1);
+    assert_int_equal(e->queries[1].goal_kind, MPB_GOAL_POSE_REGION);
+    assert_string_equal(e->queries[1].goal_link, "f");
+    assert_true(e->queries[1].position_tolerance[0] == 0.05);
+    assert_non_null(strstr(e->scenes[0].robot, "<disable_collisions link1=\"b\" "
+                           "link2=\"f\" reason=\"Scene\"/>"));
+    assert_non_null(strstr(e->scenes[0].scene, "* box\n"));
+    mpbd_experiment_free(e);
+
+    /* Without clamping, 1.5 is outside k's limits: at its place. */
+    MOVEIT_EXP("r2.yaml", "");
+    assert_null(load_text(text));
+    snprintf(p, sizeof p, "%s/r2.yaml:1:39: joint 'k' = 1.5 is outside its "
+             "limits [0, 1]", dir);
+    assert_string_equal(err, p);
+    /* An unknown link in a pose goal, at its name. */
+    MOVEIT_EXP("r3.yaml", "");
+    assert_null(load_text(text));
+    snprintf(p, sizeof p, "%s/r3.yaml:1:56: ", dir);
+    if (strncmp(err, p, strlen(p)) != 0 || !strstr(err, "'g'"))
+        fail_msg("%s", err);
+#undef MOVEIT_EXP
 }
 
 int main(void)
@@ -423,6 +578,8 @@ int main(void)
         cmocka_unit_test(a_scene_without_queries_has_a_line),
         cmocka_unit_test(an_unknown_format_is_pointed_at),
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
+        cmocka_unit_test(joints_outside_the_group_hold_values),
+        cmocka_unit_test(moveit_files_become_scenes_and_queries),
         cmocka_unit_test(faults_are_where_their_file_is_named),
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),

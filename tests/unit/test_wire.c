@@ -73,6 +73,8 @@ static int setup(void **state)
     mpb_param_t par = {"range", "0.3"};
     char *stored[] = {"00000000000000000000000000000001",
                       "00000000000000000000000000000002"};
+    char *held_names[] = {"finger_joint1", "finger_joint2"};
+    double held_values[] = {0.04, 0.035};
     mpb_plan_request_t req = {
         .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
         .planner_id = "p@h:1", .algorithm = "RRT", .num_params = 1,
@@ -81,6 +83,7 @@ static int setup(void **state)
         .scene_hash = "y", .scene = "s", .num_joints = 2, .joint_names = names,
         .start = start,
         .goal = {.kind = 0, .num_joints = 2, .joints = goal, .link = ""},
+        .num_held = 2, .held_names = held_names, .held_values = held_values,
         .num_stored = 2, .stored = stored,   /* acknowledgements riding along */
     };
     mpb_planner_seen_t seen = {"p@h:1", "p", 1, 10, 0.2};

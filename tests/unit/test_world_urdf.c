@@ -326,6 +326,55 @@ static void meshes_are_found_through_both_variables(void **state)
                                 "folder (" MPB_TEST_DATA ")"));
 }
 
+/* The torso is outside the group: held at 0 it puts the forearm in the
+ * box; held higher, the arm clears it. Bad joints and values are named. */
+static void joints_outside_the_group_hold_values(void **state)
+{
+    (void)state;
+    mpb_world *w = open_world(box_scene);
+    double q[7] = {0}, v = -1, lo, hi;
+    char err[256];
+    const char *torso[] = {"torso_lift_joint"};
+    assert_int_equal(mpb_world_held(w, "torso_lift_joint", &v, &lo, &hi),
+                     MPB_OK);
+    assert_true(v == 0.0 && lo == 0.0 && fabs(hi - 0.33) < 1e-12);
+    assert_int_equal(mpb_world_in_collision(w, q), 1);
+    double up = 0.3;
+    assert_int_equal(mpb_world_hold(w, torso, &up, 1, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_world_in_collision(w, q), 0);
+    assert_int_equal(mpb_world_held(w, "torso_lift_joint", &v, NULL, NULL),
+                     MPB_OK);
+    assert_true(v == 0.3);
+
+    double bad = 0.5;
+    assert_int_equal(mpb_world_hold(w, torso, &bad, 1, err, sizeof err),
+                     MPB_EINVAL);
+    assert_non_null(strstr(err, "outside its limits [0, 0.33]"));
+    const char *unknown[] = {"torso_joint"};
+    assert_int_equal(mpb_world_hold(w, unknown, &up, 1, err, sizeof err),
+                     MPB_ENOTFOUND);
+    assert_non_null(strstr(err, "'torso_joint' is not a joint of the robot"));
+    const char *group[] = {"r_elbow_flex_joint"};
+    assert_int_equal(mpb_world_hold(w, group, &up, 1, err, sizeof err),
+                     MPB_EINVAL);
+    assert_non_null(strstr(err, "in the planning group"));
+    const char *fixed[] = {"r_upper_arm_joint"};
+    assert_int_equal(mpb_world_hold(w, fixed, &up, 1, err, sizeof err),
+                     MPB_EINVAL);
+    assert_non_null(strstr(err, "cannot hold a value"));
+    /* A refused value leaves the last one held. */
+    assert_int_equal(mpb_world_in_collision(w, q), 0);
+    assert_int_equal(mpb_world_hold(w, NULL, NULL, 0, err, sizeof err), MPB_OK);
+    mpb_world_close(w);
+
+    mpb_world *p = NULL;
+    assert_int_equal(mpb_world_open("planar", "link_radius 0.1\njoint a -1 1 1\n",
+                                    "planar", "", &p, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_world_hold(p, torso, &up, 1, err, sizeof err),
+                     MPB_EUNSUPPORTED);
+    mpb_world_close(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -336,6 +385,7 @@ int main(void)
         cmocka_unit_test(pose_region_goals_are_checked),
         cmocka_unit_test(bad_input_gets_one_line_naming_where),
         cmocka_unit_test(a_bad_attachment_is_named_on_its_line),
+        cmocka_unit_test(joints_outside_the_group_hold_values),
     };
     return cmocka_run_group_tests_name("world_urdf", tests, setup, teardown);
 }

@@ -103,6 +103,20 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
                       volatile sig_atomic_t *stop, long max_runs,
                       char *err, size_t errlen);
 
+struct mpb_world;
+struct mpb_robot;
+
+/*
+ * Make a planner's world w and its robot r (for IK; either may be NULL)
+ * hold the request's joints outside the planning group at their values
+ * (req->held_names, held_values), as the daemon's verifier holds them:
+ * call it on every request, since a cached world keeps the values of the
+ * last one. MPB_OK; else world.h's codes (mpb_world_hold(),
+ * mpb_robot_set_passive()) with one line in err naming the joint.
+ */
+int mpb_request_hold(const mpb_plan_request_t *req, struct mpb_world *w,
+                     struct mpb_robot *r, char *err, size_t errlen);
+
 /*
  * The options every planner process of this kit takes, so that all of them
  * are started alike:

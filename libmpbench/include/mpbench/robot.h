@@ -223,6 +223,16 @@ const mpb_robot_collision *mpb_robot_get_collision(const mpb_robot *r,
 int mpb_robot_set_passive(mpb_robot *r, const char *joint, double value);
 
 /*
+ * The value a passive joint holds now and its limits (a continuous joint:
+ * -pi .. pi, though it takes any finite value), by its URDF name; any
+ * pointer may be NULL. MPB_OK; MPB_ENOTFOUND for no such joint; MPB_EINVAL
+ * for a joint of the chain or one that cannot hold a value (fixed,
+ * floating, planar).
+ */
+int mpb_robot_get_passive(const mpb_robot *r, const char *joint,
+                          double *value, double *lo, double *hi);
+
+/*
  * 1 if every value of q is finite and inside its joint's limits (a
  * continuous joint takes any finite value), else 0 (also for NULL r or q).
  */

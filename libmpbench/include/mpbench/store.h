@@ -147,6 +147,14 @@ typedef struct mpb_query_info {
 int mpb_store_query_add(mpb_store *s, int64_t scene_id,
                         const mpb_query_info *q, int64_t *id);
 
+/*
+ * Record the joints outside the planning group that query query_id holds
+ * and their values (world.h mpb_world_hold()) in queries.held, as "name=value
+ * name=value" (exact); n = 0 leaves it NULL. MPB_OK, MPB_EDB, MPB_ENOMEM.
+ */
+int mpb_store_query_set_held(mpb_store *s, int64_t query_id, int n,
+                             const char *const *names, const double *values);
+
 /* Add one pending run; nothing happens if it already exists. */
 int mpb_store_run_add(mpb_store *s, int64_t experiment_id,
                       int64_t planner_config_id, int64_t query_id,

@@ -107,6 +107,33 @@ void mpb_world_close(mpb_world *w);
  */
 const char *mpb_world_scene_format(const char *robot_format);
 
+/*
+ * Hold n joints outside the planning group at the values given (rad or m),
+ * from now on: a "urdf" robot's passive joints (robot.h), the Panda's
+ * fingers or a PR2's torso. Joints not named keep what they held (at
+ * opening: 0, moved into the joint's limits). Every world of a run must
+ * hold the same values, so the daemon sends them in each plan request
+ * (plan_request_t.held_names, docs/protocol.md) and a planner applies them
+ * to its world with this call. A generated allowed-collision matrix is not
+ * rebuilt: it stays the one of the values held at opening.
+ * MPB_OK (n = 0 too, in any world); MPB_ENOTFOUND for a joint the robot
+ * lacks; MPB_EINVAL for a joint of the group, one that cannot move (fixed),
+ * a non-finite value or one outside the joint's limits; MPB_EUNSUPPORTED
+ * in a world without such joints (planar). On failure err (if not NULL)
+ * holds one line naming the joint, and the joints before it in the list
+ * hold their new values.
+ */
+int mpb_world_hold(mpb_world *w, const char *const *joints,
+                   const double *values, int n, char *err, size_t errlen);
+
+/*
+ * The value a joint outside the group holds now, and its limits (a
+ * continuous joint: -pi .. pi); any of value, lo, hi may be NULL. Codes as
+ * mpb_world_hold().
+ */
+int mpb_world_held(const mpb_world *w, const char *joint, double *value,
+                   double *lo, double *hi);
+
 /* Accessors; a joint out of range gives NULL / NaN limits / 0. */
 int         mpb_world_num_joints(const mpb_world *w);
 /* Owned by the world. */

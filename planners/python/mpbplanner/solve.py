@@ -61,6 +61,10 @@ class WorldCache:
                 raise InvalidRequest(str(e)) from None
             self.key = key
             self.setup_time = time.monotonic() - t0
+        try:
+            self.world.hold(list(req.held_names), list(req.held_values))
+        except WorldError as e:
+            raise InvalidRequest(f"held joints: {e}") from None
         return self.world
 
 

@@ -55,6 +55,10 @@ _robot_load = _declare("mpb_robot_load_urdf_joints", c_int, c_char_p,
                        POINTER(c_char_p), c_int, POINTER(c_void_p), c_char_p,
                        c_size_t)
 _robot_free = _declare("mpb_robot_free", None, c_void_p)
+_world_hold = _declare("mpb_world_hold", c_int, c_void_p, POINTER(c_char_p),
+                       _doubles, c_int, c_char_p, c_size_t)
+_robot_set_passive = _declare("mpb_robot_set_passive", c_int, c_void_p,
+                              c_char_p, c_double)
 _link_index = _declare("mpb_robot_link_index", c_int, c_void_p, c_char_p)
 _region_sample = _declare("mpb_goal_region_sample", c_int, c_void_p,
                           POINTER(_GoalRegion), _doubles, c_void_p, c_int,
@@ -80,6 +84,7 @@ class World:
             raise WorldError(err.value.decode(errors="replace"))
         self._w = handle
         self._robot = None
+        self._held = ([], [])
         self._format, self._urdf, self._joints = robot_format, robot, joints
         n = _num_joints(handle)
         self.num_joints = n
@@ -100,6 +105,25 @@ class World:
             _world_close(self._w)
             self._w = None
 
+    def hold(self, names, values):
+        """Hold the joints outside the group at these values (world.h:
+        mpb_world_hold()), in the world and in the robot for IK, as the
+        daemon's verifier holds them for the run."""
+        self._held = (list(names), list(values))
+        if not names:
+            return
+        err = ctypes.create_string_buffer(512)
+        if _world_hold(self._w, _names(names), (c_double * len(values))(*values),
+                       len(names), err, len(err)) != 0:
+            raise WorldError(err.value.decode(errors="replace"))
+        if self._robot:
+            self._hold_robot()
+
+    def _hold_robot(self):
+        for name, value in zip(*self._held):
+            if _robot_set_passive(self._robot, name.encode(), value) != 0:
+                raise WorldError(f"joint '{name}' cannot be held at {value}")
+
     def free(self, q):
         """True when the robot at q touches nothing."""
         self._q[:] = q
@@ -118,6 +142,7 @@ class World:
                            len(err)) != 0:
                 raise WorldError(err.value.decode(errors="replace"))
             self._robot = handle
+            self._hold_robot()
         return self._robot
 
     def goal_region(self, link, center, half_extents, rpy, rpy_tolerance):

@@ -1,0 +1,108 @@
+#!/bin/sh
+# MoveIt problem files that are wrong: one line naming the MoveIt file,
+# its line and column, a non-zero exit, and a database left byte for byte
+# as it was. The files are the Panda's box_panda/0001 (fetched by
+# tools/robot_data.sh), each copy spoilt in one way.
+set -u
+. "$MPB_SOURCE/tests/integration/lib.sh"
+PASSES=0
+FAILS=0
+
+"$MPB_SOURCE/tools/robot_data.sh" --check ||
+    "$MPB_SOURCE/tools/robot_data.sh" >/dev/null || exit 1
+panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+DB=$work/test.db
+daemon=$MPB_BUILD/daemon/mpbenchd
+
+sqlite3 "$DB" "CREATE TABLE keep(x); INSERT INTO keep VALUES (42);"
+sum_before=$(md5sum <"$DB")
+
+# experiment NAME: an experiment of one problem, the folder work/NAME.
+experiment() {
+    cat >"$work/$1.yaml" <<EOT
+experiment: {name: $1, time_limit: 1}
+robot:
+  format: urdf
+  file: $panda/panda.urdf
+  srdf: $panda/panda.srdf
+  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
+           panda_joint5, panda_joint6, panda_joint7]
+scenes:
+  - {problems: $1, clamp_joint_values: true}
+planners:
+  - {planner: ompl, algorithms: [RRTConnect]}
+EOT
+}
+
+# spoil NAME SED_SCRIPT FILE: a copy of problem 0001 with FILE (scene or
+# request) edited.
+spoil() {
+    mkdir -p "$work/$1"
+    cp "$panda/problems/box_panda/scene0001.yaml" "$work/$1/scene0001.yaml"
+    cp "$panda/problems/box_panda/request0001.yaml" "$work/$1/request0001.yaml"
+    sed -i "$2" "$work/$1/$3"
+    experiment "$1"
+}
+
+# bad_case NAME FILE PLACE_AND_MESSAGE: refused so, in one line.
+bad_case() {
+    out=$("$daemon" -d "$DB" "$work/$1.yaml" 2>&1)
+    rc=$?
+    check "$1: exits non-zero" test "$rc" -ne 0
+    check "$1: one line" eq "$(printf '%s\n' "$out" | wc -l)" 1
+    check "$1: names $2 and says '$3'" \
+        sh -c "printf '%s' \"\$1\" | grep -q \"^mpbenchd: $work/$1/$2:$3\"" _ "$out"
+    [ "$rc" -ne 0 ] && printf '%s\n' "$out" | grep -q "$2:$3" ||
+        echo "# got: $out"
+    check "$1: database untouched" test "$(md5sum <"$DB")" = "$sum_before"
+}
+
+# The good copy loads.
+spoil good "" scene0001.yaml
+check "an unspoilt problem loads" "$daemon" --check "$work/good.yaml"
+
+spoil truncated "" scene0001.yaml
+truncate -s 1200 "$work/truncated/scene0001.yaml"
+bad_case truncated scene0001.yaml "[0-9]*:[0-9]*: YAML: "
+
+spoil unknown_joint 's/joint_name: panda_joint3/joint_name: panda_joint33/' \
+    request0001.yaml
+bad_case unknown_joint request0001.yaml \
+    "[0-9]*:[0-9]*: joint 'panda_joint33' is not a joint of the robot"
+
+spoil unknown_start_joint 's/panda_finger_joint2\]/panda_thumb]/' \
+    request0001.yaml
+bad_case unknown_start_joint request0001.yaml \
+    "[0-9]*:[0-9]*: joint 'panda_thumb' is not a joint of the robot"
+
+spoil unknown_link '/entry_names/s/panda_link3/panda_link33/' scene0001.yaml
+bad_case unknown_link scene0001.yaml \
+    "[0-9]*:[0-9]*: allowed_collision_matrix: 'panda_link33' is not a link of the robot"
+
+spoil nan_pose '0,/position: \[0.5408380884576693/s//position: [.nan/' \
+    scene0001.yaml
+bad_case nan_pose scene0001.yaml \
+    "[0-9]*:[0-9]*: position must be a finite number, not '.nan'"
+
+spoil zero_quaternion \
+    '0,/orientation: \[0, 0, 0.07406844364750122, 0.9972531602635496\]/s//orientation: [0, 0, 0, 0]/' \
+    scene0001.yaml
+bad_case zero_quaternion scene0001.yaml \
+    "[0-9]*:[0-9]*: orientation is a zero quaternion"
+
+# A ball round the robot: its start is in collision, the bodies named.
+spoil in_collision '/^  collision_objects:/a\    - {id: ball, primitives: [{type: sphere, dimensions: [3]}], primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]}' \
+    scene0001.yaml
+bad_case in_collision request0001.yaml \
+    "[0-9]*:[0-9]*: start is in collision in scene 'in_collision/0001': .* touches scene object ball"
+
+# Without clamp_joint_values the fixed fingers' values are refused.
+spoil strict "" scene0001.yaml
+sed -i '/clamp_joint_values/s/, clamp_joint_values: true//' "$work/strict.yaml"
+bad_case strict scene0001.yaml \
+    "[0-9]*:[0-9]*: joint 'panda_finger_joint1' cannot hold a value (a fixed, floating or planar joint)"
+
+mpb_finish

@@ -1,0 +1,261 @@
+/*
+ * test_moveit.c - MoveIt PlanningScene and MotionPlanRequest YAML files
+ * (daemon/moveit.c), on small files written here: what a scene becomes
+ * in the moveit-scene format, allowed pairs, joint states, joint and pose
+ * goals, and one line naming the file and place for each bad input.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "moveit.h"
+#include "mpbench/scene.h"
+
+static char dir[64];
+static char path[128];
+static char err[512];
+
+static int make_dir(void **state)
+{
+    (void)state;
+    snprintf(dir, sizeof dir, "/tmp/mpb-test-moveit-XXXXXX");
+    return mkdtemp(dir) == NULL ? -1 : 0;
+}
+
+static int remove_dir(void **state)
+{
+    char cmd[128];
+    (void)state;
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+/* Write text as dir/<name> and return its path. */
+static const char *write_file(const char *name, const char *text)
+{
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    assert_non_null(f = fopen(path, "w"));
+    assert_int_equal(fputs(text, f) >= 0, 1);
+    assert_int_equal(fclose(f), 0);
+    return path;
+}
+
+/* err is "<dir>/<file>:<where>: <what>" */
+static void assert_error(const char *file, const char *where, const char *what)
+{
+    char want[640];
+    snprintf(want, sizeof want, "%s/%s:%s: %s", dir, file, where, what);
+    assert_string_equal(err, want);
+}
+
+static const char scene_yaml[] =
+    "name: \"\"\n"
+    "robot_state:\n"
+    "  joint_state:\n"
+    "    name: [j1, finger]\n"
+    "    position: [0.5, 0.065]\n"
+    "allowed_collision_matrix:\n"
+    "  entry_names: [a, b, c]\n"
+    "  entry_values:\n"
+    "    - [false, true, false]\n"
+    "    - [true, false, true]\n"
+    "    - [false, true, false]\n"
+    "world:\n"
+    "  collision_objects:\n"
+    "    - id: can\n"
+    "      primitive_poses:\n"
+    "        - position: [1, 2, 3]\n"
+    "          orientation: [0, 0, 0, 2]\n"
+    "        - {position: [0, 0, 0.5], orientation: [0, 0, 0, 1]}\n"
+    "      primitives:\n"
+    "        - type: cylinder\n"
+    "          dimensions: [0.14, 0.03]\n"
+    "        - {type: cone, dimensions: [0.2, 0.05]}\n"
+    "      pose: {position: {x: 0.5, y: 0, z: 0}, orientation: {x: 0, y: 0, z: 0, w: 1}}\n"
+    "    - id: table top\n"
+    "      primitives: [{type: box, dimensions: [1, 2, 0.04]}, {type: sphere, dimensions: [0.1]}]\n"
+    "      primitive_poses:\n"
+    "        - {position: [0, 0, 0], orientation: [0, 0, 0, 1]}\n"
+    "        - {position: [0, 0, 1], orientation: [0, 0, 0, 1]}\n"
+    "    - id: tri\n"
+    "      meshes:\n"
+    "        - vertices: [[0, 0, 0], {x: 1, y: 0, z: 0}, [0, 1, 0]]\n"
+    "          triangles: [{vertex_indices: [0, 1, 2]}]\n"
+    "      mesh_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n";
+
+/* The objects become a moveit-scene text that scene.h reads, with
+ * shape_msgs' [height, radius] turned round and quaternions normalised. */
+static void a_scene_becomes_a_moveit_scene(void **state)
+{
+    mpbd_moveit_scene s;
+    mpb_scene *sc = NULL;
+    (void)state;
+    if (mpbd_moveit_scene_read(write_file("s.yaml", scene_yaml), "set/0001",
+                               &s, err, sizeof err) != MPB_OK)
+        fail_msg("%s", err);
+    assert_int_equal(s.num_objects, 3);
+    if (mpb_scene_parse(s.text, &sc, err, sizeof err) != MPB_OK)
+        fail_msg("%s in:\n%s", err, s.text);
+    assert_string_equal(mpb_scene_name(sc), "set/0001");
+    assert_int_equal(mpb_scene_num_objects(sc), 3);
+    const mpb_scene_object *can = mpb_scene_object_at(sc, 0);
+    assert_string_equal(can->id, "can");
+    assert_true(can->pose.t[0] == 0.5);
+    assert_int_equal(can->num_shapes, 2);
+    assert_int_equal(can->shapes[0].geometry.type, MPB_SHAPE_CYLINDER);
+    assert_true(can->shapes[0].geometry.dims[0] == 0.03);  /* radius */
+    assert_true(can->shapes[0].geometry.dims[1] == 0.14);  /* length */
+    assert_int_equal(can->shapes[1].geometry.type, MPB_SHAPE_CONE);
+    assert_true(can->shapes[0].pose.t[2] == 3);
+    assert_string_equal(mpb_scene_object_at(sc, 1)->id, "table top");
+    assert_int_equal(mpb_scene_object_at(sc, 1)->shapes[1].geometry.type,
+                     MPB_SHAPE_SPHERE);
+    assert_int_equal(mpb_scene_object_at(sc, 2)->shapes[0].geometry.type,
+                     MPB_SHAPE_MESH);
+    mpb_scene_free(sc);
+    /* a-b and b-c are allowed; a-c is not. */
+    assert_int_equal(s.num_pairs, 2);
+    assert_string_equal(s.pairs[0], "a");
+    assert_string_equal(s.pairs[1], "b");
+    assert_string_equal(s.pairs[2], "b");
+    assert_string_equal(s.pairs[3], "c");
+    assert_int_equal(s.pair_at[0].line, 7);
+    assert_int_equal(s.state.n, 2);
+    assert_string_equal(s.state.names[1], "finger");
+    assert_true(s.state.values[1] == 0.065);
+    assert_int_equal(s.state.at[1].line, 4);
+    mpbd_moveit_scene_clear(&s);
+}
+
+static const char request_yaml[] =
+    "group_name: arm\n"
+    "allowed_planning_time: 60\n"
+    "start_state:\n"
+    "  joint_state:\n"
+    "    name: [j1, j2, finger]\n"
+    "    position: [0, -0.785, 0.04]\n"
+    "goal_constraints:\n"
+    "  - joint_constraints:\n"
+    "      - {joint_name: j1, position: 0.45}\n"
+    "      - {joint_name: j2, position: 1.5, tolerance_above: 0.01, tolerance_below: 0.02}\n";
+
+static void a_request_gives_start_and_joint_goal(void **state)
+{
+    mpbd_moveit_request r;
+    (void)state;
+    assert_int_equal(mpbd_moveit_request_read(write_file("r.yaml",
+                                                         request_yaml),
+                                              &r, err, sizeof err), MPB_OK);
+    assert_string_equal(r.group_name, "arm");
+    assert_int_equal(r.group_at.line, 1);
+    assert_true(r.allowed_planning_time == 60);
+    assert_int_equal(r.start.n, 3);
+    assert_true(r.start.values[1] == -0.785);
+    assert_int_equal(r.goal_kind, MPB_GOAL_JOINTS);
+    assert_int_equal(r.goal.n, 2);
+    assert_true(r.goal.values[0] == 0.45);
+    assert_true(isnan(r.tolerance_above[0]));
+    assert_true(r.tolerance_above[1] == 0.01 && r.tolerance_below[1] == 0.02);
+    mpbd_moveit_request_clear(&r);
+}
+
+static void a_pose_goal_becomes_a_region(void **state)
+{
+    mpbd_moveit_request r;
+    (void)state;
+    const char *p = write_file("p.yaml",
+        "group_name: arm\n"
+        "goal_constraints:\n"
+        "  - position_constraints:\n"
+        "      - link_name: hand\n"
+        "        target_point_offset: [0, 0, 0]\n"
+        "        constraint_region:\n"
+        "          primitives: [{type: box, dimensions: [0.02, 0.04, 0.06]}]\n"
+        "          primitive_poses: [{position: [0.5, 0, 0.3], orientation: [0, 0, 0, 1]}]\n"
+        "    orientation_constraints:\n"
+        "      - link_name: hand\n"
+        "        orientation: [0, 0, 0, 1]\n"
+        "        absolute_x_axis_tolerance: 0.05\n"
+        "        absolute_y_axis_tolerance: 0.1\n"
+        "        absolute_z_axis_tolerance: 3.2\n");
+    assert_int_equal(mpbd_moveit_request_read(p, &r, err, sizeof err), MPB_OK);
+    assert_int_equal(r.goal_kind, MPB_GOAL_POSE_REGION);
+    assert_string_equal(r.link, "hand");
+    assert_true(r.position[0] == 0.5 && r.position[2] == 0.3);
+    assert_true(fabs(r.position_tolerance[1] - 0.02) < 1e-15);
+    assert_true(r.rpy_tolerance[0] == 0.05 && r.rpy_tolerance[2] == 3.2);
+    assert_true(fabs(r.rpy[0]) < 1e-12);
+    mpbd_moveit_request_clear(&r);
+}
+
+/* Each bad file: one line naming the file, line and column. */
+static void bad_files_are_named_at_the_place(void **state)
+{
+    mpbd_moveit_scene s;
+    mpbd_moveit_request r;
+    (void)state;
+    static const struct {
+        const char *text, *where, *what;
+        int is_scene;
+    } bad[] = {
+        {"world:\n  collision_objects:\n    - id: x\n      primitives: [{type: box",
+         "5:1", "YAML: did not find expected ',' or '}'", 1},
+        {"world: {collision_objects: [{id: x, primitives: [{type: box, dimensions: [1, 1, 1]}],"
+         " primitive_poses: [{position: [.nan, 0, 0], orientation: [0, 0, 0, 1]}]}]}\n",
+         "1:117", "position must be a finite number, not '.nan'", 1},
+        {"world: {collision_objects: [{id: x, primitives: [{type: box, dimensions: [1, 1, 1]}],"
+         " primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 0]}]}]}\n",
+         "1:140", "orientation is a zero quaternion", 1},
+        {"world: {collision_objects: [{id: x, primitives: [{type: torus, dimensions: [1]}],"
+         " primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]}]}\n",
+         "1:57", "unknown primitive type 'torus' (box, sphere, cylinder, cone)", 1},
+        {"allowed_collision_matrix: {entry_names: [a, b], entry_values: [[false, true], [false, false]]}\n",
+         "1:72", "entry_values is not symmetric: row 1, column 2", 1},
+        {"robot_state: {joint_state: {name: [a, b], position: [1]}}\n",
+         "1:53", "joint_state has 2 names and 1 positions", 1},
+        {"robot_state: {attached_collision_objects: [{link_name: hand}]}\n",
+         "1:43", "attached collision objects are not read (yet): attach the "
+         "object in a .scene file instead (docs/scenes.md)", 1},
+        {"goal_constraints: []\n", "1:19",
+         "goal_constraints must hold one goal (found 0): mpbench's query has one", 0},
+        {"goal_constraints: [{joint_constraints: [{joint_name: a}]}]\n", "1:41",
+         "joint constraint on 'a' needs a 'position'", 0},
+        {"goal_constraints: [{position_constraints: [{link_name: h, constraint_region:"
+         " {primitives: [{type: sphere, dimensions: [0.1]}], primitive_poses: [{position: [0, 0, 0],"
+         " orientation: [0, 0, 0, 1]}]}}]}]\n", "1:92",
+         "the constraint region must be a box (a sphere or cylinder cannot be "
+         "mapped to mpbench's box region)", 0},
+        {"group_name: [a]\ngoal_constraints: []\n", "1:13",
+         "group_name must be a name", 0},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *p = write_file("bad.yaml", bad[i].text);
+        int rc = bad[i].is_scene
+                     ? mpbd_moveit_scene_read(p, "x", &s, err, sizeof err)
+                     : mpbd_moveit_request_read(p, &r, err, sizeof err);
+        assert_int_equal(rc, MPB_EPARSE);
+        assert_error("bad.yaml", bad[i].where, bad[i].what);
+        assert_null(strchr(err, '\n'));
+    }
+    assert_int_equal(mpbd_moveit_scene_read("/nonexistent/s.yaml", "x", &s,
+                                            err, sizeof err), MPB_EIO);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(a_scene_becomes_a_moveit_scene),
+        cmocka_unit_test(a_request_gives_start_and_joint_goal),
+        cmocka_unit_test(a_pose_goal_becomes_a_region),
+        cmocka_unit_test(bad_files_are_named_at_the_place),
+    };
+    return cmocka_run_group_tests(tests, make_dir, remove_dir);
+}
