@@ -105,4 +105,16 @@ sed -i '/clamp_joint_values/s/, clamp_joint_values: true//' "$work/strict.yaml"
 bad_case strict scene0001.yaml \
     "[0-9]*:[0-9]*: joint 'panda_finger_joint1' cannot hold a value (a fixed, floating or planar joint)"
 
+# A request for another group than the experiment's SRDF group.
+spoil other_group 's/^group_name: panda_arm/group_name: hand/' request0001.yaml
+sed -i 's/^  joints: \[panda_joint1.*/  group: panda_arm/; /^           panda_joint5/d' \
+    "$work/other_group.yaml"
+bad_case other_group request0001.yaml \
+    "8:13: group_name 'hand' is not the experiment's group 'panda_arm'"
+spoil same_group "" request0001.yaml
+sed -i 's/^  joints: \[panda_joint1.*/  group: panda_arm/; /^           panda_joint5/d' \
+    "$work/same_group.yaml"
+check "a request for the experiment's SRDF group loads" \
+    "$daemon" --check "$work/same_group.yaml"
+
 mpb_finish

@@ -411,6 +411,8 @@ static void a_group_state_by_name(void **state)
                            "panda_joint7]\n",
                            "{name: q, start: ready, goal: extended}"));
     assert_error("12:26", "start must be a list of 7 numbers");
+}
+
 /* An arm j that carries a finger on a slide k (0 .. 1, outside the
  * group): held at 0.5 the finger reaches the box at x = 1 when the arm
  * points along x. */
