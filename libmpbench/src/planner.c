@@ -266,11 +266,29 @@ static int mpb__make_id(mpb__server *s, char *err, size_t errlen)
     return MPB_OK;
 }
 
+/* What every announcement of this planner says of it; the caller sets
+ * capacity and the active runs. Allocates nothing (the last words of
+ * planner_memory.h are built with it). */
+static void announce_fill(mpb__server *s, mpb_planner_announce_t *a)
+{
+    const mpb_planner_def *d = s->def;
+    memset(a, 0, sizeof *a);
+    a->utime = mpb_utime_now();
+    a->planner_id = s->id;
+    a->name = (char *)d->name;
+    a->host = s->host;
+    a->pid = (int32_t)getpid();
+    a->language = (char *)(d->language != NULL ? d->language : "");
+    a->version = (char *)(d->version != NULL ? d->version : "");
+    a->heartbeat_ms = s->heartbeat_ms;
+    a->num_algorithms = (int16_t)d->num_algorithms;
+    a->algorithms = (char **)d->algorithms;
+}
+
 /* ---- heartbeat --------------------------------------------------------- */
 
 static void mpb__announce(mpb__server *s)
 {
-    const mpb_planner_def *d = s->def;
     char active[MPB_RUN_ID_SIZE];
     char *active_list[1] = { active };
     int closed;
@@ -284,17 +302,7 @@ static void mpb__announce(mpb__server *s)
         return;
 
     mpb_planner_announce_t a;
-    memset(&a, 0, sizeof a);
-    a.utime = mpb_utime_now();
-    a.planner_id = s->id;
-    a.name = (char *)d->name;
-    a.host = s->host;
-    a.pid = (int32_t)getpid();
-    a.language = (char *)(d->language != NULL ? d->language : "");
-    a.version = (char *)(d->version != NULL ? d->version : "");
-    a.heartbeat_ms = s->heartbeat_ms;
-    a.num_algorithms = (int16_t)d->num_algorithms;
-    a.algorithms = (char **)d->algorithms;
+    announce_fill(s, &a);
     a.capacity = closed ? 0 : 1;
     a.num_active = active[0] != '\0' ? 1 : 0;
     a.active_runs = active_list;
@@ -310,20 +318,9 @@ static void mpb__announce(mpb__server *s)
 static unsigned char *mpb__closing_announce(mpb__server *s,
                                             const char *run_id, int *len)
 {
-    const mpb_planner_def *d = s->def;
     char *active_list[1] = { (char *)run_id };
     mpb_planner_announce_t a;
-    memset(&a, 0, sizeof a);
-    a.utime = mpb_utime_now();
-    a.planner_id = s->id;
-    a.name = (char *)d->name;
-    a.host = s->host;
-    a.pid = (int32_t)getpid();
-    a.language = (char *)(d->language != NULL ? d->language : "");
-    a.version = (char *)(d->version != NULL ? d->version : "");
-    a.heartbeat_ms = s->heartbeat_ms;
-    a.num_algorithms = (int16_t)d->num_algorithms;
-    a.algorithms = (char **)d->algorithms;
+    announce_fill(s, &a);
     a.capacity = 0;
     a.num_active = 1;
     a.active_runs = active_list;

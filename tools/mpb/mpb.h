@@ -49,6 +49,14 @@ mpb_store *tool_open_readonly(const char *cmd, const char *path);
  */
 char *tool_read_file(const char *path, size_t *len);
 
+/*
+ * The experiment a command works on: *experiment if nonzero (it must
+ * exist), else the newest in the database. 0, or -1 after one line ("mpb
+ * CMD: DB holds no experiment", "mpb CMD: DB: no experiment 7").
+ */
+int tool_experiment(const char *cmd, mpb_store *s, const char *db,
+                    int64_t *experiment);
+
 /* Parse a whole decimal integer > 0 (an id); 0 on success, -1 if not one. */
 int tool_parse_id(const char *text, int64_t *out);
 

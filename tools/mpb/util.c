@@ -92,3 +92,27 @@ char *tool_read_file(const char *path, size_t *len)
     *len = n;
     return buf;
 }
+
+static int on_experiment_row(void *ud, const mpb_experiment_row *row)
+{
+    (void)ud;
+    (void)row;
+    return 0;
+}
+
+int tool_experiment(const char *cmd, mpb_store *s, const char *db,
+                    int64_t *experiment)
+{
+    if (*experiment == 0 &&
+        mpb_store_experiment_latest(s, experiment) != MPB_OK) {
+        fprintf(stderr, "mpb %s: %s holds no experiment\n", cmd, db);
+        return -1;
+    }
+    if (mpb_store_experiment_get(s, *experiment, on_experiment_row, NULL) ==
+            MPB_ENOTFOUND) {
+        fprintf(stderr, "mpb %s: %s: no experiment %lld\n", cmd, db,
+                (long long)*experiment);
+        return -1;
+    }
+    return 0;
+}

@@ -53,13 +53,6 @@ typedef struct totals {
     long successes, lost, lost_self, gained;
 } totals;
 
-static int on_nothing(void *ud, const mpb_experiment_row *row)
-{
-    (void)ud;
-    (void)row;
-    return 0;
-}
-
 /* The run's goal as the verifier takes it; points into v. */
 static mpb_goal goal_of(const view_run *v)
 {
@@ -187,17 +180,8 @@ int cmd_verify(int argc, char **argv)
         return MPB_EXIT_ERROR;
     int status = MPB_EXIT_ERROR;
     selection sel = {0};
-    if (experiment == 0 && mpb_store_experiment_latest(s, &experiment) !=
-            MPB_OK) {
-        fprintf(stderr, "mpb " CMD ": %s holds no experiment\n", db);
+    if (tool_experiment(CMD, s, db, &experiment) != 0)
         goto out;
-    }
-    if (mpb_store_experiment_get(s, experiment, on_nothing, NULL) ==
-            MPB_ENOTFOUND) {
-        fprintf(stderr, "mpb " CMD ": %s: no experiment %lld\n", db,
-                (long long)experiment);
-        goto out;
-    }
     if (view_select_runs(s, db, experiment, &sel) != 0)
         goto out;
     totals t = {0};

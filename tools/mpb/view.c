@@ -143,13 +143,6 @@ static void say_where(const char *path)
                "and open it there (it needs no network)\n");
 }
 
-static int on_nothing(void *ud, const mpb_experiment_row *row)
-{
-    (void)ud;
-    (void)row;
-    return 0;
-}
-
 int cmd_view(int argc, char **argv)
 {
     static const struct option longopts[] = {
@@ -242,17 +235,8 @@ int cmd_view(int argc, char **argv)
     }
     int status = MPB_EXIT_ERROR;
     if (selecting) {
-        if (experiment == 0 &&
-            mpb_store_experiment_latest(s, &experiment) != MPB_OK) {
-            fprintf(stderr, "mpb " CMD ": %s holds no experiment\n", db);
+        if (tool_experiment(CMD, s, db, &experiment) != 0)
             goto out;
-        }
-        if (mpb_store_experiment_get(s, experiment, on_nothing, NULL) ==
-                MPB_ENOTFOUND) {
-            fprintf(stderr, "mpb " CMD ": %s: no experiment %lld\n", db,
-                    (long long)experiment);
-            goto out;
-        }
         if (view_select_runs(s, db, experiment, &sel) != 0)
             goto out;
         if (sel.num_runs == 0) {
