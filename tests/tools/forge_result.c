@@ -38,7 +38,13 @@
 
 static char run_id[256];
 static int ack_kind = -1;
-static mpb_plan_request_t *request;   /* --serve: the run to answer */
+/* --serve: what the forger keeps of the run to answer. Not a copy of the
+ * request: LCM's generated copy hands memcpy a NULL for an empty array
+ * (no held joints), which UBSan stops. */
+static struct {
+    int    received, num_joints;
+    double start[3], goal[3];
+} request;
 
 static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
                    const mpb_run_ack_t *m, void *user)
@@ -61,8 +67,13 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel,
     for (int i = 0; i < m->num_stored; i++)
         if (strcmp(m->stored[i], run_id) == 0)
             ack_kind = MPB_RUN_ACK_T_RESULT_STORED;
-    if (request == NULL) {
-        request = mpb_plan_request_t_copy(m);
+    if (!request.received) {
+        request.received = 1;
+        request.num_joints = m->num_joints;
+        for (int j = 0; j < m->num_joints && j < 3; j++) {
+            request.start[j] = m->start[j];
+            request.goal[j] = m->goal.num_joints > j ? m->goal.joints[j] : 0;
+        }
         snprintf(run_id, sizeof run_id, "%s", m->run_id);
     }
 }
@@ -168,11 +179,11 @@ int main(int argc, char **argv)
         if (mpb_request_channel(planner_id, channel, sizeof channel) != MPB_OK)
             return 2;
         mpb_plan_request_t_subscribe(lcm, channel, on_request, NULL);
-        for (int i = 0; i < 100 && request == NULL; i++) {
+        for (int i = 0; i < 100 && !request.received; i++) {
             announce(lcm, planner_id);
             handle_for(lcm, 0.2, 0);
         }
-        if (request == NULL || request->num_joints > 3) {
+        if (!request.received || request.num_joints > 3) {
             puts("no request");
             return 1;
         }
@@ -182,10 +193,10 @@ int main(int argc, char **argv)
             .kind = MPB_RUN_ACK_T_REQUEST_RECEIVED,
         };
         mpb_run_ack_t_publish(lcm, MPB_CHANNEL_ACK, &received);
-        nj = request->num_joints;
+        nj = request.num_joints;
         for (int j = 0; j < nj; j++) {
-            wp[j] = request->start[j];
-            wp[nj + j] = request->goal.joints[j];
+            wp[j] = request.start[j];
+            wp[nj + j] = request.goal[j];
         }
         handle_for(lcm, delay, 0);
     }
@@ -225,8 +236,6 @@ int main(int argc, char **argv)
     puts(ack_kind == MPB_RUN_ACK_T_RESULT_STORED     ? "acked stored"
          : ack_kind == MPB_RUN_ACK_T_RESULT_REJECTED ? "acked rejected"
                                                       : "no ack");
-    if (request != NULL)
-        mpb_plan_request_t_destroy(request);
     mpb_run_ack_t_unsubscribe(lcm, sub);
     lcm_destroy(lcm);
     return 0;
