@@ -15,9 +15,10 @@
  * far, for distance) in a few instructions each.
  *
  * Meshes (robot links of real robots): a mesh's BVH model is built once
- * per world and shared by every shape with the same vertices and
- * triangles. Before FCL's narrow phase, a movable mesh's pair is ruled
- * out by a capsule fitted around it and by a plane between its vertices
+ * and shared by every shape of every world of the process with the same
+ * vertices and triangles (shared_geometry(), mesh_cache.h). Before FCL's
+ * narrow phase, a movable mesh's pair is ruled out by a capsule fitted
+ * around it and by a plane between its vertices
  * and the other's (another mesh's vertices, a static's box); a distance
  * query measures its pairs nearest lower bound first, and skips those
  * whose bound from the vertices is no better than the best so far. All
@@ -44,6 +45,7 @@
 #include "mpbench/collision.h"
 #include "collision_internal.h"
 #include "errbuf.h"
+#include "mesh_cache.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -65,7 +67,9 @@
 #include <exception>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <new>
+#include <unordered_map>
 #include <vector>
 
 #define MPB__STR2(x) #x
@@ -358,8 +362,6 @@ struct mpb_collision {
     fcl::CollisionResultd  cres;
     fcl::DistanceRequestd  dreq;
     fcl::DistanceResultd   dres;
-    std::vector<std::shared_ptr<Geom>> meshes; /* BVH models built so far,
-                                            shared by identical meshes */
     struct Near { double lower; int shape, leaf; };
     std::vector<Near>    near;           /* a distance query's pairs */
     char                 err[256] = "";
@@ -400,32 +402,93 @@ struct mpb_collision {
 namespace {
 
 /*
- * The FCL geometry of g, as make_geometry(); a mesh whose vertices and
- * triangles equal those of one built before in c gets that BVH model
- * (the two fingers of a gripper, a link listed twice): built once.
+ * The BVH models of every collision world of the process (mesh_cache.h),
+ * under a hash of their mesh's vertices and triangles; each alive while a
+ * world holds it. Expired entries are swept when the map has doubled.
  */
-std::shared_ptr<Geom> shared_geometry(mpb_collision *c, const mpb_geometry *g)
+struct BvhRegistry {
+    std::mutex mu;
+    std::unordered_multimap<uint64_t, std::weak_ptr<Geom>> models;
+    size_t sweep_at = 64;
+    long   builds = 0;
+};
+
+BvhRegistry &bvh_registry()
+{
+    static BvhRegistry *r = new BvhRegistry();  /* never destroyed: models
+                                                   outlive static teardown */
+    return *r;
+}
+
+uint64_t mesh_hash(const mpb_mesh *m)
+{
+    uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](uint64_t w) { h = (h ^ w) * 1099511628211ull; };
+    mix((uint64_t)m->num_vertices);
+    mix((uint64_t)m->num_triangles);
+    for (long i = 0; i < 3L * m->num_vertices; i++) {
+        uint64_t w;
+        memcpy(&w, &m->vertices[i], sizeof w);
+        mix(w);
+    }
+    for (long i = 0; i < 3L * m->num_triangles; i++)
+        mix((uint64_t)(uint32_t)m->triangles[i]);
+    return h;
+}
+
+/* Has BVH model b been built from exactly m's vertices and triangles? */
+bool built_from(const Geom *geom, const mpb_mesh *m)
+{
+    auto *b = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(geom);
+    if (b->num_vertices != m->num_vertices || b->num_tris != m->num_triangles)
+        return false;
+    for (int i = 0; i < m->num_vertices; i++)
+        for (int k = 0; k < 3; k++)
+            if (b->vertices[i][k] != m->vertices[3 * i + k])
+                return false;
+    for (int i = 0; i < m->num_triangles; i++)
+        for (int k = 0; k < 3; k++)
+            if ((long)b->tri_indices[i][k] != (long)m->triangles[3 * i + k])
+                return false;
+    return true;
+}
+
+/*
+ * The FCL geometry of g, as make_geometry(); a mesh whose vertices and
+ * triangles equal those of a BVH model some world of the process holds
+ * (the two fingers of a gripper, a robot's links in every scene of an
+ * experiment) gets that model: built once. Models are only read by the
+ * queries, so worlds in different threads may share them.
+ */
+std::shared_ptr<Geom> shared_geometry(const mpb_geometry *g)
 {
     if (g->type != MPB_SHAPE_MESH)
         return make_geometry(g);
     const mpb_mesh *m = g->mesh;
-    for (const auto &geom : c->meshes) {
-        auto *b = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(geom.get());
-        if (b->num_vertices != m->num_vertices || b->num_tris != m->num_triangles)
-            continue;
-        bool same = true;
-        for (int i = 0; same && i < m->num_vertices; i++)
-            for (int k = 0; k < 3; k++)
-                same = same && b->vertices[i][k] == m->vertices[3 * i + k];
-        for (int i = 0; same && i < m->num_triangles; i++)
-            for (int k = 0; k < 3; k++)
-                same = same && (long)b->tri_indices[i][k] == (long)m->triangles[3 * i + k];
-        if (same)
-            return geom;
+    const uint64_t h = mesh_hash(m);
+    BvhRegistry &r = bvh_registry();
+    {
+        std::lock_guard<std::mutex> lock(r.mu);
+        auto range = r.models.equal_range(h);
+        for (auto it = range.first; it != range.second; ++it) {
+            std::shared_ptr<Geom> geom = it->second.lock();
+            if (geom && built_from(geom.get(), m))
+                return geom;
+        }
     }
+    /* Built outside the lock; two threads may build the same model once
+     * each, and both are kept, correct if not shared. */
     std::shared_ptr<Geom> geom = make_geometry(g);
-    if (geom)
-        c->meshes.push_back(geom);
+    if (!geom)
+        return geom;
+    std::lock_guard<std::mutex> lock(r.mu);
+    r.builds++;
+    if (r.models.size() >= r.sweep_at) {
+        for (auto it = r.models.begin(); it != r.models.end();)
+            it = it->second.expired() ? r.models.erase(it) : std::next(it);
+        r.sweep_at = 2 * r.models.size() + 64;
+    }
+    r.models.emplace(h, geom);
     return geom;
 }
 
@@ -1420,7 +1483,7 @@ int mpb_collision_add_static(mpb_collision *c, int id, const mpb_geometry *g,
             c->planes.push_back(p);
             return MPB_OK;
         }
-        std::shared_ptr<Geom> geom = shared_geometry(c, g);
+        std::shared_ptr<Geom> geom = shared_geometry(g);
         if (!geom) {
             c->set_err("collision: static %d: FCL could not build the %s", id,
                        mpb_shape_type_name(g->type));
@@ -1456,7 +1519,7 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
         int rc = check_args(c, id, g, offset, true);
         if (rc != MPB_OK)
             return rc;
-        std::shared_ptr<Geom> geom = shared_geometry(c, g);
+        std::shared_ptr<Geom> geom = shared_geometry(g);
         if (!geom) {
             c->set_err("collision: movable %d: FCL could not build the %s", id,
                        mpb_shape_type_name(g->type));
@@ -1886,6 +1949,23 @@ int mpb_collision_num_static_shapes(const mpb_collision *c)
 int mpb_collision_num_movable_shapes(const mpb_collision *c)
 {
     return c ? (int)c->mshapes.size() : 0;
+}
+
+long mpb__bvh_builds(void)
+{
+    BvhRegistry &r = bvh_registry();
+    std::lock_guard<std::mutex> lock(r.mu);
+    return r.builds;
+}
+
+long mpb__bvh_live(void)
+{
+    BvhRegistry &r = bvh_registry();
+    std::lock_guard<std::mutex> lock(r.mu);
+    long n = 0;
+    for (const auto &e : r.models)
+        n += !e.second.expired();
+    return n;
 }
 
 /*

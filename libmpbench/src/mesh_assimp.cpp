@@ -17,12 +17,18 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <tuple>
+#include <unordered_map>
 #include <vector>
 
 #include <sys/stat.h>
 
 #include "errbuf.h"
+#include "mesh_cache.h"
 
 namespace {
 
@@ -185,10 +191,13 @@ bool collect(const aiScene *scene, const aiNode *node, const aiMatrix4x4 &tf,
     return true;
 }
 
-int load(const char *uri, const char *const *dirs, int num_dirs,
-         const double scale[3], mpb_mesh **out, char *err, size_t errlen)
+/* The scale factors of scale (NULL: 1 1 1) into s; MPB_EINVAL if one is
+ * not finite or is zero. */
+int check_scale(const char *uri, const double scale[3], double s[3],
+                char *err, size_t errlen)
 {
-    double s[3] = { 1.0, 1.0, 1.0 };
+    for (int i = 0; i < 3; i++)
+        s[i] = 1.0;
     if (scale)
         for (int i = 0; i < 3; i++) {
             if (!std::isfinite(scale[i]) || scale[i] == 0.0) {
@@ -198,11 +207,13 @@ int load(const char *uri, const char *const *dirs, int num_dirs,
             }
             s[i] = scale[i];
         }
-    std::string path;
-    int rc = resolve(uri, dirs, num_dirs, path, err, errlen);
-    if (rc != MPB_OK)
-        return rc;
+    return MPB_OK;
+}
 
+/* The mesh file at path (resolved), scaled by s, into *out. */
+int read_mesh(const std::string &path, const double s[3], mpb_mesh **out,
+              char *err, size_t errlen)
+{
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
         aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
@@ -255,6 +266,152 @@ int load(const char *uri, const char *const *dirs, int num_dirs,
         return MPB_EPARSE;
     }
     *out = m;
+    return MPB_OK;
+}
+
+int load(const char *uri, const char *const *dirs, int num_dirs,
+         const double scale[3], mpb_mesh **out, char *err, size_t errlen)
+{
+    double s[3];
+    int rc = check_scale(uri, scale, s, err, errlen);
+    if (rc != MPB_OK)
+        return rc;
+    std::string path;
+    if ((rc = resolve(uri, dirs, num_dirs, path, err, errlen)) != MPB_OK)
+        return rc;
+    return read_mesh(path, s, out, err, errlen);
+}
+
+/*
+ * The process-wide mesh cache of mesh_cache.h. A file is the same file
+ * while its path, device, inode, size and times are; the scale is part of
+ * the key as its bits. Entries are counted references, freed with the last
+ * release; one whose file changed while assimp read it is handed out but
+ * never found by a later load.
+ */
+struct CacheKey {
+    std::string path;
+    unsigned long long dev, ino;
+    long long size, mtime_s, mtime_ns, ctime_s, ctime_ns;
+    unsigned long long scale[3];
+
+    bool operator<(const CacheKey &o) const
+    {
+        return std::tie(path, dev, ino, size, mtime_s, mtime_ns, ctime_s, ctime_ns,
+                        scale[0], scale[1], scale[2]) <
+               std::tie(o.path, o.dev, o.ino, o.size, o.mtime_s, o.mtime_ns, o.ctime_s,
+                        o.ctime_ns, o.scale[0], o.scale[1], o.scale[2]);
+    }
+    bool same_file(const CacheKey &o) const
+    {
+        return dev == o.dev && ino == o.ino && size == o.size &&
+               mtime_s == o.mtime_s && mtime_ns == o.mtime_ns &&
+               ctime_s == o.ctime_s && ctime_ns == o.ctime_ns;
+    }
+};
+
+struct CacheEntry {
+    mpb_mesh *mesh = nullptr; /* owned */
+    long      refs = 0;
+    bool      keyed = false;  /* in Cache::by_key under key */
+    CacheKey  key;
+
+    CacheEntry() = default;
+    CacheEntry(const CacheEntry &) = delete;
+    CacheEntry &operator=(const CacheEntry &) = delete;
+    ~CacheEntry() { mpb_mesh_free(mesh); }
+};
+
+struct Cache {
+    std::mutex mu;
+    std::map<CacheKey, CacheEntry *> by_key;
+    std::unordered_map<const mpb_mesh *, CacheEntry *> by_mesh;
+    long reads = 0;
+};
+
+Cache &cache()
+{
+    static Cache *c = new Cache();   /* never destroyed: worlds closed at
+                                        exit may still release into it */
+    return *c;
+}
+
+/* The identity of the file at path into k; false if it cannot be read. */
+bool file_key(const std::string &path, const double s[3], CacheKey &k)
+{
+    struct stat st;
+    if (stat(path.c_str(), &st) != 0)
+        return false;
+    k.path = path;
+    k.dev = (unsigned long long)st.st_dev;
+    k.ino = (unsigned long long)st.st_ino;
+    k.size = (long long)st.st_size;
+    k.mtime_s = (long long)st.st_mtim.tv_sec;
+    k.mtime_ns = (long long)st.st_mtim.tv_nsec;
+    k.ctime_s = (long long)st.st_ctim.tv_sec;
+    k.ctime_ns = (long long)st.st_ctim.tv_nsec;
+    for (int i = 0; i < 3; i++)
+        memcpy(&k.scale[i], &s[i], sizeof k.scale[i]);
+    return true;
+}
+
+int load_shared(const char *uri, const char *const *dirs, int num_dirs,
+                const double scale[3], const mpb_mesh **out, char *err,
+                size_t errlen)
+{
+    double s[3];
+    int rc = check_scale(uri, scale, s, err, errlen);
+    if (rc != MPB_OK)
+        return rc;
+    std::string path;
+    if ((rc = resolve(uri, dirs, num_dirs, path, err, errlen)) != MPB_OK)
+        return rc;
+    CacheKey key;
+    if (!file_key(path, s, key)) {
+        mpb__set_err(err, errlen, "mesh '%s': no such file", path.c_str());
+        return MPB_ENOTFOUND;
+    }
+    Cache &c = cache();
+    {
+        std::lock_guard<std::mutex> lock(c.mu);
+        auto it = c.by_key.find(key);
+        if (it != c.by_key.end()) {
+            it->second->refs++;
+            *out = it->second->mesh;
+            return MPB_OK;
+        }
+    }
+    /* Read outside the lock: other threads' meshes need not wait. */
+    std::unique_ptr<CacheEntry> e(new CacheEntry());
+    e->key = key;
+    e->refs = 1;
+    if ((rc = read_mesh(path, s, &e->mesh, err, errlen)) != MPB_OK)
+        return rc;
+    CacheKey after;
+    bool unchanged = file_key(path, s, after) && after.same_file(key);
+    std::lock_guard<std::mutex> lock(c.mu);
+    c.reads++;
+    if (unchanged) {
+        auto it = c.by_key.find(key);
+        if (it != c.by_key.end()) {
+            /* Another thread read it meanwhile: take its copy. */
+            it->second->refs++;
+            *out = it->second->mesh;
+            return MPB_OK;
+        }
+        e->keyed = true;
+    }
+    auto at = c.by_mesh.emplace(e->mesh, e.get()).first;
+    if (e->keyed) {
+        try {
+            c.by_key.emplace(key, e.get());
+        } catch (...) {
+            c.by_mesh.erase(at);
+            throw;
+        }
+    }
+    *out = e->mesh;
+    (void)e.release();          /* the cache's now */
     return MPB_OK;
 }
 
@@ -401,6 +558,69 @@ int mpb_mesh_load(const char *uri, const char *const *dirs, int num_dirs,
         mpb__set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
         return MPB_EERROR;
     }
+}
+
+int mpb__mesh_load_shared(const char *uri, const char *const *dirs,
+                          int num_dirs, const double scale[3],
+                          const mpb_mesh **out, char *err, size_t errlen)
+{
+    mpb__set_err(err, errlen, "%s", "");
+    if (!out) {
+        mpb__set_err(err, errlen, "mesh: no place for the result");
+        return MPB_EINVAL;
+    }
+    *out = NULL;
+    try {
+        int rc = load_shared(uri, dirs, num_dirs, scale, out, err, errlen);
+        if (rc == MPB_ENOMEM)
+            mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
+        return rc;
+    } catch (const std::bad_alloc &) {
+        mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
+        return MPB_ENOMEM;
+    } catch (const std::exception &e) {
+        mpb__set_err(err, errlen, "mesh '%s': %s", uri ? uri : "", e.what());
+        return MPB_EPARSE;
+    } catch (...) {
+        mpb__set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
+        return MPB_EERROR;
+    }
+}
+
+void mpb__mesh_release(const mpb_mesh *m)
+{
+    if (!m)
+        return;
+    CacheEntry *dead = nullptr;
+    {
+        Cache &c = cache();
+        std::lock_guard<std::mutex> lock(c.mu);
+        auto it = c.by_mesh.find(m);
+        if (it == c.by_mesh.end())
+            return;             /* not ours: a caller's bug, no crash */
+        CacheEntry *e = it->second;
+        if (--e->refs > 0)
+            return;
+        c.by_mesh.erase(it);
+        if (e->keyed)
+            c.by_key.erase(e->key);
+        dead = e;
+    }
+    delete dead;
+}
+
+long mpb__mesh_cache_reads(void)
+{
+    Cache &c = cache();
+    std::lock_guard<std::mutex> lock(c.mu);
+    return c.reads;
+}
+
+long mpb__mesh_cache_live(void)
+{
+    Cache &c = cache();
+    std::lock_guard<std::mutex> lock(c.mu);
+    return (long)c.by_mesh.size();
 }
 
 } // extern "C"

@@ -137,7 +137,7 @@ typedef struct mpb__urdf_model {
     struct mpb_robot     *robot;
     struct mpb_scene     *scene;
     struct mpb_collision *coll;
-    struct mpb_mesh     **meshes;
+    const struct mpb_mesh **meshes;
     int                   num_meshes;
 } mpb__urdf_model;
 int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out);

@@ -32,6 +32,7 @@
 #include "mpbench/scene.h"
 #include "mpbench/srdf.h"
 #include "errbuf.h"
+#include "mesh_cache.h"
 #include "srdf.h"
 #include "world_provider.h"
 
@@ -55,7 +56,8 @@ typedef struct urdf_world {
     int           *attached;     /* scene objects attached to links */
     int           *attached_link;
     int            num_attached;
-    mpb_mesh     **meshes;       /* loaded for the robot's mesh shapes */
+    const mpb_mesh **meshes;     /* the robot's mesh shapes, shared by
+                                    every world (mesh_cache.h) */
     int            num_meshes;
     int            ee_link;      /* see mpb_world_ee_position() */
     const char   **allowed;      /* num_links^2: why link a may touch b,
@@ -78,7 +80,7 @@ static void urdf_close(void *impl)
     mpb_scene_free(u->scene);
     mpb_robot_free(u->robot);
     for (int i = 0; i < u->num_meshes; i++)
-        mpb_mesh_free(u->meshes[i]);
+        mpb__mesh_release(u->meshes[i]);
     free(u->meshes);
     free(u->poses);
     free(u->moving);
@@ -180,13 +182,14 @@ static int shape_geometry(urdf_world *u, const mesh_search *ms,
     memcpy(g->dims, c->dims, sizeof g->dims);
     if (c->type != MPB_SHAPE_MESH)
         return MPB_OK;
-    mpb_mesh *m = NULL;
-    mpb_mesh **grown = realloc(u->meshes, (size_t)(u->num_meshes + 1) * sizeof *grown);
+    const mpb_mesh *m = NULL;
+    const mpb_mesh **grown = realloc(u->meshes, (size_t)(u->num_meshes + 1) *
+                                                sizeof *grown);
     if (!grown)
         return MPB_ENOMEM;
     u->meshes = grown;
-    int rc = mpb_mesh_load(c->mesh_uri, ms->dirs, ms->num_dirs, c->mesh_scale,
-                           &m, err, errlen);
+    int rc = mpb__mesh_load_shared(c->mesh_uri, ms->dirs, ms->num_dirs,
+                                   c->mesh_scale, &m, err, errlen);
     if (rc == MPB_ENOTFOUND)
         mesh_not_found(ms, err, errlen);
     if (rc != MPB_OK)
