@@ -436,7 +436,7 @@ uint64_t mesh_hash(const mpb_mesh *m)
     return h;
 }
 
-/* Has BVH model b been built from exactly m's vertices and triangles? */
+/* Was the BVH model geom built from exactly m's vertices and triangles? */
 bool built_from(const Geom *geom, const mpb_mesh *m)
 {
     auto *b = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(geom);
