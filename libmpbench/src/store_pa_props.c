@@ -1329,8 +1329,14 @@ char *mpb__pa_config_settings(const char *planner, const char *algorithm,
         char *eq = strchr(tok, '=');
         if (eq == NULL || eq == tok)
             continue;
-        *eq = '\0';
-        int len = sprintf(kv, "%s = %s", tok, eq + 1);
+        /* An imported log's "k = v" as OMPL writes it, not "k  =  v". */
+        char *end = eq, *value = eq + 1;
+        while (end > tok && end[-1] == ' ')
+            end--;
+        while (*value == ' ')
+            value++;
+        *end = '\0';
+        int len = sprintf(kv, "%s = %s", tok, value);
         lines[n++] = kv;
         kv += len + 1;
     }

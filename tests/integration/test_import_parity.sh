@@ -184,6 +184,14 @@ for log in wall edge; do
     check "$log: ... keeps every property of the log, value and type" test $? -eq 0
     sed 's/^/# /' "$work/diff.out" | head -n 24
 done
+# The edge log's common properties, "k = v" lines, come back as such
+# (beside mpbench's algorithm and planner), not as "k  =  v".
+check "a planner's settings are the log's lines" test "$(sqlite3 "$work/rt-pa.db" \
+    "SELECT settings FROM plannerConfigs WHERE name = 'ompl/RRT'")" = "algorithm = RRT
+;goal_bias = 0.05
+;planner = ompl
+;range = 0
+;"
 # A log mpbench wrote (17 significant digits, its own properties and
 # enum) reads the same with both tools too.
 compare "mpb export --ompl-log's log" "$work"/rt-logs/*.log
