@@ -1,7 +1,7 @@
 /*
  * store_pa.h - what the writers of OMPL's formats share; not part of the
- * API. docs/planner-arena.md is the mapping, and
- * shared/reference/planner-arena-format.md the target.
+ * API. docs/planner-arena.md is the mapping, and the database OMPL 1.5.2's
+ * ompl_benchmark_statistics.py builds the target (bench/ompl_peer.sh).
  *
  *   store_pa_props.c   an mpbench experiment as run properties: their
  *                      names and types, and a walk that turns each
