@@ -7,7 +7,9 @@
 # status enum), and one written here with what OMPL's writer seldom
 # shows (parameters of every type and with '-' in their names, integers
 # past 2^53 up to INT64's limits, nan, inf and empty values, a run and a
-# progress property no run measured, two planners with settings). Both
+# progress property no run measured, two planners with settings, and a
+# third with an approximate run, a timed-out one and an incorrect one,
+# the cells OMPL leaves empty left empty). Both
 # tools also add to each other's databases (-a): a configuration added
 # again is one plannerConfigs row, an enum one set of rows.
 #
