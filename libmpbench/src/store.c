@@ -38,8 +38,8 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
         "INSERT OR REPLACE INTO metrics(run_id, stage, name, value)"
         " VALUES (?1, ?2, ?3, ?4)",
     [MPB__ST_VALUE_INSERT] =
-        "INSERT OR REPLACE INTO planner_values(run_id, name, value)"
-        " VALUES (?1, ?2, ?3)",
+        "INSERT OR REPLACE INTO planner_values(run_id, name, value, exact)"
+        " VALUES (?1, ?2, ?3, ?4)",
     [MPB__ST_PROGRESS_INSERT] =
         "INSERT OR REPLACE INTO progress(run_id, seq, time, name, value)"
         " VALUES (?1, ?2, ?3, ?4, ?5)",
@@ -170,6 +170,17 @@ static int add_log_header(mpb_store *s)
                                     "create experiment_params");
 }
 
+/* The migration step of imported logs' integers and declared
+ * properties: planner_values.exact (NULL for the values there were: the
+ * REAL is all that was kept) and the empty log_properties (an older
+ * import's unmeasured properties are lost, its others typed REAL). */
+static int add_exact_values(mpb_store *s)
+{
+    int rc = add_missing_column(s, "planner_values", "exact", "INTEGER");
+    return rc != MPB_OK ? rc : exec(s, mpb__schema_log_properties,
+                                    "create log_properties");
+}
+
 static int create_schema(mpb_store *s)
 {
     int version, rc;
@@ -194,7 +205,8 @@ static int create_schema(mpb_store *s)
         (rc = add_missing_column(s, "queries", "goal_region", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "queries", "held", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK ||
-        (rc = add_log_header(s)) != MPB_OK)
+        (rc = add_log_header(s)) != MPB_OK ||
+        (rc = add_exact_values(s)) != MPB_OK)
         goto fail;
     /* The results view is made again when it lacks a column this version
      * gives it (a database made before results.experiment_id). */

@@ -212,6 +212,37 @@ int mpb_store_planner_config_add(mpb_store *s, int64_t experiment_id,
     return insert_or_get(s, ins, sel, "add planner config", id);
 }
 
+int mpb_store_log_properties(mpb_store *s, int64_t config_id, int progress,
+                             int n, const mpb_log_property *props)
+{
+    if (n < 0 || (n > 0 && props == NULL))
+        return mpb__store_fail(s, MPB_EINVAL, "bad arguments");
+    sqlite3_stmt *del = mpb__store_prepare(s,
+        "DELETE FROM log_properties WHERE planner_config_id = ?"
+        " AND progress = ?");
+    sqlite3_stmt *ins = mpb__store_prepare(s,
+        "INSERT INTO log_properties(planner_config_id, progress, idx, name,"
+        " type) VALUES (?, ?, ?, ?, ?)");
+    int rc = del && ins ? MPB_OK : MPB_EDB;
+    if (rc == MPB_OK) {
+        sqlite3_bind_int64(del, 1, config_id);
+        sqlite3_bind_int(del, 2, progress != 0);
+        rc = step_once(s, del, "forget a log's properties");
+    }
+    for (int i = 0; i < n && rc == MPB_OK; i++) {
+        sqlite3_reset(ins);
+        sqlite3_bind_int64(ins, 1, config_id);
+        sqlite3_bind_int(ins, 2, progress != 0);
+        sqlite3_bind_int(ins, 3, i);
+        sqlite3_bind_text(ins, 4, props[i].name, -1, SQLITE_STATIC);
+        sqlite3_bind_text(ins, 5, props[i].type, -1, SQLITE_STATIC);
+        rc = step_once(s, ins, "add a log's property");
+    }
+    sqlite3_finalize(del);
+    sqlite3_finalize(ins);
+    return rc;
+}
+
 int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
                         const mpb_scene_info *sc, int64_t *id)
 {

@@ -318,7 +318,10 @@ static int export_experiment(pa_out *o, int64_t experiment_id,
         sqlite3_bind_int64(add_run, 1, pa_exp[qi]);
         sqlite3_bind_int64(add_run, 2, pid);
         for (int k = 0; k < props.n; k++)
-            bind_value(add_run, 3 + k, &props.v[k], rv.values[k]);
+            if (rv.is_int[k])   /* an INTEGER column keeps it exactly */
+                sqlite3_bind_int64(add_run, 3 + k, rv.ints[k]);
+            else
+                bind_value(add_run, 3 + k, &props.v[k], rv.values[k]);
         if (sqlite3_step(add_run) != SQLITE_DONE) {
             rc = mpb__pa_fail(o, "add a run");
             goto done;

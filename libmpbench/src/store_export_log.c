@@ -233,7 +233,10 @@ static int write_log(mpb_store *s, FILE *out, const exp_info *e,
                 goto done;
             }
             for (int k = 0; k < props->n; k++) {
-                log_value(out, &props->v[k], rv.values[k]);
+                if (rv.is_int[k])
+                    fprintf(out, "%lld", (long long)rv.ints[k]);
+                else
+                    log_value(out, &props->v[k], rv.values[k]);
                 fputs("; ", out);
             }
             fputc('\n', out);

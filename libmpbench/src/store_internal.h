@@ -12,6 +12,7 @@
 extern const char mpb__schema_v1[];
 extern const char mpb__schema_results_view[];
 extern const char mpb__schema_experiment_params[];
+extern const char mpb__schema_log_properties[];
 
 /* Whether the table (or view) has the column: a database made by an earlier
  * mpbench and opened read-only may lack one that a writer would add. */

@@ -1,7 +1,7 @@
 /*
  * store_pa.h - what the writers of OMPL's formats share; not part of the
- * API. docs/planner-arena.md is the mapping, and
- * shared/reference/planner-arena-format.md the target.
+ * API. docs/planner-arena.md is the mapping, and the database OMPL 1.5.2's
+ * ompl_benchmark_statistics.py builds the target (bench/ompl_peer.sh).
  *
  *   store_pa_props.c   an mpbench experiment as run properties: their
  *                      names and types, and a walk that turns each
@@ -28,8 +28,10 @@ typedef enum {
     K_VALUE
 } prop_kind;
 
-/* Which stage a stage property reads. */
-typedef enum { ROLE_FIRST, ROLE_MID, ROLE_FINAL } stage_role;
+/* Which stage a stage property reads: ROLE_SIMPLIFIED is the final
+ * stage of an imported log's run, none when it is the first (the log had
+ * no simplified solution). */
+typedef enum { ROLE_FIRST, ROLE_MID, ROLE_FINAL, ROLE_SIMPLIFIED } stage_role;
 
 typedef struct prop {
     char       *name;       /* as in a log: words joined by single spaces */
@@ -86,6 +88,10 @@ char *mpb__pa_col_dup(sqlite3_stmt *st, int i);
 typedef struct run_view {
     int64_t       run_id, config_id, query_id;
     const double *values;       /* one per run property; NaN for NULL */
+    const int64_t *ints;        /* where is_int[k], the property is the
+                                   integer ints[k] (values[k] the double
+                                   nearest it: past 2^53 not the same) */
+    const unsigned char *is_int;
     const double *samples;      /* num_samples rows of one value per
                                    progress property, time first */
     int           num_samples;

@@ -272,6 +272,150 @@ static int add_stage_props(prop_list *l, const char *prefix, stage_role role,
                     stage, NULL, "stage ");
 }
 
+/* One of the four property types of OMPL's logs (static text), REAL for
+ * any other. */
+static const char *log_type(const char *type)
+{
+    static const char *const known[] = {"INTEGER", "BOOLEAN", "ENUM"};
+    for (int i = 0; type && i < 3; i++)
+        if (strcmp(type, known[i]) == 0)
+            return known[i];
+    return "REAL";
+}
+
+/* A property an imported log declares (log_properties). */
+typedef struct declared {
+    char *name;
+    const char *type;   /* log_type()'s */
+} declared;
+
+typedef struct declared_list {
+    declared *v;
+    int       n, cap;
+} declared_list;
+
+static void declared_free(declared_list *l)
+{
+    for (int i = 0; i < l->n; i++)
+        free(l->v[i].name);
+    free(l->v);
+    *l = (declared_list){0};
+}
+
+/* The run (progress 0) or progress (1) properties the imported logs of an
+ * experiment declare, each name once (its first planner's type), in their
+ * planners' and the logs' order; none for a database made before they
+ * were kept. */
+static int read_declared(mpb_store *s, int64_t experiment_id, int progress,
+                         declared_list *out)
+{
+    if (!mpb__store_has_column(s, "log_properties", "name"))
+        return MPB_OK;
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT p.name, p.type FROM log_properties p JOIN planner_configs c"
+        " ON c.id = p.planner_config_id WHERE c.experiment_id = ?1"
+        " AND p.progress = ?2 ORDER BY c.id, p.idx");
+    int step, rc = MPB_OK;
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    sqlite3_bind_int(st, 2, progress);
+    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
+        const char *name = (const char *)sqlite3_column_text(st, 0);
+        int seen = name == NULL;
+        for (int i = 0; i < out->n && !seen; i++)
+            seen = strcmp(out->v[i].name, name) == 0;
+        if (seen)
+            continue;
+        if (mpb__grow((void **)&out->v, &out->cap, out->n + 1,
+                      sizeof *out->v) ||
+            (out->v[out->n].name = strdup(name)) == NULL) {
+            rc = MPB_ENOMEM;
+            break;
+        }
+        out->v[out->n++].type =
+            log_type((const char *)sqlite3_column_text(st, 1));
+    }
+    if (rc == MPB_OK && step != SQLITE_DONE)
+        rc = mpb__store_db_fail(s, "read a log's properties");
+    sqlite3_finalize(st);
+    return rc;
+}
+
+/*
+ * What the declared properties d add to l: the type of each planner value
+ * a log declared (its K_VALUE property of that source), and a property of
+ * its own for each that is not a column of l yet (no run measured it):
+ * NULL in every run, as in OMPL's script's database.
+ */
+static int add_declared(prop_list *l, const declared_list *d,
+                        const char *fallback_prefix)
+{
+    int rc = MPB_OK;
+    for (int i = 0; i < d->n && rc == MPB_OK; i++) {
+        char *name = prop_name("", d->v[i].name);
+        if (name == NULL)
+            return MPB_ENOMEM;
+        int present = 0;
+        for (int k = 0; k < l->n; k++) {
+            prop *p = &l->v[k];
+            if (p->kind == K_VALUE && p->source &&
+                strcmp(p->source, d->v[i].name) == 0) {
+                p->type = d->v[i].type;
+                present = 1;
+            } else if (mpb__pa_same_column(p->name, name)) {
+                present = 1;
+            }
+        }
+        if (present)
+            free(name);
+        else
+            rc = prop_add(l, name, d->v[i].type, K_VALUE, ROLE_FIRST, NULL,
+                          d->v[i].name, fallback_prefix);
+    }
+    return rc;
+}
+
+/*
+ * An imported log's runs: the properties that mpbench works out from what
+ * it keeps (the claim, the status, whether approximate, whether a stage
+ * is valid) give back the log's own cell instead, NULL where the run has
+ * none (its planner's block does not declare the property, or the run
+ * left it empty), if the log declares it (mpb import keeps such cells as
+ * planner values); and the simplified stage's properties are NULL for a
+ * run without one, not the first stage's.
+ */
+static int log_cells(prop_list *l, const declared_list *d)
+{
+    static const struct { prop_kind kind; stage_role role; const char *name; }
+        own[] = {
+        {K_CLAIMED, ROLE_FIRST, "solved"},
+        {K_STATUS, ROLE_FIRST, "status"},
+        {K_APPROX, ROLE_FIRST, "approximate solution"},
+        {K_STAGE_VALID, ROLE_FIRST, "correct solution"},
+        {K_STAGE_VALID, ROLE_FINAL, "simplified correct solution"},
+    };
+    for (int k = 0; k < l->n; k++) {
+        prop *p = &l->v[k];
+        for (size_t i = 0; i < sizeof own / sizeof own[0]; i++) {
+            int said = 0;
+            for (int j = 0; j < d->n && !said; j++)
+                said = strcmp(d->v[j].name, own[i].name) == 0;
+            if (!said || p->kind != own[i].kind || p->role != own[i].role)
+                continue;
+            free(p->source);
+            if ((p->source = strdup(own[i].name)) == NULL)
+                return MPB_ENOMEM;
+            p->kind = K_VALUE;
+            p->role = ROLE_FIRST;
+            break;
+        }
+        if (p->role == ROLE_FINAL)
+            p->role = ROLE_SIMPLIFIED;
+    }
+    return MPB_OK;
+}
+
 int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
                              prop_list *props, prop_list *progress)
 {
@@ -289,6 +433,7 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
         {"status", "ENUM", K_STATUS},
     };
     name_list metrics = {0}, mids = {0}, values = {0}, samples = {0};
+    declared_list run_decl = {0}, progress_decl = {0};
     int rc;
 
     if ((rc = read_names(s,
@@ -310,7 +455,9 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
             "SELECT DISTINCT p.name FROM runs r JOIN progress p"
             " ON p.run_id = r.id WHERE r.experiment_id = ?1"
             " AND r.state = 'done' ORDER BY p.name", experiment_id,
-            &samples)))
+            &samples)) ||
+        (rc = read_declared(s, experiment_id, 0, &run_decl)) ||
+        (rc = read_declared(s, experiment_id, 1, &progress_decl)))
         goto done;
     qsort(metrics.v, (size_t)metrics.n, sizeof *metrics.v, cmp_metric);
 
@@ -359,10 +506,20 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
     if ((rc = add_stage_props(props, "simplified ", ROLE_FINAL, NULL,
                               &metrics)))
         goto done;
-    for (int i = 0; i < values.n; i++)
-        if ((rc = prop_add(props, prop_name("", values.v[i]), "REAL", K_VALUE,
-                           ROLE_FIRST, NULL, values.v[i], "planner ")))
+    if (imported && (rc = log_cells(props, &run_decl)))
+        goto done;
+    for (int i = 0; i < values.n; i++) {
+        int taken = 0;  /* read by a property above (log_cells()) */
+        for (int k = 0; k < props->n && !taken; k++)
+            taken = props->v[k].kind == K_VALUE &&
+                    strcmp(props->v[k].source, values.v[i]) == 0;
+        if (!taken && (rc = prop_add(props, prop_name("", values.v[i]), "REAL",
+                                     K_VALUE, ROLE_FIRST, NULL, values.v[i],
+                                     "planner ")))
             goto done;
+    }
+    if ((rc = add_declared(props, &run_decl, "planner ")))
+        goto done;
     /* Progress: "time" is the x-axis column of the table itself. */
     prop_list taken = {0};
     if ((rc = prop_add(&taken, prop_name("", "time"), "REAL", K_TIME,
@@ -372,6 +529,8 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
             rc = prop_add(progress, prop_name("", samples.v[i]), "REAL",
                           K_VALUE, ROLE_FIRST, NULL, samples.v[i],
                           "progress ");
+        if (rc == MPB_OK)
+            rc = add_declared(progress, &progress_decl, "progress ");
     } else {
         mpb__pa_props_free(&taken);
     }
@@ -382,6 +541,8 @@ done:
     mpb__pa_names_free(&mids);
     mpb__pa_names_free(&values);
     mpb__pa_names_free(&samples);
+    declared_free(&run_decl);
+    declared_free(&progress_decl);
     return rc;
 }
 
@@ -400,8 +561,10 @@ typedef struct metric_info {
 } metric_info;
 
 typedef struct named_value {
-    char  *name;
-    double value;
+    char   *name;
+    double  value;
+    int     is_int;     /* value is the integer exact (planner_values.exact) */
+    int64_t exact;
 } named_value;
 
 struct pa_walker {
@@ -409,6 +572,8 @@ struct pa_walker {
     const prop_list *props, *progress;
     sqlite3_stmt    *runs, *stages, *metrics, *values, *samples;
     double          *row;
+    int64_t         *ints;      /* the row's integers, where is_int */
+    unsigned char   *is_int;
     stage_info      *st;
     int              num_st, st_cap;
     metric_info     *m;
@@ -443,6 +608,8 @@ void mpb__pa_walker_close(pa_walker *w)
     sqlite3_finalize(w->values);
     sqlite3_finalize(w->samples);
     free(w->row);
+    free(w->ints);
+    free(w->is_int);
     free(w->st);
     free(w->m);
     free(w->v);
@@ -482,8 +649,12 @@ int mpb__pa_walker_open(pa_walker **out, mpb_store *s, int64_t experiment_id,
         " ORDER BY idx");
     w->metrics = mpb__store_prepare(s,
         "SELECT stage, name, value FROM metrics WHERE run_id = ?");
+    /* Without planner_values.exact (a database made before it, opened
+     * read-only), the REAL only. */
     w->values = mpb__store_prepare(s,
-        "SELECT name, value FROM planner_values WHERE run_id = ?");
+        mpb__store_has_column(s, "planner_values", "exact")
+            ? "SELECT name, value, exact FROM planner_values WHERE run_id = ?"
+            : "SELECT name, value, NULL FROM planner_values WHERE run_id = ?");
     w->samples = mpb__store_prepare(s,
         "SELECT seq, time, name, value FROM progress WHERE run_id = ?"
         " ORDER BY seq");
@@ -491,7 +662,9 @@ int mpb__pa_walker_open(pa_walker **out, mpb_store *s, int64_t experiment_id,
         mpb__pa_walker_close(w);
         return MPB_EDB;
     }
-    if ((w->row = malloc(sizeof *w->row * (size_t)(props->n + 1))) == NULL) {
+    if ((w->row = malloc(sizeof *w->row * (size_t)(props->n + 1))) == NULL ||
+        (w->ints = malloc(sizeof *w->ints * (size_t)(props->n + 1))) == NULL ||
+        (w->is_int = malloc((size_t)props->n + 1)) == NULL) {
         mpb__pa_walker_close(w);
         return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
     }
@@ -565,6 +738,8 @@ static int read_run_parts(pa_walker *w, int64_t run_id)
         if ((nv->name = mpb__pa_col_dup(st, 0)) == NULL)
             return MPB_ENOMEM;
         nv->value = col_num(st, 1);
+        nv->is_int = sqlite3_column_type(st, 2) == SQLITE_INTEGER;
+        nv->exact = sqlite3_column_int64(st, 2);
         w->num_v++;
     }
     if (step != SQLITE_DONE)
@@ -645,13 +820,16 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
     for (int k = 0; k < w->props->n; k++) {
         const prop *p = &w->props->v[k];
         const stage_info *si = p->role == ROLE_FIRST ? first
-                             : p->role == ROLE_FINAL ? final : NULL;
+                             : p->role == ROLE_FINAL ? final
+                             : p->role == ROLE_SIMPLIFIED && final != first
+                                 ? final : NULL;
         if (p->role == ROLE_MID)
             for (int i = 0; i < w->num_st; i++)
                 if (&w->st[i] != first && &w->st[i] != final &&
                     strcmp(w->st[i].name, p->stage) == 0)
                     si = &w->st[i];
         double v = NAN;
+        w->is_int[k] = 0;
         switch (p->kind) {
         case K_TIME:       v = col_num(r, 6); break;
         case K_TIME_RAW:   v = col_num(r, 7); break;
@@ -685,8 +863,11 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         case K_STAGE_VALID: v = si ? si->valid : NAN; break;
         case K_VALUE:
             for (int i = 0; i < w->num_v; i++)
-                if (strcmp(w->v[i].name, p->source) == 0)
+                if (strcmp(w->v[i].name, p->source) == 0) {
                     v = w->v[i].value;
+                    w->is_int[k] = (unsigned char)w->v[i].is_int;
+                    w->ints[k] = w->v[i].exact;
+                }
             break;
         }
         if ((p->kind == K_SOLVED || p->kind == K_CLAIMED) && !isnan(v))
@@ -698,6 +879,8 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         .config_id = sqlite3_column_int64(r, 1),
         .query_id = sqlite3_column_int64(r, 2),
         .values = w->row,
+        .ints = w->ints,
+        .is_int = w->is_int,
         .samples = w->smp,
         .num_samples = w->num_smp,
     };
@@ -1146,8 +1329,14 @@ char *mpb__pa_config_settings(const char *planner, const char *algorithm,
         char *eq = strchr(tok, '=');
         if (eq == NULL || eq == tok)
             continue;
-        *eq = '\0';
-        int len = sprintf(kv, "%s = %s", tok, eq + 1);
+        /* An imported log's "k = v" as OMPL writes it, not "k  =  v". */
+        char *end = eq, *value = eq + 1;
+        while (end > tok && end[-1] == ' ')
+            end--;
+        while (*value == ' ')
+            value++;
+        *end = '\0';
+        int len = sprintf(kv, "%s = %s", tok, value);
         lines[n++] = kv;
         kv += len + 1;
     }

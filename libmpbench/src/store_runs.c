@@ -258,6 +258,7 @@ static int write_stage(mpb_store *s, int64_t run_id, int idx,
 
 static int write_values(mpb_store *s, const mpb_run_record *r)
 {
+    int x = 0;      /* the next of r->exact, by index */
     for (int i = 0; i < r->num_values; i++) {
         sqlite3_stmt *st = mpb__store_stmt(s, MPB__ST_VALUE_INSERT);
         if (st == NULL)
@@ -265,6 +266,10 @@ static int write_values(mpb_store *s, const mpb_run_record *r)
         sqlite3_bind_int64(st, 1, r->run_id);
         sqlite3_bind_text(st, 2, r->values[i].name, -1, SQLITE_STATIC);
         sqlite3_bind_double(st, 3, r->values[i].value);
+        while (r->exact && x < r->num_exact && r->exact[x].index < i)
+            x++;
+        if (r->exact && x < r->num_exact && r->exact[x].index == i)
+            sqlite3_bind_int64(st, 4, r->exact[x].value);
         if (sqlite3_step(st) != SQLITE_DONE)
             return mpb__store_db_fail(s, "store planner value");
     }

@@ -123,10 +123,14 @@ const char mpb__schema_v1[] =
     "  value  REAL,\n"
     "  PRIMARY KEY(run_id, stage, name)) WITHOUT ROWID;\n"
 
+    /* value as a REAL, exact the same when it is an integer: a REAL
+     * column turns an integer into the nearest double (store.c,
+     * add_exact_values()). */
     "CREATE TABLE IF NOT EXISTS planner_values(\n"
     "  run_id INTEGER NOT NULL REFERENCES runs(id),\n"
     "  name   TEXT NOT NULL,\n"
     "  value  REAL,\n"
+    "  exact  INTEGER,\n"
     "  PRIMARY KEY(run_id, name)) WITHOUT ROWID;\n"
 
     "CREATE TABLE IF NOT EXISTS progress(\n"
@@ -149,6 +153,17 @@ const char mpb__schema_experiment_params[] =
     "  type          TEXT NOT NULL,\n"
     "  value         TEXT NOT NULL,\n"
     "  PRIMARY KEY(experiment_id, idx)) WITHOUT ROWID;\n";
+
+/* The run and progress properties an imported log declares for each
+ * planner, in its order, measured or not (store.c, add_exact_values()). */
+const char mpb__schema_log_properties[] =
+    "CREATE TABLE IF NOT EXISTS log_properties(\n"
+    "  planner_config_id INTEGER NOT NULL REFERENCES planner_configs(id),\n"
+    "  progress          INTEGER NOT NULL,\n"
+    "  idx               INTEGER NOT NULL,\n"
+    "  name              TEXT NOT NULL,\n"
+    "  type              TEXT NOT NULL,\n"
+    "  PRIMARY KEY(planner_config_id, progress, idx)) WITHOUT ROWID;\n";
 
 /* For people at the sqlite3 prompt: one row per finished run, with the
  * metrics of its final stage. An experiment run again after it finished

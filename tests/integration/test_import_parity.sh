@@ -6,7 +6,10 @@
 # OMPL's Benchmark (experiment parameters, three planners, progress, the
 # status enum), and one written here with what OMPL's writer seldom
 # shows (parameters of every type and with '-' in their names, integers
-# past 2^53, nan, inf and empty values, two planners with settings). Both
+# past 2^53 up to INT64's limits, nan, inf and empty values, a run and a
+# progress property no run measured, two planners with settings, and a
+# third with an approximate run, a timed-out one and an incorrect one,
+# the cells OMPL leaves empty left empty). Both
 # tools also add to each other's databases (-a): a configuration added
 # again is one plannerConfigs row, an enum one set of rows.
 #
@@ -59,29 +62,31 @@ CPU: a test
 12.75 seconds spent to collect the data
 1 enum type
 status|Unknown status|Invalid start|Invalid goal|Unrecognized goal type|Timeout|Approximate solution|Exact solution|Crash|Abort|Infeasible
-2 planners
+3 planners
 geometric_RRT
 2 common properties
 goal_bias = 0.05
 range = 0
-6 properties for each run
+7 properties for each run
 graph states INTEGER
 solution length REAL
 solved BOOLEAN
 status ENUM
 time REAL
+unmeasured INTEGER
 valid segment count INTEGER
 3 runs
-9007199254740993; 1.5; 1; 6; 0.125; -9223372036854775807; 
-12; nan; 0; 4; 2.5; 0; 
-; inf; 0; 9; 1e-7; 10000000000000000; 
-3 progress properties for each run
+9007199254740993; 1.5; 1; 6; 0.125; ; -9223372036854775807; 
+-9223372036854775808; nan; 0; 4; 2.5; ; 9223372036854775807; 
+; inf; 0; 9; 1e-7; ; 10000000000000000; 
+4 progress properties for each run
 best cost REAL
 iterations INTEGER
+never REAL
 time REAL
 3 runs
-1.5,10,0.05,;inf,20,0.1,;
-,3,0.05,;
+1.5,10,,0.05,;inf,20,nan,0.1,;
+,3,,0.05,;
 
 .
 geometric_PRM
@@ -96,6 +101,23 @@ time REAL
 0.5; 1; 6; 0.25; 
 ; 0; 4; 2.5; 
 3; 1; 5; 1.0; 
+.
+geometric_KPIECE1
+0 common properties
+9 properties for each run
+approximate solution BOOLEAN
+correct solution BOOLEAN
+simplification time REAL
+simplified solution length REAL
+solution length REAL
+solution segments INTEGER
+solved BOOLEAN
+status ENUM
+time REAL
+3 runs
+1; 1; 0.01; 1.25; 1.5; 4; 0; 5; 2.5; 
+; ; ; ; ; ; 0; 4; 2.5; 
+0; 0; 0.02; 2.25; 3.5; 7; 1; 6; 0.5; 
 .
 EOT
 
@@ -133,38 +155,45 @@ sed 's/^/# /' "$work/diff.out" | head -n 24
 check "the script adds to mpb import -p's database as to its own" test $? -eq 0
 sed 's/^/# /' "$work/diff.out" | head -n 24
 check "a configuration added again is one row" \
-    eq "$(sqlite3 "$work/b.db" "SELECT count(*) FROM plannerConfigs")" 5
+    eq "$(sqlite3 "$work/b.db" "SELECT count(*) FROM plannerConfigs")" 6
 
 # The round trip through an mpbench database: mpb import -d, then mpb
 # export --planner-arena, and mpb export --ompl-log read by the script,
-# keep every property each log had, by value: the experiment's header
+# keep every property each log had, with its value and SQLite type, as
+# the script stores it from the log itself: the experiment's header
 # (date, version, total time, seed, memory limit, CPU block, setup, host)
 # and parameters, and every run and progress property (its planners are
-# named mpbench's way, and mpbench adds properties of its own). mpbench
-# keeps a planner's own numbers as reals: the edge log's run integers
-# past 2^53 are left out here (a known limit, docs/planner-arena.md).
-grep -v '^9007199254740993; 1.5; ' "$work/edge.log" | sed \
-    '/^geometric_RRT$/,/^\.$/ s/^12; nan; 0; 4; 2.5; 0; $/12; nan; 0; 4; 2.5; 0; \n5; 1.5; 1; 6; 0.125; -7; /' \
-    >"$work/edge-d.log"
-for log in wall edge-d; do
+# named mpbench's way, and mpbench adds properties of its own), the edge
+# log's integers past 2^53 (INT64_MIN and INT64_MAX among them) exactly,
+# and the properties that no run measured (the wall log's progress, the
+# edge log's "unmeasured" and "never") as the script's columns of NULLs.
+for log in wall edge; do
     rm -rf "$work/rt.db" "$work/rt-pa.db" "$work/rt-logs" "$work/rt-ompl.db" \
         "$work/ompl.db"
     "$py" "$stats" -d "$work/ompl.db" "$work/$log.log" >/dev/null 2>&1
     "$mpb" import -d "$work/rt.db" "$work/$log.log" >/dev/null &&
         "$mpb" export --planner-arena "$work/rt.db" "$work/rt-pa.db" >/dev/null
     check "$log: import -d, export --planner-arena" test $? -eq 0
-    "$py" "$same" --properties --values "$work/ompl.db" "$work/rt-pa.db" \
+    "$py" "$same" --properties "$work/ompl.db" "$work/rt-pa.db" \
         >"$work/diff.out"
-    check "$log: ... keeps every property of the log, with its value" test $? -eq 0
+    check "$log: ... keeps every property of the log, value and type" test $? -eq 0
     sed 's/^/# /' "$work/diff.out" | head -n 24
     "$mpb" export --ompl-log "$work/rt.db" "$work/rt-logs" >/dev/null &&
         "$py" "$stats" -d "$work/rt-ompl.db" "$work/rt-logs"/*.log >/dev/null 2>&1
     check "$log: export --ompl-log, read by OMPL's script" test $? -eq 0
-    "$py" "$same" --properties --values "$work/ompl.db" "$work/rt-ompl.db" \
+    "$py" "$same" --properties "$work/ompl.db" "$work/rt-ompl.db" \
         >"$work/diff.out"
-    check "$log: ... keeps every property of the log, with its value" test $? -eq 0
+    check "$log: ... keeps every property of the log, value and type" test $? -eq 0
     sed 's/^/# /' "$work/diff.out" | head -n 24
 done
+# The edge log's common properties, "k = v" lines, come back as such
+# (beside mpbench's algorithm and planner), not as "k  =  v".
+check "a planner's settings are the log's lines" test "$(sqlite3 "$work/rt-pa.db" \
+    "SELECT settings FROM plannerConfigs WHERE name = 'ompl/RRT'")" = "algorithm = RRT
+;goal_bias = 0.05
+;planner = ompl
+;range = 0
+;"
 # A log mpbench wrote (17 significant digits, its own properties and
 # enum) reads the same with both tools too.
 compare "mpb export --ompl-log's log" "$work"/rt-logs/*.log

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <dirent.h>
+#include <glob.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdio.h>
@@ -977,6 +978,118 @@ static void ompl_logs_one_per_query(void **state)
     mpb_store_close(s);
 }
 
+/*
+ * An imported log's integers and the properties it declares (what mpb
+ * import -d stores): an INTEGER planner value past 2^53, and INT64_MIN,
+ * come out exactly in an INTEGER column and in the log; a property the
+ * log declares that no run measured is a column of NULLs of its type. A
+ * database made before planner_values.exact and log_properties is read
+ * as before (the REALs), and gets both when a writer opens it.
+ */
+static void an_imported_logs_integers_and_unmeasured_properties(void **state)
+{
+    fixture *f = *state;
+    char db[128], dir[128];
+    snprintf(db, sizeof db, "%s/imported.db", f->dir);
+    snprintf(dir, sizeof dir, "%s/imported-logs", f->dir);
+    mpb_store *s;
+    int64_t exp, cfg, scene, query, ids[2] = {0, 0};
+    static const char *const none[] = {NULL};
+    static const double zero[] = {0.0};
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    mpb_log_header h = {.host = "h", .version = "OMPL 1.5.2",
+                        .started = "2026-01-02 03:04:05", .seed = "1",
+                        .total_time = 1.0, .memory_limit = 0.0};
+    mpb_experiment_info e = {"log", "log.log", "x", "x", 2, 1.0, &h, 0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRT", "ompl",
+                                                  "RRT", "", &cfg), MPB_OK);
+    mpb_scene_info sc = {"log", "ompl-log", "x", "", "ompl-log", "x", ""};
+    assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
+    mpb_query_info q = {"log", 0, none, zero, MPB_GOAL_JOINTS, NULL, 0.0,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    static const mpb_log_property run_props[] = {
+        {"graph states", "INTEGER"}, {"time", "REAL"}, {"never", "BOOLEAN"}};
+    static const mpb_log_property progress_props[] = {
+        {"time", "REAL"}, {"nothing", "INTEGER"}};
+    assert_int_equal(mpb_store_log_properties(s, cfg, 0, 3, run_props), MPB_OK);
+    assert_int_equal(mpb_store_log_properties(s, cfg, 1, 2, progress_props),
+                     MPB_OK);
+    for (int r = 0; r < 2; r++) {
+        assert_int_equal(mpb_store_run_add(s, exp, cfg, query, r, 0), MPB_OK);
+        assert_int_equal(mpb_store_runs_unfinished(s, exp, first_id, &ids[r]),
+                         1);
+        assert_int_equal(mpb_store_run_sent(s, ids[r], "u", "imported"),
+                         MPB_OK);
+        const mpb_named values[] = {
+            {"graph states", r == 0 ? 9007199254740993.0 : (double)INT64_MIN}};
+        const mpb_exact_value exact[] = {
+            {0, r == 0 ? INT64_C(9007199254740993) : INT64_MIN}};
+        mpb_run_record rec = {
+            .run_id = ids[r], .run_uid = "u", .planner_id = "imported",
+            .status = "timeout", .message = "", .time_total = 0.5,
+            .time_raw = 0.5, .wall_time = NAN, .verify_time = NAN,
+            .memory = NAN, .num_values = 1, .values = values,
+            .num_exact = 1, .exact = exact};
+        assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+    }
+    mpb_store_close(s);
+
+    export_store(f, db, 0, NULL);
+    sqlite3 *out = open_out(f);
+    assert_string_equal(rows(out, "SELECT typeof(graph_states), graph_states,"
+                                  " typeof(never) FROM runs ORDER BY id"),
+                        "integer|9007199254740993|null\n"
+                        "integer|-9223372036854775808|null\n");
+    assert_non_null(strstr(columns(out, "runs", 1),
+                           " graph_states:INTEGER never:BOOLEAN"));
+    assert_string_equal(columns(out, "progress", 1),
+                        "runid:INTEGER time:REAL nothing:INTEGER");
+    sqlite3_close(out);
+    assert_int_equal(mpb_store_open(db, 1, &s), MPB_OK);
+    assert_int_equal(mpb_store_export_ompl_logs(s, dir, NULL, 0, 0, NULL),
+                     MPB_OK);
+    mpb_store_close(s);
+    char pattern[160];
+    glob_t g;
+    snprintf(pattern, sizeof pattern, "%s/*.log", dir);
+    assert_int_equal(glob(pattern, 0, NULL, &g), 0);
+    assert_int_equal(g.gl_pathc, 1);
+    const char *log = slurp(g.gl_pathv[0]);
+    globfree(&g);
+    assert_non_null(strstr(log, "\ngraph states INTEGER\nnever BOOLEAN\n"
+                                "2 runs\n"));
+    assert_non_null(strstr(log, "; 9007199254740993; ; \n"));
+    assert_non_null(strstr(log, "; -9223372036854775808; ; \n"));
+    assert_non_null(strstr(log, "2 progress properties for each run\n"
+                                "time REAL\nnothing INTEGER\n"));
+
+    /* A database of an mpbench before them, read as it was. */
+    sqlite3 *old;
+    assert_int_equal(sqlite3_open(db, &old), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(old, "ALTER TABLE planner_values DROP COLUMN"
+                                       " exact; DROP TABLE log_properties",
+                                  NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(old);
+    export_store(f, db, 0, NULL);
+    out = open_out(f);
+    assert_string_equal(rows(out, "SELECT typeof(graph_states), graph_states"
+                                  " = 9007199254740992.0 FROM runs ORDER BY"
+                                  " id LIMIT 1"), "real|1\n");
+    assert_null(strstr(columns(out, "runs", 0), "never"));
+    sqlite3_close(out);
+    /* A writer adds them back: NULL, none, for what was there. */
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    mpb_store_close(s);
+    assert_int_equal(sqlite3_open(db, &old), SQLITE_OK);
+    assert_string_equal(rows(old, "SELECT count(*) FROM planner_values WHERE"
+                                  " exact IS NULL"), "2\n");
+    assert_string_equal(rows(old, "SELECT count(*) FROM log_properties"),
+                        "0\n");
+    sqlite3_close(old);
+}
+
 /* The number of files in dir. */
 static int count_files(const char *dir)
 {
@@ -1222,6 +1335,7 @@ int main(void)
         cmocka_unit_test(ompl_logs_one_per_query),
         cmocka_unit_test(ompl_logs_of_names_alike_are_files_of_their_own),
         cmocka_unit_test(mpb_export_writes_and_refuses_to_overwrite),
+        cmocka_unit_test(an_imported_logs_integers_and_unmeasured_properties),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

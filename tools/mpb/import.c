@@ -11,7 +11,9 @@
  * verified again, since OMPL logs hold no paths. The path properties
  * become stages without waypoints: `raw` from "solution ...", `simplified`
  * from "simplified solution ..."; every other number is kept as the
- * planner's own value, progress samples as progress. docs/planner-arena.md.
+ * planner's own value (an integer one exactly), progress samples as
+ * progress, and the properties each planner block declares, with their
+ * types, whether measured or not. docs/planner-arena.md.
  */
 #include <errno.h>
 #include <getopt.h>
@@ -90,16 +92,18 @@ static columns find_columns(const mpb_ompl_planner *p)
     };
 }
 
-/* Properties that become run fields or stage metrics, not planner values. */
+/* Properties that become run fields or stage metrics, not planner values.
+ * The claim, whether approximate and whether correct make mpbench's
+ * success and its stages' validity, and are kept as planner values too:
+ * mpb export gives back the log's own cells (empty ones too). */
 static int is_mapped(const char *name)
 {
     static const char *const mapped[] = {
-        "time", "solved", "approximate solution", "correct solution",
-        "solution length", "solution smoothness", "solution clearance",
+        "time", "solution length", "solution smoothness", "solution clearance",
         "solution segments", "simplification time",
         "simplified solution length", "simplified solution smoothness",
         "simplified solution clearance", "simplified solution segments",
-        "simplified correct solution", "memory", NULL};
+        "memory", NULL};
     for (int i = 0; mapped[i]; i++)
         if (strcmp(name, mapped[i]) == 0)
             return 1;
@@ -109,6 +113,31 @@ static int is_mapped(const char *name)
 static double cell(const mpb_ompl_planner *p, long run, int col)
 {
     return col < 0 ? NAN : p->values[(size_t)run * (size_t)p->num_properties + (size_t)col];
+}
+
+/* 1 for the types whose values a log writes as integers. */
+static int integer_type(const char *type)
+{
+    return strcmp(type, "INTEGER") == 0 || strcmp(type, "BOOLEAN") == 0 ||
+           strcmp(type, "ENUM") == 0;
+}
+
+static int by_cell(const void *key, const void *elem)
+{
+    size_t k = *(const size_t *)key, c = ((const mpb_ompl_exact *)elem)->cell;
+    return k < c ? -1 : k > c;
+}
+
+/* The integer of a run's property col, which cell() gives as the nearest
+ * double: as written when a double would round it (the parser's exact
+ * list, in cell order), else that double. */
+static int64_t integer_cell(const mpb_ompl_planner *p, long run, int col)
+{
+    size_t key = (size_t)run * (size_t)p->num_properties + (size_t)col;
+    const mpb_ompl_exact *x = p->num_exact > 0
+        ? bsearch(&key, p->exact, (size_t)p->num_exact, sizeof *p->exact, by_cell)
+        : NULL;
+    return x ? (int64_t)x->value : (int64_t)cell(p, run, col);
 }
 
 /* OMPL's status enum as mpbench's status names; the log's own number is
@@ -143,7 +172,7 @@ static int collect_id(void *ud, const mpb_run_row *row)
 
 static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
                       long run, int64_t run_id, mpb_named *values,
-                      mpb_progress_record *progress)
+                      mpb_exact_value *exact, mpb_progress_record *progress)
 {
     char uid[64];
     snprintf(uid, sizeof uid, "imported-%lld", (long long)run_id);
@@ -165,22 +194,33 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
     metric(simplified, &nsimp, "smoothness", cell(p, run, c->s_smoothness));
     metric(simplified, &nsimp, "clearance", cell(p, run, c->s_clearance));
     metric(simplified, &nsimp, "waypoints", cell(p, run, c->s_segments) + 1.0);
+    /* A stage is valid as the log's "correct solution" says (OMPL checked
+     * the path), or without one if the run succeeded. A run has stages
+     * when it solved or has a path (an approximate one, which OMPL
+     * measures without calling it solved). */
     double s_correct = cell(p, run, c->s_correct);
+    int raw_valid = isnan(correct) ? success : correct == 1.0;
+    int simp_valid = isnan(s_correct) ? raw_valid : s_correct == 1.0;
     mpb_stage_record st[2] = {
-        {.name = "raw", .time = cell(p, run, c->time), .valid = success,
-         .verdict = success ? "valid" : "imported", .verdict_segment = -1,
+        {.name = "raw", .time = cell(p, run, c->time), .valid = raw_valid,
+         .verdict = raw_valid ? "valid" : "imported", .verdict_segment = -1,
          .num_metrics = nraw, .metrics = raw},
         {.name = "simplified", .time = cell(p, run, c->s_time),
-         .valid = success && (isnan(s_correct) || s_correct == 1.0),
-         .verdict = success ? "valid" : "imported", .verdict_segment = -1,
+         .valid = simp_valid,
+         .verdict = simp_valid ? "valid" : "imported", .verdict_segment = -1,
          .num_metrics = nsimp, .metrics = simplified},
     };
-    int nstages = solved ? (nsimp > 0 ? 2 : 1) : 0;
+    int nstages = solved || nraw > 0 || nsimp > 0 ? (nsimp > 0 ? 2 : 1) : 0;
 
-    int nv = 0;
-    for (int k = 0; k < p->num_properties; k++)
-        if (!is_mapped(p->properties[k].name) && !isnan(cell(p, run, k)))
-            values[nv++] = (mpb_named){p->properties[k].name, cell(p, run, k)};
+    /* The planner's own numbers; its integers exactly too. */
+    int nv = 0, nx = 0;
+    for (int k = 0; k < p->num_properties; k++) {
+        if (is_mapped(p->properties[k].name) || isnan(cell(p, run, k)))
+            continue;
+        if (integer_type(p->properties[k].type))
+            exact[nx++] = (mpb_exact_value){nv, integer_cell(p, run, k)};
+        values[nv++] = (mpb_named){p->properties[k].name, cell(p, run, k)};
+    }
     int np = 0;
     if (p->progress_start != NULL) {
         int q = p->num_progress_properties;
@@ -207,11 +247,35 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
         .num_stages = nstages, .stages = st,
         .num_values = nv, .values = values,
         .num_progress = np, .progress = progress,
+        .num_exact = nx, .exact = exact,
     };
     return mpb_store_run_finish(s, &rec);
 }
 
 /* ---- one log ---------------------------------------------------------------- */
+
+/* The run and progress properties the planner's block declares, measured
+ * or not, for mpb export to give each its column and type. */
+static int declare_properties(mpb_store *s, int64_t config,
+                              const mpb_ompl_planner *p)
+{
+    int n = p->num_properties > p->num_progress_properties
+                ? p->num_properties : p->num_progress_properties;
+    mpb_log_property *l = calloc((size_t)n + 1, sizeof *l);
+    if (l == NULL)
+        return MPB_ENOMEM;
+    for (int k = 0; k < p->num_properties; k++)
+        l[k] = (mpb_log_property){p->properties[k].name, p->properties[k].type};
+    int rc = mpb_store_log_properties(s, config, 0, p->num_properties, l);
+    for (int k = 0; k < p->num_progress_properties; k++)
+        l[k] = (mpb_log_property){p->progress_properties[k].name,
+                                  p->progress_properties[k].type};
+    if (rc == MPB_OK)
+        rc = mpb_store_log_properties(s, config, 1,
+                                      p->num_progress_properties, l);
+    free(l);
+    return rc;
+}
 
 static int import_log(mpb_store *s, const char *path, const char *text,
                       const mpb_ompl_log *log, long *runs_out)
@@ -280,6 +344,8 @@ static int import_log(mpb_store *s, const char *path, const char *text,
         if ((rc = mpb_store_planner_config_add(s, exp, name, family, algo,
                                                p->settings, &config)) != MPB_OK)
             return rc;
+        if ((rc = declare_properties(s, config, p)) != MPB_OK)
+            return rc;
         for (long r = 0; r < p->num_runs; r++)
             if ((rc = mpb_store_run_add(s, exp, config, query, (int)r, 0)) != MPB_OK)
                 return rc;
@@ -292,18 +358,22 @@ static int import_log(mpb_store *s, const char *path, const char *text,
                 most_progress = p->progress_start[r + 1] - p->progress_start[r];
         (void)samples;
         mpb_named *values = calloc((size_t)p->num_properties + 1, sizeof *values);
+        mpb_exact_value *exact = calloc((size_t)p->num_properties + 1,
+                                        sizeof *exact);
         mpb_progress_record *progress =
             calloc((size_t)most_progress * (size_t)(p->num_progress_properties + 1) + 1,
                    sizeof *progress);
-        if (ids.ids == NULL || values == NULL || progress == NULL)
+        if (ids.ids == NULL || values == NULL || exact == NULL ||
+            progress == NULL)
             rc = MPB_ENOMEM;
         else
             rc = mpb_store_runs_unfinished(s, exp, collect_id, &ids);
         columns c = find_columns(p);
         for (long r = 0; rc == MPB_OK && r < p->num_runs; r++)
-            rc = import_run(s, p, &c, r, ids.ids[r], values, progress);
+            rc = import_run(s, p, &c, r, ids.ids[r], values, exact, progress);
         free(ids.ids);
         free(values);
+        free(exact);
         free(progress);
         if (rc != MPB_OK)
             return rc;

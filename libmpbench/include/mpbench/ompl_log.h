@@ -4,7 +4,8 @@
  * their results can be imported into an mpbench database (`mpb import`)
  * and reported, plotted and exported beside mpbench's own.
  *
- * The format (one experiment per file; shared/reference/ describes it):
+ * The format (one experiment per file, as OMPL 1.5's
+ * Benchmark::saveResultsToStream() writes it):
  *
  *   OMPL version 1.5.2
  *   Experiment NAME

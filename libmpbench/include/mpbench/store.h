@@ -120,6 +120,22 @@ int mpb_store_planner_config_add(mpb_store *s, int64_t experiment_id,
                                  const char *algorithm, const char *params,
                                  int64_t *id);
 
+/* A property an imported log declares for each run ("graph states
+ * INTEGER") or for each progress sample. */
+typedef struct mpb_log_property {
+    const char *name, *type;
+} mpb_log_property;
+
+/*
+ * Record the run properties (progress 0) or progress properties
+ * (progress 1) an imported log declares for the planner of configuration
+ * config_id, in the log's order, whether or not any run measured them:
+ * `mpb export` gives each a column of its type, as OMPL's script does.
+ * Replaces what was recorded for that configuration and kind before.
+ */
+int mpb_store_log_properties(mpb_store *s, int64_t config_id, int progress,
+                             int n, const mpb_log_property *props);
+
 typedef struct mpb_scene_info {
     const char *name;
     const char *robot_format, *robot_hash, *robot;
@@ -231,6 +247,14 @@ typedef struct mpb_stage_record {
     const mpb_named *metrics;     /* path_length, smoothness, ... */
 } mpb_stage_record;
 
+/* A planner value that is an integer, kept exactly: the record's
+ * values[index] is it as the nearest double, which past 2^53 may differ
+ * (an imported log's INTEGER, BOOLEAN or ENUM property). */
+typedef struct mpb_exact_value {
+    int     index;
+    int64_t value;
+} mpb_exact_value;
+
 typedef struct mpb_progress_record {
     double      time;
     const char *name;
@@ -260,6 +284,9 @@ typedef struct mpb_run_record {
     double      memory;           /* MB, the planner's peak resident
                                      memory during the planning; NaN
                                      (stored NULL): not reported */
+    int         num_exact;
+    const mpb_exact_value *exact; /* values that are integers, as such
+                                     (planner_values.exact); may be NULL */
 } mpb_run_record;
 
 /*
