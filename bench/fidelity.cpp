@@ -662,7 +662,7 @@ void usage(FILE *out)
 "                   waits for its next request (a diagnostic; block only)\n"
 "  --time-limit S   per run (default 10)\n"
 "  --tolerance RAD  goal tolerance (default 0.01)\n"
-"  --resolution RAD motion checks, as mpb-planner-ompl (default 0.005)\n"
+"  --resolution RAD motion checks, as mpb-planner-ompl (default 0.01)\n"
 "\n"
 "pace: the same sides run by run with a benchmark that runs meanwhile\n"
 "through mpbenchd and the planner process PID (one planner, on this CPU):\n"
@@ -710,7 +710,7 @@ int setup(int argc, char **argv, Mode mode, Setup &o)
     const bool pace = mode == Mode::pace, worker = mode == Mode::apart_worker;
     const char *robot_file = nullptr, *scene_file = nullptr;
     std::string joints_arg, start_arg, goal_arg, seeds_arg, sides_arg = "ompl,plain";
-    double time_limit = 10, tolerance = 0.01, resolution = 0.005;
+    double time_limit = 10, tolerance = 0.01, resolution = 0.01;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : nullptr;
         if (v == nullptr)

@@ -4,7 +4,10 @@
 // joints, a validity checker that asks the mpbench world, a goal (a joint
 // configuration, or a pose region answered with IK samples), the planner
 // with the request's parameters, a time limit, and then the raw path, a
-// shortcut copy and a B-spline-smoothed copy as three stages. Only the
+// shortcut copy and a B-spline-smoothed copy as three stages, each
+// checked at the step mpbenchd verifies with before it is sent (a stage
+// that fails there is dropped with those after it), all within the
+// request's time limit (the budget in solve_inner). Only the
 // parsed world (and robot, for IK) is kept between requests, keyed by the
 // texts' hashes.
 //
@@ -72,6 +75,7 @@
 #include "mpbench/planner.h"
 #include "mpbench/robot.h"
 
+#include "final_stage.h"
 #include "joint_space.h"
 #include "pose_region_goal.h"
 #include "progress_log.h"
@@ -269,18 +273,38 @@ struct Unsolvable : std::runtime_error {
 // algorithms that do: uncontended, it still cost 0.8 % of RRTConnect's
 // solve time in the PR2 kitchen (bench/fidelity.sh), time that a planner
 // in its own process would not spend.
+//
+// Past `cutoff` (set once the solver has stopped) every state is refused
+// unchecked: the simplifiers then keep what they have, as each change they
+// try needs a motion found valid, and finish within microseconds.
 struct Checker {
     mpb_world *world;
     bool shared;
     std::mutex mu;
     unsigned long calls = 0;
+    unsigned long refused = 0;
+    double cutoff = std::numeric_limits<double>::infinity();
 
     bool valid(const double *q)
     {
+        if (cutoff < std::numeric_limits<double>::infinity() && mpb_monotonic_s() >= cutoff) {
+            refused++;
+            return false;
+        }
         calls++;
         return mpb_world_in_collision(world, q) == 0;
     }
 };
+
+// mpbenchd allows a result this much past the time limit by its own clock,
+// which counts from its request and so includes the world's setup
+// (MPBD_WALL_SLACK_S, 1 s; docs/metrics.md), less what the network and
+// the kit may take (0.25 s): setup beyond this is taken off the budget.
+constexpr double kSetupAllowance = 0.75;
+
+// What the answer takes after the last stage is checked (the stages into
+// the message, the kit's encoding): a fixed allowance.
+constexpr double kAnswerMargin = 0.01;
 
 void check(int rc)
 {
@@ -375,14 +399,15 @@ std::shared_ptr<PoseRegionGoal> region_goal_of(CachedWorld *cached, const mpb_pl
 void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t *res)
 {
     double t0 = mpb_monotonic_s();
+    const double t_entry = t0;
 
     // mpbench's own parameters; the others go to the OMPL planner.
-    // Motions are checked at half the step mpbenchd verifies with (0.01 rad
-    // by default): OMPL and the verifier sample a segment at different
-    // points (the simplifiers split segments checked whole), so a path
-    // checked at the same step is now and then caught grazing an obstacle
-    // between OMPL's samples.
-    double resolution = 0.005, progress_period = 0.05;
+    // Motions are checked at the step mpbenchd verifies with (0.01 rad by
+    // default): OMPL then samples a whole segment at the very points the
+    // verifier does (k = ceil(L / step) equal steps). The simplifiers'
+    // pieces of segments are sampled elsewhere; the final check at
+    // verify_resolution catches those (final_stage.h).
+    double resolution = 0.01, verify_resolution = 0.01, progress_period = 0.05;
     // The paper's planners stop at their first solution; first_solution=0
     // lets optimizing ones (RRTstar, BITstar, PRMstar ...) use the time
     // limit, reporting their progress.
@@ -394,6 +419,10 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
         if (!std::strcmp(p->key, "resolution")) {
             if (!parse_double(p->value, resolution) || !(resolution > 0))
                 throw InvalidRequest("resolution must be a number > 0 (rad)");
+        } else if (!std::strcmp(p->key, "verify_resolution")) {
+            if (!parse_double(p->value, verify_resolution) || !(verify_resolution >= 0))
+                throw InvalidRequest("verify_resolution must be a number >= 0 (rad; 0: no "
+                                     "final check)");
         } else if (!std::strcmp(p->key, "simplify")) {
             if (!parse_bool(p->value, simplify))
                 throw InvalidRequest("simplify must be 0 or 1");
@@ -546,7 +575,8 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
                 known += (known.empty() ? "" : ", ") + k;
             throw InvalidRequest(std::string("unknown parameter '") + p->key + "' for " +
                                  a->name + " (known: " + known +
-                                 "; and mpbench's resolution, simplify, first_solution)");
+                                 "; and mpbench's resolution, verify_resolution, simplify, "
+                                 "first_solution, progress_period, goal_targets)");
         }
         bool ok;
         try {
@@ -563,14 +593,21 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
     const double t_setup = mpb_monotonic_s();
     res->time_other = t_setup - t0;
 
-    // The time limit bounds solve(), as in ompl::tools::Benchmark. An
-    // anytime run would spend all of it, though, and mpbenchd counts a run
-    // in time by its total: it stops early enough for setup and the
-    // simplifiers to fit (10% of the limit, at most 2 s, for these).
+    // The budget. mpbenchd counts a run in time by its time_total (from t0,
+    // the world's setup left out) and by its own clock, setup included,
+    // with a slack (kSetupAllowance): the whole answer, simplifiers and
+    // final check included, must be ready by hard_deadline. The solver
+    // stops early enough for those: 2 % of the limit (10 ms to 0.5 s), or
+    // for an anytime run, which would spend all it is given, 10 % (at most
+    // 2 s). What the simplifiers then find left is theirs (the checker's
+    // cutoff, below).
     const bool log_progress = !first_solution;
+    const double hard_deadline = t0 + req->time_limit -
+                                 std::max(0.0, (t0 - t_entry) - kSetupAllowance) -
+                                 kAnswerMargin;
     const double deadline =
-        log_progress ? t0 + req->time_limit - std::min(0.1 * req->time_limit, 2.0)
-                     : t_setup + req->time_limit;
+        hard_deadline - (log_progress ? std::min(0.1 * req->time_limit, 2.0)
+                                      : std::min(std::max(0.02 * req->time_limit, 0.01), 0.5));
     std::atomic<bool> interrupted{false};
     ProgressLog progress(*planner, progress_period, t_setup);
     ob::PlannerTerminationCondition ptc([deadline, &interrupted, &progress, log_progress] {
@@ -627,10 +664,6 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
                                "process is stopping", t_raw - t_setup);
     }
 
-    ob::PlannerData data(si);
-    planner->getPlannerData(data);
-    check(mpb_result_add_value(res, "graph states", data.numVertices()));
-    check(mpb_result_add_value(res, "graph motions", data.numEdges()));
     check(mpb_result_add_value(res, "state checks in solve", static_cast<double>(solve_checks)));
     if (region_goal) {
         auto g = std::static_pointer_cast<PoseRegionGoal>(pdef->getGoal());
@@ -642,23 +675,92 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
                       status == ob::PlannerStatus::APPROXIMATE_SOLUTION) &&
                      pdef->getSolutionPath() != nullptr;
     if (have_path) {
-        og::PathGeometric raw(*pdef->getSolutionPath()->as<og::PathGeometric>());
-        add_stage(res, "raw", t_raw - t_setup, raw, perm);
+        const bool solved = res->status == MPB_PLAN_RESULT_T_SOLVED;
+        std::vector<og::PathGeometric> paths;
+        std::vector<std::string> names;
+        std::vector<double> times;
+        paths.emplace_back(*pdef->getSolutionPath()->as<og::PathGeometric>());
+        names.emplace_back("raw");
+        times.push_back(t_raw - t_setup);
         if (simplify) {
+            // The simplifiers' share ends where the final check's begins:
+            // that check samples each stage at verify_resolution, at most
+            // two stages of about the raw path's length, each state taking
+            // what one took while solving (solve time over its checks: an
+            // overestimate, the solve doing more than checking).
+            if (verify_resolution > 0 && solved) {
+                const og::PathGeometric &raw = paths.front();
+                double per_check = solve_checks > 0
+                                       ? (t_raw - t_setup) / static_cast<double>(solve_checks)
+                                       : 0.0;
+                double samples = raw.length() / verify_resolution +
+                                 static_cast<double>(raw.getStateCount());
+                checker->cutoff = hard_deadline - 2.0 * samples * per_check;
+            } else {
+                checker->cutoff = hard_deadline;
+            }
             og::PathSimplifier ps(si);
             double t = mpb_monotonic_s();
-            og::PathGeometric shortcut(raw);
-            ps.reduceVertices(shortcut);
-            ps.shortcutPath(shortcut);
+            paths.push_back(paths.back());
+            ps.reduceVertices(paths.back());
+            ps.shortcutPath(paths.back());
             double t_shortcut = mpb_monotonic_s();
-            add_stage(res, "shortcut", t_shortcut - t, shortcut, perm);
+            names.emplace_back("shortcut");
+            times.push_back(t_shortcut - t);
 
             t = mpb_monotonic_s();
-            og::PathGeometric smoothed(shortcut);
-            ps.smoothBSpline(smoothed);
-            double t_smoothed = mpb_monotonic_s();
-            add_stage(res, "smoothed", t_smoothed - t, smoothed, perm);
+            paths.push_back(paths.back());
+            ps.smoothBSpline(paths.back());
+            names.emplace_back("smoothed");
+            times.push_back(mpb_monotonic_s() - t);
+            checker->cutoff = std::numeric_limits<double>::infinity();
+            if (checker->refused > 0)
+                check(mpb_result_add_value(res, "checks refused past the budget",
+                                           static_cast<double>(checker->refused)));
         }
+        // The final check: the stages sent end with the last one valid at
+        // the verifier's step; those after it are dropped, and said so.
+        std::size_t keep = paths.size();
+        if (verify_resolution > 0 && solved) {
+            std::vector<std::vector<double>> wp;
+            std::vector<int> world_order(perm.size());
+            for (std::size_t j = 0; j < perm.size(); j++)
+                world_order[j] = static_cast<int>(j);
+            for (const og::PathGeometric &p : paths)
+                wp.push_back(waypoints(p, world_order));
+            std::string dropped;
+            const double t_check = mpb_monotonic_s();
+            int last = mpb_ompl::last_valid_stage(world, wp, names, n, verify_resolution,
+                                                  &dropped);
+            check(mpb_result_add_value(res, "final check time", mpb_monotonic_s() - t_check));
+            check(mpb_result_add_value(res, "stages dropped",
+                                       static_cast<double>(paths.size() - 1 -
+                                                           static_cast<std::size_t>(
+                                                               std::max(last, 0)))));
+            if (last < 0) {
+                keep = 1;   // the raw path, sent for the record, not as a solution
+                res->status = MPB_PLAN_RESULT_T_FAILED;
+                mpb_result_set_message(res, "the path fails the check at the verify_resolution "
+                                       "%g rad: %s", verify_resolution, dropped.c_str());
+            } else {
+                keep = static_cast<std::size_t>(last) + 1;
+                if (keep < paths.size())
+                    mpb_result_set_message(res, "dropped at the verify_resolution %g rad: %s",
+                                           verify_resolution, dropped.c_str());
+            }
+        }
+        for (std::size_t i = 0; i < keep; i++)
+            add_stage(res, names[i].c_str(), times[i], paths[i], perm);
+    }
+    // The graph's size, from a copy of it that takes microseconds a state:
+    // 0.3 s for the 110,000 states a 1.5 s search of a planar arm grows.
+    // Left out when the solver ran to its deadline and less than a tenth
+    // of the limit is left, lest the count make the answer late.
+    if (t_raw < deadline || hard_deadline - mpb_monotonic_s() >= 0.1 * req->time_limit) {
+        ob::PlannerData data(si);
+        planner->getPlannerData(data);
+        check(mpb_result_add_value(res, "graph states", data.numVertices()));
+        check(mpb_result_add_value(res, "graph motions", data.numEdges()));
     }
     check(mpb_result_add_value(res, "state checks", static_cast<double>(checker->calls)));
     res->time_total = mpb_monotonic_s() - t0;
@@ -761,7 +863,11 @@ void usage(std::FILE *out)
 "parameters a request may carry, besides the algorithm's own OMPL parameters\n"
 "(e.g. range, goal_bias; an unknown one makes the request INVALID_REQUEST):\n"
 "  resolution      joint-space step (rad) for checking motions (default\n"
-"                  0.005, half the step mpbenchd verifies with by default)\n"
+"                  0.01, the step mpbenchd verifies with by default)\n"
+"  verify_resolution  the step (rad) each stage is checked at, as mpbenchd\n"
+"                  verifies, before it is sent; a stage that fails is\n"
+"                  dropped with those after it (default 0.01, mpbenchd's\n"
+"                  default --resolution; 0: no such check)\n"
 "  simplify        0: report the raw path only (default 1)\n"
 "  first_solution  0: optimizing planners (RRTstar, BITstar, PRMstar ...)\n"
 "                  use the whole time limit and report their progress\n"
