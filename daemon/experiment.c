@@ -474,8 +474,9 @@ static int robot_fault(loader *L, const mpbd_experiment *e, const char *why)
 /*
  * The robot's SRDF, `srdf:` a file relative to the experiment file: its
  * text goes into the robot text, on the line after the URDF (world.h),
- * for the world of every scene and every planner. With `group:` it is
- * read here too, against the URDF, for the group and its states.
+ * for the world of every scene and every planner. It is read here too,
+ * against the URDF: with `group:` for the group and its states, and for
+ * the warning about pairs it names that the URDF lacks.
  */
 static int load_srdf(loader *L, mpbd_experiment *e, char **robot)
 {
@@ -503,13 +504,28 @@ static int load_srdf(loader *L, mpbd_experiment *e, char **robot)
         free(srdf);
         return -1;
     }
-    if (get(L, L->robot, "group") != NULL) {
-        char why[512];
-        if (mpb_srdf_load(*robot, srdf, &L->srdf, why, sizeof why) != MPB_OK) {
+    /* Read against the URDF here, for the group and for the warning about
+     * pairs naming links the URDF lacks (skipped, as MoveIt does). */
+    char why[512];
+    mpb_srdf *sem = NULL;
+    if (mpb_srdf_load(*robot, srdf, &sem, why, sizeof why) != MPB_OK) {
+        free(srdf);
+        return robot_fault(L, e, why);
+    }
+    if (mpb_srdf_skipped_pairs(sem) != NULL) {
+        char line[6144];
+        snprintf(line, sizeof line, "robot: %s: %s", path,
+                 mpb_srdf_skipped_pairs(sem));
+        if ((e->srdf_warning = strdup(line)) == NULL) {
+            mpb_srdf_free(sem);
             free(srdf);
-            return robot_fault(L, e, why);
+            return fail_at(L, n, "out of memory");
         }
     }
+    if (get(L, L->robot, "group") != NULL)
+        L->srdf = sem;
+    else
+        mpb_srdf_free(sem);
     size_t rl = strlen(*robot);
     int nl = rl > 0 && (*robot)[rl - 1] != '\n';
     char *both = malloc(rl + (size_t)nl + len + 1);
@@ -2008,6 +2024,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
     free(e->wraps);
     free(e->robot_file);
     free(e->srdf_file);
+    free(e->srdf_warning);
     free(e->group_name);
     free(e->scenes);
     free(e->queries);

@@ -77,6 +77,9 @@ typedef struct mpbd_experiment {
 
     char   *robot_file;      /* where the robot was read from, or NULL */
     char   *srdf_file;       /* robot.srdf, resolved, or NULL */
+    char   *srdf_warning;    /* one line: its disable_collisions pairs
+                                that name links the URDF lacks, skipped
+                                as MoveIt does (srdf.h); or NULL */
     char  **group;           /* the planning group's joints: robot.joints
                                 as written, or robot.group's active
                                 joints base first; NULL if neither */

@@ -501,6 +501,8 @@ int main(int argc, char **argv)
         return 1;
     }
     d.runs_total = (int)count_runs(d.exp);
+    if (d.exp->srdf_warning != NULL)
+        warn_line(NULL, d.exp->srdf_warning);
     if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
         mpbd_log("%s", err);
     if (mpbd_experiment_moveit_note(d.exp, err, sizeof err))

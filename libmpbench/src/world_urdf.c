@@ -519,23 +519,18 @@ done:
     return rc;
 }
 
-/* The SRDF's pairs; a link it names that the robot lacks is an error. */
-static int acm_from_srdf(urdf_world *u, char *err, size_t errlen)
+/* The SRDF's pairs; those naming a link the robot lacks are skipped, as
+ * MoveIt does (mpb_srdf_skipped_pairs() says which, for a warning). */
+static void acm_from_srdf(urdf_world *u)
 {
     const mpb__srdf *raw = mpb__srdf_raw(u->srdf);
     for (int i = 0; i < raw->num_pairs; i++) {
         const mpb__srdf_pair *p = &raw->pairs[i];
         int a = mpb_robot_link_index(u->robot, p->link1);
         int b = mpb_robot_link_index(u->robot, p->link2);
-        if (a < 0 || b < 0) {
-            mpb__set_err(err, errlen, "srdf line %d: disable_collisions names "
-                         "link '%.80s', which is not a link of the robot",
-                         p->line, a < 0 ? p->link1 : p->link2);
-            return MPB_EPARSE;
-        }
-        acm_allow(u, a, b, p->reason);
+        if (a >= 0 && b >= 0)
+            acm_allow(u, a, b, p->reason);
     }
-    return MPB_OK;
 }
 
 /*
@@ -548,8 +543,8 @@ static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
     u->allowed = calloc((size_t)n * (size_t)n + 1, sizeof *u->allowed);
     if (!u->allowed)
         return MPB_ENOMEM;
-    if (u->from_srdf && (rc = acm_from_srdf(u, err, errlen)) != MPB_OK)
-        return rc;
+    if (u->from_srdf)
+        acm_from_srdf(u);
     if ((rc = acm_adjacent(u)) != MPB_OK)
         return rc;
     if (!u->from_srdf && (rc = acm_generate(u, q0)) != MPB_OK) {

@@ -273,6 +273,63 @@ static void a_pair_nearly_always_in_collision_is_allowed(void **state)
     free(text);
 }
 
+/*
+ * Pairs naming links the URDF lacks are skipped, as MoveIt does: the SRDF
+ * loads with one line saying how many and which (the first three, at
+ * their lines), and its other pairs are in the matrix.
+ */
+static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
+{
+    (void)state;
+    static const char srdf[] =
+        "<robot name='f'>\n"
+        "  <disable_collisions link1='arm1' link2='pole' reason='Never'/>\n"
+        "  <disable_collisions link1='arm1' link2='post' reason='User'/>\n"
+        "  <disable_collisions link1='flag' link2='pole' reason='Never'/>\n"
+        "  <disable_collisions link1='base_link' link2='arm2' reason='Never'/>\n"
+        "  <disable_collisions link1='wheel' link2='arm3' reason='Never'/>\n"
+        "  <disable_collisions link1='arm3' link2='lamp' reason='Never'/>\n"
+        "</robot>\n";
+    char *u = test_read_file(MPB_TEST_DATA "/folding_arm.urdf"), err[256];
+    mpb_srdf *s = NULL;
+    assert_int_equal(mpb_srdf_load(u, srdf, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_num_skipped_pairs(s), 4);
+    assert_string_equal(mpb_srdf_skipped_pairs(s),
+        "4 of 6 disable_collisions pairs name links the URDF lacks and are "
+        "skipped, as MoveIt does: line 2 (arm1, pole: no link 'pole'), "
+        "line 4 (flag, pole: no link 'flag' nor the other), line 6 (wheel, "
+        "arm3: no link 'wheel') and 1 more");
+    mpb_srdf_free(s);
+
+    char *text = malloc(strlen(u) + sizeof srdf);
+    assert_non_null(text);
+    strcpy(text, u);
+    strcat(text, srdf);
+    mpb_world *w = open_text(text, folding, 3);
+    char *m = matrix_text(w);
+    assert_string_equal(m, "base_link arm1 Adjacent\n"
+                           "base_link arm2 Never\n"
+                           "base_link post Adjacent\n"
+                           "arm1 arm2 Adjacent\n"
+                           "arm1 post User\n"
+                           "arm2 arm3 Adjacent\n");
+    double through_post[3] = {0.4636, 0, 0};
+    assert_int_equal(mpb_world_in_collision(w, through_post), 0);
+    mpb_world_close(w);
+    free(m);
+
+    /* An SRDF whose pairs all name known links: no warning. */
+    s = NULL;
+    char *good = test_read_file(MPB_TEST_DATA "/folding_arm.srdf");
+    assert_int_equal(mpb_srdf_load(u, good, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_num_skipped_pairs(s), 0);
+    assert_null(mpb_srdf_skipped_pairs(s));
+    mpb_srdf_free(s);
+    free(good);
+    free(text);
+    free(u);
+}
+
 /* A bad SRDF: one line, "srdf line N: ...", naming the fault. */
 static void expect_bad_srdf(const char *srdf, const char *want)
 {
@@ -297,12 +354,14 @@ static void expect_bad_srdf(const char *srdf, const char *want)
 static void a_bad_srdf_is_named_with_its_line(void **state)
 {
     (void)state;
+    /* A group naming a link the URDF lacks is still refused: a planning
+     * group cannot be guessed, a pair can be left out. */
     expect_bad_srdf("<robot name='f'>\n"
-                    "  <disable_collisions link1='arm1' link2='post'/>\n"
                     "  <disable_collisions link1='arm1' link2='pole'/>\n"
+                    "  <group name='g'>\n    <link name='pole'/>\n  </group>\n"
                     "</robot>\n",
-                    "srdf line 3: disable_collisions names link 'pole', which "
-                    "is not a link of the robot");
+                    "srdf line 4: group 'g' names link 'pole', which is not a "
+                    "link of the URDF");
     expect_bad_srdf("<robot name='f'>\n"
                     "  <disable_collisions link1='arm1' link2='po",
                     "srdf line 2, column 36: not well-formed XML");
@@ -338,6 +397,7 @@ int main(void)
         cmocka_unit_test(a_pair_nearly_always_in_collision_is_allowed),
         cmocka_unit_test(long_link_names_come_whole_in_the_verdict),
         cmocka_unit_test(a_bad_srdf_is_named_with_its_line),
+        cmocka_unit_test(pairs_naming_unknown_links_are_skipped_with_a_warning),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

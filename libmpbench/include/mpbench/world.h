@@ -37,7 +37,8 @@
  *             the world alike; a passive joint of the SRDF in the group is
  *             refused. Of what it says, the world uses its
  *             <disable_collisions link1= link2=/> pairs (every one,
- *             whatever its reason); its virtual joints are held at the
+ *             whatever its reason; one naming a link the URDF lacks is
+ *             skipped, as MoveIt does: srdf.h mpb_srdf_skipped_pairs()); its virtual joints are held at the
  *             identity (the URDF's root frame is the world's); mimic
  *             joints follow their leaders (robot.h); groups and
  *             group states are for the caller, who names the group's
