@@ -117,7 +117,7 @@ static char *dup_printf(const char *fmt, ...)
 
 static char *dup_printf(const char *fmt, ...)
 {
-    char buf[512];
+    char buf[2048];
     va_list ap;
     va_start(ap, fmt);
     mpb__set_err_v(buf, sizeof buf, fmt, ap);
@@ -406,15 +406,43 @@ static int check_eefs(mpb_srdf *s, char *err, size_t errlen)
  */
 #define SKIPPED_SHOWN 3         /* pairs named in the line */
 
+/* Add name to the list "a, b" in names (cap bytes) unless there; "..."
+ * once it is full. */
+static void add_name(char *names, size_t cap, const char *name)
+{
+    size_t used = strlen(names), n = strlen(name);
+    for (const char *p = names; *p;) {
+        size_t k = strcspn(p, ",");
+        if (k == n && strncmp(p, name, n) == 0)
+            return;
+        p += k + (p[k] == ',' ? 2 : 0);
+    }
+    if (used >= 3 && strcmp(names + used - 3, "...") == 0)
+        return;
+    if (used + n + 8 < cap)
+        snprintf(names + used, cap - used, "%s%s", used ? ", " : "", name);
+    else
+        snprintf(names + used, cap - used, "%s...", used ? ", " : "");
+}
+
 static int check_pairs(mpb_srdf *s)
 {
-    char buf[1024];
+    char buf[1024], names[512] = "";
     size_t used = 0;
     for (int i = 0; i < s->raw.num_pairs; i++) {
         const mpb__srdf_pair *p = &s->raw.pairs[i];
         int a = find_link(s->m, p->link1), b = find_link(s->m, p->link2);
         if (a >= 0 && b >= 0)
             continue;
+        char shown[NAME_SHOWN + 1];
+        if (a < 0) {
+            snprintf(shown, sizeof shown, "%s", p->link1);
+            add_name(names, sizeof names, shown);
+        }
+        if (b < 0) {
+            snprintf(shown, sizeof shown, "%s", p->link2);
+            add_name(names, sizeof names, shown);
+        }
         if (s->num_skipped++ >= SKIPPED_SHOWN || used >= sizeof buf)
             continue;
         const char *missing = a < 0 ? p->link1 : p->link2;
@@ -432,8 +460,9 @@ static int check_pairs(mpb_srdf *s)
         snprintf(more, sizeof more, " and %d more",
                  s->num_skipped - SKIPPED_SHOWN);
     s->skipped = dup_printf("%d of %d disable_collisions pairs name links the "
-                            "URDF lacks and are skipped, as MoveIt does: %s%s",
-                            s->num_skipped, s->raw.num_pairs, buf, more);
+                            "URDF lacks and are skipped, as MoveIt does: %s%s; "
+                            "the names: %s", s->num_skipped, s->raw.num_pairs,
+                            buf, more, names);
     return s->skipped ? MPB_OK : MPB_ENOMEM;
 }
 

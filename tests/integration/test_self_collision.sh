@@ -112,7 +112,7 @@ bad_srdf group "line $line: group 'g' names link 'r_forarm_link', which is not a
 sed 's/link2="r_forearm_link"/link2="r_forarm_link"/' "$work/one.srdf" >"$work/unknown.srdf"
 l1=$(grep -n 'r_forarm_link' "$work/unknown.srdf" | sed -n 1p | cut -d: -f1)
 l2=$(grep -n 'r_forarm_link' "$work/unknown.srdf" | sed -n 2p | cut -d: -f1)
-warning="2 of 27 disable_collisions pairs name links the URDF lacks and are skipped, as MoveIt does: line $l1 (r_shoulder_lift_link, r_forarm_link: no link 'r_forarm_link'), line $l2 (r_elbow_flex_link, r_forarm_link: no link 'r_forarm_link')"
+warning="2 of 27 disable_collisions pairs name links the URDF lacks and are skipped, as MoveIt does: line $l1 (r_shoulder_lift_link, r_forarm_link: no link 'r_forarm_link'), line $l2 (r_elbow_flex_link, r_forarm_link: no link 'r_forarm_link'); the names: r_forarm_link"
 experiment "$work/unknown.yaml" unknown "$side_a" "$side_b" unknown.srdf
 out=$("$daemon" --check "$work/unknown.yaml" 2>&1)
 check "an SRDF with pairs naming unknown links loads" test $? -eq 0

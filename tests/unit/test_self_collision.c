@@ -298,7 +298,8 @@ static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
         "4 of 6 disable_collisions pairs name links the URDF lacks and are "
         "skipped, as MoveIt does: line 2 (arm1, pole: no link 'pole'), "
         "line 4 (flag, pole: no link 'flag' nor the other), line 6 (wheel, "
-        "arm3: no link 'wheel') and 1 more");
+        "arm3: no link 'wheel') and 1 more; the names: pole, flag, wheel, "
+        "lamp");
     mpb_srdf_free(s);
 
     char *text = malloc(strlen(u) + sizeof srdf);

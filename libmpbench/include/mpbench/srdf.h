@@ -70,8 +70,10 @@ const char *mpb_srdf_robot_name(const mpb_srdf *s);
  * and one line saying so, for the caller to print as a warning with the
  * SRDF's file name: "2 of 450 disable_collisions pairs name links the
  * URDF lacks and are skipped, as MoveIt does: line 163 (collision_head_link,
- * head: no link 'collision_head_link'), line 170 (...)", the first three
- * with their lines, then "and N more"; NULL when none was. Owned by s.
+ * head: no link 'collision_head_link'), line 170 (...) and N more; the
+ * names: collision_head_link, sonar_ring, ...", the first three with their
+ * lines, then every name the URDF lacks, once; NULL when none was. Owned
+ * by s.
  */
 int         mpb_srdf_num_skipped_pairs(const mpb_srdf *s);
 const char *mpb_srdf_skipped_pairs(const mpb_srdf *s);
