@@ -331,6 +331,69 @@ static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
     free(u);
 }
 
+/*
+ * A generated matrix is made for the values the joints outside the group
+ * hold (tests/unit/data/sliding_block.urdf): at slide = 0 the block is on
+ * the arm at the default state, so the pair is allowed; held at 0.5 it is
+ * clear at the default state and in the arm's way at j = pi/4, so the
+ * pair is checked, whether the value is held before the first check (a
+ * planner's world) or after (the daemon's, query by query), and back.
+ */
+#define ADJ "base_link arm Adjacent\nbase_link block Adjacent\n"
+static void held_values_decide_the_generated_matrix(void **state)
+{
+    (void)state;
+    static const char *const j[] = {"j"};
+    static const char *const slide[] = {"slide"};
+    const double at_0 = 0.0, at_half = 0.5;
+    const double straight[1] = {0.0}, diagonal[1] = {0.7854};
+    char *text = robot_text(MPB_TEST_DATA "/sliding_block.urdf", NULL), err[256];
+    char what[160];
+
+    /* At the default (0): allowed, so the straight arm through it is free. */
+    mpb_world *w = open_text(text, j, 1);
+    char *m = matrix_text(w);
+    assert_string_equal(m, ADJ "arm block Default\n");
+    free(m);
+    assert_int_equal(mpb_world_in_collision(w, straight), 0);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 0);
+
+    /* Held at 0.5 after checks: made again, the pair checked. */
+    assert_int_equal(mpb_world_hold(w, slide, &at_half, 1, err, sizeof err),
+                     MPB_OK);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 1);
+    assert_int_equal(mpb_world_contact(w, diagonal, what, sizeof what), 1);
+    assert_string_equal(what, "self-collision between arm and block");
+    assert_int_equal(mpb_world_in_collision(w, straight), 0);
+    m = matrix_text(w);
+    assert_string_equal(m, ADJ);
+    free(m);
+
+    /* Holding the same value again changes nothing; back at 0, allowed. */
+    assert_int_equal(mpb_world_hold(w, slide, &at_half, 1, err, sizeof err),
+                     MPB_OK);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 1);
+    assert_int_equal(mpb_world_hold(w, slide, &at_0, 1, err, sizeof err),
+                     MPB_OK);
+    assert_int_equal(mpb_world_in_collision(w, straight), 0);
+    m = matrix_text(w);
+    assert_string_equal(m, ADJ "arm block Default\n");
+    free(m);
+    mpb_world_close(w);
+
+    /* Held before the first check, as a planner's world is: the same. */
+    w = open_text(text, j, 1);
+    assert_int_equal(mpb_world_hold(w, slide, &at_half, 1, err, sizeof err),
+                     MPB_OK);
+    m = matrix_text(w);
+    assert_string_equal(m, ADJ);
+    free(m);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 1);
+    mpb_world_close(w);
+    free(text);
+}
+#undef ADJ
+
 /* A bad SRDF: one line, "srdf line N: ...", naming the fault. */
 static void expect_bad_srdf(const char *srdf, const char *want)
 {
@@ -399,6 +462,7 @@ int main(void)
         cmocka_unit_test(long_link_names_come_whole_in_the_verdict),
         cmocka_unit_test(a_bad_srdf_is_named_with_its_line),
         cmocka_unit_test(pairs_naming_unknown_links_are_skipped_with_a_warning),
+        cmocka_unit_test(held_values_decide_the_generated_matrix),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
