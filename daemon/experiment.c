@@ -474,8 +474,9 @@ static int robot_fault(loader *L, const mpbd_experiment *e, const char *why)
 /*
  * The robot's SRDF, `srdf:` a file relative to the experiment file: its
  * text goes into the robot text, on the line after the URDF (world.h),
- * for the world of every scene and every planner. With `group:` it is
- * read here too, against the URDF, for the group and its states.
+ * for the world of every scene and every planner. It is read here too,
+ * against the URDF: with `group:` for the group and its states, and for
+ * the warning about pairs it names that the URDF lacks.
  */
 static int load_srdf(loader *L, mpbd_experiment *e, char **robot)
 {
@@ -503,13 +504,28 @@ static int load_srdf(loader *L, mpbd_experiment *e, char **robot)
         free(srdf);
         return -1;
     }
-    if (get(L, L->robot, "group") != NULL) {
-        char why[512];
-        if (mpb_srdf_load(*robot, srdf, &L->srdf, why, sizeof why) != MPB_OK) {
+    /* Read against the URDF here, for the group and for the warning about
+     * pairs naming links the URDF lacks (skipped, as MoveIt does). */
+    char why[512];
+    mpb_srdf *sem = NULL;
+    if (mpb_srdf_load(*robot, srdf, &sem, why, sizeof why) != MPB_OK) {
+        free(srdf);
+        return robot_fault(L, e, why);
+    }
+    if (mpb_srdf_skipped_pairs(sem) != NULL) {
+        char line[6144];
+        snprintf(line, sizeof line, "robot: %s: %s", path,
+                 mpb_srdf_skipped_pairs(sem));
+        if ((e->srdf_warning = strdup(line)) == NULL) {
+            mpb_srdf_free(sem);
             free(srdf);
-            return robot_fault(L, e, why);
+            return fail_at(L, n, "out of memory");
         }
     }
+    if (get(L, L->robot, "group") != NULL)
+        L->srdf = sem;
+    else
+        mpb_srdf_free(sem);
     size_t rl = strlen(*robot);
     int nl = rl > 0 && (*robot)[rl - 1] != '\n';
     char *both = malloc(rl + (size_t)nl + len + 1);
@@ -667,8 +683,9 @@ static int check_state(loader *L, const mpbd_experiment *e, int scene,
         double lo, hi;
         mpb_world_joint_limits(w, j, &lo, &hi);
         if (!mpb_world_joint_is_continuous(w, j) && (q[j] < lo || q[j] > hi))
-            return fail_at(L, where, "%s: joint %s = %g is outside its limits "
-                           "[%g, %g]", what, e->joint_names[j], q[j], lo, hi);
+            return fail_at(L, where, "%s: joint %s = %.10g is outside its "
+                           "limits [%.10g, %.10g]", what, e->joint_names[j],
+                           q[j], lo, hi);
     }
     char contact[200];
     if (mpb_world_contact(w, q, contact, sizeof contact) != 0)
@@ -1040,35 +1057,117 @@ static mpb_robot *robot_model(loader *L, const mpbd_experiment *e,
     return L->model;
 }
 
+/* Add name to the list "a, b, c" in names (cap bytes), once, as many as
+ * fit, then "...". */
+static void note_name(char *names, size_t cap, const char *name)
+{
+    char esc[128];
+    size_t used = strlen(names);
+    mpb_escape(name, esc, sizeof esc);
+    for (const char *p = names; *p;) {
+        size_t k = strcspn(p, ",");
+        if (k == strlen(esc) && strncmp(p, esc, k) == 0)
+            return;
+        p += k + (p[k] == ',' ? 2 : 0);
+    }
+    if (used >= 3 && strcmp(names + used - 3, "...") == 0)
+        return;
+    if (used + strlen(esc) + 8 < cap)
+        snprintf(names + used, cap - used, "%s%s", used ? ", " : "", esc);
+    else
+        snprintf(names + used, cap - used, ", ...");
+}
+
+/* Is name the id of an object of the moveit-scene text (its "* id"
+ * lines)? */
+static int scene_has_object(const char *text, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = text; p; p = strchr(p, '\n'), p = p ? p + 1 : NULL)
+        if (p[0] == '*' && p[1] == ' ' && strncmp(p + 2, name, n) == 0 &&
+            (p[2 + n] == '\n' || p[2 + n] == '\0'))
+            return 1;
+    return 0;
+}
+
+/* A scene's allowed pair naming a link the robot lacks: skipped, counted
+ * for the warning mpbd_experiment_scene_acm_note() words. */
+static int skip_scene_pair(loader *L, mpbd_experiment *e,
+                           const char *scene_path, const mpbd_moveit_scene *ms,
+                           int i, int *counted)
+{
+    const char *name = ms->pairs[i];
+    e->acm_skipped++;
+    if (!*counted) {
+        e->acm_skipped_scenes++;
+        *counted = 1;
+    }
+    if (e->acm_skipped_at == NULL) {
+        char at[4200];
+        snprintf(at, sizeof at, "%s:%d:%d", scene_path, ms->pair_at[i].line,
+                 ms->pair_at[i].column);
+        if ((e->acm_skipped_at = strdup(at)) == NULL)
+            return fail_at(L, NULL, "out of memory");
+    }
+    note_name(e->acm_skipped_names, sizeof e->acm_skipped_names, name);
+    return 0;
+}
+
 /*
  * The robot text with a scene's allowed pairs added as SRDF
  * <disable_collisions reason="Scene"/> elements: inside the robot's SRDF
  * (before its closing tag), or as an SRDF of their own when it has none.
- * Each name must be a link of the robot.
+ * A pair naming a link the robot lacks is skipped, as MoveIt does (its
+ * matrix takes any names; MotionBenchMaker's Fetch and UR5 scenes name
+ * links of their own robot models), and counted; a name that is an
+ * object of the scene is refused (MoveIt would allow that contact, which
+ * mpbench does not read).
  */
-static char *robot_with_pairs(loader *L, const mpbd_experiment *e,
+static char *robot_with_pairs(loader *L, mpbd_experiment *e,
                               const char *robot_format, const char *robot,
-                              const char *scene_path,
+                              const char *scene_path, const char *scene_text,
                               const mpbd_moveit_scene *ms)
 {
     if (ms->num_pairs == 0)
         return strdup(robot);
     mpb_robot *model = robot_model(L, e, robot_format, robot);
-    for (int i = 0; i < 2 * ms->num_pairs; i++)
-        if (model == NULL || mpb_robot_link_index(model, ms->pairs[i]) < 0) {
+    unsigned char *keep = calloc((size_t)ms->num_pairs + 1, 1);
+    if (keep == NULL)
+        return NULL;
+    int counted = 0;
+    for (int k = 0; k < ms->num_pairs; k++) {
+        keep[k] = 1;
+        for (int i = 2 * k; i < 2 * k + 2 && keep[k]; i++) {
+            if (model != NULL && mpb_robot_link_index(model, ms->pairs[i]) >= 0)
+                continue;
             char esc[256];
             at_place(L, scene_path, ms->pair_at[i]);
-            fail_at(L, NULL, "allowed_collision_matrix: '%s' is not a link "
-                    "of the robot", mpb_escape(ms->pairs[i], esc, sizeof esc));
-            return NULL;
+            if (model == NULL || scene_has_object(scene_text, ms->pairs[i])) {
+                fail_at(L, NULL, "allowed_collision_matrix: '%s' is %s",
+                        mpb_escape(ms->pairs[i], esc, sizeof esc),
+                        model == NULL ? "not a link of the robot"
+                                      : "an object of the scene; allowed "
+                                        "contacts with objects are not read");
+                free(keep);
+                return NULL;
+            }
+            if (skip_scene_pair(L, e, scene_path, ms, i, &counted) != 0) {
+                free(keep);
+                return NULL;
+            }
+            keep[k] = 0;
         }
+    }
+    L->place_path = NULL;
     size_t extra = 64;
     for (int i = 0; i < 2 * ms->num_pairs; i++)
         extra += strlen(ms->pairs[i]) + 40;
     size_t len = strlen(robot);
     char *out = malloc(len + extra + 64);
-    if (out == NULL)
+    if (out == NULL) {
+        free(keep);
         return NULL;
+    }
     /* The SRDF's closing tag is the text's last "</robot" when the
      * experiment has an SRDF. */
     const char *close = NULL;
@@ -1085,9 +1184,11 @@ static char *robot_with_pairs(loader *L, const mpbd_experiment *e,
         w += sprintf(w, "<robot name=\"scene\">\n");
     }
     for (int i = 0; i < ms->num_pairs; i++)
-        w += sprintf(w, "<disable_collisions link1=\"%s\" link2=\"%s\" "
-                     "reason=\"Scene\"/>\n", ms->pairs[2 * i],
-                     ms->pairs[2 * i + 1]);
+        if (keep[i])
+            w += sprintf(w, "<disable_collisions link1=\"%s\" link2=\"%s\" "
+                         "reason=\"Scene\"/>\n", ms->pairs[2 * i],
+                         ms->pairs[2 * i + 1]);
+    free(keep);
     if (close == NULL)
         w += sprintf(w, "</robot>\n");
     strcpy(w, robot + head);
@@ -1117,9 +1218,19 @@ static int moveit_state(loader *L, mpbd_experiment *e, mpbd_query *q,
         /* A joint the URDF fixes (this Panda's fingers) has no value to
          * hold: leniently skipped, as a model without that variable
          * would. */
-        if (clamp && mpb_world_held(w, j->names[i], NULL, NULL, NULL) ==
-                         MPB_EINVAL) {
+        int known = mpb_world_held(w, j->names[i], NULL, NULL, NULL);
+        if (clamp && known == MPB_EINVAL) {
             e->held_ignored++;
+            continue;
+        }
+        /* A joint the URDF lacks (MotionBenchMaker's Fetch states give
+         * its wheels and bellows, which VAMP's Fetch leaves out): skipped
+         * with clamp too, counted and named. MoveIt refuses such a state
+         * for a model without the joint; without clamp, so does mpbench. */
+        if (clamp && known == MPB_ENOTFOUND) {
+            note_name(e->held_unknown_names, sizeof e->held_unknown_names,
+                      j->names[i]);
+            e->held_unknown++;
             continue;
         }
         if (hold_one(L, e, w, j->names[i], j->values[i], NULL, NULL, clamp,
@@ -1187,6 +1298,18 @@ static int moveit_query(loader *L, mpbd_experiment *e, int scene,
                 "robot", name);
         goto done;
     }
+    /* A start just outside a limit: with clamp moved onto it, as MoveIt's
+     * FixStartStateBounds adapter does within its default 0.05. */
+    for (int j = 0; clamp && j < nj; j++) {
+        mpb_world *sw = e->scenes[scene].world;
+        double lo, hi, v = q->start[j];
+        mpb_world_joint_limits(sw, j, &lo, &hi);
+        if (mpb_world_joint_is_continuous(sw, j) || (v >= lo && v <= hi) ||
+            v < lo - MPBD_START_BOUNDS_ERROR || v > hi + MPBD_START_BOUNDS_ERROR)
+            continue;
+        q->start[j] = v < lo ? lo : hi;
+        e->start_clamped++;
+    }
     at_place(L, req_path, r.start_at);
     if (check_state(L, e, scene, q->start, "start", NULL) != 0)
         goto done;
@@ -1238,6 +1361,27 @@ static int moveit_query(loader *L, mpbd_experiment *e, int scene,
          * every goal mpbench accepts is one MoveIt accepts too. */
         if (isfinite(tol))
             q->tolerance = tol > 0 ? tol : 1e-9;
+        /* A goal just outside a joint's limits whose tolerance reaches
+         * inside them (VAMP's Fetch makes wrist_roll_joint revolute at
+         * +-3.14159; its problems ask for -3.1415926): MoveIt samples the
+         * constraint within the limits, so with clamp the value moves
+         * onto the limit and the tolerance shrinks by as much, keeping
+         * the region within the file's. */
+        mpb_world *gw = e->scenes[scene].world;
+        double moved = 0;
+        for (int j = 0; clamp && j < nj; j++) {
+            double lo, hi, v = q->goal[j];
+            mpb_world_joint_limits(gw, j, &lo, &hi);
+            if (mpb_world_joint_is_continuous(gw, j) || (v >= lo && v <= hi))
+                continue;
+            double d = v < lo ? lo - v : v - hi;
+            if (d >= q->tolerance)
+                continue;       /* no part of the region is inside */
+            q->goal[j] = v < lo ? lo : hi;
+            moved = d > moved ? d : moved;
+            e->goal_clamped++;
+        }
+        q->tolerance -= moved;
         at_place(L, req_path, r.goal_at);
         if (check_state(L, e, scene, q->goal, "goal", NULL) != 0)
             goto done;
@@ -1304,8 +1448,9 @@ static int moveit_scene(loader *L, mpbd_experiment *e, yaml_node_t *entry,
         goto done;
     }
     if ((sc->robot = robot_with_pairs(L, e, robot_format, robot, scene_path,
-                                      &ms)) == NULL) {
-        fail_at(L, entry, "out of memory");
+                                      sc->scene, &ms)) == NULL) {
+        if (!L->failed)
+            fail_at(L, entry, "out of memory");
         goto done;
     }
     mpb_hash_hex(sc->robot, strlen(sc->robot), sc->robot_hash);
@@ -2008,6 +2153,8 @@ void mpbd_experiment_free(mpbd_experiment *e)
     free(e->wraps);
     free(e->robot_file);
     free(e->srdf_file);
+    free(e->srdf_warning);
+    free(e->acm_skipped_at);
     free(e->group_name);
     free(e->scenes);
     free(e->queries);
@@ -2083,6 +2230,19 @@ int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len)
     return 1;
 }
 
+int mpbd_experiment_scene_acm_note(const mpbd_experiment *e, char *buf,
+                                   size_t len)
+{
+    if (e->acm_skipped == 0)
+        return 0;
+    snprintf(buf, len, "%d allowed_collision_matrix pairs in %d MoveIt "
+             "scene%s name links the robot lacks (%s) and are skipped, as "
+             "MoveIt does; the first at %s", e->acm_skipped,
+             e->acm_skipped_scenes, e->acm_skipped_scenes == 1 ? "" : "s",
+             e->acm_skipped_names, e->acm_skipped_at ? e->acm_skipped_at : "?");
+    return 1;
+}
+
 int mpbd_experiment_moveit_note(const mpbd_experiment *e, char *buf,
                                 size_t len)
 {
@@ -2099,12 +2259,24 @@ int mpbd_experiment_moveit_note(const mpbd_experiment *e, char *buf,
         }
     }
     if (moveit == 0 || (e->held_clamped == 0 && e->held_ignored == 0 &&
+                        e->held_unknown == 0 && e->goal_clamped == 0 &&
+                        e->start_clamped == 0 &&
                         other_time == 0))
         return 0;
+    char unknown[400] = "", goals[160] = "";
+    if (e->goal_clamped > 0 || e->start_clamped > 0)
+        snprintf(goals, sizeof goals, ", %d start values within %g of a "
+                 "limit and %d goal values within their tolerance of one "
+                 "moved onto it", e->start_clamped, MPBD_START_BOUNDS_ERROR,
+                 e->goal_clamped);
+    if (e->held_unknown > 0)
+        snprintf(unknown, sizeof unknown, ", %d of joints the robot lacks "
+                 "ignored (%s)", e->held_unknown, e->held_unknown_names);
     snprintf(buf, len, "%d MoveIt queries: %d joint values moved into their "
-             "limits and %d of fixed joints ignored (clamp_joint_values); %d "
-             "ask for an allowed_planning_time other than the time_limit (up "
-             "to %g s), which rules (%g s)", moveit, e->held_clamped,
-             e->held_ignored, other_time, most, e->time_limit);
+             "limits and %d of fixed joints ignored%s%s (clamp_joint_values); "
+             "%d ask for an allowed_planning_time other than the time_limit "
+             "(up to %g s), which rules (%g s)", moveit, e->held_clamped,
+             e->held_ignored, unknown, goals, other_time, most,
+             e->time_limit);
     return 1;
 }

@@ -62,6 +62,11 @@ typedef struct mpbd_query {
     int64_t db_id;
 } mpbd_query;
 
+/* How far outside its limits a MoveIt start value may be and still be
+ * moved onto the limit with clamp_joint_values (rad or m): MoveIt's
+ * FixStartStateBounds default, start_state_max_bounds_error. */
+#define MPBD_START_BOUNDS_ERROR 0.05
+
 typedef struct mpbd_experiment {
     char   *name;
     char   *file;            /* path as given */
@@ -77,6 +82,9 @@ typedef struct mpbd_experiment {
 
     char   *robot_file;      /* where the robot was read from, or NULL */
     char   *srdf_file;       /* robot.srdf, resolved, or NULL */
+    char   *srdf_warning;    /* one line: its disable_collisions pairs
+                                that name links the URDF lacks, skipped
+                                as MoveIt does (srdf.h); or NULL */
     char  **group;           /* the planning group's joints: robot.joints
                                 as written, or robot.group's active
                                 joints base first; NULL if neither */
@@ -96,6 +104,20 @@ typedef struct mpbd_experiment {
     int     held_clamped;    /* MoveIt joint values moved into their
                                 limits (clamp_joint_values: true) */
     int     held_ignored;    /* and values of fixed joints skipped */
+    int     held_unknown;    /* and values of joints the URDF lacks */
+    char    held_unknown_names[256]; /* "a, b, ..." */
+    int     goal_clamped;    /* joint goal values just outside a limit,
+                                within their tolerance, moved onto it */
+    int     start_clamped;   /* start values of the group within
+                                MPBD_START_BOUNDS_ERROR outside a limit,
+                                moved onto it */
+    /* MoveIt scenes' allowed_collision_matrix pairs naming links the
+     * robot lacks, skipped as MoveIt does: how many, in how many scenes,
+     * where the first is ("file:line:column") and the names. */
+    int     acm_skipped;
+    int     acm_skipped_scenes;
+    char   *acm_skipped_at;
+    char    acm_skipped_names[256];
 
     mpbd_scene  *scenes;
     int          num_scenes;
@@ -128,6 +150,14 @@ int mpbd_experiment_acm_note(const mpbd_experiment *e, char *buf, size_t len);
  */
 int mpbd_experiment_moveit_note(const mpbd_experiment *e, char *buf,
                                 size_t len);
+
+/*
+ * When MoveIt scenes' allowed_collision_matrix pairs named links the robot
+ * lacks (skipped, as MoveIt does): 1 and one line in buf saying how many,
+ * in how many scenes, which names and where the first is; else 0.
+ */
+int mpbd_experiment_scene_acm_note(const mpbd_experiment *e, char *buf,
+                                   size_t len);
 
 /*
  * The goal of q as verify.h describes goals, for mpb_verify_path(). The

@@ -501,10 +501,14 @@ int main(int argc, char **argv)
         return 1;
     }
     d.runs_total = (int)count_runs(d.exp);
+    if (d.exp->srdf_warning != NULL)
+        warn_line(NULL, d.exp->srdf_warning);
     if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
         mpbd_log("%s", err);
     if (mpbd_experiment_moveit_note(d.exp, err, sizeof err))
         mpbd_log("%s", err);
+    if (mpbd_experiment_scene_acm_note(d.exp, err, sizeof err))
+        warn_line(NULL, err);
     mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "

@@ -39,6 +39,8 @@ struct mpb_srdf {
     mpb_srdf_state         *states;
     mpb_srdf_virtual_joint *vjoints;
     mpb_srdf_end_effector  *eefs;
+    int                     num_skipped;  /* pairs naming unknown links */
+    char                   *skipped;      /* the line saying so, or NULL */
 };
 
 /* ---- names --------------------------------------------------------------- */
@@ -115,7 +117,7 @@ static char *dup_printf(const char *fmt, ...)
 
 static char *dup_printf(const char *fmt, ...)
 {
-    char buf[512];
+    char buf[2048];
     va_list ap;
     va_start(ap, fmt);
     mpb__set_err_v(buf, sizeof buf, fmt, ap);
@@ -397,6 +399,73 @@ static int check_eefs(mpb_srdf *s, char *err, size_t errlen)
     return MPB_OK;
 }
 
+/*
+ * <disable_collisions> pairs that name a link the URDF lacks: skipped, as
+ * MoveIt does (it warns and goes on; VAMP's Baxter and Fetch SRDFs name
+ * links their URDFs leave out). One line says how many and which.
+ */
+#define SKIPPED_SHOWN 3         /* pairs named in the line */
+
+/* Add name to the list "a, b" in names (cap bytes) unless there; "..."
+ * once it is full. */
+static void add_name(char *names, size_t cap, const char *name)
+{
+    size_t used = strlen(names), n = strlen(name);
+    for (const char *p = names; *p;) {
+        size_t k = strcspn(p, ",");
+        if (k == n && strncmp(p, name, n) == 0)
+            return;
+        p += k + (p[k] == ',' ? 2 : 0);
+    }
+    if (used >= 3 && strcmp(names + used - 3, "...") == 0)
+        return;
+    if (used + n + 8 < cap)
+        snprintf(names + used, cap - used, "%s%s", used ? ", " : "", name);
+    else
+        snprintf(names + used, cap - used, "%s...", used ? ", " : "");
+}
+
+static int check_pairs(mpb_srdf *s)
+{
+    char buf[1024], names[512] = "";
+    size_t used = 0;
+    for (int i = 0; i < s->raw.num_pairs; i++) {
+        const mpb__srdf_pair *p = &s->raw.pairs[i];
+        int a = find_link(s->m, p->link1), b = find_link(s->m, p->link2);
+        if (a >= 0 && b >= 0)
+            continue;
+        char shown[NAME_SHOWN + 1];
+        if (a < 0) {
+            snprintf(shown, sizeof shown, "%s", p->link1);
+            add_name(names, sizeof names, shown);
+        }
+        if (b < 0) {
+            snprintf(shown, sizeof shown, "%s", p->link2);
+            add_name(names, sizeof names, shown);
+        }
+        if (s->num_skipped++ >= SKIPPED_SHOWN || used >= sizeof buf)
+            continue;
+        const char *missing = a < 0 ? p->link1 : p->link2;
+        used += (size_t)snprintf(buf + used, sizeof buf - used,
+                                 "%sline %d (%.*s, %.*s: no link '%.*s'%s)",
+                                 s->num_skipped > 1 ? ", " : "", p->line,
+                                 NAME_SHOWN, p->link1, NAME_SHOWN, p->link2,
+                                 NAME_SHOWN, missing,
+                                 a < 0 && b < 0 ? " nor the other" : "");
+    }
+    if (s->num_skipped == 0)
+        return MPB_OK;
+    char more[64] = "";
+    if (s->num_skipped > SKIPPED_SHOWN)
+        snprintf(more, sizeof more, " and %d more",
+                 s->num_skipped - SKIPPED_SHOWN);
+    s->skipped = dup_printf("%d of %d disable_collisions pairs name links the "
+                            "URDF lacks and are skipped, as MoveIt does: %s%s; "
+                            "the names: %s", s->num_skipped, s->raw.num_pairs,
+                            buf, more, names);
+    return s->skipped ? MPB_OK : MPB_ENOMEM;
+}
+
 /* ---- the handle ----------------------------------------------------------- */
 
 /* mpb__srdf_bind_robot() for a model of the URDF. */
@@ -428,6 +497,8 @@ static int bind(mpb__srdf *raw, const mpb__urdf_model *m, mpb_srdf **out,
         rc = check_states(s, err, errlen);
     if (rc == MPB_OK)
         rc = check_eefs(s, err, errlen);
+    if (rc == MPB_OK)
+        rc = check_pairs(s);
     if (rc != MPB_OK) {
         if (rc == MPB_ENOMEM)
             mpb__set_err(err, errlen, "out of memory");
@@ -506,6 +577,7 @@ void mpb_srdf_free(mpb_srdf *s)
     free(s->states);
     free(s->vjoints);
     free(s->eefs);
+    free(s->skipped);
     mpb__srdf_clear(&s->raw);
     if (s->owned) {
         mpb__urdf_model_clear(s->owned);
@@ -517,6 +589,16 @@ void mpb_srdf_free(mpb_srdf *s)
 const char *mpb_srdf_robot_name(const mpb_srdf *s)
 {
     return s && s->raw.robot_name ? s->raw.robot_name : "";
+}
+
+int mpb_srdf_num_skipped_pairs(const mpb_srdf *s)
+{
+    return s ? s->num_skipped : 0;
+}
+
+const char *mpb_srdf_skipped_pairs(const mpb_srdf *s)
+{
+    return s ? s->skipped : NULL;
 }
 
 int mpb_srdf_num_groups(const mpb_srdf *s)

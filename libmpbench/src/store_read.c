@@ -147,13 +147,14 @@ int mpb_store_queries(mpb_store *s, int64_t scene_id,
     /* A database made before pose-region goals, opened read-only, has no
      * columns for them (a writer adds them): read NULLs instead. */
     int has_region = mpb__store_has_column(s, "queries", "goal_region");
-    sqlite3_stmt *st = mpb__store_prepare(s, has_region
-        ? "SELECT id, scene_id, name, joint_names, start, goal_kind = 'joints',"
-          " goal_joints, goal_tolerance, goal_link, goal_region"
-          " FROM queries WHERE scene_id = ? ORDER BY id"
-        : "SELECT id, scene_id, name, joint_names, start, goal_kind = 'joints',"
-          " goal_joints, goal_tolerance, NULL, NULL"
-          " FROM queries WHERE scene_id = ? ORDER BY id");
+    int has_held = mpb__store_has_column(s, "queries", "held");
+    char sql[512];
+    snprintf(sql, sizeof sql, "SELECT id, scene_id, name, joint_names, start,"
+             " goal_kind = 'joints', goal_joints, goal_tolerance, %s, %s"
+             " FROM queries WHERE scene_id = ? ORDER BY id",
+             has_region ? "goal_link, goal_region" : "NULL, NULL",
+             has_held ? "held" : "NULL");
+    sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, scene_id);
@@ -171,6 +172,7 @@ int mpb_store_queries(mpb_store *s, int64_t scene_id,
             .goal_tolerance = col_double(st, 7),
             .goal_link = col_text(st, 8),
             .goal_region = col_text(st, 9),
+            .held = col_text(st, 10),
         };
         stop = cb(ud, &row);
     }

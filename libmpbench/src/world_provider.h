@@ -128,7 +128,10 @@ int mpb__planar_contact(mpb_world *w, const double *q, int *link,
  * movable = link index (the links that do not move are self-only bodies),
  * or num_links + k for scene object k when attached; static = k for scene
  * object k. meshes are the robot's mesh shapes in the order of
- * mpb_robot_get_collision(). MPB_EINVAL if w is not a urdf world.
+ * mpb_robot_get_collision(). MPB_EINVAL if w is not a urdf world. The
+ * parts are valid until a mpb_world_hold() that changes a value of a
+ * robot without an SRDF (its matrix, and so its collision world, are
+ * made again): hold first.
  */
 struct mpb_robot;
 struct mpb_scene;

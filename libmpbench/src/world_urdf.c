@@ -67,7 +67,11 @@ typedef struct urdf_world {
     int            num_pairs;
     mpb_srdf      *srdf;         /* the SRDF, or NULL; owns its reasons */
     int            from_srdf;    /* 1 if the ACM came from an SRDF */
-    const char    *robot_dir;    /* while opening: the URDF's folder */
+    const char    *robot_dir;    /* the URDF's folder, or NULL */
+    char          *robot_dir_copy; /* owned: for a rebuild after open */
+    int            acm_stale;    /* generated ACM: not built for the values
+                                    held now; built before the next check */
+    int            acm_in_coll;  /* coll holds a built ACM's pairs */
 } urdf_world;
 
 static void urdf_close(void *impl)
@@ -88,6 +92,7 @@ static void urdf_close(void *impl)
     free(u->attached_link);
     free(u->allowed);
     free(u->pairs);
+    free(u->robot_dir_copy);
     free(u);
 }
 
@@ -522,23 +527,18 @@ done:
     return rc;
 }
 
-/* The SRDF's pairs; a link it names that the robot lacks is an error. */
-static int acm_from_srdf(urdf_world *u, char *err, size_t errlen)
+/* The SRDF's pairs; those naming a link the robot lacks are skipped, as
+ * MoveIt does (mpb_srdf_skipped_pairs() says which, for a warning). */
+static void acm_from_srdf(urdf_world *u)
 {
     const mpb__srdf *raw = mpb__srdf_raw(u->srdf);
     for (int i = 0; i < raw->num_pairs; i++) {
         const mpb__srdf_pair *p = &raw->pairs[i];
         int a = mpb_robot_link_index(u->robot, p->link1);
         int b = mpb_robot_link_index(u->robot, p->link2);
-        if (a < 0 || b < 0) {
-            mpb__set_err(err, errlen, "srdf line %d: disable_collisions names "
-                         "link '%.80s', which is not a link of the robot",
-                         p->line, a < 0 ? p->link1 : p->link2);
-            return MPB_EPARSE;
-        }
-        acm_allow(u, a, b, p->reason);
+        if (a >= 0 && b >= 0)
+            acm_allow(u, a, b, p->reason);
     }
-    return MPB_OK;
 }
 
 /*
@@ -551,8 +551,8 @@ static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
     u->allowed = calloc((size_t)n * (size_t)n + 1, sizeof *u->allowed);
     if (!u->allowed)
         return MPB_ENOMEM;
-    if (u->from_srdf && (rc = acm_from_srdf(u, err, errlen)) != MPB_OK)
-        return rc;
+    if (u->from_srdf)
+        acm_from_srdf(u);
     if ((rc = acm_adjacent(u)) != MPB_OK)
         return rc;
     if (!u->from_srdf && (rc = acm_generate(u, q0)) != MPB_OK) {
@@ -563,6 +563,7 @@ static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
     u->pairs = malloc(((size_t)n * (size_t)n + 1) * sizeof *u->pairs);
     if (!u->pairs)
         return MPB_ENOMEM;
+    u->acm_in_coll = 1;
     for (int a = 0; a < n; a++)
         for (int b = a + 1; b < n; b++) {
             int fixed = !mpb_robot_get_link(u->robot, a)->moves &&
@@ -577,6 +578,63 @@ static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
                 return rc;
         }
     return MPB_OK;
+}
+
+/*
+ * A generated matrix depends on the values the joints outside the group
+ * hold (the default state and every sampled state keep them): built
+ * lazily, before the first check after opening or after mpb_world_hold()
+ * changed a value. The collision world cannot forget allowed pairs, so
+ * when it holds those of an earlier matrix it is made again (the robot's
+ * meshes loaded again, from the URDF's folder too).
+ */
+static int ensure_acm(urdf_world *u)
+{
+    if (!u->acm_stale)
+        return MPB_OK;
+    int rc;
+    if (u->acm_in_coll) {
+        mpb_collision_destroy(u->coll);
+        u->coll = NULL;
+        for (int i = 0; i < u->num_meshes; i++)
+            mpb_mesh_free(u->meshes[i]);
+        free(u->meshes);
+        u->meshes = NULL;
+        u->num_meshes = 0;
+        free(u->moving);
+        u->moving = NULL;
+        u->num_moving = 0;
+        free(u->attached);
+        free(u->attached_link);
+        u->attached = u->attached_link = NULL;
+        u->num_attached = 0;
+        u->acm_in_coll = 0;
+        char err[512];
+        u->robot_dir = u->robot_dir_copy;
+        rc = mpb_collision_create(&u->coll);
+        if (rc == MPB_OK)
+            rc = add_robot(u, err, sizeof err);
+        if (rc == MPB_OK)
+            rc = add_scene(u, err, sizeof err);
+        u->robot_dir = NULL;
+        if (rc != MPB_OK)
+            return rc;
+    }
+    free(u->allowed);
+    free(u->pairs);
+    u->allowed = NULL;
+    u->pairs = NULL;
+    u->num_pairs = 0;
+    double *q0 = calloc((size_t)mpb_robot_num_joints(u->robot) + 1, sizeof *q0);
+    if (!q0)
+        return MPB_ENOMEM;
+    default_state(u->robot, q0);
+    char err[512];
+    rc = build_acm(u, q0, err, sizeof err);
+    free(q0);
+    if (rc == MPB_OK)
+        u->acm_stale = 0;
+    return rc;
 }
 
 /*
@@ -732,11 +790,16 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     rc = mpb_robot_fk(u->robot, q0, u->poses);
     if (rc == MPB_OK)
         rc = add_robot(u, err, errlen);
-    if (rc == MPB_OK)
+    /* A generated matrix waits for the held values (ensure_acm()). */
+    if (rc == MPB_OK && u->from_srdf)
         rc = build_acm(u, q0, err, errlen);
+    u->acm_stale = !u->from_srdf;
     if (rc == MPB_OK)
         rc = add_scene(u, err, errlen);
     free(q0);
+    if (rc == MPB_OK && u->robot_dir && !u->from_srdf &&
+        !(u->robot_dir_copy = strdup(u->robot_dir)))
+        rc = MPB_ENOMEM;
     u->robot_dir = NULL;
     return rc;
 }
@@ -744,6 +807,8 @@ static int urdf_open(mpb_world *w, const char *robot_text,
 static int urdf_in_collision(void *impl, const double *q)
 {
     urdf_world *u = impl;
+    if (ensure_acm(u) != MPB_OK)
+        return 1;       /* not known to be free */
     if (place(u, q) != MPB_OK)
         return 1;
     if (mpb_collision_check(u->coll, NULL, NULL) != 0)
@@ -767,6 +832,11 @@ static int urdf_contact(void *impl, const double *q, char *what, size_t len)
     urdf_world *u = impl;
     int m, st, a, b, hit;
     const char *ka, *kb;
+    if ((hit = ensure_acm(u)) != MPB_OK) {
+        mpb__set_err(what, len, "self-collision matrix: %s",
+                     u->coll ? mpb_collision_errmsg(u->coll) : "out of memory");
+        return hit;
+    }
     if (place(u, q) != MPB_OK)
         return MPB_EINVAL;
     if ((hit = mpb_collision_check(u->coll, &m, &st)) != 0) {
@@ -804,9 +874,9 @@ static int urdf_hold(void *impl, const char *const *joints,
     urdf_world *u = impl;
     int rc = MPB_OK;
     for (int i = 0; i < n && rc == MPB_OK; i++) {
-        double lo, hi;
+        double lo, hi, was;
         const char *j = joints[i] ? joints[i] : "";
-        rc = mpb_robot_get_passive(u->robot, j, NULL, &lo, &hi);
+        rc = mpb_robot_get_passive(u->robot, j, &was, &lo, &hi);
         if (rc == MPB_ENOTFOUND)
             mpb__set_err(err, errlen, "joint '%s' is not a joint of the robot",
                          j);
@@ -819,6 +889,8 @@ static int urdf_hold(void *impl, const char *const *joints,
         else if ((rc = mpb_robot_set_passive(u->robot, j, values[i])) != MPB_OK)
             mpb__set_err(err, errlen, "joint '%s' = %g is outside its limits "
                          "[%g, %g]", j, values[i], lo, hi);
+        else if (values[i] != was && !u->from_srdf)
+            u->acm_stale = 1;   /* the generated matrix, again */
     }
     double *q0 = calloc((size_t)mpb_robot_num_joints(u->robot) + 1, sizeof *q0);
     if (!q0)
@@ -834,12 +906,18 @@ static int urdf_hold(void *impl, const char *const *joints,
 
 static int urdf_num_allowed(void *impl)
 {
-    return ((urdf_world *)impl)->num_pairs;
+    urdf_world *u = impl;
+    if (ensure_acm(u) != MPB_OK)
+        return 0;
+    return u->num_pairs;
 }
 
 static int urdf_allowed_pair(void *impl, int i, mpb_world_acm_pair *out)
 {
     urdf_world *u = impl;
+    int rc = ensure_acm(u);
+    if (rc != MPB_OK)
+        return rc;
     if (i < 0 || i >= u->num_pairs)
         return MPB_EINVAL;
     int a = u->pairs[2 * i], b = u->pairs[2 * i + 1];
@@ -929,6 +1007,11 @@ int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out)
     if (!w || !out || w->provider != &mpb__world_urdf || !w->impl)
         return MPB_EINVAL;
     urdf_world *u = w->impl;
+    /* The matrix for the values held now: a rebuild later would remake
+     * the collision world and its meshes under the caller. */
+    int rc = ensure_acm(u);
+    if (rc != MPB_OK)
+        return rc;
     *out = (mpb__urdf_model){u->robot, u->scene, u->coll, u->meshes,
                              u->num_meshes};
     return MPB_OK;

@@ -6,7 +6,8 @@
 # the allowed-collision matrix, and `mpb srdf` writes the same matrix
 # every time, one that reads back unchanged and that the daemon takes as
 # the robot's srdf:; bad SRDFs are refused in one line naming the file
-# and the line, the database left byte-identical.
+# and the line, the database left byte-identical; pairs naming links the
+# URDF lacks are skipped with one warning, as MoveIt does.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -100,12 +101,29 @@ bad_srdf() {
 }
 { head -n 11 "$work/one.srdf"; printf '  <disable_collisions link1="base_li'; } >"$work/truncated.srdf"
 bad_srdf truncated "line 12, column [0-9]*: not well-formed XML"
+# A group naming a link the URDF lacks: refused, at its line.
+sed 's|^</robot>|  <group name="g">\n    <link name="r_forarm_link"/>\n  </group>\n</robot>|' "$work/one.srdf" >"$work/group.srdf"
+line=$(grep -n '<link name="r_forarm_link"' "$work/group.srdf" | cut -d: -f1)
+bad_srdf group "line $line: group 'g' names link 'r_forarm_link', which is not a link of the URDF"
+
+# Pairs naming a link the URDF lacks: skipped as MoveIt does, with one
+# warning naming the file, the count and the pairs at their lines; the
+# rest of the SRDF holds.
 sed 's/link2="r_forearm_link"/link2="r_forarm_link"/' "$work/one.srdf" >"$work/unknown.srdf"
-line=$(grep -n 'r_forarm_link' "$work/unknown.srdf" | head -1 | cut -d: -f1)
-bad_srdf unknown "line $line: disable_collisions names link 'r_forarm_link', which is not a link of the robot"
-out=$("$mpb" srdf -s "$work/unknown.srdf" "$urdf" 2>&1)
-check "mpb srdf says the same of it" test "$out" = \
-    "mpb srdf: $work/unknown.srdf: line $line: disable_collisions names link 'r_forarm_link', which is not a link of the robot"
+l1=$(grep -n 'r_forarm_link' "$work/unknown.srdf" | sed -n 1p | cut -d: -f1)
+l2=$(grep -n 'r_forarm_link' "$work/unknown.srdf" | sed -n 2p | cut -d: -f1)
+warning="2 of 27 disable_collisions pairs name links the URDF lacks and are skipped, as MoveIt does: line $l1 (r_shoulder_lift_link, r_forarm_link: no link 'r_forarm_link'), line $l2 (r_elbow_flex_link, r_forarm_link: no link 'r_forarm_link'); the names: r_forarm_link"
+experiment "$work/unknown.yaml" unknown "$side_a" "$side_b" unknown.srdf
+out=$("$daemon" --check "$work/unknown.yaml" 2>&1)
+check "an SRDF with pairs naming unknown links loads" test $? -eq 0
+check "... with one warning naming the file, the count and the lines" eq \
+    "$(printf '%s\n' "$out" | grep -cF "warning: robot: $work/unknown.srdf: $warning")" 1
+check "... and no other warning" eq "$(printf '%s\n' "$out" | grep -c warning)" 1
+out=$("$mpb" srdf -s "$work/unknown.srdf" "$urdf" 2>&1 >"$work/unknown_back.srdf")
+check "mpb srdf -s says the same and writes the matrix" test \
+    "$out" = "mpb srdf: warning: $work/unknown.srdf: $warning"
+check "... the other pairs, the adjacent one again, not the skipped one" \
+    sh -c "grep '<disable_collisions' '$work/one.srdf' | grep -v 'r_shoulder_lift_link\" link2=\"r_forearm_link' >'$work/a'; grep '<disable_collisions' '$work/unknown_back.srdf' >'$work/b'; cmp -s '$work/a' '$work/b'"
 
 # An unfinished experiment whose SRDF changed since: not resumed, and the
 # message names the SRDF, not the URDF (their texts travel as one).

@@ -6,7 +6,9 @@
 # groups, given as a chain or tip first, and a state by name; bad SRDFs (truncated,
 # an unknown joint, an unknown link, a group with no joints, a subgroup
 # cycle) are refused in one line naming the SRDF file and line, by a run
-# and by --check, an existing database left byte-identical.
+# and by --check, an existing database left byte-identical; the Baxter
+# and Fetch SRDFs, whose pairs name links their URDFs lack, load with a
+# warning.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -156,5 +158,33 @@ out=$("$daemon" --check -d "$DB" "$work/open.yaml" 2>&1)
 check "goal: open, a state of the hand, is refused at its place" test "$out" = \
     "mpbenchd: $work/open.yaml:12:39: goal: group_state 'open' is for group 'hand', not 'panda_arm'"
 check "database still untouched" test "$(md5sum <"$DB")" = "$sum_before"
+
+
+# The field's other robots: VAMP's Baxter and Fetch SRDFs name links their
+# URDFs leave out (Baxter's collision_head_link, Fetch's bellows, estop
+# and wheels); those pairs are skipped with one warning naming the file,
+# as MoveIt does, and the rest loads. The Panda's and UR5's name none.
+# robot_srdf ROBOT GROUP: mpb srdf -s of its SRDF, stderr in $work/ROBOT.err
+robot_srdf() {
+    "$mpb" srdf -s "$robots/$1/$1.srdf" -g "$2" "$robots/$1/$1.urdf" \
+        >"$work/$1_review.srdf" 2>"$work/$1.err"
+}
+robot_srdf baxter right_arm
+check "Baxter's SRDF loads" test $? -eq 0
+check "... with one warning: 112 of its 450 pairs skipped, the first at line 163" \
+    grep -qx "mpb srdf: warning: $robots/baxter/baxter.srdf: 112 of 450 disable_collisions pairs name links the URDF lacks and are skipped, as MoveIt does: line 163 (collision_head_link, display: no link 'collision_head_link'), line 164 (collision_head_link, head: no link 'collision_head_link'), line 165 (collision_head_link, left_lower_shoulder: no link 'collision_head_link') and 109 more; the names: collision_head_link, sonar_ring, left_hand_range, right_hand_camera, right_hand_range, left_hand_camera, left_hand_accelerometer, right_hand_accelerometer" "$work/baxter.err"
+check "... and nothing else on stderr" eq "$(wc -l <"$work/baxter.err")" 1
+check "... its right arm planned, base first" grep -q "<!-- group 'right_arm': mpbench plans 7 joints, base first: right_s0, right_s1, right_e0, right_e1, right_w0, right_w1, right_w2 -->" "$work/baxter_review.srdf"
+robot_srdf fetch arm
+check "Fetch's SRDF loads" test $? -eq 0
+check "... with one warning: 87 of its 162 pairs skipped, the first at line 49" \
+    grep -q "^mpb srdf: warning: $robots/fetch/fetch.srdf: 87 of 162 disable_collisions pairs name links the URDF lacks and are skipped, as MoveIt does: line 49 (base_link, bellows_link2: no link 'bellows_link2')" "$work/fetch.err"
+check "... naming each link it lacks once, VAMP's typo torso_link_link_collision_2 too" \
+    grep -q "; the names: bellows_link2, estop_link, l_wheel_link, laser_link, r_wheel_link, torso_lift_link_collision_3, torso_link_link_collision_2\$" "$work/fetch.err"
+check "... and nothing else on stderr" eq "$(wc -l <"$work/fetch.err")" 1
+robot_srdf ur5 manipulator
+check "UR5's SRDF loads without a warning" sh -c "test $? -eq 0 && test ! -s '$work/ur5.err'"
+robot_srdf panda panda_arm
+check "the Panda's too" sh -c "test $? -eq 0 && test ! -s '$work/panda.err'"
 
 mpb_finish

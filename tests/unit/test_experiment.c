@@ -7,6 +7,7 @@
  * planning group named as a group of the Panda's SRDF (the Panda of
  * tools/robot_data.sh, fetched if missing).
  */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -570,6 +571,98 @@ static void moveit_files_become_scenes_and_queries(void **state)
 #undef MOVEIT_EXP
 }
 
+/*
+ * MoveIt files made for a fuller model of the robot (MotionBenchMaker's
+ * Fetch and UR5 with VAMP's URDFs): allowed pairs naming links the robot
+ * lacks are skipped, as MoveIt does, and said in one warning; with
+ * clamp_joint_values a state's joints the robot lacks are skipped, a start
+ * just outside a limit and a goal whose tolerance reaches inside one are
+ * moved onto it, all counted; without it they are refused. A pair naming
+ * an object of the scene is refused (such contacts are not read).
+ */
+static void moveit_files_of_a_fuller_model_fit_the_robot(void **state)
+{
+    char text[2048], p[400];
+    FILE *f;
+    mpbd_experiment *e;
+    (void)state;
+    write_slide_robot();
+    static const struct { const char *name, *text; } files[] = {
+        {"f.yaml", "robot_state: {joint_state: {name: [j, wheel, k], "
+                   "position: [0, 3, 0.2]}}\n"
+                   "allowed_collision_matrix: {entry_names: [b, f, pedestal], "
+                   "entry_values: [[false, true, true], [true, false, false], "
+                   "[true, false, false]]}\n"},
+        {"fr.yaml", "allowed_planning_time: 1\n"
+                    "start_state: {joint_state: {name: [j], position: [2.03]}}\n"
+                    "goal_constraints: [{joint_constraints: [{joint_name: j, "
+                    "position: -2.0004, tolerance_above: 0.001, "
+                    "tolerance_below: 0.001}]}]\n"},
+        {"fo.yaml", "allowed_collision_matrix: {entry_names: [b, box], "
+                    "entry_values: [[false, true], [true, false]]}\n"
+                    "world: {collision_objects: [{id: box, primitives: [{type: box, "
+                    "dimensions: [0.2, 0.2, 0.2]}], primitive_poses: [{position: [1, 0, 0], "
+                    "orientation: [0, 0, 0, 1]}]}]}\n"},
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snprintf(p, sizeof p, "%s/%s", dir, files[i].name);
+        assert_non_null(f = fopen(p, "w"));
+        fputs(files[i].text, f);
+        assert_int_equal(fclose(f), 0);
+    }
+#define FIT_EXP(scene, extra)                                                \
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"    \
+             "robot: {format: urdf, file: slide.urdf, joints: [j]}\n"        \
+             "scenes: [{name: m, moveit_scene: %s, requests: [fr.yaml]%s}]\n" \
+             PLANNERS, scene, extra)
+    FIT_EXP("f.yaml", ", clamp_joint_values: true");
+    assert_non_null(e = load_text(text));
+    assert_true(e->queries[0].start[0] == 2.0);        /* 2.03 */
+    assert_true(e->queries[0].goal[0] == -2.0);        /* -2.0004 */
+    /* The region stays within the file's: -2.0004 + 0.001. */
+    assert_true(fabs(e->queries[0].tolerance - 0.0006) < 1e-12);
+    assert_true(e->queries[0].held[0] == 0.2);
+    assert_int_equal(e->held_unknown, 1);
+    assert_int_equal(e->start_clamped, 1);
+    assert_int_equal(e->goal_clamped, 1);
+    assert_non_null(strstr(e->scenes[0].robot, "<disable_collisions link1=\"b\" "
+                           "link2=\"f\" reason=\"Scene\"/>"));
+    assert_null(strstr(e->scenes[0].robot, "pedestal"));
+    char note[1024];
+    assert_int_equal(mpbd_experiment_moveit_note(e, note, sizeof note), 1);
+    assert_string_equal(note, "1 MoveIt queries: 0 joint values moved into "
+                        "their limits and 0 of fixed joints ignored, 1 of "
+                        "joints the robot lacks ignored (wheel), 1 start "
+                        "values within 0.05 of a limit and 1 goal values "
+                        "within their tolerance of one moved onto it "
+                        "(clamp_joint_values); 0 ask for an "
+                        "allowed_planning_time other than the time_limit (up "
+                        "to 0 s), which rules (1 s)");
+    assert_int_equal(mpbd_experiment_scene_acm_note(e, note, sizeof note), 1);
+    snprintf(p, sizeof p, "1 allowed_collision_matrix pairs in 1 MoveIt scene "
+             "name links the robot lacks (pedestal) and are skipped, as MoveIt "
+             "does; the first at %s/f.yaml:2:48", dir);
+    assert_string_equal(note, p);
+    mpbd_experiment_free(e);
+
+    /* Without clamp_joint_values: the joint the robot lacks is refused,
+     * at its name; the pair is skipped all the same. */
+    FIT_EXP("f.yaml", "");
+    assert_null(load_text(text));
+    snprintf(p, sizeof p, "%s/f.yaml:1:39: joint 'wheel' is not a joint of the "
+             "robot", dir);
+    assert_string_equal(err, p);
+
+    /* A pair naming an object of the scene: refused, at the name. */
+    FIT_EXP("fo.yaml", ", clamp_joint_values: true");
+    assert_null(load_text(text));
+    snprintf(p, sizeof p, "%s/fo.yaml:1:45: allowed_collision_matrix: 'box' "
+             "is an object of the scene; allowed contacts with objects are not "
+             "read", dir);
+    assert_string_equal(err, p);
+#undef FIT_EXP
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -582,6 +675,7 @@ int main(void)
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
         cmocka_unit_test(joints_outside_the_group_hold_values),
         cmocka_unit_test(moveit_files_become_scenes_and_queries),
+        cmocka_unit_test(moveit_files_of_a_fuller_model_fit_the_robot),
         cmocka_unit_test(faults_are_where_their_file_is_named),
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),

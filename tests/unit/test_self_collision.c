@@ -273,6 +273,127 @@ static void a_pair_nearly_always_in_collision_is_allowed(void **state)
     free(text);
 }
 
+/*
+ * Pairs naming links the URDF lacks are skipped, as MoveIt does: the SRDF
+ * loads with one line saying how many and which (the first three, at
+ * their lines), and its other pairs are in the matrix.
+ */
+static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
+{
+    (void)state;
+    static const char srdf[] =
+        "<robot name='f'>\n"
+        "  <disable_collisions link1='arm1' link2='pole' reason='Never'/>\n"
+        "  <disable_collisions link1='arm1' link2='post' reason='User'/>\n"
+        "  <disable_collisions link1='flag' link2='pole' reason='Never'/>\n"
+        "  <disable_collisions link1='base_link' link2='arm2' reason='Never'/>\n"
+        "  <disable_collisions link1='wheel' link2='arm3' reason='Never'/>\n"
+        "  <disable_collisions link1='arm3' link2='lamp' reason='Never'/>\n"
+        "</robot>\n";
+    char *u = test_read_file(MPB_TEST_DATA "/folding_arm.urdf"), err[256];
+    mpb_srdf *s = NULL;
+    assert_int_equal(mpb_srdf_load(u, srdf, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_num_skipped_pairs(s), 4);
+    assert_string_equal(mpb_srdf_skipped_pairs(s),
+        "4 of 6 disable_collisions pairs name links the URDF lacks and are "
+        "skipped, as MoveIt does: line 2 (arm1, pole: no link 'pole'), "
+        "line 4 (flag, pole: no link 'flag' nor the other), line 6 (wheel, "
+        "arm3: no link 'wheel') and 1 more; the names: pole, flag, wheel, "
+        "lamp");
+    mpb_srdf_free(s);
+
+    char *text = malloc(strlen(u) + sizeof srdf);
+    assert_non_null(text);
+    strcpy(text, u);
+    strcat(text, srdf);
+    mpb_world *w = open_text(text, folding, 3);
+    char *m = matrix_text(w);
+    assert_string_equal(m, "base_link arm1 Adjacent\n"
+                           "base_link arm2 Never\n"
+                           "base_link post Adjacent\n"
+                           "arm1 arm2 Adjacent\n"
+                           "arm1 post User\n"
+                           "arm2 arm3 Adjacent\n");
+    double through_post[3] = {0.4636, 0, 0};
+    assert_int_equal(mpb_world_in_collision(w, through_post), 0);
+    mpb_world_close(w);
+    free(m);
+
+    /* An SRDF whose pairs all name known links: no warning. */
+    s = NULL;
+    char *good = test_read_file(MPB_TEST_DATA "/folding_arm.srdf");
+    assert_int_equal(mpb_srdf_load(u, good, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_num_skipped_pairs(s), 0);
+    assert_null(mpb_srdf_skipped_pairs(s));
+    mpb_srdf_free(s);
+    free(good);
+    free(text);
+    free(u);
+}
+
+/*
+ * A generated matrix is made for the values the joints outside the group
+ * hold (tests/unit/data/sliding_block.urdf): at slide = 0 the block is on
+ * the arm at the default state, so the pair is allowed; held at 0.5 it is
+ * clear at the default state and in the arm's way at j = pi/4, so the
+ * pair is checked, whether the value is held before the first check (a
+ * planner's world) or after (the daemon's, query by query), and back.
+ */
+#define ADJ "base_link arm Adjacent\nbase_link block Adjacent\n"
+static void held_values_decide_the_generated_matrix(void **state)
+{
+    (void)state;
+    static const char *const j[] = {"j"};
+    static const char *const slide[] = {"slide"};
+    const double at_0 = 0.0, at_half = 0.5;
+    const double straight[1] = {0.0}, diagonal[1] = {0.7854};
+    char *text = robot_text(MPB_TEST_DATA "/sliding_block.urdf", NULL), err[256];
+    char what[160];
+
+    /* At the default (0): allowed, so the straight arm through it is free. */
+    mpb_world *w = open_text(text, j, 1);
+    char *m = matrix_text(w);
+    assert_string_equal(m, ADJ "arm block Default\n");
+    free(m);
+    assert_int_equal(mpb_world_in_collision(w, straight), 0);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 0);
+
+    /* Held at 0.5 after checks: made again, the pair checked. */
+    assert_int_equal(mpb_world_hold(w, slide, &at_half, 1, err, sizeof err),
+                     MPB_OK);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 1);
+    assert_int_equal(mpb_world_contact(w, diagonal, what, sizeof what), 1);
+    assert_string_equal(what, "self-collision between arm and block");
+    assert_int_equal(mpb_world_in_collision(w, straight), 0);
+    m = matrix_text(w);
+    assert_string_equal(m, ADJ);
+    free(m);
+
+    /* Holding the same value again changes nothing; back at 0, allowed. */
+    assert_int_equal(mpb_world_hold(w, slide, &at_half, 1, err, sizeof err),
+                     MPB_OK);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 1);
+    assert_int_equal(mpb_world_hold(w, slide, &at_0, 1, err, sizeof err),
+                     MPB_OK);
+    assert_int_equal(mpb_world_in_collision(w, straight), 0);
+    m = matrix_text(w);
+    assert_string_equal(m, ADJ "arm block Default\n");
+    free(m);
+    mpb_world_close(w);
+
+    /* Held before the first check, as a planner's world is: the same. */
+    w = open_text(text, j, 1);
+    assert_int_equal(mpb_world_hold(w, slide, &at_half, 1, err, sizeof err),
+                     MPB_OK);
+    m = matrix_text(w);
+    assert_string_equal(m, ADJ);
+    free(m);
+    assert_int_equal(mpb_world_in_collision(w, diagonal), 1);
+    mpb_world_close(w);
+    free(text);
+}
+#undef ADJ
+
 /* A bad SRDF: one line, "srdf line N: ...", naming the fault. */
 static void expect_bad_srdf(const char *srdf, const char *want)
 {
@@ -297,12 +418,14 @@ static void expect_bad_srdf(const char *srdf, const char *want)
 static void a_bad_srdf_is_named_with_its_line(void **state)
 {
     (void)state;
+    /* A group naming a link the URDF lacks is still refused: a planning
+     * group cannot be guessed, a pair can be left out. */
     expect_bad_srdf("<robot name='f'>\n"
-                    "  <disable_collisions link1='arm1' link2='post'/>\n"
                     "  <disable_collisions link1='arm1' link2='pole'/>\n"
+                    "  <group name='g'>\n    <link name='pole'/>\n  </group>\n"
                     "</robot>\n",
-                    "srdf line 3: disable_collisions names link 'pole', which "
-                    "is not a link of the robot");
+                    "srdf line 4: group 'g' names link 'pole', which is not a "
+                    "link of the URDF");
     expect_bad_srdf("<robot name='f'>\n"
                     "  <disable_collisions link1='arm1' link2='po",
                     "srdf line 2, column 36: not well-formed XML");
@@ -338,6 +461,8 @@ int main(void)
         cmocka_unit_test(a_pair_nearly_always_in_collision_is_allowed),
         cmocka_unit_test(long_link_names_come_whole_in_the_verdict),
         cmocka_unit_test(a_bad_srdf_is_named_with_its_line),
+        cmocka_unit_test(pairs_naming_unknown_links_are_skipped_with_a_warning),
+        cmocka_unit_test(held_values_decide_the_generated_matrix),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

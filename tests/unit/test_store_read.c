@@ -138,6 +138,11 @@ static int setup(void **state)
         assert_int_equal(mpb_store_query_add(f->w, f->scene[i < 2 ? 0 : 1], &q,
                                              &f->query[i]), MPB_OK);
     }
+    /* q1 holds two joints outside its group (a torso, a finger). */
+    static const char *const held_names[] = {"torso", "finger"};
+    static const double held_values[] = {0.1 + 0.2, -1e-300};
+    assert_int_equal(mpb_store_query_set_held(f->w, f->query[0], 2, held_names,
+                                              held_values), MPB_OK);
     for (int i = 0; i < NUM_RUNS; i++)
         assert_int_equal(mpb_store_run_add(f->w, f->exp, f->cfg[runs[i].cfg],
                                            f->query[runs[i].query],
@@ -218,7 +223,7 @@ typedef struct got_row {
     int64_t id, a, b;
     int     i;
     double  x, y;
-    char    s1[TEXT], s2[TEXT], s3[TEXT];
+    char    s1[TEXT], s2[TEXT], s3[TEXT], s4[TEXT];
     int     null_s3;
 } got_row;
 
@@ -353,6 +358,7 @@ static int on_query(void *ud, const mpb_query_row *q)
     copy(r->s1, q->name);
     snprintf(r->s2, TEXT, "%s|%s", q->joint_names, q->start);
     copy(r->s3, q->goal_joints);
+    copy(r->s4, q->held);
     return 0;
 }
 
@@ -373,6 +379,9 @@ static void queries_of_a_scene_read_back_as_written(void **state)
     }
     assert_string_equal(g.r[0].s1, "q1");
     assert_string_equal(g.r[1].s1, "q2");
+    /* Held values come back exact, NULL where none is held. */
+    assert_string_equal(g.r[0].s4, "torso=0.30000000000000004 finger=-1e-300");
+    assert_string_equal(g.r[1].s4, "(null)");
 
     g.n = 0;
     assert_int_equal(mpb_store_queries(f->s, f->scene[1], on_query, &g),

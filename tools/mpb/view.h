@@ -40,6 +40,9 @@ typedef struct view_run {
     double        *goal_joints;    /* joint goals */
     char          *goal_link;      /* region goals */
     double         goal_region[12];
+    int            num_held;       /* joints outside the group the query */
+    char         **held_names;     /* holds (queries.held), applied to */
+    double        *held_values;    /* the world when it opens */
     double         resolution;     /* the verifier's step, rad */
     int            resolution_known;
     mpb_world     *world;

@@ -271,6 +271,15 @@ static int json_run(FILE *f, const view_run *v)
     }
     fputs("],\"start\":", f);
     json_nums(f, v->start, v->num_joints);
+    fputs(",\"held\":{", f);
+    for (int j = 0; j < v->num_held; j++) {
+        if (j)
+            fputc(',', f);
+        json_str(f, v->held_names[j]);
+        fputc(':', f);
+        json_num(f, v->held_values[j]);
+    }
+    fputc('}', f);
     fputs(",\"moving\":[", f);
     for (int m = 0; m < v->num_moving; m++)
         fprintf(f, m ? ",%d" : "%d", v->moving[m]);

@@ -123,6 +123,25 @@ static int on_query(void *ud, const mpb_query_row *q)
         v->joint_names[n++] = view_strdup(s);
     free(names);
     v->start = parse_numbers(q->start, v->num_joints);
+    /* The joints outside the group it holds: "name=value name=value". */
+    if (q->held) {
+        char *text = view_strdup(q->held), *save = NULL;
+        size_t words = 1;
+        for (const char *c = text; *c; c++)
+            words += *c == ' ';
+        v->held_names = view_calloc(words, sizeof *v->held_names);
+        v->held_values = view_calloc(words, sizeof *v->held_values);
+        for (char *s = strtok_r(text, " ", &save); s;
+             s = strtok_r(NULL, " ", &save)) {
+            char *eq = strrchr(s, '=');
+            if (!eq)
+                continue;
+            *eq = '\0';
+            v->held_names[v->num_held] = view_strdup(s);
+            v->held_values[v->num_held++] = strtod(eq + 1, NULL);
+        }
+        free(text);
+    }
     v->tolerance = q->goal_tolerance;
     v->goal_kind = q->goal_kind;
     if (q->goal_kind == MPB_GOAL_JOINTS) {
@@ -348,6 +367,10 @@ void view_free(view_run *v)
     for (int j = 0; j < v->num_joints; j++)
         free(v->joint_names ? v->joint_names[j] : NULL);
     free(v->joint_names);
+    for (int j = 0; j < v->num_held; j++)
+        free(v->held_names[j]);
+    free(v->held_names);
+    free(v->held_values);
     free(v->start);
     free(v->goal_joints);
     free(v->goal_link);
@@ -421,6 +444,14 @@ int view_read(const char *cmd, mpb_store *s, const char *db, int64_t run_id,
             != MPB_OK) {
         fprintf(stderr, "mpb %s: %s: run %lld: scene '%s': %s\n", cmd, db,
                 (long long)run_id, v->scene, err);
+        goto out;
+    }
+    /* The values the query held, as every world of the run held them. */
+    if (mpb_world_hold(v->world, (const char *const *)v->held_names,
+                       v->held_values, v->num_held, err, sizeof err)
+            != MPB_OK) {
+        fprintf(stderr, "mpb %s: %s: run %lld: query '%s': held joints: %s\n",
+                cmd, db, (long long)run_id, v->query, err);
         goto out;
     }
     status = 0;

@@ -2,7 +2,8 @@
  * srdf.h - a robot's SRDF (MoveIt's Semantic Robot Description Format),
  * read against its URDF: the planning groups, the named states of groups,
  * the virtual and passive joints, the end effectors. (Its
- * <disable_collisions> pairs are the world's business: world.h.)
+ * <disable_collisions> pairs are the world's business, world.h; here,
+ * only those naming links the URDF lacks: mpb_srdf_skipped_pairs().)
  * docs/robot-model.md says what mpbench makes of each element.
  *
  * Groups. A group's joints follow MoveIt's rules: <joint name=> adds that
@@ -61,6 +62,21 @@ void mpb_srdf_free(mpb_srdf *s);
 
 /* The SRDF's <robot name>, "" if none; owned by s. */
 const char *mpb_srdf_robot_name(const mpb_srdf *s);
+
+/*
+ * <disable_collisions> pairs that name a link the URDF lacks are skipped,
+ * as MoveIt does (it warns and goes on): the load does not fail, and the
+ * world (world.h) leaves them out of its matrix. How many were skipped,
+ * and one line saying so, for the caller to print as a warning with the
+ * SRDF's file name: "2 of 450 disable_collisions pairs name links the
+ * URDF lacks and are skipped, as MoveIt does: line 163 (collision_head_link,
+ * head: no link 'collision_head_link'), line 170 (...) and N more; the
+ * names: collision_head_link, sonar_ring, ...", the first three with their
+ * lines, then every name the URDF lacks, once; NULL when none was. Owned
+ * by s.
+ */
+int         mpb_srdf_num_skipped_pairs(const mpb_srdf *s);
+const char *mpb_srdf_skipped_pairs(const mpb_srdf *s);
 
 /* ---- groups ------------------------------------------------------------- */
 

@@ -363,6 +363,10 @@ typedef struct mpb_query_row {
     double      goal_tolerance;
     const char *goal_link;     /* pose-region goals: the link, else NULL */
     const char *goal_region;   /* and its 12 numbers, as in mpb_query_info */
+    const char *held;          /* the joints outside the group it holds,
+                                  "name=value name=value" (exact), as
+                                  mpb_store_query_set_held() wrote them;
+                                  NULL when it holds none */
 } mpb_query_row;
 
 /* The queries of a scene. */

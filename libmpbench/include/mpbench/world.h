@@ -37,7 +37,8 @@
  *             the world alike; a passive joint of the SRDF in the group is
  *             refused. Of what it says, the world uses its
  *             <disable_collisions link1= link2=/> pairs (every one,
- *             whatever its reason); its virtual joints are held at the
+ *             whatever its reason; one naming a link the URDF lacks is
+ *             skipped, as MoveIt does: srdf.h mpb_srdf_skipped_pairs()); its virtual joints are held at the
  *             identity (the URDF's root frame is the world's); mimic
  *             joints follow their leaders (robot.h); groups and
  *             group states are for the caller, who names the group's
@@ -114,8 +115,10 @@ const char *mpb_world_scene_format(const char *robot_format);
  * opening: 0, moved into the joint's limits). Every world of a run must
  * hold the same values, so the daemon sends them in each plan request
  * (plan_request_t.held_names, docs/protocol.md) and a planner applies them
- * to its world with this call. A generated allowed-collision matrix is not
- * rebuilt: it stays the one of the values held at opening.
+ * to its world with this call. A generated allowed-collision matrix (no
+ * SRDF) is made for the values held: after a hold that changes a value it
+ * is made again before the next check (the collision world with it,
+ * meshes loaded again), so hold before checking when you can.
  * MPB_OK (n = 0 too, in any world); MPB_ENOTFOUND for a joint the robot
  * lacks; MPB_EINVAL for a joint of the group, one that cannot move (fixed),
  * a non-finite value or one outside the joint's limits; MPB_EUNSUPPORTED
