@@ -586,7 +586,7 @@ static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
  * lazily, before the first check after opening or after mpb_world_hold()
  * changed a value. The collision world cannot forget allowed pairs, so
  * when it holds those of an earlier matrix it is made again (the robot's
- * meshes loaded again, from the URDF's folder too).
+ * meshes taken again from the mesh cache, mesh_cache.h).
  */
 static int ensure_acm(urdf_world *u)
 {
@@ -597,7 +597,7 @@ static int ensure_acm(urdf_world *u)
         mpb_collision_destroy(u->coll);
         u->coll = NULL;
         for (int i = 0; i < u->num_meshes; i++)
-            mpb_mesh_free(u->meshes[i]);
+            mpb__mesh_release(u->meshes[i]);
         free(u->meshes);
         u->meshes = NULL;
         u->num_meshes = 0;
