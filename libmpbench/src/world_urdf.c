@@ -594,11 +594,13 @@ static int ensure_acm(urdf_world *u)
         return MPB_OK;
     int rc;
     if (u->acm_in_coll) {
-        mpb_collision_destroy(u->coll);
+        /* The old collision world and meshes are let go only after the
+         * new ones are made, so that the caches hand the same meshes and
+         * BVH models back instead of reading and building them again. */
+        mpb_collision *old_coll = u->coll;
+        const mpb_mesh **old_meshes = u->meshes;
+        int old_num_meshes = u->num_meshes;
         u->coll = NULL;
-        for (int i = 0; i < u->num_meshes; i++)
-            mpb__mesh_release(u->meshes[i]);
-        free(u->meshes);
         u->meshes = NULL;
         u->num_meshes = 0;
         free(u->moving);
@@ -617,6 +619,10 @@ static int ensure_acm(urdf_world *u)
         if (rc == MPB_OK)
             rc = add_scene(u, err, sizeof err);
         u->robot_dir = NULL;
+        mpb_collision_destroy(old_coll);
+        for (int i = 0; i < old_num_meshes; i++)
+            mpb__mesh_release(old_meshes[i]);
+        free(old_meshes);
         if (rc != MPB_OK)
             return rc;
     }

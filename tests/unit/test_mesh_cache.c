@@ -248,6 +248,51 @@ struct opener {
     mpb_world  *worlds[PER_THREAD];
 };
 
+/* A robot without an SRDF has its matrix made again when a held value
+ * changes (world_urdf.c, ensure_acm()), and its collision world with it:
+ * the meshes go back to the cache and are taken again, never freed under
+ * it. An arm with a mesh, and a block on the passive joint "slide". */
+static void a_matrix_made_again_gives_meshes_back(void **state)
+{
+    (void)state;
+    char file[512];
+    path_in(file, sizeof file, "a/pkg/held.obj");
+    write_tetra(file, 0.1);
+    char text[2048];
+    snprintf(text, sizeof text,
+        "<robot name=\"held_arm\"><link name=\"base_link\"/>"
+        "<link name=\"arm\"><collision><origin xyz=\"0.5 0 0\"/><geometry>"
+        "<mesh filename=\"%s\"/></geometry></collision></link>"
+        "<link name=\"block\"><collision><origin xyz=\"0.5 0 -1\"/><geometry>"
+        "<box size=\"0.2 0.2 0.2\"/></geometry></collision></link>"
+        "<joint name=\"j\" type=\"revolute\"><parent link=\"base_link\"/>"
+        "<child link=\"arm\"/><axis xyz=\"0 0 1\"/>"
+        "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"
+        "<joint name=\"slide\" type=\"prismatic\"><parent link=\"base_link\"/>"
+        "<child link=\"block\"/><axis xyz=\"0 0 1\"/>"
+        "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"
+        "</robot>\n", file);
+    static const char *const slide[] = {"slide"};
+    long reads = mpb__mesh_cache_reads();
+    mpb_world *w = open_text(text);
+    double q[1] = {0};
+    assert_int_equal(mpb_world_in_collision(w, q), 0);
+    char err[256];
+    for (int i = 1; i <= 3; i++) {
+        double at = 0.25 * i;
+        assert_int_equal(mpb_world_hold(w, slide, &at, 1, err, sizeof err),
+                         MPB_OK);
+        assert_int_equal(mpb_world_in_collision(w, q), 0);
+        /* One mesh held, read once: the rebuild took it from the cache. */
+        assert_int_equal(mpb__mesh_cache_live(), 1);
+        assert_int_equal(mpb__bvh_live(), 1);
+        assert_int_equal(mpb__mesh_cache_reads(), reads + 1);
+    }
+    mpb_world_close(w);
+    assert_int_equal(mpb__mesh_cache_live(), 0);
+    assert_int_equal(mpb__bvh_live(), 0);
+}
+
 static void *open_many(void *arg)
 {
     struct opener *o = arg;
@@ -306,6 +351,7 @@ int main(void)
         cmocka_unit_test(a_changed_file_is_read_again),
         cmocka_unit_test(same_name_elsewhere_or_scaled_is_another_mesh),
         cmocka_unit_test(worlds_opened_in_threads_share_too),
+        cmocka_unit_test(a_matrix_made_again_gives_meshes_back),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
