@@ -67,7 +67,8 @@ static int collect_runs(replay *r)
     for (int c = 0; c < d->exp->num_configs; c++)
         for (int i = d->pending_head[c]; i < d->pending_len[c]; i++)
             r->runs[r->num_runs++].run = d->pending[c][i];
-    qsort(r->runs, (size_t)r->num_runs, sizeof *r->runs, by_seed);
+    if (r->num_runs > 1)
+        qsort(r->runs, (size_t)r->num_runs, sizeof *r->runs, by_seed);
     return MPB_OK;
 }
 

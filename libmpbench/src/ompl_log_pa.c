@@ -362,7 +362,8 @@ static int write_log(pa_out *o, const mpb_ompl_log *log)
     for (int i = 0; i < np; i++)
         len += (size_t)snprintf(sql + len, cap - len, ",?");
     snprintf(sql + len, cap - len, ")");
-    qsort(params.v, (size_t)np, sizeof *params.v, by_name);
+    if (np > 1)
+        qsort(params.v, (size_t)np, sizeof *params.v, by_name);
     if ((rc = mpb__pa_ensure_columns(o, "experiments", &params, 0)) != MPB_OK ||
         (rc = write_enums(o, log)) != MPB_OK)
         goto done;

@@ -129,7 +129,8 @@ static int param_columns(pa_out *o, const exp_info *e)
             l.v[l.n++] = (prop){.name = c, .type = e->params[i].type};
     }
     if (rc == MPB_OK) {
-        qsort(l.v, (size_t)l.n, sizeof *l.v, by_name);
+        if (l.n > 1)
+            qsort(l.v, (size_t)l.n, sizeof *l.v, by_name);
         rc = mpb__pa_ensure_columns(o, "experiments", &l, 0);
     } else {
         mpb__store_fail(o->s, rc, "out of memory");

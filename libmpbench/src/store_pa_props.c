@@ -459,7 +459,8 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
         (rc = read_declared(s, experiment_id, 0, &run_decl)) ||
         (rc = read_declared(s, experiment_id, 1, &progress_decl)))
         goto done;
-    qsort(metrics.v, (size_t)metrics.n, sizeof *metrics.v, cmp_metric);
+    if (metrics.n > 1) /* qsort with NULL is undefined, even for 0 */
+        qsort(metrics.v, (size_t)metrics.n, sizeof *metrics.v, cmp_metric);
 
     /* An imported log's runs give back the log's own properties: its
      * "time" (tau_r: tau_t has the simplification too), its "solved" (the

@@ -323,7 +323,9 @@ static int gather(report *r, mpb_store *s)
         if ((rc = mpb_store_queries(s, r->scenes[i].id, on_query, r)))
             return rc;
     }
-    qsort(r->queries, (size_t)r->num_queries, sizeof *r->queries, cmp_query);
+    if (r->num_queries > 1)
+        qsort(r->queries, (size_t)r->num_queries, sizeof *r->queries,
+              cmp_query);
     if ((rc = mpb_store_unfinished_by_scene(s, r->experiment_id,
                                             on_unfinished, r)))
         return rc;
