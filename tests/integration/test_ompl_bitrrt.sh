@@ -3,7 +3,8 @@
 # over the paper's table, a joint goal and a region goal, two seeds each,
 # 30 s a run. With OMPL 1.5's connection range tied to the motion-check
 # resolution (10 x 0.01 rad) its trees never joined and every run timed
-# out; the planner now sets it to 0.1 of the extent (docs/planners.md).
+# out; the planner now sets it to 0.1 of the extent (docs/planners.md),
+# or to its connection_range parameter (one run a query, 2 rad).
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_enter_netns "$0" "$@"
@@ -21,10 +22,14 @@ check "the experiment completes" eq "$status" 0
 [ "$status" -eq 0 ] || cat "$work/daemon.log"
 DB=$work/run.db
 check "all 4 BiTRRT runs solved and verified" \
-    eq "$(q "SELECT count(*) FROM runs WHERE success = 1 AND status = 'solved'")" 4
-[ "$(q "SELECT count(*) FROM runs WHERE success = 1")" -eq 4 ] ||
+    eq "$(q "SELECT count(*) FROM results WHERE success = 1 AND status = 'solved'
+             AND planner = 'ompl/BiTRRT'")" 4
+check "both runs with connection_range: 2.0 solved and verified" \
+    eq "$(q "SELECT count(*) FROM results WHERE success = 1 AND status = 'solved'
+             AND planner = 'ompl/BiTRRT#range2'")" 2
+[ "$(q "SELECT count(*) FROM runs WHERE success = 1")" -eq 6 ] ||
     q "SELECT query_id, repetition, status, verdict, message FROM runs" | sed 's/^/# /'
 check "the raw path of every run is valid" \
-    eq "$(q "SELECT count(*) FROM stages WHERE name = 'raw' AND valid = 1")" 4
+    eq "$(q "SELECT count(*) FROM stages WHERE name = 'raw' AND valid = 1")" 6
 
 mpb_finish
