@@ -909,6 +909,9 @@ void usage(std::FILE *out)
 "  progress_period seconds between progress samples (default 0.05)\n"
 "  goal_targets    region poses tried for IK before a pose-region goal is\n"
 "                  given up as FAILED (default 200)\n"
+"  connection_range  BiTRRT only: how near (rad) its trees must be for it\n"
+"                  to try to join them (default 0: 0.1 of the space's\n"
+"                  maximum extent, not OMPL's 10 resolution steps)\n"
 "\n"
 "algorithms:",
         OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION,
