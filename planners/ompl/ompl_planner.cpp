@@ -97,6 +97,38 @@ const char *const k_version = MPB_VERSION_STRING " (OMPL "
 
 // ---- the algorithms ------------------------------------------------------
 
+// OMPL 1.5's BiTRRT tries to join its two trees only when the other
+// tree's nearest state is within 10 longest valid segments (its
+// connectionRange_, set in setup(), with no parameter). OMPL and MoveIt
+// check motions at 0.01 of the space's extent by default, which makes
+// that 0.1 of the extent (1.34 rad on the Panda); this planner checks
+// every `resolution` rad, 0.01 by default, which made it 0.1 rad: in
+// seven joints the trees almost never come that close, and BiTRRT timed
+// out on every Panda problem. The range is its own parameter here,
+// `connection_range` (rad), by default 0.1 of the extent whatever the
+// resolution.
+class BiTRRT : public og::BiTRRT {
+public:
+    explicit BiTRRT(const ob::SpaceInformationPtr &si) : og::BiTRRT(si)
+    {
+        declareParam<double>("connection_range", this, &BiTRRT::setConnectionRange,
+                             &BiTRRT::getConnectionRange, "0.:1.:10000.");
+    }
+
+    // 0 (the default): 0.1 of the space's maximum extent.
+    void setConnectionRange(double range) { range_ = range; }
+    double getConnectionRange() const { return range_; }
+
+    void setup() override
+    {
+        og::BiTRRT::setup();
+        connectionRange_ = range_ > 0.0 ? range_ : 0.1 * si_->getMaximumExtent();
+    }
+
+private:
+    double range_ = 0.0;
+};
+
 using Factory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr &)>;
 
 struct Algorithm {
@@ -121,7 +153,7 @@ const std::vector<Algorithm> &algorithms()
         alg<og::InformedRRTstar>("InformedRRTstar"),
         alg<og::LazyRRT>("LazyRRT"),
         alg<og::TRRT>("TRRT"),
-        alg<og::BiTRRT>("BiTRRT"),
+        alg<BiTRRT>("BiTRRT"),
         alg<og::LBTRRT>("LBTRRT"),
         alg<og::PRM>("PRM", true),          // its solution check runs in a thread
         alg<og::PRMstar>("PRMstar", true),
@@ -877,6 +909,9 @@ void usage(std::FILE *out)
 "  progress_period seconds between progress samples (default 0.05)\n"
 "  goal_targets    region poses tried for IK before a pose-region goal is\n"
 "                  given up as FAILED (default 200)\n"
+"  connection_range  BiTRRT only: how near (rad) its trees must be for it\n"
+"                  to try to join them (default 0: 0.1 of the space's\n"
+"                  maximum extent, not OMPL's 10 resolution steps)\n"
 "\n"
 "algorithms:",
         OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION,
