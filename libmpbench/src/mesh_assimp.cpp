@@ -415,6 +415,36 @@ int load_shared(const char *uri, const char *const *dirs, int num_dirs,
     return MPB_OK;
 }
 
+/* The C boundary of both loaders: no exception crosses it, and every
+ * failure leaves one line naming the mesh. */
+template <typename Out, typename Load>
+int load_at_boundary(const char *uri, Out **out, char *err, size_t errlen,
+                     Load load_it)
+{
+    mpb__set_err(err, errlen, "%s", "");
+    if (!out) {
+        mpb__set_err(err, errlen, "mesh: no place for the result");
+        return MPB_EINVAL;
+    }
+    *out = NULL;
+    const char *name = uri ? uri : "";
+    try {
+        int rc = load_it();
+        if (rc == MPB_ENOMEM)
+            mpb__set_err(err, errlen, "mesh '%s': out of memory", name);
+        return rc;
+    } catch (const std::bad_alloc &) {
+        mpb__set_err(err, errlen, "mesh '%s': out of memory", name);
+        return MPB_ENOMEM;
+    } catch (const std::exception &e) {
+        mpb__set_err(err, errlen, "mesh '%s': %s", name, e.what());
+        return MPB_EPARSE;
+    } catch (...) {
+        mpb__set_err(err, errlen, "mesh '%s': unexpected error", name);
+        return MPB_EERROR;
+    }
+}
+
 } // namespace
 
 extern "C" {
@@ -537,54 +567,18 @@ int mpb_mesh_load(const char *uri, const char *const *dirs, int num_dirs,
                   const double scale[3], mpb_mesh **out,
                   char *err, size_t errlen)
 {
-    mpb__set_err(err, errlen, "%s", "");
-    if (!out) {
-        mpb__set_err(err, errlen, "mesh: no place for the result");
-        return MPB_EINVAL;
-    }
-    *out = NULL;
-    try {
-        int rc = load(uri, dirs, num_dirs, scale, out, err, errlen);
-        if (rc == MPB_ENOMEM)
-            mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
-        return rc;
-    } catch (const std::bad_alloc &) {
-        mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
-        return MPB_ENOMEM;
-    } catch (const std::exception &e) {
-        mpb__set_err(err, errlen, "mesh '%s': %s", uri ? uri : "", e.what());
-        return MPB_EPARSE;
-    } catch (...) {
-        mpb__set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
-        return MPB_EERROR;
-    }
+    return load_at_boundary(uri, out, err, errlen, [&] {
+        return load(uri, dirs, num_dirs, scale, out, err, errlen);
+    });
 }
 
 int mpb__mesh_load_shared(const char *uri, const char *const *dirs,
                           int num_dirs, const double scale[3],
                           const mpb_mesh **out, char *err, size_t errlen)
 {
-    mpb__set_err(err, errlen, "%s", "");
-    if (!out) {
-        mpb__set_err(err, errlen, "mesh: no place for the result");
-        return MPB_EINVAL;
-    }
-    *out = NULL;
-    try {
-        int rc = load_shared(uri, dirs, num_dirs, scale, out, err, errlen);
-        if (rc == MPB_ENOMEM)
-            mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
-        return rc;
-    } catch (const std::bad_alloc &) {
-        mpb__set_err(err, errlen, "mesh '%s': out of memory", uri ? uri : "");
-        return MPB_ENOMEM;
-    } catch (const std::exception &e) {
-        mpb__set_err(err, errlen, "mesh '%s': %s", uri ? uri : "", e.what());
-        return MPB_EPARSE;
-    } catch (...) {
-        mpb__set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
-        return MPB_EERROR;
-    }
+    return load_at_boundary(uri, out, err, errlen, [&] {
+        return load_shared(uri, dirs, num_dirs, scale, out, err, errlen);
+    });
 }
 
 void mpb__mesh_release(const mpb_mesh *m)
