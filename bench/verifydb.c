@@ -1,0 +1,675 @@
+/*
+ * verifydb.c - mpb-bench-verifydb: how many waypoints per second mpbench
+ * verifies and measures on the trajectories planners really returned. It
+ * reads the finished runs of an experiment in a results database through
+ * the store API (as `mpb verify` does): each run's world (the stored robot
+ * text, its SRDF inside, and scene; the joints its query held), start,
+ * goal and stages. Then, in process, it times what mpbenchd does per
+ * result (daemon/results.c, measure_stage): mpb_verify_path at the
+ * experiment's resolution and every metric the daemon stores, over all of
+ * them, repeated for at least S seconds. Opening the worlds is timed apart.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "mpbench/mpbench.h"
+
+#include "bench_util.h"
+
+#define PROG "mpb-bench-verifydb"
+
+/* The verifier's step when the database does not say (mpbenchd -r). */
+#define DEFAULT_RESOLUTION 0.01
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+"usage: " PROG " --db FILE [options]\n"
+"\n"
+"Times verification (mpb_verify_path) and the daemon's metrics on every\n"
+"stage of every finished run of an experiment in the results database\n"
+"FILE, as mpbenchd computes them per result, and prints waypoints per\n"
+"second. The database is only read.\n"
+"\n"
+"options:\n"
+"  --experiment ID   the experiment (default: the newest)\n"
+"  --resolution RAD  verification step (default: the experiment's, else\n"
+"                    0.01)\n"
+"  --robot-dir DIR   where a URDF robot's meshes are looked for last,\n"
+"                    after MPB_MESH_PATH and ROS_PACKAGE_PATH (mpbenchd\n"
+"                    uses the URDF's folder)\n"
+"  --seconds S       repeat each measurement for at least S seconds\n"
+"                    (default 1)\n"
+"  --key NAME        the RESULT line's key (default verify_db)\n"
+"  --label TEXT      names the trajectories in the output\n");
+}
+
+/* CPU time of this thread, s: waiting for a core on a shared machine is
+ * no part of it. */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static void *xcalloc(size_t n, size_t size)
+{
+    void *p = calloc(n ? n : 1, size);
+    if (p == NULL) {
+        fprintf(stderr, PROG ": out of memory\n");
+        exit(1);
+    }
+    return p;
+}
+
+static char *xstrdup(const char *s)
+{
+    char *d = strdup(s ? s : "");
+    if (d == NULL) {
+        fprintf(stderr, PROG ": out of memory\n");
+        exit(1);
+    }
+    return d;
+}
+
+/* Space-separated numbers into a new array of exactly n; NULL if not n. */
+static double *parse_numbers(const char *text, int n)
+{
+    double *v = xcalloc((size_t)n, sizeof *v);
+    const char *p = text ? text : "";
+    for (int i = 0; i < n; i++) {
+        char *end;
+        v[i] = strtod(p, &end);
+        if (end == p) {
+            free(v);
+            return NULL;
+        }
+        p = end;
+    }
+    return v;
+}
+
+/* ---- what the database holds ------------------------------------------ */
+
+typedef struct scene {
+    int64_t id;
+    char   *name, *robot_format, *robot, *scene_format, *scene;
+} scene;
+
+typedef struct query {
+    int64_t  id, scene_id;
+    char    *name, *joint_names, *held;  /* held: NULL if none */
+    int      num_joints;
+    double  *start, *goal_joints;        /* goal_joints: joint goals */
+    double   tolerance;
+    int      goal_kind;
+    char    *goal_link;
+    double   goal_region[12];
+    struct world *world;
+} query;
+
+/* A world per scene and set of held joints, as the daemon's. */
+typedef struct world {
+    int64_t    scene_id;
+    const char *held;
+    mpb_world *w;
+} world;
+
+/* A finished run and its query. */
+typedef struct run_ref {
+    int64_t run, query;
+} run_ref;
+
+/* One stage to time, with what its run's verification needs. */
+typedef struct stage {
+    int64_t      run_id;
+    const query *q;
+    char        *name, *stored;   /* stored: the verdict in the database */
+    int          n;
+    double      *wp;
+} stage;
+
+typedef struct db {
+    const char *path;
+    mpb_store  *s;
+    scene      *scenes;
+    int         num_scenes;
+    query      *queries;
+    int         num_queries, cap_queries;
+    world      *worlds;
+    int         num_worlds;
+    run_ref    *runs;             /* finished runs, in run order */
+    int         num_runs, cap_runs;
+    stage      *stages;
+    int         num_stages, cap_stages;
+    int64_t     cur_run;          /* while its stages are read */
+    const query *cur_query;
+    int         runs_with_stages, skipped;
+    long        waypoints;
+    char        err[512];         /* a fault found in a callback */
+} db;
+
+static void grow(void **p, int *cap, int need, size_t size)
+{
+    if (need <= *cap)
+        return;
+    int c = *cap ? 2 * *cap : 64;
+    void *q = realloc(*p, (size_t)c * size);
+    if (q == NULL) {
+        fprintf(stderr, PROG ": out of memory\n");
+        exit(1);
+    }
+    *p = q;
+    *cap = c;
+}
+
+static int on_scene(void *ud, const mpb_scene_row *r)
+{
+    db *d = ud;
+    scene *grown = realloc(d->scenes, (size_t)(d->num_scenes + 1) *
+                                      sizeof *grown);
+    if (grown == NULL) {
+        fprintf(stderr, PROG ": out of memory\n");
+        exit(1);
+    }
+    d->scenes = grown;
+    scene *sc = &d->scenes[d->num_scenes++];
+    sc->id = r->id;
+    sc->name = xstrdup(r->name);
+    sc->robot_format = xstrdup(r->robot_format);
+    sc->robot = xstrdup(r->robot);
+    sc->scene_format = xstrdup(r->scene_format);
+    sc->scene = xstrdup(r->scene);
+    return 0;
+}
+
+static int on_query(void *ud, const mpb_query_row *r)
+{
+    db *d = ud;
+    grow((void **)&d->queries, &d->cap_queries, d->num_queries + 1,
+         sizeof *d->queries);
+    query *q = &d->queries[d->num_queries++];
+    memset(q, 0, sizeof *q);
+    q->id = r->id;
+    q->scene_id = r->scene_id;
+    q->name = xstrdup(r->name);
+    q->joint_names = xstrdup(r->joint_names);
+    q->held = r->held ? xstrdup(r->held) : NULL;
+    for (const char *c = q->joint_names; *c; c++)
+        if (*c != ' ' && (c == q->joint_names || c[-1] == ' '))
+            q->num_joints++;
+    q->start = parse_numbers(r->start, q->num_joints);
+    q->tolerance = r->goal_tolerance;
+    q->goal_kind = r->goal_kind;
+    if (r->goal_kind == MPB_GOAL_JOINTS) {
+        q->goal_joints = parse_numbers(r->goal_joints, q->num_joints);
+    } else {
+        q->goal_link = xstrdup(r->goal_link);
+        double *g = parse_numbers(r->goal_region, 12);
+        if (g)
+            memcpy(q->goal_region, g, sizeof q->goal_region);
+        free(g);
+    }
+    return 0;
+}
+
+static int on_result(void *ud, const mpb_result_row *r)
+{
+    db *d = ud;
+    grow((void **)&d->runs, &d->cap_runs, d->num_runs + 1, sizeof *d->runs);
+    d->runs[d->num_runs++] = (run_ref){r->run_id, r->query_id};
+    return 0;
+}
+
+static int on_stage(void *ud, const mpb_stage_record *st)
+{
+    db *d = ud;
+    int nj = d->cur_query->num_joints;
+    /* What the daemon would not verify (the wrong size), and blobs that do
+     * not hold their waypoints whole: nothing to time. */
+    if (st->num_waypoints < 1 || st->num_joints != nj) {
+        d->skipped++;
+        return 0;
+    }
+    size_t nv = (size_t)st->num_waypoints * (size_t)nj;
+    for (size_t i = 0; i < nv; i++)
+        if (!isfinite(st->waypoints[i])) {
+            snprintf(d->err, sizeof d->err, "run %lld stage %s: waypoint "
+                     "%zu holds a value that is not finite (a corrupt "
+                     "trajectory); nothing timed", (long long)d->cur_run,
+                     st->name, i / (size_t)nj);
+            return 1;
+        }
+    grow((void **)&d->stages, &d->cap_stages, d->num_stages + 1,
+         sizeof *d->stages);
+    stage *s = &d->stages[d->num_stages++];
+    s->run_id = d->cur_run;
+    s->q = d->cur_query;
+    s->name = xstrdup(st->name);
+    s->stored = xstrdup(st->verdict);
+    s->n = st->num_waypoints;
+    s->wp = xcalloc(nv, sizeof *s->wp);
+    memcpy(s->wp, st->waypoints, nv * sizeof *s->wp);
+    d->waypoints += st->num_waypoints;
+    return 0;
+}
+
+static const scene *scene_of(const db *d, int64_t id)
+{
+    for (int i = 0; i < d->num_scenes; i++)
+        if (d->scenes[i].id == id)
+            return &d->scenes[i];
+    return NULL;
+}
+
+static query *query_of(const db *d, int64_t id)
+{
+    for (int i = 0; i < d->num_queries; i++)
+        if (d->queries[i].id == id)
+            return &d->queries[i];
+    return NULL;
+}
+
+/* The held joints "name=value name=value" into names and values (n). */
+static int parse_held(char *text, const char **names, double *values,
+                      int max)
+{
+    int n = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(text, " ", &save); t && n < max;
+         t = strtok_r(NULL, " ", &save)) {
+        char *eq = strrchr(t, '=');
+        if (eq == NULL)
+            continue;
+        *eq = '\0';
+        names[n] = t;
+        values[n++] = strtod(eq + 1, NULL);
+    }
+    return n;
+}
+
+/* The world of query q, opened once per scene and held joints; 0, or -1
+ * with d->err set. *secs grows by the time opening took. */
+static int world_for(db *d, query *q, const char *robot_dir, double *secs)
+{
+    for (int i = 0; i < d->num_worlds; i++)
+        if (d->worlds[i].scene_id == q->scene_id &&
+            strcmp(d->worlds[i].held ? d->worlds[i].held : "",
+                   q->held ? q->held : "") == 0) {
+            q->world = &d->worlds[i];
+            return 0;
+        }
+    const scene *sc = scene_of(d, q->scene_id);
+    if (sc == NULL) {
+        snprintf(d->err, sizeof d->err, "query %s: its scene is not in the "
+                 "database", q->name);
+        return -1;
+    }
+    /* The group, in the query's order. */
+    char *names_text = xstrdup(q->joint_names);
+    const char **names = xcalloc((size_t)q->num_joints, sizeof *names);
+    int n = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(names_text, " ", &save); t && n < q->num_joints;
+         t = strtok_r(NULL, " ", &save))
+        names[n++] = t;
+    char err[512] = "";
+    mpb_world *w = NULL;
+    double t0 = mpbb_now();
+    int rc = mpb_world_open_group_in(sc->robot_format, sc->robot, robot_dir,
+                                     sc->scene_format, sc->scene, names, n,
+                                     &w, err, sizeof err);
+    if (rc == MPB_OK && q->held) {
+        char *held = xstrdup(q->held);
+        size_t max = strlen(held) / 2 + 1;
+        const char **hn = xcalloc(max, sizeof *hn);
+        double *hv = xcalloc(max, sizeof *hv);
+        int nh = parse_held(held, hn, hv, (int)max);
+        rc = mpb_world_hold(w, hn, hv, nh, err, sizeof err);
+        free(hn);
+        free(hv);
+        free(held);
+    }
+    *secs += mpbb_now() - t0;
+    free(names);
+    free(names_text);
+    if (rc != MPB_OK) {
+        mpb_world_close(w);
+        snprintf(d->err, sizeof d->err, "scene '%s': %s", sc->name, err);
+        return -1;
+    }
+    /* Worlds are never moved: queries point at them. */
+    world *wd = &d->worlds[d->num_worlds++];
+    wd->scene_id = q->scene_id;
+    wd->held = q->held;
+    wd->w = w;
+    q->world = wd;
+    return 0;
+}
+
+/* Read the experiment's finished runs and open their worlds; 0, or -1
+ * after one line on stderr. */
+static int load(db *d, int64_t experiment, const char *robot_dir,
+                double *open_secs)
+{
+    int rc = mpb_store_scenes(d->s, experiment, on_scene, d);
+    for (int i = 0; rc == MPB_OK && i < d->num_scenes; i++)
+        rc = mpb_store_queries(d->s, d->scenes[i].id, on_query, d);
+    if (rc == MPB_OK)
+        rc = mpb_store_results(d->s, experiment, 0, NULL, NULL, 0, on_result,
+                               d);
+    if (rc != MPB_OK) {
+        fprintf(stderr, PROG ": %s: %s\n", d->path, mpb_store_errmsg(d->s));
+        return -1;
+    }
+    if (d->num_runs == 0) {
+        fprintf(stderr, PROG ": %s: experiment %lld has no finished runs\n",
+                d->path, (long long)experiment);
+        return -1;
+    }
+    d->worlds = xcalloc((size_t)d->num_queries, sizeof *d->worlds);
+    for (int i = 0; i < d->num_runs; i++) {
+        query *q = query_of(d, d->runs[i].query);
+        if (q == NULL || q->start == NULL ||
+            (q->goal_kind == MPB_GOAL_JOINTS && q->goal_joints == NULL)) {
+            fprintf(stderr, PROG ": %s: run %lld: its query is not in the "
+                    "database, or its start or goal is not %d numbers\n",
+                    d->path, (long long)d->runs[i].run,
+                    q ? q->num_joints : 0);
+            return -1;
+        }
+        int before = d->num_stages;
+        d->cur_run = d->runs[i].run;
+        d->cur_query = q;
+        rc = mpb_store_run_stages(d->s, d->runs[i].run, on_stage, d);
+        if (rc == 1) {
+            fprintf(stderr, PROG ": %s: %s\n", d->path, d->err);
+            return -1;
+        }
+        if (rc != MPB_OK) {
+            fprintf(stderr, PROG ": %s: run %lld: %s\n", d->path,
+                    (long long)d->runs[i].run, mpb_store_errmsg(d->s));
+            return -1;
+        }
+        if (d->num_stages == before)
+            continue;
+        d->runs_with_stages++;
+        if (q->world == NULL &&
+            world_for(d, q, robot_dir, open_secs) != 0) {
+            fprintf(stderr, PROG ": %s: run %lld: %s\n", d->path,
+                    (long long)d->runs[i].run, d->err);
+            return -1;
+        }
+    }
+    if (d->num_stages == 0) {
+        fprintf(stderr, PROG ": %s: experiment %lld: none of its %d "
+                "finished runs has a stage with waypoints to time\n",
+                d->path, (long long)experiment, d->num_runs);
+        return -1;
+    }
+    return 0;
+}
+
+/* ---- timing ----------------------------------------------------------- */
+
+/* The run's goal as the verifier takes it (mpbd_query_goal). */
+static mpb_goal goal_of(const query *q)
+{
+    mpb_goal g = {.kind = (mpb_goal_kind)q->goal_kind,
+                  .joints = q->goal_joints,
+                  .joint_tolerance = q->tolerance, .link = q->goal_link};
+    for (int i = 0; i < 3; i++) {
+        g.position[i] = q->goal_region[i];
+        g.position_tolerance[i] = q->goal_region[3 + i];
+        g.orientation_rpy[i] = q->goal_region[6 + i];
+        g.orientation_tolerance[i] = q->goal_region[9 + i];
+    }
+    return g;
+}
+
+enum { BOTH, VERIFY, METRICS, NUM_WHAT };
+
+/* Where the metrics go, so that no pass is thought idle. */
+static volatile double sink;
+
+/* One pass over every stage: what measure_stage() in daemon/results.c
+ * calls, verification and/or metrics. */
+static void pass(const db *d, double resolution, int what,
+                 mpb_verdict *verdicts)
+{
+    for (int i = 0; i < d->num_stages; i++) {
+        const stage *s = &d->stages[i];
+        const query *q = s->q;
+        mpb_world *w = q->world->w;
+        int nj = q->num_joints;
+        if (what != METRICS) {
+            mpb_goal goal = goal_of(q);
+            mpb_verify_path(w, q->start, q->tolerance, &goal, s->wp, s->n,
+                            nj, resolution, &verdicts[i]);
+        }
+        if (what != VERIFY) {
+            const unsigned char *wraps = mpb_world_joint_wraps(w);
+            double mean, least;
+            sink += mpb_path_length(s->wp, s->n, nj, wraps);
+            sink += mpb_smoothness(s->wp, s->n, nj, wraps);
+            sink += mpb_smoothness_resampled(s->wp, s->n, nj, wraps);
+            mpb_path_clearances(w, s->wp, s->n, nj, &mean, &least);
+            sink += mean + least;
+            sink += mpb_ee_path_length(w, s->wp, s->n, nj, resolution);
+        }
+    }
+}
+
+typedef struct timing {
+    double wall, cpu;   /* s per pass */
+    long   passes;
+} timing;
+
+static timing timed(const db *d, double resolution, int what, double secs,
+                    mpb_verdict *verdicts)
+{
+    pass(d, resolution, what, verdicts);   /* warm */
+    double t0 = mpbb_now(), c0 = cpu_now(), t;
+    long r = 0;
+    do {
+        pass(d, resolution, what, verdicts);
+        r++;
+        t = mpbb_now();
+    } while (t - t0 < secs);
+    timing out = {(t - t0) / (double)r, (cpu_now() - c0) / (double)r, r};
+    return out;
+}
+
+/* Collision checks one verification makes, as bench/verify.c counts
+ * them: one at the first waypoint, then ceil(segment / resolution) per
+ * segment (continuous joints the short way). */
+static double count_checks(const db *d, double resolution)
+{
+    double checks = 0;
+    for (int i = 0; i < d->num_stages; i++) {
+        const stage *s = &d->stages[i];
+        int nj = s->q->num_joints;
+        const unsigned char *wraps = mpb_world_joint_wraps(s->q->world->w);
+        checks += 1;
+        for (int k = 0; k + 1 < s->n; k++) {
+            double sq = 0;
+            for (int j = 0; j < nj; j++) {
+                double dj = mpb_joint_delta(s->wp[k * nj + j],
+                                            s->wp[(k + 1) * nj + j],
+                                            wraps ? wraps[j] : 0);
+                sq += dj * dj;
+            }
+            double c = ceil(sqrt(sq) / resolution);
+            checks += c < 1 ? 1 : c;
+        }
+    }
+    return checks;
+}
+
+static void db_free(db *d)
+{
+    for (int i = 0; i < d->num_stages; i++) {
+        free(d->stages[i].name);
+        free(d->stages[i].stored);
+        free(d->stages[i].wp);
+    }
+    free(d->stages);
+    for (int i = 0; i < d->num_worlds; i++)
+        mpb_world_close(d->worlds[i].w);
+    free(d->worlds);
+    for (int i = 0; i < d->num_queries; i++) {
+        query *q = &d->queries[i];
+        free(q->name);
+        free(q->joint_names);
+        free(q->held);
+        free(q->start);
+        free(q->goal_joints);
+        free(q->goal_link);
+    }
+    free(d->queries);
+    for (int i = 0; i < d->num_scenes; i++) {
+        scene *sc = &d->scenes[i];
+        free(sc->name);
+        free(sc->robot_format);
+        free(sc->robot);
+        free(sc->scene_format);
+        free(sc->scene);
+    }
+    free(d->scenes);
+    free(d->runs);
+    mpb_store_close(d->s);
+}
+
+static int parse_double(const char *v, double *out)
+{
+    char *end;
+    *out = strtod(v, &end);
+    return end != v && *end == '\0' && *out > 0 && isfinite(*out);
+}
+
+int main(int argc, char **argv)
+{
+    const char *path = NULL, *robot_dir = NULL, *key = "verify_db";
+    const char *label = NULL;
+    double resolution = 0, secs = 1;
+    int64_t experiment = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        }
+        if (v == NULL) {
+            fprintf(stderr, PROG ": '%s' wants a value (see --help)\n", a);
+            return 2;
+        }
+        i++;
+        int ok = 1, known = 1;
+        if (strcmp(a, "--db") == 0) path = v;
+        else if (strcmp(a, "--robot-dir") == 0) robot_dir = v;
+        else if (strcmp(a, "--key") == 0) key = v;
+        else if (strcmp(a, "--label") == 0) label = v;
+        else if (strcmp(a, "--seconds") == 0) ok = parse_double(v, &secs);
+        else if (strcmp(a, "--resolution") == 0)
+            ok = parse_double(v, &resolution);
+        else if (strcmp(a, "--experiment") == 0) {
+            char *end;
+            long long id = strtoll(v, &end, 10);
+            ok = end != v && *end == '\0' && id > 0;
+            experiment = id;
+        } else
+            known = 0;
+        if (!known) {
+            fprintf(stderr, PROG ": unknown argument '%s' (see --help)\n", a);
+            return 2;
+        }
+        if (!ok) {
+            fprintf(stderr, PROG ": %s wants a number more than 0, not "
+                    "'%s'\n", a, v);
+            return 2;
+        }
+    }
+    if (path == NULL) {
+        fprintf(stderr, PROG ": wants --db FILE (see --help)\n");
+        return 2;
+    }
+    db d = {.path = path};
+    if (mpb_store_open(path, 1, &d.s) != MPB_OK) {
+        fprintf(stderr, PROG ": %s\n",
+                d.s ? mpb_store_errmsg(d.s) : "out of memory");
+        mpb_store_close(d.s);
+        return 1;
+    }
+    int status = 1;
+    if (experiment == 0 &&
+        mpb_store_experiment_latest(d.s, &experiment) != MPB_OK) {
+        fprintf(stderr, PROG ": %s: no experiment in the database\n", path);
+        goto out;
+    }
+    double stored_res = 0;
+    if (mpb_store_experiment_resolution(d.s, experiment, &stored_res) !=
+            MPB_OK) {
+        fprintf(stderr, PROG ": %s: no experiment %lld\n", path,
+                (long long)experiment);
+        goto out;
+    }
+    if (resolution == 0)
+        resolution = stored_res > 0 ? stored_res : DEFAULT_RESOLUTION;
+    double open_secs = 0;
+    if (load(&d, experiment, robot_dir, &open_secs) != 0)
+        goto out;
+
+    /* Once, untimed: the verdicts, against the stored ones. */
+    mpb_verdict *verdicts = xcalloc((size_t)d.num_stages, sizeof *verdicts);
+    pass(&d, resolution, VERIFY, verdicts);
+    int same = 0, valid = 0;
+    for (int i = 0; i < d.num_stages; i++) {
+        const char *name = mpb_verdict_name(verdicts[i].code);
+        same += strcmp(name, d.stages[i].stored) == 0;
+        valid += verdicts[i].code == MPB_VERDICT_VALID;
+    }
+    timing t[NUM_WHAT];
+    for (int what = 0; what < NUM_WHAT; what++)
+        t[what] = timed(&d, resolution, what, secs, verdicts);
+    double checks = count_checks(&d, resolution);
+    double n = (double)d.waypoints;
+
+    printf("%s, experiment %lld, resolution %.3g: %d runs with stages (of %d finished), "
+           "%d stages, %ld waypoints (%.1f collision checks per waypoint)",
+           label ? label : path, (long long)experiment, resolution, d.runs_with_stages,
+           d.num_runs, d.num_stages, d.waypoints, checks / n);
+    if (d.skipped)
+        printf("; %d stages without whole waypoints left out", d.skipped);
+    printf("\n  verdicts: %d of %d as stored, %d valid\n", same,
+           d.num_stages, valid);
+    printf("  worlds: %d opened in %.3f s (%.1f ms each), not timed below\n",
+           d.num_worlds, open_secs, open_secs / d.num_worlds * 1e3);
+    printf("  verify + metrics %10.0f waypoints/s (%.2f us per waypoint; "
+           "CPU time %.0f/s), %ld passes\n", n / t[BOTH].wall,
+           t[BOTH].wall / n * 1e6, n / t[BOTH].cpu, t[BOTH].passes);
+    printf("  verify only      %10.0f waypoints/s (CPU time %.0f/s), "
+           "%.0f collision checks/s\n", n / t[VERIFY].wall,
+           n / t[VERIFY].cpu, checks / t[VERIFY].wall);
+    printf("  metrics only     %10.0f waypoints/s (CPU time %.0f/s)\n",
+           n / t[METRICS].wall, n / t[METRICS].cpu);
+    mpbb_result("%s runs=%d finished=%d stages=%d waypoints=%ld "
+                "resolution=%g checks_per_waypoint=%.2f same_verdicts=%d "
+                "valid=%d worlds=%d world_open_s=%.3f wps=%.0f "
+                "verify_wps=%.0f metrics_wps=%.0f cpu_wps=%.0f "
+                "cpu_verify_wps=%.0f cpu_metrics_wps=%.0f reps=%ld",
+                key, d.runs_with_stages, d.num_runs, d.num_stages,
+                d.waypoints, resolution, checks / n, same, valid,
+                d.num_worlds, open_secs, n / t[BOTH].wall,
+                n / t[VERIFY].wall, n / t[METRICS].wall, n / t[BOTH].cpu,
+                n / t[VERIFY].cpu, n / t[METRICS].cpu, t[BOTH].passes);
+    free(verdicts);
+    status = 0;
+out:
+    db_free(&d);
+    return status;
+}
