@@ -48,6 +48,8 @@ data=$(sh "$src/tools/robot_data.sh" --check >/dev/null 2>&1 &&
     exit 1
 }
 panda=$data/panda
+# The URDF's package:// meshes, for the planner and the bench alike.
+export MPB_MESH_PATH=$panda
 if [ -n "$DB" ] && [ ! -f "$DB" ]; then
     echo "bench/mbmverify.sh: $DB: no such database" >&2
     exit 1
@@ -93,5 +95,5 @@ if [ -z "$DB" ]; then
 fi
 echo "== 4v. verification + metrics on the stored trajectories of $DB"
 timeout -k 5 900 "$BUILD/bench-standalone/mpb-bench-verifydb" --db "$DB" \
-    --robot-dir "$panda/" --seconds "$SECS" --key verify_mbm \
+    --seconds "$SECS" --key verify_mbm \
     --label "Panda, MotionBenchMaker"
