@@ -45,6 +45,7 @@
 #include "mpbench/collision.h"
 #include "collision_internal.h"
 #include "errbuf.h"
+#include "hull.h"
 #include "mesh_cache.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -133,7 +134,8 @@ struct Shape {
        in wcap, kept current. Disjoint from it, the mesh is too. */
     bool                 has_cap = false;
     double               cap[2][3], cap_r = 0, wcap[2][3];
-    const fcl::Vector3d *verts = nullptr; /* a mesh's vertices (its BVH's) */
+    const fcl::Vector3d *verts = nullptr; /* a mesh's vertices that may be
+                                      extreme (extreme_vertices()) */
     int                  num_verts = 0;
     /* A static: a box that holds it, in its own frame (centre, half
        sides), for the capsule tests. */
@@ -217,6 +219,29 @@ fcl::Transform3d to_tf(const mpb_pose *p)
     return tf;
 }
 
+/* A mesh's BVH model, and those of its vertices that may be extreme
+ * along some direction (hull.h), found for the first movable shape that
+ * uses it: extents over them are those over all the vertices. */
+struct MeshModel : fcl::BVHModel<fcl::OBBRSSd> {
+    std::once_flag             extreme_once;
+    std::vector<fcl::Vector3d> extreme;
+};
+
+static_assert(sizeof(fcl::Vector3d) == 3 * sizeof(double),
+              "BVH vertices are read as x y z triples");
+
+const std::vector<fcl::Vector3d> &extreme_vertices(MeshModel &m)
+{
+    std::call_once(m.extreme_once, [&m] {
+        std::vector<unsigned char> keep((size_t)m.num_vertices);
+        mpb__hull_keep(m.vertices[0].data(), m.num_vertices, keep.data());
+        for (int i = 0; i < m.num_vertices; i++)
+            if (keep[(size_t)i])
+                m.extreme.push_back(m.vertices[i]);
+    });
+    return m.extreme;
+}
+
 /* The FCL geometry of g (g already checked), or nullptr on a BVH error. */
 std::shared_ptr<Geom> make_geometry(const mpb_geometry *g)
 {
@@ -244,7 +269,7 @@ std::shared_ptr<Geom> make_geometry(const mpb_geometry *g)
         for (int i = 0; i < m->num_triangles; i++)
             tris[(size_t)i].set((size_t)m->triangles[3 * i], (size_t)m->triangles[3 * i + 1],
                                 (size_t)m->triangles[3 * i + 2]);
-        auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+        auto bvh = std::make_shared<MeshModel>();
         if (bvh->beginModel(m->num_triangles, m->num_vertices) != fcl::BVH_OK ||
             bvh->addSubModel(pts, tris) != fcl::BVH_OK ||
             bvh->endModel() != fcl::BVH_OK)
@@ -292,13 +317,15 @@ fcl::Vector3d support(const Shape &s, const fcl::Vector3d &u)
     case MPB_SHAPE_MESH: {
         auto *m = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(
             s.obj->collisionGeometry().get());
-        fcl::Vector3d best = m->vertices[0];
+        const fcl::Vector3d *v = s.num_verts > 0 ? s.verts : m->vertices;
+        int nv = s.num_verts > 0 ? s.num_verts : m->num_vertices;
+        fcl::Vector3d best = v[0];
         double bd = u.dot(best);
-        for (int i = 1; i < m->num_vertices; i++) {
-            double x = u.dot(m->vertices[i]);
+        for (int i = 1; i < nv; i++) {
+            double x = u.dot(v[i]);
             if (x > bd) {
                 bd = x;
-                best = m->vertices[i];
+                best = v[i];
             }
         }
         return best;
@@ -1569,9 +1596,9 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
         bounding_sphere(s);
         if (g->type == MPB_SHAPE_MESH) {
             fit_capsule(s, g->mesh);
-            auto *b = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(geom.get());
-            s.verts = b->vertices;
-            s.num_verts = b->num_vertices;
+            const auto &ext = extreme_vertices(*static_cast<MeshModel *>(geom.get()));
+            s.verts = ext.data();
+            s.num_verts = (int)ext.size();
         }
         s.body = c->movable_index[(size_t)id];
         s.obj->setUserData((void *)(intptr_t)c->mshapes.size());
