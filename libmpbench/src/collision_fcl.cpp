@@ -23,7 +23,10 @@
  * query measures its pairs nearest lower bound first, and skips those
  * whose bound from the vertices is no better than the best so far. All
  * are exact bounds with a margin: verdicts and distances are those of
- * every pair through FCL (tests/unit/test_mesh_reference.c).
+ * every pair through FCL (tests/unit/test_mesh_reference.c). A mesh's
+ * extent along a direction is read from a few vertices of its hull, those
+ * listed for the direction (hull.h, dirtable.h): the same numbers as from
+ * all its vertices, for a few percent of the cost.
  *
  * What FCL 0.7 gets wrong, and what is done about it (see the tests):
  *   - plane distances crash (libccd) or are wrong (independent GJK): planes
@@ -44,6 +47,7 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
 #include "collision_internal.h"
+#include "dirtable.h"
 #include "errbuf.h"
 #include "hull.h"
 #include "mesh_cache.h"
@@ -137,6 +141,7 @@ struct Shape {
     const fcl::Vector3d *verts = nullptr; /* a mesh's vertices that may be
                                       extreme (extreme_vertices()) */
     int                  num_verts = 0;
+    const mpb__dirtable *dirs = nullptr; /* which of verts, by direction */
     /* A static: a box that holds it, in its own frame (centre, half
        sides), for the capsule tests. */
     double               lbox_c[3] = {0, 0, 0}, lbox_h[3] = {0, 0, 0};
@@ -220,12 +225,19 @@ fcl::Transform3d to_tf(const mpb_pose *p)
 }
 
 /* A mesh's BVH model, and those of its vertices that may be extreme
- * along some direction (hull.h), found for the first movable shape that
- * uses it: extents over them are those over all the vertices. */
+ * along some direction (hull.h) with the few of them that may be along
+ * each cell of directions (dirtable.h), found for the first movable
+ * shape that uses it: extents over them are those over all the vertices. */
 struct MeshModel : fcl::BVHModel<fcl::OBBRSSd> {
     std::once_flag             extreme_once;
     std::vector<fcl::Vector3d> extreme;
+    mpb__dirtable              dirs = {0, nullptr, nullptr};
+    ~MeshModel() { mpb__dirtable_free(&dirs); }
 };
+
+/* Cells a cube face for the vertex lists of MeshModel::dirs: 3.5 to 4.5
+ * vertices a list for the Panda's links (100 to 260 on their hulls). */
+#define MPB__DIR_CELLS 12
 
 static_assert(sizeof(fcl::Vector3d) == 3 * sizeof(double),
               "BVH vertices are read as x y z triples");
@@ -238,6 +250,10 @@ const std::vector<fcl::Vector3d> &extreme_vertices(MeshModel &m)
         for (int i = 0; i < m.num_vertices; i++)
             if (keep[(size_t)i])
                 m.extreme.push_back(m.vertices[i]);
+        /* no table (no memory): every vertex is scanned */
+        if (!m.extreme.empty())
+            mpb__dirtable_build(&m.dirs, m.extreme[0].data(),
+                                (int)m.extreme.size(), MPB__DIR_CELLS);
     });
     return m.extreme;
 }
@@ -862,31 +878,32 @@ bool caps_apart(const Shape &a, const Shape &b)
     return seg_seg_dist2(a.wcap[0], a.wcap[1], b.wcenter, b.wcenter) > r * r;
 }
 
-/* The extent of mesh shape s along world direction d: min and max of
- * d . x over its vertices x in the world; the vertices at both ends. */
-void mesh_extent(const Shape &s, const double d[3], double &lo, double &hi,
-                 int &ilo, int &ihi)
+/* How far mesh shape s reaches along world direction d: max of d . x
+ * over its vertices x in the world, and the (first) vertex there, an index
+ * in s.verts. Only the vertices listed for d's cell are scanned: the same
+ * value and vertex as a scan of all (dirtable.h). The least is
+ * -mesh_reach(-d), to the bit: negation is exact. */
+void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi)
 {
     const double *R = s.world.R;
     double l[3];              /* d in the mesh's frame */
     for (int k = 0; k < 3; k++)
         l[k] = R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
     double off = s.world.t[0] * d[0] + s.world.t[1] * d[1] + s.world.t[2] * d[2];
-    lo = INFINITY, hi = -INFINITY;
-    ilo = ihi = 0;
-    for (int i = 0; i < s.num_verts; i++) {
+    int c = s.dirs ? mpb__dirtable_cell(s.dirs, l) : -1;
+    const int *list = c >= 0 ? &s.dirs->idx[s.dirs->start[c]] : nullptr;
+    int n = c >= 0 ? s.dirs->start[c + 1] - s.dirs->start[c] : s.num_verts;
+    hi = -INFINITY;
+    ihi = 0;
+    for (int k = 0; k < n; k++) {
+        int i = list ? list[k] : k;
         const double *v = s.verts[i].data();
         double x = v[0] * l[0] + v[1] * l[1] + v[2] * l[2];
-        if (x < lo) {
-            lo = x;
-            ilo = i;
-        }
         if (x > hi) {
             hi = x;
             ihi = i;
         }
     }
-    lo += off;
     hi += off;
 }
 
@@ -910,10 +927,11 @@ bool meshes_apart(const Shape &a, const Shape &b)
         double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (!(n > 1e-12))
             return false;
-        double alo, ahi, blo, bhi;
-        int ialo, iahi, iblo, ibhi;
-        mesh_extent(a, d, alo, ahi, ialo, iahi);
-        mesh_extent(b, d, blo, bhi, iblo, ibhi);
+        double ahi, blo, nd[3] = {-d[0], -d[1], -d[2]};
+        int iahi, iblo;
+        mesh_reach(a, d, ahi, iahi);
+        mesh_reach(b, nd, blo, iblo);
+        blo = -blo;
         if (blo - ahi > MPB__CAP_MARGIN * n)
             return true;
         double pa[3], pb[3];
@@ -955,9 +973,11 @@ double mesh_static_lower(const Shape &a, const Shape &ss)
         double mid = c[0] * d[0] + c[1] * d[1] + c[2] * d[2], half = 0;
         for (int j = 0; j < 3; j++)
             half += ss.lbox_h[j] * std::fabs(R[j] * d[0] + R[3 + j] * d[1] + R[6 + j] * d[2]);
-        double lo, hi;
+        double lo, hi, nd[3] = {-d[0], -d[1], -d[2]};
         int ilo, ihi;
-        mesh_extent(a, d, lo, hi, ilo, ihi);
+        mesh_reach(a, d, hi, ihi);
+        mesh_reach(a, nd, lo, ilo);
+        lo = -lo;
         gap = std::max(gap, std::max(lo - (mid + half), (mid - half) - hi));
     }
     return gap - MPB__CAP_MARGIN;
@@ -1599,6 +1619,7 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
             const auto &ext = extreme_vertices(*static_cast<MeshModel *>(geom.get()));
             s.verts = ext.data();
             s.num_verts = (int)ext.size();
+            s.dirs = &static_cast<MeshModel *>(geom.get())->dirs;
         }
         s.body = c->movable_index[(size_t)id];
         s.obj->setUserData((void *)(intptr_t)c->mshapes.size());
@@ -2043,6 +2064,26 @@ int mpb__collision_check_brute(mpb_collision *c)
         }
         return 0;
     });
+}
+
+int mpb__collision_mesh_reach(mpb_collision *c, int i, const double d[3],
+                              double *fast, double *all)
+{
+    if (!c || i < 0 || (size_t)i >= c->mshapes.size() || !d || !fast || !all)
+        return MPB_EINVAL;
+    const Shape &s = c->mshapes[(size_t)i];
+    if (s.type != MPB_SHAPE_MESH || s.num_verts <= 0)
+        return MPB_EINVAL;
+    int at;
+    mesh_reach(s, d, *fast, at);
+    Shape every;              /* the same, without the hull or the lists */
+    auto *m = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(
+        s.obj->collisionGeometry().get());
+    every.world = s.world;
+    every.verts = m->vertices;
+    every.num_verts = m->num_vertices;
+    mesh_reach(every, d, *all, at);
+    return MPB_OK;
 }
 
 double mpb__collision_distance_brute(mpb_collision *c)
