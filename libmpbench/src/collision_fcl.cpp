@@ -51,6 +51,7 @@
 #include "errbuf.h"
 #include "hull.h"
 #include "mesh_cache.h"
+#include "simplex.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -818,6 +819,8 @@ void local_box(Shape &s)
 /* Capsule tests skip a pair only when it clears by this much (m): far
  * above FCL's tolerances and rounding, as spheres_apart(). */
 #define MPB__CAP_MARGIN 1e-4
+/* Directions meshes_apart() tries at most. */
+#define MPB__GJK_STEPS 16
 
 /* The squared distance between segments p0 p1 and q0 q1. */
 double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
@@ -911,21 +914,26 @@ void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi)
  * Are meshes a and b certainly apart: is there a plane between all the
  * vertices of one and all of the other, with the margin? Then their
  * convex hulls are apart, and the triangles within them too. The
- * directions tried: between the bounding spheres' centres, then a few
- * times between the vertices that came out nearest along the last one.
- * Each try is exact on its own, so a poor direction costs time, never a
- * wrong answer. Mesh pairs of robot links near each other (two links
- * apart along the arm) are mostly told apart here, where FCL's BVH
+ * directions tried: between the bounding spheres' centres, then those of
+ * a GJK search for the nearest points of the two hulls (simplex.h), each
+ * from the vertices that came out nearest along the last ones, until one
+ * clears by the margin or the hulls come within it. Each try is exact on
+ * its own (the extents of mesh_reach()), so a poor direction costs time,
+ * never a wrong answer. Mesh pairs of robot links near each other (two
+ * links apart along the arm) are mostly told apart here, where FCL's BVH
  * traversal went hundreds of box tests deep.
  */
 bool meshes_apart(const Shape &a, const Shape &b)
 {
-    double d[3];
+    double d[3], simplex[4][3];
+    int m = 0;
     for (int k = 0; k < 3; k++)
         d[k] = b.wcenter[k] - a.wcenter[k];
-    for (int iter = 0; iter < 3; iter++) {
-        double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (!(n > 1e-12))
+    for (int iter = 0; iter < MPB__GJK_STEPS; iter++) {
+        double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], n = std::sqrt(dd);
+        /* past the first, d is a point of b's hull less a's: the hulls
+           are then within |d| */
+        if (!(n > (iter ? MPB__CAP_MARGIN : 1e-12)))
             return false;
         double ahi, blo, nd[3] = {-d[0], -d[1], -d[2]};
         int iahi, iblo;
@@ -934,12 +942,19 @@ bool meshes_apart(const Shape &a, const Shape &b)
         blo = -blo;
         if (blo - ahi > MPB__CAP_MARGIN * n)
             return true;
-        double pa[3], pb[3];
-        const double *va = a.verts[iahi].data(), *vb = b.verts[iblo].data();
-        mpb_pose_apply(&a.world, va, pa);
-        mpb_pose_apply(&b.world, vb, pb);
+        double pa[3], pb[3], w[3];
+        mpb_pose_apply(&a.world, a.verts[iahi].data(), pa);
+        mpb_pose_apply(&b.world, b.verts[iblo].data(), pb);
         for (int k = 0; k < 3; k++)
-            d[k] = pb[k] - pa[k];
+            w[k] = pb[k] - pa[k];
+        /* no nearer point of the hulls' difference along d: d is about
+           the nearest, and it did not clear */
+        if (iter > 0 && dd - (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) <= 1e-9 * dd)
+            return false;
+        memcpy(simplex[m++], w, sizeof w);
+        m = mpb__simplex_nearest(simplex, m, d);
+        if (m == 0 || m == 4)   /* the hulls overlap */
+            return false;
     }
     return false;
 }
