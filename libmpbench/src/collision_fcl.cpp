@@ -251,10 +251,14 @@ const std::vector<fcl::Vector3d> &extreme_vertices(MeshModel &m)
         for (int i = 0; i < m.num_vertices; i++)
             if (keep[(size_t)i])
                 m.extreme.push_back(m.vertices[i]);
-        /* no table (no memory): every vertex is scanned */
+        /* fewer cells for huge hulls: the build costs 12 g^2 dot products
+           a vertex; no table (no memory): every vertex is scanned */
+        int g = MPB__DIR_CELLS;
+        while (g > 1 && 12.0 * g * g * (double)m.extreme.size() > 3e7)
+            g--;
         if (!m.extreme.empty())
             mpb__dirtable_build(&m.dirs, m.extreme[0].data(),
-                                (int)m.extreme.size(), MPB__DIR_CELLS);
+                                (int)m.extreme.size(), g);
     });
     return m.extreme;
 }

@@ -31,6 +31,8 @@
 #define MIN_SPREAD 1e-6
 /* A point this far above a facet's plane is outside it while building. */
 #define OUTSIDE_EPS 1e-10
+/* Point-plane tests of the final check at most (~0.3 s). */
+#define MAX_TESTS 1e8
 
 typedef struct {
     int    v[3];      /* counter-clockwise seen from outside */
@@ -337,6 +339,8 @@ static int final_keep(qh *h, double margin, unsigned char *keep)
     }
     if (live % 2 != 0 || verts - 3 * live / 2 + live != 2)
         return -1;
+    if ((double)(h->n - verts) * live > MAX_TESTS)
+        return -1;            /* a huge hull and many inside: keep all */
     double *pl = malloc((size_t)live * 3 * sizeof *pl);
     int *corner = malloc((size_t)live * sizeof *corner);
     int np = 0, rc = 0;
