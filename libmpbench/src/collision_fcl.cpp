@@ -915,69 +915,95 @@ void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi)
 }
 
 /*
+ * The widest gap found between mesh a and a convex set B: the most, over
+ * the directions tried, of (min over B of d . x - max over a's vertices of
+ * d . x) / |d|, a lower bound on their distance (every point of the mesh
+ * lies within its vertices' hull). The directions: d, then those of a GJK
+ * search for the nearest points of the two (simplex.h), each from the
+ * points that came out nearest along the last ones, until a gap passes
+ * stop, the two come within stop (no gap can pass it), or no nearer point
+ * is found. Each gap is exact on its own (mesh_reach()), so a poor
+ * direction costs time, never a wrong answer. lowest(d, lo): B's min
+ * along d, and which point of B is there; point(which, p): that point
+ * (world).
+ */
+template <class Lowest, class Point>
+double gjk_gap(const Shape &a, const Lowest &lowest, const Point &point,
+               double d[3], double stop)
+{
+    double simplex[4][3], best = -INFINITY;
+    int m = 0;
+    for (int iter = 0; iter < MPB__GJK_STEPS; iter++) {
+        double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], n = std::sqrt(dd);
+        /* past the first, d is a point of B less one of a's hull: the
+           two are within |d| */
+        if (!(n > 1e-12) || (iter > 0 && !(n > stop)))
+            return best;
+        double ahi, blo, pa[3], pb[3], w[3];
+        int iahi;
+        mesh_reach(a, d, ahi, iahi);
+        int which = lowest(d, blo);
+        if (blo - ahi > stop * n)
+            return (blo - ahi) / n;
+        best = std::max(best, (blo - ahi) / n);
+        point(which, pb);
+        mpb_pose_apply(&a.world, a.verts[iahi].data(), pa);
+        for (int k = 0; k < 3; k++)
+            w[k] = pb[k] - pa[k];
+        /* no nearer point of the difference along d: d is about the
+           nearest */
+        if (iter > 0 && dd - (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) <= 1e-9 * dd)
+            return best;
+        memcpy(simplex[m++], w, sizeof w);
+        m = mpb__simplex_nearest(simplex, m, d);
+        if (m == 0 || m == 4)   /* they overlap */
+            return best;
+    }
+    return best;
+}
+
+/*
  * Are meshes a and b certainly apart: is there a plane between all the
- * vertices of one and all of the other, with the margin? Then their
- * convex hulls are apart, and the triangles within them too. The
- * directions tried: between the bounding spheres' centres, then those of
- * a GJK search for the nearest points of the two hulls (simplex.h), each
- * from the vertices that came out nearest along the last ones, until one
- * clears by the margin or the hulls come within it. Each try is exact on
- * its own (the extents of mesh_reach()), so a poor direction costs time,
- * never a wrong answer. Mesh pairs of robot links near each other (two
- * links apart along the arm) are mostly told apart here, where FCL's BVH
- * traversal went hundreds of box tests deep.
+ * vertices of one and all of the other, with the margin (gjk_gap(), from
+ * the line between the bounding spheres' centres)? Then their convex
+ * hulls are apart, and the triangles within them too. Mesh pairs of robot
+ * links near each other (two links apart along the arm) are mostly told
+ * apart here, where FCL's BVH traversal went hundreds of box tests deep.
  */
 bool meshes_apart(const Shape &a, const Shape &b)
 {
-    double d[3], simplex[4][3];
-    int m = 0;
+    double d[3];
     for (int k = 0; k < 3; k++)
         d[k] = b.wcenter[k] - a.wcenter[k];
-    for (int iter = 0; iter < MPB__GJK_STEPS; iter++) {
-        double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], n = std::sqrt(dd);
-        /* past the first, d is a point of b's hull less a's: the hulls
-           are then within |d| */
-        if (!(n > (iter ? MPB__CAP_MARGIN : 1e-12)))
-            return false;
-        double ahi, blo, nd[3] = {-d[0], -d[1], -d[2]};
-        int iahi, iblo;
-        mesh_reach(a, d, ahi, iahi);
-        mesh_reach(b, nd, blo, iblo);
-        blo = -blo;
-        if (blo - ahi > MPB__CAP_MARGIN * n)
-            return true;
-        double pa[3], pb[3], w[3];
-        mpb_pose_apply(&a.world, a.verts[iahi].data(), pa);
-        mpb_pose_apply(&b.world, b.verts[iblo].data(), pb);
-        for (int k = 0; k < 3; k++)
-            w[k] = pb[k] - pa[k];
-        /* no nearer point of the hulls' difference along d: d is about
-           the nearest, and it did not clear */
-        if (iter > 0 && dd - (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) <= 1e-9 * dd)
-            return false;
-        memcpy(simplex[m++], w, sizeof w);
-        m = mpb__simplex_nearest(simplex, m, d);
-        if (m == 0 || m == 4)   /* the hulls overlap */
-            return false;
-    }
-    return false;
+    auto lowest = [&b](const double *dir, double &lo) {
+        double nd[3] = {-dir[0], -dir[1], -dir[2]};
+        int i;
+        mesh_reach(b, nd, lo, i);
+        lo = -lo;
+        return i;
+    };
+    auto point = [&b](int i, double p[3]) {
+        mpb_pose_apply(&b.world, b.verts[i].data(), p);
+    };
+    return gjk_gap(a, lowest, point, d, MPB__CAP_MARGIN) > MPB__CAP_MARGIN;
 }
 
 /*
  * A lower bound on the distance from mesh a to static ss: the widest gap
- * between a's vertices and ss's box along one of the box's axes or the
- * line between their centres (every point of the mesh lies within its
- * vertices' hull, every point of the static within its box). Some
- * hundred dot products: far cheaper than the FCL distance it may spare.
+ * between a's vertices and ss's box (which holds the static) along one of
+ * the box's axes or the line between their centres (every point of the
+ * mesh lies within its vertices' hull); with search, unless that passes
+ * stop, also along the directions of gjk_gap() from that line: tighter,
+ * for a distance query to skip the pair by. A few dozen dot products:
+ * far cheaper than the FCL distance it may spare.
  */
-double mesh_static_lower(const Shape &a, const Shape &ss)
+double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search)
 {
     const double *R = ss.world.R;
     double c[3];              /* the box's centre in the world */
     mpb_pose_apply(&ss.world, ss.lbox_c, c);
-    double gap = -INFINITY;
+    double gap = -INFINITY, d[3];
     for (int k = 0; k < 4; k++) {
-        double d[3];
         if (k < 3) {
             d[0] = R[k], d[1] = R[3 + k], d[2] = R[6 + k];
         } else {
@@ -999,6 +1025,28 @@ double mesh_static_lower(const Shape &a, const Shape &ss)
         lo = -lo;
         gap = std::max(gap, std::max(lo - (mid + half), (mid - half) - hi));
     }
+    if (!search || gap - MPB__CAP_MARGIN > stop)
+        return gap - MPB__CAP_MARGIN;
+    auto lowest = [&](const double *dir, double &lo) {
+        int corner = 0;       /* bit j: the box's + side along axis j */
+        lo = c[0] * dir[0] + c[1] * dir[1] + c[2] * dir[2];
+        for (int j = 0; j < 3; j++) {
+            double along = R[j] * dir[0] + R[3 + j] * dir[1] + R[6 + j] * dir[2];
+            lo -= ss.lbox_h[j] * std::fabs(along);
+            corner |= (along <= 0) << j;
+        }
+        return corner;
+    };
+    auto point = [&](int corner, double p[3]) {
+        for (int k = 0; k < 3; k++) {
+            p[k] = c[k];
+            for (int j = 0; j < 3; j++)
+                p[k] += (corner >> j & 1 ? ss.lbox_h[j] : -ss.lbox_h[j]) * R[3 * k + j];
+        }
+    };
+    for (int i = 0; i < 3; i++)
+        d[i] = c[i] - a.wcenter[i];
+    gap = std::max(gap, gjk_gap(a, lowest, point, d, stop + MPB__CAP_MARGIN));
     return gap - MPB__CAP_MARGIN;
 }
 
@@ -1065,7 +1113,7 @@ bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
         return false;
     const Shape &ss = c->sshapes[(size_t)l.shape];
     if ((ms.has_cap && cap_misses_static(ms, ss)) ||
-        (ms.num_verts > 0 && mesh_static_lower(ms, ss) > 0))
+        (ms.num_verts > 0 && mesh_static_lower(ms, ss, 0, false) > 0))
         return false;
     sync(ms);
     c->cres.clear();
@@ -1916,7 +1964,7 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                 const Leaf &l = c->leaves[(size_t)p.leaf];
                 const Shape &ss = c->sshapes[(size_t)l.shape];
                 const Obj *st = ss.obj.get();
-                if (sh.num_verts > 0 && !(mesh_static_lower(sh, ss) < q.best))
+                if (sh.num_verts > 0 && !(mesh_static_lower(sh, ss, q.best, true) < q.best))
                     continue;
                 sync(sh);
                 double d = pair_distance(c, sh.obj.get(), st);
