@@ -246,6 +246,8 @@ static_assert(sizeof(fcl::Vector3d) == 3 * sizeof(double),
 const std::vector<fcl::Vector3d> &extreme_vertices(MeshModel &m)
 {
     std::call_once(m.extreme_once, [&m] {
+        if (m.num_vertices <= 0)
+            return;
         std::vector<unsigned char> keep((size_t)m.num_vertices);
         mpb__hull_keep(m.vertices[0].data(), m.num_vertices, keep.data());
         for (int i = 0; i < m.num_vertices; i++)
@@ -823,7 +825,8 @@ void local_box(Shape &s)
 /* Capsule tests skip a pair only when it clears by this much (m): far
  * above FCL's tolerances and rounding, as spheres_apart(). */
 #define MPB__CAP_MARGIN 1e-4
-/* Directions meshes_apart() tries at most. */
+/* Directions gjk_gap() tries at most (instructions a Panda collision
+ * check, by that most: 3: 52.7k, 6: 37.4k, 12: 32.1k, 24: 32.1k). */
 #define MPB__GJK_STEPS 16
 
 /* The squared distance between segments p0 p1 and q0 q1. */
