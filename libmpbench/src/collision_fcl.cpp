@@ -23,7 +23,10 @@
  * query measures its pairs nearest lower bound first, and skips those
  * whose bound from the vertices is no better than the best so far. All
  * are exact bounds with a margin: verdicts and distances are those of
- * every pair through FCL (tests/unit/test_mesh_reference.c).
+ * every pair through FCL (tests/unit/test_mesh_reference.c). A mesh's
+ * extent along a direction is read from a few vertices of its hull, those
+ * listed for the direction (hull.h, dirtable.h): the same numbers as from
+ * all its vertices, for a few percent of the cost.
  *
  * What FCL 0.7 gets wrong, and what is done about it (see the tests):
  *   - plane distances crash (libccd) or are wrong (independent GJK): planes
@@ -44,8 +47,11 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
 #include "collision_internal.h"
+#include "dirtable.h"
 #include "errbuf.h"
+#include "hull.h"
 #include "mesh_cache.h"
+#include "simplex.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -133,8 +139,10 @@ struct Shape {
        in wcap, kept current. Disjoint from it, the mesh is too. */
     bool                 has_cap = false;
     double               cap[2][3], cap_r = 0, wcap[2][3];
-    const fcl::Vector3d *verts = nullptr; /* a mesh's vertices (its BVH's) */
+    const fcl::Vector3d *verts = nullptr; /* a mesh's vertices that may be
+                                      extreme (extreme_vertices()) */
     int                  num_verts = 0;
+    const mpb__dirtable *dirs = nullptr; /* which of verts, by direction */
     /* A static: a box that holds it, in its own frame (centre, half
        sides), for the capsule tests. */
     double               lbox_c[3] = {0, 0, 0}, lbox_h[3] = {0, 0, 0};
@@ -217,6 +225,46 @@ fcl::Transform3d to_tf(const mpb_pose *p)
     return tf;
 }
 
+/* A mesh's BVH model, and those of its vertices that may be extreme
+ * along some direction (hull.h) with the few of them that may be along
+ * each cell of directions (dirtable.h), found for the first movable
+ * shape that uses it: extents over them are those over all the vertices. */
+struct MeshModel : fcl::BVHModel<fcl::OBBRSSd> {
+    std::once_flag             extreme_once;
+    std::vector<fcl::Vector3d> extreme;
+    mpb__dirtable              dirs = {0, nullptr, nullptr};
+    ~MeshModel() { mpb__dirtable_free(&dirs); }
+};
+
+/* Cells a cube face for the vertex lists of MeshModel::dirs: 3.5 to 4.5
+ * vertices a list for the Panda's links (100 to 260 on their hulls). */
+#define MPB__DIR_CELLS 12
+
+static_assert(sizeof(fcl::Vector3d) == 3 * sizeof(double),
+              "BVH vertices are read as x y z triples");
+
+const std::vector<fcl::Vector3d> &extreme_vertices(MeshModel &m)
+{
+    std::call_once(m.extreme_once, [&m] {
+        if (m.num_vertices <= 0)
+            return;
+        std::vector<unsigned char> keep((size_t)m.num_vertices);
+        mpb__hull_keep(m.vertices[0].data(), m.num_vertices, keep.data());
+        for (int i = 0; i < m.num_vertices; i++)
+            if (keep[(size_t)i])
+                m.extreme.push_back(m.vertices[i]);
+        /* fewer cells for huge hulls: the build costs 12 g^2 dot products
+           a vertex; no table (no memory): every vertex is scanned */
+        int g = MPB__DIR_CELLS;
+        while (g > 1 && 12.0 * g * g * (double)m.extreme.size() > 3e7)
+            g--;
+        if (!m.extreme.empty())
+            mpb__dirtable_build(&m.dirs, m.extreme[0].data(),
+                                (int)m.extreme.size(), g);
+    });
+    return m.extreme;
+}
+
 /* The FCL geometry of g (g already checked), or nullptr on a BVH error. */
 std::shared_ptr<Geom> make_geometry(const mpb_geometry *g)
 {
@@ -244,7 +292,7 @@ std::shared_ptr<Geom> make_geometry(const mpb_geometry *g)
         for (int i = 0; i < m->num_triangles; i++)
             tris[(size_t)i].set((size_t)m->triangles[3 * i], (size_t)m->triangles[3 * i + 1],
                                 (size_t)m->triangles[3 * i + 2]);
-        auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+        auto bvh = std::make_shared<MeshModel>();
         if (bvh->beginModel(m->num_triangles, m->num_vertices) != fcl::BVH_OK ||
             bvh->addSubModel(pts, tris) != fcl::BVH_OK ||
             bvh->endModel() != fcl::BVH_OK)
@@ -292,13 +340,15 @@ fcl::Vector3d support(const Shape &s, const fcl::Vector3d &u)
     case MPB_SHAPE_MESH: {
         auto *m = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(
             s.obj->collisionGeometry().get());
-        fcl::Vector3d best = m->vertices[0];
+        const fcl::Vector3d *v = s.num_verts > 0 ? s.verts : m->vertices;
+        int nv = s.num_verts > 0 ? s.num_verts : m->num_vertices;
+        fcl::Vector3d best = v[0];
         double bd = u.dot(best);
-        for (int i = 1; i < m->num_vertices; i++) {
-            double x = u.dot(m->vertices[i]);
+        for (int i = 1; i < nv; i++) {
+            double x = u.dot(v[i]);
             if (x > bd) {
                 bd = x;
-                best = m->vertices[i];
+                best = v[i];
             }
         }
         return best;
@@ -775,6 +825,9 @@ void local_box(Shape &s)
 /* Capsule tests skip a pair only when it clears by this much (m): far
  * above FCL's tolerances and rounding, as spheres_apart(). */
 #define MPB__CAP_MARGIN 1e-4
+/* Directions gjk_gap() tries at most (instructions a Panda collision
+ * check, by that most: 3: 52.7k, 6: 37.4k, 12: 32.1k, 24: 32.1k). */
+#define MPB__GJK_STEPS 16
 
 /* The squared distance between segments p0 p1 and q0 q1. */
 double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
@@ -835,85 +888,125 @@ bool caps_apart(const Shape &a, const Shape &b)
     return seg_seg_dist2(a.wcap[0], a.wcap[1], b.wcenter, b.wcenter) > r * r;
 }
 
-/* The extent of mesh shape s along world direction d: min and max of
- * d . x over its vertices x in the world; the vertices at both ends. */
-void mesh_extent(const Shape &s, const double d[3], double &lo, double &hi,
-                 int &ilo, int &ihi)
+/* How far mesh shape s reaches along world direction d: max of d . x
+ * over its vertices x in the world, and the (first) vertex there, an index
+ * in s.verts. Only the vertices listed for d's cell are scanned: the same
+ * value and vertex as a scan of all (dirtable.h). The least is
+ * -mesh_reach(-d), to the bit: negation is exact. */
+void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi)
 {
     const double *R = s.world.R;
     double l[3];              /* d in the mesh's frame */
     for (int k = 0; k < 3; k++)
         l[k] = R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
     double off = s.world.t[0] * d[0] + s.world.t[1] * d[1] + s.world.t[2] * d[2];
-    lo = INFINITY, hi = -INFINITY;
-    ilo = ihi = 0;
-    for (int i = 0; i < s.num_verts; i++) {
+    int c = s.dirs ? mpb__dirtable_cell(s.dirs, l) : -1;
+    const int *list = c >= 0 ? &s.dirs->idx[s.dirs->start[c]] : nullptr;
+    int n = c >= 0 ? s.dirs->start[c + 1] - s.dirs->start[c] : s.num_verts;
+    hi = -INFINITY;
+    ihi = 0;
+    for (int k = 0; k < n; k++) {
+        int i = list ? list[k] : k;
         const double *v = s.verts[i].data();
         double x = v[0] * l[0] + v[1] * l[1] + v[2] * l[2];
-        if (x < lo) {
-            lo = x;
-            ilo = i;
-        }
         if (x > hi) {
             hi = x;
             ihi = i;
         }
     }
-    lo += off;
     hi += off;
 }
 
 /*
+ * The widest gap found between mesh a and a convex set B: the most, over
+ * the directions tried, of (min over B of d . x - max over a's vertices of
+ * d . x) / |d|, a lower bound on their distance (every point of the mesh
+ * lies within its vertices' hull). The directions: d, then those of a GJK
+ * search for the nearest points of the two (simplex.h), each from the
+ * points that came out nearest along the last ones, until a gap passes
+ * stop, the two come within stop (no gap can pass it), or no nearer point
+ * is found. Each gap is exact on its own (mesh_reach()), so a poor
+ * direction costs time, never a wrong answer. lowest(d, lo): B's min
+ * along d, and which point of B is there; point(which, p): that point
+ * (world).
+ */
+template <class Lowest, class Point>
+double gjk_gap(const Shape &a, const Lowest &lowest, const Point &point,
+               double d[3], double stop)
+{
+    double simplex[4][3], best = -INFINITY;
+    int m = 0;
+    for (int iter = 0; iter < MPB__GJK_STEPS; iter++) {
+        double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], n = std::sqrt(dd);
+        /* past the first, d is a point of B less one of a's hull: the
+           two are within |d| */
+        if (!(n > 1e-12) || (iter > 0 && !(n > stop)))
+            return best;
+        double ahi, blo, pa[3], pb[3], w[3];
+        int iahi;
+        mesh_reach(a, d, ahi, iahi);
+        int which = lowest(d, blo);
+        if (blo - ahi > stop * n)
+            return (blo - ahi) / n;
+        best = std::max(best, (blo - ahi) / n);
+        point(which, pb);
+        mpb_pose_apply(&a.world, a.verts[iahi].data(), pa);
+        for (int k = 0; k < 3; k++)
+            w[k] = pb[k] - pa[k];
+        /* no nearer point of the difference along d: d is about the
+           nearest */
+        if (iter > 0 && dd - (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) <= 1e-9 * dd)
+            return best;
+        memcpy(simplex[m++], w, sizeof w);
+        m = mpb__simplex_nearest(simplex, m, d);
+        if (m == 0 || m == 4)   /* they overlap */
+            return best;
+    }
+    return best;
+}
+
+/*
  * Are meshes a and b certainly apart: is there a plane between all the
- * vertices of one and all of the other, with the margin? Then their
- * convex hulls are apart, and the triangles within them too. The
- * directions tried: between the bounding spheres' centres, then a few
- * times between the vertices that came out nearest along the last one.
- * Each try is exact on its own, so a poor direction costs time, never a
- * wrong answer. Mesh pairs of robot links near each other (two links
- * apart along the arm) are mostly told apart here, where FCL's BVH
- * traversal went hundreds of box tests deep.
+ * vertices of one and all of the other, with the margin (gjk_gap(), from
+ * the line between the bounding spheres' centres)? Then their convex
+ * hulls are apart, and the triangles within them too. Mesh pairs of robot
+ * links near each other (two links apart along the arm) are mostly told
+ * apart here, where FCL's BVH traversal went hundreds of box tests deep.
  */
 bool meshes_apart(const Shape &a, const Shape &b)
 {
     double d[3];
     for (int k = 0; k < 3; k++)
         d[k] = b.wcenter[k] - a.wcenter[k];
-    for (int iter = 0; iter < 3; iter++) {
-        double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (!(n > 1e-12))
-            return false;
-        double alo, ahi, blo, bhi;
-        int ialo, iahi, iblo, ibhi;
-        mesh_extent(a, d, alo, ahi, ialo, iahi);
-        mesh_extent(b, d, blo, bhi, iblo, ibhi);
-        if (blo - ahi > MPB__CAP_MARGIN * n)
-            return true;
-        double pa[3], pb[3];
-        const double *va = a.verts[iahi].data(), *vb = b.verts[iblo].data();
-        mpb_pose_apply(&a.world, va, pa);
-        mpb_pose_apply(&b.world, vb, pb);
-        for (int k = 0; k < 3; k++)
-            d[k] = pb[k] - pa[k];
-    }
-    return false;
+    auto lowest = [&b](const double *dir, double &lo) {
+        double nd[3] = {-dir[0], -dir[1], -dir[2]};
+        int i;
+        mesh_reach(b, nd, lo, i);
+        lo = -lo;
+        return i;
+    };
+    auto point = [&b](int i, double p[3]) {
+        mpb_pose_apply(&b.world, b.verts[i].data(), p);
+    };
+    return gjk_gap(a, lowest, point, d, MPB__CAP_MARGIN) > MPB__CAP_MARGIN;
 }
 
 /*
  * A lower bound on the distance from mesh a to static ss: the widest gap
- * between a's vertices and ss's box along one of the box's axes or the
- * line between their centres (every point of the mesh lies within its
- * vertices' hull, every point of the static within its box). Some
- * hundred dot products: far cheaper than the FCL distance it may spare.
+ * between a's vertices and ss's box (which holds the static) along one of
+ * the box's axes or the line between their centres (every point of the
+ * mesh lies within its vertices' hull); with search, unless that passes
+ * stop, also along the directions of gjk_gap() from that line: tighter,
+ * for a distance query to skip the pair by. A few dozen dot products:
+ * far cheaper than the FCL distance it may spare.
  */
-double mesh_static_lower(const Shape &a, const Shape &ss)
+double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search)
 {
     const double *R = ss.world.R;
     double c[3];              /* the box's centre in the world */
     mpb_pose_apply(&ss.world, ss.lbox_c, c);
-    double gap = -INFINITY;
+    double gap = -INFINITY, d[3];
     for (int k = 0; k < 4; k++) {
-        double d[3];
         if (k < 3) {
             d[0] = R[k], d[1] = R[3 + k], d[2] = R[6 + k];
         } else {
@@ -928,11 +1021,35 @@ double mesh_static_lower(const Shape &a, const Shape &ss)
         double mid = c[0] * d[0] + c[1] * d[1] + c[2] * d[2], half = 0;
         for (int j = 0; j < 3; j++)
             half += ss.lbox_h[j] * std::fabs(R[j] * d[0] + R[3 + j] * d[1] + R[6 + j] * d[2]);
-        double lo, hi;
+        double lo, hi, nd[3] = {-d[0], -d[1], -d[2]};
         int ilo, ihi;
-        mesh_extent(a, d, lo, hi, ilo, ihi);
+        mesh_reach(a, d, hi, ihi);
+        mesh_reach(a, nd, lo, ilo);
+        lo = -lo;
         gap = std::max(gap, std::max(lo - (mid + half), (mid - half) - hi));
     }
+    if (!search || gap - MPB__CAP_MARGIN > stop)
+        return gap - MPB__CAP_MARGIN;
+    auto lowest = [&](const double *dir, double &lo) {
+        int corner = 0;       /* bit j: the box's + side along axis j */
+        lo = c[0] * dir[0] + c[1] * dir[1] + c[2] * dir[2];
+        for (int j = 0; j < 3; j++) {
+            double along = R[j] * dir[0] + R[3 + j] * dir[1] + R[6 + j] * dir[2];
+            lo -= ss.lbox_h[j] * std::fabs(along);
+            corner |= (along <= 0) << j;
+        }
+        return corner;
+    };
+    auto point = [&](int corner, double p[3]) {
+        for (int k = 0; k < 3; k++) {
+            p[k] = c[k];
+            for (int j = 0; j < 3; j++)
+                p[k] += (corner >> j & 1 ? ss.lbox_h[j] : -ss.lbox_h[j]) * R[3 * k + j];
+        }
+    };
+    for (int i = 0; i < 3; i++)
+        d[i] = c[i] - a.wcenter[i];
+    gap = std::max(gap, gjk_gap(a, lowest, point, d, stop + MPB__CAP_MARGIN));
     return gap - MPB__CAP_MARGIN;
 }
 
@@ -999,7 +1116,7 @@ bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
         return false;
     const Shape &ss = c->sshapes[(size_t)l.shape];
     if ((ms.has_cap && cap_misses_static(ms, ss)) ||
-        (ms.num_verts > 0 && mesh_static_lower(ms, ss) > 0))
+        (ms.num_verts > 0 && mesh_static_lower(ms, ss, 0, false) > 0))
         return false;
     sync(ms);
     c->cres.clear();
@@ -1569,9 +1686,10 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
         bounding_sphere(s);
         if (g->type == MPB_SHAPE_MESH) {
             fit_capsule(s, g->mesh);
-            auto *b = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(geom.get());
-            s.verts = b->vertices;
-            s.num_verts = b->num_vertices;
+            const auto &ext = extreme_vertices(*static_cast<MeshModel *>(geom.get()));
+            s.verts = ext.data();
+            s.num_verts = (int)ext.size();
+            s.dirs = &static_cast<MeshModel *>(geom.get())->dirs;
         }
         s.body = c->movable_index[(size_t)id];
         s.obj->setUserData((void *)(intptr_t)c->mshapes.size());
@@ -1849,7 +1967,7 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                 const Leaf &l = c->leaves[(size_t)p.leaf];
                 const Shape &ss = c->sshapes[(size_t)l.shape];
                 const Obj *st = ss.obj.get();
-                if (sh.num_verts > 0 && !(mesh_static_lower(sh, ss) < q.best))
+                if (sh.num_verts > 0 && !(mesh_static_lower(sh, ss, q.best, true) < q.best))
                     continue;
                 sync(sh);
                 double d = pair_distance(c, sh.obj.get(), st);
@@ -2016,6 +2134,26 @@ int mpb__collision_check_brute(mpb_collision *c)
         }
         return 0;
     });
+}
+
+int mpb__collision_mesh_reach(mpb_collision *c, int i, const double d[3],
+                              double *fast, double *all)
+{
+    if (!c || i < 0 || (size_t)i >= c->mshapes.size() || !d || !fast || !all)
+        return MPB_EINVAL;
+    const Shape &s = c->mshapes[(size_t)i];
+    if (s.type != MPB_SHAPE_MESH || s.num_verts <= 0)
+        return MPB_EINVAL;
+    int at;
+    mesh_reach(s, d, *fast, at);
+    Shape every;              /* the same, without the hull or the lists */
+    auto *m = static_cast<const fcl::BVHModel<fcl::OBBRSSd> *>(
+        s.obj->collisionGeometry().get());
+    every.world = s.world;
+    every.verts = m->vertices;
+    every.num_verts = m->num_vertices;
+    mesh_reach(every, d, *all, at);
+    return MPB_OK;
 }
 
 double mpb__collision_distance_brute(mpb_collision *c)

@@ -2,7 +2,7 @@
  * collision_internal.h - private to libmpbench and its tests: slow reference
  * answers of the collision world (collision_fcl.cpp), every pair through
  * FCL's narrow phase with no broad phase and no bounds, to check the fast
- * queries of collision.h against.
+ * queries of collision.h against; and the mesh extents they rest on.
  */
 #ifndef MPB_COLLISION_INTERNAL_H
 #define MPB_COLLISION_INTERNAL_H
@@ -22,6 +22,17 @@ int mpb__collision_check_brute(mpb_collision *c);
 
 /* The minimum distance, as mpb_collision_distance()'s (NaN on error). */
 double mpb__collision_distance_brute(mpb_collision *c);
+
+/*
+ * How far movable shape i (0 .. mpb_collision_num_movable_shapes() - 1, a
+ * mesh) reaches along world direction d where it is now: max of d . x
+ * over its vertices, as the queries find it (*fast: the hull's vertices
+ * listed for d's cell) and over every vertex of its mesh (*all), with the
+ * same arithmetic: the two must be equal to the bit. MPB_OK, or
+ * MPB_EINVAL when shape i is not a movable mesh.
+ */
+int mpb__collision_mesh_reach(mpb_collision *c, int i, const double d[3],
+                              double *fast, double *all);
 
 #ifdef __cplusplus
 }

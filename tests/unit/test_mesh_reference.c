@@ -8,7 +8,9 @@
  * along fine paths. Whatever skips a pair before FCL (the allowed-collision
  * matrix, boxes, spheres, the capsules around meshes, planes between
  * vertex sets, the best-first order of the distance query) must not change
- * a verdict: a wrong skip fails here. Clearances the same to 1e-9 m.
+ * a verdict: a wrong skip fails here. Clearances the same to 1e-9 m. The
+ * mesh extents those planes use are the same to the bit as over every
+ * vertex.
  */
 #include <limits.h>
 #include <math.h>
@@ -194,9 +196,45 @@ static void fine_paths_agree(void **state)
     mpb_world_close(w);
 }
 
+/* The extents the mesh shortcuts rest on (the hull's vertices, a few of
+ * them by direction): along random directions, short and long, and
+ * along axes, the same to the bit as over every vertex. */
+static void mesh_extents_exact(void **state)
+{
+    (void)state;
+    OPEN_OR_SKIP(w);
+    mpb_collision *c = mpb__urdf_collision(w);
+    uint64_t x = 17;
+    double q[NJ];
+    int meshes = 0;
+    for (int i = 0; i < 300; i++) {
+        random_state(w, &x, q);
+        mpb_world_in_collision(w, q);           /* places the robot */
+        int n = mpb_collision_num_movable_shapes(c);
+        for (int s = 0; s < n; s++) {
+            for (int k = 0; k < 40; k++) {
+                double d[3], fast, all;
+                for (int j = 0; j < 3; j++)
+                    d[j] = (rnd(&x) - 0.5) * (k % 2 ? 1e-3 : 2.0);
+                if (k % 8 == 0)                 /* along an axis */
+                    d[(k / 8) % 3] = 0, d[(k / 8 + 1) % 3] = 0;
+                if (mpb__collision_mesh_reach(c, s, d, &fast, &all) != MPB_OK)
+                    break;
+                meshes += k == 0;
+                if (fast != all)
+                    fail_msg("shape %d: reach %.17g, over every vertex %.17g",
+                             s, fast, all);
+            }
+        }
+    }
+    assert_true(meshes >= 300 * 8);             /* the links' meshes */
+    mpb_world_close(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(mesh_extents_exact),
         cmocka_unit_test(random_states_agree),
         cmocka_unit_test(states_at_contact_agree),
         cmocka_unit_test(fine_paths_agree),
