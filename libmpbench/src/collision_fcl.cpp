@@ -43,6 +43,7 @@
  */
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
+#include "bvh_collide.h"
 #include "collision_internal.h"
 #include "errbuf.h"
 #include "mesh_cache.h"
@@ -990,6 +991,24 @@ double cap_static_lower(const Shape &a, const Shape &ss)
     return std::max(gap, sph) - a.cap_r - MPB__CAP_MARGIN;
 }
 
+/* Do shapes a and b (synced) collide? Two meshes through bvh_collide(),
+ * FCL's verdict for less; anything else through fcl::collide. */
+bool narrow_phase(mpb_collision *c, const Shape &a, const Shape &b)
+{
+    if (a.type == MPB_SHAPE_MESH && b.type == MPB_SHAPE_MESH) {
+        int hit = mpb::bvh_collide(
+            *static_cast<const mpb::BvhObbRss *>(a.obj->collisionGeometry().get()),
+            a.obj->getTransform(),
+            *static_cast<const mpb::BvhObbRss *>(b.obj->collisionGeometry().get()),
+            b.obj->getTransform());
+        if (hit >= 0)
+            return hit == 1;
+    }
+    c->cres.clear();
+    fcl::collide(a.obj.get(), b.obj.get(), c->creq, c->cres);
+    return c->cres.isCollision();
+}
+
 /* Does movable shape ms (of body m) collide with the static of leaf i
  * (allowed pairs never)? FCL's narrow phase if their boxes overlap. */
 bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
@@ -1002,9 +1021,7 @@ bool leaf_hit(mpb_collision *c, const Movable &m, const Shape &ms, int i)
         (ms.num_verts > 0 && mesh_static_lower(ms, ss) > 0))
         return false;
     sync(ms);
-    c->cres.clear();
-    fcl::collide(ms.obj.get(), ss.obj.get(), c->creq, c->cres);
-    return c->cres.isCollision();
+    return narrow_phase(c, ms, ss);
 }
 
 /*
@@ -1302,7 +1319,7 @@ bool nearest_points(mpb_collision *c, const Obj *a, const Obj *b, double dist,
 
 /* Do movable bodies mi and mj touch? Their boxes, then each pair of
  * shapes whose boxes overlap and whose bounding spheres meet, through
- * FCL's narrow phase. */
+ * the narrow phase. */
 bool bodies_touch(mpb_collision *c, const Movable &mi, const Movable &mj)
 {
     if (!overlap(mi.box, mj.box))
@@ -1318,9 +1335,7 @@ bool bodies_touch(mpb_collision *c, const Movable &mi, const Movable &mj)
                 continue;
             sync(shi);
             sync(shj);
-            c->cres.clear();
-            fcl::collide(shi.obj.get(), shj.obj.get(), c->creq, c->cres);
-            if (c->cres.isCollision())
+            if (narrow_phase(c, shi, shj))
                 return true;
         }
     }
