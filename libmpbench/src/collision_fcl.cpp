@@ -1983,6 +1983,30 @@ long mpb__bvh_live(void)
     return n;
 }
 
+int mpb__mesh_pair_collide(mpb_collision *c, int a, const mpb_pose *pa, int b,
+                           const mpb_pose *pb, int reference)
+{
+    if (!c || !pa || !pb || a < 0 || b < 0 || a >= (int)c->mshapes.size() ||
+        b >= (int)c->mshapes.size() || !finite_pose(pa) || !finite_pose(pb))
+        return MPB_EINVAL;
+    const Shape &sa = c->mshapes[(size_t)a], &sb = c->mshapes[(size_t)b];
+    if (sa.type != MPB_SHAPE_MESH || sb.type != MPB_SHAPE_MESH)
+        return MPB_EUNSUPPORTED;
+    return guarded(c, [&]() -> int {
+        const Geom *ga = sa.obj->collisionGeometry().get();
+        const Geom *gb = sb.obj->collisionGeometry().get();
+        const fcl::Transform3d ta = to_tf(pa), tb = to_tf(pb);
+        if (!reference) {
+            int hit = mpb::bvh_collide(*static_cast<const mpb::BvhObbRss *>(ga), ta,
+                                       *static_cast<const mpb::BvhObbRss *>(gb), tb);
+            return hit >= 0 ? hit : MPB_EUNSUPPORTED;
+        }
+        fcl::CollisionResultd res;
+        fcl::collide(ga, ta, gb, tb, c->creq, res);
+        return res.isCollision() ? 1 : 0;
+    });
+}
+
 /*
  * The references of collision_internal.h: every pair through FCL's narrow
  * phase, no tree, no boxes, no bounds.
