@@ -34,6 +34,16 @@ double mpb__collision_distance_brute(mpb_collision *c);
 int mpb__collision_mesh_reach(mpb_collision *c, int i, const double d[3],
                               double *fast, double *all);
 
+/*
+ * Do movable shapes a and b of c, both meshes, collide at poses pa and pb
+ * (in place of their own)? Through the traversal of the collision world
+ * (bvh_collide.h) if reference is 0, through fcl::collide if 1: 1 if they
+ * do, 0 if not; MPB_EUNSUPPORTED if either is no mesh or the traversal
+ * leaves the pair to FCL, another negative code on error.
+ */
+int mpb__mesh_pair_collide(mpb_collision *c, int a, const mpb_pose *pa, int b,
+                           const mpb_pose *pb, int reference);
+
 #ifdef __cplusplus
 }
 #endif

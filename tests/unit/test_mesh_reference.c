@@ -7,10 +7,11 @@
  * fixed-seed random states, at states within 1e-9 rad of a contact and
  * along fine paths. Whatever skips a pair before FCL (the allowed-collision
  * matrix, boxes, spheres, the capsules around meshes, planes between
- * vertex sets, the best-first order of the distance query) must not change
- * a verdict: a wrong skip fails here. Clearances the same to 1e-9 m. The
- * mesh extents those planes use are the same to the bit as over every
- * vertex.
+ * vertex sets, the best-first order of the distance query) and the
+ * traversal that replaces FCL's for mesh pairs (bvh_collide.cpp; compared
+ * pair by pair in test_bvh_collide.c) must not change a verdict: a wrong
+ * skip fails here. Clearances the same to 1e-9 m. The mesh extents
+ * those planes use are the same to the bit as over every vertex.
  */
 #include <limits.h>
 #include <math.h>
