@@ -83,6 +83,7 @@ typedef struct mpb__wrist_stats {
     int    apart_leaves;    /* leaves proved apart */
     int    open_leaves;     /* leaves left to FCL */
     int    distances;       /* FCL distances the build took */
+    int    grid_bytes;      /* the look-up grid, 0 if none */
     double build_s;         /* its CPU time (s) */
     double lipschitz[2];    /* R1, R2 (m per rad) */
 } mpb__wrist_stats;

@@ -176,11 +176,11 @@ static void panda_has_wrist_tables(void **state)
         assert_int_equal(mpb__urdf_wrist(w, i, &near, &far, jt, &t), MPB_OK);
         mpb__wrist_table_stats(t, &st);
         print_message("%s - %s: joints %d %d, %d cells (%d apart, %d to FCL), "
-                      "%d distances, %.3f s, R %.4f %.4f m\n",
+                      "%d distances, %.3f s CPU, grid %d bytes, R %.4f %.4f m\n",
                       mpb_robot_get_link(m.robot, near)->name,
                       mpb_robot_get_link(m.robot, far)->name, jt[0], jt[1],
                       st.nodes, st.apart_leaves, st.open_leaves, st.distances,
-                      st.build_s, st.lipschitz[0], st.lipschitz[1]);
+                      st.build_s, st.grid_bytes, st.lipschitz[0], st.lipschitz[1]);
         assert_true(st.apart_leaves > 0);
         if (near == l5 && far == l7 && jt[0] == 5 && jt[1] == 6)
             seen7 = 1;
