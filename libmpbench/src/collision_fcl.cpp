@@ -1736,9 +1736,8 @@ int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
             const Movable &mi = c->movables[(size_t)pr.first];
             const Movable &mj = c->movables[(size_t)pr.second];
             /* Hints are looked at only for bodies whose boxes overlap. */
-            if (!mi.enabled || !mj.enabled ||
-                (!c->hints.empty() && overlap(mi.box, mj.box) &&
-                 hinted_apart(c, pr.first, pr.second)) ||
+            if (!mi.enabled || !mj.enabled || !overlap(mi.box, mj.box) ||
+                (!c->hints.empty() && hinted_apart(c, pr.first, pr.second)) ||
                 !bodies_touch(c, mi, mj))
                 continue;
             int x = mi.id, y = mj.id;
