@@ -185,6 +185,9 @@ struct Movable {
     std::vector<int>     allowed_statics; /* static ids it may touch */
     mpb_pose             pose;
     Box3                 box;             /* of its shapes, at pose */
+    uint64_t             placed = 0;      /* counts place_body(): a hint
+                                             holds for one placing only
+                                             (64 bits: never wraps) */
 };
 
 /* A node of the static tree: a leaf holds leaves[first .. first + count). */
@@ -417,6 +420,10 @@ struct mpb_collision {
     fcl::DistanceResultd   dres;
     struct Near { double lower; int shape, leaf; };
     std::vector<Near>    near;           /* a distance query's pairs */
+    /* Pairs of movables (indices i < j) the caller proved apart while
+       both stood where their placed counts say (mpb__collision_hint_apart) */
+    struct Hint { int i, j; uint64_t pi, pj; };
+    std::vector<Hint>    hints;
     char                 err[256] = "";
 
 #if defined(__GNUC__)
@@ -1335,6 +1342,7 @@ void bounding_sphere(Shape &s)
 void place_body(mpb_collision *c, Movable &m)
 {
     bool first = true;
+    m.placed++;
     for (int si : m.shapes) {
         Shape &sh = c->mshapes[(size_t)si];
         if (sh.offset_pure) {       /* the same product, without the zeros */
@@ -1458,6 +1466,16 @@ bool bodies_touch(mpb_collision *c, const Movable &mi, const Movable &mj)
                 return true;
         }
     }
+    return false;
+}
+
+/* Did the caller prove movables i < j apart where they stand now? */
+bool hinted_apart(const mpb_collision *c, int i, int j)
+{
+    for (const mpb_collision::Hint &h : c->hints)
+        if (h.i == i && h.j == j)
+            return h.pi == c->movables[(size_t)i].placed &&
+                   h.pj == c->movables[(size_t)j].placed;
     return false;
 }
 
@@ -1852,7 +1870,10 @@ int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
         for (const auto &pr : c->self_pairs) {
             const Movable &mi = c->movables[(size_t)pr.first];
             const Movable &mj = c->movables[(size_t)pr.second];
-            if (!mi.enabled || !mj.enabled || !bodies_touch(c, mi, mj))
+            /* Hints are looked at only for bodies whose boxes overlap. */
+            if (!mi.enabled || !mj.enabled || !overlap(mi.box, mj.box) ||
+                (!c->hints.empty() && hinted_apart(c, pr.first, pr.second)) ||
+                !bodies_touch(c, mi, mj))
                 continue;
             int x = mi.id, y = mj.id;
             if (a)
@@ -2222,6 +2243,58 @@ double mpb__collision_distance_brute(mpb_collision *c)
         return MPB_OK;
     });
     return rc == MPB_OK ? best : std::numeric_limits<double>::quiet_NaN();
+}
+
+double mpb__collision_pair_distance(mpb_collision *c, int a, int b, double below)
+{
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    Movable *ma = c ? c->find_or_err(a) : nullptr;
+    Movable *mb = ma ? c->find_or_err(b) : nullptr;
+    if (!ma || !mb || ma == mb)
+        return nan;
+    double best = below;
+    int rc = guarded(c, [&]() -> int {
+        for (int si : ma->shapes)
+            for (int sj : mb->shapes) {
+                const Shape &x = c->mshapes[(size_t)si], &y = c->mshapes[(size_t)sj];
+                sync(x);
+                sync(y);
+                /* FCL keeps only what is nearer than the result holds:
+                 * started at the best so far, it skips the rest. */
+                c->dres.clear();
+                c->dres.min_distance = best;
+                double d = fcl::distance(x.obj.get(), y.obj.get(), c->dreq, c->dres);
+                best = std::min(best, d < 0 ? 0.0 : d);
+            }
+        return MPB_OK;
+    });
+    return rc == MPB_OK ? best : nan;
+}
+
+int mpb__collision_hint_apart(mpb_collision *c, int a, int b)
+{
+    if (!c)
+        return MPB_EINVAL;
+    Movable *ma = c->find_or_err(a);
+    Movable *mb = ma ? c->find_or_err(b) : nullptr;
+    if (!ma || !mb)
+        return MPB_ENOTFOUND;
+    if (ma == mb)
+        return MPB_EINVAL;
+    int i = c->movable_index[(size_t)a], j = c->movable_index[(size_t)b];
+    if (i > j)
+        std::swap(i, j);
+    mpb_collision::Hint h = {i, j, c->movables[(size_t)i].placed,
+                             c->movables[(size_t)j].placed};
+    for (mpb_collision::Hint &old : c->hints)
+        if (old.i == i && old.j == j) {
+            old = h;
+            return MPB_OK;
+        }
+    return guarded(c, [&]() -> int {
+        c->hints.push_back(h);
+        return MPB_OK;
+    });
 }
 
 } // extern "C"

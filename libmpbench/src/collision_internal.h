@@ -2,7 +2,9 @@
  * collision_internal.h - private to libmpbench and its tests: slow reference
  * answers of the collision world (collision_fcl.cpp), every pair through
  * FCL's narrow phase with no broad phase and no bounds, to check the fast
- * queries of collision.h against; and the mesh extents they rest on.
+ * queries of collision.h against; the mesh extents they rest on; and
+ * the pair distance and hints that the wrist tables (wrist_table.h) are
+ * built from and speak through.
  */
 #ifndef MPB_COLLISION_INTERNAL_H
 #define MPB_COLLISION_INTERNAL_H
@@ -43,6 +45,27 @@ int mpb__collision_mesh_reach(mpb_collision *c, int i, const double d[3],
  */
 int mpb__mesh_pair_collide(mpb_collision *c, int a, const mpb_pose *pa, int b,
                            const mpb_pose *pb, int reference);
+
+/*
+ * FCL's distance between the movable bodies a and b where they stand, if
+ * it is below `below`: the least over their pairs of shapes, 0 if any
+ * touch (no broad phase, no bounds); else `below` (FCL then skips what
+ * is further, which makes "are they at least this far apart?" cheap;
+ * INFINITY for the distance itself). For tables built ahead of the
+ * queries (wrist_table.h). NaN for an unknown body, a == b, or an error.
+ */
+double mpb__collision_pair_distance(mpb_collision *c, int a, int b, double below);
+
+/*
+ * Tell the next self checks that movables a and b are apart where they
+ * stand now (the caller proved it, e.g. from a wrist table):
+ * mpb_collision_check_self() skips the pair. The hint lapses as soon as
+ * either body is placed again (mpb_collision_set_pose(), a shape added),
+ * so it can never outlive the poses it was proved for. The references
+ * above ignore hints. MPB_OK; MPB_ENOTFOUND; MPB_EINVAL for a == b;
+ * MPB_ENOMEM.
+ */
+int mpb__collision_hint_apart(mpb_collision *c, int a, int b);
 
 #ifdef __cplusplus
 }

@@ -145,4 +145,15 @@ typedef struct mpb__urdf_model {
 } mpb__urdf_model;
 int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out);
 
+/*
+ * URDF only, for tests: the self pairs a wrist table proves apart where
+ * it can (wrist_table.h): how many (0 if w is not a urdf world), and the
+ * i-th's links, chain joints (joint[1] -1 for one) and table. MPB_EINVAL
+ * for a bad w or i.
+ */
+struct mpb__wrist_table;
+int mpb__urdf_num_wrists(mpb_world *w);
+int mpb__urdf_wrist(mpb_world *w, int i, int *near, int *far, int joint[2],
+                    const struct mpb__wrist_table **table);
+
 #endif /* MPB_WORLD_PROVIDER_H */

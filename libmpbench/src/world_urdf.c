@@ -31,10 +31,12 @@
 #include "mpbench/robot.h"
 #include "mpbench/scene.h"
 #include "mpbench/srdf.h"
+#include "collision_internal.h"
 #include "errbuf.h"
 #include "mesh_cache.h"
 #include "srdf.h"
 #include "world_provider.h"
+#include "wrist_table.h"
 
 /* The reasons a pair is allowed, as MoveIt's setup assistant writes them. */
 static const char REASON_ADJACENT[] = "Adjacent";
@@ -72,6 +74,12 @@ typedef struct urdf_world {
     int            acm_stale;    /* generated ACM: not built for the values
                                     held now; built before the next check */
     int            acm_in_coll;  /* coll holds a built ACM's pairs */
+    struct wrist_pair {          /* self pairs a wrist table may prove
+                                    apart (wrist_table.h) */
+        int near, far, joint[2];
+        const mpb__wrist_table *table;  /* the cache's */
+    }             *wrist;
+    int            num_wrist;
 } urdf_world;
 
 static void urdf_close(void *impl)
@@ -93,6 +101,7 @@ static void urdf_close(void *impl)
     free(u->allowed);
     free(u->pairs);
     free(u->robot_dir_copy);
+    free(u->wrist);
     free(u);
 }
 
@@ -326,6 +335,18 @@ static int place(urdf_world *u, const double *q)
     return MPB_OK;
 }
 
+/* After place(): the wrist pairs their tables prove apart at q, as hints
+ * for the next self check (they lapse with the next placing). */
+static void hint_wrists(urdf_world *u, const double *q)
+{
+    for (int i = 0; i < u->num_wrist; i++) {
+        const struct wrist_pair *w = &u->wrist[i];
+        if (mpb__wrist_table_apart(w->table, q[w->joint[0]],
+                                   w->joint[1] >= 0 ? q[w->joint[1]] : 0.0))
+            mpb__collision_hint_apart(u->coll, w->near, w->far);
+    }
+}
+
 /* ---- the allowed-collision matrix ------------------------------------ */
 
 static const char **acm_at(urdf_world *u, int a, int b)
@@ -541,9 +562,122 @@ static void acm_from_srdf(urdf_world *u)
     }
 }
 
+/* Link l's shapes as the collision world holds them: geoms and offsets
+ * (room for its num_collisions), meshes from u->meshes, which add_robot()
+ * filled in the order of the robot's shapes. */
+static void link_shapes(const urdf_world *u, int l, mpb_geometry *geoms,
+                        mpb_pose *offsets)
+{
+    const mpb_robot_link *link = mpb_robot_get_link(u->robot, l);
+    int mesh = 0;
+    for (int i = 0; i < link->first_collision; i++)
+        mesh += mpb_robot_get_collision(u->robot, i)->type == MPB_SHAPE_MESH;
+    for (int k = 0; k < link->num_collisions; k++) {
+        const mpb_robot_collision *c =
+            mpb_robot_get_collision(u->robot, link->first_collision + k);
+        memset(&geoms[k], 0, sizeof geoms[k]);
+        geoms[k].type = c->type;
+        memcpy(geoms[k].dims, c->dims, sizeof geoms[k].dims);
+        if (c->type == MPB_SHAPE_MESH)
+            geoms[k].mesh = u->meshes[mesh++];
+        offsets[k] = c->origin;
+    }
+}
+
+/* The pair (near, far), which qualifies for a table with spec's
+ * kinematics: its table into u->wrist. */
+static int add_wrist(urdf_world *u, int near, int far, const int joint[2],
+                     mpb__wrist_spec *spec)
+{
+    int ends[2] = {near, far}, n[2], rc = MPB_OK;
+    mpb_geometry *geoms[2] = {NULL, NULL};
+    mpb_pose *offsets[2] = {NULL, NULL};
+    for (int s = 0; s < 2; s++) {
+        n[s] = mpb_robot_get_link(u->robot, ends[s])->num_collisions;
+        geoms[s] = calloc((size_t)n[s], sizeof *geoms[s]);
+        offsets[s] = calloc((size_t)n[s], sizeof *offsets[s]);
+        if (!geoms[s] || !offsets[s]) {
+            rc = MPB_ENOMEM;
+            goto done;
+        }
+        link_shapes(u, ends[s], geoms[s], offsets[s]);
+        spec->side[s] = (mpb__wrist_side){n[s], geoms[s], offsets[s]};
+    }
+    struct wrist_pair *grown = realloc(u->wrist, (size_t)(u->num_wrist + 1) *
+                                                 sizeof *grown);
+    if (!grown) {
+        rc = MPB_ENOMEM;
+        goto done;
+    }
+    u->wrist = grown;
+    struct wrist_pair *w = &u->wrist[u->num_wrist];
+    *w = (struct wrist_pair){near, far, {joint[0], joint[1]}, NULL};
+    if ((rc = mpb__wrist_table_get(spec, &w->table)) == MPB_OK)
+        u->num_wrist++;
+done:
+    for (int s = 0; s < 2; s++) {
+        free(geoms[s]);
+        free(offsets[s]);
+    }
+    return rc;
+}
+
+/* Has link l a mesh among its shapes? */
+static int has_mesh(const urdf_world *u, int l)
+{
+    const mpb_robot_link *link = mpb_robot_get_link(u->robot, l);
+    for (int k = 0; k < link->num_collisions; k++)
+        if (mpb_robot_get_collision(u->robot, link->first_collision + k)->type ==
+            MPB_SHAPE_MESH)
+            return 1;
+    return 0;
+}
+
+/*
+ * The self pairs a wrist table may prove apart (wrist_table.h): not
+ * allowed, both links with shapes, one of them a mesh, one the other's
+ * ancestor across one or two revolute joints (mpb__wrist_path() says
+ * which qualify). Primitives are left out: their narrow phase costs about
+ * what a look-up does (the PR2's arm has three such pairs: 12.1k
+ * instructions a check with tables, 11.5k without). After the matrix,
+ * which decides the pairs; the tables come from the process-wide cache,
+ * built once.
+ */
+static int find_wrists(urdf_world *u)
+{
+    int n = u->num_links, rc = MPB_OK;
+    u->num_wrist = 0;
+    mpb_pose *poses = calloc((size_t)n + 1, sizeof *poses);
+    double *q0 = calloc((size_t)mpb_robot_num_joints(u->robot) + 1, sizeof *q0);
+    if (!poses || !q0) {
+        rc = MPB_ENOMEM;
+        goto done;
+    }
+    default_state(u->robot, q0);
+    if (mpb_robot_fk(u->robot, q0, poses) != MPB_OK) {
+        rc = MPB_EINVAL;
+        goto done;
+    }
+    for (int a = 0; a < n && rc == MPB_OK; a++)
+        for (int b = a + 1; has_body(u, a) && b < n && rc == MPB_OK; b++) {
+            int joint[2];
+            mpb__wrist_spec spec;
+            /* an ancestor has the smaller index (robot.h) */
+            if (has_body(u, b) && !*acm_at(u, a, b) &&
+                (has_mesh(u, a) || has_mesh(u, b)) &&
+                mpb__wrist_path(u->robot, poses, a, b, joint, &spec))
+                rc = add_wrist(u, a, b, joint, &spec);
+        }
+done:
+    free(poses);
+    free(q0);
+    return rc;
+}
+
 /*
  * Build the matrix (from the SRDF, or generated), list its pairs, and let
- * the collision world skip them, and every pair of fixed links.
+ * the collision world skip them, and every pair of fixed links; then the
+ * wrist tables of the pairs left.
  */
 static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
 {
@@ -577,7 +711,10 @@ static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
                 (rc = mpb_collision_allow_pair(u->coll, a, b)) != MPB_OK)
                 return rc;
         }
-    return MPB_OK;
+    if ((rc = find_wrists(u)) != MPB_OK)
+        mpb__set_err(err, errlen, "robot: wrist tables: %s",
+                     rc == MPB_ENOMEM ? "out of memory" : "FCL failed");
+    return rc;
 }
 
 /*
@@ -817,6 +954,7 @@ static int urdf_in_collision(void *impl, const double *q)
         return 1;       /* not known to be free */
     if (place(u, q) != MPB_OK)
         return 1;
+    hint_wrists(u, q);
     if (mpb_collision_check(u->coll, NULL, NULL) != 0)
         return 1;   /* a collision, or an error: not known to be free */
     return mpb_collision_check_self(u->coll, NULL, NULL) != 0;
@@ -845,6 +983,7 @@ static int urdf_contact(void *impl, const double *q, char *what, size_t len)
     }
     if (place(u, q) != MPB_OK)
         return MPB_EINVAL;
+    hint_wrists(u, q);
     if ((hit = mpb_collision_check(u->coll, &m, &st)) != 0) {
         if (hit < 0)
             return hit;
@@ -1020,5 +1159,27 @@ int mpb__urdf_get_model(mpb_world *w, mpb__urdf_model *out)
         return rc;
     *out = (mpb__urdf_model){u->robot, u->scene, u->coll, u->meshes,
                              u->num_meshes};
+    return MPB_OK;
+}
+
+int mpb__urdf_num_wrists(mpb_world *w)
+{
+    if (!w || w->provider != &mpb__world_urdf || !w->impl)
+        return 0;
+    urdf_world *u = w->impl;
+    return ensure_acm(u) == MPB_OK ? u->num_wrist : 0;
+}
+
+int mpb__urdf_wrist(mpb_world *w, int i, int *near, int *far, int joint[2],
+                    const mpb__wrist_table **table)
+{
+    if (i < 0 || i >= mpb__urdf_num_wrists(w))
+        return MPB_EINVAL;
+    const struct wrist_pair *p = &((urdf_world *)w->impl)->wrist[i];
+    *near = p->near;
+    *far = p->far;
+    joint[0] = p->joint[0];
+    joint[1] = p->joint[1];
+    *table = p->table;
     return MPB_OK;
 }
