@@ -340,7 +340,7 @@ static int world_for(db *d, query *q, const char *robot_dir, double *secs)
     free(names_text);
     if (rc != MPB_OK) {
         mpb_world_close(w);
-        snprintf(d->err, sizeof d->err, "scene '%s': %s", sc->name, err);
+        snprintf(d->err, sizeof d->err, "scene '%.100s': %.400s", sc->name, err);
         return -1;
     }
     /* Worlds are never moved: queries point at them. */
