@@ -603,6 +603,8 @@ static int add_wrist(urdf_world *u, int near, int far, const int joint[2],
         link_shapes(u, ends[s], geoms[s], offsets[s]);
         spec->side[s] = (mpb__wrist_side){n[s], geoms[s], offsets[s]};
     }
+    if (!mpb__wrist_affordable(spec))
+        goto done;      /* FCL decides the pair, as without tables */
     struct wrist_pair *grown = realloc(u->wrist, (size_t)(u->num_wrist + 1) *
                                                  sizeof *grown);
     if (!grown) {

@@ -43,6 +43,28 @@ struct mpb__wrist_table {
 
 static double min_bound = MPB__WRIST_MIN_BOUND;
 static double lipschitz_factor = 1.0;
+static int max_distances = MPB__WRIST_MAX_DISTANCES;
+
+void mpb__wrist_set_budget(int distances)
+{
+    max_distances = distances;
+}
+
+/* Triangles of a side, a primitive counted as a box's 12. */
+static double side_triangles(const mpb__wrist_side *s)
+{
+    double n = 0;
+    for (int i = 0; i < s->num_shapes; i++)
+        n += s->geoms[i].type == MPB_SHAPE_MESH ? s->geoms[i].mesh->num_triangles
+                                                 : 12;
+    return n;
+}
+
+int mpb__wrist_affordable(const mpb__wrist_spec *spec)
+{
+    return side_triangles(&spec->side[0]) * side_triangles(&spec->side[1]) <=
+           MPB__WRIST_MAX_TRIANGLE_PAIRS;
+}
 
 void mpb__wrist_set_params(double bound, double factor)
 {
@@ -303,6 +325,12 @@ static int build_cell(builder *b, int i, const double c[2], const double h[2])
         double rc = cell_r1(b->spec, b->pts, b->num_pts, c[1], h[1]);
         r1 = rc < r1 ? rc : r1;
     }
+    if (t->stats.distances >= max_distances) {
+        t->nodes[i] = 0;
+        t->stats.open_leaves++;
+        t->stats.cut = 1;
+        return MPB_OK;
+    }
     double term[2] = {lipschitz_factor * r1 * h[0],
                       n == 2 ? lipschitz_factor * b->R[1] * h[1] : 0.0};
     double bound = term[0] + term[1];
@@ -542,7 +570,7 @@ static void put(keybuf *k, const void *data, size_t n)
 
 static int make_key(const mpb__wrist_spec *s, keybuf *k)
 {
-    double params[3] = {min_bound, lipschitz_factor, WRIST_MARGIN};
+    double params[4] = {min_bound, lipschitz_factor, WRIST_MARGIN, max_distances};
     int n = s->num_joints;
     put(k, params, sizeof params);
     put(k, &n, sizeof n);

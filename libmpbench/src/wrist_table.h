@@ -66,7 +66,23 @@ int mpb__wrist_path(const mpb_robot *r, const mpb_pose *poses, int near,
                     int far, int joints[2], mpb__wrist_spec *spec);
 
 /*
+ * Is a table for spec cheap enough to build when a world opens? Its cost
+ * is a few thousand FCL distances between the two sides, each dearer the
+ * more triangles they have: the product of their triangle counts (a
+ * primitive counts as 12) must be at most MPB__WRIST_MAX_TRIANGLE_PAIRS.
+ * The Panda's pairs are 6k-60k; the UR5's, with its Robotiq gripper,
+ * 0.7M-30M, whose tables took 36 s.
+ */
+#define MPB__WRIST_MAX_TRIANGLE_PAIRS 250000.0
+int mpb__wrist_affordable(const mpb__wrist_spec *spec);
+
+/*
  * The table for spec, from the process-wide cache or built now (into it).
+ * A build stops refining after MPB__WRIST_MAX_DISTANCES FCL distances
+ * (the Panda's largest takes 5,993, 0.4 s), leaving the cells it has not
+ * reached to FCL: slower checks, never other verdicts. A count, not a
+ * time, so that a table is the same on every machine (and under
+ * valgrind).
  * MPB_OK with *out, held by the cache for the life of the process;
  * MPB_ENOMEM; MPB_EERROR if FCL failed.
  */
@@ -86,6 +102,7 @@ typedef struct mpb__wrist_stats {
     int    grid_bytes;      /* the look-up grid, 0 if none */
     double build_s;         /* its CPU time (s) */
     double lipschitz[2];    /* R1, R2 (m per rad) */
+    int    cut;             /* 1 if MPB__WRIST_MAX_DISTANCES stopped it */
 } mpb__wrist_stats;
 void mpb__wrist_table_stats(const mpb__wrist_table *t, mpb__wrist_stats *out);
 
@@ -98,6 +115,11 @@ void mpb__wrist_table_stats(const mpb__wrist_table *t, mpb__wrist_stats *out);
  */
 #define MPB__WRIST_MIN_BOUND 0.004
 void mpb__wrist_set_params(double min_bound, double lipschitz_factor);
+
+/* The FCL distances a build may take (default MPB__WRIST_MAX_DISTANCES),
+ * for tests. Part of the cache's key. Not thread-safe, as above. */
+#define MPB__WRIST_MAX_DISTANCES 8192
+void mpb__wrist_set_budget(int distances);
 
 /* Tables built since the process began (cache misses). */
 long mpb__wrist_builds(void);

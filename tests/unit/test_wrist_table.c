@@ -245,6 +245,55 @@ static void too_small_a_bound_is_caught(void **state)
     mpb_world_close(w);
 }
 
+/* Tables only where their FCL distances are cheap: by the product of
+ * the two sides' triangles (a primitive counts 12). */
+static void affordable_by_triangles(void **state)
+{
+    (void)state;
+    mpb_mesh m[2] = {{0, 300, NULL, NULL}, {0, 200, NULL, NULL}};
+    mpb_geometry g[2] = {{MPB_SHAPE_MESH, {0, 0, 0, 0}, &m[0]},
+                         {MPB_SHAPE_MESH, {0, 0, 0, 0}, &m[1]}};
+    mpb_pose id;
+    mpb_pose_identity(&id);
+    mpb__wrist_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.side[0] = (mpb__wrist_side){1, &g[0], &id};
+    spec.side[1] = (mpb__wrist_side){1, &g[1], &id};
+    assert_true(mpb__wrist_affordable(&spec));          /* the Panda's 60k */
+    m[0].num_triangles = 578;
+    m[1].num_triangles = 1176;                          /* a UR5 pair */
+    assert_false(mpb__wrist_affordable(&spec));
+    g[0] = (mpb_geometry){MPB_SHAPE_BOX, {0.1, 0.1, 0.1, 0}, NULL};
+    m[1].num_triangles = (int)(MPB__WRIST_MAX_TRIANGLE_PAIRS / 12);
+    assert_true(mpb__wrist_affordable(&spec));
+    m[1].num_triangles++;
+    assert_false(mpb__wrist_affordable(&spec));
+}
+
+/* A build out of budget leaves its cells to FCL: the tables exist, prove
+ * nothing apart, and every verdict is still FCL's. */
+static void a_build_out_of_budget_keeps_the_verdicts(void **state)
+{
+    (void)state;
+    mpb__wrist_set_budget(0);
+    mpb_world *w = open_panda();
+    mpb__wrist_set_budget(MPB__WRIST_MAX_DISTANCES);
+    if (!w)
+        skip();
+    assert_true(mpb__urdf_num_wrists(w) > 0);
+    for (int i = 0; i < mpb__urdf_num_wrists(w); i++) {
+        int near, far, jt[2];
+        const mpb__wrist_table *t;
+        mpb__wrist_stats st;
+        assert_int_equal(mpb__urdf_wrist(w, i, &near, &far, jt, &t), MPB_OK);
+        mpb__wrist_table_stats(t, &st);
+        assert_int_equal(st.cut, 1);
+        assert_int_equal(st.apart_leaves, 0);
+    }
+    assert_int_equal(disagreements(w, 300, 3), 0);
+    mpb_world_close(w);
+}
+
 /* The PR2's arm of primitives: no pair qualifies, no table is built, and
  * the checks work as before. */
 static void pr2_has_none(void **state)
@@ -286,6 +335,8 @@ int main(void)
         cmocka_unit_test(apart_means_apart),
         cmocka_unit_test(verdicts_agree),
         cmocka_unit_test(too_small_a_bound_is_caught),
+        cmocka_unit_test(affordable_by_triangles),
+        cmocka_unit_test(a_build_out_of_budget_keeps_the_verdicts),
         cmocka_unit_test(pr2_has_none),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
