@@ -25,7 +25,7 @@
 
 #include "mpbench/mpbench.h"
 #include "test_files.h"
-#include "world_provider.h"
+#include "model/world_provider.h"
 
 static const char *const joints[] = {
     "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",

@@ -21,8 +21,8 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
-#include "collision_internal.h"
-#include "world_provider.h"
+#include "geometry/collision_internal.h"
+#include "model/world_provider.h"
 #include "test_files.h"
 
 #define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"

@@ -18,7 +18,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
-#include "collision_internal.h"
+#include "geometry/collision_internal.h"
 #include "mpbench/mesh.h"
 #include "mpbench/pose.h"
 

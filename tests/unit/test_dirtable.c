@@ -20,8 +20,8 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
-#include "dirtable.h"
-#include "hull.h"
+#include "geometry/dirtable.h"
+#include "geometry/hull.h"
 
 #define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"
 

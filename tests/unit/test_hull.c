@@ -20,7 +20,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
-#include "hull.h"
+#include "geometry/hull.h"
 
 #define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"
 

@@ -26,8 +26,8 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
-#include "mesh_cache.h"
-#include "world_provider.h"
+#include "geometry/mesh_cache.h"
+#include "model/world_provider.h"
 
 static char dir[256];
 static const char *const joints[] = {"j"};

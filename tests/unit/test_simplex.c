@@ -14,7 +14,7 @@
 
 #include <cmocka.h>
 
-#include "simplex.h"
+#include "geometry/simplex.h"
 
 static uint64_t rng = 0x853c49e6748fea9bull;
 

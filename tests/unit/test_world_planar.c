@@ -12,7 +12,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
-#include "world_provider.h"     /* mpb__planar_points(), for FK */
+#include "model/world_provider.h"     /* mpb__planar_points(), for FK */
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

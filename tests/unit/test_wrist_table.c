@@ -23,9 +23,9 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/robot.h"
-#include "collision_internal.h"
-#include "world_provider.h"
-#include "wrist_table.h"
+#include "geometry/collision_internal.h"
+#include "model/world_provider.h"
+#include "geometry/wrist_table.h"
 #include "test_files.h"
 
 #define SRC MPB_TEST_DATA "/../../.."

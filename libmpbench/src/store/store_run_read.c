@@ -1,0 +1,109 @@
+/*
+ * store_run_read.c - reading one run back whole, for drawing it (mpb view):
+ * where it belongs (experiment, configuration, query, scene), its outcome,
+ * and every stage with its waypoints and verdict.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "store/store_internal.h"
+
+static const char *text_or_empty(sqlite3_stmt *st, int i)
+{
+    const char *t = (const char *)sqlite3_column_text(st, i);
+    return t ? t : "";
+}
+
+int mpb_store_run_get(mpb_store *s, int64_t run_id,
+                      int (*cb)(void *ud, const mpb_run_detail *row), void *ud)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT r.id, r.experiment_id, r.planner_config_id, r.query_id,"
+        " q.scene_id, r.repetition, r.state, p.name, r.planner_id, r.status,"
+        " r.message, r.verdict, r.success, r.time_total"
+        " FROM runs r JOIN planner_configs p ON p.id = r.planner_config_id"
+        " JOIN queries q ON q.id = r.query_id WHERE r.id = ?");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, run_id);
+    int step = sqlite3_step(st), rc = MPB_OK;
+    if (step == SQLITE_ROW) {
+        mpb_run_detail d = {
+            .run_id = sqlite3_column_int64(st, 0),
+            .experiment_id = sqlite3_column_int64(st, 1),
+            .planner_config_id = sqlite3_column_int64(st, 2),
+            .query_id = sqlite3_column_int64(st, 3),
+            .scene_id = sqlite3_column_int64(st, 4),
+            .repetition = sqlite3_column_int(st, 5),
+            .state = text_or_empty(st, 6),
+            .planner_config = text_or_empty(st, 7),
+            .planner_id = text_or_empty(st, 8),
+            .status = text_or_empty(st, 9),
+            .message = text_or_empty(st, 10),
+            .verdict = text_or_empty(st, 11),
+            .success = sqlite3_column_type(st, 12) == SQLITE_NULL
+                           ? -1 : sqlite3_column_int(st, 12),
+            .time_total = sqlite3_column_type(st, 13) == SQLITE_NULL
+                              ? NAN : sqlite3_column_double(st, 13),
+        };
+        rc = cb(ud, &d);
+    } else if (step == SQLITE_DONE) {
+        rc = mpb__store_fail(s, MPB_ENOTFOUND, "no run %lld",
+                             (long long)run_id);
+    } else {
+        rc = mpb__store_db_fail(s, "read run");
+    }
+    sqlite3_finalize(st);
+    return rc;
+}
+
+int mpb_store_run_stages(mpb_store *s, int64_t run_id,
+                         int (*cb)(void *ud, const mpb_stage_record *stage),
+                         void *ud)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
+        " verdict, verdict_detail, verdict_segment FROM stages"
+        " WHERE run_id = ? ORDER BY idx");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, run_id);
+    int step, stop = 0;
+    while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
+        int n = sqlite3_column_int(st, 2), nj = sqlite3_column_int(st, 3);
+        const void *blob = sqlite3_column_blob(st, 4);
+        size_t bytes = (size_t)sqlite3_column_bytes(st, 4);
+        double *wp = NULL;
+        /* A blob that does not hold n * nj doubles is given as none. */
+        if (n > 0 && nj > 0 && blob != NULL &&
+            bytes == sizeof(double) * (size_t)n * (size_t)nj) {
+            if ((wp = malloc(bytes)) == NULL) {
+                sqlite3_finalize(st);
+                return mpb__store_fail(s, MPB_ENOMEM, "out of memory "
+                                       "reading run %lld", (long long)run_id);
+            }
+            memcpy(wp, blob, bytes);   /* aligned; little-endian as stored */
+        }
+        mpb_stage_record rec = {
+            .name = text_or_empty(st, 0),
+            .time = sqlite3_column_type(st, 1) == SQLITE_NULL
+                        ? NAN : sqlite3_column_double(st, 1),
+            .num_waypoints = wp ? n : 0,
+            .num_joints = wp ? nj : 0,
+            .waypoints = wp,
+            .valid = sqlite3_column_int(st, 5),
+            .verdict = text_or_empty(st, 6),
+            .verdict_detail = text_or_empty(st, 7),
+            .verdict_segment = sqlite3_column_type(st, 8) == SQLITE_NULL
+                                   ? -1 : sqlite3_column_int(st, 8),
+        };
+        stop = cb(ud, &rec);
+        free(wp);
+    }
+    sqlite3_finalize(st);
+    if (stop)
+        return stop;
+    return step == SQLITE_DONE ? MPB_OK : mpb__store_db_fail(s, "read stages");
+}

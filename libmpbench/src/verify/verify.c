@@ -1,0 +1,248 @@
+/* verify.c - mpbench's own verdict on a path: does it solve the query? */
+#include "mpbench/mpbench.h"
+
+#include <math.h>
+#include <string.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "model/world_provider.h"
+
+static const char *const verdict_names[MPB_VERDICT_COUNT] = {
+    [MPB_VERDICT_VALID]       = "valid",
+    [MPB_VERDICT_EMPTY]       = "empty",
+    [MPB_VERDICT_WRONG_SIZE]  = "wrong_size",
+    [MPB_VERDICT_NOT_FINITE]  = "not_finite",
+    [MPB_VERDICT_START]       = "start",
+    [MPB_VERDICT_GOAL]        = "goal",
+    [MPB_VERDICT_JOINT_LIMIT] = "joint_limit",
+    [MPB_VERDICT_COLLISION]   = "collision",
+    [MPB_VERDICT_UNSUPPORTED] = "unsupported",
+};
+
+const char *mpb_verdict_name(mpb_verdict_code code)
+{
+    if ((int)code < 0 || code >= MPB_VERDICT_COUNT || !verdict_names[code])
+        return "unknown";
+    return verdict_names[code];
+}
+
+static int verdict(mpb_verdict *out, mpb_verdict_code code, int segment,
+                   const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* Fill *out; returns MPB_OK, so that a check can end with return verdict(). */
+static int verdict(mpb_verdict *out, mpb_verdict_code code, int segment,
+                   const char *fmt, ...)
+{
+    va_list ap;
+    out->code = code;
+    out->segment = segment;
+    va_start(ap, fmt);
+    vsnprintf(out->detail, sizeof out->detail, fmt, ap);
+    va_end(ap);
+    return MPB_OK;
+}
+
+/* Bad arguments: never a VALID verdict, even for a caller who ignores rc. */
+static int bad_args(mpb_verdict *out, int rc, const char *why)
+{
+    if (out)
+        verdict(out, MPB_VERDICT_UNSUPPORTED, -1, "cannot verify: %s", why);
+    return rc;
+}
+
+/*
+ * The significant digits that print a and b differently (%.*g), from 6 up
+ * to 17, which tells any two doubles apart: a value just past its limit
+ * must not read as equal to it ("2.5 is outside [-2.5, 2.5]").
+ */
+static int digits_apart(double a, double b)
+{
+    char x[40], y[40];
+    for (int p = 6; p < 17; p++) {
+        snprintf(x, sizeof x, "%.*g", p, a);
+        snprintf(y, sizeof y, "%.*g", p, b);
+        if (strcmp(x, y) != 0)
+            return p;
+    }
+    return 17;
+}
+
+static double joint_dist(const mpb_world *w, int j, double a, double b)
+{
+    return fabs(mpb_joint_delta(a, b, w->wraps[j]));
+}
+
+/* A guard against never finishing, not a practical limit. */
+#define MAX_STEPS 1e9
+
+/* ": " and the bodies in contact at q, where the world names them. */
+static void contact(mpb_world *w, const double *q, char *what, size_t len)
+{
+    char names[400];      /* two link names of up to ~190 characters */
+    if (mpb_world_contact(w, q, names, sizeof names) > 0 && names[0])
+        snprintf(what, len, ": %s", names);
+    else
+        what[0] = '\0';
+}
+
+/* Collision along the path, each segment in steps of at most resolution. */
+static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
+                           int nj, double resolution, mpb_verdict *out)
+{
+    char what[sizeof out->detail];
+    if (mpb_world_in_collision(w, wp)) {
+        contact(w, wp, what, sizeof what);
+        return verdict(out, MPB_VERDICT_COLLISION, 0, num_waypoints > 1
+                       ? "segment 0 collides at s=0 (waypoint 0)%s"
+                       : "waypoint 0 collides%s", what);
+    }
+    double *q = malloc((size_t)nj * sizeof *q);
+    double *d = malloc((size_t)nj * sizeof *d);
+    if (!q || !d) {
+        free(q);
+        free(d);
+        return bad_args(out, MPB_ENOMEM, "out of memory");
+    }
+    int rc = MPB_OK;
+    out->code = MPB_VERDICT_VALID;
+    for (int i = 0; i + 1 < num_waypoints && out->code == MPB_VERDICT_VALID; i++) {
+        const double *a = wp + (size_t)i * (size_t)nj, *b = a + nj;
+        double sq = 0.0;
+        for (int j = 0; j < nj; j++) {
+            d[j] = mpb_joint_delta(a[j], b[j], w->wraps[j]);
+            sq += d[j] * d[j];
+        }
+        /* k steps of len / k <= resolution; the last lands on b itself. */
+        double k = ceil(sqrt(sq) / resolution);
+        if (k < 1)
+            k = 1;
+        if (k > MAX_STEPS) {
+            rc = bad_args(out, MPB_EINVAL, "resolution too fine for the path");
+            break;
+        }
+        for (double s = 1; s <= k; s++) {
+            const double *p = b;
+            if (s < k) {
+                for (int j = 0; j < nj; j++)
+                    q[j] = a[j] + (s / k) * d[j];
+                p = q;
+            }
+            if (mpb_world_in_collision(w, p)) {
+                contact(w, p, what, sizeof what);
+                verdict(out, MPB_VERDICT_COLLISION, i,
+                        "segment %d collides at s=%.4g (waypoints %d-%d)%s",
+                        i, s / k, i, i + 1, what);
+                break;
+            }
+        }
+    }
+    free(q);
+    free(d);
+    return rc;
+}
+
+int mpb_verify_path(struct mpb_world *w, const double *start,
+                    double start_tolerance, const mpb_goal *goal,
+                    const double *wp, int num_waypoints, int num_joints,
+                    double resolution, mpb_verdict *out)
+{
+    if (!out)
+        return MPB_EINVAL;
+    if (!w || !start || !goal)
+        return bad_args(out, MPB_EINVAL, "world, start and goal are required");
+    if (num_waypoints < 0 || (num_waypoints > 0 && !wp))
+        return bad_args(out, MPB_EINVAL, "no waypoint array");
+    if (!(resolution > 0) || !isfinite(resolution))
+        return bad_args(out, MPB_EINVAL, "resolution must be finite and > 0");
+    if (!(start_tolerance >= 0))
+        return bad_args(out, MPB_EINVAL, "start tolerance must be >= 0");
+    if (goal->kind == MPB_GOAL_JOINTS &&
+        (!goal->joints || !(goal->joint_tolerance >= 0)))
+        return bad_args(out, MPB_EINVAL, "joint goal needs joints and a "
+                        "tolerance >= 0");
+    if (goal->kind != MPB_GOAL_JOINTS && goal->kind != MPB_GOAL_POSE_REGION)
+        return bad_args(out, MPB_EINVAL, "unknown goal kind");
+
+    const int nj = w->num_joints;
+
+    /* EMPTY, WRONG_SIZE, NOT_FINITE */
+    if (num_waypoints == 0)
+        return verdict(out, MPB_VERDICT_EMPTY, -1, "no waypoints");
+    if (num_joints != nj)
+        return verdict(out, MPB_VERDICT_WRONG_SIZE, -1, "waypoints have %d "
+                       "joints; the robot has %d", num_joints, nj);
+    for (int i = 0; i < num_waypoints; i++)
+        for (int j = 0; j < nj; j++)
+            if (!isfinite(wp[(size_t)i * nj + j]))
+                return verdict(out, MPB_VERDICT_NOT_FINITE, i, "waypoint %d "
+                               "joint '%.200s' is %g", i, w->joint_names[j],
+                               wp[(size_t)i * nj + j]);
+
+    const double *last = wp + (size_t)(num_waypoints - 1) * (size_t)nj;
+
+    /* START */
+    for (int j = 0; j < nj; j++) {
+        double e = joint_dist(w, j, start[j], wp[j]);
+        if (!(e <= start_tolerance)) {
+            int p = digits_apart(e, start_tolerance);
+            return verdict(out, MPB_VERDICT_START, 0, "waypoint 0 joint "
+                           "'%.200s' is %.*g from the start (tolerance %.*g)",
+                           w->joint_names[j], p, e, p, start_tolerance);
+        }
+    }
+
+    /* GOAL; a kind the world cannot check is decided last (UNSUPPORTED). */
+    if (goal->kind == MPB_GOAL_JOINTS) {
+        for (int j = 0; j < nj; j++) {
+            double e = joint_dist(w, j, goal->joints[j], last[j]);
+            if (!(e <= goal->joint_tolerance)) {
+                int p = digits_apart(e, goal->joint_tolerance);
+                return verdict(out, MPB_VERDICT_GOAL, num_waypoints - 1,
+                               "waypoint %d (the last) joint '%.200s' is %.*g "
+                               "from the goal (tolerance %.*g)",
+                               num_waypoints - 1, w->joint_names[j], p, e, p,
+                               goal->joint_tolerance);
+            }
+        }
+    } else {
+        char why[sizeof out->detail - 40];
+        int in = mpb_world_goal_contains(w, goal, last, why, sizeof why);
+        if (in == 0)
+            return verdict(out, MPB_VERDICT_GOAL, num_waypoints - 1,
+                           "waypoint %d (the last): %s", num_waypoints - 1, why);
+        if (in < 0 && in != MPB_EUNSUPPORTED)
+            return verdict(out, MPB_VERDICT_UNSUPPORTED, -1, "%s", why);
+    }
+
+    /* JOINT_LIMIT: continuous joints have none. */
+    for (int i = 0; i < num_waypoints; i++)
+        for (int j = 0; j < nj; j++) {
+            double v = wp[(size_t)i * nj + j];
+            if (!w->wraps[j] && (v < w->lo[j] || v > w->hi[j])) {
+                int p = digits_apart(v, v < w->lo[j] ? w->lo[j] : w->hi[j]);
+                return verdict(out, MPB_VERDICT_JOINT_LIMIT, i, "waypoint %d "
+                               "joint '%.200s' = %.*g is outside [%.*g, %.*g]",
+                               i, w->joint_names[j], p, v, p, w->lo[j], p,
+                               w->hi[j]);
+            }
+        }
+
+    /* COLLISION */
+    int rc = check_collision(w, wp, num_waypoints, nj, resolution, out);
+    if (rc != MPB_OK || out->code != MPB_VERDICT_VALID)
+        return rc;
+
+    /* UNSUPPORTED: a pose region the world cannot check. */
+    if (goal->kind == MPB_GOAL_POSE_REGION && !w->provider->goal_region)
+        return verdict(out, MPB_VERDICT_UNSUPPORTED, -1, "pose-region goals "
+                       "cannot be checked in a '%s' world",
+                       w->provider->robot_format);
+
+    return verdict(out, MPB_VERDICT_VALID, -1, "valid");
+}
