@@ -19,13 +19,10 @@
 
 #include <cmocka.h>
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
-
 #include "mpbench/mpbench.h"
 #include "test_files.h"
 #include "model/world_provider.h"
+#include "core/mathconst.h"
 
 static const char *const joints[] = {
     "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",

@@ -11,10 +11,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 /* cmocka 1.1.5's assert_float_equal works in float; this one in double. */
 #define assert_near(a, b, eps)                                              \

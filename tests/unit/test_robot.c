@@ -19,10 +19,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/robot.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 #define assert_near(a, b, eps)                                              \
     do {                                                                    \

@@ -20,10 +20,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 static const char *const ROBOT =
     "link_radius 0.05\n"

@@ -13,10 +13,7 @@
 
 #include "mpbench/mpbench.h"
 #include "model/world_provider.h"     /* mpb__planar_points(), for FK */
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 #define assert_near(a, b, eps)                                              \
     do {                                                                    \

@@ -17,10 +17,7 @@
 
 #include "core/errbuf.h"
 #include "model/robot_urdf.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 #define NAME_SHOWN 80                   /* characters of a name in errors */
 #define MAX_URDF_BYTES (64L << 20)      /* a bigger file is not a URDF */

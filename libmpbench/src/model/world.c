@@ -8,10 +8,7 @@
 
 #include "core/errbuf.h"
 #include "model/world_provider.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 static const mpb__world_provider *const providers[] = {
     &mpb__world_planar,

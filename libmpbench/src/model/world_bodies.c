@@ -9,10 +9,7 @@
 
 #include "core/errbuf.h"
 #include "model/world_provider.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 /* Where a body comes from, to place it and to map collision ids to it. */
 typedef struct body_src {

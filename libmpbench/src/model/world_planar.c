@@ -12,10 +12,7 @@
 #include "core/errbuf.h"
 #include "core/grow.h"
 #include "model/world_provider.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 /* ---- text: lines of whitespace-separated tokens, '#' to end of line ---- */
 

@@ -6,9 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/mathconst.h"
 
 /* A segment at most this long (joint-space norm) has no direction. */
 #define MPB__ZERO_SEGMENT 1e-12
