@@ -13,6 +13,7 @@
 #include "mpbench/mpbench.h"
 #include "geometry/collision_internal.h"
 #include "core/grow.h"
+#include "core/rot3.h"
 #include "geometry/wrist_table.h"
 
 /* Below this (m) FCL's distance does not count as apart: far above its
@@ -77,16 +78,7 @@ void mpb__wrist_set_params(double bound, double factor)
 /* The pose of a rotation by angle about the unit axis a (Rodrigues). */
 static void rot_pose(const double a[3], double angle, mpb_pose *p)
 {
-    double c = cos(angle), s = sin(angle), v = 1.0 - c;
-    p->R[0] = c + a[0] * a[0] * v;
-    p->R[1] = a[0] * a[1] * v - a[2] * s;
-    p->R[2] = a[0] * a[2] * v + a[1] * s;
-    p->R[3] = a[1] * a[0] * v + a[2] * s;
-    p->R[4] = c + a[1] * a[1] * v;
-    p->R[5] = a[1] * a[2] * v - a[0] * s;
-    p->R[6] = a[2] * a[0] * v - a[1] * s;
-    p->R[7] = a[2] * a[1] * v + a[0] * s;
-    p->R[8] = c + a[2] * a[2] * v;
+    mpb__rot_axis(a, angle, p->R);
     p->t[0] = p->t[1] = p->t[2] = 0.0;
 }
 

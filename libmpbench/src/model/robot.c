@@ -18,6 +18,7 @@
 #include "core/errbuf.h"
 #include "model/robot_urdf.h"
 #include "core/mathconst.h"
+#include "core/rot3.h"
 
 #define NAME_SHOWN 80                   /* characters of a name in errors */
 #define MAX_URDF_BYTES (64L << 20)      /* a bigger file is not a URDF */
@@ -116,87 +117,6 @@ static int bounded3(const double v[3])
     return bounded(v[0]) && bounded(v[1]) && bounded(v[2]);
 }
 
-/* c = a * b, 3x3 row-major; c must not alias a or b. */
-static void mat3_mul(const double *a, const double *b, double *c)
-{
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-            c[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j]
-                         + a[3 * i + 2] * b[6 + j];
-}
-
-/* out = R * v */
-static void mat3_vec(const double *R, const double *v, double *out)
-{
-    for (int i = 0; i < 3; i++)
-        out[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
-}
-
-/* c = a^T * b */
-static void mat3_tmul(const double *a, const double *b, double *c)
-{
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-            c[3 * i + j] = a[i] * b[j] + a[3 + i] * b[3 + j]
-                         + a[6 + i] * b[6 + j];
-}
-
-/* Rotation by angle about the unit axis a (Rodrigues). */
-static void rot_axis(const double a[3], double angle, double R[9])
-{
-    double c = cos(angle), s = sin(angle), C = 1.0 - c;
-    double x = a[0], y = a[1], z = a[2];
-    R[0] = c + x * x * C;     R[1] = x * y * C - z * s; R[2] = x * z * C + y * s;
-    R[3] = y * x * C + z * s; R[4] = c + y * y * C;     R[5] = y * z * C - x * s;
-    R[6] = z * x * C - y * s; R[7] = z * y * C + x * s; R[8] = c + z * z * C;
-}
-
-/* The angle of rotation R, in [0, pi]. */
-static double rot_angle(const double R[9])
-{
-    double v0 = R[7] - R[5], v1 = R[2] - R[6], v2 = R[3] - R[1];
-    double s = 0.5 * sqrt(v0 * v0 + v1 * v1 + v2 * v2);
-    double c = 0.5 * (R[0] + R[4] + R[8] - 1.0);
-    return atan2(s, c);
-}
-
-/* The rotation vector (axis * angle, angle in [0, pi]) of rotation R. */
-static void rot_log(const double R[9], double w[3])
-{
-    double v[3] = { R[7] - R[5], R[2] - R[6], R[3] - R[1] }; /* 2 sin(th) a */
-    double s = 0.5 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    double c = 0.5 * (R[0] + R[4] + R[8] - 1.0);
-    double th = atan2(s, c);
-    if (c > 0.0 || s > 1e-6) {
-        double f = s > 1e-12 ? th / (2.0 * s) : 0.5;
-        w[0] = f * v[0];
-        w[1] = f * v[1];
-        w[2] = f * v[2];
-        return;
-    }
-    /* Near pi: R ~ 2 a a^T - I, so (R + I) / 2 ~ a a^T. */
-    int k = 0;
-    if (R[4] > R[k * 4])
-        k = 1;
-    if (R[8] > R[k * 4])
-        k = 2;
-    double B[9];
-    for (int i = 0; i < 9; i++)
-        B[i] = 0.5 * (R[i] + ((i % 4 == 0) ? 1.0 : 0.0));
-    double a[3];
-    double ak = sqrt(fmax(B[4 * k], 0.0));
-    for (int i = 0; i < 3; i++)
-        a[i] = i == k ? ak : (ak > 0 ? 0.5 * (B[3 * k + i] + B[3 * i + k]) / ak : 0.0);
-    double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    if (n <= 0.0) {
-        w[0] = w[1] = w[2] = 0.0;
-        return;
-    }
-    double sign = (a[0] * v[0] + a[1] * v[1] + a[2] * v[2]) < 0 ? -1.0 : 1.0;
-    for (int i = 0; i < 3; i++)
-        w[i] = sign * th * a[i] / n;
-}
-
 /* The motion of a joint at value v, as a pose of the child in the joint frame. */
 static void joint_motion(mpb_joint_type type, const double axis[3], double v,
                          mpb_pose *m)
@@ -205,7 +125,7 @@ static void joint_motion(mpb_joint_type type, const double axis[3], double v,
     switch (type) {
     case MPB_JOINT_REVOLUTE:
     case MPB_JOINT_CONTINUOUS:
-        rot_axis(axis, v, m->R);
+        mpb__rot_axis(axis, v, m->R);
         break;
     case MPB_JOINT_PRISMATIC:
         for (int i = 0; i < 3; i++)
@@ -216,19 +136,11 @@ static void joint_motion(mpb_joint_type type, const double axis[3], double v,
     }
 }
 
-static int is_identity3(const double R[9])
-{
-    for (int i = 0; i < 9; i++)
-        if (R[i] != ((i % 4 == 0) ? 1.0 : 0.0))
-            return 0;
-    return 1;
-}
-
 /* out->t = P.R v + P.t, out->R = P.R: P followed by a pure translation v. */
 static void translate(const mpb_pose *P, const double v[3], mpb_pose *out)
 {
     memcpy(out->R, P->R, sizeof P->R);
-    mat3_vec(P->R, v, out->t);
+    mpb__mat3_vec(P->R, v, out->t);
     for (int j = 0; j < 3; j++)
         out->t[j] += P->t[j];
 }
@@ -272,8 +184,8 @@ static void link_step(const mpb_robot *r, int i, const double *q,
         memcpy(out->t, a.t, sizeof a.t);
     } else {
         double M[9];
-        rot_axis(k->axis, v, M);
-        mat3_mul(a.R, M, out->R);
+        mpb__rot_axis(k->axis, v, M);
+        mpb__mat3_mul(a.R, M, out->R);
         memcpy(out->t, a.t, sizeof a.t);
     }
 }
@@ -325,12 +237,12 @@ static void set_fixed(kin *k)
     mpb_pose m;
     joint_motion(k->type, k->axis, k->passive, &m);
     mpb_pose_mul(&k->origin, &m, &k->fixed);
-    k->fixed_pure = is_identity3(k->fixed.R);
+    k->fixed_pure = mpb__is_identity3(k->fixed.R);
 }
 
 static void kin_shortcuts(kin *k)
 {
-    k->origin_pure = is_identity3(k->origin.R);
+    k->origin_pure = mpb__is_identity3(k->origin.R);
     k->axis_k = -1;
     k->axis_sign = 1.0;
     for (int d = 0; d < 3; d++)
@@ -1205,8 +1117,8 @@ static double ik_eval(ik_ws *w, const double *q)
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
                 Rt[3 * i + j] = T.R[3 * j + i];
-        mat3_mul(w->target->R, Rt, Rerr);
-        rot_log(Rerr, w->e + 3);
+        mpb__mat3_mul(w->target->R, Rt, Rerr);
+        mpb__rot_log(Rerr, w->e + 3);
         w->rerr = sqrt(w->e[3] * w->e[3] + w->e[4] * w->e[4] + w->e[5] * w->e[5]);
     }
     return w->perr * w->perr + w->rerr * w->rerr;
@@ -1220,7 +1132,7 @@ static void ik_jacobian(ik_ws *w)
         const mpb_pose *C = &w->P[w->jpos[j]];
         const mpb_robot_joint *J = &r->joints[j];
         double a[3], lin[3], ang[3] = { 0, 0, 0 };
-        mat3_vec(C->R, J->axis, a);
+        mpb__mat3_vec(C->R, J->axis, a);
         if (J->type == MPB_JOINT_PRISMATIC) {
             lin[0] = a[0];
             lin[1] = a[1];
@@ -1475,8 +1387,8 @@ int mpb_robot_ik(const mpb_robot *r, int link, const double offset[3],
         mpb_pose T;
         double Rrel[9];
         path_poses(r, q_out, link, w.P, &T);
-        mat3_tmul(target->R, T.R, Rrel);
-        info->orientation_error = rot_angle(Rrel);
+        mpb__mat3_tmul(target->R, T.R, Rrel);
+        info->orientation_error = mpb__rot_angle(Rrel);
     }
     free(buf);
     return solved ? MPB_OK : MPB_ENOTFOUND;
@@ -1532,9 +1444,9 @@ int mpb_goal_region_distance(const mpb_robot *r, const mpb_goal_region *g,
     mpb_pose_identity(&ref);
     mpb_pose_set_rpy(&ref, g->ref_rpy[0], g->ref_rpy[1], g->ref_rpy[2]);
     mpb_pose_identity(&rel);
-    mat3_tmul(ref.R, T.R, rel.R);
+    mpb__mat3_tmul(ref.R, T.R, rel.R);
     mpb_pose_get_rpy(&rel, out->rpy_rel);
-    out->angle = rot_angle(rel.R);
+    out->angle = mpb__rot_angle(rel.R);
     out->orientation = 0.0;
     for (int i = 0; i < 3; i++) {
         double d = fabs(out->rpy_rel[i]) - g->rpy_tolerance[i];
@@ -1589,7 +1501,7 @@ int mpb_goal_region_sample(const mpb_robot *r, const mpb_goal_region *g,
                         + uniform(rng, -g->half_extents[i], g->half_extents[i]);
         }
         mpb_pose_set_rpy(&rel, rpy[0], rpy[1], rpy[2]);
-        mat3_mul(ref.R, rel.R, target.R);
+        mpb__mat3_mul(ref.R, rel.R, target.R);
         rc = mpb_robot_ik(r, g->link, g->offset, &target, seed, &o, rng, q_out,
                           NULL);
         if (rc == MPB_OK) {
