@@ -1,9 +1,9 @@
 /*
- * robot.c - the robot model: a planning group (serial chain) over a URDF
- * tree, mimic joints following their leaders, forward kinematics,
- * numerical inverse kinematics (damped least
- * squares with Levenberg-Marquardt damping and random restarts) and goal
- * regions. The URDF itself is read by the C++ bridge robot_urdf.cpp.
+ * robot.c - the robot model: loading a planning group (serial chain) over
+ * a URDF tree, mimic joints following their leaders, and the model's
+ * joints, links and shapes. The URDF itself is read by the C++ bridge
+ * robot_urdf.cpp; kinematics and goal regions are in robot_fk.c,
+ * robot_ik.c and robot_goal.c.
  */
 #include "mpbench/mpbench.h"
 #include "mpbench/robot.h"
@@ -16,94 +16,21 @@
 #include <string.h>
 
 #include "core/errbuf.h"
-#include "model/robot_urdf.h"
 #include "core/mathconst.h"
-#include "core/rot3.h"
+#include "model/robot_internal.h"
+#include "model/robot_urdf.h"
 
 #define NAME_SHOWN 80                   /* characters of a name in errors */
 #define MAX_URDF_BYTES (64L << 20)      /* a bigger file is not a URDF */
 
-/* How a link's pose follows from its parent's. */
-typedef struct kin {
-    mpb_joint_type type;
-    mpb_pose       origin;      /* parent frame -> joint frame */
-    double         axis[3];     /* unit (active and moving passive joints) */
-    int            chain;       /* active joint index, or -1 */
-    int            mimic;       /* a mimic joint: its leader's active joint
-                                   index, or -1 when the leader holds */
-    double         mimic_m, mimic_o; /* value = mimic_m * leader + mimic_o */
-    double         passive;     /* value of a passive joint */
-    mpb_pose       fixed;       /* passive: origin * motion(passive) */
-    /* Shortcuts for the common cases, chosen once (see kin_shortcuts()). */
-    int            origin_pure; /* origin.R is exactly the identity */
-    int            fixed_pure;  /* fixed.R is exactly the identity */
-    int            axis_k;      /* axis is +-x, +-y, +-z: 0, 1, 2; else -1 */
-    double         axis_sign;   /* +1 or -1 with axis_k */
-} kin;
-
-struct mpb_robot {
-    mpb__urdf_model      model;   /* owns the names and mesh URIs */
-    int                  num_links;
-    mpb_robot_link      *links;
-    kin                 *kin;
-    mpb_pose            *static_pose; /* robot frame; identity where moving */
-    int                  num_moving;
-    int                 *moving;      /* moving links, parents first */
-    int                 *path_off;    /* per link: its moving ancestors and */
-    int                 *path_len;    /* itself, top down, in path_pool */
-    int                 *path_pool;
-    int                  num_joints;
-    mpb_robot_joint     *joints;
-    unsigned char       *wraps;
-    int                  num_collisions;
-    mpb_robot_collision *collisions;
-    int                  base, tip;
-};
-
 /* ---- small helpers --------------------------------------------------- */
-
-/* splitmix64: any state is a valid seed. */
-static uint64_t rng_next(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-/* Uniform in [0, 1). */
-static double rng_unit(uint64_t *s)
-{
-    return (double)(rng_next(s) >> 11) * (1.0 / 9007199254740992.0);
-}
-
-static double uniform(uint64_t *s, double lo, double hi)
-{
-    return lo + (hi - lo) * rng_unit(s);
-}
-
-/* Into (-pi, pi]. */
-static double wrap_angle(double a)
-{
-    a = fmod(a, 2.0 * M_PI);
-    if (a > M_PI)
-        a -= 2.0 * M_PI;
-    else if (a <= -M_PI)
-        a += 2.0 * M_PI;
-    return a;
-}
-
-static int finite3(const double v[3])
-{
-    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
 
 static int pose_finite(const mpb_pose *p)
 {
     for (int i = 0; i < 9; i++)
         if (!isfinite(p->R[i]))
             return 0;
-    return finite3(p->t);
+    return mpb__finite3(p->t);
 }
 
 /* Within the collision world's bounds (collision.h), as m or rad. */
@@ -115,142 +42,6 @@ static int bounded(double v)
 static int bounded3(const double v[3])
 {
     return bounded(v[0]) && bounded(v[1]) && bounded(v[2]);
-}
-
-/* The motion of a joint at value v, as a pose of the child in the joint frame. */
-static void joint_motion(mpb_joint_type type, const double axis[3], double v,
-                         mpb_pose *m)
-{
-    mpb_pose_identity(m);
-    switch (type) {
-    case MPB_JOINT_REVOLUTE:
-    case MPB_JOINT_CONTINUOUS:
-        mpb__rot_axis(axis, v, m->R);
-        break;
-    case MPB_JOINT_PRISMATIC:
-        for (int i = 0; i < 3; i++)
-            m->t[i] = axis[i] * v;
-        break;
-    default:
-        break;
-    }
-}
-
-/* out->t = P.R v + P.t, out->R = P.R: P followed by a pure translation v. */
-static void translate(const mpb_pose *P, const double v[3], mpb_pose *out)
-{
-    memcpy(out->R, P->R, sizeof P->R);
-    mpb__mat3_vec(P->R, v, out->t);
-    for (int j = 0; j < 3; j++)
-        out->t[j] += P->t[j];
-}
-
-/* out = A * (rotation by angle with cosine c and sine s about axis k). */
-static void rotate_cols(const double *A, int k, double c, double s, double *out)
-{
-    int a = (k + 1) % 3, b = (k + 2) % 3;   /* x: y z; y: z x; z: x y */
-    for (int r = 0; r < 3; r++) {
-        const double *row = A + 3 * r;
-        out[3 * r + k] = row[k];
-        out[3 * r + a] = c * row[a] + s * row[b];
-        out[3 * r + b] = -s * row[a] + c * row[b];
-    }
-}
-
-/* The pose of link i from its parent's pose; q indexed by active joint. */
-static void link_step(const mpb_robot *r, int i, const double *q,
-                      const mpb_pose *parent, mpb_pose *out)
-{
-    const kin *k = &r->kin[i];
-    if (k->chain < 0 && k->mimic < 0) {
-        if (k->fixed_pure)
-            translate(parent, k->fixed.t, out);
-        else
-            mpb_pose_mul(parent, &k->fixed, out);
-        return;
-    }
-    mpb_pose a;
-    if (k->origin_pure)
-        translate(parent, k->origin.t, &a);
-    else
-        mpb_pose_mul(parent, &k->origin, &a);
-    double v = k->chain >= 0 ? q[k->chain] : k->mimic_m * q[k->mimic] + k->mimic_o;
-    if (k->type == MPB_JOINT_PRISMATIC) {
-        double d[3] = { k->axis[0] * v, k->axis[1] * v, k->axis[2] * v };
-        translate(&a, d, out);
-    } else if (k->axis_k >= 0) {
-        double ang = k->axis_sign * v;
-        rotate_cols(a.R, k->axis_k, cos(ang), sin(ang), out->R);
-        memcpy(out->t, a.t, sizeof a.t);
-    } else {
-        double M[9];
-        mpb__rot_axis(k->axis, v, M);
-        mpb__mat3_mul(a.R, M, out->R);
-        memcpy(out->t, a.t, sizeof a.t);
-    }
-}
-
-static int q_finite(const mpb_robot *r, const double *q)
-{
-    for (int j = 0; j < r->num_joints; j++)
-        if (!isfinite(q[j]))
-            return 0;
-    return 1;
-}
-
-/*
- * Poses of the path of `link` (its moving ancestors and itself, top down)
- * into P (path_len entries); the link's pose into *out. Static links: out
- * only.
- */
-static void path_poses(const mpb_robot *r, const double *q, int link,
-                       mpb_pose *P, mpb_pose *out)
-{
-    int len = r->path_len[link];
-    if (len == 0) {
-        *out = r->static_pose[link];
-        return;
-    }
-    const int *path = r->path_pool + r->path_off[link];
-    const mpb_pose *prev = &r->static_pose[r->links[path[0]].parent];
-    for (int k = 0; k < len; k++) {
-        link_step(r, path[k], q, prev, &P[k]);
-        prev = &P[k];
-    }
-    *out = P[len - 1];
-}
-
-/* Recompute the static link poses (after loading or set_passive). */
-static void compute_static(mpb_robot *r)
-{
-    for (int i = 0; i < r->num_links; i++) {
-        mpb_pose_identity(&r->static_pose[i]);
-        if (r->links[i].moves || r->links[i].parent < 0)
-            continue;
-        mpb_pose_mul(&r->static_pose[r->links[i].parent], &r->kin[i].fixed,
-                     &r->static_pose[i]);
-    }
-}
-
-static void set_fixed(kin *k)
-{
-    mpb_pose m;
-    joint_motion(k->type, k->axis, k->passive, &m);
-    mpb_pose_mul(&k->origin, &m, &k->fixed);
-    k->fixed_pure = mpb__is_identity3(k->fixed.R);
-}
-
-static void kin_shortcuts(kin *k)
-{
-    k->origin_pure = mpb__is_identity3(k->origin.R);
-    k->axis_k = -1;
-    k->axis_sign = 1.0;
-    for (int d = 0; d < 3; d++)
-        if (fabs(k->axis[d]) == 1.0 && k->axis[(d + 1) % 3] == 0.0
-            && k->axis[(d + 2) % 3] == 0.0) {
-            k->axis_k = d;
-            k->axis_sign = k->axis[d] > 0 ? 1.0 : -1.0;
-        }
 }
 
 /* ---- loading ------------------------------------------------------------ */
@@ -295,7 +86,7 @@ static int validate_model(const mpb__urdf_model *m, char *err, size_t errlen)
             if (is_active_type(l->type)) {
                 double n = sqrt(l->axis[0] * l->axis[0] + l->axis[1] * l->axis[1]
                                 + l->axis[2] * l->axis[2]);
-                if (!finite3(l->axis) || !(n > 1e-12)) {
+                if (!mpb__finite3(l->axis) || !(n > 1e-12)) {
                     mpb__set_err(err, errlen, "joint '%.*s': axis is zero or not "
                                  "finite", NAME_SHOWN, l->joint);
                     return MPB_EPARSE;
@@ -330,7 +121,7 @@ static int validate_model(const mpb__urdf_model *m, char *err, size_t errlen)
             for (int d = 0; d < nd; d++)
                 ok = ok && isfinite(g->dims[d]) && g->dims[d] >= 0.0;
             if (g->type == MPB_SHAPE_MESH)
-                ok = ok && g->mesh_uri && g->mesh_uri[0] && finite3(g->mesh_scale)
+                ok = ok && g->mesh_uri && g->mesh_uri[0] && mpb__finite3(g->mesh_scale)
                      && g->mesh_scale[0] != 0 && g->mesh_scale[1] != 0
                      && g->mesh_scale[2] != 0;
             if (!ok) {
@@ -481,7 +272,7 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip,
     for (int i = 0; i < nl; i++) {
         const mpb__urdf_link *ul = &m->links[i];
         mpb_robot_link *l = &r->links[i];
-        kin *k = &r->kin[i];
+        mpb__kin *k = &r->kin[i];
         l->name = ul->name;
         l->parent = ul->parent;
         l->joint = ul->parent >= 0 ? ul->joint : NULL;
@@ -511,8 +302,8 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip,
         if (k->chain < 0 && (k->type == MPB_JOINT_REVOLUTE
                              || k->type == MPB_JOINT_PRISMATIC))
             k->passive = fmin(fmax(0.0, ul->lo), ul->hi);
-        set_fixed(k);
-        kin_shortcuts(k);
+        mpb__robot_set_fixed(k);
+        mpb__robot_kin_shortcuts(k);
         if (l->parent >= 0) {
             const mpb_robot_link *p = &r->links[l->parent];
             l->moves = p->moves || k->chain >= 0 || k->mimic >= 0;
@@ -544,10 +335,10 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip,
     r->num_collisions = ncoll;
     /* A mimic of a held leader holds the value that follows from it. */
     for (int i = 0; i < nl; i++) {
-        kin *k = &r->kin[i];
+        mpb__kin *k = &r->kin[i];
         if (mi->lead[i] >= 0 && k->mimic < 0) {
             k->passive = k->mimic_m * r->kin[mi->lead[i]].passive + k->mimic_o;
-            set_fixed(k);
+            mpb__robot_set_fixed(k);
         }
     }
 
@@ -587,7 +378,7 @@ static int build(mpb_robot *r, const int *child, int n, int base, int tip,
         J->parent_link = ul->parent;
         J->child_link = child[j];
     }
-    compute_static(r);
+    mpb__robot_compute_static(r);
     return MPB_OK;
 }
 
@@ -968,7 +759,7 @@ int mpb_robot_set_passive(mpb_robot *r, const char *joint, double value)
     int i = find_joint_link(&r->model, joint);
     if (i < 0)
         return MPB_ENOTFOUND;
-    kin *k = &r->kin[i];
+    mpb__kin *k = &r->kin[i];
     const mpb__urdf_link *ul = &r->model.links[i];
     if (k->chain >= 0 || r->links[i].mimic_link >= 0 || !isfinite(value) ||
         !is_active_type(k->type))
@@ -976,13 +767,13 @@ int mpb_robot_set_passive(mpb_robot *r, const char *joint, double value)
     if (k->type != MPB_JOINT_CONTINUOUS && (value < ul->lo || value > ul->hi))
         return MPB_EINVAL;
     k->passive = value;
-    set_fixed(k);
+    mpb__robot_set_fixed(k);
     for (int f = 0; f < r->num_links; f++)
         if (r->links[f].mimic_link == i) {
             r->kin[f].passive = r->kin[f].mimic_m * value + r->kin[f].mimic_o;
-            set_fixed(&r->kin[f]);
+            mpb__robot_set_fixed(&r->kin[f]);
         }
-    compute_static(r);
+    mpb__robot_compute_static(r);
     return MPB_OK;
 }
 
@@ -994,7 +785,7 @@ int mpb_robot_get_passive(const mpb_robot *r, const char *joint,
     int i = find_joint_link(&r->model, joint);
     if (i < 0)
         return MPB_ENOTFOUND;
-    const kin *k = &r->kin[i];
+    const mpb__kin *k = &r->kin[i];
     if (k->chain >= 0 || !is_active_type(k->type))
         return MPB_EINVAL;
     int wraps = k->type == MPB_JOINT_CONTINUOUS;
@@ -1025,492 +816,7 @@ int mpb_robot_random_config(const mpb_robot *r, uint64_t *rng, double *q)
     if (!r || !rng || !q)
         return MPB_EINVAL;
     for (int j = 0; j < r->num_joints; j++)
-        q[j] = uniform(rng, r->joints[j].lo, r->joints[j].hi);
+        q[j] = mpb__uniform(rng, r->joints[j].lo, r->joints[j].hi);
     return MPB_OK;
 }
 
-/* ---- forward kinematics -------------------------------------------------- */
-
-int mpb_robot_fk_moving(const mpb_robot *r, const double *q, mpb_pose *poses)
-{
-    if (!r || !q || !poses || !q_finite(r, q))
-        return MPB_EINVAL;
-    for (int m = 0; m < r->num_moving; m++) {
-        int i = r->moving[m];
-        int p = r->links[i].parent;
-        const mpb_pose *pp = r->links[p].moves ? &poses[p] : &r->static_pose[p];
-        link_step(r, i, q, pp, &poses[i]);
-    }
-    return MPB_OK;
-}
-
-int mpb_robot_fk(const mpb_robot *r, const double *q, mpb_pose *poses)
-{
-    if (!r || !q || !poses || !q_finite(r, q))
-        return MPB_EINVAL;
-    memcpy(poses, r->static_pose, (size_t)r->num_links * sizeof *poses);
-    return mpb_robot_fk_moving(r, q, poses);
-}
-
-int mpb_robot_link_pose(const mpb_robot *r, const double *q, int link,
-                        mpb_pose *out)
-{
-    if (!r || !q || !out || link < 0 || link >= r->num_links || !q_finite(r, q))
-        return MPB_EINVAL;
-    int len = r->path_len[link];
-    if (len == 0) {
-        *out = r->static_pose[link];
-        return MPB_OK;
-    }
-    const int *path = r->path_pool + r->path_off[link];
-    mpb_pose a = r->static_pose[r->links[path[0]].parent], b;
-    for (int k = 0; k < len; k++) {
-        link_step(r, path[k], q, &a, &b);
-        a = b;
-    }
-    *out = a;
-    return MPB_OK;
-}
-
-/* ---- inverse kinematics -------------------------------------------------- */
-
-void mpb_ik_options_init(mpb_ik_options *opt)
-{
-    if (!opt)
-        return;
-    opt->max_attempts = 100;
-    opt->max_iterations = 100;
-    opt->position_tolerance = 1e-6;
-    opt->orientation_tolerance = 1e-6;
-    opt->position_only = 0;
-}
-
-/* What one solve needs, allocated once per call. */
-typedef struct ik_ws {
-    const mpb_robot *r;
-    int             link;
-    int             n;          /* joints 0 .. n-1 move the link */
-    int             m;          /* rows: 6, or 3 for position only */
-    double          offset[3];
-    const mpb_pose *target;
-    mpb_pose       *P;          /* poses of the link's path */
-    int            *jpos;       /* joint j's child link's place in the path */
-    double         *J;          /* m x n, row-major */
-    double          p[3];       /* the reference point at the last eval */
-    double          e[6];       /* the error at the last eval */
-    double          perr, rerr; /* its position and rotation norms */
-} ik_ws;
-
-/* Error of q into w->e (target minus current); returns its squared norm. */
-static double ik_eval(ik_ws *w, const double *q)
-{
-    mpb_pose T;
-    path_poses(w->r, q, w->link, w->P, &T);
-    mpb_pose_apply(&T, w->offset, w->p);
-    for (int i = 0; i < 3; i++)
-        w->e[i] = w->target->t[i] - w->p[i];
-    w->perr = sqrt(w->e[0] * w->e[0] + w->e[1] * w->e[1] + w->e[2] * w->e[2]);
-    w->rerr = 0.0;
-    if (w->m == 6) {
-        double Rt[9], Rerr[9];
-        /* Rerr = R_target * R^T: the world-frame rotation still to go. */
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++)
-                Rt[3 * i + j] = T.R[3 * j + i];
-        mpb__mat3_mul(w->target->R, Rt, Rerr);
-        mpb__rot_log(Rerr, w->e + 3);
-        w->rerr = sqrt(w->e[3] * w->e[3] + w->e[4] * w->e[4] + w->e[5] * w->e[5]);
-    }
-    return w->perr * w->perr + w->rerr * w->rerr;
-}
-
-/* The Jacobian at the q of the last ik_eval (w->P, w->p). */
-static void ik_jacobian(ik_ws *w)
-{
-    const mpb_robot *r = w->r;
-    for (int j = 0; j < w->n; j++) {
-        const mpb_pose *C = &w->P[w->jpos[j]];
-        const mpb_robot_joint *J = &r->joints[j];
-        double a[3], lin[3], ang[3] = { 0, 0, 0 };
-        mpb__mat3_vec(C->R, J->axis, a);
-        if (J->type == MPB_JOINT_PRISMATIC) {
-            lin[0] = a[0];
-            lin[1] = a[1];
-            lin[2] = a[2];
-        } else {
-            double d[3] = { w->p[0] - C->t[0], w->p[1] - C->t[1],
-                            w->p[2] - C->t[2] };
-            lin[0] = a[1] * d[2] - a[2] * d[1];
-            lin[1] = a[2] * d[0] - a[0] * d[2];
-            lin[2] = a[0] * d[1] - a[1] * d[0];
-            ang[0] = a[0];
-            ang[1] = a[1];
-            ang[2] = a[2];
-        }
-        for (int i = 0; i < 3; i++) {
-            w->J[i * w->n + j] = lin[i];
-            if (w->m == 6)
-                w->J[(3 + i) * w->n + j] = ang[i];
-        }
-    }
-}
-
-/* Solve A x = b in place (A k x k symmetric positive definite, k <= 7). */
-static int chol_solve(double *A, int k, double *b)
-{
-    for (int j = 0; j < k; j++) {
-        double d = A[j * k + j];
-        for (int s = 0; s < j; s++)
-            d -= A[j * k + s] * A[j * k + s];
-        if (!(d > 0.0))
-            return -1;
-        d = sqrt(d);
-        A[j * k + j] = d;
-        for (int i = j + 1; i < k; i++) {
-            double v = A[i * k + j];
-            for (int s = 0; s < j; s++)
-                v -= A[i * k + s] * A[j * k + s];
-            A[i * k + j] = v / d;
-        }
-    }
-    for (int i = 0; i < k; i++) {           /* L y = b */
-        double v = b[i];
-        for (int s = 0; s < i; s++)
-            v -= A[i * k + s] * b[s];
-        b[i] = v / A[i * k + i];
-    }
-    for (int i = k - 1; i >= 0; i--) {      /* L^T x = y */
-        double v = b[i];
-        for (int s = i + 1; s < k; s++)
-            v -= A[s * k + i] * b[s];
-        b[i] = v / A[i * k + i];
-    }
-    return 0;
-}
-
-/* The damped step dq (n values) for damping lambda; -1 if it fails. */
-static int ik_step(const ik_ws *w, double lambda, double *dq)
-{
-    int m = w->m, n = w->n;
-    const double *J = w->J;
-    double A[36], b[6];
-    if (n > m) {            /* dq = J^T (J J^T + lambda I)^-1 e */
-        for (int i = 0; i < m; i++) {
-            for (int k = 0; k <= i; k++) {
-                double s = 0.0;
-                for (int j = 0; j < n; j++)
-                    s += J[i * n + j] * J[k * n + j];
-                A[i * m + k] = A[k * m + i] = s;
-            }
-            A[i * m + i] += lambda;
-            b[i] = w->e[i];
-        }
-        if (chol_solve(A, m, b) != 0)
-            return -1;
-        for (int j = 0; j < n; j++) {
-            double s = 0.0;
-            for (int i = 0; i < m; i++)
-                s += J[i * n + j] * b[i];
-            dq[j] = s;
-        }
-    } else {                /* dq = (J^T J + lambda I)^-1 J^T e */
-        for (int j = 0; j < n; j++) {
-            for (int k = 0; k <= j; k++) {
-                double s = 0.0;
-                for (int i = 0; i < m; i++)
-                    s += J[i * n + j] * J[i * n + k];
-                A[j * n + k] = A[k * n + j] = s;
-            }
-            A[j * n + j] += lambda;
-            double s = 0.0;
-            for (int i = 0; i < m; i++)
-                s += J[i * n + j] * w->e[i];
-            b[j] = s;
-        }
-        if (chol_solve(A, n, b) != 0)
-            return -1;
-        for (int j = 0; j < n; j++)
-            dq[j] = b[j];
-    }
-    for (int j = 0; j < n; j++)
-        if (!isfinite(dq[j]))
-            return -1;
-    return 0;
-}
-
-static double clamp_joint(const mpb_robot *r, int j, double v)
-{
-    if (r->wraps[j])
-        return v;
-    return fmin(fmax(v, r->joints[j].lo), r->joints[j].hi);
-}
-
-int mpb_robot_ik(const mpb_robot *r, int link, const double offset[3],
-                 const mpb_pose *target, const double *seed,
-                 const mpb_ik_options *opt, uint64_t *rng, double *q_out,
-                 mpb_ik_info *info)
-{
-    mpb_ik_options o;
-    if (opt)
-        o = *opt;
-    else
-        mpb_ik_options_init(&o);
-    if (!r || !target || !rng || !q_out || link < 0 || link >= r->num_links)
-        return MPB_EINVAL;
-    if (!mpb_pose_is_rigid(target) || (offset && !finite3(offset)))
-        return MPB_EINVAL;
-    if (o.max_attempts < 1 || o.max_iterations < 1
-        || !(o.position_tolerance > 0) || !(o.orientation_tolerance > 0)
-        || !isfinite(o.position_tolerance) || !isfinite(o.orientation_tolerance))
-        return MPB_EINVAL;
-    if (seed && !q_finite(r, seed))
-        return MPB_EINVAL;
-
-    int N = r->num_joints;
-    int n = r->links[link].num_chain_joints;
-    int plen = r->path_len[link];
-    ik_ws w = { .r = r, .link = link, .n = n, .m = o.position_only ? 3 : 6,
-                .target = target };
-    if (offset)
-        memcpy(w.offset, offset, sizeof w.offset);
-
-    /* One buffer: path poses, then J, q, q_trial, q_best, dq, then jpos. */
-    size_t nd = (size_t)(6 * n) + 4 * (size_t)N;
-    size_t bytes = (size_t)(plen > 0 ? plen : 1) * sizeof(mpb_pose)
-                 + nd * sizeof(double) + (size_t)(n > 0 ? n : 1) * sizeof(int);
-    char *buf = malloc(bytes);
-    if (!buf)
-        return MPB_ENOMEM;
-    w.P = (mpb_pose *)buf;
-    double *dbl = (double *)(buf + (size_t)(plen > 0 ? plen : 1) * sizeof(mpb_pose));
-    w.J = dbl;
-    double *q = w.J + 6 * n, *qt = q + N, *qbest = qt + N, *dq = qbest + N;
-    w.jpos = (int *)(dq + N);
-    const int *path = r->path_pool + r->path_off[link];
-    for (int j = 0; j < n; j++) {
-        w.jpos[j] = 0;
-        for (int k = 0; k < plen; k++)
-            if (path[k] == r->joints[j].child_link)
-                w.jpos[j] = k;
-    }
-
-    /* Joints that do not move the link: from the seed, or mid-range. */
-    for (int j = 0; j < N; j++) {
-        if (seed)
-            q[j] = clamp_joint(r, j, seed[j]);
-        else
-            q[j] = r->wraps[j] ? 0.0 : 0.5 * (r->joints[j].lo + r->joints[j].hi);
-    }
-    memcpy(qbest, q, (size_t)N * sizeof *q);
-    double best = INFINITY;
-    int solved = 0, attempts = 0, iterations = 0;
-
-    for (attempts = 0; attempts < o.max_attempts && !solved; ) {
-        if (attempts > 0 || !seed)
-            for (int j = 0; j < n; j++)
-                q[j] = uniform(rng, r->joints[j].lo, r->joints[j].hi);
-        attempts++;
-        double cost = ik_eval(&w, q);
-        double perr = w.perr, rerr = w.rerr;
-        ik_jacobian(&w);
-        double lambda = 1e-2, cost_before = cost;
-        for (int it = 0; it < o.max_iterations; it++) {
-            if (perr <= o.position_tolerance
-                && (o.position_only || rerr <= o.orientation_tolerance)) {
-                solved = 1;
-                break;
-            }
-            if (n == 0)
-                break;
-            iterations++;
-            /* A local minimum: not 0.1% better over 10 steps. */
-            if (it > 0 && it % 10 == 0) {
-                if (cost > 0.999 * cost_before)
-                    break;
-                cost_before = cost;
-            }
-            memcpy(qt, q, (size_t)N * sizeof *q);
-            int ok = ik_step(&w, lambda, dq) == 0;
-            /*
-             * Joints at a limit that the step pushes further out: drop
-             * them from J (until q changes) and solve again without them.
-             */
-            int locked = 0;
-            for (int j = 0; ok && j < n; j++) {
-                if (r->wraps[j])
-                    continue;
-                if ((q[j] <= r->joints[j].lo && dq[j] < 0)
-                    || (q[j] >= r->joints[j].hi && dq[j] > 0)) {
-                    for (int i = 0; i < w.m; i++)
-                        w.J[i * n + j] = 0.0;
-                    locked = 1;
-                }
-            }
-            if (ok && locked)
-                ok = ik_step(&w, lambda, dq) == 0;
-            if (ok)
-                for (int j = 0; j < n; j++)
-                    qt[j] = clamp_joint(r, j, q[j] + dq[j]);
-            double ct = ok ? ik_eval(&w, qt) : INFINITY;
-            if (ct < cost) {
-                memcpy(q, qt, (size_t)N * sizeof *q);
-                cost = ct;
-                perr = w.perr;
-                rerr = w.rerr;
-                ik_jacobian(&w);
-                lambda = fmax(lambda * 0.1, 1e-12);
-            } else {
-                lambda *= 10.0;
-                if (lambda > 1e8)
-                    break;
-            }
-        }
-        if (perr <= o.position_tolerance
-            && (o.position_only || rerr <= o.orientation_tolerance))
-            solved = 1;         /* also when the last step got there */
-        if (solved || cost < best) {
-            best = cost;
-            memcpy(qbest, q, (size_t)N * sizeof *q);
-        }
-        if (n == 0)
-            break;              /* nothing moves the link: no use retrying */
-    }
-
-    for (int j = 0; j < N; j++)
-        q_out[j] = r->wraps[j] ? wrap_angle(qbest[j]) : qbest[j];
-    if (info) {
-        ik_eval(&w, q_out);
-        info->attempts = attempts;
-        info->iterations = iterations;
-        info->position_error = w.perr;
-        /* The angle of R_target^T R, whatever the mode. */
-        mpb_pose T;
-        double Rrel[9];
-        path_poses(r, q_out, link, w.P, &T);
-        mpb__mat3_tmul(target->R, T.R, Rrel);
-        info->orientation_error = mpb__rot_angle(Rrel);
-    }
-    free(buf);
-    return solved ? MPB_OK : MPB_ENOTFOUND;
-}
-
-/* ---- goal regions ------------------------------------------------------- */
-
-int mpb_goal_region_check(const mpb_robot *r, const mpb_goal_region *g,
-                          char *err, size_t errlen)
-{
-    mpb__set_err(err, errlen, "%s", "");
-    if (!r || !g) {
-        mpb__set_err(err, errlen, "goal region: NULL robot or region");
-        return MPB_EINVAL;
-    }
-    if (g->link < 0 || g->link >= r->num_links) {
-        mpb__set_err(err, errlen, "goal region: link %d out of range (%d links)",
-                     g->link, r->num_links);
-        return MPB_EINVAL;
-    }
-    if (!finite3(g->offset) || !finite3(g->center) || !finite3(g->ref_rpy)
-        || !finite3(g->half_extents) || !finite3(g->rpy_tolerance)) {
-        mpb__set_err(err, errlen, "goal region: a number is NaN or infinite");
-        return MPB_EINVAL;
-    }
-    for (int i = 0; i < 3; i++)
-        if (g->half_extents[i] < 0 || g->rpy_tolerance[i] < 0) {
-            mpb__set_err(err, errlen, "goal region: negative half extent or "
-                         "tolerance");
-            return MPB_EINVAL;
-        }
-    return MPB_OK;
-}
-
-int mpb_goal_region_distance(const mpb_robot *r, const mpb_goal_region *g,
-                             const double *q, mpb_goal_distance *out)
-{
-    if (!out || !q || mpb_goal_region_check(r, g, NULL, 0) != MPB_OK)
-        return MPB_EINVAL;
-    mpb_pose T, ref;
-    if (mpb_robot_link_pose(r, q, g->link, &T) != MPB_OK)
-        return MPB_EINVAL;
-    mpb_pose_apply(&T, g->offset, out->point);
-    double d2 = 0.0;
-    for (int i = 0; i < 3; i++) {
-        double d = fabs(out->point[i] - g->center[i]) - g->half_extents[i];
-        if (d > 0)
-            d2 += d * d;
-    }
-    out->position = sqrt(d2);
-
-    mpb_pose rel;
-    mpb_pose_identity(&ref);
-    mpb_pose_set_rpy(&ref, g->ref_rpy[0], g->ref_rpy[1], g->ref_rpy[2]);
-    mpb_pose_identity(&rel);
-    mpb__mat3_tmul(ref.R, T.R, rel.R);
-    mpb_pose_get_rpy(&rel, out->rpy_rel);
-    out->angle = mpb__rot_angle(rel.R);
-    out->orientation = 0.0;
-    for (int i = 0; i < 3; i++) {
-        double d = fabs(out->rpy_rel[i]) - g->rpy_tolerance[i];
-        if (d > out->orientation)
-            out->orientation = d;
-    }
-    return MPB_OK;
-}
-
-int mpb_goal_region_contains(const mpb_robot *r, const mpb_goal_region *g,
-                             const double *q)
-{
-    mpb_goal_distance d;
-    int rc = mpb_goal_region_distance(r, g, q, &d);
-    if (rc != MPB_OK)
-        return rc;
-    return d.position == 0.0 && d.orientation == 0.0;
-}
-
-int mpb_goal_region_sample(const mpb_robot *r, const mpb_goal_region *g,
-                           const double *seed, const mpb_ik_options *opt,
-                           int max_targets, uint64_t *rng, double *q_out)
-{
-    if (!rng || !q_out || mpb_goal_region_check(r, g, NULL, 0) != MPB_OK)
-        return MPB_EINVAL;
-    mpb_ik_options o;
-    if (opt) {
-        o = *opt;
-    } else {
-        mpb_ik_options_init(&o);
-        o.max_attempts = 20;
-    }
-    if (g->rpy_tolerance[0] >= M_PI && g->rpy_tolerance[1] >= M_PI
-        && g->rpy_tolerance[2] >= M_PI)
-        o.position_only = 1;
-    if (max_targets <= 0)
-        max_targets = 50;
-
-    mpb_pose ref;
-    mpb_pose_identity(&ref);
-    mpb_pose_set_rpy(&ref, g->ref_rpy[0], g->ref_rpy[1], g->ref_rpy[2]);
-    const double cap[3] = { M_PI, M_PI / 2, M_PI };
-    int rc = MPB_ENOTFOUND;
-    for (int t = 0; t < max_targets; t++) {
-        mpb_pose target, rel;
-        mpb_pose_identity(&rel);
-        double rpy[3];
-        for (int i = 0; i < 3; i++) {
-            double tol = fmin(g->rpy_tolerance[i], cap[i]);
-            rpy[i] = uniform(rng, -tol, tol);
-            target.t[i] = g->center[i]
-                        + uniform(rng, -g->half_extents[i], g->half_extents[i]);
-        }
-        mpb_pose_set_rpy(&rel, rpy[0], rpy[1], rpy[2]);
-        mpb__mat3_mul(ref.R, rel.R, target.R);
-        rc = mpb_robot_ik(r, g->link, g->offset, &target, seed, &o, rng, q_out,
-                          NULL);
-        if (rc == MPB_OK) {
-            if (mpb_goal_region_contains(r, g, q_out) == 1)
-                return MPB_OK;
-            rc = MPB_ENOTFOUND;
-        } else if (rc != MPB_ENOTFOUND) {
-            return rc;
-        }
-    }
-    return rc;
-}
