@@ -13,13 +13,14 @@
  * against the fixed ones too, unless the allowed-collision matrix (ACM)
  * allows it. The ACM is the SRDF's <disable_collisions> pairs plus the
  * adjacent links when the robot text carries an SRDF, else generated as
- * MoveIt's setup assistant does (acm_generate()). Pairs of fixed links
- * never change and are never checked.
+ * MoveIt's setup assistant does (acm.c). Pairs of fixed links never
+ * change and are never checked; wrist tables prove some pairs apart
+ * before FCL looks (wrist_hints.c).
  *
  * Mesh collision shapes (package://NAME/path, relative paths) are looked
  * for in the folders of MPB_MESH_PATH, then of ROS_PACKAGE_PATH (each
  * colon-separated; a folder holds NAME/ or is NAME itself), all of them,
- * then in the URDF's folder when the caller names it.
+ * then in the URDF's folder when the caller names it (mesh_search.c).
  */
 #include <math.h>
 #include <stdio.h>
@@ -31,56 +32,11 @@
 #include "mpbench/robot.h"
 #include "mpbench/scene.h"
 #include "mpbench/srdf.h"
-#include "geometry/collision_internal.h"
 #include "core/errbuf.h"
 #include "geometry/mesh_cache.h"
 #include "model/srdf_xml.h"
 #include "model/world_provider.h"
-#include "geometry/wrist_table.h"
-
-/* The reasons a pair is allowed, as MoveIt's setup assistant writes them. */
-static const char REASON_ADJACENT[] = "Adjacent";
-static const char REASON_DEFAULT[] = "Default";
-static const char REASON_ALWAYS[] = "Always";
-static const char REASON_NEVER[] = "Never";
-
-/* The setup assistant's batch for "Always" pairs (its SMALL_TRIAL_COUNT). */
-#define ACM_BATCH 200
-
-typedef struct urdf_world {
-    mpb_robot     *robot;
-    mpb_scene     *scene;
-    mpb_collision *coll;
-    mpb_pose      *poses;        /* every link, robot frame */
-    int            num_links;
-    int           *moving;       /* links with shapes that move */
-    int            num_moving;
-    int           *attached;     /* scene objects attached to links */
-    int           *attached_link;
-    int            num_attached;
-    const mpb_mesh **meshes;     /* the robot's mesh shapes, shared by
-                                    every world (mesh_cache.h) */
-    int            num_meshes;
-    int            ee_link;      /* see mpb_world_ee_position() */
-    const char   **allowed;      /* num_links^2: why link a may touch b,
-                                    NULL where it may not */
-    int           *pairs;        /* the allowed pairs a < b, 2 a pair, in
-                                    order of a then b */
-    int            num_pairs;
-    mpb_srdf      *srdf;         /* the SRDF, or NULL; owns its reasons */
-    int            from_srdf;    /* 1 if the ACM came from an SRDF */
-    const char    *robot_dir;    /* the URDF's folder, or NULL */
-    char          *robot_dir_copy; /* owned: for a rebuild after open */
-    int            acm_stale;    /* generated ACM: not built for the values
-                                    held now; built before the next check */
-    int            acm_in_coll;  /* coll holds a built ACM's pairs */
-    struct wrist_pair {          /* self pairs a wrist table may prove
-                                    apart (wrist_table.h) */
-        int near, far, joint[2];
-        const mpb__wrist_table *table;  /* the cache's */
-    }             *wrist;
-    int            num_wrist;
-} urdf_world;
+#include "model/world_urdf.h"
 
 static void urdf_close(void *impl)
 {
@@ -105,89 +61,8 @@ static void urdf_close(void *impl)
     free(u);
 }
 
-/* Where meshes are looked for: the folders of MPB_MESH_PATH, then those
- * of ROS_PACKAGE_PATH, as many as they hold, then the URDF's folder when
- * the caller gave it. */
-typedef struct mesh_search {
-    char        *buf[2];      /* copies of the two variables, split */
-    const char **dirs;
-    int          num_dirs;
-    int          from_env[2]; /* how many came from each */
-    const char  *robot_dir;   /* the URDF's folder, last; or NULL */
-} mesh_search;
-
-static const char *const mesh_vars[2] = {"MPB_MESH_PATH", "ROS_PACKAGE_PATH"};
-
-static void mesh_search_free(mesh_search *m)
-{
-    free(m->buf[0]);
-    free(m->buf[1]);
-    free(m->dirs);
-}
-
-static int mesh_search_init(mesh_search *m, const char *robot_dir)
-{
-    memset(m, 0, sizeof *m);
-    size_t cap = 2;
-    for (int v = 0; v < 2; v++) {
-        const char *env = getenv(mesh_vars[v]);
-        if (!env)
-            continue;
-        if (!(m->buf[v] = strdup(env)))
-            return MPB_ENOMEM;
-        for (const char *c = env; *c; c++)
-            cap += *c == ':';
-        cap++;
-    }
-    if (!(m->dirs = calloc(cap, sizeof *m->dirs)))
-        return MPB_ENOMEM;
-    for (int v = 0; v < 2; v++) {
-        char *save = NULL;
-        for (char *d = m->buf[v] ? strtok_r(m->buf[v], ":", &save) : NULL; d;
-             d = strtok_r(NULL, ":", &save)) {
-            m->dirs[m->num_dirs++] = d;
-            m->from_env[v]++;
-        }
-    }
-    if (robot_dir && *robot_dir)
-        m->dirs[m->num_dirs++] = m->robot_dir = robot_dir;
-    return MPB_OK;
-}
-
-/* After a mesh was not found: the variables and the folders tried, the
- * first few of each, into err after what mpb_mesh_load() said. */
-static void mesh_not_found(const mesh_search *m, char *err, size_t errlen)
-{
-    char what[1024];
-    size_t n = 0;
-    int first = 0;
-    n += (size_t)snprintf(what + n, sizeof what - n, "; looked in");
-    for (int v = 0; v < 2; v++) {
-        int k = m->from_env[v];
-        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
-                              "%s %s (", v ? " and" : "", mesh_vars[v]);
-        if (k == 0)
-            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
-                                  "%s", getenv(mesh_vars[v]) ? "empty" : "not set");
-        for (int i = 0; i < k && i < 3; i++)
-            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
-                                  "%s%s", i ? ", " : "", m->dirs[first + i]);
-        if (k > 3)
-            n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
-                                  " and %d more: %d folders", k - 3, k);
-        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0, ")");
-        first += k;
-    }
-    if (m->robot_dir)
-        n += (size_t)snprintf(what + n, n < sizeof what ? sizeof what - n : 0,
-                              " and the URDF's folder (%s)", m->robot_dir);
-    size_t len = strlen(err);
-    if (len < errlen)
-        mpb__set_err(err + len, errlen - len, "%s", what);
-}
-
 /* The geometry of a robot collision shape; loads a mesh if needed. */
-static int shape_geometry(urdf_world *u, const mesh_search *ms,
+static int shape_geometry(urdf_world *u, const mpb__mesh_search *ms,
                           const mpb_robot_collision *c, mpb_geometry *g,
                           char *err, size_t errlen)
 {
@@ -205,7 +80,7 @@ static int shape_geometry(urdf_world *u, const mesh_search *ms,
     int rc = mpb__mesh_load_shared(c->mesh_uri, ms->dirs, ms->num_dirs,
                                    c->mesh_scale, &m, err, errlen);
     if (rc == MPB_ENOTFOUND)
-        mesh_not_found(ms, err, errlen);
+        mpb__mesh_not_found(ms, err, errlen);
     if (rc != MPB_OK)
         return rc;
     u->meshes[u->num_meshes++] = m;
@@ -219,12 +94,12 @@ static int shape_geometry(urdf_world *u, const mesh_search *ms,
 static int add_robot(urdf_world *u, char *err, size_t errlen)
 {
     const mpb_robot *r = u->robot;
-    mesh_search ms;
+    mpb__mesh_search ms;
     u->moving = calloc((size_t)u->num_links + 1, sizeof *u->moving);
     if (!u->moving)
         return MPB_ENOMEM;
-    if (mesh_search_init(&ms, u->robot_dir) != MPB_OK) {
-        mesh_search_free(&ms);
+    if (mpb__mesh_search_init(&ms, u->robot_dir) != MPB_OK) {
+        mpb__mesh_search_free(&ms);
         return MPB_ENOMEM;
     }
     int rc = MPB_OK;
@@ -253,14 +128,8 @@ static int add_robot(urdf_world *u, char *err, size_t errlen)
         if (rc == MPB_OK && link->moves && link->num_collisions > 0)
             u->moving[u->num_moving++] = l;
     }
-    mesh_search_free(&ms);
+    mpb__mesh_search_free(&ms);
     return rc;
-}
-
-/* Is link l a body of the collision world (has it shapes)? */
-static int has_body(const urdf_world *u, int l)
-{
-    return l >= 0 && mpb_robot_get_link(u->robot, l)->num_collisions > 0;
 }
 
 static int add_scene(urdf_world *u, char *err, size_t errlen)
@@ -322,8 +191,7 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
     return MPB_OK;
 }
 
-/* Place every moving body for configuration q. */
-static int place(urdf_world *u, const double *q)
+int mpb__urdf_place(urdf_world *u, const double *q)
 {
     if (mpb_robot_fk_moving(u->robot, q, u->poses) != MPB_OK)
         return MPB_EINVAL;
@@ -335,77 +203,7 @@ static int place(urdf_world *u, const double *q)
     return MPB_OK;
 }
 
-/* After place(): the wrist pairs their tables prove apart at q, as hints
- * for the next self check (they lapse with the next placing). */
-static void hint_wrists(urdf_world *u, const double *q)
-{
-    for (int i = 0; i < u->num_wrist; i++) {
-        const struct wrist_pair *w = &u->wrist[i];
-        if (mpb__wrist_table_apart(w->table, q[w->joint[0]],
-                                   w->joint[1] >= 0 ? q[w->joint[1]] : 0.0))
-            mpb__collision_hint_apart(u->coll, w->near, w->far);
-    }
-}
-
-/* ---- the allowed-collision matrix ------------------------------------ */
-
-static const char **acm_at(urdf_world *u, int a, int b)
-{
-    return &u->allowed[(size_t)a * (size_t)u->num_links + (size_t)b];
-}
-
-/* Allow the pair (a, b) for `reason`, unless it is allowed already. */
-static void acm_allow(urdf_world *u, int a, int b, const char *reason)
-{
-    if (a == b || *acm_at(u, a, b))
-        return;
-    *acm_at(u, a, b) = *acm_at(u, b, a) = reason;
-}
-
-/*
- * Adjacent links, as MoveIt's setup assistant finds them: parent and child
- * are connected, whatever the joint (fixed ones too); then, again and
- * again until nothing changes, every two links connected to a link without
- * shapes are connected to each other. Adjacent are the connected pairs of
- * links that both have shapes.
- */
-static int acm_adjacent(urdf_world *u)
-{
-    int n = u->num_links;
-    unsigned char *g = calloc((size_t)n * (size_t)n + 1, 1);
-    if (!g)
-        return MPB_ENOMEM;
-    for (int l = 0; l < n; l++) {
-        int p = mpb_robot_get_link(u->robot, l)->parent;
-        if (p >= 0)
-            g[(size_t)l * n + p] = g[(size_t)p * n + l] = 1;
-    }
-    for (int changed = 1; changed;) {
-        changed = 0;
-        for (int l = 0; l < n; l++) {
-            if (has_body(u, l))
-                continue;
-            for (int i = 0; i < n; i++)
-                for (int j = i + 1; g[(size_t)l * n + i] && j < n; j++)
-                    if (g[(size_t)l * n + j] && i != j && !g[(size_t)i * n + j]) {
-                        g[(size_t)i * n + j] = g[(size_t)j * n + i] = 1;
-                        changed = 1;
-                    }
-        }
-    }
-    for (int i = 0; i < n; i++)
-        for (int j = i + 1; j < n; j++)
-            if (g[(size_t)i * n + j] && has_body(u, i) && has_body(u, j))
-                acm_allow(u, i, j, REASON_ADJACENT);
-    free(g);
-    return MPB_OK;
-}
-
-/*
- * MoveIt's default state: each joint at 0 when 0 is within its limits,
- * else at the middle of them (RobotState::setToDefaultValues()).
- */
-static void default_state(const mpb_robot *r, double *q)
+void mpb__urdf_default_state(const mpb_robot *r, double *q)
 {
     for (int j = 0; j < mpb_robot_num_joints(r); j++) {
         const mpb_robot_joint *jt = mpb_robot_get_joint(r, j);
@@ -413,310 +211,6 @@ static void default_state(const mpb_robot *r, double *q)
                       (jt->lo <= 0.0 && 0.0 <= jt->hi);
         q[j] = zero_ok ? 0.0 : 0.5 * (jt->lo + jt->hi);
     }
-}
-
-/*
- * The rest of MoveIt's setup assistant's matrix, after the adjacent pairs:
- * the pairs in collision at the default state ("Default"), the pairs in
- * collision nearly always ("Always"), then the pairs never in collision in
- * MPB_WORLD_ACM_SAMPLES random states ("Never"), all drawn from a fixed
- * seed. Pairs of fixed links are decided by the default state alone: they
- * never move.
- */
-static int acm_generate(urdf_world *u, const double *q0)
-{
-    const mpb_robot *r = u->robot;
-    int n = u->num_links, nj = mpb_robot_num_joints(r), rc = MPB_OK;
-    int *cand = malloc(((size_t)n * (size_t)n + 1) * 2 * sizeof *cand);
-    int *count = NULL;
-    unsigned char *seen = NULL;
-    double *q = malloc(((size_t)nj + 1) * sizeof *q);
-    if (!cand || !q) {
-        free(cand);
-        free(q);
-        return MPB_ENOMEM;
-    }
-    if (place(u, q0) != MPB_OK) {
-        rc = MPB_EINVAL;
-        goto done;
-    }
-    int nc = 0;
-    for (int a = 0; a < n; a++)
-        for (int b = a + 1; has_body(u, a) && b < n; b++) {
-            if (!has_body(u, b) || *acm_at(u, a, b))
-                continue;
-            int hit = mpb_collision_check_pair(u->coll, a, b);
-            if (hit < 0) {
-                rc = hit;
-                goto done;
-            }
-            const mpb_robot_link *la = mpb_robot_get_link(r, a);
-            const mpb_robot_link *lb = mpb_robot_get_link(r, b);
-            if (hit)
-                acm_allow(u, a, b, REASON_DEFAULT);
-            else if (!la->moves && !lb->moves)
-                acm_allow(u, a, b, REASON_NEVER);
-            else {
-                cand[2 * nc] = a;
-                cand[2 * nc + 1] = b;
-                nc++;
-            }
-        }
-    uint64_t rng = MPB_WORLD_ACM_SEED;
-    /* "Always": batches of ACM_BATCH random states; a pair in collision in
-     * more than 95 % of a batch is allowed, until a batch allows none.
-     * A pair seen in collision here is no "Never" pair. */
-    count = calloc((size_t)nc + 1, sizeof *count);
-    seen = calloc((size_t)nc + 1, 1);
-    if (!count || !seen) {
-        rc = MPB_ENOMEM;
-        goto done;
-    }
-    for (int found = 1; found && nc > 0;) {
-        memset(count, 0, (size_t)nc * sizeof *count);
-        for (int s = 0; s < ACM_BATCH; s++) {
-            mpb_robot_random_config(r, &rng, q);
-            if (place(u, q) != MPB_OK) {
-                rc = MPB_EINVAL;
-                goto done;
-            }
-            for (int i = 0; i < nc; i++) {
-                int hit = mpb_collision_check_pair(u->coll, cand[2 * i],
-                                                   cand[2 * i + 1]);
-                if (hit < 0) {
-                    rc = hit;
-                    goto done;
-                }
-                count[i] += hit;
-                seen[i] |= (unsigned char)hit;
-            }
-        }
-        found = 0;
-        for (int i = 0; i < nc;) {
-            if (count[i] * 100 <= ACM_BATCH * 95) {
-                i++;
-                continue;
-            }
-            acm_allow(u, cand[2 * i], cand[2 * i + 1], REASON_ALWAYS);
-            found = 1;
-            nc--;
-            cand[2 * i] = cand[2 * nc];
-            cand[2 * i + 1] = cand[2 * nc + 1];
-            count[i] = count[nc];
-            seen[i] = seen[nc];
-        }
-    }
-    for (int i = 0; i < nc;) {
-        if (!seen[i]) {
-            i++;
-            continue;
-        }
-        nc--;
-        cand[2 * i] = cand[2 * nc];
-        cand[2 * i + 1] = cand[2 * nc + 1];
-        seen[i] = seen[nc];
-    }
-    /* "Never": each pair seen in collision leaves the candidates. */
-    for (int s = 0; s < MPB_WORLD_ACM_SAMPLES && nc > 0; s++) {
-        mpb_robot_random_config(r, &rng, q);
-        if (place(u, q) != MPB_OK) {
-            rc = MPB_EINVAL;
-            goto done;
-        }
-        for (int i = 0; i < nc;) {
-            int hit = mpb_collision_check_pair(u->coll, cand[2 * i], cand[2 * i + 1]);
-            if (hit < 0) {
-                rc = hit;
-                goto done;
-            }
-            if (hit) {
-                nc--;
-                cand[2 * i] = cand[2 * nc];
-                cand[2 * i + 1] = cand[2 * nc + 1];
-            } else {
-                i++;
-            }
-        }
-    }
-    for (int i = 0; i < nc; i++)
-        acm_allow(u, cand[2 * i], cand[2 * i + 1], REASON_NEVER);
-done:
-    free(cand);
-    free(count);
-    free(seen);
-    free(q);
-    return rc;
-}
-
-/* The SRDF's pairs; those naming a link the robot lacks are skipped, as
- * MoveIt does (mpb_srdf_skipped_pairs() says which, for a warning). */
-static void acm_from_srdf(urdf_world *u)
-{
-    const mpb__srdf *raw = mpb__srdf_raw(u->srdf);
-    for (int i = 0; i < raw->num_pairs; i++) {
-        const mpb__srdf_pair *p = &raw->pairs[i];
-        int a = mpb_robot_link_index(u->robot, p->link1);
-        int b = mpb_robot_link_index(u->robot, p->link2);
-        if (a >= 0 && b >= 0)
-            acm_allow(u, a, b, p->reason);
-    }
-}
-
-/* Link l's shapes as the collision world holds them: geoms and offsets
- * (room for its num_collisions), meshes from u->meshes, which add_robot()
- * filled in the order of the robot's shapes. */
-static void link_shapes(const urdf_world *u, int l, mpb_geometry *geoms,
-                        mpb_pose *offsets)
-{
-    const mpb_robot_link *link = mpb_robot_get_link(u->robot, l);
-    int mesh = 0;
-    for (int i = 0; i < link->first_collision; i++)
-        mesh += mpb_robot_get_collision(u->robot, i)->type == MPB_SHAPE_MESH;
-    for (int k = 0; k < link->num_collisions; k++) {
-        const mpb_robot_collision *c =
-            mpb_robot_get_collision(u->robot, link->first_collision + k);
-        memset(&geoms[k], 0, sizeof geoms[k]);
-        geoms[k].type = c->type;
-        memcpy(geoms[k].dims, c->dims, sizeof geoms[k].dims);
-        if (c->type == MPB_SHAPE_MESH)
-            geoms[k].mesh = u->meshes[mesh++];
-        offsets[k] = c->origin;
-    }
-}
-
-/* The pair (near, far), which qualifies for a table with spec's
- * kinematics: its table into u->wrist. */
-static int add_wrist(urdf_world *u, int near, int far, const int joint[2],
-                     mpb__wrist_spec *spec)
-{
-    int ends[2] = {near, far}, n[2], rc = MPB_OK;
-    mpb_geometry *geoms[2] = {NULL, NULL};
-    mpb_pose *offsets[2] = {NULL, NULL};
-    for (int s = 0; s < 2; s++) {
-        n[s] = mpb_robot_get_link(u->robot, ends[s])->num_collisions;
-        geoms[s] = calloc((size_t)n[s], sizeof *geoms[s]);
-        offsets[s] = calloc((size_t)n[s], sizeof *offsets[s]);
-        if (!geoms[s] || !offsets[s]) {
-            rc = MPB_ENOMEM;
-            goto done;
-        }
-        link_shapes(u, ends[s], geoms[s], offsets[s]);
-        spec->side[s] = (mpb__wrist_side){n[s], geoms[s], offsets[s]};
-    }
-    if (!mpb__wrist_affordable(spec))
-        goto done;      /* FCL decides the pair, as without tables */
-    struct wrist_pair *grown = realloc(u->wrist, (size_t)(u->num_wrist + 1) *
-                                                 sizeof *grown);
-    if (!grown) {
-        rc = MPB_ENOMEM;
-        goto done;
-    }
-    u->wrist = grown;
-    struct wrist_pair *w = &u->wrist[u->num_wrist];
-    *w = (struct wrist_pair){near, far, {joint[0], joint[1]}, NULL};
-    if ((rc = mpb__wrist_table_get(spec, &w->table)) == MPB_OK)
-        u->num_wrist++;
-done:
-    for (int s = 0; s < 2; s++) {
-        free(geoms[s]);
-        free(offsets[s]);
-    }
-    return rc;
-}
-
-/* Has link l a mesh among its shapes? */
-static int has_mesh(const urdf_world *u, int l)
-{
-    const mpb_robot_link *link = mpb_robot_get_link(u->robot, l);
-    for (int k = 0; k < link->num_collisions; k++)
-        if (mpb_robot_get_collision(u->robot, link->first_collision + k)->type ==
-            MPB_SHAPE_MESH)
-            return 1;
-    return 0;
-}
-
-/*
- * The self pairs a wrist table may prove apart (wrist_table.h): not
- * allowed, both links with shapes, one of them a mesh, one the other's
- * ancestor across one or two revolute joints (mpb__wrist_path() says
- * which qualify). Primitives are left out: their narrow phase costs about
- * what a look-up does (the PR2's arm has three such pairs: 12.1k
- * instructions a check with tables, 11.5k without). After the matrix,
- * which decides the pairs; the tables come from the process-wide cache,
- * built once.
- */
-static int find_wrists(urdf_world *u)
-{
-    int n = u->num_links, rc = MPB_OK;
-    u->num_wrist = 0;
-    mpb_pose *poses = calloc((size_t)n + 1, sizeof *poses);
-    double *q0 = calloc((size_t)mpb_robot_num_joints(u->robot) + 1, sizeof *q0);
-    if (!poses || !q0) {
-        rc = MPB_ENOMEM;
-        goto done;
-    }
-    default_state(u->robot, q0);
-    if (mpb_robot_fk(u->robot, q0, poses) != MPB_OK) {
-        rc = MPB_EINVAL;
-        goto done;
-    }
-    for (int a = 0; a < n && rc == MPB_OK; a++)
-        for (int b = a + 1; has_body(u, a) && b < n && rc == MPB_OK; b++) {
-            int joint[2];
-            mpb__wrist_spec spec;
-            /* an ancestor has the smaller index (robot.h) */
-            if (has_body(u, b) && !*acm_at(u, a, b) &&
-                (has_mesh(u, a) || has_mesh(u, b)) &&
-                mpb__wrist_path(u->robot, poses, a, b, joint, &spec))
-                rc = add_wrist(u, a, b, joint, &spec);
-        }
-done:
-    free(poses);
-    free(q0);
-    return rc;
-}
-
-/*
- * Build the matrix (from the SRDF, or generated), list its pairs, and let
- * the collision world skip them, and every pair of fixed links; then the
- * wrist tables of the pairs left.
- */
-static int build_acm(urdf_world *u, const double *q0, char *err, size_t errlen)
-{
-    int n = u->num_links, rc;
-    u->allowed = calloc((size_t)n * (size_t)n + 1, sizeof *u->allowed);
-    if (!u->allowed)
-        return MPB_ENOMEM;
-    if (u->from_srdf)
-        acm_from_srdf(u);
-    if ((rc = acm_adjacent(u)) != MPB_OK)
-        return rc;
-    if (!u->from_srdf && (rc = acm_generate(u, q0)) != MPB_OK) {
-        mpb__set_err(err, errlen, "robot: self-collision matrix: %s",
-                     mpb_collision_errmsg(u->coll));
-        return rc;
-    }
-    u->pairs = malloc(((size_t)n * (size_t)n + 1) * sizeof *u->pairs);
-    if (!u->pairs)
-        return MPB_ENOMEM;
-    u->acm_in_coll = 1;
-    for (int a = 0; a < n; a++)
-        for (int b = a + 1; b < n; b++) {
-            int fixed = !mpb_robot_get_link(u->robot, a)->moves &&
-                        !mpb_robot_get_link(u->robot, b)->moves;
-            if (*acm_at(u, a, b)) {
-                u->pairs[2 * u->num_pairs] = a;
-                u->pairs[2 * u->num_pairs + 1] = b;
-                u->num_pairs++;
-            }
-            if ((*acm_at(u, a, b) || fixed) && has_body(u, a) && has_body(u, b) &&
-                (rc = mpb_collision_allow_pair(u->coll, a, b)) != MPB_OK)
-                return rc;
-        }
-    if ((rc = find_wrists(u)) != MPB_OK)
-        mpb__set_err(err, errlen, "robot: wrist tables: %s",
-                     rc == MPB_ENOMEM ? "out of memory" : "FCL failed");
-    return rc;
 }
 
 /*
@@ -773,9 +267,9 @@ static int ensure_acm(urdf_world *u)
     double *q0 = calloc((size_t)mpb_robot_num_joints(u->robot) + 1, sizeof *q0);
     if (!q0)
         return MPB_ENOMEM;
-    default_state(u->robot, q0);
+    mpb__urdf_default_state(u->robot, q0);
     char err[512];
-    rc = build_acm(u, q0, err, sizeof err);
+    rc = mpb__urdf_build_acm(u, q0, err, sizeof err);
     free(q0);
     if (rc == MPB_OK)
         u->acm_stale = 0;
@@ -921,7 +415,7 @@ static int urdf_open(mpb_world *w, const char *robot_text,
         free(q0);
         return MPB_ENOMEM;
     }
-    default_state(u->robot, q0);
+    mpb__urdf_default_state(u->robot, q0);
     for (int j = 0; j < num_joints; j++) {
         const mpb_robot_joint *jt = mpb_robot_get_joint(u->robot, j);
         rc = mpb__world_add_joint(w, jt->name, strlen(jt->name), jt->lo, jt->hi,
@@ -937,7 +431,7 @@ static int urdf_open(mpb_world *w, const char *robot_text,
         rc = add_robot(u, err, errlen);
     /* A generated matrix waits for the held values (ensure_acm()). */
     if (rc == MPB_OK && u->from_srdf)
-        rc = build_acm(u, q0, err, errlen);
+        rc = mpb__urdf_build_acm(u, q0, err, errlen);
     u->acm_stale = !u->from_srdf;
     if (rc == MPB_OK)
         rc = add_scene(u, err, errlen);
@@ -954,9 +448,9 @@ static int urdf_in_collision(void *impl, const double *q)
     urdf_world *u = impl;
     if (ensure_acm(u) != MPB_OK)
         return 1;       /* not known to be free */
-    if (place(u, q) != MPB_OK)
+    if (mpb__urdf_place(u, q) != MPB_OK)
         return 1;
-    hint_wrists(u, q);
+    mpb__urdf_hint_wrists(u, q);
     if (mpb_collision_check(u->coll, NULL, NULL) != 0)
         return 1;   /* a collision, or an error: not known to be free */
     return mpb_collision_check_self(u->coll, NULL, NULL) != 0;
@@ -983,9 +477,9 @@ static int urdf_contact(void *impl, const double *q, char *what, size_t len)
                      u->coll ? mpb_collision_errmsg(u->coll) : "out of memory");
         return hit;
     }
-    if (place(u, q) != MPB_OK)
+    if (mpb__urdf_place(u, q) != MPB_OK)
         return MPB_EINVAL;
-    hint_wrists(u, q);
+    mpb__urdf_hint_wrists(u, q);
     if ((hit = mpb_collision_check(u->coll, &m, &st)) != 0) {
         if (hit < 0)
             return hit;
@@ -1042,7 +536,7 @@ static int urdf_hold(void *impl, const char *const *joints,
     double *q0 = calloc((size_t)mpb_robot_num_joints(u->robot) + 1, sizeof *q0);
     if (!q0)
         return MPB_ENOMEM;
-    default_state(u->robot, q0);
+    mpb__urdf_default_state(u->robot, q0);
     if (mpb_robot_fk(u->robot, q0, u->poses) == MPB_OK)
         for (int l = 0; l < u->num_links; l++)
             if (has_body(u, l) && !mpb_robot_get_link(u->robot, l)->moves)
@@ -1079,7 +573,7 @@ static double urdf_clearance(void *impl, const double *q)
 {
     urdf_world *u = impl;
     mpb_collision_distance_result d;
-    if (place(u, q) != MPB_OK ||
+    if (mpb__urdf_place(u, q) != MPB_OK ||
         mpb_collision_distance(u->coll, 0, &d) != MPB_OK)
         return NAN;
     return d.distance;
@@ -1177,7 +671,7 @@ int mpb__urdf_wrist(mpb_world *w, int i, int *near, int *far, int joint[2],
 {
     if (i < 0 || i >= mpb__urdf_num_wrists(w))
         return MPB_EINVAL;
-    const struct wrist_pair *p = &((urdf_world *)w->impl)->wrist[i];
+    const struct urdf_wrist *p = &((urdf_world *)w->impl)->wrist[i];
     *near = p->near;
     *far = p->far;
     joint[0] = p->joint[0];
