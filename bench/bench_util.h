@@ -1,6 +1,7 @@
 /*
  * bench_util.h - what the bench programs share: clocks, percentiles of a
- * sample, reading a file whole, one machine-readable result line.
+ * sample, one machine-readable result line (a file is read whole with
+ * mpb_read_file()).
  * Header-only (static functions): each bench program is one .c file.
  */
 #ifndef MPBB_UTIL_H
@@ -54,42 +55,6 @@ static inline double mpbb_mean(const double *v, size_t n)
     for (size_t i = 0; i < n; i++)
         s += v[i];
     return n ? s / (double)n : NAN;
-}
-
-/* Read a file whole, NUL-terminated; NULL (errno set) on failure. The
- * caller frees the result. */
-static inline char *mpbb_slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    char *buf = NULL;
-    size_t n = 0, cap = 0;
-    if (f == NULL)
-        return NULL;
-    for (;;) {
-        if (n + 4096 + 1 > cap) {
-            char *nb = realloc(buf, cap = 2 * cap + 8192);
-            if (nb == NULL) {
-                free(buf);
-                fclose(f);
-                errno = ENOMEM;
-                return NULL;
-            }
-            buf = nb;
-        }
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0)
-            break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        errno = EIO;
-        return NULL;
-    }
-    buf[n] = '\0';
-    return buf;
 }
 
 /*

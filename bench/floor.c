@@ -184,7 +184,8 @@ int main(int argc, char **argv)
 
     if (parse(argc, argv, &o) != 0)
         return 2;
-    char *robot = mpbb_slurp(o.robot), *scene = mpbb_slurp(o.scene);
+    char *robot = mpb_read_file(o.robot, 0, NULL);
+    char *scene = mpb_read_file(o.scene, 0, NULL);
     if (robot == NULL || scene == NULL) {
         fprintf(stderr, "mpb-bench-floor: cannot read %s or %s\n", o.robot,
                 o.scene);

@@ -82,8 +82,9 @@ static char *dir_of(const char *path)
 
 static int open_side(side *s, int states, uint64_t seed, int rounds)
 {
-    char *urdf = mpbb_slurp(s->robot), *scene = mpbb_slurp(s->scene);
-    char *srdf = s->srdf ? mpbb_slurp(s->srdf) : NULL, *text = NULL;
+    char *urdf = mpb_read_file(s->robot, 0, NULL);
+    char *scene = mpb_read_file(s->scene, 0, NULL);
+    char *srdf = s->srdf ? mpb_read_file(s->srdf, 0, NULL) : NULL, *text = NULL;
     char *dir = dir_of(s->robot), err[512];
     const char *names[64];
     int n = 0, rc = -1;

@@ -207,9 +207,10 @@ int main(int argc, char **argv)
     int planar = strcmp(robot_format, "planar") == 0;
     const char *names[64];
     int num_names = joints_arg ? split_names(joints_arg, names, 64) : 0;
-    char *robot = mpbb_slurp(robot_file), *scene = mpbb_slurp(scene_file);
+    char *robot = mpb_read_file(robot_file, 0, NULL);
+    char *scene = mpb_read_file(scene_file, 0, NULL);
     if (robot && srdf_file) {       /* the URDF, then the SRDF */
-        char *srdf = mpbb_slurp(srdf_file);
+        char *srdf = mpb_read_file(srdf_file, 0, NULL);
         char *both = srdf ? malloc(strlen(robot) + strlen(srdf) + 2) : NULL;
         if (both)
             sprintf(both, "%s\n%s", robot, srdf);

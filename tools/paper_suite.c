@@ -78,17 +78,9 @@ static void die(const char *fmt, ...)
 
 static char *read_file(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    if (f == NULL)
+    char *text = mpb_read_file(path, 0, NULL);
+    if (text == NULL)
         die("cannot read %s", path);
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *text = malloc((size_t)n + 1);
-    if (text == NULL || fread(text, 1, (size_t)n, f) != (size_t)n)
-        die("cannot read %s", path);
-    text[n] = '\0';
-    fclose(f);
     return text;
 }
 

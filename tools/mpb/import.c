@@ -413,7 +413,7 @@ static int load(const char *path, loaded *l)
     int rc;
     *l = (loaded){0};
     errno = 0;
-    if ((l->text = tool_read_file(path, &len)) == NULL) {
+    if ((l->text = mpb_read_file(path, 0, &len)) == NULL) {
         fprintf(stderr, "mpb " CMD ": cannot read %s: %s\n", path,
                 errno ? strerror(errno) : "out of memory");
         return 0;

@@ -44,12 +44,6 @@ enum {
 mpb_store *tool_open_readonly(const char *cmd, const char *path);
 
 /*
- * The whole file at path, NUL-terminated (its length, without the NUL, in
- * *len), to free(); NULL with errno set when it cannot be read.
- */
-char *tool_read_file(const char *path, size_t *len);
-
-/*
  * The experiment a command works on: *experiment if nonzero (it must
  * exist), else the newest in the database. 0, or -1 after one line ("mpb
  * CMD: DB holds no experiment", "mpb CMD: DB: no experiment 7").

@@ -272,7 +272,8 @@ int cmd_srdf(int argc, char **argv)
 
     int rc = MPB_EXIT_ERROR;
     size_t ulen, slen = 0;
-    char *urdf = tool_read_file(urdf_path, &ulen), *srdf = NULL, *text = NULL;
+    char *urdf = mpb_read_file(urdf_path, 0, &ulen);
+    char *srdf = NULL, *text = NULL;
     char err[512];
     mpb_robot *robot = NULL;
     mpb_world *w = NULL;
@@ -283,7 +284,7 @@ int cmd_srdf(int argc, char **argv)
                 strerror(errno));
         goto done;
     }
-    if (srdf_path && (srdf = tool_read_file(srdf_path, &slen)) == NULL) {
+    if (srdf_path && (srdf = mpb_read_file(srdf_path, 0, &slen)) == NULL) {
         fprintf(stderr, "mpb %s: cannot read %s: %s\n", CMD, srdf_path,
                 strerror(errno));
         goto done;

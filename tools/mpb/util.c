@@ -62,37 +62,6 @@ int tool_extra_argument(const char *cmd, const char *arg)
     return MPB_EXIT_USAGE;
 }
 
-char *tool_read_file(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL)
-        return NULL;
-    size_t cap = 1 << 16, n = 0, got;
-    char *buf = malloc(cap + 1);
-    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
-        n += got;
-        if (n == cap) {
-            char *b = realloc(buf, (cap *= 2) + 1);
-            if (b == NULL) {
-                free(buf);
-                buf = NULL;
-            } else {
-                buf = b;
-            }
-        }
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return NULL;
-    }
-    if (buf)
-        buf[n] = '\0';     /* the text is used as a string too */
-    *len = n;
-    return buf;
-}
-
 static int on_experiment_row(void *ud, const mpb_experiment_row *row)
 {
     (void)ud;

@@ -64,40 +64,6 @@ static void usage(FILE *out)
         "mpbench's), 2 on a bad command line.\n");
 }
 
-/* A file read whole, NUL-terminated; NULL (errno set) if it cannot be. */
-static char *read_file(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = NULL;
-    size_t len = 0, cap = 0, got;
-    do {
-        if (cap - len < 65536) {
-            cap = cap ? 2 * cap : 1 << 20;
-            char *nb = realloc(buf, cap + 1);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                errno = ENOMEM;
-                return NULL;
-            }
-            buf = nb;
-        }
-        got = fread(buf + len, 1, cap - len, f);
-        len += got;
-    } while (got > 0);
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        errno = EIO;
-        return NULL;
-    }
-    buf[len] = '\0';
-    return buf;
-}
-
 /* three.js, from the first place that has it (see usage()). */
 char *view_load_three(char *where, size_t len)
 {
@@ -105,7 +71,7 @@ char *view_load_three(char *where, size_t len)
     const char *env = getenv("MPB_THREE_JS");
     if (env && *env) {
         snprintf(where, len, "%s", env);
-        return read_file(where);
+        return mpb_read_file(where, 0, NULL);
     }
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
     if (n > 0) {
@@ -115,13 +81,14 @@ char *view_load_three(char *where, size_t len)
             *slash = '\0';
             int w = snprintf(where, len, "%s/%s/%s", exe, MPB_BIN_TO_DATA,
                              THREE_JS_NAME);
-            char *t = w > 0 && (size_t)w < len ? read_file(where) : NULL;
+            char *t = w > 0 && (size_t)w < len
+                    ? mpb_read_file(where, 0, NULL) : NULL;
             if (t)
                 return t;
         }
     }
     snprintf(where, len, "%s", MPB_SOURCE_THREE_JS);
-    return read_file(where);
+    return mpb_read_file(where, 0, NULL);
 }
 
 static const char *tmp_dir(void)

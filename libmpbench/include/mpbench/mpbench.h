@@ -15,6 +15,8 @@
 #ifndef MPBENCH_H
 #define MPBENCH_H
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -56,6 +58,17 @@ const char *mpb_strerror(int code);
 
 /* The symbolic name of an error code ("MPB_EPARSE"); never NULL. */
 const char *mpb_err_name(int code);
+
+/*
+ * Read the whole file at path into a newly allocated buffer: its bytes,
+ * then a NUL, so that a text file reads as a string (a NUL inside is the
+ * caller's to refuse). Its length without the NUL goes into *len when len
+ * is not NULL. A file of more than max bytes is refused (max 0: no limit).
+ * Returns the buffer, which the caller frees with free(); or NULL with
+ * errno set: fopen()'s reason, EISDIR for a folder, EFBIG for a file over
+ * max, ENOMEM, or EIO for a read error.
+ */
+char *mpb_read_file(const char *path, size_t max, size_t *len);
 
 #ifdef __cplusplus
 }

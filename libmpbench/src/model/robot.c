@@ -17,6 +17,7 @@
 
 #include "core/errbuf.h"
 #include "core/mathconst.h"
+#include "core/readfile.h"
 #include "model/robot_internal.h"
 #include "model/robot_urdf.h"
 
@@ -599,52 +600,17 @@ int mpb_robot_load_urdf_file(const char *path, const char *base_link,
         mpb__set_err(err, errlen, "urdf: path, tip link and out are required");
         return MPB_EINVAL;
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        mpb__set_err(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return MPB_EIO;
-    }
-    char *text = NULL;
-    size_t len = 0, cap = 0;
-    int rc = MPB_OK;
-    for (;;) {
-        if (len + 4096 + 1 > cap) {
-            if (cap >= (size_t)MAX_URDF_BYTES) {
-                mpb__set_err(err, errlen, "%s: larger than %ld bytes", path,
-                             MAX_URDF_BYTES);
-                rc = MPB_EIO;
-                break;
-            }
-            size_t ncap = cap ? 2 * cap : 65536;
-            char *t = realloc(text, ncap);
-            if (!t) {
-                mpb__set_err(err, errlen, "%s: out of memory", path);
-                rc = MPB_ENOMEM;
-                break;
-            }
-            text = t;
-            cap = ncap;
-        }
-        size_t got = fread(text + len, 1, cap - len - 1, f);
-        len += got;
-        if (got == 0) {
-            if (ferror(f)) {
-                mpb__set_err(err, errlen, "%s: read error", path);
-                rc = MPB_EIO;
-            }
-            break;
-        }
-    }
-    fclose(f);
-    if (rc == MPB_OK) {
-        text[len] = '\0';
-        if (strlen(text) != len) {
-            mpb__set_err(err, errlen, "%s: not a text file (NUL byte)", path);
-            rc = MPB_EPARSE;
-        } else {
-            rc = load(text, base_link, tip_link, NULL, 0, path, out, err,
-                      errlen);
-        }
+    char *text;
+    size_t len;
+    int rc = mpb__read_file(path, (size_t)MAX_URDF_BYTES, &text, &len, err,
+                            errlen);
+    if (rc != MPB_OK)
+        return rc;
+    if (strlen(text) != len) {
+        mpb__set_err(err, errlen, "%s: not a text file (NUL byte)", path);
+        rc = MPB_EPARSE;
+    } else {
+        rc = load(text, base_link, tip_link, NULL, 0, path, out, err, errlen);
     }
     free(text);
     return rc;

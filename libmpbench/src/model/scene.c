@@ -7,6 +7,7 @@
 #include "mpbench/scene.h"
 
 #include "core/grow.h"
+#include "core/readfile.h"
 
 #include <errno.h>
 #include <float.h>
@@ -670,45 +671,18 @@ int mpb_scene_load(const char *path, mpb_scene **out, char *err, size_t errlen)
             snprintf(err, errlen, "scene: no file name");
         return MPB_EINVAL;
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (err && errlen)
-            snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return MPB_EIO;
-    }
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    int rc = buf ? MPB_OK : MPB_ENOMEM;
-    while (rc == MPB_OK) {
-        if (len + 1 >= cap) {
-            char *b = cap < SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
-            if (!b) {
-                rc = MPB_ENOMEM;
-                break;
-            }
-            buf = b;
-            cap *= 2;
-        }
-        size_t n = fread(buf + len, 1, cap - len - 1, f);
-        len += n;
-        if (n == 0) {
-            if (ferror(f))
-                rc = MPB_EIO;
-            break;
-        }
-    }
-    fclose(f);
-    if (rc == MPB_OK && memchr(buf, '\0', len))
-        rc = MPB_EPARSE;
-    if (rc != MPB_OK) {
-        if (err && errlen)
-            snprintf(err, errlen, "%s: %s", path,
-                     rc == MPB_ENOMEM ? "out of memory" :
-                     rc == MPB_EIO ? "read error" : "not a text file (holds a NUL byte)");
-        free(buf);
+    char *buf;
+    size_t len;
+    int rc = mpb__read_file(path, 0, &buf, &len, err, errlen);
+    if (rc != MPB_OK)
         return rc;
+    if (memchr(buf, '\0', len)) {
+        if (err && errlen)
+            snprintf(err, errlen, "%s: not a text file (holds a NUL byte)",
+                     path);
+        free(buf);
+        return MPB_EPARSE;
     }
-    buf[len] = '\0';
     char msg[256];
     rc = mpb_scene_parse(buf, out, msg, sizeof msg);
     free(buf);
