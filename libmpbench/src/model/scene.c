@@ -7,6 +7,7 @@
 #include "mpbench/scene.h"
 
 #include "core/grow.h"
+#include "core/number.h"
 #include "core/readfile.h"
 
 #include <errno.h>
@@ -144,23 +145,6 @@ static int found(parser *ps, const tok *t, int have, const char *expected)
     return fail(ps, t->line, "%s, found '%.*s'", expected, shown(t), t->p);
 }
 
-/* A finite number filling the whole token. */
-static int tok_number(const tok *t, double *v)
-{
-    char buf[64];
-    if (t->len <= 0 || t->len >= (int)sizeof buf)
-        return 0;
-    memcpy(buf, t->p, (size_t)t->len);
-    buf[t->len] = '\0';
-    char *end;
-    errno = 0;
-    double x = strtod(buf, &end);
-    if (end != buf + t->len || !isfinite(x))
-        return 0;
-    *v = x;
-    return 1;
-}
-
 /* A non-negative decimal integer up to INT_MAX filling the whole token. */
 static int tok_count(const tok *t, long *v)
 {
@@ -184,7 +168,7 @@ static int read_nums(parser *ps, double *v, int n, const char *expected)
     for (int i = 0; i < n; i++) {
         tok t;
         int have = next_tok(ps, &t);
-        if (!have || !tok_number(&t, &v[i]))
+        if (!have || !mpb__number(t.p, t.len, &v[i]))
             return found(ps, &t, have, expected);
     }
     return MPB_OK;

@@ -11,6 +11,7 @@
 
 #include "core/errbuf.h"
 #include "core/grow.h"
+#include "core/number.h"
 #include "model/world_provider.h"
 #include "core/mathconst.h"
 
@@ -78,22 +79,6 @@ static int shown(const token *t)
     return t->len < NAME_SHOWN ? t->len : NAME_SHOWN;
 }
 
-/* A finite number filling the whole token. */
-static int tok_number(const token *t, double *v)
-{
-    char buf[64];
-    if (t->len <= 0 || t->len >= (int)sizeof buf)
-        return 0;
-    memcpy(buf, t->p, (size_t)t->len);
-    buf[t->len] = '\0';
-    char *end;
-    double x = strtod(buf, &end);
-    if (end != buf + t->len || !isfinite(x))
-        return 0;
-    *v = x;
-    return 1;
-}
-
 /*
  * Parse tokens t[first..first+count) as numbers into v; 0 and a message if
  * not. Each is a length (m) or an angle (rad), bounded as the collision
@@ -104,7 +89,7 @@ static int numbers(const token *t, int first, int count, double *v,
 {
     for (int i = 0; i < count; i++) {
         const token *k = &t[first + i];
-        if (!tok_number(k, &v[i])) {
+        if (!mpb__number(k->p, k->len, &v[i])) {
             mpb__set_err(err, errlen, "%s line %d: '%.*s' is not a number",
                          what, lineno, shown(k), k->p);
             return 0;
