@@ -27,6 +27,7 @@
 
 #include <sys/stat.h>
 
+#include "core/cxx_guard.h"
 #include "core/errbuf.h"
 #include "geometry/mesh_cache.h"
 
@@ -427,22 +428,14 @@ int load_at_boundary(const char *uri, Out **out, char *err, size_t errlen,
         return MPB_EINVAL;
     }
     *out = NULL;
-    const char *name = uri ? uri : "";
-    try {
-        int rc = load_it();
-        if (rc == MPB_ENOMEM)
-            mpb__set_err(err, errlen, "mesh '%s': out of memory", name);
-        return rc;
-    } catch (const std::bad_alloc &) {
-        mpb__set_err(err, errlen, "mesh '%s': out of memory", name);
-        return MPB_ENOMEM;
-    } catch (const std::exception &e) {
-        mpb__set_err(err, errlen, "mesh '%s': %s", name, e.what());
-        return MPB_EPARSE;
-    } catch (...) {
-        mpb__set_err(err, errlen, "mesh '%s': unexpected error", name);
-        return MPB_EERROR;
-    }
+    char prefix[1024];
+    std::snprintf(prefix, sizeof prefix, "mesh '%s': ", uri ? uri : "");
+    const mpb__cxx_guard says = {prefix, "", MPB_EPARSE, "unexpected error",
+                                 MPB_EERROR};
+    int rc = mpb__cxx_guarded(err, errlen, says, load_it);
+    if (rc == MPB_ENOMEM)
+        mpb__set_err(err, errlen, "%sout of memory", prefix);
+    return rc;
 }
 
 } // namespace
@@ -542,7 +535,9 @@ int mpb_mesh_resolve(const char *uri, const char *const *dirs, int num_dirs,
         return MPB_EINVAL;
     }
     path[0] = '\0';
-    try {
+    static const mpb__cxx_guard says = {"mesh: ", "", MPB_EERROR,
+                                        "unexpected error", MPB_EERROR};
+    return mpb__cxx_guarded(err, errlen, says, [&]() -> int {
         std::string p;
         int rc = resolve(uri, dirs, num_dirs, p, err, errlen);
         if (rc != MPB_OK)
@@ -554,13 +549,7 @@ int mpb_mesh_resolve(const char *uri, const char *const *dirs, int num_dirs,
         }
         memcpy(path, p.c_str(), p.size() + 1);
         return MPB_OK;
-    } catch (const std::bad_alloc &) {
-        mpb__set_err(err, errlen, "mesh: out of memory");
-        return MPB_ENOMEM;
-    } catch (...) {
-        mpb__set_err(err, errlen, "mesh '%s': unexpected error", uri ? uri : "");
-        return MPB_EERROR;
-    }
+    });
 }
 
 int mpb_mesh_load(const char *uri, const char *const *dirs, int num_dirs,

@@ -19,6 +19,7 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "core/cxx_guard.h"
 #include "core/errbuf.h"
 #include "mpbench/mpbench.h"
 
@@ -454,7 +455,10 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
     if (rc != MPB_OK)
         return rc;
 
-    try {
+    static const mpb__cxx_guard says = {"", "", MPB_EPARSE,
+                                        "unknown exception from urdfdom",
+                                        MPB_EPARSE};
+    rc = mpb__cxx_guarded(err, errlen, says, [&]() -> int {
         /* urdfdom parses with TinyXML but passes on only its message;
          * parse once more ourselves for the line and column. */
         TiXmlDocument xml;
@@ -487,17 +491,8 @@ extern "C" int mpb__urdf_parse(const char *text, mpb__urdf_model *m,
             return MPB_EPARSE;
         }
         ModelCycleBreaker breaker{model};
-        rc = fill(*model, m, err, errlen);
-    } catch (const std::bad_alloc &) {
-        mpb__set_err(err, errlen, "out of memory");
-        rc = MPB_ENOMEM;
-    } catch (const std::exception &e) {
-        mpb__set_err(err, errlen, "%s", e.what());
-        rc = MPB_EPARSE;
-    } catch (...) {
-        mpb__set_err(err, errlen, "unknown exception from urdfdom");
-        rc = MPB_EPARSE;
-    }
+        return fill(*model, m, err, errlen);
+    });
     if (rc != MPB_OK)
         mpb__urdf_model_clear(m);
     return rc;

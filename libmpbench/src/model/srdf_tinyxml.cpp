@@ -16,6 +16,7 @@
 
 #include <tinyxml.h>
 
+#include "core/cxx_guard.h"
 #include "core/errbuf.h"
 #include "model/robot_urdf.h"
 #include "mpbench/mpbench.h"
@@ -341,19 +342,11 @@ extern "C" int mpb__srdf_parse(const char *text, mpb__srdf *s, char *err,
     std::memset(s, 0, sizeof *s);
     if (!text)
         return MPB_EINVAL;
-    int rc;
-    try {
-        rc = parse(text, s, err, errlen);
-    } catch (const std::bad_alloc &) {
-        mpb__set_err(err, errlen, "out of memory");
-        rc = MPB_ENOMEM;
-    } catch (const std::exception &e) {
-        mpb__set_err(err, errlen, "%s", e.what());
-        rc = MPB_EPARSE;
-    } catch (...) {
-        mpb__set_err(err, errlen, "unknown exception while reading the SRDF");
-        rc = MPB_EPARSE;
-    }
+    static const mpb__cxx_guard says = {
+        "", "", MPB_EPARSE, "unknown exception while reading the SRDF",
+        MPB_EPARSE};
+    int rc = mpb__cxx_guarded(err, errlen, says,
+                              [&] { return parse(text, s, err, errlen); });
     if (rc != MPB_OK)
         mpb__srdf_clear(s);
     return rc;
