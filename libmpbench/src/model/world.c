@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/errbuf.h"
+#include "core/grow.h"
 #include "model/world_provider.h"
 #include "core/mathconst.h"
 
@@ -20,24 +21,16 @@ int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
                          double lo, double hi, int continuous)
 {
     if (w->num_joints == w->cap) {
-        int cap = w->cap ? 2 * w->cap : 8;
-        char **names = realloc(w->joint_names, (size_t)cap * sizeof *names);
-        if (!names)
+        /* Four arrays of one capacity, each grown from the same one. */
+        int need = w->num_joints + 1, cap[4] = {w->cap, w->cap, w->cap, w->cap};
+        if (mpb__grow((void **)&w->joint_names, &cap[0], need,
+                      sizeof *w->joint_names) != MPB_OK ||
+            mpb__grow((void **)&w->lo, &cap[1], need, sizeof *w->lo) != MPB_OK ||
+            mpb__grow((void **)&w->hi, &cap[2], need, sizeof *w->hi) != MPB_OK ||
+            mpb__grow((void **)&w->wraps, &cap[3], need, sizeof *w->wraps) !=
+                MPB_OK)
             return MPB_ENOMEM;
-        w->joint_names = names;
-        double *l = realloc(w->lo, (size_t)cap * sizeof *l);
-        if (!l)
-            return MPB_ENOMEM;
-        w->lo = l;
-        double *h = realloc(w->hi, (size_t)cap * sizeof *h);
-        if (!h)
-            return MPB_ENOMEM;
-        w->hi = h;
-        unsigned char *c = realloc(w->wraps, (size_t)cap);
-        if (!c)
-            return MPB_ENOMEM;
-        w->wraps = c;
-        w->cap = cap;
+        w->cap = cap[0];
     }
     char *copy = malloc(namelen + 1);
     if (!copy)

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/errbuf.h"
+#include "core/grow.h"
 #include "model/world_provider.h"
 #include "core/mathconst.h"
 
@@ -43,16 +44,14 @@ static int add_body(mpb_bodies *b, const char *name, int robot, int moves,
                     body_src src)
 {
     if (b->num == b->cap) {
-        int cap = b->cap ? 2 * b->cap : 16;
-        mpb_body *nb = realloc(b->bodies, (size_t)cap * sizeof *nb);
-        if (!nb)
+        /* Two arrays of one capacity, each grown from the same one. */
+        int cap[2] = {b->cap, b->cap};
+        if (mpb__grow((void **)&b->bodies, &cap[0], b->num + 1,
+                      sizeof *b->bodies) != MPB_OK ||
+            mpb__grow((void **)&b->src, &cap[1], b->num + 1, sizeof *b->src) !=
+                MPB_OK)
             return MPB_ENOMEM;
-        b->bodies = nb;
-        body_src *ns = realloc(b->src, (size_t)cap * sizeof *ns);
-        if (!ns)
-            return MPB_ENOMEM;
-        b->src = ns;
-        b->cap = cap;
+        b->cap = cap[0];
     }
     b->bodies[b->num] = (mpb_body){name, robot, moves, 0, NULL};
     src.first_shape = b->num_shapes;
@@ -63,14 +62,9 @@ static int add_body(mpb_bodies *b, const char *name, int robot, int moves,
 static int add_shape(mpb_bodies *b, const mpb_geometry *g,
                      const mpb_pose *offset, const float color[4])
 {
-    if (b->num_shapes == b->cap_shapes) {
-        int cap = b->cap_shapes ? 2 * b->cap_shapes : 32;
-        mpb_body_shape *ns = realloc(b->shapes, (size_t)cap * sizeof *ns);
-        if (!ns)
-            return MPB_ENOMEM;
-        b->shapes = ns;
-        b->cap_shapes = cap;
-    }
+    if (mpb__grow((void **)&b->shapes, &b->cap_shapes, b->num_shapes + 1,
+                  sizeof *b->shapes) != MPB_OK)
+        return MPB_ENOMEM;
     mpb_body_shape *s = &b->shapes[b->num_shapes++];
     s->geometry = *g;
     s->offset = *offset;

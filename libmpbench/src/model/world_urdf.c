@@ -33,6 +33,7 @@
 #include "mpbench/scene.h"
 #include "mpbench/srdf.h"
 #include "core/errbuf.h"
+#include "core/grow.h"
 #include "geometry/mesh_cache.h"
 #include "model/srdf_xml.h"
 #include "model/world_provider.h"
@@ -72,11 +73,9 @@ static int shape_geometry(urdf_world *u, const mpb__mesh_search *ms,
     if (c->type != MPB_SHAPE_MESH)
         return MPB_OK;
     const mpb_mesh *m = NULL;
-    const mpb_mesh **grown = realloc(u->meshes, (size_t)(u->num_meshes + 1) *
-                                                sizeof *grown);
-    if (!grown)
+    if (mpb__grow((void **)&u->meshes, &u->cap_meshes, u->num_meshes + 1,
+                  sizeof *u->meshes) != MPB_OK)
         return MPB_ENOMEM;
-    u->meshes = grown;
     int rc = mpb__mesh_load_shared(c->mesh_uri, ms->dirs, ms->num_dirs,
                                    c->mesh_scale, &m, err, errlen);
     if (rc == MPB_ENOTFOUND)
@@ -235,7 +234,7 @@ static int ensure_acm(urdf_world *u)
         int old_num_meshes = u->num_meshes;
         u->coll = NULL;
         u->meshes = NULL;
-        u->num_meshes = 0;
+        u->num_meshes = u->cap_meshes = 0;
         free(u->moving);
         u->moving = NULL;
         u->num_moving = 0;

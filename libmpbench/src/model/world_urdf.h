@@ -30,7 +30,7 @@ typedef struct urdf_world {
     int            num_attached;
     const mpb_mesh **meshes;     /* the robot's mesh shapes, shared by
                                     every world (mesh_cache.h) */
-    int            num_meshes;
+    int            num_meshes, cap_meshes;
     int            ee_link;      /* see mpb_world_ee_position() */
     const char   **allowed;      /* num_links^2: why link a may touch b,
                                     NULL where it may not */
@@ -49,7 +49,7 @@ typedef struct urdf_world {
         int near, far, joint[2];
         const mpb__wrist_table *table;  /* the cache's */
     }             *wrist;
-    int            num_wrist;
+    int            num_wrist, cap_wrist;
 } urdf_world;
 
 /* Is link l a body of the collision world (has it shapes)? */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "mpbench/mpbench.h"
+#include "core/grow.h"
 #include "geometry/collision_internal.h"
 #include "model/world_urdf.h"
 
@@ -53,13 +54,11 @@ static int add_wrist(urdf_world *u, int near, int far, const int joint[2],
     }
     if (!mpb__wrist_affordable(spec))
         goto done;      /* FCL decides the pair, as without tables */
-    struct urdf_wrist *grown = realloc(u->wrist, (size_t)(u->num_wrist + 1) *
-                                                 sizeof *grown);
-    if (!grown) {
+    if (mpb__grow((void **)&u->wrist, &u->cap_wrist, u->num_wrist + 1,
+                  sizeof *u->wrist) != MPB_OK) {
         rc = MPB_ENOMEM;
         goto done;
     }
-    u->wrist = grown;
     struct urdf_wrist *w = &u->wrist[u->num_wrist];
     *w = (struct urdf_wrist){near, far, {joint[0], joint[1]}, NULL};
     if ((rc = mpb__wrist_table_get(spec, &w->table)) == MPB_OK)

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/grow.h"
 #include "store/store_internal.h"
 
 /* A REAL column, NaN when NULL. */
@@ -291,16 +292,14 @@ static int add_named(result_walk *w, const char *name, size_t len,
         if (strncmp(w->names[i], name, len) == 0 && w->names[i][len] == '\0')
             w->metrics[i] = value;
     if (w->row.num_named == w->named_cap) {
-        int cap = w->named_cap ? 2 * w->named_cap : 16;
-        mpb_named *named = realloc(w->named, sizeof *named * (size_t)cap);
-        if (named == NULL)
+        /* Two arrays of one capacity, each grown from the same one. */
+        int need = w->row.num_named + 1, cap[2] = {w->named_cap, w->named_cap};
+        if (mpb__grow((void **)&w->named, &cap[0], need, sizeof *w->named) !=
+                MPB_OK ||
+            mpb__grow((void **)&w->name_off, &cap[1], need,
+                      sizeof *w->name_off) != MPB_OK)
             return MPB_ENOMEM;
-        w->named = named;
-        size_t *off = realloc(w->name_off, sizeof *off * (size_t)cap);
-        if (off == NULL)
-            return MPB_ENOMEM;
-        w->name_off = off;
-        w->named_cap = cap;
+        w->named_cap = cap[0];
     }
     int k = w->row.num_named;
     if (keep_textn(w, name, len, &w->name_off[k]) != MPB_OK)
@@ -370,18 +369,17 @@ static int query_scenes_load(mpb_store *s, int64_t experiment_id,
     sqlite3_bind_int64(st, 1, experiment_id);
     while ((step = sqlite3_step(st)) == SQLITE_ROW) {
         if (qs->n == cap) {
-            cap = cap ? 2 * cap : 64;
-            int64_t *q = realloc(qs->query, sizeof *q * (size_t)cap);
-            if (q != NULL)
-                qs->query = q;
-            int64_t *sc = realloc(qs->scene, sizeof *sc * (size_t)cap);
-            if (sc != NULL)
-                qs->scene = sc;
-            if (q == NULL || sc == NULL) {
+            /* Two arrays of one capacity, each grown from the same one. */
+            int c[2] = {cap, cap};
+            if (mpb__grow((void **)&qs->query, &c[0], qs->n + 1,
+                          sizeof *qs->query) != MPB_OK ||
+                mpb__grow((void **)&qs->scene, &c[1], qs->n + 1,
+                          sizeof *qs->scene) != MPB_OK) {
                 sqlite3_finalize(st);
                 return mpb__store_fail(s, MPB_ENOMEM,
                                        "read results: out of memory");
             }
+            cap = c[0];
         }
         qs->query[qs->n] = sqlite3_column_int64(st, 0);
         qs->scene[qs->n++] = sqlite3_column_int64(st, 1);
