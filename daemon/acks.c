@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/grow.h"
 #include "daemon.h"
 #include "mpb_run_ack_t.h"
 
@@ -36,14 +37,8 @@ void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
 
 static mpbd_ack_due *push(mpbd_ack_due **arr, int *num, int *cap)
 {
-    if (*num == *cap) {
-        int n = *cap ? *cap * 2 : 64;
-        mpbd_ack_due *a = realloc(*arr, (size_t)n * sizeof *a);
-        if (a == NULL)
-            return NULL;
-        *arr = a;
-        *cap = n;
-    }
+    if (mpb__grow((void **)arr, cap, *num + 1, sizeof **arr) != MPB_OK)
+        return NULL;
     return &(*arr)[(*num)++];
 }
 

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/grow.h"
 #include "daemon.h"
 #include "mpb_planner_announce_t.h"
 
@@ -83,14 +84,9 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
         return;
     }
     if ((p = find(d, m->planner_id)) == NULL) {
-        if (d->num_planners == d->cap_planners) {
-            int cap = d->cap_planners ? d->cap_planners * 2 : 8;
-            mpbd_planner *np = realloc(d->planners, (size_t)cap * sizeof *np);
-            if (np == NULL)
-                return;
-            d->planners = np;
-            d->cap_planners = cap;
-        }
+        if (mpb__grow((void **)&d->planners, &d->cap_planners,
+                      d->num_planners + 1, sizeof *d->planners) != MPB_OK)
+            return;
         p = &d->planners[d->num_planners++];
         memset(p, 0, sizeof *p);
         strcpy(p->id, m->planner_id);

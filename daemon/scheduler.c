@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/grow.h"
 #include "daemon.h"
 #include "mpbench/auth.h"
 #include "mpbench/lcm_filter.h"
@@ -236,14 +237,9 @@ static int send_next(mpbd *d, int c, int p, int queued)
         mpbd_log("cannot draw a random run id");
         return 0;
     }
-    if (d->num_unrecorded == d->cap_unrecorded) {
-        int cap = d->cap_unrecorded ? d->cap_unrecorded * 2 : 16;
-        mpbd_unrecorded *a = realloc(d->unrecorded, (size_t)cap * sizeof *a);
-        if (a == NULL)
-            return 0;
-        d->unrecorded = a;
-        d->cap_unrecorded = cap;
-    }
+    if (mpb__grow((void **)&d->unrecorded, &d->cap_unrecorded,
+                  d->num_unrecorded + 1, sizeof *d->unrecorded) != MPB_OK)
+        return 0;
     if ((f = mpbd_flight_add(d)) == NULL)
         return 0;
     /* Written by the next transaction, before the result it may hold: a
@@ -420,14 +416,9 @@ int mpbd_scheduler_record_sent(mpbd *d)
 
 mpbd_flight *mpbd_flight_add(mpbd *d)
 {
-    if (d->num_flights == d->cap_flights) {
-        int cap = d->cap_flights ? d->cap_flights * 2 : 16;
-        mpbd_flight *a = realloc(d->flights, (size_t)cap * sizeof *a);
-        if (a == NULL)
-            return NULL;
-        d->flights = a;
-        d->cap_flights = cap;
-    }
+    if (mpb__grow((void **)&d->flights, &d->cap_flights, d->num_flights + 1,
+                  sizeof *d->flights) != MPB_OK)
+        return NULL;
     return &d->flights[d->num_flights++];
 }
 
@@ -612,14 +603,9 @@ void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
 static void abandon(mpbd *d, const mpbd_flight *f)
 {
     mpbd_planner *p = &d->planners[f->planner];
-    if (p->num_abandoned == p->cap_abandoned) {
-        int cap = p->cap_abandoned ? p->cap_abandoned * 2 : 4;
-        mpbd_abandoned *a = realloc(p->abandoned, (size_t)cap * sizeof *a);
-        if (a == NULL)
-            return;             /* then its slot is free at once, as before */
-        p->abandoned = a;
-        p->cap_abandoned = cap;
-    }
+    if (mpb__grow((void **)&p->abandoned, &p->cap_abandoned,
+                  p->num_abandoned + 1, sizeof *p->abandoned) != MPB_OK)
+        return;                 /* then its slot is free at once, as before */
     mpbd_abandoned *a = &p->abandoned[p->num_abandoned++];
     memcpy(a->uid, f->run.uid, sizeof a->uid);
     a->run_id = f->run.id;

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/grow.h"
 #include "view.h"
 
 /* Built from view_page.html and view_page.js (tools/CMakeLists.txt). */
@@ -138,14 +139,8 @@ static int mesh_index(mesh_list *l, const mpb_mesh *m)
     for (int i = 0; i < l->n; i++)
         if (l->m[i] == m)
             return i;
-    if (l->n == l->cap) {
-        int cap = l->cap ? 2 * l->cap : 16;
-        const mpb_mesh **nm = realloc(l->m, (size_t)cap * sizeof *nm);
-        if (!nm)
-            return -1;
-        l->m = nm;
-        l->cap = cap;
-    }
+    if (mpb__grow((void **)&l->m, &l->cap, l->n + 1, sizeof *l->m) != MPB_OK)
+        return -1;
     l->m[l->n] = m;
     return l->n++;
 }

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/grow.h"
 #include "view.h"
 
 #define CMD "view"
@@ -21,14 +22,16 @@ static int on_experiment_name(void *ud, const mpb_experiment_row *e)
 static void add_name(selection *sel, int64_t id, const char *name)
 {
     if (sel->num_names == sel->cap_names) {
-        sel->cap_names = sel->cap_names ? 2 * sel->cap_names : 64;
-        sel->ids = realloc(sel->ids, (size_t)sel->cap_names * sizeof *sel->ids);
-        sel->names = realloc(sel->names,
-                             (size_t)sel->cap_names * sizeof *sel->names);
-        if (!sel->ids || !sel->names) {
+        /* Two arrays of one capacity, each grown from the same one. */
+        int need = sel->num_names + 1, cap[2] = {sel->cap_names, sel->cap_names};
+        if (mpb__grow((void **)&sel->ids, &cap[0], need, sizeof *sel->ids) !=
+                MPB_OK ||
+            mpb__grow((void **)&sel->names, &cap[1], need,
+                      sizeof *sel->names) != MPB_OK) {
             fprintf(stderr, "mpb " CMD ": out of memory\n");
             exit(MPB_EXIT_ERROR);
         }
+        sel->cap_names = cap[0];
     }
     sel->ids[sel->num_names] = id;
     sel->names[sel->num_names++] = view_strdup(name);
@@ -77,13 +80,10 @@ static int on_result(void *ud, const mpb_result_row *row)
         (sel->planner && strcmp(sel->planner,
                                 name_of(sel, row->planner_config_id)) != 0))
         return 0;
-    if (sel->num_runs == sel->cap_runs) {
-        sel->cap_runs = sel->cap_runs ? 2 * sel->cap_runs : 64;
-        sel->runs = realloc(sel->runs, (size_t)sel->cap_runs * sizeof *sel->runs);
-        if (!sel->runs) {
-            fprintf(stderr, "mpb " CMD ": out of memory\n");
-            exit(MPB_EXIT_ERROR);
-        }
+    if (mpb__grow((void **)&sel->runs, &sel->cap_runs, sel->num_runs + 1,
+                  sizeof *sel->runs) != MPB_OK) {
+        fprintf(stderr, "mpb " CMD ": out of memory\n");
+        exit(MPB_EXIT_ERROR);
     }
     sel->runs[sel->num_runs++] = row->run_id;
     return 0;
