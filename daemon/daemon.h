@@ -1,7 +1,13 @@
 /*
  * daemon.h - the state of mpbenchd, shared by its parts:
  *   main.c       options, signals, the poll loop
- *   experiment.c reading the experiment file
+ *   experiment.c reading the experiment file: its settings; the parts
+ *     experiment_robot.c   the robot, its SRDF and planning group, worlds
+ *     experiment_scenes.c  scenes, queries, goals, held joints
+ *     experiment_moveit.c  MoveIt problem sets and scene files in it
+ *     experiment_planners.c planner configurations and parameters
+ *   moveit.c     MoveIt PlanningScene and MotionPlanRequest YAML files
+ *   yamldoc.c    the YAML kit of both: one checked document, faults placed
  *   planners.c   the planner processes seen on MPB_ANNOUNCE
  *   scheduler.c  which run goes to which planner; resends and deadlines;
  *                requests waiting at a busy planner

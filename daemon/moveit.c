@@ -20,14 +20,8 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* One file being read: its document, and where an error goes. */
-typedef struct reader {
-    yaml_document_t doc;
-    const char *path;
-    char       *err;
-    size_t      errlen;
-    int         failed;
-} reader;
+/* One file being read (yamldoc.h). */
+typedef mpbd_yaml reader;
 
 /* A growing text, for the scene. */
 typedef struct text {
@@ -35,31 +29,6 @@ typedef struct text {
     size_t len, cap;
     int    oom;
 } text;
-
-static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
-{
-    char what[512];
-    va_list ap;
-    if (R->failed)
-        return -1;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-    if (n != NULL)
-        snprintf(R->err, R->errlen, "%s:%lu:%lu: %s", R->path,
-                 (unsigned long)n->start_mark.line + 1,
-                 (unsigned long)n->start_mark.column + 1, what);
-    else
-        snprintf(R->err, R->errlen, "%s: %s", R->path, what);
-    R->failed = 1;
-    return -1;
-}
 
 static void add(text *t, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -90,46 +59,46 @@ static void add(text *t, const char *fmt, ...)
     }
 }
 
-static yaml_node_t *node(reader *R, int id)
+/* ---- the YAML kit (yamldoc.h), by the short names read below ------- */
+
+static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
 {
-    return yaml_document_get_node(&R->doc, id);
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = mpbd_yaml_vfail(R, n, fmt, ap);
+    va_end(ap);
+    return rc;
 }
 
 static const char *scalar(const yaml_node_t *n)
 {
-    return n && n->type == YAML_SCALAR_NODE ? (const char *)n->data.scalar.value
-                                            : NULL;
+    return mpbd_yaml_scalar(n);
 }
 
 static yaml_node_t *get(reader *R, yaml_node_t *m, const char *key)
 {
-    if (m == NULL || m->type != YAML_MAPPING_NODE)
-        return NULL;
-    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
-         p < m->data.mapping.pairs.top; p++) {
-        const char *k = scalar(node(R, p->key));
-        if (k && strcmp(k, key) == 0)
-            return node(R, p->value);
-    }
-    return NULL;
+    return mpbd_yaml_get(R, m, key);
 }
 
 static int count(const yaml_node_t *n)
 {
-    return n && n->type == YAML_SEQUENCE_NODE
-               ? (int)(n->data.sequence.items.top - n->data.sequence.items.start)
-               : 0;
+    return mpbd_yaml_count(n);
 }
 
 static yaml_node_t *item(reader *R, yaml_node_t *seq, int i)
 {
-    return node(R, seq->data.sequence.items.start[i]);
+    return mpbd_yaml_item(R, seq, i);
 }
 
 static mpbd_mark mark_of(const yaml_node_t *n)
 {
-    return (mpbd_mark){(int)n->start_mark.line + 1,
-                       (int)n->start_mark.column + 1};
+    return mpbd_yaml_mark(n);
 }
 
 /* A list, or an absent key (an empty list); else an error at n. */
@@ -205,17 +174,6 @@ static int pose(reader *R, yaml_node_t *n, double p[3], double q[4])
 
 /* ---- loading a file ---------------------------------------------------- */
 
-/* libyaml's complaint, at the place it names. */
-static int fail_yaml(reader *R, const yaml_parser_t *parser)
-{
-    snprintf(R->err, R->errlen, "%s:%lu:%lu: YAML: %s", R->path,
-             (unsigned long)parser->problem_mark.line + 1,
-             (unsigned long)parser->problem_mark.column + 1,
-             parser->problem ? parser->problem : "syntax error");
-    R->failed = 1;
-    return -1;
-}
-
 static int open_file(reader *R, const char *path, char *err, size_t errlen)
 {
     *R = (reader){.path = path, .err = err, .errlen = errlen};
@@ -229,7 +187,7 @@ static int open_file(reader *R, const char *path, char *err, size_t errlen)
     yaml_parser_set_input_file(&parser, f);
     int ok = yaml_parser_load(&parser, &R->doc);
     if (!ok)
-        fail_yaml(R, &parser);
+        mpbd_yaml_fail_parser(R, &parser);
     yaml_parser_delete(&parser);
     fclose(f);
     if (!ok)
