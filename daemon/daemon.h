@@ -8,6 +8,7 @@
  *     experiment_planners.c planner configurations and parameters
  *   moveit.c     MoveIt PlanningScene and MotionPlanRequest YAML files
  *   yamldoc.c    the YAML kit of both: one checked document, faults placed
+ *   check_meshes.c whether planners will find the robot's meshes
  *   planners.c   the planner processes seen on MPB_ANNOUNCE
  *   scheduler.c  which run goes to which planner; resends and deadlines;
  *                requests waiting at a busy planner

@@ -176,4 +176,22 @@ int mpbd_query_hold(const mpbd_experiment *e, const mpbd_query *q);
 int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,
                       int repetition);
 
+/*
+ * Whether some of the robot's meshes are found only beside its URDF, where
+ * mpbenchd looks but planners do not (they search MPB_MESH_PATH and
+ * ROS_PACKAGE_PATH of their own environment, taken here to be this
+ * process's): 1 with one line in buf saying so and what to do, else 0.
+ * check_meshes.c.
+ */
+int mpbd_mesh_note(const mpbd_experiment *e, char *buf, size_t len);
+
+/*
+ * The folder (absolute) planners need in MPB_MESH_PATH to find the meshes
+ * of the robot of the experiment file at path as mpbenchd does: its URDF's
+ * folder; "" for a robot with no URDF file. Reads only the file's YAML.
+ * 0, or -1 with one line in err.
+ */
+int mpbd_mesh_path(const char *path, char *out, size_t n, char *err,
+                   size_t errlen);
+
 #endif

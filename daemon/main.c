@@ -49,6 +49,9 @@ static void usage(FILE *out)
 "      --again           if the experiment is complete, run it once more as a\n"
 "                        new experiment (an unfinished one is resumed)\n"
 "      --check           check the experiment file and exit\n"
+"      --mesh-path       print the folder planners need in MPB_MESH_PATH to\n"
+"                        find the robot's meshes as mpbenchd does (its URDF's\n"
+"                        folder), and exit\n"
 "      --replay LOG      rebuild the experiment's results from LOG, an\n"
 "                        lcm-logger log of a live run, into a new experiment\n"
 "                        in the database; plans nothing, sends nothing\n"
@@ -63,7 +66,7 @@ typedef struct options {
     const char *db, *lcm_url, *experiment, *secret_file;
     const char *replay;              /* --replay LOG, or NULL */
     double resolution;
-    int fresh, again, check, verbose;
+    int fresh, again, check, verbose, mesh_path;
 } options;
 
 static int parse_options(int argc, char **argv, options *o)
@@ -76,6 +79,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"again", no_argument, NULL, 'A'},
         {"secret-file", required_argument, NULL, 'S'},
         {"check", no_argument, NULL, 'C'},
+        {"mesh-path", no_argument, NULL, 'M'},
         {"replay", required_argument, NULL, 'R'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -104,6 +108,7 @@ static int parse_options(int argc, char **argv, options *o)
         case 'A': o->again = 1; break;
         case 'S': o->secret_file = optarg; break;
         case 'C': o->check = 1; break;
+        case 'M': o->mesh_path = 1; break;
         case 'R': o->replay = optarg; break;
         case 'v': o->verbose = 1; break;
         case 'h': usage(stdout); exit(0);
@@ -488,6 +493,16 @@ int main(int argc, char **argv)
 
     if (parse_options(argc, argv, &o) != 0)
         return 2;
+    if (o.mesh_path) {
+        char dir[4096];
+        if (mpbd_mesh_path(o.experiment, dir, sizeof dir, err, sizeof err)) {
+            fprintf(stderr, "mpbenchd: %s\n", err);
+            return 1;
+        }
+        if (dir[0] != '\0')
+            printf("%s\n", dir);
+        return 0;
+    }
     /* Read and check the whole experiment before touching the database. */
     if ((d.exp = mpbd_experiment_load(o.experiment, err, sizeof err)) == NULL) {
         fprintf(stderr, "mpbenchd: %s\n", err);
@@ -510,6 +525,8 @@ int main(int argc, char **argv)
     if (mpbd_experiment_scene_acm_note(d.exp, err, sizeof err))
         warn_line(NULL, err);
     mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
+    if (mpbd_mesh_note(d.exp, err, sizeof err))
+        warn_line(NULL, err);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
                "%d run%s\n", o.experiment, d.exp->num_scenes,
