@@ -109,11 +109,6 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err,
         snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
         goto fail;
     }
-    if (strlen(e->text) != len) {
-        snprintf(err, errlen, "%s: not a text file (contains a NUL byte)",
-                 path);
-        goto fail;
-    }
     e->file = strdup(path);
     L.dir = dir_of(path);
     if (e->file == NULL || L.dir == NULL) {
@@ -201,6 +196,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
     free(e->srdf_file);
     free(e->srdf_warning);
     free(e->acm_skipped_at);
+    free(e->orientation_identity_at);
     free(e->group_name);
     free(e->scenes);
     free(e->queries);
@@ -286,6 +282,20 @@ int mpbd_experiment_scene_acm_note(const mpbd_experiment *e, char *buf,
              "MoveIt does; the first at %s", e->acm_skipped,
              e->acm_skipped_scenes, e->acm_skipped_scenes == 1 ? "" : "s",
              e->acm_skipped_names, e->acm_skipped_at ? e->acm_skipped_at : "?");
+    return 1;
+}
+
+int mpbd_experiment_orientation_note(const mpbd_experiment *e, char *buf,
+                                     size_t len)
+{
+    if (e->orientation_identity == 0)
+        return 0;
+    snprintf(buf, len, "%d MoveIt orientation constraint%s not a unit "
+             "quaternion (norm off 1 by more than 1e-3): identity assumed "
+             "instead, as MoveIt does; the first at %s",
+             e->orientation_identity,
+             e->orientation_identity == 1 ? " is" : "s are",
+             e->orientation_identity_at ? e->orientation_identity_at : "?");
     return 1;
 }
 

@@ -118,6 +118,11 @@ typedef struct mpbd_experiment {
     int     acm_skipped_scenes;
     char   *acm_skipped_at;
     char    acm_skipped_names[256];
+    /* MoveIt orientation constraints whose quaternion is not of unit
+     * norm: identity assumed, as MoveIt does. How many; the first's
+     * place ("file:line:column"). */
+    int     orientation_identity;
+    char   *orientation_identity_at;
 
     mpbd_scene  *scenes;
     int          num_scenes;
@@ -158,6 +163,14 @@ int mpbd_experiment_moveit_note(const mpbd_experiment *e, char *buf,
  */
 int mpbd_experiment_scene_acm_note(const mpbd_experiment *e, char *buf,
                                    size_t len);
+
+/*
+ * When MoveIt orientation constraints were not unit quaternions (identity
+ * assumed, as MoveIt does): 1 and one line in buf saying how many and
+ * where the first is; else 0.
+ */
+int mpbd_experiment_orientation_note(const mpbd_experiment *e, char *buf,
+                                     size_t len);
 
 /*
  * The goal of q as verify.h describes goals, for mpb_verify_path(). The

@@ -293,6 +293,15 @@ static int moveit_query(mpbd_loader *L, mpbd_experiment *e, int scene,
     if (mpbd_check_state(L, e, scene, q->start, "start", NULL) != 0)
         goto done;
     q->goal_kind = r.goal_kind;
+    if (r.orientation_identity && e->orientation_identity++ == 0) {
+        char where[4200];
+        snprintf(where, sizeof where, "%s:%d:%d", req_path,
+                 r.orientation_at.line, r.orientation_at.column);
+        if ((e->orientation_identity_at = strdup(where)) == NULL) {
+            fail_at(L, NULL, "out of memory");
+            goto done;
+        }
+    }
     if (r.goal_kind == MPB_GOAL_JOINTS) {
         double tol = INFINITY;
         q->goal = calloc((size_t)nj + 1, sizeof *q->goal);
@@ -471,32 +480,57 @@ static void problem_set_free(problem_set *ps)
     memset(ps, 0, sizeof *ps);
 }
 
+/* The length of NNNN in nm = "<prefix>NNNN.yaml" (1 to 9 digits), or 0
+ * when nm is no such name. */
+static size_t numbered(const char *nm, const char *prefix)
+{
+    size_t len = strlen(nm), p = strlen(prefix), digits = 0;
+    if (len < p + 6 || strncmp(nm, prefix, p) != 0 ||
+        strcmp(nm + len - 5, ".yaml") != 0)
+        return 0;
+    for (size_t k = p; k < len - 5; k++)
+        digits += isdigit((unsigned char)nm[k]) != 0;
+    return digits == len - 5 - p && digits <= 9 ? digits : 0;
+}
+
+/*
+ * The problems of folder dir: every sceneNNNN.yaml with its
+ * requestNNNN.yaml. A scene without its request, or a request without
+ * its scene, is refused, naming the file: skipped, a set would shrink
+ * without a word.
+ */
 static int problem_set_read(mpbd_loader *L, yaml_node_t *at, const char *dir,
                             problem_set *ps)
 {
     DIR *d = opendir(dir);
     struct dirent *ent;
     int cap = 0;
+    char lone[300] = "", other[4096];
     memset(ps, 0, sizeof *ps);
     if (d == NULL)
         return fail_at(L, at, "cannot read problem set %s: %s", dir,
                        strerror(errno));
     while ((ent = readdir(d)) != NULL) {
         const char *nm = ent->d_name;
-        size_t len = strlen(nm), digits = 0;
-        if (len < 11 || strncmp(nm, "scene", 5) != 0 ||
-            strcmp(nm + len - 5, ".yaml") != 0)
-            continue;
-        for (size_t k = 5; k < len - 5; k++)
-            digits += isdigit((unsigned char)nm[k]) != 0;
-        if (digits != len - 10 || digits > 9)
-            continue;
-        char req[4096];
+        size_t digits = numbered(nm, "scene"), rd = numbered(nm, "request");
         struct stat st;
-        snprintf(req, sizeof req, "%s/request%.*s.yaml", dir, (int)digits,
-                 nm + 5);
-        if (stat(req, &st) != 0)
+        if (rd > 0) {
+            snprintf(other, sizeof other, "%s/scene%.*s.yaml", dir, (int)rd,
+                     nm + 7);
+            if (stat(other, &st) != 0) {
+                snprintf(lone, sizeof lone, "%s", nm);
+                break;
+            }
             continue;
+        }
+        if (digits == 0)
+            continue;
+        snprintf(other, sizeof other, "%s/request%.*s.yaml", dir,
+                 (int)digits, nm + 5);
+        if (stat(other, &st) != 0) {
+            snprintf(lone, sizeof lone, "%s", nm);
+            break;
+        }
         if (ps->n == cap) {
             char **ids = realloc(ps->ids, (size_t)(cap = cap * 2 + 64) *
                                               sizeof *ids);
@@ -510,8 +544,19 @@ static int problem_set_read(mpbd_loader *L, yaml_node_t *at, const char *dir,
     }
     int broke = ent != NULL;
     closedir(d);
-    if (broke)
+    if (lone[0] != '\0') {
+        const char *missing = strrchr(other, '/') + 1;
+        char esc[300];
+        fail_at(L, at, "problem set %s: %s has no %s beside it (a problem "
+                "is a scene and a request)", dir,
+                mpb_escape(lone, esc, sizeof esc), missing);
+        problem_set_free(ps);
+        return -1;
+    }
+    if (broke) {
+        problem_set_free(ps);
         return fail_at(L, at, "out of memory");
+    }
     if (ps->n == 0)
         return fail_at(L, at, "problem set %s holds no sceneNNNN.yaml with "
                        "a requestNNNN.yaml beside it", dir);
@@ -655,6 +700,13 @@ one_done:
     if (first > ps.n) {
         fail_at(L, get(L, m, "first"), "first: %d is past the %d problems "
                 "of %s", first, ps.n, dir);
+        problem_set_free(&ps);
+        return -1;
+    }
+    /* As first: past the end, a count would load fewer without a word. */
+    if (get(L, m, "count") != NULL && num > ps.n - (first - 1)) {
+        fail_at(L, get(L, m, "count"), "count: %d from problem %d is past "
+                "the %d problems of %s", num, first, ps.n, dir);
         problem_set_free(&ps);
         return -1;
     }

@@ -527,6 +527,8 @@ int main(int argc, char **argv)
     mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
     if (mpbd_mesh_note(d.exp, err, sizeof err))
         warn_line(NULL, err);
+    if (mpbd_experiment_orientation_note(d.exp, err, sizeof err))
+        warn_line(NULL, err);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
                "%d run%s\n", o.experiment, d.exp->num_scenes,

@@ -174,22 +174,22 @@ static int pose(reader *R, yaml_node_t *n, double p[3], double q[4])
 
 /* ---- loading a file ---------------------------------------------------- */
 
+/* The file at path as one checked YAML document (yamldoc.h) whose root
+ * is a mapping: MPB_OK with R->doc to free, else an error in err. */
 static int open_file(reader *R, const char *path, char *err, size_t errlen)
 {
     *R = (reader){.path = path, .err = err, .errlen = errlen};
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
+    size_t len;
+    char *body = mpbd_slurp(path, &len);
+    if (body == NULL) {
+        /* A folder says "Is a directory" (mpbd_slurp()), not libyaml's
+         * "input error". */
         snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
         return MPB_EIO;
     }
-    yaml_parser_t parser;
-    yaml_parser_initialize(&parser);
-    yaml_parser_set_input_file(&parser, f);
-    int ok = yaml_parser_load(&parser, &R->doc);
-    if (!ok)
-        mpbd_yaml_fail_parser(R, &parser);
-    yaml_parser_delete(&parser);
-    fclose(f);
+    int ok = mpbd_yaml_load(R, body, len, "a MoveIt file holds one message")
+             == 0;
+    free(body);
     if (!ok)
         return MPB_EPARSE;
     yaml_node_t *root = yaml_document_get_root_node(&R->doc);
@@ -419,6 +419,11 @@ static int collision_object(reader *R, yaml_node_t *o, text *t,
         p[1], p[2], q[0], q[1], q[2], q[3]);
     int n = count(get(R, o, "primitives")) + count(get(R, o, "meshes")) +
             count(get(R, o, "planes")), written = 0;
+    /* MoveIt refuses to add an object without shapes; read as one, a
+     * wall cut short would vanish from the benchmark without a word. */
+    if (n == 0)
+        return fail_at(R, idn, "object '%s' has no shapes (primitives, "
+                       "meshes or planes): MoveIt refuses such an object", id);
     add(t, "%d\n", n);
     if (shapes(R, o, "primitives", "primitive_poses", t, &written) != 0 ||
         shapes(R, o, "meshes", "mesh_poses", t, &written) != 0 ||
@@ -647,8 +652,12 @@ static int pose_goal(reader *R, yaml_node_t *c, mpbd_moveit_request *r)
                        "aligned with the frame's axes (orientation 0 0 0 1): "
                        "mpbench's region box is");
     for (int i = 0; i < 3; i++) {
-        if (d[i] < 0)
-            return fail_at(R, dims, "box dimensions must not be negative");
+        /* A box without volume holds no pose a planner can sample: every
+         * run would fail in goal sampling. */
+        if (!(d[i] > 0))
+            return fail_at(R, dims, "box dimensions must be above 0 (a "
+                           "region without volume holds no reachable "
+                           "pose), not %g", d[i]);
         r->position_tolerance[i] = d[i] / 2;
         r->rpy_tolerance[i] = M_PI;
     }
@@ -664,9 +673,15 @@ static int pose_goal(reader *R, yaml_node_t *c, mpbd_moveit_request *r)
             return -1;
         double norm = sqrt(oq[0] * oq[0] + oq[1] * oq[1] + oq[2] * oq[2] +
                            oq[3] * oq[3]);
-        if (!(norm > 1e-9))
-            return fail_at(R, get(R, oc, "orientation"), "orientation is a "
-                           "zero quaternion");
+        /* As MoveIt's OrientationConstraint does: a quaternion whose norm
+         * is off 1 by more than 1e-3 is "probably incorrect", and identity
+         * is assumed instead, with a warning (the caller's). */
+        if (fabs(norm - 1.0) > 1e-3) {
+            r->orientation_identity = 1;
+            r->orientation_at = mark_of(get(R, oc, "orientation"));
+            oq[0] = oq[1] = oq[2] = 0;
+            oq[3] = 1;
+        }
         mpb_pose ref;
         mpb_pose_set_quat(&ref, oq[0], oq[1], oq[2], oq[3]);
         mpb_pose_get_rpy(&ref, r->rpy);

@@ -51,6 +51,11 @@ typedef struct mpbd_moveit_request {
     mpbd_mark  link_at;
     double     position[3], position_tolerance[3];  /* box centre, half */
     double     rpy[3], rpy_tolerance[3];            /* rad; pi: free */
+    /* The orientation constraint's quaternion was not of unit norm
+     * (within 1e-3): identity was assumed, as MoveIt does, and the
+     * caller warns. Where it is. */
+    int        orientation_identity;
+    mpbd_mark  orientation_at;
 } mpbd_moveit_request;
 
 /*

@@ -344,12 +344,34 @@ char *mpbd_slurp(const char *path, size_t *len)
     return buf;
 }
 
+/* The line and column (from 1; columns in characters, as libyaml counts
+ * them) of byte offset at of text. */
+static mpbd_mark place_of(const char *text, size_t at)
+{
+    mpbd_mark m = {1, 1};
+    for (size_t i = 0; i < at; i++) {
+        unsigned char c = (unsigned char)text[i];
+        if (c == '\n') {
+            m.line++;
+            m.column = 1;
+        } else if ((c & 0xC0) != 0x80) {
+            m.column++;
+        }
+    }
+    return m;
+}
+
 int mpbd_yaml_fail_parser(mpbd_yaml *Y, const yaml_parser_t *parser)
 {
-    snprintf(Y->err, Y->errlen, "%s:%lu:%lu: YAML: %s", Y->path,
-             (unsigned long)parser->problem_mark.line + 1,
-             (unsigned long)parser->problem_mark.column + 1,
-             parser->problem ? parser->problem : "syntax error");
+    mpbd_mark at = {(int)parser->problem_mark.line + 1,
+                    (int)parser->problem_mark.column + 1};
+    /* A reader error (a byte that is not UTF-8, a control character)
+     * comes with an offset into the input, not a place. */
+    if (parser->error == YAML_READER_ERROR && Y->text != NULL &&
+        parser->problem_offset <= Y->len)
+        at = place_of(Y->text, parser->problem_offset);
+    snprintf(Y->err, Y->errlen, "%s:%d:%d: YAML: %s", Y->path, at.line,
+             at.column, parser->problem ? parser->problem : "syntax error");
     Y->failed = 1;
     return -1;
 }
@@ -410,22 +432,43 @@ static int not_too_deep(mpbd_yaml *Y, const char *text, size_t len)
     return rc;
 }
 
-int mpbd_yaml_load(mpbd_yaml *Y, const char *text, size_t len,
-                   const char *holds)
+/* mpbd_yaml_load() once the text is known to hold no NUL. */
+static int load_checked(mpbd_yaml *Y, yaml_parser_t *parser, const char *holds)
 {
-    yaml_parser_t parser;
-    if (not_too_deep(Y, text, len) != 0)
+    if (not_too_deep(Y, Y->text, Y->len) != 0)
         return -1;
-    yaml_parser_initialize(&parser);
-    yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
-    if (!yaml_parser_load(&parser, &Y->doc)) {
-        mpbd_yaml_fail_parser(Y, &parser);
-        yaml_parser_delete(&parser);
+    yaml_parser_initialize(parser);
+    yaml_parser_set_input_string(parser, (const unsigned char *)Y->text,
+                                 Y->len);
+    if (!yaml_parser_load(parser, &Y->doc)) {
+        mpbd_yaml_fail_parser(Y, parser);
+        yaml_parser_delete(parser);
         return -1;
     }
-    int rc = no_second_document(Y, &parser, holds);
-    yaml_parser_delete(&parser);
+    int rc = no_second_document(Y, parser, holds);
+    yaml_parser_delete(parser);
     if (rc != 0)
         yaml_document_delete(&Y->doc);
     return rc;
 }
+
+int mpbd_yaml_load(mpbd_yaml *Y, const char *text, size_t len,
+                   const char *holds)
+{
+    yaml_parser_t parser;
+    size_t nul = strlen(text);
+    /* The parser would stop at a NUL: the rest would vanish unread. */
+    if (nul != len) {
+        mpbd_mark at = place_of(text, nul);
+        snprintf(Y->err, Y->errlen, "%s:%d:%d: a NUL byte: not a text file",
+                 Y->path, at.line, at.column);
+        Y->failed = 1;
+        return -1;
+    }
+    Y->text = text;
+    Y->len = len;
+    int rc = load_checked(Y, &parser, holds);
+    Y->text = NULL;
+    return rc;
+}
+

@@ -30,6 +30,8 @@ typedef struct mpbd_yaml {
      * file, e.g. a MoveIt file read for an experiment); or NULL. */
     const char *place_path;
     mpbd_mark   place;
+    const char *text;         /* while mpbd_yaml_load() reads: the text */
+    size_t      len;
 } mpbd_yaml;
 
 /* Far deeper than any file read needs (an experiment six levels, a
@@ -39,6 +41,7 @@ typedef struct mpbd_yaml {
 
 /*
  * Parse text (len bytes, NUL-terminated) of the file Y->path into Y->doc:
+ * a NUL byte, bytes that are not UTF-8 (each at its line and column),
  * nesting deeper than MPBD_YAML_DEPTH_MAX and a second document are
  * faults ("holds" words what the file holds, for the message: "an
  * experiment file holds one"). 0 with a document to free with
