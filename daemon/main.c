@@ -398,7 +398,8 @@ static int wait_readable(int fd, int timeout_ms)
 }
 
 /* How run_loop() ends, besides 0 (every run done) and 1 (a signal). */
-enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2, LOOP_NOT_ALONE = -3 };
+enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2, LOOP_NOT_ALONE = -3,
+       LOOP_DOOMED = -4 };
 
 /* The loop, until every run is done, a signal or a database failure;
  * LOOP_DB_GONE says why in gone (cap bytes). */
@@ -439,6 +440,8 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
         d->db_error[0] = '\0';
         if (d->elder[0] != '\0')
             return LOOP_NOT_ALONE;
+        if (d->doomed.stop)
+            return LOOP_DOOMED;
         /* Then the next requests: a run's latency ends with its commit,
          * not with the next run's request, and each request carries the
          * acknowledgements this commit made true (acks.c). */
@@ -671,6 +674,12 @@ int main(int argc, char **argv)
         if (rc == LOOP_DB_GONE)
             mpbd_log("stopped with %ld runs left: %s",
                      d.total_pending + d.num_flights, gone);
+        else if (rc == LOOP_DOOMED)
+            mpbd_log("stopped: the first run of every planner configuration "
+                     "(%d) failed with the same error, so every run would: "
+                     "%s; %ld runs left: fix it and run the same command to "
+                     "resume", d.exp->num_configs, d.doomed.why,
+                     runs_left(&d));
         else if (rc == LOOP_NOT_ALONE)
             mpbd_log("stopped: another mpbenchd, %s, is on this LCM URL "
                      "(%s), and two would disturb each other's runs: give "
@@ -694,6 +703,7 @@ out:
         lcm_destroy(d.lcm);
     }
     mpbd_latency_free(&d.latency);
+    mpbd_doomed_free(&d);
     mpbd_scheduler_free(&d);
     mpbd_planners_free(&d);
     mpb_store_close(d.store);
