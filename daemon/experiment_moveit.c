@@ -706,7 +706,8 @@ one_done:
     /* As first: past the end, a count would load fewer without a word. */
     if (get(L, m, "count") != NULL && num > ps.n - (first - 1)) {
         fail_at(L, get(L, m, "count"), "count: %d from problem %d is past "
-                "the %d problems of %s", num, first, ps.n, dir);
+                "the end of %s, which holds %d problem%s", num, first, dir,
+                ps.n, ps.n == 1 ? "" : "s");
         problem_set_free(&ps);
         return -1;
     }

@@ -210,7 +210,7 @@ spoil count_past "" scene0001.yaml
 cp "$panda/problems/box_panda/scene0002.yaml" "$panda/problems/box_panda/request0002.yaml" \
     "$work/count_past/"
 sed -i 's/{problems: count_past,/{problems: count_past, count: 3,/' "$work/count_past.yaml"
-refused count_past "count: 3 from problem 1 is past the 2 problems of $work/count_past"
+refused count_past "count: 3 from problem 1 is past the end of $work/count_past, which holds 2 problems"
 
 # A scene without its request, and a request without its scene.
 spoil lone_scene "" scene0001.yaml
