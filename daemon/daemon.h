@@ -1,7 +1,15 @@
 /*
  * daemon.h - the state of mpbenchd, shared by its parts:
  *   main.c       options, signals, the poll loop
- *   experiment.c reading the experiment file
+ *   experiment.c reading the experiment file: its settings; the parts
+ *     experiment_robot.c   the robot, its SRDF and planning group, worlds
+ *     experiment_scenes.c  scenes, queries, goals, held joints
+ *     experiment_moveit.c  MoveIt problem sets and scene files in it
+ *     experiment_planners.c planner configurations and parameters
+ *   moveit.c     MoveIt PlanningScene and MotionPlanRequest YAML files
+ *   yamldoc.c    the YAML kit of both: one checked document, faults placed
+ *   check_meshes.c whether planners will find the robot's meshes
+ *   doomed.c     stopping when every configuration's first run failed alike
  *   planners.c   the planner processes seen on MPB_ANNOUNCE
  *   scheduler.c  which run goes to which planner; resends and deadlines;
  *                requests waiting at a busy planner
@@ -50,6 +58,16 @@
 /* The coarsest verification step --resolution takes (rad): coarser, a
  * segment would pass through an obstacle thinner than the step. */
 #define MPBD_RESOLUTION_MAX     0.1
+
+/* The first result of each planner configuration in this session: when
+ * every one failed with the same world error, every run would (doomed.c). */
+typedef struct mpbd_doomed {
+    unsigned char *seen;     /* per configuration: its first result came */
+    int   num_seen;
+    int   alike;             /* every first so far failed with why */
+    int   stop;              /* every configuration's first did: stop */
+    char  why[512];
+} mpbd_doomed;
 
 /* A run given up on at its deadline, that its planner may still plan. */
 typedef struct mpbd_abandoned {
@@ -214,6 +232,7 @@ typedef struct mpbd {
 
     int              runs_total;
     mpbd_counters    count;
+    mpbd_doomed      doomed;
     double           started;        /* monotonic s */
     int64_t          started_utime;  /* the same moment, wall clock us */
     /* An older daemon heard on the LCM URL, as the log names it: then
@@ -225,6 +244,12 @@ typedef struct mpbd {
     double           last_wait_log;
     double           last_bad_announce_log;
 } mpbd;
+
+/* doomed.c: a stored result of configuration config (its status and
+ * runs.message); frees with mpbd_doomed_free(). */
+void mpbd_doomed_result(mpbd *d, int config, const char *status,
+                        const char *message);
+void mpbd_doomed_free(mpbd *d);
 
 /* planners.c */
 void mpbd_planners_subscribe(mpbd *d);

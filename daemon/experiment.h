@@ -118,6 +118,11 @@ typedef struct mpbd_experiment {
     int     acm_skipped_scenes;
     char   *acm_skipped_at;
     char    acm_skipped_names[256];
+    /* MoveIt orientation constraints whose quaternion is not of unit
+     * norm: identity assumed, as MoveIt does. How many; the first's
+     * place ("file:line:column"). */
+    int     orientation_identity;
+    char   *orientation_identity_at;
 
     mpbd_scene  *scenes;
     int          num_scenes;
@@ -160,6 +165,14 @@ int mpbd_experiment_scene_acm_note(const mpbd_experiment *e, char *buf,
                                    size_t len);
 
 /*
+ * When MoveIt orientation constraints were not unit quaternions (identity
+ * assumed, as MoveIt does): 1 and one line in buf saying how many and
+ * where the first is; else 0.
+ */
+int mpbd_experiment_orientation_note(const mpbd_experiment *e, char *buf,
+                                     size_t len);
+
+/*
  * The goal of q as verify.h describes goals, for mpb_verify_path(). The
  * result points into q: it lives as long as q does.
  */
@@ -175,5 +188,23 @@ int mpbd_query_hold(const mpbd_experiment *e, const mpbd_query *q);
 /* The seed of one run, derived from the experiment seed and the run's place. */
 int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,
                       int repetition);
+
+/*
+ * Whether some of the robot's meshes are found only beside its URDF, where
+ * mpbenchd looks but planners do not (they search MPB_MESH_PATH and
+ * ROS_PACKAGE_PATH of their own environment, taken here to be this
+ * process's): 1 with one line in buf saying so and what to do, else 0.
+ * check_meshes.c.
+ */
+int mpbd_mesh_note(const mpbd_experiment *e, char *buf, size_t len);
+
+/*
+ * The folder (absolute) planners need in MPB_MESH_PATH to find the meshes
+ * of the robot of the experiment file at path as mpbenchd does: its URDF's
+ * folder; "" for a robot with no URDF file. Reads only the file's YAML.
+ * 0, or -1 with one line in err.
+ */
+int mpbd_mesh_path(const char *path, char *out, size_t n, char *err,
+                   size_t errlen);
 
 #endif

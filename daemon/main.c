@@ -49,6 +49,9 @@ static void usage(FILE *out)
 "      --again           if the experiment is complete, run it once more as a\n"
 "                        new experiment (an unfinished one is resumed)\n"
 "      --check           check the experiment file and exit\n"
+"      --mesh-path       print the folder planners need in MPB_MESH_PATH to\n"
+"                        find the robot's meshes as mpbenchd does (its URDF's\n"
+"                        folder), and exit\n"
 "      --replay LOG      rebuild the experiment's results from LOG, an\n"
 "                        lcm-logger log of a live run, into a new experiment\n"
 "                        in the database; plans nothing, sends nothing\n"
@@ -63,7 +66,7 @@ typedef struct options {
     const char *db, *lcm_url, *experiment, *secret_file;
     const char *replay;              /* --replay LOG, or NULL */
     double resolution;
-    int fresh, again, check, verbose;
+    int fresh, again, check, verbose, mesh_path;
 } options;
 
 static int parse_options(int argc, char **argv, options *o)
@@ -76,6 +79,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"again", no_argument, NULL, 'A'},
         {"secret-file", required_argument, NULL, 'S'},
         {"check", no_argument, NULL, 'C'},
+        {"mesh-path", no_argument, NULL, 'M'},
         {"replay", required_argument, NULL, 'R'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -104,6 +108,7 @@ static int parse_options(int argc, char **argv, options *o)
         case 'A': o->again = 1; break;
         case 'S': o->secret_file = optarg; break;
         case 'C': o->check = 1; break;
+        case 'M': o->mesh_path = 1; break;
         case 'R': o->replay = optarg; break;
         case 'v': o->verbose = 1; break;
         case 'h': usage(stdout); exit(0);
@@ -393,7 +398,8 @@ static int wait_readable(int fd, int timeout_ms)
 }
 
 /* How run_loop() ends, besides 0 (every run done) and 1 (a signal). */
-enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2, LOOP_NOT_ALONE = -3 };
+enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2, LOOP_NOT_ALONE = -3,
+       LOOP_DOOMED = -4 };
 
 /* The loop, until every run is done, a signal or a database failure;
  * LOOP_DB_GONE says why in gone (cap bytes). */
@@ -434,6 +440,8 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
         d->db_error[0] = '\0';
         if (d->elder[0] != '\0')
             return LOOP_NOT_ALONE;
+        if (d->doomed.stop)
+            return LOOP_DOOMED;
         /* Then the next requests: a run's latency ends with its commit,
          * not with the next run's request, and each request carries the
          * acknowledgements this commit made true (acks.c). */
@@ -488,6 +496,16 @@ int main(int argc, char **argv)
 
     if (parse_options(argc, argv, &o) != 0)
         return 2;
+    if (o.mesh_path) {
+        char dir[4096];
+        if (mpbd_mesh_path(o.experiment, dir, sizeof dir, err, sizeof err)) {
+            fprintf(stderr, "mpbenchd: %s\n", err);
+            return 1;
+        }
+        if (dir[0] != '\0')
+            printf("%s\n", dir);
+        return 0;
+    }
     /* Read and check the whole experiment before touching the database. */
     if ((d.exp = mpbd_experiment_load(o.experiment, err, sizeof err)) == NULL) {
         fprintf(stderr, "mpbenchd: %s\n", err);
@@ -510,6 +528,10 @@ int main(int argc, char **argv)
     if (mpbd_experiment_scene_acm_note(d.exp, err, sizeof err))
         warn_line(NULL, err);
     mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
+    if (mpbd_mesh_note(d.exp, err, sizeof err))
+        warn_line(NULL, err);
+    if (mpbd_experiment_orientation_note(d.exp, err, sizeof err))
+        warn_line(NULL, err);
     if (o.check) {
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
                "%d run%s\n", o.experiment, d.exp->num_scenes,
@@ -652,6 +674,12 @@ int main(int argc, char **argv)
         if (rc == LOOP_DB_GONE)
             mpbd_log("stopped with %ld runs left: %s",
                      d.total_pending + d.num_flights, gone);
+        else if (rc == LOOP_DOOMED)
+            mpbd_log("stopped: the first run of every planner configuration "
+                     "(%d) failed with the same error, so every run would: "
+                     "%s; %ld runs left: fix it and run the same command to "
+                     "resume", d.exp->num_configs, d.doomed.why,
+                     runs_left(&d));
         else if (rc == LOOP_NOT_ALONE)
             mpbd_log("stopped: another mpbenchd, %s, is on this LCM URL "
                      "(%s), and two would disturb each other's runs: give "
@@ -675,6 +703,7 @@ out:
         lcm_destroy(d.lcm);
     }
     mpbd_latency_free(&d.latency);
+    mpbd_doomed_free(&d);
     mpbd_scheduler_free(&d);
     mpbd_planners_free(&d);
     mpb_store_close(d.store);

@@ -20,14 +20,8 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* One file being read: its document, and where an error goes. */
-typedef struct reader {
-    yaml_document_t doc;
-    const char *path;
-    char       *err;
-    size_t      errlen;
-    int         failed;
-} reader;
+/* One file being read (yamldoc.h). */
+typedef mpbd_yaml reader;
 
 /* A growing text, for the scene. */
 typedef struct text {
@@ -35,31 +29,6 @@ typedef struct text {
     size_t len, cap;
     int    oom;
 } text;
-
-static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
-{
-    char what[512];
-    va_list ap;
-    if (R->failed)
-        return -1;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-    if (n != NULL)
-        snprintf(R->err, R->errlen, "%s:%lu:%lu: %s", R->path,
-                 (unsigned long)n->start_mark.line + 1,
-                 (unsigned long)n->start_mark.column + 1, what);
-    else
-        snprintf(R->err, R->errlen, "%s: %s", R->path, what);
-    R->failed = 1;
-    return -1;
-}
 
 static void add(text *t, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -90,46 +59,46 @@ static void add(text *t, const char *fmt, ...)
     }
 }
 
-static yaml_node_t *node(reader *R, int id)
+/* ---- the YAML kit (yamldoc.h), by the short names read below ------- */
+
+static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int fail_at(reader *R, const yaml_node_t *n, const char *fmt, ...)
 {
-    return yaml_document_get_node(&R->doc, id);
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = mpbd_yaml_vfail(R, n, fmt, ap);
+    va_end(ap);
+    return rc;
 }
 
 static const char *scalar(const yaml_node_t *n)
 {
-    return n && n->type == YAML_SCALAR_NODE ? (const char *)n->data.scalar.value
-                                            : NULL;
+    return mpbd_yaml_scalar(n);
 }
 
 static yaml_node_t *get(reader *R, yaml_node_t *m, const char *key)
 {
-    if (m == NULL || m->type != YAML_MAPPING_NODE)
-        return NULL;
-    for (yaml_node_pair_t *p = m->data.mapping.pairs.start;
-         p < m->data.mapping.pairs.top; p++) {
-        const char *k = scalar(node(R, p->key));
-        if (k && strcmp(k, key) == 0)
-            return node(R, p->value);
-    }
-    return NULL;
+    return mpbd_yaml_get(R, m, key);
 }
 
 static int count(const yaml_node_t *n)
 {
-    return n && n->type == YAML_SEQUENCE_NODE
-               ? (int)(n->data.sequence.items.top - n->data.sequence.items.start)
-               : 0;
+    return mpbd_yaml_count(n);
 }
 
 static yaml_node_t *item(reader *R, yaml_node_t *seq, int i)
 {
-    return node(R, seq->data.sequence.items.start[i]);
+    return mpbd_yaml_item(R, seq, i);
 }
 
 static mpbd_mark mark_of(const yaml_node_t *n)
 {
-    return (mpbd_mark){(int)n->start_mark.line + 1,
-                       (int)n->start_mark.column + 1};
+    return mpbd_yaml_mark(n);
 }
 
 /* A list, or an absent key (an empty list); else an error at n. */
@@ -205,33 +174,22 @@ static int pose(reader *R, yaml_node_t *n, double p[3], double q[4])
 
 /* ---- loading a file ---------------------------------------------------- */
 
-/* libyaml's complaint, at the place it names. */
-static int fail_yaml(reader *R, const yaml_parser_t *parser)
-{
-    snprintf(R->err, R->errlen, "%s:%lu:%lu: YAML: %s", R->path,
-             (unsigned long)parser->problem_mark.line + 1,
-             (unsigned long)parser->problem_mark.column + 1,
-             parser->problem ? parser->problem : "syntax error");
-    R->failed = 1;
-    return -1;
-}
-
+/* The file at path as one checked YAML document (yamldoc.h) whose root
+ * is a mapping: MPB_OK with R->doc to free, else an error in err. */
 static int open_file(reader *R, const char *path, char *err, size_t errlen)
 {
     *R = (reader){.path = path, .err = err, .errlen = errlen};
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
+    size_t len;
+    char *body = mpbd_slurp(path, &len);
+    if (body == NULL) {
+        /* A folder says "Is a directory" (mpbd_slurp()), not libyaml's
+         * "input error". */
         snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
         return MPB_EIO;
     }
-    yaml_parser_t parser;
-    yaml_parser_initialize(&parser);
-    yaml_parser_set_input_file(&parser, f);
-    int ok = yaml_parser_load(&parser, &R->doc);
-    if (!ok)
-        fail_yaml(R, &parser);
-    yaml_parser_delete(&parser);
-    fclose(f);
+    int ok = mpbd_yaml_load(R, body, len, "a MoveIt file holds one message")
+             == 0;
+    free(body);
     if (!ok)
         return MPB_EPARSE;
     yaml_node_t *root = yaml_document_get_root_node(&R->doc);
@@ -461,6 +419,11 @@ static int collision_object(reader *R, yaml_node_t *o, text *t,
         p[1], p[2], q[0], q[1], q[2], q[3]);
     int n = count(get(R, o, "primitives")) + count(get(R, o, "meshes")) +
             count(get(R, o, "planes")), written = 0;
+    /* MoveIt refuses to add an object without shapes; read as one, a
+     * wall cut short would vanish from the benchmark without a word. */
+    if (n == 0)
+        return fail_at(R, idn, "object '%s' has no shapes (primitives, "
+                       "meshes or planes): MoveIt refuses such an object", id);
     add(t, "%d\n", n);
     if (shapes(R, o, "primitives", "primitive_poses", t, &written) != 0 ||
         shapes(R, o, "meshes", "mesh_poses", t, &written) != 0 ||
@@ -689,8 +652,12 @@ static int pose_goal(reader *R, yaml_node_t *c, mpbd_moveit_request *r)
                        "aligned with the frame's axes (orientation 0 0 0 1): "
                        "mpbench's region box is");
     for (int i = 0; i < 3; i++) {
-        if (d[i] < 0)
-            return fail_at(R, dims, "box dimensions must not be negative");
+        /* A box without volume holds no pose a planner can sample: every
+         * run would fail in goal sampling. */
+        if (!(d[i] > 0))
+            return fail_at(R, dims, "box dimensions must be above 0 (a "
+                           "region without volume holds no reachable "
+                           "pose), not %g", d[i]);
         r->position_tolerance[i] = d[i] / 2;
         r->rpy_tolerance[i] = M_PI;
     }
@@ -706,9 +673,15 @@ static int pose_goal(reader *R, yaml_node_t *c, mpbd_moveit_request *r)
             return -1;
         double norm = sqrt(oq[0] * oq[0] + oq[1] * oq[1] + oq[2] * oq[2] +
                            oq[3] * oq[3]);
-        if (!(norm > 1e-9))
-            return fail_at(R, get(R, oc, "orientation"), "orientation is a "
-                           "zero quaternion");
+        /* As MoveIt's OrientationConstraint does: a quaternion whose norm
+         * is off 1 by more than 1e-3 is "probably incorrect", and identity
+         * is assumed instead, with a warning (the caller's). */
+        if (fabs(norm - 1.0) > 1e-3) {
+            r->orientation_identity = 1;
+            r->orientation_at = mark_of(get(R, oc, "orientation"));
+            oq[0] = oq[1] = oq[2] = 0;
+            oq[3] = 1;
+        }
         mpb_pose ref;
         mpb_pose_set_quat(&ref, oq[0], oq[1], oq[2], oq[3]);
         mpb_pose_get_rpy(&ref, r->rpy);

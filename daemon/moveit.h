@@ -13,11 +13,7 @@
 #include <stddef.h>
 
 #include "mpbench/mpbench.h"
-
-/* A place in a file, counting from 1. */
-typedef struct mpbd_mark {
-    int line, column;
-} mpbd_mark;
+#include "yamldoc.h"
 
 /* A robot_state's joint_state: names and positions, in file order. */
 typedef struct mpbd_moveit_joints {
@@ -55,6 +51,11 @@ typedef struct mpbd_moveit_request {
     mpbd_mark  link_at;
     double     position[3], position_tolerance[3];  /* box centre, half */
     double     rpy[3], rpy_tolerance[3];            /* rad; pi: free */
+    /* The orientation constraint's quaternion was not of unit norm
+     * (within 1e-3): identity was assumed, as MoveIt does, and the
+     * caller warns. Where it is. */
+    int        orientation_identity;
+    mpbd_mark  orientation_at;
 } mpbd_moveit_request;
 
 /*
@@ -71,11 +72,5 @@ void mpbd_moveit_scene_clear(mpbd_moveit_scene *s);
 int mpbd_moveit_request_read(const char *path, mpbd_moveit_request *r,
                              char *err, size_t errlen);
 void mpbd_moveit_request_clear(mpbd_moveit_request *r);
-
-/*
- * Whether s is a number as experiment files write them (decimal; no hex,
- * inf or nan), into *out: 1 if so, else 0. Shared with experiment.c.
- */
-int mpbd_parse_decimal(const char *s, double *out);
 
 #endif

@@ -413,6 +413,7 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
     };
     rc = mpb_store_run_finish(d->store, &rec);
     if (rc == MPB_OK) {
+        mpbd_doomed_result(d, f->run.config, rec.status, rec.message);
         d->count.done++;
         if (rec.success)
             d->count.succeeded++;

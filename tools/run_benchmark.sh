@@ -140,6 +140,20 @@ fi
 mkdir -p "$logs"
 trap mpb_stop_all EXIT INT TERM
 
+# Planners look for a robot's meshes in MPB_MESH_PATH and ROS_PACKAGE_PATH,
+# mpbenchd also beside its URDF: the planners started here get the
+# experiments' robot folders after both, so that they find what mpbenchd
+# finds, in the same order (docs/scenes.md).
+robot_dirs=""
+for experiment in "$@"; do
+    dir=$("$MPB_BUILD/daemon/mpbenchd" --mesh-path "$experiment" 2>/dev/null) || dir=""
+    [ -z "$dir" ] || robot_dirs=${robot_dirs:+$robot_dirs:}$dir
+done
+if [ -n "$robot_dirs" ]; then
+    MPB_MESH_PATH=${MPB_MESH_PATH:+$MPB_MESH_PATH:}${ROS_PACKAGE_PATH:+$ROS_PACKAGE_PATH:}$robot_dirs
+    export MPB_MESH_PATH
+fi
+
 if [ -n "$record" ]; then
     echo "run_benchmark: recording LCM traffic into $record"
     mpb_spawn "$logs/lcm-logger.log" lcm-logger --quiet --force \

@@ -135,4 +135,98 @@ sed -i 's/^  joints: \[panda_joint1.*/  group: panda_arm/; /^           panda_jo
 check "a request for the experiment's SRDF group loads" \
     "$daemon" --check "$work/same_group.yaml"
 
+# ---- a held-out set of corrupted copies (issue 40) ----------------------
+
+# Cut at a line end after an object's id: that wall would load with no
+# shapes and vanish; MoveIt refuses an object without shapes.
+spoil cut_object '/- id: side_right/q' scene0001.yaml
+bad_case cut_object scene0001.yaml \
+    "[0-9]*:[0-9]*: object 'side_right' has no shapes (primitives, meshes or planes): MoveIt refuses such an object"
+
+# 200,000 nested lists in fixed_frame_transforms: refused at the 100th
+# level (it took a minute at full CPU, then loaded).
+spoil deep "" scene0001.yaml
+python3 -c "import sys; sys.stdout.write('fixed_frame_transforms: ' + '[' * 200000 + ']' * 200000 + '\n')" \
+    >"$work/deep/scene0001.yaml"
+bad_case deep scene0001.yaml "1:124: nested too deeply (more than 100 levels)"
+
+# A NUL byte and a byte that is not UTF-8, on line 50: at that place.
+spoil nul "" scene0001.yaml
+sed -i '50s/^\(  *\)/\1\x00/' "$work/nul/scene0001.yaml"
+bad_case nul scene0001.yaml "50:[0-9]*: a NUL byte: not a text file"
+spoil not_utf8 "50s/^\(  *\)/\1\xff/" scene0001.yaml
+bad_case not_utf8 scene0001.yaml "50:[0-9]*: YAML: invalid leading UTF-8 octet"
+
+# A pose goal: a box around a point of the hand, an orientation.
+pose_goal() {
+    spoil "$1" '/^goal_constraints:/,/^start_state:/{/^start_state:/!d}' \
+        request0001.yaml
+    sed -i "/^start_state:/i\\
+goal_constraints:\\
+  - position_constraints:\\
+      - link_name: panda_hand\\
+        constraint_region:\\
+          primitives: [{type: box, dimensions: $2}]\\
+          primitive_poses: [{position: [0.4, 0, 0.5], orientation: [0, 0, 0, 1]}]\\
+    orientation_constraints:\\
+      - link_name: panda_hand\\
+        orientation: $3\\
+        absolute_x_axis_tolerance: 0.1\\
+        absolute_y_axis_tolerance: 0.1\\
+        absolute_z_axis_tolerance: 0.1" "$work/$1/request0001.yaml"
+}
+pose_goal pose_ok "[0.02, 0.02, 0.02]" "[1, 0, 0, 0]"
+out=$("$daemon" --check "$work/pose_ok.yaml" 2>&1)
+check "a pose goal loads" test $? -eq 0
+check "... with no warning of its orientation" sh -c "! printf '%s' \"\$1\" | grep -q orientation" _ "$out"
+
+# A box without volume: every run would fail in goal sampling.
+pose_goal zero_box "[0, 0, 0]" "[1, 0, 0, 0]"
+bad_case zero_box request0001.yaml \
+    "[0-9]*:[0-9]*: box dimensions must be above 0 (a region without volume holds no reachable pose), not 0"
+
+# An orientation that is not a unit quaternion: MoveIt warns and assumes
+# identity; so does mpbench, in one line naming the place.
+pose_goal non_unit "[0.02, 0.02, 0.02]" "[1, 0, 0, 1]"
+out=$("$daemon" --check "$work/non_unit.yaml" 2>&1)
+check "non_unit: loads, as in MoveIt" test $? -eq 0
+check "non_unit: ... with one warning naming its place" sh -c \
+    "printf '%s\n' \"\$1\" | grep -c \"warning: 1 MoveIt orientation constraint is not a unit quaternion (norm off 1 by more than 1e-3): identity assumed instead, as MoveIt does; the first at $work/non_unit/request0001.yaml:[0-9]*:[0-9]*\$\" | grep -qx 1" _ "$out"
+
+# refused NAME PATTERN: the experiment NAME refused in one line at a
+# place of its own file, the database untouched.
+refused() {
+    out=$("$daemon" -d "$DB" "$work/$1.yaml" 2>&1)
+    rc=$?
+    check "$1: exits non-zero" test "$rc" -ne 0
+    check "$1: one line saying '$2'" sh -c \
+        "[ \$(printf '%s\n' \"\$1\" | wc -l) -eq 1 ] && printf '%s' \"\$1\" | grep -q \"^mpbenchd: $work/$1.yaml:[0-9]*:[0-9]*: $2\"" _ "$out"
+    [ "$rc" -ne 0 ] || echo "# got: $out"
+    check "$1: database untouched" test "$(md5sum <"$DB")" = "$sum_before"
+}
+
+# count past the end of the set, as first past it is.
+spoil count_past "" scene0001.yaml
+cp "$panda/problems/box_panda/scene0002.yaml" "$panda/problems/box_panda/request0002.yaml" \
+    "$work/count_past/"
+sed -i 's/{problems: count_past,/{problems: count_past, count: 3,/' "$work/count_past.yaml"
+refused count_past "count: 3 from problem 1 is past the end of $work/count_past, which holds 2 problems"
+
+# A scene without its request, and a request without its scene.
+spoil lone_scene "" scene0001.yaml
+cp "$panda/problems/box_panda/scene0002.yaml" "$work/lone_scene/"
+refused lone_scene "problem set $work/lone_scene: scene0002.yaml has no request0002.yaml beside it"
+spoil lone_request "" scene0001.yaml
+cp "$panda/problems/box_panda/request0002.yaml" "$work/lone_request/"
+refused lone_request "problem set $work/lone_request: request0002.yaml has no scene0002.yaml beside it"
+
+# A scene file that is a folder.
+spoil folder "" scene0001.yaml
+rm "$work/folder/scene0001.yaml"
+mkdir "$work/folder/scene0001.yaml"
+out=$("$daemon" -d "$DB" "$work/folder.yaml" 2>&1)
+check "folder: says it is a directory" test "$out" = \
+    "mpbenchd: $work/folder/scene0001.yaml: cannot read: Is a directory"
+check "folder: database untouched" test "$(md5sum <"$DB")" = "$sum_before"
+
 mpb_finish

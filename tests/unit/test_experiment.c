@@ -663,6 +663,27 @@ static void moveit_files_of_a_fuller_model_fit_the_robot(void **state)
 #undef FIT_EXP
 }
 
+/* A NUL byte or a byte that is not UTF-8 is placed at its line and
+ * column. */
+static void bytes_are_placed_at_their_line(void **state)
+{
+    char path[128], text[256];
+    (void)state;
+    snprintf(path, sizeof path, "%s/e.yaml", dir);
+    int n = snprintf(text, sizeof text, "# one\n# two\nexperiment: {name: "
+                     "xy}\n");
+    for (int k = 0; k < 2; k++) {
+        FILE *f;
+        text[30] = k == 0 ? '\0' : (char)0xfe;
+        assert_non_null(f = fopen(path, "wb"));
+        assert_int_equal(fwrite(text, 1, (size_t)n, f), (size_t)n);
+        assert_int_equal(fclose(f), 0);
+        assert_null(mpbd_experiment_load(path, err, sizeof err));
+        assert_error("3:19", k == 0 ? "a NUL byte: not a text file"
+                                    : "YAML: invalid leading UTF-8 octet");
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -681,6 +702,7 @@ int main(void)
         cmocka_unit_test(a_planner_family_must_fit_an_id),
         cmocka_unit_test(a_group_of_the_srdf),
         cmocka_unit_test(a_group_state_by_name),
+        cmocka_unit_test(bytes_are_placed_at_their_line),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);
 }

@@ -48,6 +48,17 @@ static const char *write_file(const char *name, const char *text)
     return path;
 }
 
+/* Write len bytes as dir/<name> and return its path. */
+static const char *write_bytes(const char *name, const char *bytes, size_t len)
+{
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    assert_non_null(f = fopen(path, "wb"));
+    assert_int_equal(fwrite(bytes, 1, len, f), len);
+    assert_int_equal(fclose(f), 0);
+    return path;
+}
+
 /* err is "<dir>/<file>:<where>: <what>" */
 static void assert_error(const char *file, const char *where, const char *what)
 {
@@ -249,6 +260,126 @@ static void bad_files_are_named_at_the_place(void **state)
                                             err, sizeof err), MPB_EIO);
 }
 
+/* A pose goal as MotionBenchMaker writes one, with the box dimensions and
+ * the orientation given. */
+static const char *pose_request(const char *dims, const char *orientation)
+{
+    static char text[1024];
+    snprintf(text, sizeof text,
+             "group_name: arm\n"
+             "goal_constraints:\n"
+             "  - position_constraints:\n"
+             "      - link_name: hand\n"
+             "        constraint_region:\n"
+             "          primitives: [{type: box, dimensions: %s}]\n"
+             "          primitive_poses: [{position: [0.5, 0, 0.3], orientation: [0, 0, 0, 1]}]\n"
+             "    orientation_constraints:\n"
+             "      - link_name: hand\n"
+             "        orientation: %s\n"
+             "        absolute_x_axis_tolerance: 0.05\n"
+             "        absolute_y_axis_tolerance: 0.05\n"
+             "        absolute_z_axis_tolerance: 0.05\n", dims, orientation);
+    return write_file("pose.yaml", text);
+}
+
+/* An orientation constraint whose quaternion is not of unit norm: MoveIt
+ * warns and assumes identity, and so does the reader (the caller warns);
+ * one of unit norm within 1e-3 is used as it is. */
+static void a_non_unit_orientation_is_taken_as_identity(void **state)
+{
+    mpbd_moveit_request r;
+    (void)state;
+    assert_int_equal(mpbd_moveit_request_read(pose_request("[0.02, 0.02, 0.02]",
+                                                           "[1, 0, 0, 1]"),
+                                              &r, err, sizeof err), MPB_OK);
+    assert_int_equal(r.orientation_identity, 1);
+    assert_int_equal(r.orientation_at.line, 10);
+    assert_int_equal(r.orientation_at.column, 22);
+    for (int i = 0; i < 3; i++)
+        assert_true(fabs(r.rpy[i]) < 1e-12);
+    mpbd_moveit_request_clear(&r);
+    assert_int_equal(mpbd_moveit_request_read(pose_request("[0.02, 0.02, 0.02]",
+                                                           "[1, 0, 0, 0.0005]"),
+                                              &r, err, sizeof err), MPB_OK);
+    assert_int_equal(r.orientation_identity, 0);
+    assert_true(fabs(fabs(r.rpy[0]) - M_PI) < 1e-2);
+    mpbd_moveit_request_clear(&r);
+}
+
+/* What a held-out set of corrupted MotionBenchMaker files found: each is
+ * refused in one line at its true place. */
+static void corrupted_files_are_refused_at_their_place(void **state)
+{
+    mpbd_moveit_scene s;
+    mpbd_moveit_request r;
+    char where[32];
+    (void)state;
+
+    /* 200,000 nested lists: refused at the 100th level, not parsed for a
+     * minute (libyaml's time grows with the square of the depth). */
+    size_t depth = 200000, len = 0;
+    char *deep = malloc(2 * depth + 64);
+    assert_non_null(deep);
+    len += (size_t)sprintf(deep, "fixed_frame_transforms: ");
+    memset(deep + len, '[', depth);
+    memset(deep + len + depth, ']', depth);
+    len += 2 * depth;
+    deep[len++] = '\n';
+    assert_int_equal(mpbd_moveit_scene_read(write_bytes("deep.yaml", deep, len),
+                                            "x", &s, err, sizeof err),
+                     MPB_EPARSE);
+    free(deep);
+    assert_error("deep.yaml", "1:124", "nested too deeply (more than 100 "
+                 "levels)");
+
+    /* A file cut after an object's id: no shapes, which MoveIt refuses. */
+    assert_int_equal(mpbd_moveit_scene_read(write_file("cut.yaml",
+        "world:\n  collision_objects:\n"
+        "    - id: side_left\n      primitives: [{type: box, dimensions: [1, 1, 1]}]\n"
+        "      primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n"
+        "    - id: side_right\n"), "x", &s, err, sizeof err), MPB_EPARSE);
+    assert_error("cut.yaml", "6:11", "object 'side_right' has no shapes "
+                 "(primitives, meshes or planes): MoveIt refuses such an "
+                 "object");
+
+    /* A goal box without volume: no run could sample a goal in it. */
+    assert_int_equal(mpbd_moveit_request_read(pose_request("[0, 0, 0]",
+                                                           "[0, 0, 0, 1]"),
+                                              &r, err, sizeof err), MPB_EPARSE);
+    assert_error("pose.yaml", "6:48", "box dimensions must be above 0 (a "
+                 "region without volume holds no reachable pose), not 0");
+    assert_int_equal(mpbd_moveit_request_read(pose_request("[0.1, 0.1, 0]",
+                                                           "[0, 0, 0, 1]"),
+                                              &r, err, sizeof err), MPB_EPARSE);
+
+    /* A NUL byte, and a byte that is not UTF-8, on line 50. */
+    char text[2048];
+    len = 0;
+    for (int i = 1; i < 50; i++)
+        len += (size_t)sprintf(text + len, "# line %d\n", i);
+    len += (size_t)sprintf(text + len, "name: ab");
+    size_t bad_at = len;
+    len += (size_t)sprintf(text + len, "c\n");
+    text[bad_at] = '\0';
+    assert_int_equal(mpbd_moveit_scene_read(write_bytes("nul.yaml", text, len),
+                                            "x", &s, err, sizeof err),
+                     MPB_EPARSE);
+    assert_error("nul.yaml", "50:9", "a NUL byte: not a text file");
+    text[bad_at] = (char)0xff;
+    assert_int_equal(mpbd_moveit_scene_read(write_bytes("utf8.yaml", text, len),
+                                            "x", &s, err, sizeof err),
+                     MPB_EPARSE);
+    snprintf(where, sizeof where, "50:9");
+    assert_error("utf8.yaml", where, "YAML: invalid leading UTF-8 octet");
+
+    /* A folder where a file is named. */
+    assert_int_equal(mpbd_moveit_request_read(dir, &r, err, sizeof err),
+                     MPB_EIO);
+    char want[256];
+    snprintf(want, sizeof want, "%s: cannot read: Is a directory", dir);
+    assert_string_equal(err, want);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -256,6 +387,8 @@ int main(void)
         cmocka_unit_test(a_request_gives_start_and_joint_goal),
         cmocka_unit_test(a_pose_goal_becomes_a_region),
         cmocka_unit_test(bad_files_are_named_at_the_place),
+        cmocka_unit_test(a_non_unit_orientation_is_taken_as_identity),
+        cmocka_unit_test(corrupted_files_are_refused_at_their_place),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);
 }
