@@ -90,7 +90,7 @@ int mpbd_mesh_path(const char *path, char *out, size_t n, char *err,
 {
     mpbd_yaml Y = {.path = path, .err = err, .errlen = errlen};
     size_t len;
-    char *text = mpbd_slurp(path, &len);
+    char *text = mpb_read_file(path, 0, &len);
     out[0] = '\0';
     if (text == NULL) {
         snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));

@@ -105,7 +105,7 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err,
         snprintf(err, errlen, "%s: out of memory", path);
         return NULL;
     }
-    if ((e->text = mpbd_slurp(path, &len)) == NULL) {
+    if ((e->text = mpb_read_file(path, 0, &len)) == NULL) {
         snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
         goto fail;
     }

@@ -52,7 +52,7 @@ int mpbd_load_model(mpbd_loader *L, yaml_node_t *m, const char *what,
     if ((*file_path = strdup(path)) == NULL)
         return fail_at(L, file, "out of memory");
     size_t len;
-    if ((*text = mpbd_slurp(path, &len)) == NULL)
+    if ((*text = mpb_read_file(path, 0, &len)) == NULL)
         return fail_at(L, file, "cannot read %s file %s: %s", what, path,
                        strerror(errno));
     /* The parsers stop at a NUL: the rest would vanish without a word. */
@@ -105,7 +105,7 @@ int mpbd_load_srdf(mpbd_loader *L, mpbd_experiment *e, char **robot)
     if ((e->srdf_file = strdup(path)) == NULL)
         return fail_at(L, n, "out of memory");
     size_t len;
-    char *srdf = mpbd_slurp(path, &len);
+    char *srdf = mpb_read_file(path, 0, &len);
     if (srdf == NULL)
         return fail_at(L, n, "cannot read srdf file %s: %s", path,
                        strerror(errno));

@@ -10,10 +10,8 @@
 #include <string.h>
 
 #include "experiment_load.h"
+#include "core/mathconst.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 /* A list of exactly n numbers. */
 static double *parse_vector(mpbd_loader *L, yaml_node_t *n, const char *what,

@@ -15,10 +15,8 @@
 #include "moveit.h"
 #include "mpbench/pose.h"
 #include "mpbench/proto.h"
+#include "core/mathconst.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 /* One file being read (yamldoc.h). */
 typedef mpbd_yaml reader;
@@ -180,9 +178,9 @@ static int open_file(reader *R, const char *path, char *err, size_t errlen)
 {
     *R = (reader){.path = path, .err = err, .errlen = errlen};
     size_t len;
-    char *body = mpbd_slurp(path, &len);
+    char *body = mpb_read_file(path, 0, &len);
     if (body == NULL) {
-        /* A folder says "Is a directory" (mpbd_slurp()), not libyaml's
+        /* A folder says "Is a directory" (mpb_read_file()), not libyaml's
          * "input error". */
         snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
         return MPB_EIO;

@@ -301,49 +301,6 @@ mpbd_mark mpbd_yaml_mark(const yaml_node_t *n)
                        (int)n->start_mark.column + 1};
 }
 
-char *mpbd_slurp(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    char *buf = NULL;
-    size_t cap = 0, n = 0;
-    struct stat st;
-    if (f == NULL)
-        return NULL;
-    /* fopen() opens a directory; reading it would say "Input/output error". */
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(f);
-        errno = EISDIR;
-        return NULL;
-    }
-    for (;;) {
-        if (n + 4096 + 1 > cap) {
-            char *nb = realloc(buf, cap = cap * 2 + 8192);
-            if (nb == NULL) {
-                free(buf);
-                fclose(f);
-                errno = ENOMEM;
-                return NULL;
-            }
-            buf = nb;
-        }
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0)
-            break;
-    }
-    if (ferror(f)) {
-        free(buf);
-        fclose(f);
-        errno = EIO;
-        return NULL;
-    }
-    fclose(f);
-    buf[n] = '\0';
-    if (len)
-        *len = n;
-    return buf;
-}
-
 /* The line and column (from 1; columns in characters, as libyaml counts
  * them) of byte offset at of text. */
 static mpbd_mark place_of(const char *text, size_t at)

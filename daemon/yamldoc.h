@@ -51,10 +51,6 @@ typedef struct mpbd_yaml {
 int mpbd_yaml_load(mpbd_yaml *Y, const char *text, size_t len,
                    const char *holds);
 
-/* Read a file whole, NUL-terminated, its length in *len (may be NULL):
- * NULL with errno set on failure (EISDIR for a directory). Free it. */
-char *mpbd_slurp(const char *path, size_t *len);
-
 /*
  * Record a fault, "<path>:<line>:<column>: <what>" at node n (or at
  * Y->place_path's place, or at the file, when n is NULL), unless one is
