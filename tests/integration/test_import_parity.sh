@@ -9,7 +9,8 @@
 # past 2^53 up to INT64's limits, nan, inf and empty values, a run and a
 # progress property no run measured, two planners with settings, and a
 # third with an approximate run, a timed-out one and an incorrect one,
-# the cells OMPL leaves empty left empty). Both
+# the cells OMPL leaves empty left empty), and a held-out one written by
+# hand (tests/integration/data/heldout.log). Both
 # tools also add to each other's databases (-a): a configuration added
 # again is one plannerConfigs row, an enum one set of rows.
 #
@@ -135,6 +136,12 @@ compare() {
     sed 's/^/# /' "$work/diff.out" | head -n 24
 }
 compare "OMPL's log" "$work/wall.log"
+# A held-out log, written by hand with planners and properties the others
+# lack, and REAL texts that SQLite reads otherwise than strtod does
+# ("0.814637" is 0.8146370000000001 in the script's cells).
+compare "the held-out log" "$MPB_SOURCE/tests/integration/data/heldout.log"
+check "... its smoothness as the script stores it, not as strtod reads it" \
+    test "$(sqlite3 "$work/mpb.db" "SELECT printf('%!.17g', simplified_solution_smoothness) FROM runs WHERE id = 1")" = 0.81463700000000006
 compare "the edge log" "$work/edge.log"
 compare "three logs, one twice" "$work/wall.log" "$work/edge.log" "$work/wall.log"
 

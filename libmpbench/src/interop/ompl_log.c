@@ -95,6 +95,9 @@ static int progress_samples(reader *r, mpb_ompl_planner *pl, long q, long at)
                     goto done;
                 }
                 if (used + (size_t)q > cap) {
+                    /* The values waiting for SQLite's reading move. */
+                    if (mpb__log_reals_flush(r) != 0)
+                        goto done;
                     cap = cap ? 2 * cap : 64 * (size_t)q;
                     double *t = realloc(pl->progress, cap * sizeof *t);
                     if (t == NULL) {
@@ -120,6 +123,11 @@ static int progress_samples(reader *r, mpb_ompl_planner *pl, long q, long at)
                         goto done;
                     }
                     pl->progress[used + (size_t)to] = v;
+                    if ((kinds[to] == V_REAL || kinds[to] == V_TIME) &&
+                        mpb__log_real_text(r, &pl->progress[used + (size_t)to],
+                                           r->raw + (vals[j] - r->buf),
+                                           strlen(vals[j])) != 0)
+                        goto done;
                 }
                 used += (size_t)q;
             }
@@ -129,6 +137,8 @@ static int progress_samples(reader *r, mpb_ompl_planner *pl, long q, long at)
         }
     }
     pl->progress_start[nr] = (long)(used / (size_t)q);
+    if (mpb__log_reals_flush(r) != 0)
+        goto done;
     rc = 0;
 done:
     free(vals);
@@ -223,7 +233,7 @@ static int planner_block(reader *r, mpb_ompl_log *log, int index)
     }
     free(kinds);
     free(limits);
-    if (r->failed)
+    if (r->failed || mpb__log_reals_flush(r) != 0)
         return -1;
 
     if ((s = mpb__log_need_line(r, "'.' or progress properties")) == NULL)
@@ -515,6 +525,7 @@ int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
         goto fail;
     free(r.buf);
     free_enums(&r);
+    mpb__log_reals_free(&r);
     *out = log;
     return MPB_OK;
 fail:
@@ -523,6 +534,7 @@ fail:
 done:
     free(r.buf);
     free_enums(&r);
+    mpb__log_reals_free(&r);
     return rc;
 }
 

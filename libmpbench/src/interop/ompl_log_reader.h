@@ -31,6 +31,7 @@ typedef struct reader {
         long count;             /* of its values */
     } *enums;
     long num_enums;
+    struct mpb__log_reals *reals;   /* REAL texts for SQLite to read */
 } reader;
 
 /* What a run's value may be, by its property's type. */
@@ -86,6 +87,17 @@ int mpb__log_run_values(reader *r, mpb_ompl_planner *pl, long run, char *s,
                         double *out, int n, int *extra_empty,
                         const unsigned char *kinds, const long *limits,
                         int *bad, char **bad_text);
+
+/*
+ * A REAL's text, [s, s + n) of the log's own text, whose value *dst is to
+ * be the double SQLite makes of it, as OMPL's script stores it (it binds
+ * the text; a REAL column's affinity reads it). *dst holds strtod's until
+ * mpb__log_reals_flush(), which the caller calls before dst may move and
+ * before the text goes. 0, or -1 after a failure.
+ */
+int mpb__log_real_text(reader *r, double *dst, const char *s, size_t n);
+int mpb__log_reals_flush(reader *r);
+void mpb__log_reals_free(reader *r);
 
 /* Each of the n properties' kind of value and, for an ENUM the log
  * declares, its count of values (else -1). */

@@ -1,7 +1,8 @@
 /*
  * ompl_log_values.c - the values of a benchmark log's runs and progress
  * samples (ompl_log_reader.h): each checked against its property's type
- * and read into the very double Python's float() makes of the text.
+ * and read into the double OMPL's script stores: an integer as written,
+ * a REAL as SQLite reads its text.
  */
 #include <errno.h>
 #include <float.h>
@@ -10,6 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <sqlite3.h>
 
 #include "interop/ompl_log_reader.h"
 
@@ -179,6 +182,10 @@ int mpb__log_run_values(reader *r, mpb_ompl_planner *pl, long run, char *s,
                                        b, e) != 0)
                 return -1;
             out[k] = value_in(b, e);    /* may write a NUL at e */
+            if ((kinds[k] == V_REAL || kinds[k] == V_TIME) && *bad < 0 &&
+                mpb__log_real_text(r, &out[k], r->raw + (b - r->buf),
+                                   (size_t)(e - b)) != 0)
+                return -1;
         } else
             *extra_empty = b == e;
         k++;
@@ -248,4 +255,177 @@ int mpb__log_not_a_value(reader *r, const char *where, const char *text,
                     "%ld)", where, text, p->name, limit - 1);
     return mpb__log_fail(r, "%s: '%.60s' is not %s %s", where, text,
                 kind == V_INTEGER ? "an" : "a", mpb__log_kind_names[kind]);
+}
+
+/*
+ * OMPL's script binds a value's text and SQLite's REAL affinity makes
+ * the number, with SQLite's own conversion: not always strtod's double
+ * (SQLite 3.40 reads "0.814637" as 0.8146370000000001, the script's
+ * cell; Python's float() and strtod give 0.814637). So the texts of REAL
+ * values are read by SQLite itself, MPB__REALS_BATCH to one statement of
+ * CASTs (the same conversion), in a database of its own in memory.
+ */
+#define MPB__REALS_BATCH 64
+
+struct mpb__log_reals {
+    sqlite3      *db;
+    sqlite3_stmt *st;
+    int           n;
+    double       *dst[MPB__REALS_BATCH];
+    int           same;   /* 1: SQLite reads a short decimal as shortly() */
+};
+
+/*
+ * A decimal of at most 18 digits with a power of ten within +-22, read as
+ * SQLite 3.40 does: the digits as an integer and the power of ten, both
+ * exact in long double, divided (or multiplied) in long double, the
+ * quotient rounded to double; a double rounding, hence its last digit.
+ * 1 and *out when [s, e) is such a decimal, else 0. Whether the SQLite at
+ * hand does so is asked it once (reals_open()); when not, it reads
+ * every text itself.
+ */
+static int shortly(const char *s, const char *e, double *out)
+{
+    static const long double p10[] = {
+        1e0L, 1e1L, 1e2L, 1e3L, 1e4L, 1e5L, 1e6L, 1e7L, 1e8L, 1e9L, 1e10L,
+        1e11L, 1e12L, 1e13L, 1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L,
+        1e20L, 1e21L, 1e22L};
+    const char *p = s, *d;
+    int neg = 0;
+    long k = 0, digits;
+    uint64_t m = 0;
+    if (p < e && (*p == '-' || *p == '+'))
+        neg = *p++ == '-';
+    for (d = p; p < e && (unsigned)(*p - '0') < 10; p++)
+        m = 10 * m + (uint64_t)(*p - '0');
+    digits = p - d;
+    if (p < e && *p == '.') {
+        for (d = ++p; p < e && (unsigned)(*p - '0') < 10; p++)
+            m = 10 * m + (uint64_t)(*p - '0');
+        k = -(p - d);
+        digits += p - d;
+    }
+    if (digits == 0 || digits > 18)
+        return 0;
+    if (p < e && (*p == 'e' || *p == 'E')) {
+        int eneg = 0;
+        long x = 0;
+        if (++p < e && (*p == '-' || *p == '+'))
+            eneg = *p++ == '-';
+        if (p == e || (unsigned)(*p - '0') >= 10)
+            return 0;
+        for (; p < e && (unsigned)(*p - '0') < 10; p++)
+            if (x < 100000)
+                x = 10 * x + (*p - '0');
+        k += eneg ? -x : x;
+    }
+    if (p != e || k < -22 || k > 22)
+        return 0;
+    long double v = (long double)m;
+    v = k < 0 ? v / p10[-k] : v * p10[k];
+    *out = neg ? -(double)v : (double)v;
+    return 1;
+}
+
+int mpb__log_reals_flush(reader *r)
+{
+    struct mpb__log_reals *q = r->reals;
+    if (q == NULL || q->n == 0)
+        return 0;
+    for (int i = q->n; i < MPB__REALS_BATCH; i++)
+        sqlite3_bind_null(q->st, i + 1);
+    if (sqlite3_step(q->st) != SQLITE_ROW) {
+        q->n = 0;
+        sqlite3_reset(q->st);
+        return mpb__log_fail(r, "SQLite could not read the values: %s",
+                             sqlite3_errmsg(q->db));
+    }
+    for (int i = 0; i < q->n; i++)
+        if (sqlite3_column_type(q->st, i) == SQLITE_FLOAT ||
+            sqlite3_column_type(q->st, i) == SQLITE_INTEGER)
+            *q->dst[i] = sqlite3_column_double(q->st, i);
+    sqlite3_reset(q->st);
+    q->n = 0;
+    return 0;
+}
+
+/* 1 when SQLite's reading of [s, e) may differ from strtod's: anything
+ * but an integer of at most 15 digits (exact either way). */
+static int sqlite_may_differ(const char *s, const char *e)
+{
+    if (s < e && (*s == '-' || *s == '+'))
+        s++;
+    if (e - s > 15 || s == e)
+        return 1;
+    for (; s < e; s++)
+        if ((unsigned)(*s - '0') >= 10)
+            return 1;
+    return 0;
+}
+
+static int reals_open(reader *r)
+{
+    struct mpb__log_reals *q = calloc(1, sizeof *q);
+    if (q == NULL)
+        return mpb__log_fail(r, "out of memory");
+    r->reals = q;
+    char sql[MPB__REALS_BATCH * 24 + 16] = "SELECT ";
+    size_t len = strlen(sql);
+    for (int i = 0; i < MPB__REALS_BATCH; i++)
+        len += (size_t)snprintf(sql + len, sizeof sql - len,
+                                "%sCAST(?%d AS REAL)", i ? "," : "", i + 1);
+    if (sqlite3_open_v2(":memory:", &q->db, SQLITE_OPEN_READWRITE |
+                        SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(q->db, sql, -1, &q->st, NULL) != SQLITE_OK)
+        return mpb__log_fail(r, "SQLite could not read the values: %s",
+                             q->db ? sqlite3_errmsg(q->db) : "out of memory");
+    /* Does this SQLite read short decimals as shortly() does? Asked of
+     * texts it reads otherwise than strtod (3.40 does), and plain ones. */
+    static const char *const probe[] = {
+        "0.814637", "0.549012", "0.906472", "0.265514", "0.656028",
+        "0.797097", "12.2571", "3.14159", "1e-7", "123456.789", "2.5e3",
+        "-0.1", "0.3", "7e22", "9.87654321e-22",
+    };
+    enum { NUM_PROBES = sizeof probe / sizeof *probe };
+    double want[NUM_PROBES];
+    for (int i = 0; i < NUM_PROBES; i++) {
+        want[i] = NAN;
+        sqlite3_bind_text(q->st, i + 1, probe[i], -1, SQLITE_STATIC);
+        q->dst[q->n++] = &want[i];
+    }
+    if (mpb__log_reals_flush(r) != 0)
+        return -1;
+    q->same = 1;
+    for (int i = 0; q->same && i < NUM_PROBES; i++) {
+        double got;
+        q->same = shortly(probe[i], probe[i] + strlen(probe[i]), &got) &&
+                  memcmp(&got, &want[i], sizeof got) == 0;
+    }
+    return 0;
+}
+
+int mpb__log_real_text(reader *r, double *dst, const char *s, size_t n)
+{
+    if (!isfinite(*dst) || !sqlite_may_differ(s, s + n))
+        return 0;
+    if (r->reals == NULL && reals_open(r) != 0)
+        return -1;
+    struct mpb__log_reals *q = r->reals;
+    if (q->st == NULL)
+        return -1;
+    if (q->same && shortly(s, s + n, dst))
+        return 0;
+    sqlite3_bind_text(q->st, q->n + 1, s, (int)n, SQLITE_STATIC);
+    q->dst[q->n++] = dst;
+    return q->n == MPB__REALS_BATCH ? mpb__log_reals_flush(r) : 0;
+}
+
+void mpb__log_reals_free(reader *r)
+{
+    if (r->reals == NULL)
+        return;
+    sqlite3_finalize(r->reals->st);
+    sqlite3_close(r->reals->db);
+    free(r->reals);
+    r->reals = NULL;
 }
