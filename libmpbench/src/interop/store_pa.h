@@ -20,6 +20,7 @@
 
 #include <stdint.h>
 
+#include "mpbench/ompl_log.h"
 #include "store/store_internal.h"
 
 /* ---- run properties (store_pa_props.c) ------------------------------------ */
@@ -217,6 +218,13 @@ int mpb__pa_exec(pa_out *o, const char *sql, const char *what);
  * script does before it reads a log; with status_enum, add mpbench's
  * status enum too (a log brings its own). */
 int mpb__pa_begin(pa_out *o, int status_enum);
+
+/* mpbench's status enum (mpb__pa_status_enum), the values missing. */
+int mpb__pa_add_status_enum(pa_out *o);
+
+/* An OMPL log as OMPL's script writes it (ompl_log_pa.c): the experiment,
+ * its enums, planners, runs and progress. */
+int mpb__pa_write_log(pa_out *o, const mpb_ompl_log *log);
 
 /* End what mpb__pa_begin() began and close o->db (if open): with rc
  * MPB_OK the views made anew and the transaction committed, otherwise
