@@ -17,35 +17,30 @@
 #include "interop/ompl_log_reader.h"
 
 /*
- * A decimal "[+-]digits[.digits][(e|E)[+-]digits]" taking all of [s, e),
- * with at most 19 digits, into *out; 0 when the text is not that simple.
- * Clinger's fast path: when the digits as an integer m are at most 2^53
- * and the exponent k is within +-22, m and 10^|k| are exact doubles and
- * m * 10^k (or m / 10^-k) is one correctly rounded operation, the very
- * double strtod returns. Anything else is left to strtod.
+ * A decimal "[+-]digits[.digits][(e|E)[+-]digits]" taking all of [s, e)
+ * as its parts: the sign, the digits as an integer *m (valid for at most
+ * 19 of them), their count and the power of ten *k, so that the value is
+ * m * 10^k. 0 when the text is not that simple.
  */
-static int fast_decimal(const char *s, const char *e, double *out)
+static int decimal_parts(const char *s, const char *e, int *neg,
+                         uint64_t *m, long *k, long *digits)
 {
-#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
-    static const double p10[] = {
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
-        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
     const char *p = s, *d;
-    int neg = 0;
-    long k = 0, digits;
-    uint64_t m = 0;     /* wraps beyond 19 digits: then unused */
+    *neg = 0;
+    *k = 0;
+    *m = 0;     /* wraps beyond 19 digits: then unused */
     if (p < e && (*p == '-' || *p == '+'))
-        neg = *p++ == '-';
+        *neg = *p++ == '-';
     for (d = p; p < e && (unsigned)(*p - '0') < 10; p++)
-        m = 10 * m + (uint64_t)(*p - '0');
-    digits = p - d;
+        *m = 10 * *m + (uint64_t)(*p - '0');
+    *digits = p - d;
     if (p < e && *p == '.') {
         for (d = ++p; p < e && (unsigned)(*p - '0') < 10; p++)
-            m = 10 * m + (uint64_t)(*p - '0');
-        k = -(p - d);
-        digits += p - d;
+            *m = 10 * *m + (uint64_t)(*p - '0');
+        *k = -(p - d);
+        *digits += p - d;
     }
-    if (digits == 0 || digits > 19)
+    if (*digits == 0)
         return 0;
     if (p < e && (*p == 'e' || *p == 'E')) {
         int eneg = 0;
@@ -57,9 +52,30 @@ static int fast_decimal(const char *s, const char *e, double *out)
         for (; p < e && (unsigned)(*p - '0') < 10; p++)
             if (x < 100000)
                 x = 10 * x + (*p - '0');
-        k += eneg ? -x : x;
+        *k += eneg ? -x : x;
     }
-    if (p != e || m > (UINT64_C(1) << 53))
+    return p == e;
+}
+
+/*
+ * The decimal [s, e) (decimal_parts()) of at most 19 digits into *out; 0
+ * when it is not that simple. Clinger's fast path: when the digits as an
+ * integer m are at most 2^53 and the exponent k is within +-22, m and
+ * 10^|k| are exact doubles and m * 10^k (or m / 10^-k) is one correctly
+ * rounded operation, the very double strtod returns. Anything else is
+ * left to strtod.
+ */
+static int fast_decimal(const char *s, const char *e, double *out)
+{
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
+    static const double p10[] = {
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
+        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    int neg;
+    uint64_t m;
+    long k, digits;
+    if (!decimal_parts(s, e, &neg, &m, &k, &digits) || digits > 19 ||
+        m > (UINT64_C(1) << 53))
         return 0;
     double v = (double)m;
     if (m != 0) {
@@ -290,36 +306,11 @@ static int shortly(const char *s, const char *e, double *out)
         1e0L, 1e1L, 1e2L, 1e3L, 1e4L, 1e5L, 1e6L, 1e7L, 1e8L, 1e9L, 1e10L,
         1e11L, 1e12L, 1e13L, 1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L,
         1e20L, 1e21L, 1e22L};
-    const char *p = s, *d;
-    int neg = 0;
-    long k = 0, digits;
-    uint64_t m = 0;
-    if (p < e && (*p == '-' || *p == '+'))
-        neg = *p++ == '-';
-    for (d = p; p < e && (unsigned)(*p - '0') < 10; p++)
-        m = 10 * m + (uint64_t)(*p - '0');
-    digits = p - d;
-    if (p < e && *p == '.') {
-        for (d = ++p; p < e && (unsigned)(*p - '0') < 10; p++)
-            m = 10 * m + (uint64_t)(*p - '0');
-        k = -(p - d);
-        digits += p - d;
-    }
-    if (digits == 0 || digits > 18)
-        return 0;
-    if (p < e && (*p == 'e' || *p == 'E')) {
-        int eneg = 0;
-        long x = 0;
-        if (++p < e && (*p == '-' || *p == '+'))
-            eneg = *p++ == '-';
-        if (p == e || (unsigned)(*p - '0') >= 10)
-            return 0;
-        for (; p < e && (unsigned)(*p - '0') < 10; p++)
-            if (x < 100000)
-                x = 10 * x + (*p - '0');
-        k += eneg ? -x : x;
-    }
-    if (p != e || k < -22 || k > 22)
+    int neg;
+    uint64_t m;
+    long k, digits;
+    if (!decimal_parts(s, e, &neg, &m, &k, &digits) || digits > 18 ||
+        k < -22 || k > 22)
         return 0;
     long double v = (long double)m;
     v = k < 0 ? v / p10[-k] : v * p10[k];
