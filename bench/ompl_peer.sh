@@ -8,8 +8,9 @@
 # The script is not part of mpbench and no Debian package installs it, but
 # Debian's source package of OMPL carries it. This takes that package, of
 # the version of libompl-dev that is installed, from the Debian archive
-# with apt (which checks the archive's signature and every file's hash),
-# into a private apt state under DIR: nothing of the system's apt setup
+# with apt-get source (which checks the archive's signature and every
+# file's hash), from the archives the machine's own apt sources name, into
+# a private apt state under DIR: nothing of the system's apt setup
 # changes. The script is kept in DIR for the next run (and the next build:
 # make deps fetches it, tests/integration/test_import_parity.sh runs it);
 # the rest is removed. It needs the network, so bench/run.sh calls it
@@ -29,24 +30,46 @@ version=$(dpkg-query -W -f='${source:Version}' libompl-dev 2>/dev/null) ||
 out=$DIR/ompl-$version/ompl_benchmark_statistics.py
 [ -s "$out" ] && { echo "$out"; exit 0; }
 
-codename=$(. /etc/os-release && echo "${VERSION_CODENAME:-}")
-[ -n "$codename" ] || fail "no VERSION_CODENAME in /etc/os-release"
 apt_dir=$DIR/apt
 rm -rf "$apt_dir" && mkdir -p "$apt_dir/lists/partial" \
-    "$apt_dir/cache/archives/partial" "$apt_dir/source" || fail "cannot write $DIR"
+    "$apt_dir/cache/archives/partial" "$apt_dir/source" "$apt_dir/sources" ||
+    fail "cannot write $DIR"
 trap 'rm -rf "$apt_dir"' EXIT
-echo "deb-src [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg]" \
-    "http://deb.debian.org/debian $codename main" >"$apt_dir/sources.list"
+# The machine's own sources, as apt reads them (its mirrors, proxies and
+# keys), each "deb" entry turned into "deb-src" of the same archive: no
+# host is written here. One-line files and deb822 files alike.
+etc=$(apt-config shell E Dir::Etc/d | sed "s/^E='\(.*\)'$/\1/")
+etc=${etc:-/etc/apt/}
+n=0
+for f in "$etc/sources.list" "$etc"/sources.list.d/*.list; do
+    [ -f "$f" ] || continue
+    n=$((n + 1))
+    sed -n 's/^[[:space:]]*deb[[:space:]]/deb-src /p' "$f" \
+        >"$apt_dir/sources/$n.list"
+done
+for f in "$etc"/sources.list.d/*.sources; do
+    [ -f "$f" ] || continue
+    n=$((n + 1))
+    awk 'tolower($1) == "types:" {
+             deb = 0
+             for (i = 2; i <= NF; i++) if ($i == "deb") deb = 1
+             print deb ? "Types: deb-src" : $0; next }
+         { print }' "$f" >"$apt_dir/sources/$n.sources"
+done
+[ "$n" -gt 0 ] || fail "no apt sources in $etc (sources.list, sources.list.d)"
 apt() {
-    apt-get -qq -o Dir::Etc::SourceList="$apt_dir/sources.list" \
-        -o Dir::Etc::SourceParts=/dev/null -o Dir::State::Lists="$apt_dir/lists" \
+    apt-get -qq -o Dir::Etc::SourceList=/dev/null \
+        -o Dir::Etc::SourceParts="$apt_dir/sources" \
+        -o Dir::State::Lists="$apt_dir/lists" \
         -o Dir::Cache="$apt_dir/cache" -o Debug::NoLocking=1 \
         -o APT::Sandbox::User=root "$@"
 }
 # apt's first complaint, for the one line of a failure (the log goes).
 why() { grep -m1 '^[EW]:' "$apt_dir/log" | cut -c1-200; }
-apt update >"$apt_dir/log" 2>&1 ||
-    fail "apt-get update of Debian's source index failed: $(why)"
+# A source of the machine that serves no source index (a third party's
+# archive) fails the update but not what follows: apt source says whether
+# the package was found.
+apt update >"$apt_dir/log" 2>&1 || :
 (cd "$apt_dir/source" && apt source --download-only "ompl=$version") \
     >>"$apt_dir/log" 2>&1 || fail "apt-get source ompl=$version failed: $(why)"
 mkdir -p "$(dirname "$out")"

@@ -10,7 +10,9 @@
  * starts and sends no request in its first MPBD_LISTEN_S; one that hears
  * a younger daemon's status answers at once with its own, and the younger
  * one stops on hearing it. Daemons with different secrets (auth.h) do not
- * hear each other, and need not: their planners do not answer each other.
+ * hear each other, and need not: their planners do not answer each other;
+ * each counts the other's status as a rejected message, as it counts a
+ * forged one, which it cannot tell from it.
  * A status the daemon cannot trust does not stop it once it has sent a
  * request (believe_elder()).
  */
@@ -110,14 +112,27 @@ static void on_status_raw(const lcm_recv_buf_t *rbuf, const char *channel,
     mpb_daemon_status_t m;
     mpb_auth_info info;
     size_t len;
-    /* A daemon with another secret, or none, is no concern of this one,
-     * and its status is not a rejected message: checked quietly. */
+    char why[160] = "";
+    /* Without the right tag a status may be a daemon's with another
+     * secret (or none), which is no concern of this one, or a forgery:
+     * the two cannot be told apart, and a forgery is what the count and
+     * the log are for, so both are counted and logged as every dropped
+     * message is (mpbd_reject() limits the lines). Another secret's
+     * daemon costs a count a second; docs/protocol.md says so. */
     mpb_auth_verdict v = mpb_auth_open(d->auth, channel, rbuf->data,
                                        rbuf->data_size, &len, &info);
-    if (v == MPB_AUTH_BAD_TAG ||
-        !mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, NULL, 0) ||
-        mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (v == MPB_AUTH_BAD_TAG) {
+        mpbd_reject(d, channel, "a daemon status without the right tag "
+                    "(another secret's daemon, or forged)");
         return;
+    }
+    if (!mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, why,
+                        sizeof why) ||
+        mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0) {
+        mpbd_reject(d, channel, why[0] ? why : "a daemon status that "
+                    "does not decode");
+        return;
+    }
     on_status(d, &m, v, &info, channel, mpb_monotonic_s());
     mpb_daemon_status_t_decode_cleanup(&m);
 }

@@ -20,7 +20,6 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cache=$root/.cache/robots
 VERSION=0.6.4
 SHA256=d3150c6b67ff941af9ad56480b31d3fb73b12211ea21dc684f7737b059f6daba
-URL=https://files.pythonhosted.org/packages/f2/e3/df472573bab9194d796cf6a156edcf95089c14e5c932b2874cdef0d60a8b/vamp_planner-$VERSION.tar.gz
 ROBOTS="panda ur5 fetch baxter"
 dest=$cache/vamp-planner-$VERSION
 stamp=$dest/.complete
@@ -31,33 +30,46 @@ if [ -f "$stamp" ]; then
 fi
 [ "${1:-}" = --check ] && exit 1
 
-python=/usr/bin/python3
-[ -x "$python" ] || python=python3
 mkdir -p "$cache"
 tarball=$cache/vamp_planner-$VERSION.tar.gz
-echo "robot data: fetching vamp-planner $VERSION from PyPI" >&2
-# Python does the download, the hash and both archives (the problems are
-# bzip2, which a minimal Debian may lack as a command).
-"$python" - "$URL" "$SHA256" "$tarball" "$dest" $ROBOTS <<'EOF'
-import hashlib, os, shutil, sys, tarfile, urllib.request
-url, want, tarball, dest, robots = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5:]
+sha256() { sha256sum "$1" | cut -d' ' -f1; }
+if [ ! -f "$tarball" ] || [ "$(sha256 "$tarball")" != "$SHA256" ]; then
+    echo "robot data: fetching vamp-planner $VERSION with pip" >&2
+    # pip as the machine configures it (its index, mirrors, proxies):
+    # the source distribution only. Only this package is held to its
+    # source: with --no-binary :all: pip would build the build tools of
+    # its metadata step (CMake among them) from source too, for minutes.
+    pip="$root/.venv/bin/python"
+    [ -x "$pip" ] || pip=python3
+    rm -rf "$cache/download" && mkdir -p "$cache/download"
+    "$pip" -m pip download -q --no-deps --no-binary vamp-planner \
+        -d "$cache/download" "vamp-planner==$VERSION" >&2 || {
+        echo "robot data: pip download vamp-planner==$VERSION failed" >&2
+        exit 1
+    }
+    got=$cache/download/vamp_planner-$VERSION.tar.gz
+    [ -f "$got" ] || {
+        echo "robot data: pip gave no $(basename "$got")" >&2
+        exit 1
+    }
+    sum=$(sha256 "$got")
+    if [ "$sum" != "$SHA256" ]; then
+        rm -rf "$cache/download"
+        echo "robot data: vamp_planner-$VERSION.tar.gz: sha256 $sum," \
+            "expected $SHA256" >&2
+        exit 1
+    fi
+    mv "$got" "$tarball"
+    rm -rf "$cache/download"
+fi
 
-def sha256(path):
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
-
-if not os.path.exists(tarball) or sha256(tarball) != want:
-    tmp = tarball + ".part"
-    with urllib.request.urlopen(url, timeout=120) as r, open(tmp, "wb") as f:
-        shutil.copyfileobj(r, f)
-    got = sha256(tmp)
-    if got != want:
-        os.remove(tmp)
-        sys.exit(f"robot data: {url}: sha256 {got}, expected {want}")
-    os.replace(tmp, tarball)
+python=/usr/bin/python3
+[ -x "$python" ] || python=python3
+# Python does both archives (the problems are bzip2, which a minimal
+# Debian may lack as a command).
+"$python" - "$tarball" "$dest" $ROBOTS <<'EOF'
+import os, shutil, sys, tarfile
+tarball, dest, robots = sys.argv[1], sys.argv[2], sys.argv[3:]
 
 staging = dest + ".tmp"
 shutil.rmtree(staging, ignore_errors=True)

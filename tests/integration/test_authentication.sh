@@ -22,6 +22,32 @@ good=$!
 bad=$!
 MPB_PIDS="$good $bad"
 
+# All along, a status of a daemon that says it started an hour before,
+# "running", with a trailer whose tag is wrong: believed, it would stop
+# the daemon; it is dropped, counted and logged (issue 40).
+cat >"$work/forge_status.py" <<'PY'
+import os, sys, time
+import lcm
+from mpb import daemon_status_t
+m = daemon_status_t()
+m.utime = int(time.time() * 1e6)
+m.daemon_id = "forged-elder"
+m.experiment = "auth"
+m.state = "running"
+m.elapsed_s = 3600.0
+m.num_planners = 0
+m.planners = []
+data = m.encode() + os.urandom(56)
+lc = lcm.LCM()
+for _ in range(300):
+    lc.publish("MPB_STATUS", data)
+    time.sleep(0.1)
+PY
+PYTHONPATH="$MPB_BUILD/lcmtypes/python" "$MPB_SOURCE/.venv/bin/python3" \
+    "$work/forge_status.py" &
+forger=$!
+MPB_PIDS="$MPB_PIDS $forger"
+sleep 0.5
 "$MPB_BUILD/daemon/mpbenchd" --secret-file "$work/secret" -d "$DB" \
     "$work/exp.yaml" >"$work/daemon.log" 2>&1 &
 daemon=$!
@@ -45,6 +71,11 @@ check "its messages were rejected for their tag" \
     grep -q "wrong authentication tag" "$work/daemon.log"
 check "the untagged result did not reach the database" \
     eq "$(q "SELECT count(*) FROM stages WHERE name = 'forged'")" 0
+check "the forged status did not stop the daemon (it completed, above)" \
+    sh -c "! grep -q 'forged-elder' '$work/daemon.log'"
+check "... and each copy was counted and logged as rejected" \
+    grep -q "rejected a message on MPB_STATUS: a daemon status without the right tag" \
+    "$work/daemon.log"
 
 # Without the secret, the daemon hears nobody it can trust and says so.
 "$MPB_BUILD/daemon/mpbenchd" --secret-file "$work/nosuch" -d "$DB" "$work/exp.yaml" \

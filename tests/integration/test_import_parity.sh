@@ -9,7 +9,8 @@
 # past 2^53 up to INT64's limits, nan, inf and empty values, a run and a
 # progress property no run measured, two planners with settings, and a
 # third with an approximate run, a timed-out one and an incorrect one,
-# the cells OMPL leaves empty left empty). Both
+# the cells OMPL leaves empty left empty), and a held-out one written by
+# hand (tests/integration/data/heldout.log). Both
 # tools also add to each other's databases (-a): a configuration added
 # again is one plannerConfigs row, an enum one set of rows.
 #
@@ -135,6 +136,12 @@ compare() {
     sed 's/^/# /' "$work/diff.out" | head -n 24
 }
 compare "OMPL's log" "$work/wall.log"
+# A held-out log, written by hand with planners and properties the others
+# lack, and REAL texts that SQLite reads otherwise than strtod does
+# ("0.814637" is 0.8146370000000001 in the script's cells).
+compare "the held-out log" "$MPB_SOURCE/tests/integration/data/heldout.log"
+check "... its smoothness as the script stores it, not as strtod reads it" \
+    test "$(sqlite3 "$work/mpb.db" "SELECT printf('%!.17g', simplified_solution_smoothness) FROM runs WHERE id = 1")" = 0.81463700000000006
 compare "the edge log" "$work/edge.log"
 compare "three logs, one twice" "$work/wall.log" "$work/edge.log" "$work/wall.log"
 
@@ -158,26 +165,32 @@ check "a configuration added again is one row" \
     eq "$(sqlite3 "$work/b.db" "SELECT count(*) FROM plannerConfigs")" 6
 
 # The round trip through an mpbench database: mpb import -d, then mpb
-# export --planner-arena, and mpb export --ompl-log read by the script,
-# keep every property each log had, with its value and SQLite type, as
-# the script stores it from the log itself: the experiment's header
-# (date, version, total time, seed, memory limit, CPU block, setup, host)
-# and parameters, and every run and progress property (its planners are
-# named mpbench's way, and mpbench adds properties of its own), the edge
-# log's integers past 2^53 (INT64_MIN and INT64_MAX among them) exactly,
-# and the properties that no run measured (the wall log's progress, the
-# edge log's "unmeasured" and "never") as the script's columns of NULLs.
-for log in wall edge; do
+# export --planner-arena gives back the very database the script makes
+# of the log, every table and every cell (the log's planner names and
+# settings, its columns in its order, its enums, nothing of mpbench's);
+# mpb export --ompl-log read by the script keeps every property each log
+# had, with its value and SQLite type, as the script stores it from the
+# log itself: the experiment's header (date, version, total time, seed,
+# memory limit, CPU block, setup, host) and parameters, and every run and
+# progress property (its planners are named mpbench's way, and mpbench
+# adds properties of its own), the edge log's integers past 2^53
+# (INT64_MIN and INT64_MAX among them) exactly, and the properties that
+# no run measured (the wall log's progress, the edge log's "unmeasured"
+# and "never") as the script's columns of NULLs. The held-out log too
+# (first: the edge log's database stays for the checks after).
+cp "$MPB_SOURCE/tests/integration/data/heldout.log" "$work/heldout.log"
+for log in heldout wall edge; do
     rm -rf "$work/rt.db" "$work/rt-pa.db" "$work/rt-logs" "$work/rt-ompl.db" \
         "$work/ompl.db"
     "$py" "$stats" -d "$work/ompl.db" "$work/$log.log" >/dev/null 2>&1
     "$mpb" import -d "$work/rt.db" "$work/$log.log" >/dev/null &&
         "$mpb" export --planner-arena "$work/rt.db" "$work/rt-pa.db" >/dev/null
     check "$log: import -d, export --planner-arena" test $? -eq 0
-    "$py" "$same" --properties "$work/ompl.db" "$work/rt-pa.db" \
-        >"$work/diff.out"
-    check "$log: ... keeps every property of the log, value and type" test $? -eq 0
+    "$py" "$same" "$work/ompl.db" "$work/rt-pa.db" >"$work/diff.out"
+    check "$log: ... the script's database of the log, every table and cell" \
+        test $? -eq 0
     sed 's/^/# /' "$work/diff.out" | head -n 24
+    cp "$work/rt-pa.db" "$work/$log-pa.db"
     "$mpb" export --ompl-log "$work/rt.db" "$work/rt-logs" >/dev/null &&
         "$py" "$stats" -d "$work/rt-ompl.db" "$work/rt-logs"/*.log >/dev/null 2>&1
     check "$log: export --ompl-log, read by OMPL's script" test $? -eq 0
@@ -186,12 +199,10 @@ for log in wall edge; do
     check "$log: ... keeps every property of the log, value and type" test $? -eq 0
     sed 's/^/# /' "$work/diff.out" | head -n 24
 done
-# The edge log's common properties, "k = v" lines, come back as such
-# (beside mpbench's algorithm and planner), not as "k  =  v".
-check "a planner's settings are the log's lines" test "$(sqlite3 "$work/rt-pa.db" \
-    "SELECT settings FROM plannerConfigs WHERE name = 'ompl/RRT'")" = "algorithm = RRT
-;goal_bias = 0.05
-;planner = ompl
+# The edge log's planner and its common properties come back as the log
+# wrote them: not "ompl/RRT", nor "algorithm = RRT" in front.
+check "a planner's name and settings are the log's lines" test "$(sqlite3 "$work/edge-pa.db" \
+    "SELECT name || '|' || settings FROM plannerConfigs WHERE name LIKE '%RRT'")" = "geometric_RRT|goal_bias = 0.05
 ;range = 0
 ;"
 # A log mpbench wrote (17 significant digits, its own properties and

@@ -118,6 +118,27 @@ check "a stage with a NaN still gets a page" eq $? 0
 check "... the stage listed with its verdict, no frame drawn" \
     grep -q '"verdict":"not_finite","detail":"waypoint 0 joint r_shoulder_pan_joint is nan","segment":0,"waypoints":0,"frames":0' "$work/nan.html"
 
+# Where a run is, said once: "kitchen / through_the_counter"; a query
+# named as its scene (MotionBenchMaker's problems name both
+# "cage_panda/0001"), or under it, is not repeated (issue 40).
+check "the page's title names the scene and the query" \
+    grep -q "<title>mpb view: run $run, null/straight_line, kitchen / through_the_counter</title>" \
+    "$work/kitchen.html"
+check "... and so does its data, which titles the page" \
+    grep -q '"place":"kitchen / through_the_counter"' "$work/kitchen.html"
+cp "$DB" "$work/mbm.db"
+sqlite3 "$work/mbm.db" "UPDATE scenes SET name = 'cage_panda/0001'; UPDATE queries SET name = 'cage_panda/0001' WHERE id = (SELECT query_id FROM runs WHERE id = $run)"
+"$mpb" view "$work/mbm.db" "$run" -o "$work/mbm.html" >/dev/null 2>&1
+check "a query named as its scene: mpb view writes the page" eq $? 0
+check "... its title says the name once" \
+    grep -q "<title>mpb view: run $run, null/straight_line, cage_panda/0001</title>" \
+    "$work/mbm.html"
+check "... and so does its data" grep -q '"place":"cage_panda/0001"' "$work/mbm.html"
+"$mpb" view "$work/mbm.db" --failed -o "$work/mbm-failed" >/dev/null 2>&1
+check "... and the index of failed runs" \
+    grep -q "<td>cage_panda/0001</td>" "$work/mbm-failed/index.html"
+check "... never twice" sh -c "! grep -q 'cage_panda/0001 / cage_panda/0001' '$work/mbm-failed/index.html' '$work/mbm.html'"
+
 # Without -o: a new file, its path said, and that there is no display.
 out=$(env -u DISPLAY -u WAYLAND_DISPLAY TMPDIR="$work" "$mpb" view "$DB" "$run")
 check "without -o it writes a new file and says where" \

@@ -121,4 +121,10 @@ int view_write_page(const view_run *v, const char *three_js, FILE *out);
 /* Text into HTML: < > & " escaped. */
 void view_html_text(FILE *f, const char *s);
 
+/* Where a run is, "scene / query", into buf: the query alone when it
+ * names the scene too (MotionBenchMaker's problems name both
+ * "cage_panda/0001"; a query "kitchen/x" of the scene "kitchen"). */
+const char *view_place(const char *scene, const char *query, char *buf,
+                       size_t n);
+
 #endif

@@ -246,6 +246,9 @@ static int json_run(FILE *f, const view_run *v)
     json_str(f, v->scene);
     fputs(",\"query\":", f);
     json_str(f, v->query);
+    char place[512];
+    fputs(",\"place\":", f);
+    json_str(f, view_place(v->scene, v->query, place, sizeof place));
     fprintf(f, ",\"repetition\":%d,\"status\":", r->repetition);
     json_str(f, *r->status ? r->status : r->state);
     fprintf(f, ",\"success\":%d,\"verdict\":", r->success);
@@ -348,13 +351,29 @@ void view_html_text(FILE *f, const char *s)
     }
 }
 
+const char *view_place(const char *scene, const char *query, char *buf,
+                       size_t n)
+{
+    scene = scene ? scene : "";
+    query = query ? query : "";
+    size_t k = strlen(scene);
+    if (*scene == '\0' || strcmp(scene, query) == 0 ||
+        (strncmp(query, scene, k) == 0 && query[k] == '/'))
+        snprintf(buf, n, "%s", query);
+    else if (*query == '\0')
+        snprintf(buf, n, "%s", scene);
+    else
+        snprintf(buf, n, "%s / %s", scene, query);
+    return buf;
+}
+
 int view_write_page(const view_run *v, const char *three_js, FILE *f)
 {
     const char *at = mpb_view_page_html;
-    char title[512];
-    snprintf(title, sizeof title, "mpb view: run %lld, %s, %s/%s",
-             (long long)v->run.run_id, v->run.planner_config, v->scene,
-             v->query);
+    char title[1024], place[512];
+    snprintf(title, sizeof title, "mpb view: run %lld, %s, %s",
+             (long long)v->run.run_id, v->run.planner_config,
+             view_place(v->scene, v->query, place, sizeof place));
     template_to(f, &at, "@TITLE@");
     view_html_text(f, title);
     template_to(f, &at, "@DATA@");

@@ -347,7 +347,7 @@ function applyVisibility() {
 
 // ---- the page around the view --------------------------------------------------
 const run = data.run;
-$('title').textContent = 'Run ' + run.id + ': ' + run.planner + ' on ' + run.scene + ' / ' + run.query;
+$('title').textContent = 'Run ' + run.id + ': ' + run.planner + ' on ' + run.place;
 $('subtitle').textContent = 'experiment ' + run.experiment + ' (' + run.experiment_id +
   '), repetition ' + run.repetition + ', ' + (run.success === 1 ? 'success' : run.success === 0 ? 'no success' : 'not finished');
 const runInfo = [

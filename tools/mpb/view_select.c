@@ -144,8 +144,8 @@ int view_write_many(mpb_store *s, const char *db, int64_t experiment,
     fprintf(index, " (experiment %lld): %d run%s</h1>\n"
             "<p>%s, drawn by mpb view: each linked page is one run in 3-D."
             "</p>\n"
-            "<table><tr><th>run</th><th>planner</th><th>scene</th>"
-            "<th>query</th><th>rep.</th><th>outcome</th><th>message</th>"
+            "<table><tr><th>run</th><th>planner</th><th>scene / query"
+            "</th><th>rep.</th><th>outcome</th><th>message</th>"
             "</tr>\n", (long long)experiment,
             sel->num_runs, sel->num_runs == 1 ? "" : "s",
             sel->failed ? "The runs that are no success" : "The runs chosen");
@@ -175,9 +175,9 @@ int view_write_many(mpb_store *s, const char *db, int64_t experiment,
         fputs("</td><td>", index);
         view_html_text(index, v.run.planner_config ? v.run.planner_config : "");
         fputs("</td><td>", index);
-        view_html_text(index, v.scene ? v.scene : "");
-        fputs("</td><td>", index);
-        view_html_text(index, v.query ? v.query : "");
+        char place[512];
+        view_html_text(index, view_place(v.scene, v.query, place,
+                                         sizeof place));
         fprintf(index, "</td><td>%d</td><td>", v.run.repetition);
         view_html_text(index, v.run.success == 1 ? "success"
                          : v.run.verdict && *v.run.verdict ? v.run.verdict

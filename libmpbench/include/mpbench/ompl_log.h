@@ -64,7 +64,10 @@ typedef struct mpb_ompl_planner {
     int    num_properties;
     mpb_ompl_property *properties;
     long   num_runs;
-    double *values;             /* num_runs x num_properties, row-major */
+    double *values;             /* num_runs x num_properties, row-major;
+                                   NaN where empty, nan or inf; a REAL
+                                   the double SQLite makes of its text,
+                                   as OMPL's script stores it */
     int    num_progress_properties;   /* the first is the sample's time
                                          (the log's "time", wherever the
                                          log lists it) */

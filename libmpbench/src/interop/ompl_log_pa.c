@@ -328,7 +328,7 @@ static int write_enums(pa_out *o, const mpb_ompl_log *log)
 /* The log's experiment, with its parameters as columns (added in the
  * order of their names, as the script adds them), then its planner
  * blocks. */
-static int write_log(pa_out *o, const mpb_ompl_log *log)
+int mpb__pa_write_log(pa_out *o, const mpb_ompl_log *log)
 {
     sqlite3_stmt *st = NULL;
     int np = log->num_params, rc = MPB_ENOMEM;
@@ -461,7 +461,7 @@ int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
                                  "read: nothing written");
             break;
         }
-        if (log == NULL || (rc = write_log(&o, log)) != MPB_OK)
+        if (log == NULL || (rc = mpb__pa_write_log(&o, log)) != MPB_OK)
             break;
     }
 close:

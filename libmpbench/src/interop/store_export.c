@@ -402,6 +402,74 @@ static int last_experiment(pa_out *o, int64_t *out)
 }
 
 /* Whether out (a stat of the output) is the file of the store s itself. */
+/*
+ * An experiment imported from an OMPL (or MoveIt) log and nothing else:
+ * the log itself, kept as its file (experiments.config_text), parsed into
+ * *out when it reads as one and its runs are every run of the experiment,
+ * all finished; else *out is NULL and the experiment is mpbench's. Such
+ * an experiment goes out as the log said, cell for cell, as OMPL's script
+ * (and mpb import -p) writes it: its planners' names and settings, its
+ * columns in its order, its enums; nothing mpbench did not measure.
+ */
+static int imported_log(pa_out *o, int64_t id, mpb_ompl_log **out)
+{
+    *out = NULL;
+    sqlite3_stmt *st = mpb__store_prepare(o->s,
+        "SELECT config_text,"
+        " (SELECT count(*) FROM runs WHERE experiment_id = ?1),"
+        " (SELECT count(*) FROM runs WHERE experiment_id = ?1"
+        "  AND state = 'done')"
+        " FROM experiments WHERE id = ?1");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, id);
+    int rc = MPB_OK;
+    if (sqlite3_step(st) == SQLITE_ROW) {
+        const char *text = (const char *)sqlite3_column_text(st, 0);
+        size_t len = (size_t)sqlite3_column_bytes(st, 0);
+        int64_t runs = sqlite3_column_int64(st, 1);
+        int64_t done = sqlite3_column_int64(st, 2);
+        mpb_ompl_log *log = NULL;
+        if (text && runs == done &&
+            (strncmp(text, "OMPL version", 12) == 0 ||
+             strncmp(text, "MoveIt", 6) == 0)) {
+            rc = mpb_ompl_log_parse(text, len, &log, NULL, 0);
+            if (rc == MPB_EPARSE)
+                rc = MPB_OK;        /* not a log after all */
+        }
+        long total = 0;
+        for (int i = 0; log && i < log->num_planners; i++)
+            total += log->planners[i].num_runs;
+        if (log && total == runs)
+            *out = log;
+        else
+            mpb_ompl_log_free(log);
+    }
+    sqlite3_finalize(st);
+    if (rc == MPB_ENOMEM)
+        return mpb__store_fail(o->s, rc, "out of memory");
+    return rc;
+}
+
+/* 1 if the log was exported before this export (an experiment of its
+ * name, date and host among the first up to before). */
+static int log_exported(pa_out *o, const mpb_ompl_log *log, int64_t before)
+{
+    sqlite3_stmt *st;
+    if (before == 0 ||
+        sqlite3_prepare_v2(o->db, "SELECT 1 FROM experiments WHERE id <= ?1"
+                           " AND name IS ?2 AND date IS ?3 AND hostname IS ?4",
+                           -1, &st, NULL) != SQLITE_OK)
+        return 0;
+    sqlite3_bind_int64(st, 1, before);
+    sqlite3_bind_text(st, 2, log->experiment, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 3, log->date, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 4, log->host, -1, SQLITE_STATIC);
+    int found = sqlite3_step(st) == SQLITE_ROW;
+    sqlite3_finalize(st);
+    return found;
+}
+
 static int is_store_file(mpb_store *s, const struct stat *out)
 {
     const char *mine = sqlite3_db_filename(s->db, "main");
@@ -445,21 +513,39 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if (exists && (rc = is_planner_arena(&o)) != MPB_OK)
         goto done;
     if ((rc = mpb__pa_exec(&o, "PRAGMA foreign_keys = ON", "configure")) ||
-        (rc = mpb__pa_begin(&o, 1)))
+        (rc = mpb__pa_begin(&o, 0)))
         goto done;
     /* Only what was there before can be exported already. */
     int64_t before = 0;
     if ((rc = last_experiment(&o, &before)))
         goto done;
-    /* The experiment parameters after the twelve known columns. */
-    for (int i = 0; i < MPB__PA_NUM_EXP_PARAMS && rc == MPB_OK; i++) {
-        prop p = {.name = (char *)mpb__pa_exp_params[i][0],
-                  .type = mpb__pa_exp_params[i][1]};
-        prop_list one = {.v = &p, .n = 1, .cap = 1};
-        rc = mpb__pa_ensure_columns(&o, "experiments", &one, 0);
+    int mine = 0;       /* mpbench's enum and columns are there */
+    for (int i = 0; i < num_exps && rc == MPB_OK; i++) {
+        mpb_ompl_log *log;
+        if ((rc = imported_log(&o, exps[i], &log)) != MPB_OK)
+            break;
+        if (log) {
+            if (!log_exported(&o, log, before))
+                rc = mpb__pa_write_log(&o, log);
+            mpb_ompl_log_free(log);
+            continue;
+        }
+        /* mpbench's status enum, and the experiment parameters after
+         * the twelve known columns, once an experiment of its own goes
+         * out. */
+        if (!mine && (rc = mpb__pa_add_status_enum(&o)) != MPB_OK)
+            break;
+        for (int k = 0; !mine && k < MPB__PA_NUM_EXP_PARAMS && rc == MPB_OK;
+             k++) {
+            prop p = {.name = (char *)mpb__pa_exp_params[k][0],
+                      .type = mpb__pa_exp_params[k][1]};
+            prop_list one = {.v = &p, .n = 1, .cap = 1};
+            rc = mpb__pa_ensure_columns(&o, "experiments", &one, 0);
+        }
+        mine = 1;
+        if (rc == MPB_OK)
+            rc = export_experiment(&o, exps[i], before);
     }
-    for (int i = 0; i < num_exps && rc == MPB_OK; i++)
-        rc = export_experiment(&o, exps[i], before);
 done:
     rc = mpb__pa_finish(&o, rc);
     if (rc != MPB_OK && created) {

@@ -4,8 +4,11 @@
  * ompl_benchmark_statistics.py builds the target (bench/ompl_peer.sh).
  *
  *   store_pa_props.c   an mpbench experiment as run properties: their
- *                      names and types, and a walk that turns each
- *                      finished run into a row of them
+ *                      names and types
+ *   store_pa_walk.c    a walk that turns each finished run into a row
+ *                      of them
+ *   store_pa_exp.c     what every writer says of an experiment: its
+ *                      header, queries, settings
  *   store_pa_db.c      the Planner Arena database: its tables, columns,
  *                      values and views, as OMPL's script makes them
  *   store_export.c     mpbench experiments into that database
@@ -17,6 +20,7 @@
 
 #include <stdint.h>
 
+#include "mpbench/ompl_log.h"
 #include "store/store_internal.h"
 
 /* ---- run properties (store_pa_props.c) ------------------------------------ */
@@ -82,7 +86,10 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
 /* A column's text, copied ("" for NULL); NULL when out of memory. */
 char *mpb__pa_col_dup(sqlite3_stmt *st, int i);
 
-/* ---- the walk over the runs (store_pa_props.c) ----------------------------- */
+/* A column's number, NaN for NULL and for what is not finite. */
+double mpb__pa_col_num(sqlite3_stmt *st, int i);
+
+/* ---- the walk over the runs (store_pa_walk.c) ------------------------------ */
 
 /* One finished run, as the writers take it. */
 typedef struct run_view {
@@ -114,7 +121,7 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out);
 
 void mpb__pa_walker_close(pa_walker *w);
 
-/* ---- what every writer says of an experiment (store_pa_props.c) ------------ */
+/* ---- what every writer says of an experiment (store_pa_exp.c) -------------- */
 
 /* An experiment property as a log writes it: "name TYPE = value". */
 typedef struct exp_param {
@@ -211,6 +218,13 @@ int mpb__pa_exec(pa_out *o, const char *sql, const char *what);
  * script does before it reads a log; with status_enum, add mpbench's
  * status enum too (a log brings its own). */
 int mpb__pa_begin(pa_out *o, int status_enum);
+
+/* mpbench's status enum (mpb__pa_status_enum), the values missing. */
+int mpb__pa_add_status_enum(pa_out *o);
+
+/* An OMPL log as OMPL's script writes it (ompl_log_pa.c): the experiment,
+ * its enums, planners, runs and progress. */
+int mpb__pa_write_log(pa_out *o, const mpb_ompl_log *log);
 
 /* End what mpb__pa_begin() began and close o->db (if open): with rc
  * MPB_OK the views made anew and the transaction committed, otherwise

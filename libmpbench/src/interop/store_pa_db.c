@@ -246,6 +246,12 @@ int mpb__pa_begin(pa_out *o, int status_enum)
     if ((rc = mpb__pa_exec(o, "BEGIN IMMEDIATE", "begin")) ||
         (rc = mpb__pa_exec(o, pa_schema, "create the tables")) || !status_enum)
         return rc;
+    return mpb__pa_add_status_enum(o);
+}
+
+int mpb__pa_add_status_enum(pa_out *o)
+{
+    int rc = MPB_OK;
     sqlite3_stmt *st;
     if (sqlite3_prepare_v2(o->db, "INSERT OR IGNORE INTO enums (name, value,"
                            " description) VALUES ('status', ?, ?)", -1, &st,
