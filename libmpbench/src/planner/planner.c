@@ -554,9 +554,7 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
             if (res->message == NULL || res->message[0] == '\0')
                 mpb_result_set_message(res, "planner refused the request (%s)",
                                        mpb_err_name(rc));
-        } else if (res->status < MPB_PLAN_RESULT_T_SOLVED ||
-                   res->status > MPB_PLAN_RESULT_T_MEMORY ||
-                   res->status == MPB_PLAN_RESULT_T_CRASH) {
+        } else if (!mpb_status_is_planners(res->status)) {
             mpb_result_set_message(res, "planner set status %d; %s",
                                    (int)res->status,
                                    res->message != NULL ? res->message : "");
