@@ -428,7 +428,8 @@ std::shared_ptr<PoseRegionGoal> region_goal_of(CachedWorld *cached, const mpb_pl
                                             static_cast<std::uint64_t>(req->seed));
 }
 
-void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t *res)
+void solve_inner(Context *ctx, const mpb_plan_request_t *req, const mpb_solve_limits *lim,
+                 mpb_plan_result_t *res)
 {
     double t0 = mpb_monotonic_s();
     const double t_entry = t0;
@@ -628,22 +629,24 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
     // The budget. mpbenchd counts a run in time by its time_total (from t0,
     // the world's setup left out) and by its own clock, setup included,
     // with a slack (kSetupAllowance): the whole answer, simplifiers and
-    // final check included, must be ready by hard_deadline. The solver
+    // final check included, must be ready by hard_deadline, the kit's
+    // deadline moved by the setup it allows. The solver
     // stops early enough for those: 2 % of the limit (10 ms to 0.5 s), or
     // for an anytime run, which would spend all it is given, 10 % (at most
     // 2 s). What the simplifiers then find left is theirs (the checker's
     // cutoff, below).
     const bool log_progress = !first_solution;
-    const double hard_deadline = t0 + req->time_limit -
-                                 std::max(0.0, (t0 - t_entry) - kSetupAllowance) -
-                                 kAnswerMargin;
+    const double setup = t0 - t_entry;
+    const double hard_deadline = lim->deadline + setup -
+                                 std::max(0.0, setup - kSetupAllowance) - kAnswerMargin;
     const double deadline =
         hard_deadline - (log_progress ? std::min(0.1 * req->time_limit, 2.0)
                                       : std::min(std::max(0.02 * req->time_limit, 0.01), 0.5));
     std::atomic<bool> interrupted{false};
     ProgressLog progress(*planner, progress_period, t_setup);
-    ob::PlannerTerminationCondition ptc([deadline, &interrupted, &progress, log_progress] {
-        if (g_stop != 0)
+    volatile sig_atomic_t *stop = lim->stop;
+    ob::PlannerTerminationCondition ptc([deadline, stop, &interrupted, &progress, log_progress] {
+        if (stop != nullptr && *stop != 0)
             interrupted = true;
         double now = mpb_monotonic_s();
         if (log_progress)
@@ -798,11 +801,12 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, mpb_plan_result_t 
     res->time_total = mpb_monotonic_s() - t0;
 }
 
-extern "C" int solve(void *user, const mpb_plan_request_t *req, mpb_plan_result_t *res)
+extern "C" int solve(void *user, const mpb_plan_request_t *req, const mpb_solve_limits *lim,
+                     mpb_plan_result_t *res)
 {
     const char *what = nullptr;
     try {
-        solve_inner(static_cast<Context *>(user), req, res);
+        solve_inner(static_cast<Context *>(user), req, lim, res);
         return MPB_OK;
     } catch (const InvalidRequest &e) {
         mpb_result_clear(res);
