@@ -15,7 +15,7 @@
 #include "mpb_run_ack_t.h"
 
 /* Per stage, what the store needs, owned here for the length of a result. */
-typedef struct stage_work {
+typedef struct mpbd_stage_work {
     mpb_stage_record  rec;
     mpb_named         metrics[MPB_NUM_METRICS];
     mpb_stage_measure m;
@@ -258,15 +258,40 @@ static double latest_start(const mpbd *d, const mpbd_flight *f)
     return d->replaying ? f->sent_at : f->last_send;
 }
 
-/* Store the run; returns what mpb_store_run_finish() returns. recv is when
- * the result arrived (mpb_monotonic_s() clock). */
-static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
-                        double recv)
+int mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
+                        const mpb_plan_result_t *m, mpbd_measured *out)
 {
     const mpbd_query *q = &d->exp->queries[f->run.query];
+    out->works = calloc((size_t)m->num_stages + 1, sizeof *out->works);
+    if (out->works == NULL)
+        return MPB_ENOMEM;
+    /* runs.verify_time: the daemon's verification and metrics of every
+     * stage, a cost of the scene (its meshes), not of the planner. */
+    out->verify_start = mpb_monotonic_s();
+    /* The scene's world holds the joints outside the group as this
+     * query does (its start state may set a Panda's fingers). */
+    mpbd_query_hold(d->exp, q);
+    for (int i = 0; i < m->num_stages; i++)
+        measure_stage(d, q, &m->stages[i], &out->works[i]);
+    out->verified = mpb_monotonic_s();
+    return MPB_OK;
+}
+
+void mpbd_measured_free(mpbd_measured *ms)
+{
+    free(ms->works);
+    ms->works = NULL;
+}
+
+/* Store the run measured as ms; returns what mpb_store_run_finish()
+ * returns. recv is when the result arrived (mpb_monotonic_s() clock). */
+static int store_result(mpbd *d, const mpbd_flight *f,
+                        const mpb_plan_result_t *m, double recv,
+                        const mpbd_measured *ms)
+{
     const double limit = d->exp->time_limit;
     int np = count_progress(m);
-    stage_work *works = calloc((size_t)m->num_stages + 1, sizeof *works);
+    stage_work *works = ms->works;
     mpb_stage_record *stages = calloc((size_t)m->num_stages + 1, sizeof *stages);
     mpb_named *values = calloc((size_t)m->num_values + 1, sizeof *values);
     mpb_progress_record *prog = calloc((size_t)np + 1, sizeof *prog);
@@ -278,7 +303,7 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
     notes nt = {.len = 0};
     int rc = MPB_ENOMEM;
 
-    if (!works || !stages || !values || !prog || !names || !owned)
+    if (!stages || !values || !prog || !names || !owned)
         goto done;
     /* A status the protocol does not give planners: the daemon alone says
      * crash, and a number outside the list means nothing. */
@@ -290,17 +315,9 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
                                                : "no such status");
         status = MPB_PLAN_RESULT_T_FAILED;
     }
-    /* runs.verify_time: the daemon's verification and metrics of every
-     * stage, a cost of the scene (its meshes), not of the planner. */
-    double verify_start = mpb_monotonic_s();
-    /* The scene's world holds the joints outside the group as this
-     * query does (its start state may set a Panda's fingers). */
-    mpbd_query_hold(d->exp, q);
-    for (int i = 0; i < m->num_stages; i++) {
-        measure_stage(d, q, &m->stages[i], &works[i]);
+    double verify_start = ms->verify_start, verified = ms->verified;
+    for (int i = 0; i < m->num_stages; i++)
         names[i] = m->stages[i].name;
-    }
-    double verified = mpb_monotonic_s();
     for (int i = 0; i < m->num_values; i++)
         names[m->num_stages + i] = m->values[i].name;
     /* Metrics are keyed by stage name, values by name: a repeated name
@@ -409,7 +426,6 @@ done:
     free(owned);
     free(names);
     free(message);
-    free(works);
     free(stages);
     free(values);
     free(prog);
@@ -429,6 +445,9 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         return;
     }
     if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
+        /* Being verified: acknowledged once stored. */
+        if (mpbd_verifier_has(d, m->run_id))
+            return;
         if (mpbd_recently_done(d, m->run_id)) {
             /* Stored, perhaps in the transaction still open: acknowledged
              * again once that commits. */
@@ -444,20 +463,41 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         reject(d, "sent by a planner the run did not go to", m);
         return;
     }
-    int rc = store_result(d, f, m, recv);
+    /* Verified beside the loop (verifier.c): the run's flight ends now,
+     * so that its planner's next request need not wait. */
+    if (mpbd_verifier_submit(d, f, m, recv) == MPB_OK) {
+        mpbd_flight_remove(d, f);
+        return;
+    }
+    mpbd_measured ms = {0};
+    int rc = mpbd_result_measure(d, f, m, &ms) == MPB_OK
+                 ? mpbd_result_store(d, f, m, recv, &ms)
+                 : MPBD_RETRY;   /* out of memory: the planner re-sends */
+    mpbd_measured_free(&ms);
+    if (rc != MPBD_RETRY)
+        mpbd_flight_remove(d, f);
+}
+
+int mpbd_result_store(mpbd *d, const mpbd_flight *f,
+                      const mpb_plan_result_t *m, double recv,
+                      const mpbd_measured *ms)
+{
+    int rc = store_result(d, f, m, recv, ms);
     if (rc == MPB_OK || rc == MPB_EEXISTS) {
         d->planners[f->planner].runs_done++;
         remember(d, f->run.uid);
         mpbd_ack_after_commit(d, m->planner_id, f->run.uid,
                               rc == MPB_OK ? f->sent_at : -1.0);
-        mpbd_flight_remove(d, f);
-    } else if (rc == MPB_ENOTFOUND) {
-        reject(d, "not the run's current attempt", m);
-        mpbd_flight_remove(d, f);
-    } else {
-        /* The store failed: keep the flight, the planner will re-send. */
-        mpbd_db_error(d);
+        return MPB_OK;
     }
+    if (rc == MPB_ENOTFOUND) {
+        reject(d, "not the run's current attempt", m);
+        return MPB_OK;
+    }
+    /* The store failed: the caller keeps the result to store again (the
+     * flight, which the planner's re-sent result finds). */
+    mpbd_db_error(d);
+    return MPBD_RETRY;
 }
 
 static void on_result_raw(const lcm_recv_buf_t *rbuf, const char *channel,
