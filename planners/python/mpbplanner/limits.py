@@ -21,8 +21,9 @@ class Limits:
 
 
 def takes_limits(solve):
-    """Whether solve takes (req, limits); a solve(req) of older planners
-    is called with the request alone."""
+    """Whether solve takes (req, limits): two positional parameters without
+    defaults, or *args. A solve(req) of older planners, or a solve(req,
+    cache=None), is called with the request alone."""
     try:
         params = list(inspect.signature(solve).parameters.values())
     except (TypeError, ValueError):
@@ -30,5 +31,6 @@ def takes_limits(solve):
     if any(p.kind == p.VAR_POSITIONAL for p in params):
         return True
     positional = [p for p in params
-                  if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+                  if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
+                  and p.default is p.empty]
     return len(positional) >= 2
