@@ -16,6 +16,9 @@
 
 #include "bench_util.h"
 
+/* A metric's stored name, from the list (mpbench/metrics.h). */
+#define NAME(id) (mpb_metric_info_of(MPB_METRIC_##id)->name)
+
 typedef struct options {
     const char *db, *robot, *scene;
     long runs, batch;
@@ -225,11 +228,11 @@ int main(int argc, char **argv)
                 w[p] = (rnd(&seed) - 0.5) * 2.0;
             double t = k == 0 ? t_raw : 0.002 * rnd(&seed);
             total_t += k ? t : 0;
-            metrics[k][0] = (mpb_named){"time", t};
-            metrics[k][1] = (mpb_named){"waypoints", nwp};
-            metrics[k][2] = (mpb_named){"path_length", 1 + rnd(&seed)};
-            metrics[k][3] = (mpb_named){"smoothness", rnd(&seed)};
-            metrics[k][4] = (mpb_named){"clearance", 0.1 * rnd(&seed)};
+            metrics[k][0] = (mpb_named){NAME(TIME), t};
+            metrics[k][1] = (mpb_named){NAME(WAYPOINTS), nwp};
+            metrics[k][2] = (mpb_named){NAME(PATH_LENGTH), 1 + rnd(&seed)};
+            metrics[k][3] = (mpb_named){NAME(SMOOTHNESS), rnd(&seed)};
+            metrics[k][4] = (mpb_named){NAME(CLEARANCE), 0.1 * rnd(&seed)};
             st[k] = (mpb_stage_record){
                 .name = stage_names[k], .time = t, .num_waypoints = nwp,
                 .num_joints = nj, .waypoints = w, .valid = ok,

@@ -69,14 +69,12 @@ static void once(work *k)
         mpb_verify_path(k->w, k->start, k->start_tolerance, &goal, k->path,
                         k->n, k->nj, k->resolution, &k->v);
     }
-    if (k->what == 0 || k->what == 2) { /* as daemon/results.c does */
-        double mean, least;
-        k->sink += mpb_path_length(k->path, k->n, k->nj, wraps);
-        k->sink += mpb_smoothness(k->path, k->n, k->nj, wraps);
-        mpb_path_clearances(k->w, k->path, k->n, k->nj, &mean, &least);
-        k->sink += mean + least;
-        k->sink += mpb_ee_path_length(k->w, k->path, k->n, k->nj,
-                                      k->resolution);
+    if (k->what == 0 || k->what == 2) { /* as mpbenchd does */
+        mpb_stage_measure m = {.verdict = {.code = MPB_VERDICT_VALID}};
+        mpb_measure_metrics(k->w, k->path, k->n, k->nj, 0, k->resolution,
+                            &m);
+        for (int i = 0; i < m.num_metrics; i++)
+            k->sink += m.metrics[i].value;
     } else if (k->what == 3) {
         /* The same metrics with the mean and the minimum clearance in two
          * passes, as before mpb_path_clearances(): what one pass saves. */

@@ -5,8 +5,8 @@
  * the store API (as `mpb verify` does): each run's world (the stored robot
  * text, its SRDF inside, and scene; the joints its query held), start,
  * goal and stages. Then, in process, it times what mpbenchd does per
- * result (daemon/results.c, measure_stage): mpb_verify_path at the
- * experiment's resolution and every metric the daemon stores, over all of
+ * result (mpb_measure_stage(): mpb_verify_path at the experiment's
+ * resolution and every metric the daemon stores), over all of
  * them, repeated for at least S seconds. Opening the worlds is timed apart.
  */
 #include <math.h>
@@ -81,15 +81,9 @@ static char *xstrdup(const char *s)
 static double *parse_numbers(const char *text, int n)
 {
     double *v = xcalloc((size_t)n, sizeof *v);
-    const char *p = text ? text : "";
-    for (int i = 0; i < n; i++) {
-        char *end;
-        v[i] = strtod(p, &end);
-        if (end == p) {
-            free(v);
-            return NULL;
-        }
-        p = end;
+    if (mpb_store_numbers(text, v, n) != MPB_OK) {
+        free(v);
+        return NULL;
     }
     return v;
 }
@@ -437,31 +431,33 @@ enum { BOTH, VERIFY, METRICS, NUM_WHAT };
 /* Where the metrics go, so that no pass is thought idle. */
 static volatile double sink;
 
-/* One pass over every stage: what measure_stage() in daemon/results.c
- * calls, verification and/or metrics. */
+/* One pass over every stage: what mpbenchd does with each stage
+ * (mpb_measure_stage()), or its verification or its metrics alone. */
 static void pass(const db *d, double resolution, int what,
                  mpb_verdict *verdicts)
 {
+    mpb_stage_measure m;
     for (int i = 0; i < d->num_stages; i++) {
         const stage *s = &d->stages[i];
         const query *q = s->q;
         mpb_world *w = q->world->w;
         int nj = q->num_joints;
-        if (what != METRICS) {
-            mpb_goal goal = goal_of(q);
+        mpb_goal goal = goal_of(q);
+        if (what == VERIFY) {
             mpb_verify_path(w, q->start, q->tolerance, &goal, s->wp, s->n,
                             nj, resolution, &verdicts[i]);
+            continue;
         }
-        if (what != VERIFY) {
-            const unsigned char *wraps = mpb_world_joint_wraps(w);
-            double mean, least;
-            sink += mpb_path_length(s->wp, s->n, nj, wraps);
-            sink += mpb_smoothness(s->wp, s->n, nj, wraps);
-            sink += mpb_smoothness_resampled(s->wp, s->n, nj, wraps);
-            mpb_path_clearances(w, s->wp, s->n, nj, &mean, &least);
-            sink += mean + least;
-            sink += mpb_ee_path_length(w, s->wp, s->n, nj, resolution);
+        if (what == BOTH) {
+            mpb_measure_stage(w, q->start, q->tolerance, &goal, s->wp, s->n,
+                              nj, 0, resolution, &m);
+            verdicts[i] = m.verdict;
+        } else {
+            m.verdict.code = MPB_VERDICT_VALID;
+            mpb_measure_metrics(w, s->wp, s->n, nj, 0, resolution, &m);
         }
+        for (int k = 0; k < m.num_metrics; k++)
+            sink += m.metrics[k].value;
     }
 }
 

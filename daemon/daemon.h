@@ -14,6 +14,7 @@
  *   scheduler.c  which run goes to which planner; resends and deadlines;
  *                requests waiting at a busy planner
  *   results.c    checking, verifying, measuring and storing results
+ *   verifier.c   the thread that verifies and measures beside the loop
  *   status.c     the MPB_STATUS message
  *   acks.c       acknowledging stored results: on requests, or alone
  *   latency.c    each run's latency, request to commit, as a histogram
@@ -240,6 +241,7 @@ typedef struct mpbd {
     char             elder[640];
     char             younger_logged[MPB_PLANNER_ID_MAX + 1];
     char             ignored_elder[MPB_PLANNER_ID_MAX + 1];
+    struct mpbd_verifier *verifier;  /* verifier.c; NULL: verify inline */
     double           last_status;
     double           last_wait_log;
     double           last_bad_announce_log;
@@ -338,6 +340,41 @@ void mpbd_latency_free(mpbd_latency *l);
 
 /* results.c */
 void mpbd_results_subscribe(mpbd *d);
+/* A result's stages verified and measured (mpb_measure_stage()); touches
+ * the experiment's worlds and nothing else of d, so that the verifier's
+ * thread may call it while the loop runs. */
+struct mpbd_stage_work;
+typedef struct mpbd_measured {
+    struct mpbd_stage_work *works;   /* per stage */
+    double verify_start, verified;   /* monotonic s */
+} mpbd_measured;
+int  mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
+                         const mpb_plan_result_t *m, mpbd_measured *out);
+void mpbd_measured_free(mpbd_measured *ms);
+/* Store a measured result in the open transaction and acknowledge it
+ * after the commit (or reject it: not the run's current attempt).
+ * MPB_OK, or MPBD_RETRY when the store failed: keep it, store it again. */
+#define MPBD_RETRY 1
+int  mpbd_result_store(mpbd *d, const mpbd_flight *f,
+                       const mpb_plan_result_t *m, double recv,
+                       const mpbd_measured *ms);
+
+/* verifier.c: a worker thread that verifies and measures results while
+ * the loop goes on, so that a planner's next request does not wait for
+ * its last result's verification. The loop stores what it finished in
+ * order of completion, in its own transaction, and acknowledges each
+ * after the commit, as before. */
+int  mpbd_verifier_start(mpbd *d);     /* MPB_OK, or an error: verify inline */
+void mpbd_verifier_stop(mpbd *d);      /* results not stored are dropped */
+/* Hand over a result (copied) of flight f; MPB_OK, or an error when there
+ * is no verifier or no memory (then verify it inline). */
+int  mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
+                          const mpb_plan_result_t *m, double recv);
+int  mpbd_verifier_has(const mpbd *d, const char *uid);  /* handed over, not stored */
+int  mpbd_verifier_pending(const mpbd *d);               /* how many */
+int  mpbd_verifier_fd(const mpbd *d);  /* readable when one is done; -1: none */
+/* Store those done, in order, in the open transaction. */
+void mpbd_verifier_collect(mpbd *d);
 /* A run ended without a result (crash, lost planner): retry it if the
  * experiment allows, else record it as crashed. */
 int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);

@@ -302,7 +302,8 @@ static long runs_left(mpbd *d)
     mpb_run_counts c;
     if (mpb_store_run_counts(d->store, d->experiment_id, &c) == MPB_OK)
         return (long)c.total - c.done;
-    return d->total_pending + d->num_flights + d->num_acks;
+    return d->total_pending + d->num_flights + d->num_acks +
+           mpbd_verifier_pending(d);
 }
 
 /* Everything the experiment is made of, written idempotently: a resumed
@@ -389,12 +390,15 @@ static int setup_experiment(mpbd *d, int fresh)
     return mpb_store_commit(s);
 }
 
-/* Wait for the LCM socket to be readable, at most timeout_ms. */
-static int wait_readable(int fd, int timeout_ms)
+/* Wait for the LCM socket to be readable, at most timeout_ms, or for the
+ * verifier to finish a result (its pipe, fd2; -1: none). Whether the LCM
+ * socket is readable. */
+static int wait_readable(int fd, int fd2, int timeout_ms)
 {
-    struct pollfd pfd = {.fd = fd, .events = POLLIN};
-    int n = poll(&pfd, 1, timeout_ms);
-    return n > 0 && (pfd.revents & POLLIN);
+    struct pollfd pfd[2] = {{.fd = fd, .events = POLLIN},
+                            {.fd = fd2, .events = POLLIN}};
+    int n = poll(pfd, fd2 >= 0 ? 2 : 1, timeout_ms);
+    return n > 0 && (pfd[0].revents & POLLIN);
 }
 
 /* How run_loop() ends, besides 0 (every run done) and 1 (a signal). */
@@ -411,7 +415,7 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
     mpbd_status_publish(d, "waiting", now);
     while (!stop_signal) {
         double last = now;
-        int ready = wait_readable(fd, 20);
+        int ready = wait_readable(fd, mpbd_verifier_fd(d), 20);
         now = mpb_monotonic_s();
         /* A round of the loop that took seconds: the daemon was stopped,
          * its machine suspended, or it was busy. It read no message then,
@@ -429,8 +433,11 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
         for (int n = 0; ready && n < 4096; n++) {
             if (lcm_handle(d->lcm) != 0)
                 break;
-            ready = wait_readable(fd, 0);
+            ready = wait_readable(fd, -1, 0);
         }
+        /* The results verified beside the loop, stored in this
+         * transaction in the order they were finished (verifier.c). */
+        mpbd_verifier_collect(d);
         mpbd_scheduler_tick(d, now);
         if (mpb_store_commit(d->store) != MPB_OK) {
             mpbd_db_error(d);
@@ -451,7 +458,7 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
         mpbd_owed_send(d, now, 0);
         /* Results written to a file that lost its name are lost: looked
          * at once a status period, and before saying the work is done. */
-        int done = mpbd_scheduler_done(d);
+        int done = mpbd_scheduler_done(d) && mpbd_verifier_pending(d) == 0;
         if ((done || now - d->last_status >= MPBD_STATUS_PERIOD_S) &&
             mpb_store_check_file(d->store) != MPB_OK) {
             snprintf(gone, cap, "%s", mpb_store_errmsg(d->store));
@@ -639,8 +646,14 @@ int main(int argc, char **argv)
     mpbd_log("experiment '%s' (id %lld): %ld of %d runs to do, database %s",
              d.exp->name, (long long)d.experiment_id, d.total_pending,
              d.runs_total, o.db);
+    if (mpbd_verifier_start(&d) != MPB_OK)
+        mpbd_log("cannot start the verification thread: results are "
+                 "verified in the loop");
     char gone[256] = "";
     rc = run_loop(&d, gone, sizeof gone);
+    /* Results not stored yet are dropped: their runs stay sent, and a
+     * resume runs them again, as after a crash. */
+    mpbd_verifier_stop(&d);
     mpbd_owed_send(&d, 0.0, 1);     /* no more requests to ride on */
     /* Runs in flight keep their ids for a resume. */
     if (d.num_unrecorded > 0 &&

@@ -14,16 +14,11 @@
 #include "mpb_plan_result_t.h"
 #include "mpb_run_ack_t.h"
 
-/* Metrics per stage; keep in step with docs/metrics.md. */
-enum { M_TIME, M_WAYPOINTS, M_PATH_LENGTH, M_SMOOTHNESS,
-       M_SMOOTHNESS_RESAMPLED, M_CLEARANCE, M_MIN_CLEARANCE,
-       M_EE_PATH_LENGTH, M_COUNT };
-
 /* Per stage, what the store needs, owned here for the length of a result. */
-typedef struct stage_work {
-    mpb_stage_record rec;
-    mpb_named        metrics[M_COUNT];
-    mpb_verdict      verdict;
+typedef struct mpbd_stage_work {
+    mpb_stage_record  rec;
+    mpb_named         metrics[MPB_NUM_METRICS];
+    mpb_stage_measure m;
 } stage_work;
 
 static void remember(mpbd *d, const char *uid)
@@ -53,22 +48,20 @@ static void reject(mpbd *d, const char *why, const mpb_plan_result_t *m)
     }
 }
 
-/* Check and measure one stage. */
+/* Check and measure one stage (mpb_measure_stage()). */
 static void measure_stage(const mpbd *d, const mpbd_query *q,
                           const mpb_stage_t *st, stage_work *w)
 {
     const mpbd_experiment *e = d->exp;
     mpb_world *world = e->scenes[q->scene].world;
     mpb_goal goal = mpbd_query_goal(q);
-    int nm = 0;
 
     w->rec.name = st->name;
     w->rec.time = st->time;
-    w->rec.verdict_segment = -1;
-    if (!mpb_stage_sizes_ok(st, e->num_joints, w->verdict.detail,
-                            sizeof w->verdict.detail)) {
-        w->verdict.code = MPB_VERDICT_WRONG_SIZE;
-        w->verdict.segment = -1;
+    if (!mpb_stage_sizes_ok(st, e->num_joints, w->m.verdict.detail,
+                            sizeof w->m.verdict.detail)) {
+        w->m.verdict.code = MPB_VERDICT_WRONG_SIZE;
+        w->m.verdict.segment = -1;
         /* Stored as sent when its sizes agree with its values (another
          * number of joints): the blob is the message's own array. */
         if (st->num_waypoints > 0 && st->num_joints > 0 &&
@@ -77,45 +70,26 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
             w->rec.num_joints = st->num_joints;
             w->rec.waypoints = st->waypoints;
         }
+        mpb_measure_metrics(world, w->rec.waypoints, w->rec.num_waypoints,
+                            w->rec.num_joints, st->time, d->resolution,
+                            &w->m);
     } else {
         w->rec.num_waypoints = st->num_waypoints;
         w->rec.num_joints = st->num_joints;
         w->rec.waypoints = st->waypoints;
-        mpb_verify_path(world, q->start, q->tolerance, &goal, st->waypoints,
-                        st->num_waypoints, st->num_joints, d->resolution,
-                        &w->verdict);
+        mpb_measure_stage(world, q->start, q->tolerance, &goal,
+                          st->waypoints, st->num_waypoints, st->num_joints,
+                          st->time, d->resolution, &w->m);
     }
-    w->rec.valid = w->verdict.code == MPB_VERDICT_VALID;
-    w->rec.verdict = mpb_verdict_name(w->verdict.code);
-    w->rec.verdict_detail = w->verdict.detail;
-    w->rec.verdict_segment = w->verdict.segment;
-
-    w->metrics[nm++] = (mpb_named){"time", st->time};
-    w->metrics[nm++] = (mpb_named){"waypoints", w->rec.num_waypoints};
-    /* Lengths of a path with NaN in it, or of the wrong size, mean
-     * nothing: leave them out. */
-    if (w->rec.waypoints != NULL && w->verdict.code != MPB_VERDICT_NOT_FINITE &&
-        w->verdict.code != MPB_VERDICT_WRONG_SIZE) {
-        w->metrics[nm++] = (mpb_named){"path_length",
-            mpb_path_length(st->waypoints, st->num_waypoints, st->num_joints,
-                            e->wraps)};
-        w->metrics[nm++] = (mpb_named){"smoothness",
-            mpb_smoothness(st->waypoints, st->num_waypoints, st->num_joints,
-                           e->wraps)};
-        w->metrics[nm++] = (mpb_named){"smoothness_resampled",
-            mpb_smoothness_resampled(st->waypoints, st->num_waypoints,
-                                     st->num_joints, e->wraps)};
-        double mean, least;
-        mpb_path_clearances(world, st->waypoints, st->num_waypoints,
-                            st->num_joints, &mean, &least);
-        w->metrics[nm++] = (mpb_named){"clearance", mean};
-        w->metrics[nm++] = (mpb_named){"min_clearance", least};
-        w->metrics[nm++] = (mpb_named){"ee_path_length",
-            mpb_ee_path_length(world, st->waypoints, st->num_waypoints,
-                               st->num_joints, d->resolution)};
-    }
+    w->rec.valid = w->m.verdict.code == MPB_VERDICT_VALID;
+    w->rec.verdict = mpb_verdict_name(w->m.verdict.code);
+    w->rec.verdict_detail = w->m.verdict.detail;
+    w->rec.verdict_segment = w->m.verdict.segment;
+    for (int i = 0; i < w->m.num_metrics; i++)
+        w->metrics[i] = (mpb_named){w->m.metrics[i].name,
+                                    w->m.metrics[i].value};
     w->rec.metrics = w->metrics;
-    w->rec.num_metrics = nm;
+    w->rec.num_metrics = w->m.num_metrics;
 }
 
 static int count_progress(const mpb_plan_result_t *m)
@@ -263,7 +237,10 @@ static int check_times(const mpb_plan_result_t *m, stage_work *works,
             note(nt, "stage %d time %g s is %s", i, m->stages[i].time,
                  isfinite(m->stages[i].time) ? "negative" : "not finite");
         works[i].rec.time = NAN;
-        works[i].metrics[M_TIME].value = NAN;
+        for (int k = 0; k < works[i].rec.num_metrics; k++)
+            if (strcmp(works[i].metrics[k].name,
+                       mpb_metric_info_of(MPB_METRIC_TIME)->name) == 0)
+                works[i].metrics[k].value = NAN;
         ok = 0;
     }
     if (bad_stages > 3)
@@ -281,15 +258,40 @@ static double latest_start(const mpbd *d, const mpbd_flight *f)
     return d->replaying ? f->sent_at : f->last_send;
 }
 
-/* Store the run; returns what mpb_store_run_finish() returns. recv is when
- * the result arrived (mpb_monotonic_s() clock). */
-static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
-                        double recv)
+int mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
+                        const mpb_plan_result_t *m, mpbd_measured *out)
 {
     const mpbd_query *q = &d->exp->queries[f->run.query];
+    out->works = calloc((size_t)m->num_stages + 1, sizeof *out->works);
+    if (out->works == NULL)
+        return MPB_ENOMEM;
+    /* runs.verify_time: the daemon's verification and metrics of every
+     * stage, a cost of the scene (its meshes), not of the planner. */
+    out->verify_start = mpb_monotonic_s();
+    /* The scene's world holds the joints outside the group as this
+     * query does (its start state may set a Panda's fingers). */
+    mpbd_query_hold(d->exp, q);
+    for (int i = 0; i < m->num_stages; i++)
+        measure_stage(d, q, &m->stages[i], &out->works[i]);
+    out->verified = mpb_monotonic_s();
+    return MPB_OK;
+}
+
+void mpbd_measured_free(mpbd_measured *ms)
+{
+    free(ms->works);
+    ms->works = NULL;
+}
+
+/* Store the run measured as ms; returns what mpb_store_run_finish()
+ * returns. recv is when the result arrived (mpb_monotonic_s() clock). */
+static int store_result(mpbd *d, const mpbd_flight *f,
+                        const mpb_plan_result_t *m, double recv,
+                        const mpbd_measured *ms)
+{
     const double limit = d->exp->time_limit;
     int np = count_progress(m);
-    stage_work *works = calloc((size_t)m->num_stages + 1, sizeof *works);
+    stage_work *works = ms->works;
     mpb_stage_record *stages = calloc((size_t)m->num_stages + 1, sizeof *stages);
     mpb_named *values = calloc((size_t)m->num_values + 1, sizeof *values);
     mpb_progress_record *prog = calloc((size_t)np + 1, sizeof *prog);
@@ -301,31 +303,21 @@ static int store_result(mpbd *d, mpbd_flight *f, const mpb_plan_result_t *m,
     notes nt = {.len = 0};
     int rc = MPB_ENOMEM;
 
-    if (!works || !stages || !values || !prog || !names || !owned)
+    if (!stages || !values || !prog || !names || !owned)
         goto done;
     /* A status the protocol does not give planners: the daemon alone says
      * crash, and a number outside the list means nothing. */
     int status = m->status;
-    if (status < MPB_PLAN_RESULT_T_SOLVED ||
-        status > MPB_PLAN_RESULT_T_MEMORY ||
-        status == MPB_PLAN_RESULT_T_CRASH) {
+    if (!mpb_status_is_planners(status)) {
         note(&nt, "status %d (%s) is not a planner's to send: recorded as "
              "failed", (int)m->status,
              status == MPB_PLAN_RESULT_T_CRASH ? "crash, set by the daemon alone"
                                                : "no such status");
         status = MPB_PLAN_RESULT_T_FAILED;
     }
-    /* runs.verify_time: the daemon's verification and metrics of every
-     * stage, a cost of the scene (its meshes), not of the planner. */
-    double verify_start = mpb_monotonic_s();
-    /* The scene's world holds the joints outside the group as this
-     * query does (its start state may set a Panda's fingers). */
-    mpbd_query_hold(d->exp, q);
-    for (int i = 0; i < m->num_stages; i++) {
-        measure_stage(d, q, &m->stages[i], &works[i]);
+    double verify_start = ms->verify_start, verified = ms->verified;
+    for (int i = 0; i < m->num_stages; i++)
         names[i] = m->stages[i].name;
-    }
-    double verified = mpb_monotonic_s();
     for (int i = 0; i < m->num_values; i++)
         names[m->num_stages + i] = m->values[i].name;
     /* Metrics are keyed by stage name, values by name: a repeated name
@@ -435,7 +427,6 @@ done:
     free(owned);
     free(names);
     free(message);
-    free(works);
     free(stages);
     free(values);
     free(prog);
@@ -455,6 +446,9 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         return;
     }
     if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
+        /* Being verified: acknowledged once stored. */
+        if (mpbd_verifier_has(d, m->run_id))
+            return;
         if (mpbd_recently_done(d, m->run_id)) {
             /* Stored, perhaps in the transaction still open: acknowledged
              * again once that commits. */
@@ -470,20 +464,41 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         reject(d, "sent by a planner the run did not go to", m);
         return;
     }
-    int rc = store_result(d, f, m, recv);
+    /* Verified beside the loop (verifier.c): the run's flight ends now,
+     * so that its planner's next request need not wait. */
+    if (mpbd_verifier_submit(d, f, m, recv) == MPB_OK) {
+        mpbd_flight_remove(d, f);
+        return;
+    }
+    mpbd_measured ms = {0};
+    int rc = mpbd_result_measure(d, f, m, &ms) == MPB_OK
+                 ? mpbd_result_store(d, f, m, recv, &ms)
+                 : MPBD_RETRY;   /* out of memory: the planner re-sends */
+    mpbd_measured_free(&ms);
+    if (rc != MPBD_RETRY)
+        mpbd_flight_remove(d, f);
+}
+
+int mpbd_result_store(mpbd *d, const mpbd_flight *f,
+                      const mpb_plan_result_t *m, double recv,
+                      const mpbd_measured *ms)
+{
+    int rc = store_result(d, f, m, recv, ms);
     if (rc == MPB_OK || rc == MPB_EEXISTS) {
         d->planners[f->planner].runs_done++;
         remember(d, f->run.uid);
         mpbd_ack_after_commit(d, m->planner_id, f->run.uid,
                               rc == MPB_OK ? f->sent_at : -1.0);
-        mpbd_flight_remove(d, f);
-    } else if (rc == MPB_ENOTFOUND) {
-        reject(d, "not the run's current attempt", m);
-        mpbd_flight_remove(d, f);
-    } else {
-        /* The store failed: keep the flight, the planner will re-send. */
-        mpbd_db_error(d);
+        return MPB_OK;
     }
+    if (rc == MPB_ENOTFOUND) {
+        reject(d, "not the run's current attempt", m);
+        return MPB_OK;
+    }
+    /* The store failed: the caller keeps the result to store again (the
+     * flight, which the planner's re-sent result finds). */
+    mpbd_db_error(d);
+    return MPBD_RETRY;
 }
 
 static void on_result_raw(const lcm_recv_buf_t *rbuf, const char *channel,

@@ -60,7 +60,7 @@ static void on_ready(void *user, const char *planner_id)
 int main(int argc, char **argv)
 {
     mpb_planner_options opt = {.name = "arastar"};
-    ara_context ctx = {&g_stop, 0};
+    ara_context ctx = {0};
     char err[256] = "";
 
     for (int i = 1; i < argc; i++) {

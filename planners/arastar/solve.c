@@ -173,7 +173,7 @@ static void on_solution(void *user, double t, double cost, double eps,
     res->num_progress++;
 }
 
-static int solve_run(run *r, const ara_context *ctx,
+static int solve_run(run *r, const mpb_solve_limits *lim,
                      const mpb_plan_request_t *req, mpb_plan_result_t *res)
 {
     double t0 = mpb_monotonic_s();
@@ -265,7 +265,8 @@ static int solve_run(run *r, const ara_context *ctx,
         .improve = p.improve != 0, .h_position = p.h_position,
         .h_rotation = p.h_rotation, .snap_distance = p.snap_distance,
         .ik_seed = (uint64_t)p.ik_seed, .max_states = (int)p.max_states,
-        .deadline = t0 + req->time_limit, .stop = ctx->stop,
+        /* The kit's deadline, moved by the world's setup as t0 is. */
+        .deadline = lim->deadline + setup, .stop = lim->stop,
         .on_solution = p.improve != 0 ? on_solution : NULL, .user = res,
     };
     ara_search(&prob, &r->sol);
@@ -312,12 +313,12 @@ static int solve_run(run *r, const ara_context *ctx,
 }
 
 int ara_solve(void *user, const mpb_plan_request_t *req,
-              mpb_plan_result_t *res)
+              const mpb_solve_limits *lim, mpb_plan_result_t *res)
 {
     const ara_context *ctx = user;
     run r;
     memset(&r, 0, sizeof r);
-    int rc = solve_run(&r, ctx, req, res);
+    int rc = solve_run(&r, lim, req, res);
     if (ctx->verbose)
         fprintf(stderr, "mpb-planner-arastar: run %s: status %d, %.3f s "
                 "(other %.3f s) %s\n", req->run_id, res->status,

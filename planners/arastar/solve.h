@@ -2,16 +2,14 @@
 #ifndef ARASTAR_SOLVE_H
 #define ARASTAR_SOLVE_H
 
-#include <signal.h>
-
 #include "mpbench/planner.h"
 
 typedef struct ara_context {
-    volatile sig_atomic_t *stop;
     int verbose;
 } ara_context;
 
+/* The planner's mpb_solve_fn; user is an ara_context. */
 int ara_solve(void *user, const mpb_plan_request_t *req,
-              mpb_plan_result_t *res);
+              const mpb_solve_limits *lim, mpb_plan_result_t *res);
 
 #endif

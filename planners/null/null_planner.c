@@ -89,6 +89,7 @@ static int allocate_mb(const mpb_plan_request_t *req, mpb_plan_result_t *res,
 }
 
 static int solve_straight_line(void *user, const mpb_plan_request_t *req,
+                               const mpb_solve_limits *lim,
                                mpb_plan_result_t *res)
 {
     double t0 = mpb_monotonic_s();
@@ -103,7 +104,8 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
             return MPB_EINVAL;
         }
         struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
-        while (nanosleep(&ts, &ts) != 0 && errno == EINTR && !g_stop)
+        while (nanosleep(&ts, &ts) != 0 && errno == EINTR &&
+               !(lim->stop != NULL && *lim->stop))
             ;
     }
     const char *allocate = mpb_request_param(req, "allocate");

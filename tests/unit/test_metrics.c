@@ -280,6 +280,49 @@ static void test_ee_path_length_follows_the_arc(void **state)
     mpb_world_close(w);
 }
 
+/* The metric list: names unique and found again; mpb_measure_stage()
+ * gives every metric of a sound path, by the list's names, with the
+ * values of the functions above, and leaves out the path metrics of a
+ * path with a NaN in it. */
+static void test_measure_stage_follows_the_list(void **state)
+{
+    (void)state;
+    for (int i = 0; i < MPB_NUM_METRICS; i++) {
+        const mpb_metric_info *mi = mpb_metric_info_of(i);
+        assert_non_null(mi);
+        assert_int_equal(mpb_metric_find(mi->name), i);
+    }
+    assert_null(mpb_metric_info_of(MPB_NUM_METRICS));
+    assert_int_equal(mpb_metric_find("no such metric"), -1);
+
+    mpb_world *w = one_link("-4 4");
+    double wp[] = {0.0, M_PI / 2}, start[] = {0.0}, end[] = {M_PI / 2};
+    mpb_goal goal = {.kind = MPB_GOAL_JOINTS, .joints = end,
+                     .joint_tolerance = 1e-6};
+    mpb_stage_measure m;
+    assert_int_equal(mpb_measure_stage(w, start, 1e-6, &goal, wp, 2, 1, 0.25,
+                                       0.01, &m), MPB_OK);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_VALID);
+    assert_int_equal(m.num_metrics, MPB_NUM_METRICS);
+    for (int i = 0; i < m.num_metrics; i++)
+        assert_string_equal(m.metrics[i].name, mpb_metric_info_of(i)->name);
+    assert_float_equal(m.metrics[MPB_METRIC_CLEARANCE].value, 0.9, 1e-9);
+    assert_float_equal(m.metrics[MPB_METRIC_MIN_CLEARANCE].value, 0.4, 1e-9);
+    assert_float_equal(m.metrics[MPB_METRIC_PATH_LENGTH].value, M_PI / 2,
+                       1e-12);
+    assert_float_equal(m.metrics[MPB_METRIC_WAYPOINTS].value, 2, 0);
+    assert_float_equal(m.metrics[MPB_METRIC_TIME].value, 0.25, 0);
+
+    double bad[] = {0.0, NAN};
+    mpb_measure_stage(w, start, 1e-6, &goal, bad, 2, 1, 0.25, 0.01, &m);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_NOT_FINITE);
+    int n = 0;
+    for (int i = 0; i < MPB_NUM_METRICS; i++)
+        n += !(mpb_metric_info_of(i)->flags & MPB_METRIC_F_PATH);
+    assert_int_equal(m.num_metrics, n);
+    mpb_world_close(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -297,6 +340,7 @@ int main(void)
         cmocka_unit_test(test_smoothness_of_a_straight_path_is_zero),
         cmocka_unit_test(test_clearance_mean_and_min),
         cmocka_unit_test(test_ee_path_length_follows_the_arc),
+        cmocka_unit_test(test_measure_stage_follows_the_list),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -138,10 +138,11 @@ static void test_request_param(void **state)
 }
 
 static int never_solve(void *user, const mpb_plan_request_t *req,
-                       mpb_plan_result_t *res)
+                       const mpb_solve_limits *lim, mpb_plan_result_t *res)
 {
     (void)user;
     (void)req;
+    (void)lim;
     (void)res;
     return MPB_OK;
 }
@@ -270,10 +271,29 @@ static void test_serve_starts_and_stops(void **state)
     assert_string_equal(g_ready_id + n - m, want_suffix);
 }
 
+/* The kit's limits: stop when the flag is set or the deadline has passed,
+ * not before. */
+static void test_solve_should_stop(void **state)
+{
+    (void)state;
+    volatile sig_atomic_t flag = 0;
+    double now = mpb_monotonic_s();
+    mpb_solve_limits lim = {.start = now, .deadline = now + 60, .stop = &flag};
+    assert_int_equal(mpb_solve_should_stop(&lim), 0);
+    flag = 1;
+    assert_int_equal(mpb_solve_should_stop(&lim), 1);
+    flag = 0;
+    lim.deadline = now - 1e-3;
+    assert_int_equal(mpb_solve_should_stop(&lim), 1);
+    lim = (mpb_solve_limits){.start = now, .deadline = now + 60, .stop = NULL};
+    assert_int_equal(mpb_solve_should_stop(&lim), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_add_stage_copies),
+        cmocka_unit_test(test_solve_should_stop),
         cmocka_unit_test(test_add_stage_bad_args),
         cmocka_unit_test(test_values_and_message),
         cmocka_unit_test(test_result_round_trip),

@@ -170,6 +170,9 @@ static int collect_id(void *ud, const mpb_run_row *row)
     return 0;
 }
 
+/* A metric's stored name, from the list (mpbench/metrics.h). */
+#define NAME(id) (mpb_metric_info_of(MPB_METRIC_##id)->name)
+
 static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
                       long run, int64_t run_id, mpb_named *values,
                       mpb_exact_value *exact, mpb_progress_record *progress)
@@ -186,14 +189,15 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
 
     mpb_named raw[5], simplified[5];
     int nraw = 0, nsimp = 0;
-    metric(raw, &nraw, "path_length", cell(p, run, c->length));
-    metric(raw, &nraw, "smoothness", cell(p, run, c->smoothness));
-    metric(raw, &nraw, "clearance", cell(p, run, c->clearance));
-    metric(raw, &nraw, "waypoints", cell(p, run, c->segments) + 1.0);
-    metric(simplified, &nsimp, "path_length", cell(p, run, c->s_length));
-    metric(simplified, &nsimp, "smoothness", cell(p, run, c->s_smoothness));
-    metric(simplified, &nsimp, "clearance", cell(p, run, c->s_clearance));
-    metric(simplified, &nsimp, "waypoints", cell(p, run, c->s_segments) + 1.0);
+    metric(raw, &nraw, NAME(PATH_LENGTH), cell(p, run, c->length));
+    metric(raw, &nraw, NAME(SMOOTHNESS), cell(p, run, c->smoothness));
+    metric(raw, &nraw, NAME(CLEARANCE), cell(p, run, c->clearance));
+    metric(raw, &nraw, NAME(WAYPOINTS), cell(p, run, c->segments) + 1.0);
+    metric(simplified, &nsimp, NAME(PATH_LENGTH), cell(p, run, c->s_length));
+    metric(simplified, &nsimp, NAME(SMOOTHNESS), cell(p, run, c->s_smoothness));
+    metric(simplified, &nsimp, NAME(CLEARANCE), cell(p, run, c->s_clearance));
+    metric(simplified, &nsimp, NAME(WAYPOINTS),
+           cell(p, run, c->s_segments) + 1.0);
     /* A stage is valid as the log's "correct solution" says (OMPL checked
      * the path), or without one if the run succeeded. A run has stages
      * when it solved or has a path (an approximate one, which OMPL

@@ -188,7 +188,7 @@ static int on_stage_metrics(void *ud, const mpb_result_row *row)
     int c = config_index(g, row->planner_config_id);
     if (c < 0 || !row->success || row->num_named == 0)
         return 0;
-    for (int m = 0; m < PM_COUNT; m++)
+    for (int m = 0; m < plot_num_metrics(); m++)
         if (isfinite(row->metrics[m]) &&
             push(plot_metric_series(g->sc, m, g->stage, c), row->metrics[m]))
             return g->nomem = 1;
@@ -202,7 +202,7 @@ static void scene_free(plot_scene *sc)
     for (int c = 0; sc->time && c < sc->num_configs; c++)
         free(sc->time[c].v);
     for (size_t i = 0; sc->metric &&
-         i < (size_t)PM_COUNT * (size_t)sc->num_stages * (size_t)sc->num_configs;
+         i < (size_t)plot_num_metrics() * (size_t)sc->num_stages * (size_t)sc->num_configs;
          i++)
         free(sc->metric[i].v);
     for (int k = 0; sc->stages && k < sc->num_stages; k++)
@@ -220,7 +220,7 @@ static void drop_empty_stages(plot_scene *sc)
     int nc = sc->num_configs, kept = 0;
     for (int k = 0; k < sc->num_stages; k++) {
         int values = 0;
-        for (int m = 0; m < PM_COUNT; m++)
+        for (int m = 0; m < plot_num_metrics(); m++)
             for (int c = 0; c < nc; c++)
                 values += plot_metric_series(sc, m, k, c)->n;
         if (values == 0) {
@@ -230,7 +230,7 @@ static void drop_empty_stages(plot_scene *sc)
         /* Move stage k to kept; the layout is [metric][stage][config], so
          * kept <= k never overwrites what is still to be read. */
         sc->stages[kept] = sc->stages[k];
-        for (int m = 0; m < PM_COUNT; m++)
+        for (int m = 0; m < plot_num_metrics(); m++)
             for (int c = 0; c < nc; c++) {
                 plot_series *from = plot_metric_series(sc, m, k, c);
                 plot_series *to = &sc->metric[((size_t)m * (size_t)sc->num_stages
@@ -243,7 +243,7 @@ static void drop_empty_stages(plot_scene *sc)
         kept++;
     }
     /* Re-pack from a stride of num_stages to one of kept stages. */
-    for (int m = 0; m < PM_COUNT; m++)
+    for (int m = 0; m < plot_num_metrics(); m++)
         for (int k = 0; k < kept; k++)
             for (int c = 0; c < nc; c++) {
                 size_t from = ((size_t)m * (size_t)sc->num_stages + (size_t)k)
@@ -260,10 +260,9 @@ static void drop_empty_stages(plot_scene *sc)
 /* Read one scene; MPB_OK, or an error already printed. */
 static int read_scene(mpb_store *s, gather *g, int i, plot_scene *sc)
 {
-    static const char *const names[PM_COUNT] = {
-        [PM_PATH_LENGTH] = "path_length", [PM_SMOOTHNESS] = "smoothness",
-        [PM_CLEARANCE] = "clearance", [PM_EE_PATH_LENGTH] = "ee_path_length",
-    };
+    const char *names[MPB_NUM_METRICS];
+    for (int m = 0; m < plot_num_metrics(); m++)
+        names[m] = plot_metric(m)->name;
     size_t nc = (size_t)g->num_configs;
     int rc;
 
@@ -288,7 +287,7 @@ static int read_scene(mpb_store *s, gather *g, int i, plot_scene *sc)
 
     int candidates = NUM_KNOWN + g->num_finals;
     sc->stages = calloc((size_t)candidates, sizeof *sc->stages);
-    sc->metric = calloc((size_t)PM_COUNT * (size_t)candidates * nc + 1,
+    sc->metric = calloc((size_t)plot_num_metrics() * (size_t)candidates * nc + 1,
                         sizeof *sc->metric);
     if (!sc->stages || !sc->metric)
         goto nomem;
@@ -302,7 +301,7 @@ static int read_scene(mpb_store *s, gather *g, int i, plot_scene *sc)
     for (int k = 0; k < candidates; k++) {
         g->stage = k;
         rc = mpb_store_results(s, g->experiment_id, g->scene_ids[i],
-                               sc->stages[k], names, PM_COUNT,
+                               sc->stages[k], names, plot_num_metrics(),
                                on_stage_metrics, g);
         if (g->nomem)
             goto nomem;

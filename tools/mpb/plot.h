@@ -7,18 +7,13 @@
 
 #include <stdio.h>
 
-/* The path metrics plotted per stage, in the order of plot_metrics[]. */
-enum { PM_PATH_LENGTH, PM_SMOOTHNESS, PM_CLEARANCE, PM_EE_PATH_LENGTH,
-       PM_COUNT };
+#include "mpbench/metrics.h"
 
-typedef struct plot_metric_info {
-    const char *name;      /* as stored: "path_length" */
-    const char *title;     /* for a reader: "Joint-space path length" */
-    const char *axis;      /* the y axis, with the unit */
-    const char *note;      /* what a better value is: "shorter is better" */
-} plot_metric_info;
-
-extern const plot_metric_info plot_metrics[PM_COUNT];
+/* The path metrics plotted per stage: those of the metric list
+ * (MPB_METRIC_MAP, mpbench/metrics.h) that have a rank, in rank order;
+ * plot_metric(m), m < plot_num_metrics(), gives the list's line. */
+int plot_num_metrics(void);
+const mpb_metric_info *plot_metric(int m);
 
 /* A box needs this many values; fewer are drawn only as dots. */
 #define PLOT_BOX_MIN 3

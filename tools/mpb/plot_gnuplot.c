@@ -18,19 +18,25 @@
 #include "mpb.h"
 #include "plot.h"
 
-const plot_metric_info plot_metrics[PM_COUNT] = {
-    [PM_PATH_LENGTH] = {"path_length", "Joint-space path length",
-                        "joint-space path length (rad)", "shorter is better"},
-    [PM_SMOOTHNESS] = {"smoothness",
-                       "Smoothness: mean squared turning angle between segments",
-                       "smoothness (rad^2)", "lower is smoother"},
-    [PM_CLEARANCE] = {"clearance", "Mean clearance from obstacles",
-                      "mean distance to the nearest obstacle (m)",
-                      "higher keeps further away"},
-    [PM_EE_PATH_LENGTH] = {"ee_path_length", "End-effector path length",
-                           "distance travelled by the end-effector (m)",
-                           "shorter is better"},
-};
+static int plot_ids[MPB_NUM_METRICS], num_plotted = -1;
+
+int plot_num_metrics(void)
+{
+    if (num_plotted < 0) {
+        num_plotted = 0;
+        for (int rank = 1; rank <= MPB_NUM_METRICS; rank++)
+            for (int id = 0; id < MPB_NUM_METRICS; id++)
+                if (mpb_metric_info_of(id)->rank == rank)
+                    plot_ids[num_plotted++] = id;
+    }
+    return num_plotted;
+}
+
+const mpb_metric_info *plot_metric(int m)
+{
+    return m >= 0 && m < plot_num_metrics() ? mpb_metric_info_of(plot_ids[m])
+                                            : NULL;
+}
 
 /* Stage colours (a colour-blind-safe set), then a fallback. */
 static const char *const colors[] = {
@@ -541,9 +547,9 @@ static int metric_plot(FILE *gp, const plot_scene *sc, plot_glyphs *gl,
     int width = plot_width(sc, 60 + 50 * nk);
     begin_plot(gp, path, ext, width);
     snprintf(sub, sizeof sub, "successful runs only, per stage of the "
-             "planner's answer; %s", plot_metrics[m].note);
-    set_title(gp, sc, gl, plot_metrics[m].title, sub, width);
-    fprintf(gp, "set ylabel \"%s\"\n", plot_metrics[m].axis);
+             "planner's answer; %s", plot_metric(m)->better);
+    set_title(gp, sc, gl, plot_metric(m)->title, sub, width);
+    fprintf(gp, "set ylabel \"%s\"\n", plot_metric(m)->axis);
     config_tics(gp, sc, gl, counts, "successful runs", width);
     /* Every path metric is >= 0; all 0 (a straight path's smoothness)
      * would be an empty range to gnuplot. */
@@ -607,8 +613,8 @@ int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
         wrote(ud, path);
         n++;
     }
-    for (int m = 0; m < PM_COUNT; m++) {
-        file_name(path, sizeof path, dir, sc->file, plot_metrics[m].name,
+    for (int m = 0; m < plot_num_metrics(); m++) {
+        file_name(path, sizeof path, dir, sc->file, plot_metric(m)->name,
                        ext);
         if (metric_plot(gp, sc, gl, m, path, ext)) {
             wrote(ud, path);

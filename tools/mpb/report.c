@@ -30,15 +30,20 @@ const metric_info report_metrics[M_COUNT] = {
     [M_WS] = {"world_setup_time", "s"},
     [M_VT] = {"verify_time", "s"},
     [M_MEM] = {"memory", "MB"},
-    [M_DN] = {"clearance", "m"},
-    [M_LP] = {"path_length", "rad"},
-    [M_LE] = {"ee_path_length", "m"},
-    [M_KAPPA] = {"smoothness", "rad^2"},
-    [M_KAPPA_R] = {"smoothness_resampled", "rad^2"},
-    [M_WP] = {"waypoints", ""},
+#define METRIC_KEY(id, name, unit, ...) \
+    [FIRST_STORED + MPB_METRIC_##id] = {name, unit},
+    MPB_METRIC_MAP(METRIC_KEY)
+#undef METRIC_KEY
 };
 
-const table_row report_rows[] = {
+int report_metric_shown(int k)
+{
+    return k < FIRST_STORED ||
+           (mpb_metric_info_of(k - FIRST_STORED)->flags & MPB_METRIC_F_TABLE);
+}
+
+/* The run's times, rows of their own; the metrics' rows follow. */
+static const table_row time_rows[] = {
     {"tau_t (Mean, s)",       "$\\tau_t$ (Mean, s)",            M_TT,    SHOW_MEAN,  0, -1},
     {"tau_t (sigma, s)",      "$\\tau_t$ ($\\sigma$, s)",       M_TT,    SHOW_SIGMA, 0, -1},
     {"tau_r (Mean, s)",       "$\\tau_r$ (Mean, s)",            M_TR,    SHOW_MEAN,  0, -1},
@@ -48,25 +53,59 @@ const table_row report_rows[] = {
     {"world setup (Mean, s)", "world setup (Mean, s)",         M_WS,    SHOW_MEAN,  1, -1},
     {"verify (Mean, s)",      "verify (Mean, s)",              M_VT,    SHOW_MEAN,  1, -1},
     {"memory (Mean, MB)",     "memory (Mean, MB)",             M_MEM,   SHOW_MEAN,  1, -1},
-    {"d_n (Mean, m)",         "$d_n$ (Mean, m)",                M_DN,    SHOW_MEAN,  1, -1},
-    {"d_n (sigma, m)",        "$d_n$ ($\\sigma$, m)",           M_DN,    SHOW_SIGMA, 1, -1},
-    {"l_p (Mean, rad)",       "$l_p$ (Mean, rad)",              M_LP,    SHOW_MEAN,  0, -1},
-    {"l_p (sigma, rad)",      "$l_p$ ($\\sigma$, rad)",         M_LP,    SHOW_SIGMA, 0, -1},
-    {"l_e (Mean, m)",         "$l_e$ (Mean, m)",                M_LE,    SHOW_MEAN,  1, -1},
-    {"l_e (sigma, m)",        "$l_e$ ($\\sigma$, m)",           M_LE,    SHOW_SIGMA, 1, -1},
-    {"kappa' (Mean, rad^2)",  "$\\kappa'$ (Mean, rad$^2$)",     M_KAPPA, SHOW_MEAN,  0, -1},
-    {"kappa' (sigma, rad^2)", "$\\kappa'$ ($\\sigma$, rad$^2$)", M_KAPPA, SHOW_SIGMA, 0, -1},
-    {"kappa'_r (Mean, rad^2)", "$\\kappa'_r$ (Mean, rad$^2$)",  M_KAPPA_R, SHOW_MEAN, 1, -1},
-    {"kappa'_r (sigma, rad^2)", "$\\kappa'_r$ ($\\sigma$, rad$^2$)", M_KAPPA_R, SHOW_SIGMA, 1, -1},
-    {"waypoints (Mean)",      "waypoints (Mean)",               M_WP,    SHOW_MEAN,  0, 1},
-    {"s_r (%)",               "$s_r$ (\\%)",                    0,       SHOW_RATE,  0, 1},
 };
-const int report_num_rows = (int)(sizeof report_rows / sizeof report_rows[0]);
+#define NUM_TIME_ROWS ((int)(sizeof time_rows / sizeof time_rows[0]))
 
-static const char *const stored_names[M_COUNT - FIRST_STORED] = {
-    "clearance", "path_length", "ee_path_length", "smoothness",
-    "smoothness_resampled", "waypoints",
-};
+table_row report_rows[REPORT_MAX_ROWS];
+int report_num_rows;
+
+/* The labels of the metrics' rows, made once from the list. */
+static char row_text[REPORT_MAX_ROWS][2][80];
+
+/* A unit in LaTeX: "rad^2" as "rad$^2$". */
+static void latex_unit(char *out, size_t size, const char *unit)
+{
+    const char *hat = strchr(unit, '^');
+    if (hat == NULL)
+        snprintf(out, size, "%s", unit);
+    else
+        snprintf(out, size, "%.*s$^%s$", (int)(hat - unit), unit, hat + 1);
+}
+
+static void add_metric_row(int id, show what)
+{
+    const mpb_metric_info *mi = mpb_metric_info_of(id);
+    int i = report_num_rows++;
+    const char *kind = what == SHOW_MEAN ? "Mean" : "sigma";
+    const char *lkind = what == SHOW_MEAN ? "Mean" : "$\\sigma$";
+    char unit[40];
+    latex_unit(unit, sizeof unit, mi->unit);
+    snprintf(row_text[i][0], sizeof row_text[i][0], "%s (%s%s%s)", mi->symbol,
+             kind, mi->unit[0] ? ", " : "", mi->unit);
+    snprintf(row_text[i][1], sizeof row_text[i][1], "%s (%s%s%s)", mi->latex,
+             lkind, unit[0] ? ", " : "", unit);
+    report_rows[i] = (table_row){
+        row_text[i][0], row_text[i][1], FIRST_STORED + id, what,
+        (mi->flags & MPB_METRIC_F_OPTIONAL) != 0,
+        (mi->flags & MPB_METRIC_F_COUNT) ? 1 : -1};
+}
+
+void report_rows_init(void)
+{
+    if (report_num_rows > 0)
+        return;
+    for (int i = 0; i < NUM_TIME_ROWS; i++)
+        report_rows[report_num_rows++] = time_rows[i];
+    for (int id = 0; id < MPB_NUM_METRICS; id++) {
+        unsigned flags = mpb_metric_info_of(id)->flags;
+        if (flags & MPB_METRIC_F_TABLE)
+            add_metric_row(id, SHOW_MEAN);
+        if ((flags & MPB_METRIC_F_TABLE) && (flags & MPB_METRIC_F_SIGMA))
+            add_metric_row(id, SHOW_SIGMA);
+    }
+    report_rows[report_num_rows++] = (table_row){
+        "s_r (%)", "$s_r$ (\\%)", 0, SHOW_RATE, 0, 1};
+}
 
 typedef enum {
     FORMAT_TEXT, FORMAT_MARKDOWN, FORMAT_CSV, FORMAT_LATEX, FORMAT_JSON
@@ -303,7 +342,7 @@ static int on_result(void *ud, const mpb_result_row *row)
         c->stage_invalid++;
         return 0;
     }
-    for (int k = 0; k < M_COUNT - FIRST_STORED; k++)
+    for (int k = 0; k < MPB_NUM_METRICS; k++)
         add_sample(&c->m[FIRST_STORED + k], row->metrics[k]);
     if (row->num_named > 0)
         r->staged++;
@@ -338,8 +377,11 @@ static int gather(report *r, mpb_store *s)
             mpb_grouped_init(&r->cells[i].m[k]);
     if (n == 0)
         return 0;
+    const char *stored_names[MPB_NUM_METRICS];
+    for (int k = 0; k < MPB_NUM_METRICS; k++)
+        stored_names[k] = mpb_metric_info_of(k)->name;
     rc = mpb_store_results(s, r->experiment_id, 0, r->stage, stored_names,
-                           M_COUNT - FIRST_STORED, on_result, r);
+                           MPB_NUM_METRICS, on_result, r);
     if (rc)
         return rc;
     for (size_t i = 0; i < n; i++)
@@ -622,6 +664,7 @@ int cmd_report(int argc, char **argv)
     int opt, rc, status = MPB_EXIT_ERROR, fmt = FORMAT_TEXT, findings = 0;
     mpb_store *s = NULL;
 
+    report_rows_init();
     optind = 1;
     opterr = 0;
     while ((opt = getopt_long(argc, argv, ":e:s:f:Fo:h", longopts, NULL)) != -1) {

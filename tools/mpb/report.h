@@ -11,10 +11,16 @@
 
 #include "mpb.h"
 
-/* What is averaged: the run's times, then the stage metrics it reads. */
-enum { M_TT, M_TR, M_TO, M_WS, M_VT, M_MEM, M_DN, M_LP, M_LE, M_KAPPA, M_KAPPA_R, M_WP,
-       M_COUNT };
-#define FIRST_STORED M_DN
+/* What is averaged: the run's times, then the stage metrics of the list
+ * (MPB_METRIC_MAP, mpbench/metrics.h), metric id k at FIRST_STORED + k;
+ * the tables show those flagged MPB_METRIC_F_TABLE. */
+enum { M_TT, M_TR, M_TO, M_WS, M_VT, M_MEM, FIRST_STORED,
+       M_COUNT = FIRST_STORED + MPB_NUM_METRICS };
+#define M_LP (FIRST_STORED + MPB_METRIC_PATH_LENGTH)
+
+/* Whether the report shows metric k (M_...): the run's times always, a
+ * stage metric when the list flags it MPB_METRIC_F_TABLE. */
+int report_metric_shown(int k);
 
 /* A metric's name in the machine-readable formats (its name in the
  * database for the stored ones) and its unit ("" for counts). */
@@ -35,9 +41,12 @@ typedef struct table_row {
     int         decimals;   /* fixed decimals, or -1: the general format */
 } table_row;
 
-/* The paper's rows, in its order, and the number of waypoints. */
-extern const table_row report_rows[];
-extern const int report_num_rows;
+/* The paper's rows, in its order, then the list's other metrics;
+ * report_rows_init() fills them (once; later calls do nothing). */
+#define REPORT_MAX_ROWS (2 * M_COUNT + 1)
+extern table_row report_rows[REPORT_MAX_ROWS];
+extern int report_num_rows;
+void report_rows_init(void);
 
 /* One planner configuration on one query, or (folded) on one scene. */
 typedef struct column {

@@ -189,6 +189,8 @@ int report_write_csv(const report *r, FILE *out)
         for (int c = 0; c < r->num_configs; c++) {
             const column *col = &t.cols[c];
             for (int k = 0; k < M_COUNT; k++) {
+                if (!report_metric_shown(k))
+                    continue;
                 csv_row_start(r, si, c, report_metrics[k].key,
                               report_metrics[k].unit, out);
                 csv_number(mpb_grouped_mean(&col->m[k]), out);
@@ -368,6 +370,8 @@ int report_write_json(const report *r, FILE *out)
         fputs("null", out);
     fputs(",\n  \"units\": {", out);
     for (int k = 0; k < M_COUNT; k++) {
+        if (!report_metric_shown(k))
+            continue;
         fprintf(out, "%s\n    \"%s\": ", k ? "," : "", report_metrics[k].key);
         json_string(report_metrics[k].unit, out);
     }
@@ -402,6 +406,8 @@ int report_write_json(const report *r, FILE *out)
                                           : NAN, out);
             fputs(",\n          \"metrics\": {", out);
             for (int k = 0; k < M_COUNT; k++) {
+                if (!report_metric_shown(k))
+                    continue;
                 fprintf(out, "%s\n            \"%s\": {\"mean\": ",
                         k ? "," : "", report_metrics[k].key);
                 json_number(mpb_grouped_mean(&col->m[k]), out);

@@ -47,15 +47,9 @@ void *view_calloc(size_t n, size_t size)
 static double *parse_numbers(const char *text, int n)
 {
     double *v = view_calloc((size_t)n, sizeof *v);
-    const char *p = text ? text : "";
-    for (int i = 0; i < n; i++) {
-        char *end;
-        v[i] = strtod(p, &end);
-        if (end == p) {
-            free(v);
-            return NULL;
-        }
-        p = end;
+    if (mpb_store_numbers(text, v, n) != MPB_OK) {
+        free(v);
+        return NULL;
     }
     return v;
 }

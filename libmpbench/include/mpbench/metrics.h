@@ -14,6 +14,98 @@ extern "C" {
 #endif
 
 /*
+ * The metrics mpbench computes for every stage a planner returns, one line
+ * each: the daemon stores them (metrics.name), `mpb report` tabulates them,
+ * `mpb plot` draws them and the Planner Arena export names them from this
+ * list alone. Adding a metric is a line here and a function
+ * "static double metric_<ID>(mpb__measure *m)" in
+ * libmpbench/src/verify/measure.c; nothing else.
+ *
+ *   X(ID, name, unit, flags, rank, symbol, latex, title, axis, better, word)
+ *
+ * ID      MPB_METRIC_<ID>, the metric's index in this list
+ * name    as stored and in machine-readable reports ("path_length")
+ * unit    "s", "m", "rad", "rad^2"; "" for a count
+ * flags   MPB_METRIC_F_* below
+ * rank    its place in Planner Arena's property lists and in `mpb plot`
+ *         (1, 2, ...); 0: not plotted, listed after the ranked ones by name
+ * symbol  the report's row label ("l_p"), latex the same in LaTeX
+ * title, axis, better   a plot's title, y axis (with the unit) and what a
+ *         better value is
+ * word    its word in OMPL's property names ("solution length"); NULL
+ *         when the stage's time or segments already say it
+ *
+ * The list is in the order of the paper's tables.
+ */
+#define MPB_METRIC_MAP(X)                                                    \
+    X(CLEARANCE, "clearance", "m",                                           \
+      MPB_METRIC_F_PATH | MPB_METRIC_F_TABLE | MPB_METRIC_F_SIGMA |          \
+          MPB_METRIC_F_OPTIONAL, 3, "d_n", "$d_n$",                          \
+      "Mean clearance from obstacles",                                       \
+      "mean distance to the nearest obstacle (m)",                           \
+      "higher keeps further away", "clearance")                              \
+    X(PATH_LENGTH, "path_length", "rad",                                     \
+      MPB_METRIC_F_PATH | MPB_METRIC_F_TABLE | MPB_METRIC_F_SIGMA, 1,        \
+      "l_p", "$l_p$", "Joint-space path length",                             \
+      "joint-space path length (rad)", "shorter is better", "length")        \
+    X(EE_PATH_LENGTH, "ee_path_length", "m",                                 \
+      MPB_METRIC_F_PATH | MPB_METRIC_F_TABLE | MPB_METRIC_F_SIGMA |          \
+          MPB_METRIC_F_OPTIONAL, 4, "l_e", "$l_e$",                          \
+      "End-effector path length",                                            \
+      "distance travelled by the end-effector (m)", "shorter is better",     \
+      "ee length")                                                           \
+    X(SMOOTHNESS, "smoothness", "rad^2",                                     \
+      MPB_METRIC_F_PATH | MPB_METRIC_F_TABLE | MPB_METRIC_F_SIGMA, 2,        \
+      "kappa'", "$\\kappa'$",                                                \
+      "Smoothness: mean squared turning angle between segments",             \
+      "smoothness (rad^2)", "lower is smoother", "smoothness")               \
+    X(SMOOTHNESS_RESAMPLED, "smoothness_resampled", "rad^2",                 \
+      MPB_METRIC_F_PATH | MPB_METRIC_F_TABLE | MPB_METRIC_F_SIGMA |          \
+          MPB_METRIC_F_OPTIONAL, 0, "kappa'_r", "$\\kappa'_r$",              \
+      "Smoothness of the path cut into equal pieces",                        \
+      "smoothness, resampled (rad^2)", "lower is smoother",                  \
+      "smoothness_resampled")                                                \
+    X(WAYPOINTS, "waypoints", "", MPB_METRIC_F_TABLE | MPB_METRIC_F_COUNT,   \
+      0, "waypoints", "waypoints", "Waypoints", "waypoints",                 \
+      "fewer is simpler", NULL)                                              \
+    X(MIN_CLEARANCE, "min_clearance", "m", MPB_METRIC_F_PATH, 0,             \
+      "d_min", "$d_{min}$", "Least clearance from obstacles",                \
+      "least distance to the nearest obstacle (m)",                          \
+      "higher keeps further away", "min_clearance")                          \
+    X(TIME, "time", "s", 0, 0, "tau_s", "$\\tau_s$", "Stage time",           \
+      "the stage's time as the planner reported it (s)",                     \
+      "shorter is better", NULL)
+
+/* A metric's flags. */
+#define MPB_METRIC_F_PATH     1  /* measured only on a path of the right
+                                    size whose values are all finite */
+#define MPB_METRIC_F_TABLE    2  /* a row of `mpb report`: its mean */
+#define MPB_METRIC_F_SIGMA    4  /* and a row of its standard deviation */
+#define MPB_METRIC_F_OPTIONAL 8  /* a row only where some run has it */
+#define MPB_METRIC_F_COUNT   16  /* a count: its mean shows one decimal */
+
+typedef enum mpb_metric_id {
+#define MPB__METRIC_ENUM(id, ...) MPB_METRIC_##id,
+    MPB_METRIC_MAP(MPB__METRIC_ENUM)
+#undef MPB__METRIC_ENUM
+    MPB_NUM_METRICS
+} mpb_metric_id;
+
+/* One line of the list. */
+typedef struct mpb_metric_info {
+    const char *name, *unit;
+    unsigned    flags;
+    int         rank;
+    const char *symbol, *latex, *title, *axis, *better, *word;
+} mpb_metric_info;
+
+/* The line of metric id, static; NULL outside 0..MPB_NUM_METRICS-1. */
+const mpb_metric_info *mpb_metric_info_of(int id);
+
+/* The id of the metric stored as name, or -1 if the list has none. */
+int mpb_metric_find(const char *name);
+
+/*
  * Which joints wrap around (continuous joints): continuous[j] != 0 means the
  * difference between two values of joint j is taken the short way round, in
  * (-pi, pi]. NULL means no joint wraps.

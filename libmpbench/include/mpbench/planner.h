@@ -11,9 +11,9 @@
  *
  * Solving is synchronous, in the thread that called mpb_planner_serve()
  * (capacity 1): requests that arrive meanwhile wait in LCM's queue and are
- * taken when solve() returns. solve() cannot see the stop flag; a planner
- * that wants to stop a long solve early keeps its own pointer to the flag
- * (in user) and checks it, as planners/ompl does.
+ * taken when solve() returns. solve() gets the run's deadline and the
+ * stop flag from the kit (mpb_solve_limits), as OMPL's solve() gets a
+ * termination condition: a long solve checks mpb_solve_should_stop().
  *
  * Include the generated message headers (mpb_plan_request_t.h,
  * mpb_plan_result_t.h) before this one, or let it include them.
@@ -32,7 +32,8 @@ extern "C" {
 #endif
 
 /*
- * Fill res for req. res arrives zeroed with run_id, planner_id and utime
+ * Fill res for req, by lim->deadline; stop early when
+ * mpb_solve_should_stop(lim) says so. res arrives zeroed with run_id, planner_id and utime
  * set; fill status, message and times, and add stages and values with the
  * mpb_result_add_* functions (which own what they allocate). Return 0, or a
  * negative code to report INVALID_REQUEST with res->message if set;
@@ -55,7 +56,24 @@ extern "C" {
  * SIGSEGV, SIGBUS, a sanitizer's death) having used at least half the
  * limit publishes a MEMORY result for the run as its last words.
  */
+typedef struct mpb_solve_limits {
+    double start;       /* mpb_monotonic_s() when the kit called solve() */
+    double deadline;    /* start + req->time_limit: by then the run must
+                           have ended (the planner keeps its own margin
+                           for work after the search) */
+    volatile sig_atomic_t *stop;    /* mpb_planner_serve()'s stop flag,
+                                       nonzero when the process is asked
+                                       to stop (a signal); NULL: none */
+} mpb_solve_limits;
+
+/*
+ * 1 when solve() should give up now: *lim->stop is set or the deadline
+ * has passed (one read of the monotonic clock); 0 otherwise.
+ */
+int mpb_solve_should_stop(const mpb_solve_limits *lim);
+
 typedef int (*mpb_solve_fn)(void *user, const mpb_plan_request_t *req,
+                            const mpb_solve_limits *lim,
                             mpb_plan_result_t *res);
 
 typedef struct mpb_planner_def {

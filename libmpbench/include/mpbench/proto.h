@@ -97,6 +97,13 @@ double mpb_monotonic_s(void);
 /* Lower-case name of a plan_result_t status ("solved", "timeout", ...). */
 const char *mpb_status_name(int status);
 
+/*
+ * 1 if a planner may send status: SOLVED..MEMORY, except CRASH, which the
+ * daemon alone records. Any other status, received or set by solve(), is
+ * taken as FAILED, with a note saying so.
+ */
+int mpb_status_is_planners(int status);
+
 struct _mpb_stage_t;
 
 /*

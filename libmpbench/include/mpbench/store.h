@@ -369,6 +369,14 @@ typedef struct mpb_query_row {
                                   NULL when it holds none */
 } mpb_query_row;
 
+/*
+ * Read n numbers of a query row's space-separated text (start,
+ * goal_joints, goal_region) into out[0..n). Returns MPB_OK, or MPB_EINVAL
+ * if text (NULL reads as "") holds fewer than n numbers; text after the
+ * n-th is not read.
+ */
+int mpb_store_numbers(const char *text, double *out, int n);
+
 /* The queries of a scene. */
 int mpb_store_queries(mpb_store *s, int64_t scene_id,
                       int (*cb)(void *ud, const mpb_query_row *row), void *ud);

@@ -8,6 +8,8 @@
 
 #include <stddef.h>
 
+#include "mpbench/metrics.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -96,6 +98,46 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
                     double start_tolerance, const mpb_goal *goal,
                     const double *wp, int num_waypoints, int num_joints,
                     double resolution, mpb_verdict *out);
+
+/*
+ * A stage as mpbench judges it: its verdict and its metrics, the ones of
+ * MPB_METRIC_MAP (metrics.h) that apply, in the list's order, each named
+ * by the list (static strings). Filled by mpb_measure_stage().
+ */
+typedef struct mpb_stage_measure {
+    mpb_verdict verdict;
+    int         num_metrics;
+    struct mpb_stage_metric {
+        const char *name;
+        double      value;
+    } metrics[MPB_NUM_METRICS];
+} mpb_stage_measure;
+
+/*
+ * Verify and measure one stage, as mpbenchd does with every stage a planner
+ * returns: mpb_verify_path() with these arguments, then
+ * mpb_measure_metrics(). stage_time is the stage's time as the planner
+ * reported it (s). Returns what mpb_verify_path() returns; *out is filled
+ * whatever it returns.
+ */
+int mpb_measure_stage(struct mpb_world *w, const double *start,
+                      double start_tolerance, const mpb_goal *goal,
+                      const double *wp, int num_waypoints, int num_joints,
+                      double stage_time, double resolution,
+                      mpb_stage_measure *out);
+
+/*
+ * The metrics of a stage whose verdict is out->verdict already (set by the
+ * caller, e.g. MPB_VERDICT_WRONG_SIZE for a message whose sizes disagree):
+ * every metric of the list, except that those flagged MPB_METRIC_F_PATH
+ * are left out when wp is NULL or the verdict is NOT_FINITE or
+ * WRONG_SIZE (lengths of such a path mean nothing). resolution is the
+ * end-effector's step (mpb_ee_path_length()). Sets out->num_metrics and
+ * out->metrics.
+ */
+void mpb_measure_metrics(struct mpb_world *w, const double *wp,
+                         int num_waypoints, int num_joints, double stage_time,
+                         double resolution, mpb_stage_measure *out);
 
 #ifdef __cplusplus
 }

@@ -200,16 +200,13 @@ static int read_names(mpb_store *s, const char *sql, int64_t experiment_id,
     return rc;
 }
 
-/* The metrics of a stage, in the order the properties list them: path
- * length, smoothness, clearance first, then any other alphabetically. */
+/* The metrics of a stage, in the order the properties list them: those
+ * the metric list ranks (path length, smoothness, clearance, ...) first,
+ * then any other alphabetically. */
 static int metric_rank(const char *name)
 {
-    static const char *const order[] = {"path_length", "smoothness",
-                                        "clearance", "ee_path_length"};
-    for (int i = 0; i < 4; i++)
-        if (strcmp(name, order[i]) == 0)
-            return i;
-    return 4;
+    const mpb_metric_info *mi = mpb_metric_info_of(mpb_metric_find(name));
+    return mi != NULL && mi->rank > 0 ? mi->rank : MPB_NUM_METRICS + 1;
 }
 
 static int cmp_metric(const void *a, const void *b)
@@ -219,14 +216,12 @@ static int cmp_metric(const void *a, const void *b)
     return rx != ry ? rx - ry : strcmp(x, y);
 }
 
-/* The property word of a stage metric: "length" for path_length, ... */
+/* The property word of a stage metric: "length" for path_length, ...;
+ * NULL for those the stage's time and segments say. */
 static const char *metric_word(const char *metric)
 {
-    if (strcmp(metric, "path_length") == 0)
-        return "length";
-    if (strcmp(metric, "ee_path_length") == 0)
-        return "ee length";
-    return metric;
+    const mpb_metric_info *mi = mpb_metric_info_of(mpb_metric_find(metric));
+    return mi != NULL ? mi->word : metric;
 }
 
 /* The properties of one stage role: "<prefix>solution time", ... */
@@ -240,10 +235,10 @@ static int add_stage_props(prop_list *l, const char *prefix, stage_role role,
                        stage, NULL, "stage ")))
         return rc;
     for (int i = 0; i < metrics->n; i++) {
-        const char *m = metrics->v[i];
-        if (strcmp(m, "time") == 0 || strcmp(m, "waypoints") == 0)
+        const char *m = metrics->v[i], *word = metric_word(m);
+        if (word == NULL)
             continue;   /* the stage's time and segments say it */
-        snprintf(buf, sizeof buf, "%ssolution %s", prefix, metric_word(m));
+        snprintf(buf, sizeof buf, "%ssolution %s", prefix, word);
         if ((rc = prop_add(l, prop_name("", buf), "REAL", K_STAGE_METRIC,
                            role, stage, m, "stage ")))
             return rc;

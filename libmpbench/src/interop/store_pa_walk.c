@@ -335,8 +335,10 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         case K_STAGE_SEGMENTS:
             /* An imported run's stages have no waypoints, only the log's
              * count as the metric "waypoints" (mpb import). */
-            v = si && si->num_waypoints > 0 ? si->num_waypoints - 1
-                                             : metric_of(w, si, "waypoints") - 1;
+            v = si && si->num_waypoints > 0
+                    ? si->num_waypoints - 1
+                    : metric_of(w, si, mpb_metric_info_of(
+                                           MPB_METRIC_WAYPOINTS)->name) - 1;
             break;
         case K_STAGE_VALID: v = si ? si->valid : NAN; break;
         case K_VALUE:

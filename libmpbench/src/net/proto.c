@@ -211,6 +211,13 @@ const char *mpb_status_name(int status)
     return "unknown";
 }
 
+int mpb_status_is_planners(int status)
+{
+    return status >= MPB_PLAN_RESULT_T_SOLVED &&
+           status <= MPB_PLAN_RESULT_T_MEMORY &&
+           status != MPB_PLAN_RESULT_T_CRASH;
+}
+
 int mpb_stage_sizes_ok(const mpb_stage_t *st, int num_joints, char *why,
                        size_t whylen)
 {

@@ -80,6 +80,7 @@ typedef struct mpb__server {
      * which every message echoes; 0 before any, when the planner does
      * not announce (no daemon would believe it). */
     uint64_t daemon;
+    volatile sig_atomic_t *stop;    /* mpb_planner_serve()'s, for solve() */
 } mpb__server;
 
 /* ---- results ----------------------------------------------------------- */
@@ -490,6 +491,12 @@ static const char *mpb__check_request(const mpb__server *s,
     return NULL;
 }
 
+int mpb_solve_should_stop(const mpb_solve_limits *lim)
+{
+    return (lim->stop != NULL && *lim->stop) ||
+           mpb_monotonic_s() >= lim->deadline;
+}
+
 /* Solve req into a new ring slot, publish the result. */
 static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
 {
@@ -523,7 +530,9 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
         mpb__mem_begin(&mw, req->memory_limit, unlimited, sizeof unlimited);
         mpb__last_words_arm(&mw, s->lcm, s->auth, mpb__daemon(s),
                             req->run_id, s->id, ann, ann_len);
-        int rc = s->def->solve(s->def->user, req, res);
+        mpb_solve_limits lim = {.start = mpb_monotonic_s(), .stop = s->stop};
+        lim.deadline = lim.start + req->time_limit;
+        int rc = s->def->solve(s->def->user, req, &lim, res);
         mpb__last_words_disarm();
         double peak = mpb__mem_end(&mw);
         free(ann);
@@ -554,9 +563,7 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
             if (res->message == NULL || res->message[0] == '\0')
                 mpb_result_set_message(res, "planner refused the request (%s)",
                                        mpb_err_name(rc));
-        } else if (res->status < MPB_PLAN_RESULT_T_SOLVED ||
-                   res->status > MPB_PLAN_RESULT_T_MEMORY ||
-                   res->status == MPB_PLAN_RESULT_T_CRASH) {
+        } else if (!mpb_status_is_planners(res->status)) {
             mpb_result_set_message(res, "planner set status %d; %s",
                                    (int)res->status,
                                    res->message != NULL ? res->message : "");
@@ -894,6 +901,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     } else {
         if (def->on_ready != NULL)
             def->on_ready(def->user, s->id);
+        s->stop = stop;
         rc = mpb__loop(s, stop, err, errlen);
 
         pthread_mutex_lock(&s->mu);

@@ -66,7 +66,7 @@ def main(argv=None):
     signal.signal(signal.SIGINT, lambda *_: node.stop())
     cache = WorldCache()
     node.log(f"{node.planner_id} ready: {', '.join(ALGORITHMS)}")
-    node.serve(lambda req: solve(req, cache))
+    node.serve(lambda req, limits: solve(req, cache, limits))
     return 0
 
 

@@ -11,7 +11,8 @@ Reusable for any planner in Python (docs/writing-a-planner.md):
 
     Node(name, algorithms, url).serve(solve)
 
-with solve(req) -> plan_result_t. A result whose time_total solve() left
+with solve(req, limits) -> plan_result_t (limits.py: the run's deadline
+and the node's stop flag; a solve(req) is called without). A result whose time_total solve() left
 at 0 gets the time solve() took, by the node's clock; one whose memory
 solve() left at 0 gets the process's peak resident memory during solve()
 (MB), and a request's memory_limit is enforced around solve(), a
@@ -36,6 +37,7 @@ import traceback
 from mpb import (daemon_status_t, plan_request_t, plan_result_t,
                  planner_announce_t, run_ack_t)
 
+from .limits import Limits, takes_limits
 from .memory import Watch
 from .sockfilter import filtered_lcm
 
@@ -317,9 +319,11 @@ class Node:
         else:
             t0 = time.monotonic()
             watch = Watch(getattr(req, "memory_limit", 0.0))
+            limits = Limits(t0, req.time_limit, lambda: self.stopping)
             try:
                 with watch:
-                    res = solve(req)
+                    res = (solve(req, limits) if takes_limits(solve)
+                           else solve(req))
             except MemoryError:
                 # Past the request's memory_limit (RLIMIT_DATA, set by
                 # Watch), or the machine's: what solve() held is freed.

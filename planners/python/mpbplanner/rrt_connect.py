@@ -105,11 +105,16 @@ def _connect(tree, q, step):
             return state, i
 
 
-def plan(space, start, goals, step, deadline):
+def _never():
+    return False
+
+
+def plan(space, start, goals, step, deadline, stopping=_never):
     """A path (list of configurations) from start to one of goals, or None
-    when the deadline (time.monotonic()) passes first."""
+    when the deadline (time.monotonic()) passes first or stopping() says
+    so."""
     a, b = Tree(space, [start]), Tree(space, goals)
-    while time.monotonic() < deadline:
+    while time.monotonic() < deadline and not stopping():
         state, i = _extend(a, space.sample(), step)
         if state != TRAPPED:
             state, j = _connect(b, a.nodes[i], step)
@@ -122,12 +127,12 @@ def plan(space, start, goals, step, deadline):
     return None
 
 
-def shortcut(space, path, attempts, deadline):
+def shortcut(space, path, attempts, deadline, stopping=_never):
     """Replace stretches of the path by straight motions where they are
     free: pick two waypoints at random, join them if nothing is between."""
     path = list(path)
     for _ in range(attempts):
-        if len(path) < 3 or time.monotonic() >= deadline:
+        if len(path) < 3 or time.monotonic() >= deadline or stopping():
             break
         i = space.rng.randrange(len(path) - 2)
         j = space.rng.randrange(i + 2, len(path))

@@ -107,11 +107,12 @@ def _stage(name, seconds, path, num_joints):
     return st
 
 
-def solve(req, cache):
+def solve(req, cache, limits):
     """Answer one plan_request_t with a plan_result_t (run_id and planner_id
-    left for the caller)."""
+    left for the caller), by limits.deadline (limits.py) unless
+    limits.stopping() says to stop first."""
     t0 = time.monotonic()
-    deadline = t0 + req.time_limit
+    deadline = limits.deadline
     res = plan_result_t()
     res.stages, res.values, res.progress = [], [], []
     try:
@@ -148,7 +149,8 @@ def solve(req, cache):
             res.status = plan_result_t.FAILED
             res.message = "no collision-free goal configuration found"
         else:
-            path = rrt_connect.plan(space, start, goals, step, deadline)
+            path = rrt_connect.plan(space, start, goals, step, deadline,
+                                    limits.stopping)
             t_raw = time.monotonic()
             if path is None:
                 res.status = plan_result_t.TIMEOUT
@@ -157,7 +159,8 @@ def solve(req, cache):
                 res.status = plan_result_t.SOLVED
                 res.stages.append(_stage("raw", t_raw - t_setup, path,
                                          world.num_joints))
-                short = rrt_connect.shortcut(space, path, 100, deadline)
+                short = rrt_connect.shortcut(space, path, 100, deadline,
+                                             limits.stopping)
                 res.stages.append(_stage("shortcut", time.monotonic() - t_raw,
                                          short, world.num_joints))
         res.time_other = t_setup - t0

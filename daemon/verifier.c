@@ -1,0 +1,240 @@
+/*
+ * verifier.c - verification and metrics beside the loop: one worker thread
+ * takes the results the loop hands over, verifies and measures their
+ * stages (mpbd_result_measure(), which touches only the experiment's
+ * worlds, and only this thread touches them while it runs), and hands
+ * them back through a queue and a pipe the loop polls. The loop stores
+ * them in order of completion, in its transaction, and acknowledges each
+ * after the commit: exactly once, resumable, as when it verified inline.
+ *
+ * What crosses: a job, owned by the loop until submitted, by the worker
+ * while on the todo list, by the loop again once on the done list; the
+ * lists are under mu. The job holds copies of the flight and the message.
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "daemon.h"
+
+typedef struct job {
+    struct job        *next;
+    mpbd_flight        f;        /* the run's flight, as it ended */
+    mpb_plan_result_t *m;        /* the result, copied */
+    double             recv;     /* when it arrived, monotonic s */
+    mpbd_measured      ms;
+    int                ok;       /* measured (else out of memory) */
+} job;
+
+typedef struct job_list {
+    job *head, *tail;
+} job_list;
+
+struct mpbd_verifier {
+    pthread_t       thread;
+    pthread_mutex_t mu;
+    pthread_cond_t  cond;
+    job_list        todo, done;
+    job            *current;     /* the one the worker is measuring */
+    int             quit;
+    int             pending;     /* submitted, not yet stored (loop only) */
+    int             pipe[2];     /* a byte per job done: wakes the loop */
+    const mpbd     *d;           /* read by the worker: the experiment */
+};
+
+static void push(job_list *l, job *j)
+{
+    j->next = NULL;
+    if (l->tail != NULL)
+        l->tail->next = j;
+    else
+        l->head = j;
+    l->tail = j;
+}
+
+static job *pop(job_list *l)
+{
+    job *j = l->head;
+    if (j != NULL && (l->head = j->next) == NULL)
+        l->tail = NULL;
+    return j;
+}
+
+static void job_free(job *j)
+{
+    if (j == NULL)
+        return;
+    mpbd_measured_free(&j->ms);
+    if (j->m != NULL)
+        mpb_plan_result_t_destroy(j->m);
+    free(j);
+}
+
+static void *worker(void *arg)
+{
+    struct mpbd_verifier *v = arg;
+    pthread_mutex_lock(&v->mu);
+    for (;;) {
+        while (v->todo.head == NULL && !v->quit)
+            pthread_cond_wait(&v->cond, &v->mu);
+        if (v->quit)
+            break;
+        job *j = v->current = pop(&v->todo);
+        pthread_mutex_unlock(&v->mu);
+        mpbd_measured_free(&j->ms);
+        j->ok = mpbd_result_measure(v->d, &j->f, j->m, &j->ms) == MPB_OK;
+        pthread_mutex_lock(&v->mu);
+        v->current = NULL;
+        push(&v->done, j);
+        ssize_t w;
+        do
+            w = write(v->pipe[1], "", 1);
+        while (w < 0 && errno == EINTR);
+    }
+    pthread_mutex_unlock(&v->mu);
+    return NULL;
+}
+
+int mpbd_verifier_start(mpbd *d)
+{
+    struct mpbd_verifier *v = calloc(1, sizeof *v);
+    if (v == NULL)
+        return MPB_ENOMEM;
+    v->d = d;
+    if (pipe(v->pipe) != 0) {
+        free(v);
+        return MPB_EERROR;
+    }
+    /* The loop drains it without blocking; a full pipe already wakes it. */
+    fcntl(v->pipe[0], F_SETFL, fcntl(v->pipe[0], F_GETFL) | O_NONBLOCK);
+    fcntl(v->pipe[1], F_SETFL, fcntl(v->pipe[1], F_GETFL) | O_NONBLOCK);
+    pthread_mutex_init(&v->mu, NULL);
+    pthread_cond_init(&v->cond, NULL);
+    /* The worker takes no signals: they belong to the loop's thread. */
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &old);
+    int rc = pthread_create(&v->thread, NULL, worker, v);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (rc != 0) {
+        pthread_mutex_destroy(&v->mu);
+        pthread_cond_destroy(&v->cond);
+        close(v->pipe[0]);
+        close(v->pipe[1]);
+        free(v);
+        return MPB_EERROR;
+    }
+    d->verifier = v;
+    return MPB_OK;
+}
+
+void mpbd_verifier_stop(mpbd *d)
+{
+    struct mpbd_verifier *v = d->verifier;
+    if (v == NULL)
+        return;
+    pthread_mutex_lock(&v->mu);
+    v->quit = 1;
+    pthread_cond_signal(&v->cond);
+    pthread_mutex_unlock(&v->mu);
+    pthread_join(v->thread, NULL);
+    /* Not stored: the runs stay sent in the database, and a restart runs
+     * them again, as after a crash. */
+    for (job *j; (j = pop(&v->todo)) != NULL || (j = pop(&v->done)) != NULL;)
+        job_free(j);
+    pthread_mutex_destroy(&v->mu);
+    pthread_cond_destroy(&v->cond);
+    close(v->pipe[0]);
+    close(v->pipe[1]);
+    free(v);
+    d->verifier = NULL;
+}
+
+int mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
+                         const mpb_plan_result_t *m, double recv)
+{
+    struct mpbd_verifier *v = d->verifier;
+    if (v == NULL || d->replaying)
+        return MPB_EINVAL;
+    job *j = calloc(1, sizeof *j);
+    if (j == NULL || (j->m = mpb_plan_result_t_copy(m)) == NULL) {
+        free(j);
+        return MPB_ENOMEM;
+    }
+    j->f = *f;
+    j->recv = recv;
+    pthread_mutex_lock(&v->mu);
+    push(&v->todo, j);
+    pthread_cond_signal(&v->cond);
+    pthread_mutex_unlock(&v->mu);
+    v->pending++;
+    return MPB_OK;
+}
+
+static int has_in(const job_list *l, const char *uid)
+{
+    for (const job *j = l->head; j != NULL; j = j->next)
+        if (strcmp(j->f.run.uid, uid) == 0)
+            return 1;
+    return 0;
+}
+
+int mpbd_verifier_has(const mpbd *d, const char *uid)
+{
+    struct mpbd_verifier *v = d->verifier;
+    if (v == NULL || v->pending == 0)
+        return 0;
+    pthread_mutex_lock(&v->mu);
+    int has = (v->current != NULL && strcmp(v->current->f.run.uid, uid) == 0) ||
+              has_in(&v->todo, uid) || has_in(&v->done, uid);
+    pthread_mutex_unlock(&v->mu);
+    return has;
+}
+
+int mpbd_verifier_pending(const mpbd *d)
+{
+    return d->verifier != NULL ? d->verifier->pending : 0;
+}
+
+int mpbd_verifier_fd(const mpbd *d)
+{
+    return d->verifier != NULL ? d->verifier->pipe[0] : -1;
+}
+
+void mpbd_verifier_collect(mpbd *d)
+{
+    struct mpbd_verifier *v = d->verifier;
+    if (v == NULL)
+        return;
+    char buf[256];
+    while (read(v->pipe[0], buf, sizeof buf) > 0)
+        ;
+    for (;;) {
+        pthread_mutex_lock(&v->mu);
+        job *j = v->done.head;
+        pthread_mutex_unlock(&v->mu);
+        if (j == NULL)
+            return;
+        pthread_mutex_lock(&v->mu);
+        if (!j->ok) {
+            /* Out of memory measuring it: measured again, later. */
+            pop(&v->done);
+            push(&v->todo, j);
+            pthread_cond_signal(&v->cond);
+            pthread_mutex_unlock(&v->mu);
+            return;
+        }
+        pthread_mutex_unlock(&v->mu);
+        if (mpbd_result_store(d, &j->f, j->m, j->recv, &j->ms) == MPBD_RETRY)
+            return;     /* the store failed: this one first, next round */
+        pthread_mutex_lock(&v->mu);
+        pop(&v->done);
+        pthread_mutex_unlock(&v->mu);
+        v->pending--;
+        job_free(j);
+    }
+}

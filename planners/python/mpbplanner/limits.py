@@ -1,0 +1,36 @@
+"""limits.py - when a solve() must end, as the C kit's mpb_solve_limits:
+the run's deadline (time.monotonic()) and the node's stop flag."""
+import inspect
+import time
+
+
+class Limits:
+    """Given to solve(req, limits) by Node.serve(): start is when the node
+    called solve(), deadline start + req.time_limit; stopping() is true
+    once the node is asked to stop (Node.stop(), a signal)."""
+
+    def __init__(self, start, time_limit, stopping=lambda: False):
+        self.start = start
+        self.deadline = start + time_limit
+        self.stopping = stopping
+
+    def should_stop(self):
+        """True when solve() should give up now: stopping, or the deadline
+        has passed."""
+        return self.stopping() or time.monotonic() >= self.deadline
+
+
+def takes_limits(solve):
+    """Whether solve takes (req, limits): two positional parameters without
+    defaults, or *args. A solve(req) of older planners, or a solve(req,
+    cache=None), is called with the request alone."""
+    try:
+        params = list(inspect.signature(solve).parameters.values())
+    except (TypeError, ValueError):
+        return False
+    if any(p.kind == p.VAR_POSITIONAL for p in params):
+        return True
+    positional = [p for p in params
+                  if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
+                  and p.default is p.empty]
+    return len(positional) >= 2
