@@ -156,7 +156,7 @@ typedef struct mpbd {
     lcm_t           *lcm;
     mpb_auth        *auth;           /* NULL: messages are not authenticated */
     uint64_t         msg_from;       /* the sender instance of the message
-                                        being handled (mpbd_message_ok) */
+                                        being handled (mpbd_receive) */
     /* The younger daemon whose status the next status answers (echoes),
      * so that it may believe it (daemons.c); 0 if none. */
     uint64_t         status_echo;
@@ -319,11 +319,12 @@ int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
 /* A run whose result was stored lately (the last 256). */
 int  mpbd_recently_done(const mpbd *d, const char *uid);
 
-/* inbox.c: the length of a received message to decode, or 0 if it is not
- * authentic, fresh and well-formed (then counted and logged); its sender's
- * instance (auth.h) in d->msg_from */
-size_t mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
-                       const char *channel);
+/* inbox.c: 1 with a received message decoded into *msg (the generated
+ * struct of type; free with mpb_receive_done()) if it is authentic, fresh
+ * and well-formed; else 0, the message counted and logged as rejected.
+ * Its sender's instance (auth.h) in d->msg_from either way. */
+int  mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
+                  const char *channel, void *msg);
 /* Count a message received on channel as rejected, and log why. */
 void mpbd_reject(mpbd *d, const char *channel, const char *why);
 

@@ -108,18 +108,14 @@ static void on_status_raw(const lcm_recv_buf_t *rbuf, const char *channel,
 {
     mpbd *d = user;
     mpb_daemon_status_t m;
-    mpb_auth_info info;
-    size_t len;
+    mpb_received r;
     /* A daemon with another secret, or none, is no concern of this one,
      * and its status is not a rejected message: checked quietly. */
-    mpb_auth_verdict v = mpb_auth_open(d->auth, channel, rbuf->data,
-                                       rbuf->data_size, &len, &info);
-    if (v == MPB_AUTH_BAD_TAG ||
-        !mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, NULL, 0) ||
-        mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (!mpb_receive(d->auth, MPB_RECEIVE_AUTHENTIC, MPB_WIRE_DAEMON_STATUS,
+                     channel, rbuf->data, (size_t)rbuf->data_size, &m, &r))
         return;
-    on_status(d, &m, v, &info, channel, mpb_monotonic_s());
-    mpb_daemon_status_t_decode_cleanup(&m);
+    on_status(d, &m, r.verdict, &r.info, channel, mpb_monotonic_s());
+    mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &m);
 }
 
 void mpbd_daemons_subscribe(mpbd *d)

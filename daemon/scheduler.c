@@ -748,11 +748,10 @@ static void on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                        void *user)
 {
     mpb_run_ack_t m;
-    size_t len = mpbd_message_ok(user, MPB_WIRE_RUN_ACK, rbuf, channel);
-    if (len == 0 || mpb_run_ack_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (!mpbd_receive(user, MPB_WIRE_RUN_ACK, rbuf, channel, &m))
         return;
     on_ack(user, &m);
-    mpb_run_ack_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_RUN_ACK, &m);
 }
 
 void mpbd_scheduler_subscribe(mpbd *d)

@@ -69,6 +69,7 @@ const char *mpb_err_name(int code);
 #include "mpbench/verify.h"
 #include "mpbench/wire.h"
 #include "mpbench/auth.h"
+#include "mpbench/receive.h"
 #include "mpbench/lcm_filter.h"
 #include "mpbench/pose.h"
 #include "mpbench/mesh.h"

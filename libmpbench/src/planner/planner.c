@@ -15,6 +15,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
+#include "mpbench/receive.h"
 #include "mpbench/robot.h"
 #include "mpbench/world.h"
 #include "mpb_daemon_status_t.h"
@@ -650,26 +651,23 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         s->run_error = rc;
 }
 
-/* Raw handlers: a message is checked (wire.h) before the generated decoder
- * sees it; a malformed one is dropped. */
+/* Raw handlers: every message passes the receive gate (receive.h) before
+ * anything acts on it; one that fails is dropped. */
 static void mpb__on_request_raw(const lcm_recv_buf_t *rbuf,
                                 const char *channel, void *user)
 {
     mpb__server *s = user;
     mpb_plan_request_t m;
-    mpb_auth_info info;
-    size_t len;
+    mpb_received r;
     /* With a secret, only a request from a daemon heard lately that
      * echoes this process, not had before: a replay is dropped. */
-    if (mpb_auth_open(s->auth, channel, rbuf->data, rbuf->data_size, &len,
-                      &info) != MPB_AUTH_FRESH ||
-        !mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, len, NULL, 0) ||
-        mpb_plan_request_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (!mpb_receive(s->auth, MPB_RECEIVE_FRESH, MPB_WIRE_PLAN_REQUEST,
+                     channel, rbuf->data, rbuf->data_size, &m, &r))
         return;
     if (s->auth != NULL)
-        mpb__set_daemon(s, info.instance);
+        mpb__set_daemon(s, r.info.instance);
     mpb__on_request(rbuf, channel, &m, user);
-    mpb_plan_request_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_PLAN_REQUEST, &m);
 }
 
 static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
@@ -689,17 +687,14 @@ static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
 static void mpb__on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                             void *user)
 {
-    mpb__server *s = user;
     mpb_run_ack_t m;
-    mpb_auth_info info;
-    size_t len;
-    if (mpb_auth_open(s->auth, channel, rbuf->data, rbuf->data_size, &len,
-                      &info) != MPB_AUTH_FRESH ||
-        !mpb_wire_check(MPB_WIRE_RUN_ACK, rbuf->data, len, NULL, 0) ||
-        mpb_run_ack_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    mpb_received r;
+    if (!mpb_receive(((mpb__server *)user)->auth, MPB_RECEIVE_FRESH,
+                     MPB_WIRE_RUN_ACK, channel, rbuf->data, rbuf->data_size,
+                     &m, &r))
         return;
     mpb__on_ack(rbuf, channel, &m, user);
-    mpb_run_ack_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_RUN_ACK, &m);
 }
 
 /* With a secret: a daemon's status names the instance to echo. Its
@@ -711,17 +706,14 @@ static void mpb__on_status_raw(const lcm_recv_buf_t *rbuf,
 {
     mpb__server *s = user;
     mpb_daemon_status_t m;
-    mpb_auth_info info;
-    size_t len;
-    mpb_auth_verdict v = mpb_auth_open(s->auth, channel, rbuf->data,
-                                       rbuf->data_size, &len, &info);
-    if ((v != MPB_AUTH_FRESH && v != MPB_AUTH_UNPROVEN) ||
-        !mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, NULL, 0) ||
-        mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    mpb_received r;
+    if (!mpb_receive(s->auth, MPB_RECEIVE_FRESH | MPB_RECEIVE_UNPROVEN,
+                     MPB_WIRE_DAEMON_STATUS, channel, rbuf->data,
+                     rbuf->data_size, &m, &r))
         return;
     if (strcmp(m.state, "waiting") == 0 || strcmp(m.state, "running") == 0)
-        mpb__set_daemon(s, info.instance);
-    mpb_daemon_status_t_decode_cleanup(&m);
+        mpb__set_daemon(s, r.info.instance);
+    mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &m);
 }
 
 /* ---- the loop ---------------------------------------------------------- */
