@@ -13,6 +13,7 @@
  *   inbox.c      checking messages before they are decoded
  *   replay.c     --replay: results from an LCM log instead of the network
  *   daemons.c    other daemons on the same LCM URL: the younger one stops
+ *   hub.c        a TCP hub's link: logged, waited for while it is away
  *   log.c        the console log
  */
 #ifndef MPBD_DAEMON_H
@@ -50,6 +51,9 @@
 /* The coarsest verification step --resolution takes (rad): coarser, a
  * segment would pass through an obstacle thinner than the step. */
 #define MPBD_RESOLUTION_MAX     0.1
+/* A hub (tcpq://) away this long: the daemon stops, to be resumed. */
+#define MPBD_HUB_AWAY_MAX_S     60.0
+enum { MPBD_HUB_UNKNOWN, MPBD_HUB_UP, MPBD_HUB_AWAY };
 
 /* A run given up on at its deadline, that its planner may still plan. */
 typedef struct mpbd_abandoned {
@@ -161,6 +165,9 @@ typedef struct mpbd {
      * so that it may believe it (daemons.c); 0 if none. */
     uint64_t         status_echo;
     int              requested;      /* a request has gone out */
+    int              hub_state;      /* MPBD_HUB_..., a tcpq:// URL's link */
+    double           hub_lost_at;    /* monotonic s, when it went away */
+    long             hub_bad;        /* its dropped frames, last logged */
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result, *sub_status;
     mpb_store       *store;
@@ -256,6 +263,8 @@ void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost plann
  * deadlines are counted without it, so that its own absence does not make
  * its planners gone or its runs crashes. */
 void mpbd_scheduler_stalled(mpbd *d, double secs);
+/* The same, silently: the network was away (hub.c). */
+void mpbd_scheduler_pause(mpbd *d, double secs);
 /* Queue a run again for a new attempt. */
 int  mpbd_requeue(mpbd *d, const mpbd_run *run);
 /* A request its planner never started (declined, or left waiting at a
@@ -327,6 +336,11 @@ int  mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
                   const char *channel, void *msg);
 /* Count a message received on channel as rejected, and log why. */
 void mpbd_reject(mpbd *d, const char *channel, const char *why);
+
+/* hub.c: once a loop round of secs seconds, with a hub link: log its
+ * changes; while it is away, pause the clocks of planners and runs. 1 when
+ * it has been away over MPBD_HUB_AWAY_MAX_S: stop. */
+int  mpbd_hub_watch(mpbd *d, double now, double secs);
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);

@@ -673,12 +673,17 @@ void mpbd_scheduler_tick(mpbd *d, double now)
     }
 }
 
-void mpbd_scheduler_stalled(mpbd *d, double secs)
+void mpbd_scheduler_pause(mpbd *d, double secs)
 {
     for (int i = 0; i < d->num_planners; i++)
         d->planners[i].last_seen += secs;
     for (int i = 0; i < d->num_flights; i++)
         d->flights[i].deadline += secs;   /* INFINITY stays so */
+}
+
+void mpbd_scheduler_stalled(mpbd *d, double secs)
+{
+    mpbd_scheduler_pause(d, secs);
     mpbd_log("read no message for %.1f s (stopped, its machine "
              "suspended, or busy): planners' silence and runs' deadlines "
              "are counted without that time", secs);

@@ -515,7 +515,8 @@ int cmd_status(int argc, char **argv)
                     "multicast route? see README)\n", url);
         else
             fprintf(stderr, "mpb " CMD ": cannot start LCM on %s (see "
-                    "LCM's URLs: udpm://, file://, memq://)\n", url);
+                    "LCM's URLs: udpm://, tcpq://HOST:PORT, file://, "
+                    "memq://)\n", url);
         return MPB_EXIT_ERROR;
     }
     mpb_daemon_status_t_subscription_t *sub =
@@ -523,7 +524,7 @@ int cmd_status(int argc, char **argv)
     if (sub == NULL) {
         fprintf(stderr, "mpb " CMD ": cannot subscribe to " MPB_CHANNEL_STATUS
                 " on %s\n", url);
-        lcm_destroy(lcm);
+        mpb_lcm_destroy(lcm);
         return MPB_EXIT_ERROR;
     }
 
@@ -584,6 +585,6 @@ int cmd_status(int argc, char **argv)
     }
 done:
     mpb_daemon_status_t_unsubscribe(lcm, sub);
-    lcm_destroy(lcm);
+    mpb_lcm_destroy(lcm);
     return status;
 }

@@ -71,6 +71,7 @@ const char *mpb_err_name(int code);
 #include "mpbench/auth.h"
 #include "mpbench/receive.h"
 #include "mpbench/lcm_filter.h"
+#include "mpbench/hub.h"
 #include "mpbench/pose.h"
 #include "mpbench/mesh.h"
 #include "mpbench/collision.h"

@@ -832,8 +832,11 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     s->lcm = mpb_lcm_create_keeping(url, mine, s->auth != NULL ? 3 : 2,
                                     &filtered);
     if (s->lcm == NULL) {
-        snprintf(err, errlen, "cannot join LCM at %s (udpm needs a multicast "
-                 "route, e.g. 'ip route add 224.0.0.0/4 dev lo')", url);
+        snprintf(err, errlen, "cannot join LCM at %s (%s)", url,
+                 mpb_lcm_url_is_hub(url)
+                     ? "a hub's URL is tcpq://HOST:PORT"
+                     : "udpm needs a multicast route, e.g. 'ip route add "
+                       "224.0.0.0/4 dev lo'");
         mpb_auth_free(s->auth);
         free(s);
         return MPB_ELCM;
@@ -854,13 +857,16 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
             lcm_unsubscribe(s->lcm, asub);
         if (ssub != NULL)
             lcm_unsubscribe(s->lcm, ssub);
-        lcm_destroy(s->lcm);
+        mpb_lcm_destroy(s->lcm);
         mpb_auth_free(s->auth);
         free(s);
         return MPB_ELCM;
     }
     if (!filtered && def->on_warning != NULL)
         def->on_warning(def->user, MPB_LCM_UNFILTERED);
+    /* Through a hub, the link connects in the background: a moment for
+     * it, so that the first announcement is not lost. */
+    mpb_lcm_hub_wait(s->lcm, 2.0);
     lcm_subscription_set_queue_capacity(rsub, MPB__REQUEST_QUEUE);
     lcm_subscription_set_queue_capacity(asub, MPB__ACK_QUEUE);
 
@@ -902,7 +908,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     lcm_unsubscribe(s->lcm, asub);
     if (ssub != NULL)
         lcm_unsubscribe(s->lcm, ssub);
-    lcm_destroy(s->lcm);
+    mpb_lcm_destroy(s->lcm);
     pthread_cond_destroy(&s->cond);
     pthread_mutex_destroy(&s->mu);
     mpb_auth_free(s->auth);
