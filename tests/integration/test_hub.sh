@@ -82,4 +82,15 @@ if [ -x "$python" ]; then
     check "the Python kit warns of no filter either" \
         eq "$(grep -c 'has no filter' "$work/python.log")" 0
 fi
+
+# tools/run_benchmark.sh --hub starts its own hub (a second, on another port).
+mpb_planar_experiment "$work/rb.yaml" "name: rb, runs: 5, time_limit: 2" \
+    "{planner: null, algorithms: [straight_line]}"
+MPB_BUILD=$B mpb_timeout 90 "$MPB_SOURCE/tools/run_benchmark.sh" --hub 7701 \
+    -p null -d "$work/rb.db" -l "$work/rb-logs" "$work/rb.yaml" >"$work/rb.out" 2>&1
+check "run_benchmark.sh --hub runs an experiment through its own hub" eq $? 0
+DB=$work/rb.db
+check "5 runs done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 5
+check "it started the hub" grep -q "starting the TCP hub on port 7701" "$work/rb.out"
+check "and stopped it" test -z "$(ss -ltnH 'sport = :7701')"
 mpb_finish

@@ -179,6 +179,11 @@ static int read_full(mpb__hub *h, int fd, void *buf, size_t len,
             continue;
         if (n <= 0)
             return -1;
+        /* Acknowledge at once: the hub (lcm-java) writes a frame's words
+         * one by one with Nagle's algorithm on, so a delayed ACK here
+         * holds each frame's last part back by up to 40 ms. */
+        int one = 1;
+        setsockopt(fd, IPPROTO_TCP, TCP_QUICKACK, &one, sizeof one);
         len -= (size_t)n;
         if (buf != NULL)
             buf = (unsigned char *)buf + n;

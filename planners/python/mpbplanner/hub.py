@@ -134,6 +134,9 @@ class HubLCM:
             return 0
         try:
             part = s.recv(1 << 16)
+            # Acknowledge at once: the hub writes a frame's words one by
+            # one with Nagle's algorithm on (hub.h in libmpbench).
+            s.setsockopt(socket.IPPROTO_TCP, socket.TCP_QUICKACK, 1)
         except OSError:
             part = b""
         if not part:
