@@ -7,13 +7,9 @@
 # hub. No process warns of an unfiltered socket.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
-if ! [ -r /usr/share/java/lcm.jar ] || ! command -v java >/dev/null; then
-    echo "skipped: needs java and lcm.jar (liblcm-java) for the hub"
-    echo "0 passed, 0 failed, 1 skipped"
-    exit 0
-fi
+mpb_need_hub
 mpb_enter_netns "$0" "$@"
-ip route del 224.0.0.0/4 dev lo       # no multicast here: the hub or nothing
+mpb_no_multicast                      # the hub or nothing
 
 work=$(mktemp -d)
 trap 'mpb_stop_all; [ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
@@ -23,8 +19,7 @@ python=$MPB_SOURCE/.venv/bin/python3
 
 check "no multicast route in this namespace" \
     test -z "$(ip route show 224.0.0.0/4)"
-mpb_spawn "$work/hub.log" java -Xmx128m -cp /usr/share/java/lcm.jar \
-    lcm.lcm.TCPService 7700
+mpb_spawn_hub "$work/hub.log"
 mpb_spawn "$work/ompl.log" "$B/planners/ompl/mpb-planner-ompl" --lcm-url "$url"
 mpb_spawn "$work/null.log" "$B/planners/null/mpb-planner-null" --lcm-url "$url"
 

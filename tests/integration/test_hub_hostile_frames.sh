@@ -11,13 +11,9 @@
 # bounded memory, and keep reconnecting.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
-if ! [ -r /usr/share/java/lcm.jar ] || ! command -v java >/dev/null; then
-    echo "skipped: needs java and lcm.jar (liblcm-java) for the hub"
-    echo "0 passed, 0 failed, 1 skipped"
-    exit 0
-fi
+mpb_need_hub
 mpb_enter_netns "$0" "$@"
-ip route del 224.0.0.0/4 dev lo
+mpb_no_multicast
 
 work=$(mktemp -d)
 trap 'mpb_stop_all; [ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
@@ -31,9 +27,8 @@ py=$B/planners/python/mpb-planner-python
 hwm() { awk '/VmHWM/ {print int($2 / 1024)}' "/proc/$1/status" 2>/dev/null || echo 0; }
 alive() { kill -0 "$1" 2>/dev/null; }
 
-mpb_spawn "$work/hub.log" java -Xmx128m -cp /usr/share/java/lcm.jar \
-    lcm.lcm.TCPService 7700
-hub=${MPB_PIDS##* }
+mpb_spawn_hub "$work/hub.log"
+hub=$MPB_HUB_PID
 mpb_spawn "$work/null1.log" "$B/planners/null/mpb-planner-null" --lcm-url "$url"
 null1=${MPB_PIDS##* }
 mpb_spawn "$work/null2.log" "$B/planners/null/mpb-planner-null" --lcm-url "$url"

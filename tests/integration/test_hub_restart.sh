@@ -8,13 +8,9 @@
 # nothing stored twice.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
-if ! [ -r /usr/share/java/lcm.jar ] || ! command -v java >/dev/null; then
-    echo "skipped: needs java and lcm.jar (liblcm-java) for the hub"
-    echo "0 passed, 0 failed, 1 skipped"
-    exit 0
-fi
+mpb_need_hub
 mpb_enter_netns "$0" "$@"
-ip route del 224.0.0.0/4 dev lo
+mpb_no_multicast
 
 work=$(mktemp -d)
 trap 'mpb_stop_all; [ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
@@ -24,10 +20,8 @@ py=$B/planners/python/mpb-planner-python
 [ -x "$MPB_SOURCE/.venv/bin/python3" ] || py=""
 
 start_hub() {
-    java -Xmx128m -cp /usr/share/java/lcm.jar lcm.lcm.TCPService 7700 \
-        >>"$work/hub.log" 2>&1 &
-    hub=$!
-    MPB_PIDS="$MPB_PIDS $hub"
+    mpb_spawn_hub "$work/hub.log"
+    hub=$MPB_HUB_PID
 }
 # Runs done in the newest experiment.
 done_runs() {

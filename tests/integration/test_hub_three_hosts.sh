@@ -11,13 +11,9 @@ if [ "$(id -u)" -ne 0 ]; then
     echo "0 passed, 0 failed, 1 skipped"
     exit 0
 fi
-if ! [ -r /usr/share/java/lcm.jar ] || ! command -v java >/dev/null; then
-    echo "skipped: needs java and lcm.jar (liblcm-java) for the hub"
-    echo "0 passed, 0 failed, 1 skipped"
-    exit 0
-fi
+mpb_need_hub
 mpb_enter_netns "$0" "$@"
-ip route del 224.0.0.0/4 dev lo
+mpb_no_multicast
 
 work=$(mktemp -d)
 trap 'mpb_stop_all; [ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
@@ -48,8 +44,7 @@ check "no multicast route on any host" test -z "$(ip route show 224.0.0.0/4;
     nsenter -t "$pid_hostA" -n ip route show 224.0.0.0/4;
     nsenter -t "$pid_hostB" -n ip route show 224.0.0.0/4)"
 
-mpb_spawn "$work/hub.log" java -Xmx128m -cp /usr/share/java/lcm.jar \
-    lcm.lcm.TCPService 7700
+mpb_spawn_hub "$work/hub.log"
 nsenter -t "$pid_hostA" -n -u "$MPB_BUILD/planners/null/mpb-planner-null" \
     --lcm-url "$url" >"$work/a.log" 2>&1 &
 MPB_PIDS="$MPB_PIDS $!"
