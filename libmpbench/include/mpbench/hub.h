@@ -74,7 +74,8 @@ int mpb_lcm_publish(lcm_t *lcm, const char *channel, const void *data,
                     unsigned int datalen);
 
 /* Destroy an instance made by mpb_lcm_create_keeping() (any URL): its hub
- * link's thread is stopped first. NULL is a no-op. */
+ * link's thread is stopped first. No other thread may be publishing on it
+ * meanwhile. NULL is a no-op. */
 void mpb_lcm_destroy(lcm_t *lcm);
 
 #ifdef __cplusplus

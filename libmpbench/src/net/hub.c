@@ -325,7 +325,7 @@ static void hub_read(mpb__hub *h, int fd)
             continue;
         }
         atomic_fetch_add(&h->queued, dl);
-        if (lcm_publish(h->local, channel, buf, dl) != 0)
+        if (lcm_publish(h->local, channel, dl > 0 ? buf : w, dl) != 0)
             atomic_fetch_sub(&h->queued, dl);
     }
     free(buf);
@@ -361,7 +361,11 @@ static void on_any(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     (void)channel;
     mpb__hub *h = user;
-    atomic_fetch_sub(&h->queued, (size_t)rbuf->data_size);
+    /* Never below 0: a dying process's last words may reach the queue
+     * without passing the link (mpb__hub_publish). */
+    size_t n = (size_t)rbuf->data_size, q = atomic_load(&h->queued);
+    while (!atomic_compare_exchange_weak(&h->queued, &q, q > n ? q - n : 0))
+        ;
 }
 
 static void hub_free(mpb__hub *h)
