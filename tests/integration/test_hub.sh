@@ -4,7 +4,8 @@
 # null planners (C++ and C kits), 42 of 42 runs each stored once; the
 # Python kit's planner; `mpb status` following the daemon; with a shared
 # secret as over multicast; and a daemon stopped mid-run resumed over the
-# hub. No process warns of an unfiltered socket.
+# hub; run_benchmark.sh --hub, recording for --replay. No process warns of
+# an unfiltered socket.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 mpb_need_hub
@@ -78,14 +79,21 @@ if [ -x "$python" ]; then
         eq "$(grep -c 'has no filter' "$work/python.log")" 0
 fi
 
-# tools/run_benchmark.sh --hub starts its own hub (a second, on another port).
+# tools/run_benchmark.sh --hub starts its own hub (a second, on another
+# port), recording the traffic with lcm-logger for mpbenchd --replay.
 mpb_planar_experiment "$work/rb.yaml" "name: rb, runs: 5, time_limit: 2" \
     "{planner: null, algorithms: [straight_line]}"
 MPB_BUILD=$B mpb_timeout 90 "$MPB_SOURCE/tools/run_benchmark.sh" --hub 7701 \
-    -p null -d "$work/rb.db" -l "$work/rb-logs" "$work/rb.yaml" >"$work/rb.out" 2>&1
+    -p null -d "$work/rb.db" -l "$work/rb-logs" -r "$work/rb.lcmlog" \
+    "$work/rb.yaml" >"$work/rb.out" 2>&1
 check "run_benchmark.sh --hub runs an experiment through its own hub" eq $? 0
 DB=$work/rb.db
 check "5 runs done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 5
 check "it started the hub" grep -q "starting the TCP hub on port 7701" "$work/rb.out"
 check "and stopped it" test -z "$(ss -ltnH 'sport = :7701')"
+"$B/daemon/mpbenchd" --replay "$work/rb.lcmlog" -d "$work/replay.db" \
+    "$work/rb.yaml" >"$work/replay.log" 2>&1
+check "what lcm-logger recorded through the hub replays" eq $? 0
+DB=$work/replay.db
+check "... to the same 5 runs" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 5
 mpb_finish
