@@ -3,7 +3,8 @@
 # with its own host name, joined by veth links on a bridge: lcm-java's hub
 # and the daemon on one, a planner on each of the two others, all through
 # tcpq://. The experiment runs across both planner hosts; one cut off
-# mid-run, its run is redone on the other, and each run is stored once.
+# mid-run, its run is redone on the other, and each run is stored once;
+# back on the network, it takes part again.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 if [ "$(id -u)" -ne 0 ]; then
@@ -77,5 +78,17 @@ check "every run solved in the end" eq "$(q "SELECT count(*) FROM runs WHERE sta
 check "the run cut off was redone" ge "$(q 'SELECT sum(crashes) FROM runs')" 1
 check "runs after the cut went to hostA" \
     eq "$(q "SELECT planner_id LIKE 'null@hostA:%' FROM runs ORDER BY finished DESC LIMIT 1")" 1
+
+# hostB back on the network: its planner takes part again (on its old
+# connection, or a new one once the kernel gave the old one up).
+ip link set vethhostB up
+mpb_planar_experiment "$work/again.yaml" "name: again, runs: 30, time_limit: 2" \
+    "{planner: null, algorithms: [straight_line], params: {delay: 0.2}}"
+mpb_timeout 90 "$MPB_BUILD/daemon/mpbenchd" --lcm-url "$url" -d "$DB" \
+    "$work/again.yaml" >"$work/again.log" 2>&1
+check "with hostB back, the next experiment completes" eq $? 0
+check "... hostB's planner doing runs in it again" \
+    ge "$(q "SELECT count(*) FROM runs r JOIN experiments e ON e.id = r.experiment_id
+             WHERE e.name = 'again' AND r.planner_id LIKE 'null@hostB:%'")" 1
 
 mpb_finish

@@ -33,6 +33,9 @@
 /* Seconds to connect and hear the hub's greeting; to send one frame. */
 #define HUB_CONNECT_S 2.0
 #define HUB_SEND_S 5.0
+/* Milliseconds sent data may stay unacknowledged before the kernel gives
+ * the connection up (TCP_USER_TIMEOUT). */
+#define HUB_USER_TIMEOUT_MS 10000u
 
 typedef struct mpb__hub {
     lcm_t *local;               /* memq: the process's subscriptions */
@@ -262,6 +265,12 @@ static int hub_connect(mpb__hub *h)
         return -1;
     int one = 1;
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    /* A hub that stops acknowledging what is sent (its host cut off) ends
+     * the connection after this long, rather than TCP's quarter of an
+     * hour of retries: the link then connects again. */
+    unsigned int user_timeout_ms = HUB_USER_TIMEOUT_MS;
+    setsockopt(fd, IPPROTO_TCP, TCP_USER_TIMEOUT, &user_timeout_ms,
+               sizeof user_timeout_ms);
     unsigned char hello[8], answer[8];
     put32(hello, HUB_MAGIC_CLIENT);
     put32(hello + 4, HUB_VERSION);
