@@ -22,6 +22,7 @@
  *   inbox.c      checking messages before they are decoded
  *   replay.c     --replay: results from an LCM log instead of the network
  *   daemons.c    other daemons on the same LCM URL: the younger one stops
+ *   hub.c        a TCP hub's link: logged, waited for while it is away
  *   log.c        the console log
  */
 #ifndef MPBD_DAEMON_H
@@ -59,6 +60,9 @@
 /* The coarsest verification step --resolution takes (rad): coarser, a
  * segment would pass through an obstacle thinner than the step. */
 #define MPBD_RESOLUTION_MAX     0.1
+/* A hub (tcpq://) away this long: the daemon stops, to be resumed. */
+#define MPBD_HUB_AWAY_MAX_S     60.0
+enum { MPBD_HUB_UNKNOWN, MPBD_HUB_UP, MPBD_HUB_AWAY };
 
 /* The first result of each planner configuration in this session: when
  * every one failed with the same world error, every run would (doomed.c). */
@@ -175,11 +179,14 @@ typedef struct mpbd {
     lcm_t           *lcm;
     mpb_auth        *auth;           /* NULL: messages are not authenticated */
     uint64_t         msg_from;       /* the sender instance of the message
-                                        being handled (mpbd_message_ok) */
+                                        being handled (mpbd_receive) */
     /* The younger daemon whose status the next status answers (echoes),
      * so that it may believe it (daemons.c); 0 if none. */
     uint64_t         status_echo;
     int              requested;      /* a request has gone out */
+    int              hub_state;      /* MPBD_HUB_..., a tcpq:// URL's link */
+    double           hub_lost_at;    /* monotonic s, when it went away */
+    long             hub_bad;        /* its dropped frames, last logged */
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result, *sub_status;
     mpb_store       *store;
@@ -283,6 +290,8 @@ void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost plann
  * deadlines are counted without it, so that its own absence does not make
  * its planners gone or its runs crashes. */
 void mpbd_scheduler_stalled(mpbd *d, double secs);
+/* The same, silently: the network was away (hub.c). */
+void mpbd_scheduler_pause(mpbd *d, double secs);
 /* Queue a run again for a new attempt. */
 int  mpbd_requeue(mpbd *d, const mpbd_run *run);
 /* A request its planner never started (declined, or left waiting at a
@@ -381,13 +390,19 @@ int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
 /* A run whose result was stored lately (the last 256). */
 int  mpbd_recently_done(const mpbd *d, const char *uid);
 
-/* inbox.c: the length of a received message to decode, or 0 if it is not
- * authentic, fresh and well-formed (then counted and logged); its sender's
- * instance (auth.h) in d->msg_from */
-size_t mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
-                       const char *channel);
+/* inbox.c: 1 with a received message decoded into *msg (the generated
+ * struct of type; free with mpb_receive_done()) if it is authentic, fresh
+ * and well-formed; else 0, the message counted and logged as rejected.
+ * Its sender's instance (auth.h) in d->msg_from either way. */
+int  mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
+                  const char *channel, void *msg);
 /* Count a message received on channel as rejected, and log why. */
 void mpbd_reject(mpbd *d, const char *channel, const char *why);
+
+/* hub.c: once a loop round of secs seconds, with a hub link: log its
+ * changes; while it is away, pause the clocks of planners and runs. 1 when
+ * it has been away over MPBD_HUB_AWAY_MAX_S: stop. */
+int  mpbd_hub_watch(mpbd *d, double now, double secs);
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);

@@ -110,31 +110,23 @@ static void on_status_raw(const lcm_recv_buf_t *rbuf, const char *channel,
 {
     mpbd *d = user;
     mpb_daemon_status_t m;
-    mpb_auth_info info;
-    size_t len;
-    char why[160] = "";
+    mpb_received r;
     /* Without the right tag a status may be a daemon's with another
      * secret (or none), which is no concern of this one, or a forgery:
      * the two cannot be told apart, and a forgery is what the count and
      * the log are for, so both are counted and logged as every dropped
      * message is (mpbd_reject() limits the lines). Another secret's
      * daemon costs a count a second; docs/protocol.md says so. */
-    mpb_auth_verdict v = mpb_auth_open(d->auth, channel, rbuf->data,
-                                       rbuf->data_size, &len, &info);
-    if (v == MPB_AUTH_BAD_TAG) {
-        mpbd_reject(d, channel, "a daemon status without the right tag "
-                    "(another secret's daemon, or forged)");
+    if (!mpb_receive(d->auth, MPB_RECEIVE_AUTHENTIC, MPB_WIRE_DAEMON_STATUS,
+                     channel, rbuf->data, (size_t)rbuf->data_size, &m, &r)) {
+        mpbd_reject(d, channel, r.verdict == MPB_AUTH_BAD_TAG
+                    ? "a daemon status without the right tag (another "
+                      "secret's daemon, or forged)"
+                    : r.why);
         return;
     }
-    if (!mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, why,
-                        sizeof why) ||
-        mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0) {
-        mpbd_reject(d, channel, why[0] ? why : "a daemon status that "
-                    "does not decode");
-        return;
-    }
-    on_status(d, &m, v, &info, channel, mpb_monotonic_s());
-    mpb_daemon_status_t_decode_cleanup(&m);
+    on_status(d, &m, r.verdict, &r.info, channel, mpb_monotonic_s());
+    mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &m);
 }
 
 void mpbd_daemons_subscribe(mpbd *d)

@@ -1,7 +1,7 @@
-/* inbox.c - every message from the network is authenticated (when the
- * daemon has a secret, auth.h: a right tag, from a sender believed, not had
- * before) and checked (wire.h) before it is decoded; a message that fails
- * is counted as rejected and logged. */
+/* inbox.c - every message from the network passes the library's receive
+ * gate (receive.h: with a secret, a right tag from a sender believed, not
+ * had before; its bytes checked; then decoded); a message that fails is
+ * counted as rejected and logged. */
 #include <stdio.h>
 
 #include "daemon.h"
@@ -14,22 +14,17 @@ void mpbd_reject(mpbd *d, const char *channel, const char *why)
                  channel, why, d->count.rejected);
 }
 
-size_t mpbd_message_ok(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
-                       const char *channel)
+int mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
+                 const char *channel, void *msg)
 {
-    char why[160] = "";
-    size_t len = 0;
-    mpb_auth_info info;
-    mpb_auth_verdict v = mpb_auth_open(d->auth, channel, rbuf->data,
-                                       rbuf->data_size, &len, &info);
-    d->msg_from = info.instance;
+    mpb_received r;
     /* A log given to --replay is what was heard then: its messages are
      * all from others, and their tags are all that can be checked. */
-    if (d->replaying && v != MPB_AUTH_BAD_TAG)
-        v = MPB_AUTH_FRESH;
-    if (v == MPB_AUTH_FRESH &&
-        mpb_wire_check(type, rbuf->data, len, why, sizeof why))
-        return len;
-    mpbd_reject(d, channel, v == MPB_AUTH_FRESH ? why : mpb_auth_verdict_text(v));
-    return 0;
+    unsigned accept = d->replaying ? MPB_RECEIVE_AUTHENTIC : MPB_RECEIVE_FRESH;
+    int ok = mpb_receive(d->auth, accept, type, channel, rbuf->data,
+                         (size_t)rbuf->data_size, msg, &r);
+    d->msg_from = r.info.instance;
+    if (!ok)
+        mpbd_reject(d, channel, r.why);
+    return ok;
 }

@@ -403,7 +403,7 @@ static int wait_readable(int fd, int fd2, int timeout_ms)
 
 /* How run_loop() ends, besides 0 (every run done) and 1 (a signal). */
 enum { LOOP_DB_ERROR = -1, LOOP_DB_GONE = -2, LOOP_NOT_ALONE = -3,
-       LOOP_DOOMED = -4 };
+       LOOP_DOOMED = -4, LOOP_HUB_GONE = -5 };
 
 /* The loop, until every run is done, a signal or a database failure;
  * LOOP_DB_GONE says why in gone (cap bytes). */
@@ -422,6 +422,8 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
          * so that time is not its planners' silence. */
         if (now - last > MPBD_STALL_S)
             mpbd_scheduler_stalled(d, now - last);
+        if (mpbd_hub_watch(d, now, now - last > MPBD_STALL_S ? 0 : now - last))
+            return LOOP_HUB_GONE;
         /* One transaction: the runs sent last time, then what has arrived
          * (bounded, so that timers still run under a flood). */
         if (mpb_store_begin(d->store) != MPB_OK ||
@@ -575,10 +577,16 @@ int main(int argc, char **argv)
     int filtered = 0;
     if (!o.replay &&
         (d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 4, &filtered)) == NULL) {
-        fprintf(stderr, "mpbenchd: cannot start LCM on %s (no multicast "
-                        "route? see README)\n", o.lcm_url);
+        fprintf(stderr, "mpbenchd: cannot start LCM on %s (%s)\n", o.lcm_url,
+                mpb_lcm_url_is_hub(o.lcm_url)
+                    ? "a hub's URL is tcpq://HOST:PORT"
+                    : "no multicast route? see README");
         goto out;
     }
+    /* A hub's link connects in the background: a moment for it now
+     * saves a line saying it is not there yet. */
+    if (d.lcm != NULL)
+        mpb_lcm_hub_wait(d.lcm, 2.0);
     d.db_path = o.db;
     if ((rc = mpb_store_open(o.db, 0, &d.store)) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
@@ -693,6 +701,10 @@ int main(int argc, char **argv)
                      "%s; %ld runs left: fix it and run the same command to "
                      "resume", d.exp->num_configs, d.doomed.why,
                      runs_left(&d));
+        else if (rc == LOOP_HUB_GONE)
+            mpbd_log("stopped: the hub at %s has been away for %.0f s, with "
+                     "%ld runs left; run the same command to resume once it "
+                     "is back", o.lcm_url, MPBD_HUB_AWAY_MAX_S, runs_left(&d));
         else if (rc == LOOP_NOT_ALONE)
             mpbd_log("stopped: another mpbenchd, %s, is on this LCM URL "
                      "(%s), and two would disturb each other's runs: give "
@@ -713,7 +725,7 @@ out:
             lcm_unsubscribe(d.lcm, d.sub_result);
         if (d.sub_status)
             lcm_unsubscribe(d.lcm, d.sub_status);
-        lcm_destroy(d.lcm);
+        mpb_lcm_destroy(d.lcm);
     }
     mpbd_latency_free(&d.latency);
     mpbd_doomed_free(&d);

@@ -128,11 +128,10 @@ static void on_announce_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                             void *user)
 {
     mpb_planner_announce_t m;
-    size_t len = mpbd_message_ok(user, MPB_WIRE_PLANNER_ANNOUNCE, rbuf, channel);
-    if (len == 0 || mpb_planner_announce_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (!mpbd_receive(user, MPB_WIRE_PLANNER_ANNOUNCE, rbuf, channel, &m))
         return;
     on_announce(user, &m);
-    mpb_planner_announce_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_PLANNER_ANNOUNCE, &m);
 }
 
 void mpbd_planners_subscribe(mpbd *d)

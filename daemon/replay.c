@@ -114,8 +114,7 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
     lcm_recv_buf_t rbuf = {.data = ev->data, .data_size = (uint32_t)ev->datalen,
                            .recv_utime = ev->timestamp, .lcm = d->lcm};
     mpb_plan_request_t rq;
-    size_t len = mpbd_message_ok(d, MPB_WIRE_PLAN_REQUEST, &rbuf, ev->channel);
-    if (len == 0 || mpb_plan_request_t_decode(ev->data, 0, (int)len, &rq) < 0)
+    if (!mpbd_receive(d, MPB_WIRE_PLAN_REQUEST, &rbuf, ev->channel, &rq))
         return;
     r->requests++;
     const char *addressee = ev->channel + strlen(MPB_CHANNEL_REQUEST_PREFIX);
@@ -174,7 +173,7 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
     else
         pl->active++;
 done:
-    mpb_plan_request_t_decode_cleanup(&rq);
+    mpb_receive_done(MPB_WIRE_PLAN_REQUEST, &rq);
 }
 
 /* The live handlers took a run back (its planner declined it, or closed
@@ -238,13 +237,12 @@ static void on_status(replay *r, const lcm_eventlog_event_t *ev)
     lcm_recv_buf_t rbuf = {.data = ev->data, .data_size = (uint32_t)ev->datalen,
                            .recv_utime = ev->timestamp, .lcm = d->lcm};
     mpb_daemon_status_t st;
-    size_t len = mpbd_message_ok(d, MPB_WIRE_DAEMON_STATUS, &rbuf, ev->channel);
-    if (len == 0 || mpb_daemon_status_t_decode(ev->data, 0, (int)len, &st) < 0)
+    if (!mpbd_receive(d, MPB_WIRE_DAEMON_STATUS, &rbuf, ev->channel, &st))
         return;
     if (strcmp(st.state, "done") == 0 &&
         strcmp(st.experiment, d->exp->name) == 0)
         r->finished_live = 1;
-    mpb_daemon_status_t_decode_cleanup(&st);
+    mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &st);
 }
 
 /*

@@ -505,15 +505,14 @@ static void on_result_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                           void *user)
 {
     mpb_plan_result_t m;
-    size_t len = mpbd_message_ok(user, MPB_WIRE_PLAN_RESULT, rbuf, channel);
-    if (len == 0 || mpb_plan_result_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (!mpbd_receive(user, MPB_WIRE_PLAN_RESULT, rbuf, channel, &m))
         return;
     /* When it arrived, from LCM's receive time (the kernel's, where it
      * keeps one): not when a busy daemon got round to it. */
     double now = mpb_monotonic_s();
     double waited = (double)(mpb_utime_now() - rbuf->recv_utime) * 1e-6;
     on_result(user, &m, waited > 0 && waited < 3600 ? now - waited : now);
-    mpb_plan_result_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_PLAN_RESULT, &m);
 }
 
 void mpbd_results_subscribe(mpbd *d)

@@ -659,12 +659,17 @@ void mpbd_scheduler_tick(mpbd *d, double now)
     }
 }
 
-void mpbd_scheduler_stalled(mpbd *d, double secs)
+void mpbd_scheduler_pause(mpbd *d, double secs)
 {
     for (int i = 0; i < d->num_planners; i++)
         d->planners[i].last_seen += secs;
     for (int i = 0; i < d->num_flights; i++)
         d->flights[i].deadline += secs;   /* INFINITY stays so */
+}
+
+void mpbd_scheduler_stalled(mpbd *d, double secs)
+{
+    mpbd_scheduler_pause(d, secs);
     mpbd_log("read no message for %.1f s (stopped, its machine "
              "suspended, or busy): planners' silence and runs' deadlines "
              "are counted without that time", secs);
@@ -734,11 +739,10 @@ static void on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                        void *user)
 {
     mpb_run_ack_t m;
-    size_t len = mpbd_message_ok(user, MPB_WIRE_RUN_ACK, rbuf, channel);
-    if (len == 0 || mpb_run_ack_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (!mpbd_receive(user, MPB_WIRE_RUN_ACK, rbuf, channel, &m))
         return;
     on_ack(user, &m);
-    mpb_run_ack_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_RUN_ACK, &m);
 }
 
 void mpbd_scheduler_subscribe(mpbd *d)

@@ -8,7 +8,8 @@
 # allowed) in a private network namespace; otherwise on the host's loopback
 # with ttl=0, which needs a multicast route (see README). With --lcm-url (or
 # MPB_LCM_URL) it runs on that URL in the host's own network instead, so
-# that planners started apart and `mpb status` can join.
+# that planners started apart and `mpb status` can join; with --hub PORT it
+# also starts lcm-java's TCP hub there (docs/topology.md).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 MPB_BUILD=${MPB_BUILD:-$root/build}
@@ -35,6 +36,13 @@ Options:
                        (default: \$MPB_LCM_URL); planners of your own and
                        'mpb status --lcm-url URL' can then join. With
                        --planners none, only your planners run.
+                       tcpq://HOST:PORT joins a TCP hub (docs/topology.md)
+      --hub PORT       start lcm-java's TCP hub (lcm.lcm.TCPService, from
+                       liblcm-java) on PORT of this machine, its heap
+                       bounded by \$MPB_HUB_HEAP (default 256m), and run on
+                       it: --lcm-url defaults to tcpq://127.0.0.1:PORT, and
+                       planners on other hosts join with
+                       --lcm-url tcpq://THIS_HOST:PORT
   -h, --help           print this help
 
 Without --lcm-url, as root (or where user namespaces are allowed), the
@@ -54,6 +62,7 @@ format=text
 record=""
 logs=$MPB_BUILD/run-logs
 lcm_url=${MPB_LCM_URL:-}
+hub=""
 # Option $1 needs a value: $2 is the number of words from it on.
 value() {
     [ "$2" -ge 2 ] || {
@@ -63,7 +72,7 @@ value() {
 }
 while [ $# -gt 0 ]; do
     case $1 in
-        -d|--db|-p|--planners|-n|--copies|-f|--format|-r|--record|-l|--logs|-u|--lcm-url)
+        -d|--db|-p|--planners|-n|--copies|-f|--format|-r|--record|-l|--logs|-u|--lcm-url|--hub)
             value "$1" $# ;;
     esac
     case $1 in
@@ -74,6 +83,7 @@ while [ $# -gt 0 ]; do
         -r|--record) record=$2; shift 2 ;;
         -l|--logs) logs=$2; shift 2 ;;
         -u|--lcm-url) lcm_url=$2; shift 2 ;;
+        --hub) hub=$2; shift 2 ;;
         -h|--help) usage; exit 0 ;;
         --) shift; break ;;
         -*) echo "run_benchmark: unknown option '$1' (try --help)" >&2; exit 2 ;;
@@ -87,6 +97,18 @@ fi
 case $copies in
     ''|*[!0-9]*|0) echo "run_benchmark: --copies wants a whole number > 0" >&2; exit 2 ;;
 esac
+if [ -n "$hub" ]; then
+    case $hub in
+        ''|*[!0-9]*) echo "run_benchmark: --hub wants a port number" >&2; exit 2 ;;
+    esac
+    [ "$hub" -ge 1 ] && [ "$hub" -le 65535 ] ||
+        { echo "run_benchmark: --hub wants a port from 1 to 65535" >&2; exit 2; }
+    command -v java >/dev/null && [ -r "${MPB_LCM_JAR:-/usr/share/java/lcm.jar}" ] || {
+        echo "run_benchmark: --hub needs java and lcm.jar (Debian's liblcm-java)" >&2
+        exit 1
+    }
+    lcm_url=${lcm_url:-tcpq://127.0.0.1:$hub}
+fi
 # The report's format, checked by mpb report itself (it reads --format
 # before --help), so that a bad one stops us before anything starts.
 if ! err=$("$MPB_BUILD/tools/mpb" report --format "$format" --help 2>&1 >/dev/null); then
@@ -154,6 +176,23 @@ if [ -n "$robot_dirs" ]; then
     export MPB_MESH_PATH
 fi
 
+if [ -n "$hub" ]; then
+    echo "run_benchmark: starting the TCP hub on port $hub"
+    mpb_spawn "$logs/hub.log" java -Xmx"${MPB_HUB_HEAP:-256m}" \
+        -cp "${MPB_LCM_JAR:-/usr/share/java/lcm.jar}" lcm.lcm.TCPService "$hub"
+    hub_pid=${MPB_PIDS##* }
+    # Listening before anyone connects (they would retry, but say nothing).
+    i=0
+    while ! ss -ltnH "sport = :$hub" 2>/dev/null | grep -q .; do
+        kill -0 "$hub_pid" 2>/dev/null && [ $i -lt 100 ] || {
+            echo "run_benchmark: the hub did not start on port $hub:" >&2
+            tail -n 5 "$logs/hub.log" >&2
+            exit 1
+        }
+        sleep 0.1
+        i=$((i + 1))
+    done
+fi
 if [ -n "$record" ]; then
     echo "run_benchmark: recording LCM traffic into $record"
     mpb_spawn "$logs/lcm-logger.log" lcm-logger --quiet --force \

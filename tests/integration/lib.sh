@@ -21,6 +21,32 @@ mpb_enter_netns() {
     ip route add 224.0.0.0/4 dev lo
 }
 
+# mpb_need_hub: skip the test (exit 0, saying why) unless java and
+# lcm.jar (Debian's liblcm-java), which lcm-java's TCP hub needs, are here.
+mpb_need_hub() {
+    if ! [ -r /usr/share/java/lcm.jar ] || ! command -v java >/dev/null; then
+        echo "skipped: needs java and lcm.jar (liblcm-java) for the hub"
+        echo "0 passed, 0 failed, 1 skipped"
+        exit 0
+    fi
+}
+
+# mpb_no_multicast: after mpb_enter_netns, take the multicast route away:
+# the namespace can reach other processes through a hub (tcpq://) only.
+mpb_no_multicast() {
+    ip route del 224.0.0.0/4 dev lo
+}
+
+# mpb_spawn_hub LOG [PORT]: start lcm-java's TCP hub on PORT (default
+# 7700), its heap bounded, appending to LOG; remember it; its pid in
+# MPB_HUB_PID.
+mpb_spawn_hub() {
+    java -Xmx128m -cp /usr/share/java/lcm.jar lcm.lcm.TCPService "${2:-7700}" \
+        >>"$1" 2>&1 &
+    MPB_HUB_PID=$!
+    MPB_PIDS="$MPB_PIDS $MPB_HUB_PID"
+}
+
 MPB_PIDS=""
 
 # Start a command in the background, its output to a log file; remember it.

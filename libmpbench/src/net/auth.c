@@ -11,6 +11,7 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/auth.h"
 #include "net/auth_internal.h"
+#include "net/hub_internal.h"
 
 /* A sender instance believed, and the counters had from it: bit k of seen
  * is counter top - k. */
@@ -215,7 +216,8 @@ const char *mpb_auth_verdict_text(mpb_auth_verdict v)
 }
 
 int mpb__publish_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                         const char *channel, unsigned char *buf, int len)
+                         const char *channel, unsigned char *buf, int len,
+                         int dying)
 {
     size_t total = (size_t)len;
     if (a != NULL) {
@@ -224,7 +226,7 @@ int mpb__publish_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
                          buf + len);
         total += MPB_AUTH_TRAILER_SIZE;
     }
-    return lcm_publish(lcm, channel, buf, (unsigned int)total) == 0
+    return mpb__hub_publish(lcm, channel, buf, (unsigned int)total, dying) == 0
                ? MPB_OK : MPB_ELCM;
 }
 
@@ -233,7 +235,7 @@ int mpb__publish_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
 static int send_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
                         const char *channel, unsigned char *buf, int len)
 {
-    int rc = mpb__publish_encoded(lcm, a, echo, channel, buf, len);
+    int rc = mpb__publish_encoded(lcm, a, echo, channel, buf, len, 0);
     free(buf);
     return rc;
 }

@@ -14,10 +14,12 @@
 /*
  * Publish len encoded bytes at buf on channel, sealed with a trailer when
  * a is not NULL (buf must then have MPB_AUTH_TRAILER_SIZE bytes of room
- * after len). Allocates nothing: buf stays the caller's. MPB_OK or
- * MPB_ELCM.
+ * after len). Allocates nothing: buf stays the caller's. dying: called
+ * from a signal handler, when no lock may be waited for (hub_internal.h).
+ * MPB_OK or MPB_ELCM.
  */
 int mpb__publish_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                         const char *channel, unsigned char *buf, int len);
+                         const char *channel, unsigned char *buf, int len,
+                         int dying);
 
 #endif /* MPB_AUTH_INTERNAL_H */

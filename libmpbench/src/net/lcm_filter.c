@@ -11,6 +11,8 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/lcm_filter.h"
+#include "mpbench/hub.h"
+#include "net/hub_internal.h"
 
 /* LCM's UDP format (liblcm's lcm_udpm.c): every datagram starts with a
  * magic number and a sequence number, 32 bits each, big-endian. */
@@ -345,6 +347,13 @@ int mpb_lcm_sockets(const char *url, int *fds, int max)
 lcm_t *mpb_lcm_create_keeping(const char *url, const char *const *channels,
                               int n, int *filtered)
 {
+    if (mpb_lcm_url_is_hub(url)) {
+        /* Not a socket to filter: a link that checks every length. */
+        lcm_t *hub = mpb__hub_create(url, channels, n);
+        if (filtered)
+            *filtered = hub != NULL;
+        return hub;
+    }
     int port = url_port(url ? url : MPB_DEFAULT_LCM_URL), ok = port != 0;
     int after_fd[SOCKETS_MAX], nb = 0, na = 0;
     ino_t before[SOCKETS_MAX], after[SOCKETS_MAX];

@@ -15,6 +15,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
+#include "mpbench/receive.h"
 #include "mpbench/robot.h"
 #include "mpbench/world.h"
 #include "mpb_daemon_status_t.h"
@@ -657,26 +658,23 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         s->run_error = rc;
 }
 
-/* Raw handlers: a message is checked (wire.h) before the generated decoder
- * sees it; a malformed one is dropped. */
+/* Raw handlers: every message passes the receive gate (receive.h) before
+ * anything acts on it; one that fails is dropped. */
 static void mpb__on_request_raw(const lcm_recv_buf_t *rbuf,
                                 const char *channel, void *user)
 {
     mpb__server *s = user;
     mpb_plan_request_t m;
-    mpb_auth_info info;
-    size_t len;
+    mpb_received r;
     /* With a secret, only a request from a daemon heard lately that
      * echoes this process, not had before: a replay is dropped. */
-    if (mpb_auth_open(s->auth, channel, rbuf->data, rbuf->data_size, &len,
-                      &info) != MPB_AUTH_FRESH ||
-        !mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, len, NULL, 0) ||
-        mpb_plan_request_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    if (!mpb_receive(s->auth, MPB_RECEIVE_FRESH, MPB_WIRE_PLAN_REQUEST,
+                     channel, rbuf->data, rbuf->data_size, &m, &r))
         return;
     if (s->auth != NULL)
-        mpb__set_daemon(s, info.instance);
+        mpb__set_daemon(s, r.info.instance);
     mpb__on_request(rbuf, channel, &m, user);
-    mpb_plan_request_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_PLAN_REQUEST, &m);
 }
 
 static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
@@ -696,17 +694,14 @@ static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
 static void mpb__on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                             void *user)
 {
-    mpb__server *s = user;
     mpb_run_ack_t m;
-    mpb_auth_info info;
-    size_t len;
-    if (mpb_auth_open(s->auth, channel, rbuf->data, rbuf->data_size, &len,
-                      &info) != MPB_AUTH_FRESH ||
-        !mpb_wire_check(MPB_WIRE_RUN_ACK, rbuf->data, len, NULL, 0) ||
-        mpb_run_ack_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    mpb_received r;
+    if (!mpb_receive(((mpb__server *)user)->auth, MPB_RECEIVE_FRESH,
+                     MPB_WIRE_RUN_ACK, channel, rbuf->data, rbuf->data_size,
+                     &m, &r))
         return;
     mpb__on_ack(rbuf, channel, &m, user);
-    mpb_run_ack_t_decode_cleanup(&m);
+    mpb_receive_done(MPB_WIRE_RUN_ACK, &m);
 }
 
 /* With a secret: a daemon's status names the instance to echo. Its
@@ -718,17 +713,14 @@ static void mpb__on_status_raw(const lcm_recv_buf_t *rbuf,
 {
     mpb__server *s = user;
     mpb_daemon_status_t m;
-    mpb_auth_info info;
-    size_t len;
-    mpb_auth_verdict v = mpb_auth_open(s->auth, channel, rbuf->data,
-                                       rbuf->data_size, &len, &info);
-    if ((v != MPB_AUTH_FRESH && v != MPB_AUTH_UNPROVEN) ||
-        !mpb_wire_check(MPB_WIRE_DAEMON_STATUS, rbuf->data, len, NULL, 0) ||
-        mpb_daemon_status_t_decode(rbuf->data, 0, (int)len, &m) < 0)
+    mpb_received r;
+    if (!mpb_receive(s->auth, MPB_RECEIVE_FRESH | MPB_RECEIVE_UNPROVEN,
+                     MPB_WIRE_DAEMON_STATUS, channel, rbuf->data,
+                     rbuf->data_size, &m, &r))
         return;
     if (strcmp(m.state, "waiting") == 0 || strcmp(m.state, "running") == 0)
-        mpb__set_daemon(s, info.instance);
-    mpb_daemon_status_t_decode_cleanup(&m);
+        mpb__set_daemon(s, r.info.instance);
+    mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &m);
 }
 
 /* ---- the loop ---------------------------------------------------------- */
@@ -847,8 +839,11 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     s->lcm = mpb_lcm_create_keeping(url, mine, s->auth != NULL ? 3 : 2,
                                     &filtered);
     if (s->lcm == NULL) {
-        snprintf(err, errlen, "cannot join LCM at %s (udpm needs a multicast "
-                 "route, e.g. 'ip route add 224.0.0.0/4 dev lo')", url);
+        snprintf(err, errlen, "cannot join LCM at %s (%s)", url,
+                 mpb_lcm_url_is_hub(url)
+                     ? "a hub's URL is tcpq://HOST:PORT"
+                     : "udpm needs a multicast route, e.g. 'ip route add "
+                       "224.0.0.0/4 dev lo'");
         mpb_auth_free(s->auth);
         free(s);
         return MPB_ELCM;
@@ -869,13 +864,16 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
             lcm_unsubscribe(s->lcm, asub);
         if (ssub != NULL)
             lcm_unsubscribe(s->lcm, ssub);
-        lcm_destroy(s->lcm);
+        mpb_lcm_destroy(s->lcm);
         mpb_auth_free(s->auth);
         free(s);
         return MPB_ELCM;
     }
     if (!filtered && def->on_warning != NULL)
         def->on_warning(def->user, MPB_LCM_UNFILTERED);
+    /* Through a hub, the link connects in the background: a moment for
+     * it, so that the first announcement is not lost. */
+    mpb_lcm_hub_wait(s->lcm, 2.0);
     lcm_subscription_set_queue_capacity(rsub, MPB__REQUEST_QUEUE);
     lcm_subscription_set_queue_capacity(asub, MPB__ACK_QUEUE);
 
@@ -918,7 +916,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     lcm_unsubscribe(s->lcm, asub);
     if (ssub != NULL)
         lcm_unsubscribe(s->lcm, ssub);
-    lcm_destroy(s->lcm);
+    mpb_lcm_destroy(s->lcm);
     pthread_cond_destroy(&s->cond);
     pthread_mutex_destroy(&s->mu);
     mpb_auth_free(s->auth);

@@ -250,10 +250,10 @@ static void lw_speak(int sig)
         for (int i = 0; i < 2; i++)
             mpb__publish_encoded(g_lw.lcm, g_lw.auth, g_lw.echo,
                                  MPB_CHANNEL_ANNOUNCE, g_lw.announce,
-                                 g_lw.announce_len);
+                                 g_lw.announce_len, 1);
     for (int i = 0; i < 3; i++)
         mpb__publish_encoded(g_lw.lcm, g_lw.auth, g_lw.echo,
-                             MPB_CHANNEL_RESULT, buf, n);
+                             MPB_CHANNEL_RESULT, buf, n, 1);
 }
 
 static void lw_on_signal(int sig)

@@ -38,6 +38,7 @@ from mpb import (daemon_status_t, plan_request_t, plan_result_t,
                  planner_announce_t, run_ack_t)
 
 from .limits import Limits, takes_limits
+from .hub import HubLCM, is_hub
 from .memory import Watch
 from .sockfilter import filtered_lcm
 
@@ -162,8 +163,13 @@ class Node:
         # the instance to echo), and no malformed datagram (sockfilter.py).
         request = "MPB_REQUEST_" + self.planner_id
         ack = ACK + "_" + self.planner_id
-        self.lc, filtered = filtered_lcm(
-            url, [request, ack] + ([STATUS] if auth is not None else []))
+        # Through a hub (hub.py): no socket to filter, every length
+        # checked before it is read.
+        if is_hub(url):
+            self.lc, filtered = HubLCM(url), True
+        else:
+            self.lc, filtered = filtered_lcm(
+                url, [request, ack] + ([STATUS] if auth is not None else []))
         if not filtered:
             print("mpb-planner-python: warning: LCM's receive socket has no "
                   "filter (not a udpm:// URL, or the kernel refused it): a "
