@@ -1,7 +1,8 @@
 /*
  * wrist_table.c - tables over one or two joints that prove a self pair
  * apart (wrist_table.h): which pairs qualify, the bound on how fast the
- * far link moves, the tree of cells, and the process-wide cache.
+ * far link moves, the tree of cells, the process-wide cache, and a
+ * table as bytes for the cache on disk (wrist_cache.h).
  */
 #include <math.h>
 #include <pthread.h>
@@ -13,6 +14,7 @@
 #include "mpbench/mpbench.h"
 #include "geometry/collision_internal.h"
 #include "core/grow.h"
+#include "geometry/wrist_cache.h"
 #include "geometry/wrist_table.h"
 
 /* Below this (m) FCL's distance does not count as apart: far above its
@@ -451,6 +453,15 @@ static int add_side(mpb_collision *coll, int id, const mpb__wrist_side *s)
     return MPB_OK;
 }
 
+static void free_table(mpb__wrist_table *t)
+{
+    if (t) {
+        free(t->nodes);
+        free(t->grid);
+    }
+    free(t);
+}
+
 static int build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
 {
     struct timespec t0, t1;     /* CPU time: the machine may be shared */
@@ -483,11 +494,7 @@ static int build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
     if (rc == MPB_OK)
         rc = make_grid(t);
     if (rc != MPB_OK) {
-        if (t) {
-            free(t->nodes);
-            free(t->grid);
-        }
-        free(t);
+        free_table(t);
         return rc;
     }
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
@@ -548,6 +555,112 @@ void mpb__wrist_table_stats(const mpb__wrist_table *t, mpb__wrist_stats *out)
     *out = t->stats;
 }
 
+/* ---- a table as bytes ------------------------------------------------ */
+
+/*
+ * The payload of a table's file (wrist_cache.h), in this machine's byte
+ * order: num_joints, num_nodes (uint32); nodes, apart_leaves,
+ * open_leaves, distances, cut (int32); build_s, lipschitz[2] (double);
+ * the nodes (uint32 each). The range and the grid are not stored: the
+ * range is the spec's (which the key holds), the grid is painted again.
+ */
+#define PAYLOAD_HEAD (2 * 4 + 5 * 4 + 3 * 8)
+
+static unsigned char *encode(const mpb__wrist_table *t, size_t *len)
+{
+    *len = PAYLOAD_HEAD + 4 * (size_t)t->num_nodes;
+    unsigned char *p = malloc(*len), *w = p;
+    if (!p)
+        return NULL;
+    uint32_t u[2] = {(uint32_t)t->num_joints, (uint32_t)t->num_nodes};
+    int32_t i[5] = {t->stats.nodes, t->stats.apart_leaves, t->stats.open_leaves,
+                    t->stats.distances, t->stats.cut};
+    double d[3] = {t->stats.build_s, t->stats.lipschitz[0], t->stats.lipschitz[1]};
+    memcpy(w, u, sizeof u);
+    memcpy(w += sizeof u, i, sizeof i);
+    memcpy(w += sizeof i, d, sizeof d);
+    memcpy(w + sizeof d, t->nodes, 4 * (size_t)t->num_nodes);
+    return p;
+}
+
+/*
+ * Is nodes[0 .. n) a tree, root first, for num_joints joints: every
+ * node but the root the child of exactly one node before it, leaves 0
+ * or 1 << 2, splits along existing joints only, at most 60 halvings of
+ * a joint? Then the walks over it (apart(), tree_depth(), paint()) end,
+ * stay in the array and shift no further than a long holds.
+ */
+static int valid_tree(const uint32_t *nodes, int n, int num_joints)
+{
+    unsigned char *depth = calloc((size_t)n, 2), *seen = calloc((size_t)n, 1);
+    int ok = depth && seen;
+    for (int i = 0; ok && i < n; i++) {
+        uint32_t node = nodes[i];
+        unsigned split = node & 3u;
+        if (!split) {
+            ok = node == 0 || node == 1u << 2;
+            continue;
+        }
+        int first = (int)(node >> 2), kids = split == 3 ? 4 : 2;
+        ok = (num_joints == 2 || split == 1) && first > i && first <= n - kids;
+        for (int c = 0; ok && c < kids; c++) {
+            unsigned char *dc = &depth[2 * (first + c)];
+            ok = !seen[first + c];
+            seen[first + c] = 1;
+            dc[0] = (unsigned char)(depth[2 * i] + (split & 1u));
+            dc[1] = (unsigned char)(depth[2 * i + 1] + (split >> 1 & 1u));
+            ok = ok && dc[0] <= 60 && dc[1] <= 60;
+        }
+    }
+    for (int i = 1; ok && i < n; i++)
+        ok = seen[i];
+    free(depth);
+    free(seen);
+    return ok;
+}
+
+/* The table for spec from a payload: MPB_OK; MPB_EPARSE if it is not
+ * one; MPB_ENOMEM. */
+static int decode(const mpb__wrist_spec *spec, const unsigned char *p,
+                  size_t len, mpb__wrist_table **out)
+{
+    uint32_t u[2];
+    int32_t i[5];
+    double d[3];
+    if (len < PAYLOAD_HEAD)
+        return MPB_EPARSE;
+    memcpy(u, p, sizeof u);
+    memcpy(i, p + sizeof u, sizeof i);
+    memcpy(d, p + sizeof u + sizeof i, sizeof d);
+    if (u[0] != (uint32_t)spec->num_joints || u[1] < 1 ||
+        u[1] > (UINT32_MAX >> 3) || len != PAYLOAD_HEAD + 4 * (size_t)u[1])
+        return MPB_EPARSE;
+    mpb__wrist_table *t = calloc(1, sizeof *t);
+    if (!t || !(t->nodes = malloc(4 * (size_t)u[1]))) {
+        free(t);
+        return MPB_ENOMEM;
+    }
+    memcpy(t->nodes, p + PAYLOAD_HEAD, 4 * (size_t)u[1]);
+    t->num_joints = spec->num_joints;
+    t->num_nodes = t->cap = (int)u[1];
+    for (int k = 0; k < t->num_joints; k++) {
+        t->lo[k] = spec->lo[k];
+        t->hi[k] = spec->hi[k];
+    }
+    t->stats = (mpb__wrist_stats){i[0], i[1], i[2], i[3], 0, d[0],
+                                  {d[1], d[2]}, i[4], 1};
+    int rc = valid_tree(t->nodes, t->num_nodes, t->num_joints) ? make_grid(t)
+                                                                : MPB_EPARSE;
+    if (rc != MPB_OK) {
+        free(t->nodes);
+        free(t->grid);
+        free(t);
+        return rc;
+    }
+    *out = t;
+    return MPB_OK;
+}
+
 /* ---- the cache -------------------------------------------------------- */
 
 /* What determines a table, as bytes: the parameters, the kinematics, both
@@ -570,7 +683,8 @@ static void put(keybuf *k, const void *data, size_t n)
 
 static int make_key(const mpb__wrist_spec *s, keybuf *k)
 {
-    double params[4] = {min_bound, lipschitz_factor, WRIST_MARGIN, max_distances};
+    double params[5] = {min_bound, lipschitz_factor, WRIST_MARGIN, max_distances,
+                        MPB__WRIST_CACHE_VERSION};
     int n = s->num_joints;
     put(k, params, sizeof params);
     put(k, &n, sizeof n);
@@ -611,7 +725,36 @@ typedef struct entry {
 
 static pthread_mutex_t cache_mu = PTHREAD_MUTEX_INITIALIZER;
 static entry *cache;
-static long builds;
+static long builds, loads;
+
+/* The table for the key k of spec from the disk cache, else built (and
+ * *built = 1) and stored there if it can be. */
+static int from_disk(const mpb__wrist_spec *spec, const keybuf *k,
+                     mpb__wrist_table **out, int *built)
+{
+    char hash[MPB__WRIST_HASH_SIZE];
+    unsigned char *payload = NULL;
+    size_t len = 0;
+    mpb__wrist_cache_hash(k->p, (size_t)k->len, hash);
+    int rc = mpb__wrist_cache_read(hash, (size_t)k->len, &payload, &len);
+    if (rc == MPB_OK) {
+        rc = decode(spec, payload, len, out);
+        free(payload);
+        if (rc != MPB_EPARSE) {
+            *built = 0;
+            return rc;
+        }
+    } else if (rc == MPB_ENOMEM) {
+        return rc;
+    }
+    *built = 1;
+    if ((rc = build(spec, out)) != MPB_OK)
+        return rc;
+    if ((payload = encode(*out, &len)))
+        (void)mpb__wrist_cache_write(hash, (size_t)k->len, payload, len);
+    free(payload);
+    return MPB_OK;
+}
 
 static const mpb__wrist_table *lookup(const keybuf *k)
 {
@@ -637,18 +780,20 @@ int mpb__wrist_table_get(const mpb__wrist_spec *spec,
         free(k.p);
         return MPB_OK;
     }
-    /* Built outside the lock; two threads may both build one table, and
-     * the first into the cache is kept. */
+    /* Read or built outside the lock; two threads may both make one
+     * table, and the first into the cache is kept. */
     mpb__wrist_table *t = NULL;
     entry *e = malloc(sizeof *e);
-    rc = e ? build(spec, &t) : MPB_ENOMEM;
+    int built = 0;
+    rc = e ? from_disk(spec, &k, &t, &built) : MPB_ENOMEM;
     if (rc != MPB_OK) {
         free(e);
         free(k.p);
         return rc;
     }
     pthread_mutex_lock(&cache_mu);
-    builds++;
+    builds += built;
+    loads += !built;
     *out = lookup(&k);
     if (!*out) {
         e->key = k.p;
@@ -661,11 +806,7 @@ int mpb__wrist_table_get(const mpb__wrist_spec *spec,
         k.p = NULL;
     }
     pthread_mutex_unlock(&cache_mu);
-    if (t) {
-        free(t->nodes);
-        free(t->grid);
-    }
-    free(t);
+    free_table(t);
     free(e);
     free(k.p);
     return MPB_OK;
@@ -677,4 +818,25 @@ long mpb__wrist_builds(void)
     long n = builds;
     pthread_mutex_unlock(&cache_mu);
     return n;
+}
+
+long mpb__wrist_loads(void)
+{
+    pthread_mutex_lock(&cache_mu);
+    long n = loads;
+    pthread_mutex_unlock(&cache_mu);
+    return n;
+}
+
+void mpb__wrist_forget(void)
+{
+    pthread_mutex_lock(&cache_mu);
+    while (cache) {
+        entry *e = cache;
+        cache = e->next;
+        free_table((mpb__wrist_table *)e->table);
+        free(e->key);
+        free(e);
+    }
+    pthread_mutex_unlock(&cache_mu);
 }
