@@ -7,8 +7,10 @@
  * random joint values, as do the world's verdicts. A corrupt, truncated
  * or foreign file, one whose checksum is right but whose tree is not,
  * and a directory that cannot be made, all mean a build with the same
- * answers, never a failed world. Every cache here is a fresh directory
- * under /tmp; the user's own is never touched.
+ * answers, never a failed world. Processes writing one file at once
+ * leave one whole copy, and a reader meanwhile gets a miss or a whole
+ * payload. Every cache here is a fresh directory under /tmp; the user's
+ * own is never touched.
  */
 #include <dirent.h>
 #include <fcntl.h>
@@ -19,6 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -383,6 +386,66 @@ static void no_cache_builds_in_memory(void **state)
     }
 }
 
+/*
+ * Four processes write the same table's file over and over, each its own
+ * payload, while this one reads it: every read is a miss (before the
+ * first rename) or one writer's payload, whole; never a mix, never torn.
+ * No temporary file is left.
+ */
+static void concurrent_writers_leave_one_whole_file(void **state)
+{
+    (void)state;
+    enum { WRITERS = 4, WRITES = 100, LEN = 65536 };
+    char dir[] = "/tmp/mpb-wrist-cache-XXXXXX", hash[MPB__WRIST_HASH_SIZE];
+    assert_non_null(mkdtemp(dir));
+    assert_int_equal(setenv("MPB_CACHE_DIR", dir, 1), 0);
+    mpb__wrist_cache_hash("key", 3, hash);
+    pid_t pids[WRITERS];
+    for (int k = 0; k < WRITERS; k++) {
+        pids[k] = fork();
+        assert_true(pids[k] >= 0);
+        if (pids[k] == 0) {
+            static unsigned char p[LEN];
+            memset(p, 'a' + k, sizeof p);
+            for (int i = 0; i < WRITES; i++)
+                if (mpb__wrist_cache_write(hash, 3, p, sizeof p) != MPB_OK)
+                    _exit(1);
+            _exit(0);
+        }
+    }
+    int reads = 0, bad = 0, live = WRITERS, failed = 0;
+    while (live > 0) {
+        unsigned char *p;
+        size_t len;
+        if (mpb__wrist_cache_read(hash, 3, &p, &len) == MPB_OK) {
+            reads++;
+            bad += len != LEN;
+            for (size_t i = 1; i < len && !bad; i++)
+                bad += p[i] != p[0];
+            free(p);
+        }
+        int status;
+        pid_t done = waitpid(-1, &status, WNOHANG);
+        if (done > 0) {
+            live--;
+            failed += !WIFEXITED(status) || WEXITSTATUS(status) != 0;
+        }
+    }
+    assert_int_equal(failed, 0);
+    assert_int_equal(bad, 0);
+    unsigned char *p;
+    size_t len;
+    assert_int_equal(mpb__wrist_cache_read(hash, 3, &p, &len), MPB_OK);
+    free(p);
+    /* A reader with the wrong key length misses. */
+    assert_int_equal(mpb__wrist_cache_read(hash, 4, &p, &len), MPB_ENOTFOUND);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "test $(ls -A '%s/wrist' | wc -l) -eq 1", dir);
+    assert_int_equal(system(cmd), 0);
+    print_message("%d whole reads during the writes\n", reads);
+    remove_dir(dir);
+}
+
 /* Where the cache is, by the variables. */
 static void the_directory(void **state)
 {
@@ -413,6 +476,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(the_directory),
+        cmocka_unit_test(concurrent_writers_leave_one_whole_file),
         cmocka_unit_test_setup_teardown(a_second_process_reads_the_same_tables,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(a_corrupt_file_is_rebuilt, setup,
