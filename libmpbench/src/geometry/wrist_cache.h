@@ -1,11 +1,14 @@
 /*
  * wrist_cache.h - private to libmpbench and its tests: the wrist tables'
  * cache on disk, so that only the first process on a machine pays for
- * building them (wrist_table.h).
+ * building them (wrist_table.h). wrist_cache.c also keeps the
+ * process-wide cache in front of it: mpb__wrist_table_get() and the
+ * counts of wrist_table.h.
  *
- * A file holds one table's bytes (its payload, which wrist_table.c writes
- * and reads) under the hash of its key (everything the table depends on,
- * which wrist_table.c makes). The directory is $MPB_CACHE_DIR/wrist, else
+ * A file holds one table's bytes (its payload, mpb__wrist_table_encode())
+ * under the hash of its key: everything the table is computed from (the
+ * pair's kinematics, both links' shapes with every mesh vertex and
+ * triangle, the build's parameters, MPB__WRIST_CACHE_VERSION). The directory is $MPB_CACHE_DIR/wrist, else
  * $XDG_CACHE_HOME/mpbench/wrist, else $HOME/.cache/mpbench/wrist (an empty
  * or relative variable counts as unset). A file is used only when its
  * header (magic, format version, byte order, key hash and length, payload

@@ -1,11 +1,10 @@
 /*
  * wrist_table.c - tables over one or two joints that prove a self pair
  * apart (wrist_table.h): which pairs qualify, the bound on how fast the
- * far link moves, the tree of cells, the process-wide cache, and a
- * table as bytes for the cache on disk (wrist_cache.h).
+ * far link moves, the tree of cells, and a table as bytes for the cache
+ * on disk (wrist_cache.c keeps the caches).
  */
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +13,6 @@
 #include "mpbench/mpbench.h"
 #include "geometry/collision_internal.h"
 #include "core/grow.h"
-#include "geometry/wrist_cache.h"
 #include "geometry/wrist_table.h"
 
 /* Below this (m) FCL's distance does not count as apart: far above its
@@ -72,6 +70,14 @@ void mpb__wrist_set_params(double bound, double factor)
 {
     min_bound = bound;
     lipschitz_factor = factor;
+}
+
+void mpb__wrist_get_params(double out[4])
+{
+    out[0] = min_bound;
+    out[1] = lipschitz_factor;
+    out[2] = WRIST_MARGIN;
+    out[3] = max_distances;
 }
 
 /* ---- which pairs ------------------------------------------------------ */
@@ -453,7 +459,7 @@ static int add_side(mpb_collision *coll, int id, const mpb__wrist_side *s)
     return MPB_OK;
 }
 
-static void free_table(mpb__wrist_table *t)
+void mpb__wrist_table_free(mpb__wrist_table *t)
 {
     if (t) {
         free(t->nodes);
@@ -462,7 +468,7 @@ static void free_table(mpb__wrist_table *t)
     free(t);
 }
 
-static int build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
+int mpb__wrist_table_build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
 {
     struct timespec t0, t1;     /* CPU time: the machine may be shared */
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
@@ -494,7 +500,7 @@ static int build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
     if (rc == MPB_OK)
         rc = make_grid(t);
     if (rc != MPB_OK) {
-        free_table(t);
+        mpb__wrist_table_free(t);
         return rc;
     }
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
@@ -558,15 +564,15 @@ void mpb__wrist_table_stats(const mpb__wrist_table *t, mpb__wrist_stats *out)
 /* ---- a table as bytes ------------------------------------------------ */
 
 /*
- * The payload of a table's file (wrist_cache.h), in this machine's byte
- * order: num_joints, num_nodes (uint32); nodes, apart_leaves,
+ * A table's bytes (its file's payload, wrist_cache.h), in this machine's
+ * byte order: num_joints, num_nodes (uint32); nodes, apart_leaves,
  * open_leaves, distances, cut (int32); build_s, lipschitz[2] (double);
  * the nodes (uint32 each). The range and the grid are not stored: the
  * range is the spec's (which the key holds), the grid is painted again.
  */
 #define PAYLOAD_HEAD (2 * 4 + 5 * 4 + 3 * 8)
 
-static unsigned char *encode(const mpb__wrist_table *t, size_t *len)
+unsigned char *mpb__wrist_table_encode(const mpb__wrist_table *t, size_t *len)
 {
     *len = PAYLOAD_HEAD + 4 * (size_t)t->num_nodes;
     unsigned char *p = malloc(*len), *w = p;
@@ -619,10 +625,9 @@ static int valid_tree(const uint32_t *nodes, int n, int num_joints)
     return ok;
 }
 
-/* The table for spec from a payload: MPB_OK; MPB_EPARSE if it is not
- * one; MPB_ENOMEM. */
-static int decode(const mpb__wrist_spec *spec, const unsigned char *p,
-                  size_t len, mpb__wrist_table **out)
+int mpb__wrist_table_decode(const mpb__wrist_spec *spec,
+                            const unsigned char *p, size_t len,
+                            mpb__wrist_table **out)
 {
     uint32_t u[2];
     int32_t i[5];
@@ -659,184 +664,4 @@ static int decode(const mpb__wrist_spec *spec, const unsigned char *p,
     }
     *out = t;
     return MPB_OK;
-}
-
-/* ---- the cache -------------------------------------------------------- */
-
-/* What determines a table, as bytes: the parameters, the kinematics, both
- * sides' shapes with their meshes' vertices and triangles. */
-typedef struct keybuf {
-    unsigned char *p;
-    int            len, cap, failed;
-} keybuf;
-
-static void put(keybuf *k, const void *data, size_t n)
-{
-    if (k->failed || n > (size_t)(INT32_MAX / 2) - (size_t)k->len ||
-        mpb__grow((void **)&k->p, &k->cap, k->len + (int)n, 1) != MPB_OK) {
-        k->failed = 1;
-        return;
-    }
-    memcpy(k->p + k->len, data, n);
-    k->len += (int)n;
-}
-
-static int make_key(const mpb__wrist_spec *s, keybuf *k)
-{
-    double params[5] = {min_bound, lipschitz_factor, WRIST_MARGIN, max_distances,
-                        MPB__WRIST_CACHE_VERSION};
-    int n = s->num_joints;
-    put(k, params, sizeof params);
-    put(k, &n, sizeof n);
-    put(k, s->fixed, (size_t)(n + 1) * sizeof s->fixed[0]);
-    put(k, s->axis, (size_t)n * sizeof s->axis[0]);
-    put(k, s->lo, (size_t)n * sizeof s->lo[0]);
-    put(k, s->hi, (size_t)n * sizeof s->hi[0]);
-    for (int side = 0; side < 2; side++) {
-        const mpb__wrist_side *sd = &s->side[side];
-        put(k, &sd->num_shapes, sizeof sd->num_shapes);
-        for (int i = 0; i < sd->num_shapes; i++) {
-            const mpb_geometry *g = &sd->geoms[i];
-            int type = (int)g->type;
-            put(k, &type, sizeof type);
-            put(k, g->dims, sizeof g->dims);
-            put(k, &sd->offsets[i], sizeof sd->offsets[i]);
-            if (g->type != MPB_SHAPE_MESH)
-                continue;
-            put(k, &g->mesh->num_vertices, sizeof g->mesh->num_vertices);
-            put(k, &g->mesh->num_triangles, sizeof g->mesh->num_triangles);
-            put(k, g->mesh->vertices, 3 * sizeof(double) *
-                (size_t)g->mesh->num_vertices);
-            put(k, g->mesh->triangles, 3 * sizeof(int32_t) *
-                (size_t)g->mesh->num_triangles);
-        }
-    }
-    return k->failed ? MPB_ENOMEM : MPB_OK;
-}
-
-/* Kept for the life of the process: a planner opens a world per scene,
- * one after the other, and each must find the tables of the last. */
-typedef struct entry {
-    unsigned char          *key;
-    int                     len;
-    const mpb__wrist_table *table;
-    struct entry           *next;
-} entry;
-
-static pthread_mutex_t cache_mu = PTHREAD_MUTEX_INITIALIZER;
-static entry *cache;
-static long builds, loads;
-
-/* The table for the key k of spec from the disk cache, else built (and
- * *built = 1) and stored there if it can be. */
-static int from_disk(const mpb__wrist_spec *spec, const keybuf *k,
-                     mpb__wrist_table **out, int *built)
-{
-    char hash[MPB__WRIST_HASH_SIZE];
-    unsigned char *payload = NULL;
-    size_t len = 0;
-    mpb__wrist_cache_hash(k->p, (size_t)k->len, hash);
-    int rc = mpb__wrist_cache_read(hash, (size_t)k->len, &payload, &len);
-    if (rc == MPB_OK) {
-        rc = decode(spec, payload, len, out);
-        free(payload);
-        if (rc != MPB_EPARSE) {
-            *built = 0;
-            return rc;
-        }
-    } else if (rc == MPB_ENOMEM) {
-        return rc;
-    }
-    *built = 1;
-    if ((rc = build(spec, out)) != MPB_OK)
-        return rc;
-    if ((payload = encode(*out, &len)))
-        (void)mpb__wrist_cache_write(hash, (size_t)k->len, payload, len);
-    free(payload);
-    return MPB_OK;
-}
-
-static const mpb__wrist_table *lookup(const keybuf *k)
-{
-    for (entry *e = cache; e; e = e->next)
-        if (e->len == k->len && memcmp(e->key, k->p, (size_t)k->len) == 0)
-            return e->table;
-    return NULL;
-}
-
-int mpb__wrist_table_get(const mpb__wrist_spec *spec,
-                         const mpb__wrist_table **out)
-{
-    keybuf k = {0};
-    int rc = make_key(spec, &k);
-    if (rc != MPB_OK) {
-        free(k.p);
-        return rc;
-    }
-    pthread_mutex_lock(&cache_mu);
-    *out = lookup(&k);
-    pthread_mutex_unlock(&cache_mu);
-    if (*out) {
-        free(k.p);
-        return MPB_OK;
-    }
-    /* Read or built outside the lock; two threads may both make one
-     * table, and the first into the cache is kept. */
-    mpb__wrist_table *t = NULL;
-    entry *e = malloc(sizeof *e);
-    int built = 0;
-    rc = e ? from_disk(spec, &k, &t, &built) : MPB_ENOMEM;
-    if (rc != MPB_OK) {
-        free(e);
-        free(k.p);
-        return rc;
-    }
-    pthread_mutex_lock(&cache_mu);
-    builds += built;
-    loads += !built;
-    *out = lookup(&k);
-    if (!*out) {
-        e->key = k.p;
-        e->len = k.len;
-        e->table = *out = t;
-        e->next = cache;
-        cache = e;
-        e = NULL;
-        t = NULL;
-        k.p = NULL;
-    }
-    pthread_mutex_unlock(&cache_mu);
-    free_table(t);
-    free(e);
-    free(k.p);
-    return MPB_OK;
-}
-
-long mpb__wrist_builds(void)
-{
-    pthread_mutex_lock(&cache_mu);
-    long n = builds;
-    pthread_mutex_unlock(&cache_mu);
-    return n;
-}
-
-long mpb__wrist_loads(void)
-{
-    pthread_mutex_lock(&cache_mu);
-    long n = loads;
-    pthread_mutex_unlock(&cache_mu);
-    return n;
-}
-
-void mpb__wrist_forget(void)
-{
-    pthread_mutex_lock(&cache_mu);
-    while (cache) {
-        entry *e = cache;
-        cache = e->next;
-        free_table((mpb__wrist_table *)e->table);
-        free(e->key);
-        free(e);
-    }
-    pthread_mutex_unlock(&cache_mu);
 }

@@ -25,6 +25,8 @@
 #ifndef MPB_WRIST_TABLE_H
 #define MPB_WRIST_TABLE_H
 
+#include <stddef.h>
+
 #include "mpbench/collision.h"
 #include "mpbench/robot.h"
 
@@ -126,6 +128,23 @@ void mpb__wrist_set_params(double min_bound, double lipschitz_factor);
  * for tests. Part of the cache's key. Not thread-safe, as above. */
 #define MPB__WRIST_MAX_DISTANCES 8192
 void mpb__wrist_set_budget(int distances);
+
+/*
+ * For wrist_cache.c, which keeps the tables: build one (MPB_OK with *out,
+ * MPB_ENOMEM, MPB_EERROR), free one (NULL: nothing), the build's
+ * parameters that its key must hold (least bound, Lipschitz factor,
+ * margin, distance budget), a table as bytes (malloc()ed, the caller
+ * frees; NULL when out of memory) and back (MPB_OK with *out; MPB_EPARSE
+ * when the bytes are not a table for spec: wrong sizes, or not a tree;
+ * MPB_ENOMEM).
+ */
+int mpb__wrist_table_build(const mpb__wrist_spec *spec, mpb__wrist_table **out);
+void mpb__wrist_table_free(mpb__wrist_table *t);
+void mpb__wrist_get_params(double out[4]);
+unsigned char *mpb__wrist_table_encode(const mpb__wrist_table *t, size_t *len);
+int mpb__wrist_table_decode(const mpb__wrist_spec *spec,
+                            const unsigned char *p, size_t len,
+                            mpb__wrist_table **out);
 
 /* Tables built since the process began (misses of both caches). */
 long mpb__wrist_builds(void);
