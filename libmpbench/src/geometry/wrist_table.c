@@ -1,10 +1,10 @@
 /*
  * wrist_table.c - tables over one or two joints that prove a self pair
  * apart (wrist_table.h): which pairs qualify, the bound on how fast the
- * far link moves, the tree of cells, and the process-wide cache.
+ * far link moves, the tree of cells, and a table as bytes for the cache
+ * on disk (wrist_cache.c keeps the caches).
  */
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,6 +71,14 @@ void mpb__wrist_set_params(double bound, double factor)
 {
     min_bound = bound;
     lipschitz_factor = factor;
+}
+
+void mpb__wrist_get_params(double out[4])
+{
+    out[0] = min_bound;
+    out[1] = lipschitz_factor;
+    out[2] = WRIST_MARGIN;
+    out[3] = max_distances;
 }
 
 /* ---- which pairs ------------------------------------------------------ */
@@ -443,7 +451,16 @@ static int add_side(mpb_collision *coll, int id, const mpb__wrist_side *s)
     return MPB_OK;
 }
 
-static int build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
+void mpb__wrist_table_free(mpb__wrist_table *t)
+{
+    if (t) {
+        free(t->nodes);
+        free(t->grid);
+    }
+    free(t);
+}
+
+int mpb__wrist_table_build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
 {
     struct timespec t0, t1;     /* CPU time: the machine may be shared */
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
@@ -475,11 +492,7 @@ static int build(const mpb__wrist_spec *spec, mpb__wrist_table **out)
     if (rc == MPB_OK)
         rc = make_grid(t);
     if (rc != MPB_OK) {
-        if (t) {
-            free(t->nodes);
-            free(t->grid);
-        }
-        free(t);
+        mpb__wrist_table_free(t);
         return rc;
     }
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
@@ -540,133 +553,107 @@ void mpb__wrist_table_stats(const mpb__wrist_table *t, mpb__wrist_stats *out)
     *out = t->stats;
 }
 
-/* ---- the cache -------------------------------------------------------- */
+/* ---- a table as bytes ------------------------------------------------ */
 
-/* What determines a table, as bytes: the parameters, the kinematics, both
- * sides' shapes with their meshes' vertices and triangles. */
-typedef struct keybuf {
-    unsigned char *p;
-    int            len, cap, failed;
-} keybuf;
+/*
+ * A table's bytes (its file's payload, wrist_cache.h), in this machine's
+ * byte order: num_joints, num_nodes (uint32); nodes, apart_leaves,
+ * open_leaves, distances, cut (int32); build_s, lipschitz[2] (double);
+ * the nodes (uint32 each). The range and the grid are not stored: the
+ * range is the spec's (which the key holds), the grid is painted again.
+ */
+#define PAYLOAD_HEAD (2 * 4 + 5 * 4 + 3 * 8)
 
-static void put(keybuf *k, const void *data, size_t n)
+unsigned char *mpb__wrist_table_encode(const mpb__wrist_table *t, size_t *len)
 {
-    if (k->failed || n > (size_t)(INT32_MAX / 2) - (size_t)k->len ||
-        mpb__grow((void **)&k->p, &k->cap, k->len + (int)n, 1) != MPB_OK) {
-        k->failed = 1;
-        return;
-    }
-    memcpy(k->p + k->len, data, n);
-    k->len += (int)n;
+    *len = PAYLOAD_HEAD + 4 * (size_t)t->num_nodes;
+    unsigned char *p = malloc(*len), *w = p;
+    if (!p)
+        return NULL;
+    uint32_t u[2] = {(uint32_t)t->num_joints, (uint32_t)t->num_nodes};
+    int32_t i[5] = {t->stats.nodes, t->stats.apart_leaves, t->stats.open_leaves,
+                    t->stats.distances, t->stats.cut};
+    double d[3] = {t->stats.build_s, t->stats.lipschitz[0], t->stats.lipschitz[1]};
+    memcpy(w, u, sizeof u);
+    memcpy(w += sizeof u, i, sizeof i);
+    memcpy(w += sizeof i, d, sizeof d);
+    memcpy(w + sizeof d, t->nodes, 4 * (size_t)t->num_nodes);
+    return p;
 }
 
-static int make_key(const mpb__wrist_spec *s, keybuf *k)
+/*
+ * Is nodes[0 .. n) a tree, root first, for num_joints joints: every
+ * node but the root the child of exactly one node before it, leaves 0
+ * or 1 << 2, splits along existing joints only, at most 60 halvings of
+ * a joint? Then the walks over it (apart(), tree_depth(), paint()) end,
+ * stay in the array and shift no further than a long holds.
+ */
+static int valid_tree(const uint32_t *nodes, int n, int num_joints)
 {
-    double params[4] = {min_bound, lipschitz_factor, WRIST_MARGIN, max_distances};
-    int n = s->num_joints;
-    put(k, params, sizeof params);
-    put(k, &n, sizeof n);
-    put(k, s->fixed, (size_t)(n + 1) * sizeof s->fixed[0]);
-    put(k, s->axis, (size_t)n * sizeof s->axis[0]);
-    put(k, s->lo, (size_t)n * sizeof s->lo[0]);
-    put(k, s->hi, (size_t)n * sizeof s->hi[0]);
-    for (int side = 0; side < 2; side++) {
-        const mpb__wrist_side *sd = &s->side[side];
-        put(k, &sd->num_shapes, sizeof sd->num_shapes);
-        for (int i = 0; i < sd->num_shapes; i++) {
-            const mpb_geometry *g = &sd->geoms[i];
-            int type = (int)g->type;
-            put(k, &type, sizeof type);
-            put(k, g->dims, sizeof g->dims);
-            put(k, &sd->offsets[i], sizeof sd->offsets[i]);
-            if (g->type != MPB_SHAPE_MESH)
-                continue;
-            put(k, &g->mesh->num_vertices, sizeof g->mesh->num_vertices);
-            put(k, &g->mesh->num_triangles, sizeof g->mesh->num_triangles);
-            put(k, g->mesh->vertices, 3 * sizeof(double) *
-                (size_t)g->mesh->num_vertices);
-            put(k, g->mesh->triangles, 3 * sizeof(int32_t) *
-                (size_t)g->mesh->num_triangles);
+    unsigned char *depth = calloc((size_t)n, 2), *seen = calloc((size_t)n, 1);
+    int ok = depth && seen;
+    for (int i = 0; ok && i < n; i++) {
+        uint32_t node = nodes[i];
+        unsigned split = node & 3u;
+        if (!split) {
+            ok = node == 0 || node == 1u << 2;
+            continue;
+        }
+        int first = (int)(node >> 2), kids = split == 3 ? 4 : 2;
+        ok = (num_joints == 2 || split == 1) && first > i && first <= n - kids;
+        for (int c = 0; ok && c < kids; c++) {
+            unsigned char *dc = &depth[2 * (first + c)];
+            ok = !seen[first + c];
+            seen[first + c] = 1;
+            dc[0] = (unsigned char)(depth[2 * i] + (split & 1u));
+            dc[1] = (unsigned char)(depth[2 * i + 1] + (split >> 1 & 1u));
+            ok = ok && dc[0] <= 60 && dc[1] <= 60;
         }
     }
-    return k->failed ? MPB_ENOMEM : MPB_OK;
+    for (int i = 1; ok && i < n; i++)
+        ok = seen[i];
+    free(depth);
+    free(seen);
+    return ok;
 }
 
-/* Kept for the life of the process: a planner opens a world per scene,
- * one after the other, and each must find the tables of the last. */
-typedef struct entry {
-    unsigned char          *key;
-    int                     len;
-    const mpb__wrist_table *table;
-    struct entry           *next;
-} entry;
-
-static pthread_mutex_t cache_mu = PTHREAD_MUTEX_INITIALIZER;
-static entry *cache;
-static long builds;
-
-static const mpb__wrist_table *lookup(const keybuf *k)
+int mpb__wrist_table_decode(const mpb__wrist_spec *spec,
+                            const unsigned char *p, size_t len,
+                            mpb__wrist_table **out)
 {
-    for (entry *e = cache; e; e = e->next)
-        if (e->len == k->len && memcmp(e->key, k->p, (size_t)k->len) == 0)
-            return e->table;
-    return NULL;
-}
-
-int mpb__wrist_table_get(const mpb__wrist_spec *spec,
-                         const mpb__wrist_table **out)
-{
-    keybuf k = {0};
-    int rc = make_key(spec, &k);
+    uint32_t u[2];
+    int32_t i[5];
+    double d[3];
+    if (len < PAYLOAD_HEAD)
+        return MPB_EPARSE;
+    memcpy(u, p, sizeof u);
+    memcpy(i, p + sizeof u, sizeof i);
+    memcpy(d, p + sizeof u + sizeof i, sizeof d);
+    if (u[0] != (uint32_t)spec->num_joints || u[1] < 1 ||
+        u[1] > (UINT32_MAX >> 3) || len != PAYLOAD_HEAD + 4 * (size_t)u[1])
+        return MPB_EPARSE;
+    mpb__wrist_table *t = calloc(1, sizeof *t);
+    if (!t || !(t->nodes = malloc(4 * (size_t)u[1]))) {
+        free(t);
+        return MPB_ENOMEM;
+    }
+    memcpy(t->nodes, p + PAYLOAD_HEAD, 4 * (size_t)u[1]);
+    t->num_joints = spec->num_joints;
+    t->num_nodes = t->cap = (int)u[1];
+    for (int k = 0; k < t->num_joints; k++) {
+        t->lo[k] = spec->lo[k];
+        t->hi[k] = spec->hi[k];
+    }
+    t->stats = (mpb__wrist_stats){i[0], i[1], i[2], i[3], 0, d[0],
+                                  {d[1], d[2]}, i[4], 1};
+    int rc = valid_tree(t->nodes, t->num_nodes, t->num_joints) ? make_grid(t)
+                                                                : MPB_EPARSE;
     if (rc != MPB_OK) {
-        free(k.p);
-        return rc;
-    }
-    pthread_mutex_lock(&cache_mu);
-    *out = lookup(&k);
-    pthread_mutex_unlock(&cache_mu);
-    if (*out) {
-        free(k.p);
-        return MPB_OK;
-    }
-    /* Built outside the lock; two threads may both build one table, and
-     * the first into the cache is kept. */
-    mpb__wrist_table *t = NULL;
-    entry *e = malloc(sizeof *e);
-    rc = e ? build(spec, &t) : MPB_ENOMEM;
-    if (rc != MPB_OK) {
-        free(e);
-        free(k.p);
-        return rc;
-    }
-    pthread_mutex_lock(&cache_mu);
-    builds++;
-    *out = lookup(&k);
-    if (!*out) {
-        e->key = k.p;
-        e->len = k.len;
-        e->table = *out = t;
-        e->next = cache;
-        cache = e;
-        e = NULL;
-        t = NULL;
-        k.p = NULL;
-    }
-    pthread_mutex_unlock(&cache_mu);
-    if (t) {
         free(t->nodes);
         free(t->grid);
+        free(t);
+        return rc;
     }
-    free(t);
-    free(e);
-    free(k.p);
+    *out = t;
     return MPB_OK;
-}
-
-long mpb__wrist_builds(void)
-{
-    pthread_mutex_lock(&cache_mu);
-    long n = builds;
-    pthread_mutex_unlock(&cache_mu);
-    return n;
 }

@@ -15,12 +15,17 @@
  * they cannot be proved until their bound is below a minimum; the cells
  * left unproved, and values outside the joints' range, go to FCL.
  *
- * Tables are built once per process for what determines them (the
+ * Tables are made once per process for what determines them (the
  * joints, the fixed transforms between, both links' shapes, mesh contents
- * included) and shared by every world, read-only: thread-safe.
+ * included, and the build's parameters: the key) and shared by every
+ * world, read-only: thread-safe. They are read from the cache on disk
+ * (wrist_cache.h) when a process has built them before, and written
+ * there when built.
  */
 #ifndef MPB_WRIST_TABLE_H
 #define MPB_WRIST_TABLE_H
+
+#include <stddef.h>
 
 #include "mpbench/collision.h"
 #include "mpbench/robot.h"
@@ -77,7 +82,8 @@ int mpb__wrist_path(const mpb_robot *r, const mpb_pose *poses, int near,
 int mpb__wrist_affordable(const mpb__wrist_spec *spec);
 
 /*
- * The table for spec, from the process-wide cache or built now (into it).
+ * The table for spec, from the process-wide cache, else from the disk
+ * cache, else built now (and stored in both).
  * A build stops refining after MPB__WRIST_MAX_DISTANCES FCL distances
  * (the Panda's largest takes 5,993, 0.4 s), leaving the cells it has not
  * reached to FCL: slower checks, never other verdicts. A count, not a
@@ -103,6 +109,8 @@ typedef struct mpb__wrist_stats {
     double build_s;         /* its CPU time (s) */
     double lipschitz[2];    /* R1, R2 (m per rad) */
     int    cut;             /* 1 if MPB__WRIST_MAX_DISTANCES stopped it */
+    int    cached;          /* 1 if read from the disk cache (the rest
+                               as the build that wrote it measured) */
 } mpb__wrist_stats;
 void mpb__wrist_table_stats(const mpb__wrist_table *t, mpb__wrist_stats *out);
 
@@ -121,8 +129,32 @@ void mpb__wrist_set_params(double min_bound, double lipschitz_factor);
 #define MPB__WRIST_MAX_DISTANCES 8192
 void mpb__wrist_set_budget(int distances);
 
-/* Tables built since the process began (cache misses). */
+/*
+ * For wrist_cache.c, which keeps the tables: build one (MPB_OK with *out,
+ * MPB_ENOMEM, MPB_EERROR), free one (NULL: nothing), the build's
+ * parameters that its key must hold (least bound, Lipschitz factor,
+ * margin, distance budget), a table as bytes (malloc()ed, the caller
+ * frees; NULL when out of memory) and back (MPB_OK with *out; MPB_EPARSE
+ * when the bytes are not a table for spec: wrong sizes, or not a tree;
+ * MPB_ENOMEM).
+ */
+int mpb__wrist_table_build(const mpb__wrist_spec *spec, mpb__wrist_table **out);
+void mpb__wrist_table_free(mpb__wrist_table *t);
+void mpb__wrist_get_params(double out[4]);
+unsigned char *mpb__wrist_table_encode(const mpb__wrist_table *t, size_t *len);
+int mpb__wrist_table_decode(const mpb__wrist_spec *spec,
+                            const unsigned char *p, size_t len,
+                            mpb__wrist_table **out);
+
+/* Tables built since the process began (misses of both caches). */
 long mpb__wrist_builds(void);
+
+/* Tables read from the disk cache since the process began. */
+long mpb__wrist_loads(void);
+
+/* Empty the process-wide cache, so that the next world reads the disk
+ * cache again: for tests, with no world open. */
+void mpb__wrist_forget(void);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,70 @@
+/*
+ * worldopen.c - mpb-bench-worldopen: what the first world of a process
+ * costs, the Panda with its SRDF and collision meshes in an empty scene:
+ * one mpb_world_open_group_in() in a fresh process, wall and CPU time.
+ * Which wrist tables it builds or reads depends on the cache the
+ * environment names (MPB_CACHE_DIR); bench/worldopen.sh runs it cold,
+ * warm and without a cache.
+ *
+ *   mpb-bench-worldopen PANDA_DIR
+ *
+ * PANDA_DIR holds panda.urdf, panda.srdf and the meshes they name.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "mpbench/mpbench.h"
+
+#include "bench_util.h"
+
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int main(int argc, char **argv)
+{
+    static const char *const joints[7] = {
+        "panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
+        "panda_joint5", "panda_joint6", "panda_joint7"};
+    if (argc != 2) {
+        fprintf(stderr, "usage: mpb-bench-worldopen PANDA_DIR\n");
+        return 2;
+    }
+    char path[4096], dir[4096];
+    snprintf(dir, sizeof dir, "%s/", argv[1]);
+    snprintf(path, sizeof path, "%s/panda.urdf", argv[1]);
+    char *urdf = mpbb_slurp(path);
+    snprintf(path, sizeof path, "%s/panda.srdf", argv[1]);
+    char *srdf = mpbb_slurp(path);
+    if (!urdf || !srdf) {
+        fprintf(stderr, "mpb-bench-worldopen: cannot read %s\n", path);
+        return 1;
+    }
+    char *robot = malloc(strlen(urdf) + strlen(srdf) + 1);
+    if (!robot)
+        return 1;
+    strcpy(robot, urdf);
+    strcat(robot, srdf);
+    mpb_world *w = NULL;
+    char err[512];
+    double w0 = mpbb_now(), c0 = cpu_now();
+    int rc = mpb_world_open_group_in("urdf", robot, dir, "moveit-scene",
+                                     "empty\n.\n", joints, 7, &w, err, sizeof err);
+    double w1 = mpbb_now(), c1 = cpu_now();
+    if (rc != MPB_OK) {
+        fprintf(stderr, "mpb-bench-worldopen: %s\n", err);
+        return 1;
+    }
+    mpbb_result("world_open wall_ms=%.1f cpu_ms=%.1f", 1e3 * (w1 - w0),
+                1e3 * (c1 - c0));
+    mpb_world_close(w);
+    free(robot);
+    free(urdf);
+    free(srdf);
+    return 0;
+}

@@ -1,0 +1,59 @@
+#!/bin/sh
+# bench/worldopen.sh - issue 37 item 4: the first Panda world of a
+# process (its SRDF, its collision meshes, an empty scene), each in a
+# fresh process (mpb-bench-worldopen), with the wrist tables
+#   none: no cache to use (MPB_CACHE_DIR below a regular file): every
+#         process builds them, as every process did before the cache;
+#   cold: an empty cache: the process builds them and writes them;
+#   warm: the cache the cold process left: it reads them.
+#
+#   bench/worldopen.sh [--build DIR] [--runs N]
+#
+# N processes each for none and warm (default 5), one cold. Prints the
+# median wall and CPU milliseconds as RESULT lines (on a shared machine,
+# CPU time is the number to trust). The user's own cache is not touched.
+# Needs the Panda in .cache/robots (tools/robot_data.sh).
+set -u
+src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/bench/lib.sh"
+BUILD=${MPB_BUILD:-$src/build} RUNS=5
+while [ $# -gt 0 ]; do
+    case $1 in
+    --build) BUILD=$2; shift ;;
+    --runs) RUNS=$2; shift ;;
+    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    *) echo "bench/worldopen.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    esac
+    shift
+done
+data=$(sh "$src/tools/robot_data.sh" --check >/dev/null 2>&1 &&
+       sh "$src/tools/robot_data.sh") || {
+    echo "bench/worldopen.sh: no robot data: run tools/robot_data.sh first" >&2
+    exit 1
+}
+cmake --build "$BUILD" --target mpb-planner-null >/dev/null || exit 1
+cmake -S "$src/bench" -B "$BUILD/bench-standalone" -DMPB_BUILD="$BUILD" >/dev/null &&
+    cmake --build "$BUILD/bench-standalone" --target mpb-bench-worldopen >/dev/null ||
+    exit 1
+prog=$BUILD/bench-standalone/mpb-bench-worldopen
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+: >"$work/not-a-dir"
+
+run() { # label cache-dir count
+    i=0
+    while [ "$i" -lt "$3" ]; do
+        MPB_CACHE_DIR=$2 "$prog" "$data/panda" || exit 1
+        i=$((i + 1))
+    done | awk -v label="$1" '$2 == "world_open" {
+            split($3, a, "="); split($4, b, "="); w[NR] = a[2]; c[NR] = b[2] }
+        function median(v, n,   i, j, t) {
+            for (i = 2; i <= n; i++)
+                for (j = i; j > 1 && v[j - 1] > v[j]; j--) { t = v[j]; v[j] = v[j - 1]; v[j - 1] = t }
+            return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2 }
+        END { printf "RESULT world_open cache=%s runs=%d wall_ms=%.1f cpu_ms=%.1f\n",
+                     label, NR, median(w, NR), median(c, NR) }'
+}
+run none "$work/not-a-dir/cache" "$RUNS"
+run cold "$work/cache" 1
+run warm "$work/cache" "$RUNS"
