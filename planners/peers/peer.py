@@ -335,6 +335,14 @@ class Peer:
         res.message = ""
         try:
             params = {p.key: p.value for p in req.params}
+            known = getattr(self.adapter, "PARAMS", {})
+            for key in params:
+                if key not in known:
+                    raise InvalidRequest(
+                        f"unknown parameter '{key}' ({self.adapter.NAME} "
+                        f"takes " + (", ".join(sorted(known)) if known else
+                                     "none: the library's own defaults")
+                        + ")")
             if req.algorithm not in self.adapter.ALGORITHMS:
                 raise InvalidRequest(f"unknown algorithm '{req.algorithm}' "
                                      f"({', '.join(self.adapter.ALGORITHMS)})")
