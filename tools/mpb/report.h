@@ -24,7 +24,7 @@ typedef struct metric_info {
 } metric_info;
 extern const metric_info report_metrics[M_COUNT];
 
-typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE } show;
+typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE, SHOW_CLAIMED } show;
 
 typedef struct table_row {
     const char *label;      /* text and Markdown */
@@ -42,6 +42,8 @@ extern const int report_num_rows;
 /* One planner configuration on one query, or (folded) on one scene. */
 typedef struct column {
     long        finished, succeeded;
+    long        claimed;        /* finished runs the planner said it
+                                   solved (verified or not) */
     long        stage_invalid;  /* successful runs whose --stage failed
                                    verification: its metrics left out */
     mpb_grouped m[M_COUNT];     /* successful runs; M_WS: every finished
