@@ -386,8 +386,24 @@ GRACE_S = 0.3        # past the time limit, the worker is stopped
 SETUP_MAX_S = 120.0  # at most this long to build a library's model
 
 
-def _worker(adapter, conn):
+def _die_with_parent():
+    """Linux: SIGKILL this process when the serving process dies, even by
+    SIGKILL, so that no worker outlives its planner."""
+    try:
+        import ctypes
+        import signal
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, int(signal.SIGKILL), 0, 0, 0)   # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+
+def _worker(adapter, conn, parent_end):
     """The worker process: encoded requests in, encoded results out."""
+    parent_end.close()      # else the pipe never ends for us
+    _die_with_parent()
+    if os.getppid() == 1:
+        os._exit(0)
     p = Peer(adapter)
     while True:
         try:
@@ -408,7 +424,10 @@ def _worker(adapter, conn):
         res.memory = watch.peak_mb
         if watch.note:
             res.message = watch.note + ("; " + res.message if res.message else "")
-        conn.send_bytes(res.encode())
+        try:
+            conn.send_bytes(res.encode())
+        except OSError:
+            os._exit(0)
 
 
 class Worker:
@@ -422,7 +441,8 @@ class Worker:
 
     def _start(self):
         mine, theirs = self.ctx.Pipe()
-        self.proc = self.ctx.Process(target=_worker, args=(self.adapter, theirs),
+        self.proc = self.ctx.Process(target=_worker,
+                                     args=(self.adapter, theirs, mine),
                                      daemon=True)
         self.proc.start()
         theirs.close()
