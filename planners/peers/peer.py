@@ -22,7 +22,8 @@ first).
 Timing: building the library's model (and the kit's World) is reported as
 world_setup_time, outside time_total; each stage's time is the library's
 call alone (raw: its planning call; then its own simplification or
-smoothing); time_total is time_other plus the stages.
+smoothing); time_total is time_other plus the stages (plus the
+planning call, for a run that returns no path).
 """
 import argparse
 import math
@@ -334,6 +335,7 @@ class Peer:
         res.stages, res.values, res.progress = [], [], []
         res.message = ""
         try:
+            t_plan = 0.0
             params = {p.key: p.value for p in req.params}
             known = getattr(self.adapter, "PARAMS", {})
             for key in params:
@@ -362,16 +364,22 @@ class Peer:
                 res.message = "no collision-free goal configuration found by IK"
             else:
                 left = max(req.time_limit - res.time_other, 0.01)
+                t_plan = time.monotonic()
                 stages, status, message, values = self.adapter.plan(
                     self.model, req.algorithm, list(req.start), goals, left,
                     req.seed, params)
+                t_plan = time.monotonic() - t_plan
                 res.status, res.message = status, message or ""
                 for name, seconds, path in stages:
                     res.stages.append(_stage(name, seconds, path,
                                              self.world.num_joints))
                 for name, v in values:
                     res.values.append(_value(name, v))
-            res.time_total = res.time_other + sum(s.time for s in res.stages)
+            # The stages' times (the library's calls alone); a run
+            # without a path spent its planning call.
+            res.time_total = res.time_other + (
+                sum(s.time for s in res.stages) if res.stages else
+                t_plan)
             if res.time_total <= 0:
                 res.time_total = 1e-9
         except InvalidRequest as e:

@@ -113,8 +113,7 @@ class Roboplan:
         short = core.PathShortcutter(scene, sopts).shortcut(path)
         stages.append(("shortcut", time.monotonic() - t1,
                        [list(map(float, q)) for q in short.positions]))
-        return stages, plan_result_t.SOLVED, "", [
-            ("rrt nodes", len(planner.getNodes()))]
+        return stages, plan_result_t.SOLVED, "", []
 
 
 if __name__ == "__main__":
