@@ -10,6 +10,7 @@ simplify as the stage "simplified", as SimpleSetup.simplifySolution
 does (bounded by the time left); OMPL's defaults otherwise (range, goal bias, the validity checking
 resolution of 1% of the space's extent).
 """
+import math
 import time
 
 from mpb import plan_result_t
@@ -36,28 +37,59 @@ class Ompl2:
     def build(self, problem, world):
         ou.setLogLevel(ou.LOG_ERROR)
         n = world.num_joints
-        # Continuous joints are bounded at +-pi as MoveIt's joint model
-        # does for a revolute joint without limits; the verifier takes the
-        # short way round, which a bounded vector space never needs.
-        space = ob.RealVectorStateSpace(n)
-        bounds = ob.RealVectorBounds(n)
+        if not any(world.wraps):
+            space = ob.RealVectorStateSpace(n)
+            bounds = ob.RealVectorBounds(n)
+            for j in range(n):
+                bounds.setLow(j, world.lower[j])
+                bounds.setHigh(j, world.upper[j])
+            space.setBounds(bounds)
+            return {"space": space, "n": n, "world": world, "compound": False}
+        # A continuous joint is an SO2 space, as OMPL's users (MoveIt)
+        # model it: it interpolates the short way round, as the verifier
+        # does; the others one bounded dimension each.
+        space = ob.CompoundStateSpace()
         for j in range(n):
-            lo, hi = world.lower[j], world.upper[j]
             if world.wraps[j]:
-                lo, hi = -3.141592653589793, 3.141592653589793
-            bounds.setLow(j, lo)
-            bounds.setHigh(j, hi)
-        space.setBounds(bounds)
-        return {"space": space, "n": n, "world": world}
+                space.addSubspace(ob.SO2StateSpace(), 1.0)
+            else:
+                sub = ob.RealVectorStateSpace(1)
+                b = ob.RealVectorBounds(1)
+                b.setLow(world.lower[j])
+                b.setHigh(world.upper[j])
+                sub.setBounds(b)
+                space.addSubspace(sub, 1.0)
+        return {"space": space, "n": n, "world": world, "compound": True,
+                "wraps": list(world.wraps)}
 
     def plan(self, model, algorithm, start, goals, time_limit, seed, params):
         space, n, world = model["space"], model["n"], model["world"]
+        if model["compound"]:
+            wraps = model["wraps"]
+
+            def get(state):
+                return [state[i].value if wraps[i] else state[i][0]
+                        for i in range(n)]
+
+            def put(state, q):
+                for i, v in enumerate(q):
+                    if wraps[i]:
+                        state[i].value = math.remainder(v, 2 * math.pi)
+                    else:
+                        state[i][0] = v
+        else:
+            def get(state):
+                return [state[i] for i in range(n)]
+
+            def put(state, q):
+                for i, v in enumerate(q):
+                    state[i] = v
         ss = og.SimpleSetup(space)
         calls = [0, 0.0]
 
         def valid(state):
             t = time.perf_counter()
-            ok = world.free([state[i] for i in range(n)])
+            ok = world.free(get(state))
             calls[0] += 1
             calls[1] += time.perf_counter() - t
             return ok
@@ -70,14 +102,12 @@ class Ompl2:
             ou.RNG.setSeed(seed & 0x7FFFFFFF or 1)
             _seeded.append(seed)
         s = space.allocState()
-        for i, v in enumerate(start):
-            s[i] = v
+        put(s, start)
         ss.setStartState(s)
         goal = ob.GoalStates(si)
         for q in goals:
             g = space.allocState()
-            for i, v in enumerate(q):
-                g[i] = v
+            put(g, q)
             goal.addState(g)
         ss.setGoal(goal)
         ss.setPlanner(getattr(og, algorithm)(si))
@@ -97,8 +127,7 @@ class Ompl2:
             return [], st, f"OMPL: {status.asString()}", values
         exact = ss.haveExactSolutionPath()
         path = ss.getSolutionPath()
-        raw = [[path.getState(k)[i] for i in range(n)]
-               for k in range(path.getStateCount())]
+        raw = [get(path.getState(k)) for k in range(path.getStateCount())]
         stages = [("raw", t_raw, raw)]
         if exact:
             simplified = og.PathGeometric(path)
@@ -107,7 +136,7 @@ class Ompl2:
             ss.getPathSimplifier().simplify(simplified, 0.9 * left)
             t_simp = time.monotonic() - t1
             stages.append(("simplified", t_simp,
-                           [[simplified.getState(k)[i] for i in range(n)]
+                           [get(simplified.getState(k))
                             for k in range(simplified.getStateCount())]))
         return (stages,
                 plan_result_t.SOLVED if exact else plan_result_t.APPROXIMATE,
