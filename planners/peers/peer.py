@@ -423,6 +423,16 @@ def _worker(adapter, conn, parent_end):
             try:
                 res = p.solve(req, lambda: conn.send_bytes(b"S"))
             except MemoryError:
+                res = None
+            except Exception as e:      # the library's: say so, go on
+                import traceback
+                traceback.print_exc()
+                res = plan_result_t()
+                res.stages, res.values, res.progress = [], [], []
+                res.num_stages = res.num_values = res.num_progress = 0
+                res.status = plan_result_t.FAILED
+                res.message = f"{type(e).__name__}: {e}"[:1000]
+            if res is None:
                 res = plan_result_t()
                 res.stages, res.values, res.progress = [], [], []
                 res.num_stages = res.num_values = res.num_progress = 0
@@ -470,7 +480,14 @@ class Worker:
         limit = req.time_limit + GRACE_S + SETUP_MAX_S
         while True:
             if self.conn.poll(0.05):
-                data = self.conn.recv_bytes()
+                try:
+                    data = self.conn.recv_bytes()
+                except EOFError:            # the worker is gone
+                    self.proc.join(1.0)
+                    code = self.proc.exitcode
+                    self._start()
+                    raise RuntimeError(f"{self.adapter.NAME}'s worker died "
+                                       f"(exit {code})") from None
                 if data != b"S":
                     return plan_result_t.decode(data)
                 t0 = time.monotonic()

@@ -45,6 +45,8 @@ class Roboplan:
             scene = core.Scene("mpb", desc)
             if problem.srdf:
                 scene.importSrdf(problem.srdf)
+            # Adjacent links may touch, in mpbench's matrix as in MoveIt's.
+            scene.allowAdjacentLinkCollisions()
             scene.addGroup(GROUP, problem.joints)
         except Exception as e:
             raise peer.InvalidRequest(f"roboplan refuses the robot: {e}") \
@@ -85,7 +87,16 @@ class Roboplan:
                         dtype=float)
         idx = [model["names"].index(j) for j in model["joints"]]
         full[idx] = start
-        scene.setJointPositions(full)
+        # Pinocchio holds a continuous joint as (cos, sin): roboplan's
+        # own expand/collapse converts, as its users do.
+        expand = lambda q: core.expandContinuousJointPositions(  # noqa: E731
+            scene, GROUP, np.array(q, dtype=float))
+        collapse = lambda q: core.collapseContinuousJointPositions(  # noqa: E731
+            scene, GROUP, np.array(q, dtype=float))
+        if len(full) == len(idx):
+            scene.setJointPositions(expand(full))
+        else:
+            scene.setJointPositions(full)
         scene.setRngSeed(seed & 0x7FFFFFFF)
         opts = rrt.RRTOptions()
         opts.group_name = GROUP
@@ -94,8 +105,8 @@ class Roboplan:
         planner = rrt.RRT(scene, opts)
         planner.setRngSeed(seed & 0x7FFFFFFF)
         joints = model["joints"]
-        a = core.JointConfiguration(joints, np.array(start, dtype=float))
-        b = core.JointConfiguration(joints, np.array(goals[0], dtype=float))
+        a = core.JointConfiguration(joints, expand(start))
+        b = core.JointConfiguration(joints, expand(goals[0]))
         t0 = time.monotonic()
         try:
             path = planner.plan(a, b)
@@ -104,7 +115,7 @@ class Roboplan:
         t_raw = time.monotonic() - t0
         if path is None or len(path.positions) == 0:
             return [], plan_result_t.TIMEOUT, "roboplan: no path", []
-        raw = [list(map(float, q)) for q in path.positions]
+        raw = [list(map(float, collapse(q))) for q in path.positions]
         stages = [("raw", t_raw, raw)]
         sopts = core.PathShortcuttingOptions()
         sopts.group_name = GROUP
@@ -112,7 +123,7 @@ class Roboplan:
         t1 = time.monotonic()
         short = core.PathShortcutter(scene, sopts).shortcut(path)
         stages.append(("shortcut", time.monotonic() - t1,
-                       [list(map(float, q)) for q in short.positions]))
+                       [list(map(float, collapse(q))) for q in short.positions]))
         return stages, plan_result_t.SOLVED, "", []
 
 
