@@ -36,6 +36,7 @@ import time
 
 from mpb import goal_t, named_value_t, plan_request_t, plan_result_t, stage_t
 
+from mpbplanner import solve as kit_solve
 from mpbplanner.memory import Watch
 from mpbplanner.node import Auth, Node
 from mpbplanner.world import World, WorldError
@@ -241,6 +242,16 @@ class Problem:
         self.held = dict(zip(req.held_names, req.held_values))
 
 
+def write_obj(path, shape):
+    """A scene's mesh shape as an OBJ file (for libraries that load meshes
+    from files only)."""
+    with open(path, "w") as f:
+        for v in shape.vertices:
+            f.write(f"v {v[0]!r} {v[1]!r} {v[2]!r}\n")
+        for t in shape.triangles:
+            f.write(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n")
+
+
 def acm_pairs(srdf):
     """The SRDF's disable_collisions pairs."""
     return re.findall(r'<disable_collisions\s+link1="([^"]+)"\s+'
@@ -299,34 +310,17 @@ class Peer:
         return time.monotonic() - t0
 
     def _goals(self, req, deadline):
-        g = req.goal
-        n = self.world.num_joints
-        if g.kind == goal_t.JOINTS:
-            if g.num_joints != n:
-                raise InvalidRequest(f"goal has {g.num_joints} joints, the "
-                                     f"robot {n}")
-            return [list(g.joints)]
-        if g.kind != goal_t.POSE_REGION:
-            raise InvalidRequest(f"unknown goal kind {g.kind}")
-        if getattr(self.adapter, "GOAL_REGIONS", False) is None:
+        """The joint goal, or up to five collision-free IK samples inside
+        the pose region: the Python planner's own sampling (solve.py)."""
+        if req.goal.kind == goal_t.POSE_REGION and \
+                getattr(self.adapter, "GOAL_REGIONS", False) is None:
             raise InvalidRequest(f"{self.adapter.NAME} takes joint goals "
                                  f"only")
         try:
-            region = self.world.goal_region(
-                g.link, g.position, g.position_tolerance, g.orientation_rpy,
-                g.orientation_tolerance)
-        except WorldError as e:
+            return kit_solve._goal_configs(self.world, req, self.world,
+                                           deadline)
+        except kit_solve.InvalidRequest as e:
             raise InvalidRequest(str(e)) from None
-        rng = [req.seed & 0xFFFFFFFFFFFFFFFF]
-        goals = []
-        for attempt in range(50):
-            if len(goals) == 5 or time.monotonic() >= deadline:
-                break
-            seed = list(req.start) if attempt % 8 == 0 else None
-            q = self.world.sample_goal(region, seed, rng)
-            if q is not None and self.world.free(q):
-                goals.append(q)
-        return goals
 
     def solve(self, req, ready=lambda: None):
         """The result of one request; ready() is called once the models

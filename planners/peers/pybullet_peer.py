@@ -51,11 +51,7 @@ class PybulletPlanning:
             else:
                 path = os.path.join(os.path.dirname(problem.urdf_path),
                                     f"scene{k}.obj")
-                with open(path, "w") as f:
-                    for v in s.vertices:
-                        f.write(f"v {v[0]!r} {v[1]!r} {v[2]!r}\n")
-                    for t in s.triangles:
-                        f.write(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n")
+                peer.write_obj(path, s)
                 body = pp.create_obj(path)
             pp.set_pose(body, (tuple(s.position), tuple(s.quat)))
             obstacles.append(body)

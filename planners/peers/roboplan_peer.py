@@ -24,14 +24,6 @@ import peer
 GROUP = "mpb_group"
 
 
-def _write_obj(path, shape):
-    with open(path, "w") as f:
-        for v in shape.vertices:
-            f.write(f"v {v[0]!r} {v[1]!r} {v[2]!r}\n")
-        for t in shape.triangles:
-            f.write(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n")
-
-
 class Roboplan:
     NAME = "roboplan"
     DESCRIPTION = ("roboplan 0.7.0: RRT (and its rrt_connect option) on "
@@ -67,7 +59,7 @@ class Roboplan:
             else:
                 path = os.path.join(os.path.dirname(problem.urdf_path),
                                     f"{name}.obj")
-                _write_obj(path, s)
+                peer.write_obj(path, s)
                 scene.addMeshGeometry(name, "universe", core.Mesh(path),
                                       tform, color)
         # roboplan checks scene objects against each other too; the
