@@ -29,10 +29,15 @@ panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
 export MPB_MESH_PATH=$panda MPB_BUILD
 # A sanitized libmpbench loads into Python only after the ASan runtime
 # (as planners/python/CMakeLists.txt does for the Python planner).
+# A sanitized libmpbench loads into Python only after the ASan runtime,
+# and the libraries' wheels (their own static libstdc++) do not run under
+# it: ASan's __cxa_throw interceptor finds no real one and aborts (seen in
+# matplotlib's ft2font, which mplib imports). Their C++ is not ours to
+# check; the plain build runs this test.
 if ldd "$MPB_BUILD/libmpbench/libmpbench.so" 2>/dev/null | grep -q libasan; then
-    LD_PRELOAD=$(cc -print-file-name=libasan.so)
-    ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0:allocator_may_return_null=1"
-    export LD_PRELOAD ASAN_OPTIONS
+    echo "skipped: a sanitized build; the peers' wheels do not run under ASan"
+    echo "0 passed, 0 failed, 1 skipped"
+    exit 0
 fi
 
 work=$(mktemp -d)
