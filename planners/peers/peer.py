@@ -16,8 +16,9 @@ pybullet's) would otherwise silence the kit's heartbeats, and the daemon
 would take the planner for gone. The worker measures the run's peak
 memory (the kit's Watch) and enforces its memory_limit; the serving
 process answers TIMEOUT, and starts a new worker, when one has not
-answered by the time limit plus 0.3 s (the library's own limit comes
-first).
+answered by the time limit plus 0.3 s after its model was built, or 4.5 s
+past the time limit after the request (mpbenchd waits 5); the library's
+own limit comes first.
 
 Timing: building the library's model (and the kit's World) is reported as
 world_setup_time, outside time_total; each stage's time is the library's
@@ -386,6 +387,7 @@ class Peer:
 
 GRACE_S = 0.3        # past the time limit, the worker is stopped
 SETUP_MAX_S = 120.0  # at most this long to build a library's model
+DAEMON_GRACE_S = 5.0  # mpbenchd's wait past the time limit (daemon.h)
 
 
 def _die_with_parent():
@@ -468,6 +470,10 @@ class Worker:
 
     def solve(self, req):
         t0 = time.monotonic()
+        # mpbenchd gives up on a run 5 s past its time limit, counted from
+        # its request (MPBD_DEADLINE_GRACE_S): a slow model build must not
+        # push the answer past it, or the run is stored as a crash.
+        last = t0 + req.time_limit + DAEMON_GRACE_S - 0.5
         self.conn.send_bytes(req.encode())
         # Building the models may come first: not the run's time, so the
         # deadline starts when the worker says planning starts (b"S").
@@ -492,14 +498,16 @@ class Worker:
                 self._start()
                 raise RuntimeError(f"{self.adapter.NAME}'s worker died "
                                    f"(exit {code})")
-            if time.monotonic() - t0 > limit:
+            if time.monotonic() - t0 > limit or time.monotonic() > last:
                 self._restart()
                 res = plan_result_t()
                 res.stages, res.values, res.progress = [], [], []
                 res.num_stages = res.num_values = res.num_progress = 0
                 res.status = plan_result_t.TIMEOUT
                 res.message = (f"{self.adapter.NAME} did not return by the "
-                               f"time limit plus {GRACE_S} s: stopped")
+                               f"time limit plus {GRACE_S} s after its model "
+                               f"was built, or {DAEMON_GRACE_S - 0.5:g} s "
+                               f"after the request: stopped")
                 res.time_total = time.monotonic() - t0
                 return res
 
