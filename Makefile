@@ -8,7 +8,11 @@
 #               into .cache/robots (tools/robot_data.sh), and OMPL's
 #               ompl_benchmark_statistics.py from Debian's source package
 #               of the installed OMPL into .cache/ompl-peer, which the
-#               import parity test runs (bench/ompl_peer.sh) (idempotent)
+#               import parity test runs (bench/ompl_peer.sh), and the peer
+#               planners' libraries (ompl 2, roboplan, mplib,
+#               pybullet-planning), each pinned by hash into its own
+#               environment under .cache/peers (tools/peers_env.sh)
+#               (idempotent)
 #   make        build everything into build/
 #   make test   deps, build, run every test (unit and integration)
 #   make demo   deps, build, run the demo benchmark, print its report
@@ -38,6 +42,7 @@ deps:
 	@sh tools/web_env.sh
 	@sh tools/robot_data.sh >/dev/null
 	@sh bench/ompl_peer.sh >/dev/null
+	@sh tools/peers_env.sh
 
 test: deps
 	$(MAKE) all

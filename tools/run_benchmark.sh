@@ -24,8 +24,10 @@ print its report. Stop with Ctrl-C; the same command resumes.
 Options:
   -d, --db FILE        the results database (default: ./mpbench.db)
   -p, --planners LIST  planner processes to start, comma-separated, from
-                       null, ompl, arastar, python (default: every one that
-                       is built)
+                       null, ompl, arastar, python, and the peers ompl2,
+                       roboplan, mplib, pybullet_planning (default: every
+                       one that is built, the peers whose environments
+                       make deps made)
   -n, --copies N       processes of each planner (default 1; more than one
                        per core skews timings)
   -f, --format FORMAT  the report's format: text, markdown, csv, latex, json
@@ -130,6 +132,8 @@ done
 planner_program() {
     case $1 in
         null|ompl|arastar|python) echo "$MPB_BUILD/planners/$1/mpb-planner-$1" ;;
+        ompl2|roboplan|mplib|pybullet_planning)
+            echo "$root/planners/peers/mpb-planner-$1" ;;
         *) return 1 ;;
     esac
 }
@@ -140,10 +144,14 @@ elif [ -z "$planners" ]; then
     for p in null ompl arastar python; do
         [ -x "$(planner_program $p)" ] && planners="$planners $p"
     done
+    # The peers whose environments `make deps` made (tools/peers_env.sh).
+    for p in ompl2 roboplan mplib pybullet_planning; do
+        [ -x "$root/.cache/peers/$p/bin/python3" ] && planners="$planners $p"
+    done
 fi
 for p in $planners; do
     prog=$(planner_program "$p") || {
-        echo "run_benchmark: unknown planner '$p' (null, ompl, arastar, python)" >&2
+        echo "run_benchmark: unknown planner '$p' (null, ompl, arastar, python, ompl2, roboplan, mplib, pybullet_planning)" >&2
         exit 2
     }
     [ -x "$prog" ] || {

@@ -44,6 +44,7 @@ const ROWS = {
   "kappa'_r (Mean, rad^2)": ['smoothness_resampled', 'mean'],
   "kappa'_r (sigma, rad^2)": ['smoothness_resampled', 'sigma'],
   'waypoints (Mean)': ['waypoints', 'mean'],
+  'claimed s_r (%)': ['claimed_success_rate', null],
   's_r (%)': ['success_rate', null],
 };
 
@@ -93,8 +94,8 @@ function checkTables(tables) {
         const p = scene.planners[i];
         if (!p) return;
         let x;
-        if (what[0] === 'success_rate')
-          x = p.success_rate === null ? null : 100 * p.success_rate;
+        if (what[0] === 'success_rate' || what[0] === 'claimed_success_rate')
+          x = p[what[0]] === null ? null : 100 * p[what[0]];
         else
           x = p.metrics[what[0]][what[1]];
         cells++;

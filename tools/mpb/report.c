@@ -103,6 +103,9 @@ void report_rows_init(void)
         if ((flags & MPB_METRIC_F_TABLE) && (flags & MPB_METRIC_F_SIGMA))
             add_metric_row(id, SHOW_SIGMA);
     }
+    /* The planner's own claim of success beside mpbench's verdict. */
+    report_rows[report_num_rows++] = (table_row){
+        "claimed s_r (%)", "claimed $s_r$ (\\%)", 0, SHOW_CLAIMED, 0, 1};
     report_rows[report_num_rows++] = (table_row){
         "s_r (%)", "$s_r$ (\\%)", 0, SHOW_RATE, 0, 1};
 }
@@ -151,6 +154,8 @@ static void usage(FILE *out)
         "  kappa'_r             the same of the path cut into 100 equal\n"
         "                       pieces, whatever its waypoints, when measured\n"
         "  waypoints            number of waypoints\n"
+        "  claimed s_r          runs the planner said it solved / finished\n"
+        "                       runs (%%): its own claim, beside s_r\n"
         "  s_r                  successful runs / finished runs (%%)\n"
         "Means are over successful runs; sigma is the standard deviation of\n"
         "each query's successful runs, averaged over the scene's queries;\n"
@@ -329,6 +334,9 @@ static int on_result(void *ud, const mpb_result_row *row)
     /* And the planner's peak memory, a run's cost whatever its end: a
      * run stopped by memory_limit too (as Planner Arena plots it). */
     add_sample(&c->m[M_MEM], row->memory);
+    /* The planner's own claim (SOLVED), verified or not. */
+    if (row->status && strcmp(row->status, "solved") == 0)
+        c->claimed++;
     if (!row->success)
         return 0;
     c->succeeded++;
@@ -416,6 +424,7 @@ long report_scene_columns(const report *r, int si, column *cols)
     long finished = 0;
     for (int c = 0; c < r->num_configs; c++) {
         cols[c].finished = cols[c].succeeded = cols[c].stage_invalid = 0;
+        cols[c].claimed = 0;
         for (int k = 0; k < M_COUNT; k++)
             mpb_grouped_init(&cols[c].m[k]);
         for (int q = 0; q < r->num_queries; q++) {
@@ -425,6 +434,7 @@ long report_scene_columns(const report *r, int si, column *cols)
                                          (size_t)q];
             cols[c].finished += cl->finished;
             cols[c].succeeded += cl->succeeded;
+            cols[c].claimed += cl->claimed;
             cols[c].stage_invalid += cl->stage_invalid;
             for (int k = 0; k < M_COUNT; k++)
                 mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
@@ -454,6 +464,10 @@ double report_row_value(const table_row *tr, const column *c)
         return report_sigma(&c->m[tr->metric]);
     case SHOW_RATE:
         return c->finished > 0 ? 100.0 * (double)c->succeeded /
+                                     (double)c->finished
+                               : NAN;
+    case SHOW_CLAIMED:
+        return c->finished > 0 ? 100.0 * (double)c->claimed /
                                      (double)c->finished
                                : NAN;
     }

@@ -30,7 +30,7 @@ typedef struct metric_info {
 } metric_info;
 extern const metric_info report_metrics[M_COUNT];
 
-typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE } show;
+typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE, SHOW_CLAIMED } show;
 
 typedef struct table_row {
     const char *label;      /* text and Markdown */
@@ -43,7 +43,7 @@ typedef struct table_row {
 
 /* The paper's rows, in its order, then the list's other metrics;
  * report_rows_init() fills them (once; later calls do nothing). */
-#define REPORT_MAX_ROWS (2 * M_COUNT + 1)
+#define REPORT_MAX_ROWS (2 * M_COUNT + 2)
 extern table_row report_rows[REPORT_MAX_ROWS];
 extern int report_num_rows;
 void report_rows_init(void);
@@ -51,6 +51,8 @@ void report_rows_init(void);
 /* One planner configuration on one query, or (folded) on one scene. */
 typedef struct column {
     long        finished, succeeded;
+    long        claimed;        /* finished runs the planner said it
+                                   solved (verified or not) */
     long        stage_invalid;  /* successful runs whose --stage failed
                                    verification: its metrics left out */
     mpb_grouped m[M_COUNT];     /* successful runs; M_WS: every finished

@@ -210,6 +210,13 @@ int report_write_csv(const report *r, FILE *out)
                                          : NAN, out);
             fprintf(out, ",,%ld,%d,\n", col->finished,
                     r->scenes[si].unfinished);
+            /* The planner's own claim, beside it. */
+            csv_row_start(r, si, c, "claimed_success_rate", "", out);
+            csv_number(col->finished > 0 ? (double)col->claimed /
+                                               (double)col->finished
+                                         : NAN, out);
+            fprintf(out, ",,%ld,%d,\n", col->finished,
+                    r->scenes[si].unfinished);
         }
         scene_table_free(&t);
     }
@@ -402,6 +409,11 @@ int report_write_json(const report *r, FILE *out)
                     "          \"success_rate\": ", col->finished,
                     col->succeeded);
             json_number(col->finished > 0 ? (double)col->succeeded /
+                                                (double)col->finished
+                                          : NAN, out);
+            fprintf(out, ",\n          \"claimed_successes\": %ld,\n"
+                    "          \"claimed_success_rate\": ", col->claimed);
+            json_number(col->finished > 0 ? (double)col->claimed /
                                                 (double)col->finished
                                           : NAN, out);
             fputs(",\n          \"metrics\": {", out);
