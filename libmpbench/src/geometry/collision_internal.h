@@ -2,9 +2,11 @@
  * collision_internal.h - private to libmpbench and its tests: slow reference
  * answers of the collision world (collision_fcl.cpp), every pair through
  * FCL's narrow phase with no broad phase and no bounds, to check the fast
- * queries of collision.h against; the mesh extents they rest on; and
- * the pair distance and hints that the wrist tables (wrist_table.h) are
- * built from and speak through.
+ * queries of collision.h against, and the mesh extents they rest on (these
+ * four are test support: defined in tests/support/collision_reference.cpp,
+ * linked only into the tests, never into libmpbench); and the pair
+ * distance and hints that the wrist tables (wrist_table.h) are built from
+ * and speak through (in the library).
  */
 #ifndef MPB_COLLISION_INTERNAL_H
 #define MPB_COLLISION_INTERNAL_H
