@@ -548,7 +548,7 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
     static const char *const keys[] = {"name", "runs", "time_limit", "seed",
                                        "retries", "runs_per_host",
                                        "queue_at_planner", "memory_limit",
-                                       NULL};
+                                       "verification", NULL};
     yaml_node_t *m = need(L, root, "experiment", YAML_MAPPING_NODE,
                           "a mapping of name, runs, time_limit, seed");
     yaml_node_t *n;
@@ -587,6 +587,15 @@ static int load_settings(loader *L, mpbd_experiment *e, yaml_node_t *root)
             return fail_at(L, n, "memory_limit must be MB above 0 and at "
                            "most 1048576 (1 TB), not '%s'", scalar(n));
     }
+    /* How segments are checked (mpb_verification, docs/verification.md). */
+    if ((n = get(L, m, "verification")) != NULL) {
+        const char *v = scalar(n);
+        if (v && strcmp(v, "sampled") == 0)
+            e->verification = MPB_VERIFY_SAMPLED;
+        else if (!v || strcmp(v, "certified") != 0)
+            return fail_at(L, n, "verification must be certified or sampled, "
+                           "not '%s'", v ? v : "");
+    }
     return 0;
 }
 
@@ -608,6 +617,8 @@ static int open_world(loader *L, mpbd_experiment *e, mpbd_scene *sc,
                                      dir[0] ? dir : NULL, sc->scene_format,
                                      sc->scene, (const char *const *)e->group,
                                      e->num_group, &sc->world, why, sizeof why);
+    if (rc == MPB_OK)
+        mpb_world_set_verification(sc->world, (mpb_verification)e->verification);
     const char *goes_with = mpb_world_scene_format(sc->robot_format);
     if (rc == MPB_EUNSUPPORTED &&
         (goes_with == NULL || strcmp(goes_with, sc->scene_format) != 0)) {

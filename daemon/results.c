@@ -85,6 +85,9 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
                         st->num_waypoints, st->num_joints, d->resolution,
                         &w->verdict);
     }
+    w->rec.verification = NULL;
+    if (w->verdict.code == MPB_VERDICT_VALID || w->verdict.code == MPB_VERDICT_COLLISION)
+        w->rec.verification = w->verdict.certified ? "certified" : "sampled";
     w->rec.valid = w->verdict.code == MPB_VERDICT_VALID;
     w->rec.verdict = mpb_verdict_name(w->verdict.code);
     w->rec.verdict_detail = w->verdict.detail;

@@ -245,6 +245,11 @@ typedef struct mpb_stage_record {
     int           verdict_segment;/* first failing segment, -1 if none */
     int           num_metrics;
     const mpb_named *metrics;     /* path_length, smoothness, ... */
+    const char   *verification;   /* how its segments were checked for
+                                     collision: "certified" (proved, or a
+                                     colliding configuration found),
+                                     "sampled" (mpb_verdict.certified 0),
+                                     NULL when the check did not run */
 } mpb_stage_record;
 
 /* A planner value that is an integer, kept exactly: the record's

@@ -338,15 +338,7 @@ int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
     if (!c)
         return MPB_EINVAL;
     return guarded(c, [&]() -> int {
-        if (c->pairs_dirty) {
-            size_t n = c->movables.size();
-            c->self_pairs.clear();
-            for (size_t i = 0; i < n; i++)
-                for (size_t j = i + 1; j < n; j++)
-                    if (!c->is_allowed(i, j))
-                        c->self_pairs.emplace_back((int)i, (int)j);
-            c->pairs_dirty = false;
-        }
+        ensure_self_pairs(c);
         for (const auto &pr : c->self_pairs) {
             const Movable &mi = c->movables[(size_t)pr.first];
             const Movable &mj = c->movables[(size_t)pr.second];
@@ -596,18 +588,7 @@ double mpb__collision_pair_distance(mpb_collision *c, int a, int b, double below
         return nan;
     double best = below;
     int rc = guarded(c, [&]() -> int {
-        for (int si : ma->shapes)
-            for (int sj : mb->shapes) {
-                const Shape &x = c->mshapes[(size_t)si], &y = c->mshapes[(size_t)sj];
-                sync(x);
-                sync(y);
-                /* FCL keeps only what is nearer than the result holds:
-                 * started at the best so far, it skips the rest. */
-                c->dres.clear();
-                c->dres.min_distance = best;
-                double d = fcl::distance(x.obj.get(), y.obj.get(), c->dreq, c->dres);
-                best = std::min(best, d < 0 ? 0.0 : d);
-            }
+        best = movables_distance(c, *ma, *mb, below);
         return MPB_OK;
     });
     return rc == MPB_OK ? best : nan;

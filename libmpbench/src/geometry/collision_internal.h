@@ -69,6 +69,28 @@ double mpb__collision_pair_distance(mpb_collision *c, int a, int b, double below
  */
 int mpb__collision_hint_apart(mpb_collision *c, int a, int b);
 
+/*
+ * For certified verification (collision_sweep.cpp): how far any point of
+ * movable body id's shapes lies from the body's own frame origin (m), an
+ * upper bound from each shape's bounding sphere; NaN for an unknown id.
+ */
+double mpb__collision_body_reach(mpb_collision *c, int id);
+
+/*
+ * Conservative advancement's step where the bodies stand now. rate[id]
+ * (num_rates entries, by movable id; ids past the array count 0) bounds
+ * how far any point of body id can move per unit of the caller's
+ * parameter s. *step is the largest ds <= want such that no pair the
+ * collision checks test (movable against static, allowed statics
+ * excepted; movable pairs not allowed) can touch while s advances by ds:
+ * min over those pairs of (distance - margin) / (rate of approach); 0 if
+ * some pair is within margin; want if none limits it. Pairs that cannot
+ * approach (rate 0) are left out: their distance does not change. MPB_OK;
+ * MPB_EINVAL for bad arguments (a negative or non-finite rate).
+ */
+int mpb__collision_safe_step(mpb_collision *c, const double *rate, int num_rates,
+                             double margin, double want, double *step);
+
 #ifdef __cplusplus
 }
 #endif

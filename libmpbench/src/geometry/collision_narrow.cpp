@@ -220,5 +220,46 @@ bool hinted_apart(const mpb_collision *c, int i, int j)
     return false;
 }
 
+/* FCL's distance between movables mi and mj, or `below` if it is at
+ * least that (FCL then skips what is further). */
+double movables_distance(mpb_collision *c, const Movable &mi, const Movable &mj,
+                         double below)
+{
+    double best = below;
+    if (box_dist2(mi.box, mj.box) >= below * below)
+        return below;
+    for (int si : mi.shapes)
+        for (int sj : mj.shapes) {
+            const Shape &x = c->mshapes[(size_t)si], &y = c->mshapes[(size_t)sj];
+            if (box_dist2(x.box, y.box) >= best * best)
+                continue;
+            sync(x);
+            sync(y);
+            /* FCL keeps only what is nearer than the result holds:
+             * started at the best so far, it skips the rest. */
+            c->dres.clear();
+            c->dres.min_distance = best;
+            double d = fcl::distance(x.obj.get(), y.obj.get(), c->dreq, c->dres);
+            best = std::min(best, d < 0 ? 0.0 : d);
+            if (best <= 0)
+                return 0.0;
+        }
+    return best;
+}
+
+/* c->self_pairs made again if the allowed pairs changed. */
+void ensure_self_pairs(mpb_collision *c)
+{
+    if (!c->pairs_dirty)
+        return;
+    size_t n = c->movables.size();
+    c->self_pairs.clear();
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++)
+            if (!c->is_allowed(i, j))
+                c->self_pairs.emplace_back((int)i, (int)j);
+    c->pairs_dirty = false;
+}
+
 } // namespace coll
 } // namespace mpb

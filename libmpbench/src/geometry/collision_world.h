@@ -411,6 +411,13 @@ bool nearest_points(mpb_collision *c, const Obj *a, const Obj *b, double dist,
                     fcl::Vector3d &pa, fcl::Vector3d &pb);
 bool bodies_touch(mpb_collision *c, const Movable &mi, const Movable &mj);
 bool hinted_apart(const mpb_collision *c, int i, int j);
+/* FCL's distance between movables mi and mj (their boxes first), or
+ * `below` if it is at least that. */
+double movables_distance(mpb_collision *c, const Movable &mi, const Movable &mj,
+                         double below);
+/* c->self_pairs: the movables i < j not allowed to touch, made again if
+ * the allowed pairs changed. */
+void ensure_self_pairs(mpb_collision *c);
 
 } // namespace coll
 } // namespace mpb
