@@ -71,6 +71,8 @@ check "... and its stage says the verdict was proved (certified)" \
              AND s.verdict = 'collision' AND s.verification = 'certified'")" 1
 check "every valid stage of the planar arm is certified free" \
     eq "$(q "SELECT count(*) FROM stages WHERE valid = 1 AND verification IS NOT 'certified'")" 0
+"$MPB_BUILD/tools/mpb" report "$DB" | grep -q "^Collision checks: [1-9][0-9]* stages certified, 0 sampled"
+check "... and mpb report counts the certified and sampled stages" eq $? 0
 check "the free straight line of small_move succeeds" \
     eq "$(q "SELECT success FROM results WHERE planner = 'null/straight_line' AND query = 'small_move'")" 1
 

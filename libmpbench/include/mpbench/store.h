@@ -388,6 +388,16 @@ int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
                                             int unfinished),
                                   void *ud);
 
+/*
+ * How the experiment's stages were checked for collision
+ * (stages.verification, docs/verification.md): the number stored
+ * "certified" and "sampled" into *certified and *sampled (stages whose
+ * verdict came before the check, or stored before the column, count in
+ * neither). MPB_OK or MPB_EDB.
+ */
+int mpb_store_verification_counts(mpb_store *s, int64_t experiment_id,
+                                  long *certified, long *sampled);
+
 /* One finished run, as mpb_store_results() gives it. */
 typedef struct mpb_result_row {
     int64_t     run_id;
