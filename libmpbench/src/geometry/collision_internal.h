@@ -91,6 +91,17 @@ double mpb__collision_body_reach(mpb_collision *c, int id);
 int mpb__collision_safe_step(mpb_collision *c, const double *rate, int num_rates,
                              double margin, double want, double *step);
 
+/*
+ * As mpb__collision_safe_step(), with the rate of approach of a pair of
+ * movables (ids a, b) from pair_rate(ud, a, b) instead of rate[a] +
+ * rate[b]: the caller may know a tighter bound (two links of one chain
+ * move together with every joint above both). pair_rate NULL: the sum.
+ */
+int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
+                                   int num_rates, double (*pair_rate)(void *ud,
+                                   int a, int b), void *ud, double margin,
+                                   double want, double *step);
+
 #ifdef __cplusplus
 }
 #endif

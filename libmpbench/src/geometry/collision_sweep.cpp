@@ -80,6 +80,15 @@ double mpb__collision_body_reach(mpb_collision *c, int id)
 int mpb__collision_safe_step(mpb_collision *c, const double *rate, int num_rates,
                              double margin, double want, double *step)
 {
+    return mpb__collision_safe_step_pairs(c, rate, num_rates, nullptr, nullptr,
+                                          margin, want, step);
+}
+
+int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
+                                   int num_rates, double (*pair_rate)(void *ud,
+                                   int a, int b), void *ud, double margin,
+                                   double want, double *step)
+{
     if (!c || !step || (num_rates > 0 && !rate) || !(margin >= 0) || !(want > 0))
         return MPB_EINVAL;
     *step = 0.0;
@@ -110,6 +119,13 @@ int mpb__collision_safe_step(mpb_collision *c, const double *rate, int num_rates
             double r = rate_of(c, i, rate, num_rates) + rate_of(c, j, rate, num_rates);
             if (!mi.enabled || !mj.enabled || !(r > 0))
                 continue;
+            if (pair_rate) {
+                r = pair_rate(ud, mi.id, mj.id);
+                if (!(r >= 0) || !std::isfinite(r))
+                    return MPB_EINVAL;
+                if (!(r > 0))
+                    continue;   /* they move as one: their distance stays */
+            }
             double d = movables_distance(c, mi, mj, best * r + margin);
             best = std::min(best, std::max(0.0, (d - margin) / r));
         }

@@ -23,6 +23,12 @@
  * (mpb__collision_body_reach: each shape's bounding sphere). The bound
  * holds for every configuration of the motion, not only where it is
  * taken; the rate of a body is that sum, in m per unit s.
+ *
+ * Two bodies of the robot: a motion of the joints above both of them (up
+ * to their lowest common ancestor link) moves them together, rigidly,
+ * and changes no distance between them. Seen from that ancestor's frame
+ * only the joints below it move them, so their rate of approach is the
+ * sum of the two walks stopped there.
  */
 #include "mpbench/mpbench.h"
 #include "mpbench/robot.h"
@@ -48,12 +54,13 @@ static double joint_rate(const mpb_robot *r, const mpb_robot_link *l,
     return 0.0;
 }
 
-/* The rate (m per unit s) of a body of the given reach on link l. */
+/* The rate (m per unit s) of a body of the given reach on link l, from
+ * the joints between it and link stop (-1: the root). */
 static double body_rate(const mpb_robot *r, const mpb_pose *poses, int l,
-                        double reach, const double *d)
+                        double reach, const double *d, int stop)
 {
     double rate = 0.0, acc = reach;
-    while (l >= 0) {
+    while (l >= 0 && l != stop) {
         const mpb_robot_link *link = mpb_robot_get_link(r, l);
         if (!link || link->parent < 0)
             break;
@@ -79,6 +86,40 @@ static double body_rate(const mpb_robot *r, const mpb_pose *poses, int l,
     return rate;
 }
 
+/* What pair_rate() reads: the robot where it stands, the motion, and
+ * each body's link and reach by movable id. */
+typedef struct sweep {
+    const mpb_robot *r;
+    const mpb_pose  *poses;
+    const double    *d;
+    const int       *link;      /* by movable id, -1 for none */
+    const double    *reach;
+    int              ids;
+} sweep;
+
+/* Is link a an ancestor of link b (or b itself)? */
+static int above(const mpb_robot *r, int a, int b)
+{
+    for (; b >= 0; b = mpb_robot_get_link(r, b)->parent)
+        if (b == a)
+            return 1;
+    return 0;
+}
+
+/* The rate at which movables a and b may approach (see the top). */
+static double pair_rate(void *ud, int a, int b)
+{
+    const sweep *w = ud;
+    if (a < 0 || b < 0 || a >= w->ids || b >= w->ids || w->link[a] < 0 ||
+        w->link[b] < 0)
+        return NAN;
+    int la = w->link[a], lb = w->link[b], c = la;
+    while (c >= 0 && !above(w->r, c, lb))
+        c = mpb_robot_get_link(w->r, c)->parent;
+    return body_rate(w->r, w->poses, la, w->reach[a], w->d, c) +
+           body_rate(w->r, w->poses, lb, w->reach[b], w->d, c);
+}
+
 int mpb__urdf_safe_step(const mpb_robot *r, mpb_collision *coll,
                         const mpb_pose *poses, const int *attached,
                         const int *attached_link, int num_attached,
@@ -90,18 +131,28 @@ int mpb__urdf_safe_step(const mpb_robot *r, mpb_collision *coll,
         if (nl + attached[i] + 1 > ids)
             ids = nl + attached[i] + 1;
     double *rate = calloc((size_t)ids + 1, sizeof *rate);
-    if (!rate)
+    double *reach_of = calloc((size_t)ids + 1, sizeof *reach_of);
+    int *link_of = malloc(((size_t)ids + 1) * sizeof *link_of);
+    if (!rate || !reach_of || !link_of) {
+        free(rate);
+        free(reach_of);
+        free(link_of);
         return MPB_ENOMEM;
+    }
+    for (int i = 0; i <= ids; i++)
+        link_of[i] = -1;
     int rc = MPB_OK;
     for (int l = 0; l < nl && rc == MPB_OK; l++) {
         const mpb_robot_link *link = mpb_robot_get_link(r, l);
-        if (!link->moves || link->num_collisions == 0)
+        if (link->num_collisions == 0)
             continue;
         double reach = mpb__collision_body_reach(coll, l);
         if (!isfinite(reach))
             rc = MPB_EINVAL;
-        else
-            rate[l] = body_rate(r, poses, l, reach, d);
+        else if (link->moves)
+            rate[l] = body_rate(r, poses, l, reach, d, -1);
+        link_of[l] = l;
+        reach_of[l] = reach;
     }
     for (int i = 0; i < num_attached && rc == MPB_OK; i++) {
         int id = nl + attached[i];
@@ -109,13 +160,19 @@ int mpb__urdf_safe_step(const mpb_robot *r, mpb_collision *coll,
         if (!isfinite(reach))
             rc = MPB_EINVAL;
         else
-            rate[id] = body_rate(r, poses, attached_link[i], reach, d);
+            rate[id] = body_rate(r, poses, attached_link[i], reach, d, -1);
+        link_of[id] = attached_link[i];
+        reach_of[id] = reach;
     }
     for (int i = 0; i <= ids - 1 && rc == MPB_OK; i++)
         if (!isfinite(rate[i]))
             rc = MPB_EINVAL;
+    sweep w = { r, poses, d, link_of, reach_of, ids };
     if (rc == MPB_OK)
-        rc = mpb__collision_safe_step(coll, rate, ids, margin, want, step);
+        rc = mpb__collision_safe_step_pairs(coll, rate, ids, pair_rate, &w,
+                                            margin, want, step);
     free(rate);
+    free(reach_of);
+    free(link_of);
     return rc;
 }
