@@ -37,7 +37,7 @@ static int load_settings(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
     static const char *const keys[] = {"name", "runs", "time_limit", "seed",
                                        "retries", "runs_per_host",
                                        "queue_at_planner", "memory_limit",
-                                       NULL};
+                                       "verification", NULL};
     yaml_node_t *m = need(L, root, "experiment", YAML_MAPPING_NODE,
                           "a mapping of name, runs, time_limit, seed");
     yaml_node_t *n;
@@ -75,6 +75,15 @@ static int load_settings(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
         if (!(e->memory_limit > 0 && e->memory_limit <= 1048576))
             return fail_at(L, n, "memory_limit must be MB above 0 and at "
                            "most 1048576 (1 TB), not '%s'", scalar(n));
+    }
+    /* How segments are checked (mpb_verification, docs/verification.md). */
+    if ((n = get(L, m, "verification")) != NULL) {
+        const char *v = scalar(n);
+        if (v && strcmp(v, "sampled") == 0)
+            e->verification = MPB_VERIFY_SAMPLED;
+        else if (!v || strcmp(v, "certified") != 0)
+            return fail_at(L, n, "verification must be certified or sampled, "
+                           "not '%s'", v ? v : "");
     }
     return 0;
 }

@@ -79,6 +79,8 @@ typedef struct mpbd_experiment {
     int     runs_per_host;   /* runs at once on one host (timings skew otherwise) */
     int     queue_at_planner;/* requests waiting at each busy planner */
     double  memory_limit;    /* MB a run's planning may add, 0: none */
+    int     verification;    /* mpb_verification of its worlds: certified
+                                (0) unless `verification: sampled` */
 
     char   *robot_file;      /* where the robot was read from, or NULL */
     char   *srdf_file;       /* robot.srdf, resolved, or NULL */

@@ -241,6 +241,8 @@ int mpbd_open_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc,
                                      dir[0] ? dir : NULL, sc->scene_format,
                                      sc->scene, (const char *const *)e->group,
                                      e->num_group, &sc->world, why, sizeof why);
+    if (rc == MPB_OK)
+        mpb_world_set_verification(sc->world, (mpb_verification)e->verification);
     const char *goes_with = mpb_world_scene_format(sc->robot_format);
     if (rc == MPB_EUNSUPPORTED &&
         (goes_with == NULL || strcmp(goes_with, sc->scene_format) != 0)) {

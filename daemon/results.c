@@ -81,6 +81,12 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
                           st->waypoints, st->num_waypoints, st->num_joints,
                           st->time, d->resolution, &w->m);
     }
+    /* Proved over the whole segment, or sampled where the proof could
+     * not close (docs/verification.md); a verdict of no path, none. */
+    w->rec.verification = NULL;
+    if (w->m.verdict.code == MPB_VERDICT_VALID ||
+        w->m.verdict.code == MPB_VERDICT_COLLISION)
+        w->rec.verification = w->m.verdict.certified ? "certified" : "sampled";
     w->rec.valid = w->m.verdict.code == MPB_VERDICT_VALID;
     w->rec.verdict = mpb_verdict_name(w->m.verdict.code);
     w->rec.verdict_detail = w->m.verdict.detail;

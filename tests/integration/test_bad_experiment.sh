@@ -65,6 +65,11 @@ experiment: {name: x, time_limit: 1, retries: -1}
 EOT
 bad_case bad_retries.yaml ":1:.*retries must be a whole number from 0 to 1000000000, not '-1'"
 
+cat >"$work/bad_verification.yaml" <<EOT
+experiment: {name: x, time_limit: 1, verification: often}
+EOT
+bad_case bad_verification.yaml ":1:.*verification must be certified or sampled, not 'often'"
+
 # 150 million runs: more than an experiment may have (the count wrapped
 # in an int before, and the runs filled the disk in one transaction).
 cat >"$work/too_many_runs.yaml" <<EOT

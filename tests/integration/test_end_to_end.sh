@@ -63,6 +63,16 @@ check "the null planner's line through the pillar is a claimed success" \
     eq "$(q "SELECT claimed_success FROM results WHERE planner = 'null/straight_line' AND query = 'over_the_pillar'")" 1
 check "... that verification rejects as a collision" \
     eq "$(q "SELECT count(*) FROM results WHERE planner = 'null/straight_line' AND query = 'over_the_pillar' AND verdict = 'collision' AND success = 0")" 1
+check "... and its stage says the verdict was proved (certified)" \
+    eq "$(q "SELECT count(*) FROM stages s JOIN runs r ON r.id = s.run_id
+             JOIN planner_configs c ON c.id = r.planner_config_id
+             JOIN queries qu ON qu.id = r.query_id
+             WHERE c.name = 'null/straight_line' AND qu.name = 'over_the_pillar'
+             AND s.verdict = 'collision' AND s.verification = 'certified'")" 1
+check "every valid stage of the planar arm is certified free" \
+    eq "$(q "SELECT count(*) FROM stages WHERE valid = 1 AND verification IS NOT 'certified'")" 0
+"$MPB_BUILD/tools/mpb" report "$DB" | grep -q "^Collision checks: [1-9][0-9]* stages certified, 0 sampled"
+check "... and mpb report counts the certified and sampled stages" eq $? 0
 check "the free straight line of small_move succeeds" \
     eq "$(q "SELECT success FROM results WHERE planner = 'null/straight_line' AND query = 'small_move'")" 1
 

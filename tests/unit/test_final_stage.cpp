@@ -42,8 +42,14 @@ int main()
     const std::vector<double> short_cut = {-1, 0, -1.5, 0};
     std::string why;
 
+    // Sampled (verification: sampled), a step of 2 rad checks the ends
+    // alone; certified, the default, proves or refuses the whole segment.
+    mpb_world_set_verification(w, MPB_VERIFY_SAMPLED);
     expect(mpb_ompl::stage_valid(w, through, 2, 2.0, nullptr),
            "a segment checked at its ends alone (step 2 rad) passes the circle unseen");
+    mpb_world_set_verification(w, MPB_VERIFY_CERTIFIED);
+    expect(!mpb_ompl::stage_valid(w, through, 2, 2.0, nullptr),
+           "... certified, whatever the step, it collides");
     expect(!mpb_ompl::stage_valid(w, through, 2, 0.01, &why),
            "... at the verifier's step (0.01 rad) it collides");
     expect(why.find("segment 0 collides") != std::string::npos,

@@ -129,14 +129,22 @@ static void test_resolution_sets_the_samples(void **state)
      * -1 -> 1 in one segment of length 2. Resolution 0.9: k = ceil(2/0.9)
      * = 3 samples at j1 = -1/3, 1/3, 1; 1.5 sin(1/3) = 0.49 > 0.15, all
      * free: the checker, as specified, misses the collision. Resolution 1:
-     * k = 2, the sample s = 1/2 is j1 = 0: collision at s=0.5.
+     * k = 2, the sample s = 1/2 is j1 = 0: collision at s=0.5. That is
+     * the sampled check (verification: sampled); the certified one, the
+     * default, finds the collision the samples miss.
      */
     const double goal[] = { 1, 0 };
     const double wp[] = { -1, 0,  1, 0 };
+    assert_int_equal(mpb_world_set_verification(*state, MPB_VERIFY_SAMPLED), MPB_OK);
     mpb_verdict v = run(*state, goal, wp, 2, 0.9);
     expect(&v, MPB_VERDICT_VALID, -1, NULL, NULL);
+    assert_int_equal(v.certified, 0);
     v = run(*state, goal, wp, 2, 1.0);
     expect(&v, MPB_VERDICT_COLLISION, 0, "segment 0", "s=0.5");
+    assert_int_equal(mpb_world_set_verification(*state, MPB_VERIFY_CERTIFIED), MPB_OK);
+    v = run(*state, goal, wp, 2, 0.9);
+    expect(&v, MPB_VERDICT_COLLISION, 0, "segment 0", NULL);
+    assert_int_equal(v.certified, 1);
 }
 
 static void test_goal(void **state)

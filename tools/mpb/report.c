@@ -374,7 +374,9 @@ static int gather(report *r, mpb_store *s)
         qsort(r->queries, (size_t)r->num_queries, sizeof *r->queries,
               cmp_query);
     if ((rc = mpb_store_unfinished_by_scene(s, r->experiment_id,
-                                            on_unfinished, r)))
+                                            on_unfinished, r)) ||
+        (rc = mpb_store_verification_counts(s, r->experiment_id, &r->certified,
+                                            &r->sampled)))
         return rc;
 
     size_t n = (size_t)r->num_configs * (size_t)r->num_queries;
@@ -649,6 +651,10 @@ int report_write_text(const report *r, FILE *out)
     if (r->stage != NULL && r->staged == 0)
         fprintf(out, "No successful run has metrics for a stage '%s'.\n",
                 r->stage);
+    if (r->certified + r->sampled > 0)
+        fprintf(out, "Collision checks: %ld stage%s certified, %ld sampled "
+                "(docs/verification.md).\n", r->certified,
+                r->certified == 1 ? "" : "s", r->sampled);
     for (int i = 0; i < r->num_scenes; i++) {
         fputc('\n', out);
         if ((rc = print_scene(r, i, out)) != MPB_OK)

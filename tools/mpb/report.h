@@ -83,6 +83,7 @@ typedef struct report {
     int64_t     experiment_id;
     char       *experiment_name, *host, *version;
     int         runs_per_query;
+    long        certified, sampled; /* stages by stages.verification */
     double      time_limit, created, finished;
     config_ref *configs;        /* in id order */
     int         num_configs, configs_cap;

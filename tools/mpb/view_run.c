@@ -215,9 +215,22 @@ static void interpolate(const view_run *v, const double *a, const double *b,
  * the segment collides here (a database from another resolution).
  */
 static int find_collision(view_run *v, const double *wp, int n, int seg,
-                          double *q, double *s_out)
+                          const char *detail, double *q, double *s_out)
 {
     int nj = v->num_joints;
+    /* A certified verdict names its configuration exactly ("at s=" with
+     * 17 digits), between the samples, where sampling would not find it. */
+    const char *at = detail ? strstr(detail, " at s=") : NULL;
+    if (at && seg >= 0 && seg + 1 < n) {
+        double s = strtod(at + 6, NULL);
+        if (s > 0 && s <= 1) {
+            interpolate(v, wp + (size_t)seg * nj, wp + (size_t)(seg + 1) * nj, s, q);
+            if (mpb_world_in_collision(v->world, q) == 1) {
+                *s_out = s;
+                return 1;
+            }
+        }
+    }
     if (seg == 0 && mpb_world_in_collision(v->world, wp) == 1) {
         memcpy(q, wp, (size_t)nj * sizeof *q);
         *s_out = 0.0;
@@ -287,7 +300,7 @@ static int make_frames(view_run *v, view_stage *s, mpb_pose *all)
         s->fail_frame = s->segment * per;
     double cs;
     if (rc == 0 && strcmp(s->verdict, "collision") == 0 &&
-        find_collision(v, wp, n, s->segment, q, &cs)) {
+        find_collision(v, wp, n, s->segment, s->detail, q, &cs)) {
         s->has_collision = 1;
         s->collision_s = cs;
         s->fail_frame = (int)lround((s->segment + cs) * per);

@@ -245,6 +245,11 @@ typedef struct mpb_stage_record {
     int           verdict_segment;/* first failing segment, -1 if none */
     int           num_metrics;
     const mpb_named *metrics;     /* path_length, smoothness, ... */
+    const char   *verification;   /* how its segments were checked for
+                                     collision: "certified" (proved, or a
+                                     colliding configuration found),
+                                     "sampled" (mpb_verdict.certified 0),
+                                     NULL when the check did not run */
 } mpb_stage_record;
 
 /* A planner value that is an integer, kept exactly: the record's
@@ -390,6 +395,16 @@ int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
                                   int (*cb)(void *ud, int64_t scene_id,
                                             int unfinished),
                                   void *ud);
+
+/*
+ * How the experiment's stages were checked for collision
+ * (stages.verification, docs/verification.md): the number stored
+ * "certified" and "sampled" into *certified and *sampled (stages whose
+ * verdict came before the check, or stored before the column, count in
+ * neither). MPB_OK or MPB_EDB.
+ */
+int mpb_store_verification_counts(mpb_store *s, int64_t experiment_id,
+                                  long *certified, long *sampled);
 
 /* One finished run, as mpb_store_results() gives it. */
 typedef struct mpb_result_row {

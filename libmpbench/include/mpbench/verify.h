@@ -59,7 +59,36 @@ typedef struct mpb_verdict {
     char detail[512];      /* one line, e.g. "segment 3 collides at s=0.42
                               (waypoints 3-4)"; names the joint where one is
                               at fault */
+    int  certified;        /* 1 if the collision check was a proof: every
+                              segment proved free over its whole continuum
+                              (VALID), or a colliding configuration found
+                              by the certified search (COLLISION); 0 if any
+                              segment was only sampled (mpb_verification) */
 } mpb_verdict;
+
+/*
+ * How mpb_verify_path() checks the segments between waypoints for
+ * collision (docs/verification.md):
+ *   CERTIFIED  each segment is proved collision-free over its whole
+ *              continuum (conservative advancement: distance lower bounds
+ *              against an upper bound on how far the robot moves), or a
+ *              colliding configuration is found; a segment that cannot be
+ *              proved down to a step of 1e-6 rad (or in a world that cannot
+ *              prove) is also sampled, as SAMPLED does, and the verdict
+ *              says so (certified = 0). The default.
+ *   SAMPLED    each segment is sampled at the resolution, as before.
+ */
+typedef enum mpb_verification {
+    MPB_VERIFY_CERTIFIED = 0,
+    MPB_VERIFY_SAMPLED = 1
+} mpb_verification;
+
+/* "certified" or "sampled"; "unknown" out of range. Never NULL. */
+const char *mpb_verification_name(mpb_verification mode);
+
+/* Set how mpb_verify_path() checks segments in world w (CERTIFIED when
+ * the world is opened). MPB_OK; MPB_EINVAL for NULL w or a bad mode. */
+int mpb_world_set_verification(struct mpb_world *w, mpb_verification mode);
 
 /* Lower-case name of a verdict code ("collision"); never NULL. */
 const char *mpb_verdict_name(mpb_verdict_code code);
@@ -76,10 +105,12 @@ const char *mpb_verdict_name(mpb_verdict_code code);
  *                than goal->joint_tolerance from goal->joints;
  *   JOINT_LIMIT  a waypoint value outside [lo, hi] (continuous joints have
  *                no limits);
- *   COLLISION    waypoint 0 collides, or a sample inside a segment does:
- *                segment a->b of joint-space length L is sampled at
- *                a + (s/k)(b - a), s = 1..k, k = max(1, ceil(L/resolution)),
- *                so steps are at most resolution (Euclidean, rad or m);
+ *   COLLISION    waypoint 0 collides, or a configuration inside a segment
+ *                does: in CERTIFIED mode the one the proof ran into
+ *                (detail "at s=" with 17 digits); sampled, segment a->b of
+ *                joint-space length L at a + (s/k)(b - a), s = 1..k,
+ *                k = max(1, ceil(L/resolution)), so steps are at most
+ *                resolution (Euclidean, rad or m);
  *   UNSUPPORTED  the goal kind cannot be checked in this world. This is the
  *                case of MPB_GOAL_POSE_REGION for now (no world computes
  *                link poses yet): its GOAL check is skipped, the others run,

@@ -2,9 +2,11 @@
  * collision_internal.h - private to libmpbench and its tests: slow reference
  * answers of the collision world (collision_fcl.cpp), every pair through
  * FCL's narrow phase with no broad phase and no bounds, to check the fast
- * queries of collision.h against; the mesh extents they rest on; and
- * the pair distance and hints that the wrist tables (wrist_table.h) are
- * built from and speak through.
+ * queries of collision.h against, and the mesh extents they rest on (these
+ * four are test support: defined in tests/support/collision_reference.cpp,
+ * linked only into the tests, never into libmpbench); and the pair
+ * distance and hints that the wrist tables (wrist_table.h) are built from
+ * and speak through (in the library).
  */
 #ifndef MPB_COLLISION_INTERNAL_H
 #define MPB_COLLISION_INTERNAL_H
@@ -66,6 +68,39 @@ double mpb__collision_pair_distance(mpb_collision *c, int a, int b, double below
  * MPB_ENOMEM.
  */
 int mpb__collision_hint_apart(mpb_collision *c, int a, int b);
+
+/*
+ * For certified verification (collision_sweep.cpp): how far any point of
+ * movable body id's shapes lies from the body's own frame origin (m), an
+ * upper bound from each shape's bounding sphere; NaN for an unknown id.
+ */
+double mpb__collision_body_reach(mpb_collision *c, int id);
+
+/*
+ * Conservative advancement's step where the bodies stand now. rate[id]
+ * (num_rates entries, by movable id; ids past the array count 0) bounds
+ * how far any point of body id can move per unit of the caller's
+ * parameter s. *step is the largest ds <= want such that no pair the
+ * collision checks test (movable against static, allowed statics
+ * excepted; movable pairs not allowed) can touch while s advances by ds:
+ * min over those pairs of (distance - margin) / (rate of approach); 0 if
+ * some pair is within margin; want if none limits it. Pairs that cannot
+ * approach (rate 0) are left out: their distance does not change. MPB_OK;
+ * MPB_EINVAL for bad arguments (a negative or non-finite rate).
+ */
+int mpb__collision_safe_step(mpb_collision *c, const double *rate, int num_rates,
+                             double margin, double want, double *step);
+
+/*
+ * As mpb__collision_safe_step(), with the rate of approach of a pair of
+ * movables (ids a, b) from pair_rate(ud, a, b) instead of rate[a] +
+ * rate[b]: the caller may know a tighter bound (two links of one chain
+ * move together with every joint above both). pair_rate NULL: the sum.
+ */
+int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
+                                   int num_rates, double (*pair_rate)(void *ud,
+                                   int a, int b), void *ud, double margin,
+                                   double want, double *step);
 
 #ifdef __cplusplus
 }

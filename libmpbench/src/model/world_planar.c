@@ -509,6 +509,30 @@ static void planar_ee_position(void *impl, const double *q, double xyz[3])
     xyz[2] = 0.0;
 }
 
+/*
+ * Certified verification's step (world_provider.h): the distance now over
+ * the fastest any point of the arm can move per unit s. A point of link i
+ * lies within sum_{k=j..i} length[k] + radius of joint j, so it moves at
+ * most sum_{j<=i} |d_j| (sum_{k=j..i} length[k] + radius) per unit s; the
+ * last link's bound holds for every link.
+ */
+static int planar_safe_step(void *impl, const double *q, const double *d,
+                            double margin, double want, double *step)
+{
+    planar *p = impl;
+    double rate = 0.0, lever = p->radius;
+    for (int j = p->n - 1; j >= 0; j--) {
+        lever += p->length[j];
+        rate += fabs(d[j]) * lever;
+    }
+    double gap = min_distance(p, q, -INFINITY) - margin;
+    if (!(gap > 0))
+        *step = 0.0;
+    else
+        *step = rate > 0 ? fmin(want, gap / rate) : want;
+    return isfinite(*step) ? MPB_OK : MPB_EINVAL;
+}
+
 const mpb__world_provider mpb__world_planar = {
     .robot_format = "planar",
     .scene_format = "planar",
@@ -517,6 +541,7 @@ const mpb__world_provider mpb__world_planar = {
     .in_collision = planar_in_collision,
     .clearance    = planar_clearance,
     .ee_position  = planar_ee_position,
+    .safe_step    = planar_safe_step,
 };
 
 int mpb__planar_points(const mpb_world *w, const double *q, double *xy)

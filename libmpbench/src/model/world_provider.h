@@ -13,6 +13,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#include "mpbench/pose.h"
 #include "mpbench/verify.h"
 #include "mpbench/world.h"
 
@@ -62,6 +63,20 @@ typedef struct mpb__world_provider {
     /* Optional: the allowed-collision matrix (world.h); NULL: none. */
     int    (*num_allowed)(void *impl);
     int    (*allowed_pair)(void *impl, int i, mpb_world_acm_pair *out);
+
+    /*
+     * Optional, for certified verification (verify/certify.c): along the
+     * straight joint-space motion q + s d (continuous joints unwrapped),
+     * the largest ds <= want such that no pair the collision check tests
+     * can touch while s grows by ds from here (q itself), each distance
+     * taken less margin (m): a proof, from distance lower bounds and an
+     * upper bound on how fast any point of the robot moves per unit s
+     * (docs/verification.md). 0 when some pair is within margin. MPB_OK;
+     * a negative code if it cannot say (the caller then samples). NULL:
+     * the world samples.
+     */
+    int    (*safe_step)(void *impl, const double *q, const double *d,
+                        double margin, double want, double *step);
 } mpb__world_provider;
 
 struct mpb_world {
@@ -74,6 +89,7 @@ struct mpb_world {
     char         **joint_names;
     double        *lo, *hi;
     unsigned char *wraps;         /* nonzero where the joint is continuous */
+    int            verification;  /* mpb_verification: 0 certified */
 };
 
 /*
@@ -82,6 +98,22 @@ struct mpb_world {
  */
 int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
                          double lo, double hi, int continuous);
+
+/*
+ * URDF only, for world_urdf.c's safe_step: the step of certified
+ * verification (world_provider.h) with the robot placed at poses (every
+ * link, robot frame) and moving by d per unit s; the bodies are those of
+ * coll as world_urdf.c numbers them (movable id = link, or num_links + k
+ * for scene object k attached to link attached_link[i], k = attached[i]).
+ * world_sweep.c.
+ */
+struct mpb_robot;
+struct mpb_collision;
+int mpb__urdf_safe_step(const struct mpb_robot *r, struct mpb_collision *coll,
+                        const mpb_pose *poses, const int *attached,
+                        const int *attached_link, int num_attached,
+                        const double *d, double margin, double want,
+                        double *step);
 
 /* The providers. */
 extern const mpb__world_provider mpb__world_planar;

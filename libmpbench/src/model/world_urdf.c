@@ -619,6 +619,18 @@ static void urdf_ee_position(void *impl, const double *q, double xyz[3])
     memcpy(xyz, p.t, sizeof p.t);
 }
 
+/* Certified verification's step from q along d (world_sweep.c). */
+static int urdf_safe_step(void *impl, const double *q, const double *d,
+                          double margin, double want, double *step)
+{
+    urdf_world *u = impl;
+    if (ensure_acm(u) != MPB_OK || mpb__urdf_place(u, q) != MPB_OK)
+        return MPB_EINVAL;
+    return mpb__urdf_safe_step(u->robot, u->coll, u->poses, u->attached,
+                               u->attached_link, u->num_attached, d, margin,
+                               want, step);
+}
+
 const mpb__world_provider mpb__world_urdf = {
     .robot_format = "urdf",
     .scene_format = "moveit-scene",
@@ -633,6 +645,7 @@ const mpb__world_provider mpb__world_urdf = {
     .allowed_pair = urdf_allowed_pair,
     .hold         = urdf_hold,
     .held         = urdf_held,
+    .safe_step    = urdf_safe_step,
 };
 
 struct mpb_collision *mpb__urdf_collision(mpb_world *w)

@@ -199,6 +199,27 @@ int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
     return walk_end(s, st, stop, step, "count unfinished runs");
 }
 
+int mpb_store_verification_counts(mpb_store *s, int64_t experiment_id,
+                                  long *certified, long *sampled)
+{
+    *certified = *sampled = 0;
+    if (!mpb__store_has_column(s, "stages", "verification"))
+        return MPB_OK;          /* an older database, opened read-only */
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT sum(g.verification = 'certified'), sum(g.verification = 'sampled')"
+        " FROM stages g JOIN runs r ON r.id = g.run_id WHERE r.experiment_id = ?");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    int step = sqlite3_step(st);
+    if (step == SQLITE_ROW) {
+        *certified = (long)sqlite3_column_int64(st, 0);
+        *sampled = (long)sqlite3_column_int64(st, 1);
+        step = sqlite3_step(st);
+    }
+    return walk_end(s, st, 0, step, "count verifications");
+}
+
 /* ---- the results walk ---------------------------------------------------- */
 
 /*

@@ -227,6 +227,8 @@ static int write_stage(mpb_store *s, int64_t run_id, int idx,
     if (sg->verdict_detail)
         sqlite3_bind_text(st, 10, sg->verdict_detail, -1, SQLITE_STATIC);
     sqlite3_bind_int(st, 11, sg->verdict_segment);
+    if (sg->verification)
+        sqlite3_bind_text(st, 12, sg->verification, -1, SQLITE_STATIC);
     if (sqlite3_step(st) != SQLITE_DONE)
         return mpb__store_db_fail(s, "store stage");
 

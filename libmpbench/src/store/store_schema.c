@@ -114,6 +114,7 @@ const char mpb__schema_v1[] =
     "  verdict         TEXT NOT NULL,\n"
     "  verdict_detail  TEXT,\n"
     "  verdict_segment INTEGER,\n"
+    "  verification    TEXT,\n"
     "  PRIMARY KEY(run_id, idx)) WITHOUT ROWID;\n"
 
     "CREATE TABLE IF NOT EXISTS metrics(\n"

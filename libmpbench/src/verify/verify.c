@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "model/world_provider.h"
+#include "verify/certify.h"
 
 static const char *const verdict_names[MPB_VERDICT_COUNT] = {
     [MPB_VERDICT_VALID]       = "valid",
@@ -42,6 +43,7 @@ static int verdict(mpb_verdict *out, mpb_verdict_code code, int segment,
     va_list ap;
     out->code = code;
     out->segment = segment;
+    out->certified = 0;
     va_start(ap, fmt);
     vsnprintf(out->detail, sizeof out->detail, fmt, ap);
     va_end(ap);
@@ -91,16 +93,46 @@ static void contact(mpb_world *w, const double *q, char *what, size_t len)
         what[0] = '\0';
 }
 
-/* Collision along the path, each segment in steps of at most resolution. */
+/* Sample the segment a + (s/k) d, s = 1..k (k from the resolution): 1
+ * with the first colliding sample's s/k in *at, 0 if none collides. */
+static int sample_segment(mpb_world *w, const double *a, const double *b,
+                          const double *d, double k, double *q, double *at)
+{
+    for (double s = 1; s <= k; s++) {
+        const double *p = b;
+        if (s < k) {
+            for (int j = 0; j < w->num_joints; j++)
+                q[j] = a[j] + (s / k) * d[j];
+            p = q;
+        }
+        if (mpb_world_in_collision(w, p)) {
+            if (p == b)
+                memcpy(q, b, (size_t)w->num_joints * sizeof *q);
+            *at = s / k;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/*
+ * Collision along the path: each segment proved free or a colliding
+ * configuration found (certify.c), or sampled in steps of at most
+ * resolution (SAMPLED mode, a world that cannot prove, a segment the
+ * proof gave up on).
+ */
 static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
                            int nj, double resolution, mpb_verdict *out)
 {
     char what[sizeof out->detail];
+    const int can_prove = mpb__certify_can(w);
     if (mpb_world_in_collision(w, wp)) {
         contact(w, wp, what, sizeof what);
-        return verdict(out, MPB_VERDICT_COLLISION, 0, num_waypoints > 1
-                       ? "segment 0 collides at s=0 (waypoint 0)%s"
-                       : "waypoint 0 collides%s", what);
+        verdict(out, MPB_VERDICT_COLLISION, 0, num_waypoints > 1
+                ? "segment 0 collides at s=0 (waypoint 0)%s"
+                : "waypoint 0 collides%s", what);
+        out->certified = can_prove;
+        return MPB_OK;
     }
     double *q = malloc((size_t)nj * sizeof *q);
     double *d = malloc((size_t)nj * sizeof *d);
@@ -109,7 +141,7 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
         free(d);
         return bad_args(out, MPB_ENOMEM, "out of memory");
     }
-    int rc = MPB_OK;
+    int rc = MPB_OK, all_proved = can_prove;
     out->code = MPB_VERDICT_VALID;
     for (int i = 0; i + 1 < num_waypoints && out->code == MPB_VERDICT_VALID; i++) {
         const double *a = wp + (size_t)i * (size_t)nj, *b = a + nj;
@@ -126,22 +158,29 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
             rc = bad_args(out, MPB_EINVAL, "resolution too fine for the path");
             break;
         }
-        for (double s = 1; s <= k; s++) {
-            const double *p = b;
-            if (s < k) {
-                for (int j = 0; j < nj; j++)
-                    q[j] = a[j] + (s / k) * d[j];
-                p = q;
-            }
-            if (mpb_world_in_collision(w, p)) {
-                contact(w, p, what, sizeof what);
+        double hit = -1.0, at;
+        int proved = 0;
+        if (can_prove) {
+            mpb__certify_segment(w, a, d, sqrt(sq), q, &hit, &proved);
+            if (hit >= 0) {
+                contact(w, q, what, sizeof what);
                 verdict(out, MPB_VERDICT_COLLISION, i,
-                        "segment %d collides at s=%.4g (waypoints %d-%d)%s",
-                        i, s / k, i, i + 1, what);
+                        "segment %d collides at s=%.17g (waypoints %d-%d)%s",
+                        i, hit, i, i + 1, what);
                 break;
             }
         }
+        if (!proved) {
+            all_proved = 0;
+            if (sample_segment(w, a, b, d, k, q, &at)) {
+                contact(w, q, what, sizeof what);
+                verdict(out, MPB_VERDICT_COLLISION, i,
+                        "segment %d collides at s=%.4g (waypoints %d-%d)%s",
+                        i, at, i, i + 1, what);
+            }
+        }
     }
+    out->certified = all_proved;
     free(q);
     free(d);
     return rc;
@@ -244,5 +283,8 @@ int mpb_verify_path(struct mpb_world *w, const double *start,
                        "cannot be checked in a '%s' world",
                        w->provider->robot_format);
 
-    return verdict(out, MPB_VERDICT_VALID, -1, "valid");
+    int certified = out->certified;
+    verdict(out, MPB_VERDICT_VALID, -1, "valid");
+    out->certified = certified;
+    return MPB_OK;
 }

@@ -1,0 +1,184 @@
+/*
+ * test_certify.c - certified segment verification (verify/certify.c,
+ * docs/verification.md): thin obstacles that a segment sweeps through
+ * between the samples of the sampled check are collisions, with the
+ * configuration found; an obstacle grazed at 1e-4 m is proved free.
+ *
+ * The planar arm is scenes/planar/arm3.robot with zero-radius links (1.2 m
+ * when straight); its shoulder swings from -0.5045 to +0.5045 rad through
+ * a wall across y = 0 at x 0.6 .. 1.1: the sampled check (0.01 rad) steps
+ * over it (its samples nearest 0 are at -0.005 and +0.005 rad, where the
+ * links clear 2 mm walls).
+ *
+ * The PR2 (tests/unit/data/pr2_right_arm.urdf, as test_world_urdf.c): at
+ * q = 0 the forearm is a cylinder of radius 0.05 along x from x = 0.47 to
+ * 0.75 whose axis lies at y = -0.188, z = 0.739675, the shoulder pan axis
+ * at x = -0.05. A 0.1 mm plate across y, over x 0.58 .. 0.62, whose lower
+ * edge lies 1e-5 m below the cylinder's top, touches the forearm only
+ * while pan is within 1.6e-3 rad of 0; the segment's samples are at
+ * -0.005 and +0.005 rad.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+#include "test_files.h"
+
+static const char *const ARM =
+    "base 0 0\n"
+    "link_radius 0\n"
+    "joint shoulder -3.14159 3.14159 0.5\n"
+    "joint elbow    -2.8 2.8 0.4\n"
+    "joint wrist    -2.8 2.8 0.3\n";
+
+static mpb_world *planar(const char *scene)
+{
+    mpb_world *w = NULL;
+    char err[200];
+    if (mpb_world_open("planar", ARM, "planar", scene, &w, err, sizeof err) != MPB_OK)
+        fail_msg("open: %s", err);
+    return w;
+}
+
+/* Verify the straight path a -> b (nj joints) at resolution 0.01. */
+static mpb_verdict verify(mpb_world *w, const double *a, const double *b, int nj)
+{
+    double wp[14];
+    memcpy(wp, a, (size_t)nj * sizeof *wp);
+    memcpy(wp + nj, b, (size_t)nj * sizeof *wp);
+    mpb_goal g = { .kind = MPB_GOAL_JOINTS, .joints = b, .joint_tolerance = 1e-9 };
+    mpb_verdict v;
+    assert_int_equal(mpb_verify_path(w, a, 1e-9, &g, wp, 2, nj, 0.01, &v), MPB_OK);
+    return v;
+}
+
+/* The s of "at s=..." in a collision verdict's detail. */
+static double at_s(const mpb_verdict *v)
+{
+    const char *p = strstr(v->detail, "at s=");
+    assert_non_null(p);
+    return strtod(p + 5, NULL);
+}
+
+/* Collision with a colliding configuration at s in the segment a -> b. */
+static void expect_collision_found(mpb_world *w, const double *a, const double *b,
+                                   int nj)
+{
+    mpb_verdict v = verify(w, a, b, nj);
+    assert_int_equal(v.code, MPB_VERDICT_COLLISION);
+    assert_int_equal(v.certified, 1);
+    assert_int_equal(v.segment, 0);
+    double s = at_s(&v), q[7];
+    assert_true(s > 0 && s < 1);
+    for (int j = 0; j < nj; j++)
+        q[j] = a[j] + s * (b[j] - a[j]);
+    assert_int_equal(mpb_world_in_collision(w, q), 1);
+    /* the sampled check misses it */
+    assert_int_equal(mpb_world_set_verification(w, MPB_VERIFY_SAMPLED), MPB_OK);
+    v = verify(w, a, b, nj);
+    assert_int_equal(v.code, MPB_VERDICT_VALID);
+    assert_int_equal(v.certified, 0);
+    assert_int_equal(mpb_world_set_verification(w, MPB_VERIFY_CERTIFIED), MPB_OK);
+}
+
+static void planar_wall_and_foil_are_collisions(void **state)
+{
+    (void)state;
+    const double a[3] = { -0.5045, 0, 0 }, b[3] = { 0.5045, 0, 0 };
+    const char *const scenes[] = { "box 0.85 0 0.25 0.001\n",     /* 2 mm */
+                                   "box 0.85 0 0.25 0.00005\n" }; /* 0.1 mm */
+    for (int i = 0; i < 2; i++) {
+        mpb_world *w = planar(scenes[i]);
+        expect_collision_found(w, a, b, 3);
+        mpb_world_close(w);
+    }
+}
+
+static void planar_graze_at_1e4_is_certified_free(void **state)
+{
+    (void)state;
+    /* The tip passes (1.2, 0) at shoulder 0: 1e-4 m from the circle. */
+    mpb_world *w = planar("circle 1.3001 0 0.1\n");
+    const double a[3] = { -0.5045, 0, 0 }, b[3] = { 0.5045, 0, 0 };
+    mpb_verdict v = verify(w, a, b, 3);
+    assert_int_equal(v.code, MPB_VERDICT_VALID);
+    assert_int_equal(v.certified, 1);
+    /* and nearer still: 2e-6 m is within no step the floor allows to
+       prove; sampled there, valid, and said so */
+    mpb_world_close(w);
+    w = planar("circle 1.300002 0 0.1\n");
+    v = verify(w, a, b, 3);
+    assert_int_equal(v.code, MPB_VERDICT_VALID);
+    mpb_world_close(w);
+}
+
+static const char *const pr2_joints[] = {
+    "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",
+    "r_elbow_flex_joint", "r_forearm_roll_joint", "r_wrist_flex_joint",
+    "r_wrist_roll_joint"};
+
+/* A plate 0.04 x 0.0001 x 0.05 over the forearm, its lower edge at z. */
+static mpb_world *pr2_with_plate(double z)
+{
+    char *urdf = test_read_robot(MPB_TEST_DATA "/pr2_right_arm.urdf",
+                                 MPB_TEST_DATA "/pr2_right_arm.srdf");
+    char scene[400];
+    snprintf(scene, sizeof scene,
+             "plate\n* plate\n0.6 -0.188 %.9f\n0 0 0 1\n1\nbox\n"
+             "0.04 0.0001 0.05\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n", z + 0.025);
+    mpb_world *w = NULL;
+    char err[256];
+    int rc = mpb_world_open_group("urdf", urdf, "moveit-scene", scene, pr2_joints,
+                                  7, &w, err, sizeof err);
+    free(urdf);
+    if (rc != MPB_OK)
+        fail_msg("open: %s", err);
+    return w;
+}
+
+static void pr2_forearm_through_a_plate_is_a_collision(void **state)
+{
+    (void)state;
+    const double top = 0.739675 + 0.05;          /* the forearm's top */
+    const double a[7] = { -0.105 }, b[7] = { 0.095 };
+    mpb_world *w = pr2_with_plate(top - 1e-5);
+    double q0[7] = { 0 };
+    assert_int_equal(mpb_world_in_collision(w, q0), 1);
+    expect_collision_found(w, a, b, 7);
+    mpb_world_close(w);
+
+    /* Grazed at 1e-4 m: proved free. */
+    w = pr2_with_plate(top + 1e-4);
+    assert_int_equal(mpb_world_in_collision(w, q0), 0);
+    mpb_verdict v = verify(w, a, b, 7);
+    assert_int_equal(v.code, MPB_VERDICT_VALID);
+    assert_int_equal(v.certified, 1);
+    mpb_world_close(w);
+}
+
+static void modes_have_names(void **state)
+{
+    (void)state;
+    assert_string_equal(mpb_verification_name(MPB_VERIFY_CERTIFIED), "certified");
+    assert_string_equal(mpb_verification_name(MPB_VERIFY_SAMPLED), "sampled");
+    assert_string_equal(mpb_verification_name((mpb_verification)7), "unknown");
+    assert_int_equal(mpb_world_set_verification(NULL, MPB_VERIFY_SAMPLED), MPB_EINVAL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(planar_wall_and_foil_are_collisions),
+        cmocka_unit_test(planar_graze_at_1e4_is_certified_free),
+        cmocka_unit_test(pr2_forearm_through_a_plate_is_a_collision),
+        cmocka_unit_test(modes_have_names),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
