@@ -224,7 +224,9 @@ static int table_files(const fixture *f, char names[16][256])
         if (e->d_name[0] == '.' || l < 5 || strcmp(e->d_name + l - 4, ".tbl"))
             continue;
         assert_true(n < 16);
-        snprintf(names[n++], 256, "%s/%s", f->cache, e->d_name);
+        /* A name that does not fit would name another file: refuse it. */
+        int w = snprintf(names[n++], 256, "%.127s/%.120s", f->cache, e->d_name);
+        assert_true(w > 0 && w < 256);
     }
     closedir(d);
     qsort(names, (size_t)n, 256, by_size);
