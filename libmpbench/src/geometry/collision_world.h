@@ -18,6 +18,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
+#include "core/cxx_guard.h"
 #include "core/errbuf.h"
 #include "geometry/dirtable.h"
 
@@ -285,25 +286,14 @@ void room_for_one(V &v)
 }
 
 /* f(), every exception caught and turned into an error code and c's
- * message: what every extern "C" function runs its body through. */
+ * message: what every extern "C" function runs its body through
+ * (core/cxx_guard.h, as every C++ bridge of the library). */
 template <class F>
 int guarded(mpb_collision *c, F f)
 {
-    try {
-        return f();
-    } catch (const std::bad_alloc &) {
-        if (c)
-            c->set_err("collision: out of memory");
-        return MPB_ENOMEM;
-    } catch (const std::exception &e) {
-        if (c)
-            c->set_err("collision: FCL: %s", e.what());
-        return MPB_EERROR;
-    } catch (...) {
-        if (c)
-            c->set_err("collision: unexpected exception");
-        return MPB_EERROR;
-    }
+    static const mpb__cxx_guard g = {"collision: ", "FCL: ", MPB_EERROR,
+                                     "unexpected exception", MPB_EERROR};
+    return mpb__cxx_guarded(c ? c->err : nullptr, c ? sizeof c->err : 0, g, f);
 }
 
 /* Hot and small: inline in every file. */
