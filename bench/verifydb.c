@@ -411,21 +411,6 @@ static int load(db *d, int64_t experiment, const char *robot_dir,
 
 /* ---- timing ----------------------------------------------------------- */
 
-/* The run's goal as the verifier takes it (mpbd_query_goal). */
-static mpb_goal goal_of(const query *q)
-{
-    mpb_goal g = {.kind = (mpb_goal_kind)q->goal_kind,
-                  .joints = q->goal_joints,
-                  .joint_tolerance = q->tolerance, .link = q->goal_link};
-    for (int i = 0; i < 3; i++) {
-        g.position[i] = q->goal_region[i];
-        g.position_tolerance[i] = q->goal_region[3 + i];
-        g.orientation_rpy[i] = q->goal_region[6 + i];
-        g.orientation_tolerance[i] = q->goal_region[9 + i];
-    }
-    return g;
-}
-
 enum { BOTH, VERIFY, METRICS, NUM_WHAT };
 
 /* Where the metrics go, so that no pass is thought idle. */
@@ -442,7 +427,9 @@ static void pass(const db *d, double resolution, int what,
         const query *q = s->q;
         mpb_world *w = q->world->w;
         int nj = q->num_joints;
-        mpb_goal goal = goal_of(q);
+        mpb_goal goal = mpb_query_goal(q->goal_kind, q->goal_joints,
+                                       q->tolerance, q->goal_link,
+                                       q->goal_region);
         if (what == VERIFY) {
             mpb_verify_path(w, q->start, q->tolerance, &goal, s->wp, s->n,
                             nj, resolution, &verdicts[i]);

@@ -175,10 +175,15 @@ int mpbd_experiment_orientation_note(const mpbd_experiment *e, char *buf,
                                      size_t len);
 
 /*
- * The goal of q as verify.h describes goals, for mpb_verify_path(). The
- * result points into q: it lives as long as q does.
+ * The goal of q as verify.h describes goals (mpb_query_goal()), for
+ * mpb_measure_stage(). The result points into q: it lives as long as q
+ * does.
  */
 mpb_goal mpbd_query_goal(const mpbd_query *q);
+
+/* q's pose region as the store keeps it: centre, half sizes, rpy, their
+ * tolerances (mpb_query_info.goal_region). */
+void mpbd_query_region(const mpbd_query *q, double region[12]);
 
 /*
  * Make the world of q's scene hold q's values of the joints outside the

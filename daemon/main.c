@@ -351,14 +351,8 @@ static int setup_experiment(mpbd *d, int fresh)
     }
     for (int i = 0; rc == MPB_OK && i < e->num_queries; i++) {
         mpbd_query *q = &e->queries[i];
-        /* A region as the store keeps it: centre, half sizes, rpy, tolerances. */
         double region[12];
-        for (int k = 0; k < 3; k++) {
-            region[k] = q->position[k];
-            region[3 + k] = q->position_tolerance[k];
-            region[6 + k] = q->rpy[k];
-            region[9 + k] = q->rpy_tolerance[k];
-        }
+        mpbd_query_region(q, region);
         int is_region = q->goal_kind == MPB_GOAL_POSE_REGION;
         mpb_query_info qi = {
             .name = q->name, .num_joints = e->num_joints,

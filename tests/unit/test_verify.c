@@ -334,6 +334,33 @@ static void test_bad_arguments(void **state)
     assert_int_equal(mpb_verify_path(w, START, TOL, &g, wp, 2, 2, 1e-300, &v), MPB_EINVAL);
 }
 
+/* A stored query's goal: the store's 12 region numbers in their places;
+ * a joint goal (region NULL) has none. */
+static void test_query_goal(void **state)
+{
+    (void)state;
+    const double joints[2] = {0.5, -0.5};
+    const double region[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    mpb_goal g = mpb_query_goal(MPB_GOAL_POSE_REGION, NULL, 0.01, "tool",
+                                region);
+    assert_int_equal(g.kind, MPB_GOAL_POSE_REGION);
+    assert_string_equal(g.link, "tool");
+    assert_true(g.joint_tolerance == 0.01);
+    for (int i = 0; i < 3; i++) {
+        assert_true(g.position[i] == region[i]);
+        assert_true(g.position_tolerance[i] == region[3 + i]);
+        assert_true(g.orientation_rpy[i] == region[6 + i]);
+        assert_true(g.orientation_tolerance[i] == region[9 + i]);
+    }
+    g = mpb_query_goal(MPB_GOAL_JOINTS, joints, 0.02, NULL, NULL);
+    assert_int_equal(g.kind, MPB_GOAL_JOINTS);
+    assert_ptr_equal(g.joints, joints);
+    assert_true(g.joint_tolerance == 0.02);
+    assert_null(g.link);
+    for (int i = 0; i < 3; i++)
+        assert_true(g.position[i] == 0 && g.orientation_tolerance[i] == 0);
+}
+
 static void test_verdict_names(void **state)
 {
     (void)state;
@@ -366,6 +393,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_pose_region_unsupported, setup, teardown),
         cmocka_unit_test(test_continuous_joint),
         cmocka_unit_test_setup_teardown(test_bad_arguments, setup, teardown),
+        cmocka_unit_test(test_query_goal),
         cmocka_unit_test(test_verdict_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

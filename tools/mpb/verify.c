@@ -53,20 +53,6 @@ typedef struct totals {
     long successes, lost, lost_self, gained;
 } totals;
 
-/* The run's goal as the verifier takes it; points into v. */
-static mpb_goal goal_of(const view_run *v)
-{
-    mpb_goal g = {.kind = v->goal_kind, .joints = v->goal_joints,
-                  .joint_tolerance = v->tolerance, .link = v->goal_link};
-    for (int i = 0; i < 3; i++) {
-        g.position[i] = v->goal_region[i];
-        g.position_tolerance[i] = v->goal_region[3 + i];
-        g.orientation_rpy[i] = v->goal_region[6 + i];
-        g.orientation_tolerance[i] = v->goal_region[9 + i];
-    }
-    return g;
-}
-
 /* One run: each stage verified again; 0, or -1 after one line. */
 static int verify_run(mpb_store *s, const char *db, int64_t run_id,
                       double step, totals *t)
@@ -79,7 +65,8 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         return got < 0 ? -1 : 0;    /* no stages: nothing to check */
     }
     double res = step > 0 ? step : v.resolution;
-    mpb_goal goal = goal_of(&v);
+    mpb_goal goal = mpb_query_goal(v.goal_kind, v.goal_joints, v.tolerance,
+                                   v.goal_link, v.goal_region);
     int final_valid = -1, final_self = 0, changed = 0;
     t->runs++;
     for (int i = 0; i < v.num_stages; i++) {

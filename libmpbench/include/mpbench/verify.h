@@ -31,6 +31,17 @@ typedef struct mpb_goal {
     double orientation_rpy[3], orientation_tolerance[3];
 } mpb_goal;
 
+/*
+ * The goal of a query as the store keeps it (mpb_query_info, mpb_query_row):
+ * kind (mpb_goal_kind), the joint goal and its per-joint tolerance, and for
+ * a pose region the link and its 12 numbers (box centre, half extents,
+ * reference roll pitch yaw, their tolerances; region NULL for a joint
+ * goal, read as zeros). The result points at joints and link, copies
+ * region: it lives as long as joints and link do.
+ */
+mpb_goal mpb_query_goal(int kind, const double *joints, double joint_tolerance,
+                        const char *link, const double *region);
+
 /* Why a trajectory is not a solution; the first failure found wins. */
 #define MPB_VERDICT_MAP(X)                                              \
     X(VALID,         "valid")                                           \

@@ -29,6 +29,20 @@ const char *mpb_verdict_name(mpb_verdict_code code)
     return verdict_names[code];
 }
 
+mpb_goal mpb_query_goal(int kind, const double *joints, double joint_tolerance,
+                        const char *link, const double *region)
+{
+    mpb_goal g = {.kind = (mpb_goal_kind)kind, .joints = joints,
+                  .joint_tolerance = joint_tolerance, .link = link};
+    for (int i = 0; region != NULL && i < 3; i++) {
+        g.position[i] = region[i];
+        g.position_tolerance[i] = region[3 + i];
+        g.orientation_rpy[i] = region[6 + i];
+        g.orientation_tolerance[i] = region[9 + i];
+    }
+    return g;
+}
+
 static int verdict(mpb_verdict *out, mpb_verdict_code code, int segment,
                    const char *fmt, ...)
 #if defined(__GNUC__)
