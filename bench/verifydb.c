@@ -430,14 +430,11 @@ static void pass(const db *d, double resolution, int what,
         mpb_goal goal = mpb_query_goal(q->goal_kind, q->goal_joints,
                                        q->tolerance, q->goal_link,
                                        q->goal_region);
-        if (what == VERIFY) {
-            mpb_verify_path(w, q->start, q->tolerance, &goal, s->wp, s->n,
-                            nj, resolution, &verdicts[i]);
-            continue;
-        }
-        if (what == BOTH) {
+        if (what == VERIFY || what == BOTH) {
             mpb_measure_stage(w, q->start, q->tolerance, &goal, s->wp, s->n,
-                              nj, 0, resolution, &m);
+                              nj, 0, resolution,
+                              what == VERIFY ? MPB_MEASURE_NO_METRICS : 0,
+                              &m);
             verdicts[i] = m.verdict;
         } else {
             m.verdict.code = MPB_VERDICT_VALID;

@@ -79,14 +79,11 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
         w->rec.waypoints = st->waypoints;
         mpb_measure_stage(world, q->start, q->tolerance, &goal,
                           st->waypoints, st->num_waypoints, st->num_joints,
-                          st->time, d->resolution, &w->m);
+                          st->time, d->resolution, 0, &w->m);
     }
     /* Proved over the whole segment, or sampled where the proof could
      * not close (docs/verification.md); a verdict of no path, none. */
-    w->rec.verification = NULL;
-    if (w->m.verdict.code == MPB_VERDICT_VALID ||
-        w->m.verdict.code == MPB_VERDICT_COLLISION)
-        w->rec.verification = w->m.verdict.certified ? "certified" : "sampled";
+    w->rec.verification = mpb_verdict_verification(&w->m.verdict);
     w->rec.valid = w->m.verdict.code == MPB_VERDICT_VALID;
     w->rec.verdict = mpb_verdict_name(w->m.verdict.code);
     w->rec.verdict_detail = w->m.verdict.detail;

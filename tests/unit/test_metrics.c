@@ -283,7 +283,8 @@ static void test_ee_path_length_follows_the_arc(void **state)
 /* The metric list: names unique and found again; mpb_measure_stage()
  * gives every metric of a sound path, by the list's names, with the
  * values of the functions above, and leaves out the path metrics of a
- * path with a NaN in it. */
+ * path with a NaN in it; with MPB_MEASURE_NO_METRICS, the same verdict
+ * and no metric. */
 static void test_measure_stage_follows_the_list(void **state)
 {
     (void)state;
@@ -301,7 +302,7 @@ static void test_measure_stage_follows_the_list(void **state)
                      .joint_tolerance = 1e-6};
     mpb_stage_measure m;
     assert_int_equal(mpb_measure_stage(w, start, 1e-6, &goal, wp, 2, 1, 0.25,
-                                       0.01, &m), MPB_OK);
+                                       0.01, 0, &m), MPB_OK);
     assert_int_equal(m.verdict.code, MPB_VERDICT_VALID);
     assert_int_equal(m.num_metrics, MPB_NUM_METRICS);
     for (int i = 0; i < m.num_metrics; i++)
@@ -314,12 +315,21 @@ static void test_measure_stage_follows_the_list(void **state)
     assert_float_equal(m.metrics[MPB_METRIC_TIME].value, 0.25, 0);
 
     double bad[] = {0.0, NAN};
-    mpb_measure_stage(w, start, 1e-6, &goal, bad, 2, 1, 0.25, 0.01, &m);
+    mpb_verdict valid = m.verdict;
+    mpb_measure_stage(w, start, 1e-6, &goal, bad, 2, 1, 0.25, 0.01, 0, &m);
     assert_int_equal(m.verdict.code, MPB_VERDICT_NOT_FINITE);
     int n = 0;
     for (int i = 0; i < MPB_NUM_METRICS; i++)
         n += !(mpb_metric_info_of(i)->flags & MPB_METRIC_F_PATH);
     assert_int_equal(m.num_metrics, n);
+
+    assert_int_equal(mpb_measure_stage(w, start, 1e-6, &goal, wp, 2, 1, 0.25,
+                                       0.01, MPB_MEASURE_NO_METRICS, &m),
+                     MPB_OK);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_VALID);
+    assert_int_equal(m.verdict.certified, valid.certified);
+    assert_string_equal(m.verdict.detail, valid.detail);
+    assert_int_equal(m.num_metrics, 0);
     mpb_world_close(w);
 }
 

@@ -334,6 +334,25 @@ static void test_bad_arguments(void **state)
     assert_int_equal(mpb_verify_path(w, START, TOL, &g, wp, 2, 2, 1e-300, &v), MPB_EINVAL);
 }
 
+/* The word the store keeps for how a verdict's collision check was made. */
+static void test_verdict_verification(void **state)
+{
+    (void)state;
+    mpb_verdict v = {.code = MPB_VERDICT_VALID, .certified = 1};
+    assert_string_equal(mpb_verdict_verification(&v), "certified");
+    v.certified = 0;
+    assert_string_equal(mpb_verdict_verification(&v), "sampled");
+    v.code = MPB_VERDICT_COLLISION;
+    assert_string_equal(mpb_verdict_verification(&v), "sampled");
+    v.certified = 1;
+    assert_string_equal(mpb_verdict_verification(&v), "certified");
+    v.code = MPB_VERDICT_START;
+    assert_null(mpb_verdict_verification(&v));
+    v.code = MPB_VERDICT_WRONG_SIZE;
+    assert_null(mpb_verdict_verification(&v));
+    assert_null(mpb_verdict_verification(NULL));
+}
+
 /* A stored query's goal: the store's 12 region numbers in their places;
  * a joint goal (region NULL) has none. */
 static void test_query_goal(void **state)
@@ -393,6 +412,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_pose_region_unsupported, setup, teardown),
         cmocka_unit_test(test_continuous_joint),
         cmocka_unit_test_setup_teardown(test_bad_arguments, setup, teardown),
+        cmocka_unit_test(test_verdict_verification),
         cmocka_unit_test(test_query_goal),
         cmocka_unit_test(test_verdict_names),
     };

@@ -105,6 +105,13 @@ int mpb_world_set_verification(struct mpb_world *w, mpb_verification mode);
 const char *mpb_verdict_name(mpb_verdict_code code);
 
 /*
+ * How v's collision check was made, for the verdicts that make one (VALID,
+ * COLLISION): "certified" (v->certified) or "sampled"; NULL for any other
+ * verdict, and for NULL v. As the store keeps it (stages.verification).
+ */
+const char *mpb_verdict_verification(const mpb_verdict *v);
+
+/*
  * Check a path against its query in world w, in the order of the verdict
  * list, the first failure winning:
  *   EMPTY        num_waypoints == 0;
@@ -155,17 +162,24 @@ typedef struct mpb_stage_measure {
     } metrics[MPB_NUM_METRICS];
 } mpb_stage_measure;
 
+/* What mpb_measure_stage() leaves out, or-ed; 0 leaves out nothing. */
+#define MPB_MEASURE_NO_METRICS 1  /* the verdict alone (num_metrics 0): for
+                                     stored paths checked again, where the
+                                     metrics, clearance above all, would
+                                     cost many times the verification */
+
 /*
  * Verify and measure one stage, as mpbenchd does with every stage a planner
- * returns: mpb_verify_path() with these arguments, then
- * mpb_measure_metrics(). stage_time is the stage's time as the planner
- * reported it (s). Returns what mpb_verify_path() returns; *out is filled
- * whatever it returns.
+ * returns, and as `mpb verify` and the benchmarks check stages:
+ * mpb_verify_path() with these arguments, then, unless flags has
+ * MPB_MEASURE_NO_METRICS, mpb_measure_metrics(). stage_time is the stage's
+ * time as the planner reported it (s). Returns what mpb_verify_path()
+ * returns; *out is filled whatever it returns.
  */
 int mpb_measure_stage(struct mpb_world *w, const double *start,
                       double start_tolerance, const mpb_goal *goal,
                       const double *wp, int num_waypoints, int num_joints,
-                      double stage_time, double resolution,
+                      double stage_time, double resolution, unsigned flags,
                       mpb_stage_measure *out);
 
 /*

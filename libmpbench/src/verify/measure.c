@@ -124,13 +124,16 @@ void mpb_measure_metrics(mpb_world *w, const double *wp, int num_waypoints,
 int mpb_measure_stage(mpb_world *w, const double *start,
                       double start_tolerance, const mpb_goal *goal,
                       const double *wp, int num_waypoints, int num_joints,
-                      double stage_time, double resolution,
+                      double stage_time, double resolution, unsigned flags,
                       mpb_stage_measure *out)
 {
     int rc = mpb_verify_path(w, start, start_tolerance, goal, wp,
                              num_waypoints, num_joints, resolution,
                              &out->verdict);
-    mpb_measure_metrics(w, wp, num_waypoints, num_joints, stage_time,
-                        resolution, out);
+    if (flags & MPB_MEASURE_NO_METRICS)
+        out->num_metrics = 0;
+    else
+        mpb_measure_metrics(w, wp, num_waypoints, num_joints, stage_time,
+                            resolution, out);
     return rc;
 }

@@ -29,6 +29,15 @@ const char *mpb_verdict_name(mpb_verdict_code code)
     return verdict_names[code];
 }
 
+const char *mpb_verdict_verification(const mpb_verdict *v)
+{
+    if (v == NULL ||
+        (v->code != MPB_VERDICT_VALID && v->code != MPB_VERDICT_COLLISION))
+        return NULL;
+    return mpb_verification_name(v->certified ? MPB_VERIFY_CERTIFIED
+                                              : MPB_VERIFY_SAMPLED);
+}
+
 mpb_goal mpb_query_goal(int kind, const double *joints, double joint_tolerance,
                         const char *link, const double *region)
 {
