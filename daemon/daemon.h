@@ -51,6 +51,9 @@
  * handling them) that took longer than this: the daemon did not run
  * meanwhile (SIGSTOP, a suspended machine) or was busy. */
 #define MPBD_STALL_S            1.0
+/* How long a round of the loop waits for the results it handed to the
+ * verifier, so that quick ones are stored in the same round (verifier.c). */
+#define MPBD_SETTLE_S           0.0005
 #define MPBD_STATUS_PERIOD_S    1.0
 /* No request before this long after the loop starts: time to hear of an
  * older daemon on the same LCM URL (daemons.c). */
@@ -382,6 +385,9 @@ int  mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
 int  mpbd_verifier_has(const mpbd *d, const char *uid);  /* handed over, not stored */
 int  mpbd_verifier_pending(const mpbd *d);               /* how many */
 int  mpbd_verifier_fd(const mpbd *d);  /* readable when one is done; -1: none */
+/* Wait up to max_s for the results handed over since the last call to be
+ * measured (once per hand-over: a long one is not waited for again). */
+void mpbd_verifier_settle(mpbd *d, double max_s);
 /* Store those done, in order, in the open transaction. */
 void mpbd_verifier_collect(mpbd *d);
 /* A run ended without a result (crash, lost planner): retry it if the

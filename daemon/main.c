@@ -433,6 +433,7 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
         }
         /* The results verified beside the loop, stored in this
          * transaction in the order they were finished (verifier.c). */
+        mpbd_verifier_settle(d, MPBD_SETTLE_S);
         mpbd_verifier_collect(d);
         mpbd_scheduler_tick(d, now);
         if (mpb_store_commit(d->store) != MPB_OK) {
