@@ -44,9 +44,15 @@ deps:
 	@sh bench/ompl_peer.sh >/dev/null
 	@sh tools/peers_env.sh
 
+# A test that fails is run once more before the suite fails: a few
+# integration tests count messages over real UDP on a loaded machine
+# (test_replays has failed once in about six loaded runs); a broken build
+# fails both times, and ctest prints every failure it saw.
+CTEST_FLAGS ?= --output-on-failure --repeat until-pass:2
+
 test: deps
 	$(MAKE) all
-	cd $(BUILD) && ctest --output-on-failure
+	cd $(BUILD) && ctest $(CTEST_FLAGS)
 
 demo: deps
 	$(MAKE) all
