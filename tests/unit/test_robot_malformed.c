@@ -162,6 +162,15 @@ static void test_malformed(void **state)
     expect_error(nested_xml(100000), NULL, "a", MPB_EPARSE,
                  "XML nested too deeply (more than 1000 levels)");
     expect_error(nested_xml(999), NULL, "a", MPB_EPARSE, "is not below");
+    /* An internal DTD, which TinyXML cannot read (urdfdom would say it
+     * found no robot element): refused at its place, as in an SRDF. */
+    expect_error("<?xml version='1.0'?>\n<!DOCTYPE robot [ <!ENTITY l '0.5'> ]>\n"
+                 "<robot name='r'><link name='a'/></robot>", NULL, "a",
+                 MPB_EPARSE, "line 2, column 1: a <!DOCTYPE> with an internal "
+                 "DTD ([...]) is not read: remove it");
+    /* A DOCTYPE without one is read as before. */
+    expect_error("<!DOCTYPE robot>\n<robot name='r'><link name='a'/></robot>",
+                 NULL, "a", MPB_EPARSE, "is not below");
     /* A link twice. */
     expect_error("<robot name='r'><link name='a'/><link name='a'/></robot>",
                  NULL, "a", MPB_EPARSE, "not unique");

@@ -412,6 +412,33 @@ int fill(const urdf::ModelInterface &model, mpb__urdf_model *m, char *err,
 
 } // namespace
 
+/* The line and column (1-based, in characters) of position p of text. */
+void place_of(const char *text, const char *p, int *line, int *col)
+{
+    *line = 1;
+    *col = 1;
+    for (const char *c = text; c < p; c++) {
+        if (*c == '\n') {
+            ++*line;
+            *col = 1;
+        } else if ((*c & 0xC0) != 0x80) {
+            ++*col;
+        }
+    }
+}
+
+/* A <!DOCTYPE ...> with an internal subset ("[ ... ]"): TinyXML ends the
+ * declaration at the subset's first '>' and then finds no root element,
+ * so urdfdom would say "Could not find the 'robot' element". */
+const char *internal_dtd(const char *text)
+{
+    const char *d = std::strstr(text, "<!DOCTYPE");
+    if (!d)
+        return nullptr;
+    const char *open = std::strchr(d, '['), *close = std::strchr(d, '>');
+    return open && !(close && close < open) ? d : nullptr;
+}
+
 /* See robot_urdf.h. */
 extern "C" int mpb__xml_precheck(const char *text, char *err, size_t errlen)
 {
@@ -439,6 +466,12 @@ extern "C" int mpb__xml_precheck(const char *text, char *err, size_t errlen)
         return MPB_EPARSE;
     }
 
+    if (const char *d = internal_dtd(text)) {
+        place_of(text, d, &line, &col);
+        mpb__set_err(err, errlen, "line %d, column %d: a <!DOCTYPE> with an "
+                     "internal DTD ([...]) is not read: remove it", line, col);
+        return MPB_EPARSE;
+    }
     return MPB_OK;
 }
 

@@ -59,7 +59,8 @@ int mpb__urdf_parse(const char *text, mpb__urdf_model *m, char *err,
  * What TinyXML is not trusted with, checked before it parses an XML text
  * (URDF or SRDF): MPB_OK, or MPB_EPARSE with one line in err ("empty
  * document", "not XML ...", "line 3, column 7: not UTF-8", "XML nested
- * too deeply ...").
+ * too deeply ...", "line 2, column 1: a <!DOCTYPE> with an internal DTD
+ * ([...]) is not read: remove it").
  */
 int mpb__xml_precheck(const char *text, char *err, size_t errlen);
 

@@ -277,36 +277,9 @@ size_t count(const TiXmlElement *root, const char *name)
     return n;
 }
 
-/* A <!DOCTYPE ...> with an internal subset ("[ ... ]"), which TinyXML
- * cannot read (it would end the declaration at the subset's first '>'
- * and find no root element): refused at its place. */
-int internal_dtd(const char *text, char *err, size_t errlen)
-{
-    const char *d = std::strstr(text, "<!DOCTYPE");
-    if (!d)
-        return MPB_OK;
-    const char *open = std::strchr(d, '['), *close = std::strchr(d, '>');
-    if (!open || (close && close < open))
-        return MPB_OK;
-    int line = 1, col = 1;
-    for (const char *p = text; p < d; p++) {
-        if (*p == '\n') {
-            line++;
-            col = 1;
-        } else if ((*p & 0xC0) != 0x80) {
-            col++;
-        }
-    }
-    mpb__set_err(err, errlen, "line %d, column %d: a <!DOCTYPE> with an "
-                 "internal DTD ([...]) is not read: remove it", line, col);
-    return MPB_EPARSE;
-}
-
 int parse(const char *text, mpb__srdf *s, char *err, size_t errlen)
 {
     int rc = mpb__xml_precheck(text, err, errlen);
-    if (rc == MPB_OK)
-        rc = internal_dtd(text, err, errlen);
     if (rc != MPB_OK)
         return rc;
     TiXmlDocument xml;
