@@ -415,8 +415,10 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
             const Shape &ss = c->sshapes[(size_t)c->seed_s];
             const Movable &mv = c->movables[(size_t)ms.body];
             if (mv.enabled && !mv.self_only && !allowed_static(&mv, ss.body)) {
-                sync(ms);
-                q.best = pair_distance(c, ms.obj.get(), ss.obj.get());
+                double upper = INFINITY;
+                if (ms.num_verts > 0)
+                    mesh_static_lower(ms, ss, INFINITY, true, &upper);
+                q.best = pair_distance_upper(c, ms, ss, INFINITY, upper);
                 q.best_m = q.seed_m = ms.obj.get();
                 q.best_s = q.seed_s = ss.obj.get();
                 q.static_id = ss.body;
@@ -477,10 +479,11 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                 const Leaf &l = c->leaves[(size_t)p.leaf];
                 const Shape &ss = c->sshapes[(size_t)l.shape];
                 const Obj *st = ss.obj.get();
-                if (sh.num_verts > 0 && !(mesh_static_lower(sh, ss, q.best, true) < q.best))
+                double upper = INFINITY;
+                if (sh.num_verts > 0 &&
+                    !(mesh_static_lower(sh, ss, q.best, true, &upper) < q.best))
                     continue;
-                sync(sh);
-                double d = pair_distance(c, sh.obj.get(), st);
+                double d = pair_distance_upper(c, sh, ss, q.best, upper);
                 if (d < q.best) {
                     q.best = d;
                     q.best_m = sh.obj.get();
