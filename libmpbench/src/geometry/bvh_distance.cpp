@@ -87,7 +87,8 @@ inline double aabb_gap(const double c[3], const double r[3], const double h[3],
  * sides h centred at 0: the widest gap between the two along the line
  * between the box and obb's own axis-aligned box in the box's frame, and
  * along obb's axes. */
-inline double node_lower(const Frame &f, const fcl::OBBd &obb, const double h[3])
+inline double node_lower(const Frame &f, const fcl::OBBd &obb, const double h[3],
+                         double best)
 {
     double a[3][3], c[3], r[3]; /* a[j]: obb's axis j in the box's frame */
     const double *e = obb.extent.data();
@@ -100,6 +101,8 @@ inline double node_lower(const Frame &f, const fcl::OBBd &obb, const double h[3]
         r[k] = std::fabs(a[0][k]) * e[0] + std::fabs(a[1][k]) * e[1] +
                std::fabs(a[2][k]) * e[2];
     double u[3], gap = aabb_gap(c, r, h, u);
+    if (gap - kRound >= best)
+        return gap - kRound;    /* enough to drop it */
     if (gap > 0) {              /* obb itself along u: at least as wide */
         double t = c[0] * u[0] + c[1] * u[1] + c[2] * u[2];
         for (int j = 0; j < 3; j++)
@@ -127,7 +130,7 @@ inline double tri_gap(const double p[3][3], const double u[3], const double h[3]
  * triangle's axis-aligned box, along the lines from the box to each
  * vertex, and along the triangle's normal. Where a vertex is nearest,
  * as mostly, this is the distance. */
-inline double tri_lower(const double p[3][3], const double h[3])
+inline double tri_lower(const double p[3][3], const double h[3], double best)
 {
     double c[3], r[3], u[3];
     for (int k = 0; k < 3; k++) {
@@ -137,6 +140,8 @@ inline double tri_lower(const double p[3][3], const double h[3])
         r[k] = (hi - lo) / 2;
     }
     double gap = aabb_gap(c, r, h, u);
+    if (gap - kRound >= best)
+        return gap - kRound;
     if (gap > 0) {
         gap = std::max(gap, tri_gap(p, u, h));
         for (int i = 0; i < 3; i++) {
@@ -191,7 +196,7 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
     const Node *nodes = &m.getBV(0);
     const Later later;
     heap.clear();
-    heap.push_back({node_lower(f, nodes[0].bv.obb, h), 0});
+    heap.push_back({node_lower(f, nodes[0].bv.obb, h, best), 0});
     /* Nearest bound first: the first triangle measured is mostly the
        nearest, and every other bound then falls short of it. */
     while (!heap.empty()) {
@@ -209,7 +214,7 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
             to_box(f, p1, p[0]);
             to_box(f, p2, p[1]);
             to_box(f, p3, p[2]);
-            double lo = tri_lower(p, h);
+            double lo = tri_lower(p, h, best);
             if (lo > top.lower) {   /* tighter: wait for its turn */
                 heap.push_back({lo, top.node});
                 std::push_heap(heap.begin(), heap.end(), later);
@@ -226,7 +231,7 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
         }
         for (int child = n.first_child; child <= n.first_child + 1; child++) {
             const Node &k = nodes[child];
-            double lo = k.first_child < 0 ? top.lower : node_lower(f, k.bv.obb, h);
+            double lo = k.first_child < 0 ? top.lower : node_lower(f, k.bv.obb, h, best);
             if (!(lo < best - kTie))
                 continue;
             heap.push_back({std::max(lo, top.lower), child});
