@@ -30,7 +30,6 @@
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cone.h>
 #include <fcl/geometry/shape/cylinder.h>
-#include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 
 #include <algorithm>
@@ -256,8 +255,6 @@ double bvh_shape_distance(const BvhObbRss &m, const fcl::Transform3d &tf1,
     switch (g.getNodeType()) {
     case fcl::GEOM_BOX:
         return traverse(m, tf1, static_cast<const fcl::Boxd &>(g), tf2, box_c, box_h, tol, below, heap);
-    case fcl::GEOM_SPHERE:
-        return traverse(m, tf1, static_cast<const fcl::Sphered &>(g), tf2, box_c, box_h, tol, below, heap);
     case fcl::GEOM_CYLINDER:
         return traverse(m, tf1, static_cast<const fcl::Cylinderd &>(g), tf2, box_c, box_h, tol, below, heap);
     case fcl::GEOM_CONE:

@@ -23,11 +23,13 @@ struct BvhQueued {
 
 /*
  * The distance between mesh m (at tf1) and primitive shape g (at tf2; a
- * box, sphere, cylinder, cone or capsule, held in its own frame by the
+ * box, cylinder, cone or capsule, held in its own frame by the
  * box of centre box_c and half sides box_h), as fcl::distance measures it
  * with the libccd solver at tolerance tol (to within 1e-9 m of it), 0 if
  * they touch; or `below` if it is at least that. NaN if the pair is left
- * to fcl::distance (another shape, a model not made of triangles). heap:
+ * to fcl::distance (another shape, a model not made of triangles; a
+ * sphere, which FCL measures against a triangle in closed form, not by
+ * the GJK solver). heap:
  * the traversal's queue, kept by the caller so that it is allocated once.
  */
 double bvh_shape_distance(const BvhObbRss &m, const fcl::Transform3d &tf1,
