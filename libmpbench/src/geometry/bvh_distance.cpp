@@ -207,25 +207,12 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
         if (!(top.lower < best - kTie))
             break;              /* nothing left can be nearer */
         const Node &n = nodes[top.node];
-        if (n.first_child < 0) {
+        if (n.first_child < 0) {    /* a triangle, its own bound below */
             const fcl::Triangle &t = m.tri_indices[-(n.first_child + 1)];
-            const fcl::Vector3d &p1 = m.vertices[t[0]], &p2 = m.vertices[t[1]],
-                                &p3 = m.vertices[t[2]];
-            double p[3][3];
-            to_box(f, p1, p[0]);
-            to_box(f, p2, p[1]);
-            to_box(f, p3, p[2]);
-            double lo = tri_lower(p, h, best);
-            if (!(lo < best - kTie))
-                continue;
-            if (lo > top.lower) {   /* tighter: wait for its turn */
-                heap.push_back({lo, top.node});
-                std::push_heap(heap.begin(), heap.end(), later);
-                continue;
-            }
             double d;
             fcl::Vector3d q1, q2;
-            solver.shapeTriangleDistance(s, tf2, p1, p2, p3, tf1, &d, &q2, &q1);
+            solver.shapeTriangleDistance(s, tf2, m.vertices[t[0]], m.vertices[t[1]],
+                                         m.vertices[t[2]], tf1, &d, &q2, &q1);
             if (d < best)
                 best = d;
             if (best <= 0)
@@ -234,7 +221,17 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
         }
         for (int child = n.first_child; child <= n.first_child + 1; child++) {
             const Node &k = nodes[child];
-            double lo = k.first_child < 0 ? top.lower : node_lower(f, k.bv.obb, h, best);
+            double lo;
+            if (k.first_child < 0) {
+                const fcl::Triangle &t = m.tri_indices[-(k.first_child + 1)];
+                double p[3][3];
+                to_box(f, m.vertices[t[0]], p[0]);
+                to_box(f, m.vertices[t[1]], p[1]);
+                to_box(f, m.vertices[t[2]], p[2]);
+                lo = tri_lower(p, h, best);
+            } else {
+                lo = node_lower(f, k.bv.obb, h, best);
+            }
             if (!(lo < best - kTie))
                 continue;
             heap.push_back({std::max(lo, top.lower), child});
