@@ -29,7 +29,12 @@
  * listed for the direction (hull.h, dirtable.h): the same numbers as from
  * all its vertices, for a few percent of the cost. Two meshes that get
  * that far are tested by a traversal of FCL's trees of our own
- * (bvh_collide.h), FCL's verdict at about half the cost.
+ * (bvh_collide.h), FCL's verdict at about half the cost. A mesh's distance
+ * to a primitive static is measured over FCL's tree with bounds against
+ * the primitive's own box (bvh_distance.h), FCL's answer for a fraction of
+ * the cost, cut off just above a bound from the mesh's vertices; the last
+ * query's nearest pair bounds the next query the same way, with no FCL
+ * call (test_clearance_reference.c).
  *
  * What FCL 0.7 gets wrong, and what is done about it (see the tests):
  *   - plane distances crash (libccd) or are wrong (independent GJK): planes
