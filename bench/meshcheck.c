@@ -10,7 +10,9 @@
  * mpb_world_in_collision(), mpb_world_contact() and mpb_world_clearance()
  * over the whole list, for one world and then the other (the order swapped
  * every round). Per query it prints the median over the rounds of the
- * mean time per check, and the median of the rounds' ratios. Times are
+ * mean time per check, and the median of the rounds' ratios; and the
+ * median over the rounds of the measured robot's clearance time over its
+ * collision check time (issue 37: at most 5). Times are
  * the thread's CPU time, not the wall clock: on a machine shared with
  * other work, waiting for a core would count otherwise.
  */
@@ -271,6 +273,23 @@ int main(int argc, char **argv)
                "(rounds %.2f-%.2f)\n", qname[k], a * 1e6, b * 1e6, rr, lo, hi);
         mpbb_result("meshcheck_%s us=%.3f ref_us=%.3f ratio=%.3f ratio_min=%.3f "
                     "ratio_max=%.3f", qname[k], a * 1e6, b * 1e6, rr, lo, hi);
+    }
+    if (only < 0) {
+        /* issue 37: a clearance query against a collision check of the
+           same robot, round by round (both passes in the same round, so
+           that the machine's load moves both alike) */
+        double *cc = ratio[Q_CONTACT];  /* reused: its ratios are printed */
+        for (int r = 0; r < rounds; r++)
+            cc[r] = s[0].t[Q_CLEARANCE][r] / s[0].t[Q_COLLISION][r];
+        double rr = median(cc, rounds), lo = cc[0], hi = cc[0];
+        for (int r = 1; r < rounds; r++) {
+            lo = fmin(lo, cc[r]);
+            hi = fmax(hi, cc[r]);
+        }
+        printf("  %s: clearance / in_collision %.2f (rounds %.2f-%.2f)\n",
+               s[0].label, rr, lo, hi);
+        mpbb_result("meshcheck_clearance_vs_collision ratio=%.3f ratio_min=%.3f "
+                    "ratio_max=%.3f", rr, lo, hi);
     }
     mpbb_result("meshcheck_setup states=%d rounds=%d colliding=%d "
                 "ref_colliding=%d open_s=%.3f ref_open_s=%.3f", states, rounds,

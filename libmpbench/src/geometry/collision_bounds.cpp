@@ -115,11 +115,11 @@ void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi)
  * is found. Each gap is exact on its own (mesh_reach()), so a poor
  * direction costs time, never a wrong answer. lowest(d, lo): B's min
  * along d, and which point of B is there; point(which, p): that point
- * (world).
+ * (world); visit(i): each vertex of a found extreme along the way.
  */
-template <class Lowest, class Point>
+template <class Lowest, class Point, class Visit>
 double gjk_gap(const Shape &a, const Lowest &lowest, const Point &point,
-               double d[3], double stop)
+               double d[3], double stop, const Visit &visit)
 {
     double simplex[4][3], best = -INFINITY;
     int m = 0;
@@ -132,6 +132,7 @@ double gjk_gap(const Shape &a, const Lowest &lowest, const Point &point,
         double ahi, blo, pa[3], pb[3], w[3];
         int iahi;
         mesh_reach(a, d, ahi, iahi);
+        visit(iahi);
         int which = lowest(d, blo);
         if (blo - ahi > stop * n)
             return (blo - ahi) / n;
@@ -175,7 +176,8 @@ bool meshes_apart(const Shape &a, const Shape &b)
     auto point = [&b](int i, double p[3]) {
         mpb_pose_apply(&b.world, b.verts[i].data(), p);
     };
-    return gjk_gap(a, lowest, point, d, MPB__CAP_MARGIN) > MPB__CAP_MARGIN;
+    return gjk_gap(a, lowest, point, d, MPB__CAP_MARGIN, [](int) {}) >
+           MPB__CAP_MARGIN;
 }
 
 /*
@@ -185,10 +187,16 @@ bool meshes_apart(const Shape &a, const Shape &b)
  * mesh lies within its vertices' hull); with search, unless that passes
  * stop, also along the directions of gjk_gap() from that line: tighter,
  * for a distance query to skip the pair by. A few dozen dot products:
- * far cheaper than the FCL distance it may spare.
+ * far cheaper than the FCL distance it may spare. upper (if not null):
+ * the least distance from the vertices of a met on the search to ss
+ * (point_static_distance()), an upper bound on the pair's distance;
+ * INFINITY if none was measured.
  */
-double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search)
+double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search,
+                         double *upper)
 {
+    if (upper)
+        *upper = INFINITY;
     const double *R = ss.world.R;
     double c[3];              /* the box's centre in the world */
     mpb_pose_apply(&ss.world, ss.lbox_c, c);
@@ -236,8 +244,53 @@ double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool sear
     };
     for (int i = 0; i < 3; i++)
         d[i] = c[i] - a.wcenter[i];
-    gap = std::max(gap, gjk_gap(a, lowest, point, d, stop + MPB__CAP_MARGIN));
+    auto visit = [&](int i) {
+        if (!upper)
+            return;
+        double p[3];
+        mpb_pose_apply(&a.world, a.verts[i].data(), p);
+        *upper = std::min(*upper, point_static_distance(ss, p));
+    };
+    gap = std::max(gap, gjk_gap(a, lowest, point, d, stop + MPB__CAP_MARGIN, visit));
     return gap - MPB__CAP_MARGIN;
+}
+
+/*
+ * The distance from world point p to static ss: exact (to rounding) for a
+ * box, sphere, cylinder or capsule, 0 inside; INFINITY for any other
+ * shape (no bound).
+ */
+double point_static_distance(const Shape &ss, const double p[3])
+{
+    const double *R = ss.world.R, *t = ss.world.t, *h = ss.dims;
+    double x[3];              /* p in ss's frame */
+    for (int k = 0; k < 3; k++)
+        x[k] = R[k] * (p[0] - t[0]) + R[3 + k] * (p[1] - t[1]) + R[6 + k] * (p[2] - t[2]);
+    switch (ss.type) {
+    case MPB_SHAPE_BOX: {
+        double s = 0;
+        for (int k = 0; k < 3; k++) {
+            double g = std::fabs(x[k]) - h[k] / 2;
+            if (g > 0)
+                s += g * g;
+        }
+        return std::sqrt(s);
+    }
+    case MPB_SHAPE_SPHERE:
+        return std::max(0.0, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - h[0]);
+    case MPB_SHAPE_CYLINDER: {
+        double r = std::max(0.0, std::sqrt(x[0] * x[0] + x[1] * x[1]) - h[0]);
+        double z = std::max(0.0, std::fabs(x[2]) - h[1] / 2);
+        return std::sqrt(r * r + z * z);
+    }
+    case MPB_SHAPE_CAPSULE: {
+        double z = std::clamp(x[2], -h[1] / 2, h[1] / 2);
+        double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + (x[2] - z) * (x[2] - z));
+        return std::max(0.0, r - h[0]);
+    }
+    default:
+        return INFINITY;
+    }
 }
 
 /* The ends of a's capsule in the frame of static ss's box, from its centre. */

@@ -29,7 +29,12 @@
  * listed for the direction (hull.h, dirtable.h): the same numbers as from
  * all its vertices, for a few percent of the cost. Two meshes that get
  * that far are tested by a traversal of FCL's trees of our own
- * (bvh_collide.h), FCL's verdict at about half the cost.
+ * (bvh_collide.h), FCL's verdict at about half the cost. A mesh's distance
+ * to a primitive static is measured over FCL's tree with bounds against
+ * the primitive's own box (bvh_distance.h), FCL's answer for a fraction of
+ * the cost, cut off just above a bound from the mesh's vertices; the last
+ * query's nearest pair bounds the next query the same way, with no FCL
+ * call (test_clearance_reference.c).
  *
  * What FCL 0.7 gets wrong, and what is done about it (see the tests):
  *   - plane distances crash (libccd) or are wrong (independent GJK): planes
@@ -408,33 +413,59 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
         const Shape *best_shape = nullptr;      /* for a plane */
         const Plane *best_plane = nullptr;
         /* Successive queries are mostly near each other (a path sampled
-           finely): the last nearest pair gives a tight bound to prune with. */
+           finely): the last nearest pair gives a tight bound to prune
+           with. A mesh's bound from above comes from its vertices
+           (mesh_static_lower()), with no FCL call: the pair is then
+           measured in its turn like any other, and only if it may be the
+           nearest. Anything else is measured now. */
+        double bound = INFINITY;        /* the least distance is below */
+        const Shape *seed_ms = nullptr, *seed_ss = nullptr;
         if (c->seed_m >= 0 && (size_t)c->seed_m < c->mshapes.size() &&
             c->seed_s >= 0 && (size_t)c->seed_s < c->sshapes.size()) {
             const Shape &ms = c->mshapes[(size_t)c->seed_m];
             const Shape &ss = c->sshapes[(size_t)c->seed_s];
             const Movable &mv = c->movables[(size_t)ms.body];
             if (mv.enabled && !mv.self_only && !allowed_static(&mv, ss.body)) {
-                sync(ms);
-                q.best = pair_distance(c, ms.obj.get(), ss.obj.get());
-                q.best_m = q.seed_m = ms.obj.get();
-                q.best_s = q.seed_s = ss.obj.get();
-                q.static_id = ss.body;
-                best_movable = mv.id;
+                seed_ms = &ms;
+                seed_ss = &ss;
+                if (ms.num_verts > 0) {
+                    mesh_static_lower(ms, ss, INFINITY, true, &bound);
+                    /* the slack of pair_distance_upper(): the pair's own
+                       FCL distance is below it */
+                    bound += 1e-7 * (1.0 + bound);
+                }
             }
         }
+        auto measure_seed = [&]() {
+            const Shape &ms = *seed_ms, &ss = *seed_ss;
+            double upper = INFINITY;
+            if (ms.num_verts > 0)
+                mesh_static_lower(ms, ss, INFINITY, true, &upper);
+            q.best = pair_distance_upper(c, ms, ss, INFINITY, upper);
+            q.best_m = q.seed_m = ms.obj.get();
+            q.best_s = q.seed_s = ss.obj.get();
+            q.static_id = ss.body;
+            best_movable = c->movables[(size_t)ms.body].id;
+        };
+        if (seed_ms && !(bound < INFINITY))
+            measure_seed();
         /* The statics that may be nearer than the bound to the robot as
            a whole: for a robot among a few dozen obstacles, few are. */
         Box3 all;
         bool among = false;
         if (robot_box(c, all)) {
-            if (q.best < std::numeric_limits<double>::infinity())
-                gather_near(c, all, q.best);
+            double b = std::min(q.best, bound);
+            if (b < std::numeric_limits<double>::infinity())
+                gather_near(c, all, b);
             else
                 gather_where(c, [](const Box3 &) { return true; });
             among = c->cand.size() <= MPB__FEW;
         }
-        if (among) {
+        if (!among && bound < INFINITY) {
+            measure_seed();     /* the tree's walk prunes with q.best */
+            bound = INFINITY;
+        }
+        for (int attempt = 0; among && attempt < 2; attempt++) {
             /* Best first: every (shape, static) pair with its cheap lower
                bound, nearest first, measured until a bound is no better
                than the best distance so far. The first measured is
@@ -442,6 +473,7 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                links measured in body order took dozens. */
             c->near.clear();
             c->near.reserve(c->mshapes.size() * c->cand.size());
+            const double cap = std::min(q.best, bound);
             for (const Movable &m : c->movables) {
                 if (!m.enabled || m.self_only)
                     continue;
@@ -459,9 +491,9 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                         double lower = std::max(
                             std::sqrt(box_dist2(l.box, sh.box)),
                             std::sqrt(dx * dx + dy * dy + dz * dz) - sh.bradius - l.radius);
-                        if (sh.has_cap)
+                        if (sh.has_cap && lower < cap)
                             lower = std::max(lower, cap_static_lower(sh, ss));
-                        if (lower < q.best)
+                        if (lower < cap)
                             c->near.push_back({lower, si, i});
                     }
                 }
@@ -471,17 +503,19 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                           return a.lower < b.lower;
                       });
             for (const auto &p : c->near) {
-                if (!(p.lower < q.best) || q.best <= 0.0)
+                double lim = std::min(q.best, bound);
+                if (!(p.lower < lim) || q.best <= 0.0)
                     break;
                 const Shape &sh = c->mshapes[(size_t)p.shape];
                 const Leaf &l = c->leaves[(size_t)p.leaf];
                 const Shape &ss = c->sshapes[(size_t)l.shape];
                 const Obj *st = ss.obj.get();
-                if (sh.num_verts > 0 && !(mesh_static_lower(sh, ss, q.best, true) < q.best))
+                double upper = INFINITY;
+                if (sh.num_verts > 0 &&
+                    !(mesh_static_lower(sh, ss, lim, true, &upper) < lim))
                     continue;
-                sync(sh);
-                double d = pair_distance(c, sh.obj.get(), st);
-                if (d < q.best) {
+                double d = pair_distance_upper(c, sh, ss, lim, upper);
+                if (d < lim) {
                     q.best = d;
                     q.best_m = sh.obj.get();
                     q.best_s = st;
@@ -489,6 +523,16 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                     best_movable = c->movables[(size_t)sh.body].id;
                 }
             }
+            /* The seed's bound holds its own pair's distance, which was
+               measured unless a nearer was: never again, but should the
+               solver disagree, the pairs are measured with no bound. */
+            if (q.best < INFINITY || !(bound < INFINITY))
+                break;
+            bound = INFINITY;
+            gather_where(c, [](const Box3 &) { return true; });
+            among = c->cand.size() <= MPB__FEW;
+        }
+        if (among) {
             for (const Movable &m : c->movables) {
                 if (!m.enabled || m.self_only)
                     continue;

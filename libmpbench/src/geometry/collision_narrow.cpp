@@ -5,6 +5,7 @@
  */
 #include "geometry/collision_world.h"
 #include "geometry/bvh_collide.h"
+#include "geometry/bvh_distance.h"
 
 namespace mpb {
 namespace coll {
@@ -17,12 +18,51 @@ bool allowed_static(const Movable *m, int static_id)
     return false;
 }
 
-/* FCL's distance of a pair, never negative. */
-double pair_distance(mpb_collision *c, const Obj *a, const Obj *b)
+/* FCL's distance of a pair, never negative; or `below` if it is at
+ * least that: FCL keeps only what is nearer than its result holds, so
+ * started at `below` it skips every part of a mesh that far or further. */
+double pair_distance(mpb_collision *c, const Obj *a, const Obj *b, double below)
 {
     c->dres.clear();
+    c->dres.min_distance = below;
     double d = fcl::distance(a, b, c->dreq, c->dres);
-    return d < 0 ? 0.0 : d;
+    return d < 0 ? 0.0 : std::min(d, below);
+}
+
+/*
+ * The distance of movable shape ms and static ss, or `below` if it is at
+ * least that: FCL's, through bvh_shape_distance() for a mesh against a
+ * primitive (FCL's answer for a fraction of the cost), else through
+ * fcl::distance. upper, a bound from above on their distance
+ * (mesh_static_lower()), lowers the cutoff to just above it, so that
+ * only the parts of the mesh that may be that near are measured. The
+ * answer stays FCL's: what is skipped is at least the cutoff away, and
+ * something nearer was found; should nothing be (the solver a hair above
+ * the bound), it is measured again with `below` alone.
+ */
+double pair_distance_upper(mpb_collision *c, const Shape &ms, const Shape &ss,
+                           double below, double upper)
+{
+    sync(ms);
+    double cut = upper + 1e-7 * (1.0 + upper);
+    bool mesh = ms.type == MPB_SHAPE_MESH && ss.type != MPB_SHAPE_MESH;
+    for (int pass = cut < below ? 0 : 1; pass < 2; pass++) {
+        double lim = pass == 0 ? cut : below, d = NAN;
+        if (mesh) {
+            sync(ss);
+            d = bvh_shape_distance(
+                *static_cast<const BvhObbRss *>(ms.obj->collisionGeometry().get()),
+                ms.obj->getTransform(), *ss.obj->collisionGeometry(),
+                ss.obj->getTransform(), ss.lbox_c, ss.lbox_h,
+                c->dreq.distance_tolerance, lim, c->bvh_heap);
+            d = d < 0 ? 0.0 : d;
+        }
+        if (std::isnan(d))
+            d = pair_distance(c, ms.obj.get(), ss.obj.get(), lim);
+        if (d < lim || pass == 1)
+            return d;
+    }
+    return below;
 }
 
 /* Do shapes a and b (synced) collide? Two meshes through bvh_collide(),
@@ -109,11 +149,13 @@ void leaf_distance(Query *q, const Shape &ms, int i)
     if (!(lower < q->best) || (ms.obj.get() == q->seed_m && st == q->seed_s) ||
         allowed_static(q->m, l.body))
         return;
-    if (ms.has_cap &&
-        !(cap_static_lower(ms, c->sshapes[(size_t)l.shape]) < q->best))
+    const Shape &ss = c->sshapes[(size_t)l.shape];
+    if (ms.has_cap && !(cap_static_lower(ms, ss) < q->best))
         return;
-    sync(ms);
-    double d = pair_distance(c, ms.obj.get(), st);
+    double upper = INFINITY;
+    if (ms.num_verts > 0 && !(mesh_static_lower(ms, ss, q->best, true, &upper) < q->best))
+        return;
+    double d = pair_distance_upper(c, ms, ss, q->best, upper);
     if (d < q->best) {
         q->best = d;
         q->best_m = ms.obj.get();

@@ -21,6 +21,7 @@
 #include "core/cxx_guard.h"
 #include "core/errbuf.h"
 #include "geometry/dirtable.h"
+#include "geometry/bvh_distance.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -191,6 +192,7 @@ struct mpb_collision {
     fcl::DistanceResultd   dres;
     struct Near { double lower; int shape, leaf; };
     std::vector<Near>    near;           /* a distance query's pairs */
+    std::vector<mpb::BvhQueued> bvh_heap; /* bvh_shape_distance()'s queue */
     /* Pairs of movables (indices i < j) the caller proved apart while
        both stood where their placed counts say (mpb__collision_hint_apart) */
     struct Hint { int i, j; uint64_t pi, pj; };
@@ -386,14 +388,24 @@ bool caps_apart(const Shape &a, const Shape &b);
 /* How far mesh shape s reaches along world direction d (vertex ihi). */
 void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi);
 bool meshes_apart(const Shape &a, const Shape &b);
-double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search);
+double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search,
+                         double *upper = nullptr);
+/* The distance from world point p to static ss (INFINITY: no bound). */
+double point_static_distance(const Shape &ss, const double p[3]);
 bool cap_misses_static(const Shape &a, const Shape &ss);
 double cap_static_lower(const Shape &a, const Shape &ss);
 
 /* collision_narrow.cpp */
 bool allowed_static(const Movable *m, int static_id);
-/* FCL's distance of a pair, never negative. */
-double pair_distance(mpb_collision *c, const Obj *a, const Obj *b);
+/* FCL's distance of a pair, never negative; or `below` if it is at
+ * least that (FCL then skips what is further). */
+double pair_distance(mpb_collision *c, const Obj *a, const Obj *b,
+                     double below = INFINITY);
+/* FCL's distance of movable shape ms and static ss, or `below` if it is
+ * at least that; upper, if finite, bounds the distance from above (a
+ * cutoff that prunes FCL's traversal, never the answer). */
+double pair_distance_upper(mpb_collision *c, const Shape &ms, const Shape &ss,
+                           double below, double upper);
 bool narrow_phase(mpb_collision *c, const Shape &a, const Shape &b);
 int static_hit(mpb_collision *c, const Movable &m, const Shape &ms, bool among);
 void static_distance(Query *q, const Shape &ms, bool among);

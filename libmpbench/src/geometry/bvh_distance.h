@@ -1,0 +1,43 @@
+/*
+ * bvh_distance.h - private to libmpbench: the distance between a mesh
+ * (an FCL BVH model of OBBRSS nodes) and a primitive shape, FCL's
+ * distance for less, by a traversal of FCL's own nodes with tighter
+ * bounds against the shape's box (bvh_distance.cpp).
+ */
+#ifndef MPB_BVH_DISTANCE_H
+#define MPB_BVH_DISTANCE_H
+
+#include "geometry/bvh_collide.h"
+
+#include <fcl/geometry/collision_geometry.h>
+
+#include <vector>
+
+namespace mpb {
+
+/* A node of the traversal's queue: its tree index and lower bound. */
+struct BvhQueued {
+    double lower;
+    int    node;
+};
+
+/*
+ * The distance between mesh m (at tf1) and primitive shape g (at tf2; a
+ * box, cylinder, cone or capsule, held in its own frame by the
+ * box of centre box_c and half sides box_h), as fcl::distance measures it
+ * with the libccd solver at tolerance tol (to within 1e-9 m of it), 0 if
+ * they touch; or `below` if it is at least that. NaN if the pair is left
+ * to fcl::distance (another shape, a model not made of triangles; a
+ * sphere, which FCL measures against a triangle in closed form, not by
+ * the GJK solver). heap:
+ * the traversal's queue, kept by the caller so that it is allocated once.
+ */
+double bvh_shape_distance(const BvhObbRss &m, const fcl::Transform3d &tf1,
+                          const fcl::CollisionGeometryd &g,
+                          const fcl::Transform3d &tf2, const double box_c[3],
+                          const double box_h[3], double tol, double below,
+                          std::vector<BvhQueued> &heap);
+
+} // namespace mpb
+
+#endif /* MPB_BVH_DISTANCE_H */
