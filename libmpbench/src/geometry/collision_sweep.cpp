@@ -54,27 +54,6 @@ double rate_of(const mpb_collision *c, size_t i, const double *rate, int n)
     return id < n ? rate[id] : 0.0;
 }
 
-/* The distance from movable m to the statics it may not touch, or
- * `below` if it is at least that. */
-double static_gap(mpb_collision *c, const Movable &m, double below)
-{
-    Query q = {};
-    q.c = c;
-    q.m = &m;
-    q.best = below;
-    q.static_id = -1;
-    for (int si : m.shapes) {
-        const Shape &ms = c->mshapes[(size_t)si];
-        static_distance(&q, ms, false);
-        for (const Plane &p : c->planes)
-            if (!allowed_static(&m, p.id))
-                q.best = std::min(q.best, plane_distance(ms, p, nullptr, nullptr));
-        if (q.best <= 0)
-            return 0.0;
-    }
-    return q.best;
-}
-
 /* A lower bound on the distance from movable shape ms to the static of
  * leaf l, cheap ones first: the boxes, the bounding spheres, the mesh's
  * vertices or capsule against the static's box; FCL's distance (stopped
@@ -268,49 +247,9 @@ int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
                                    int a, int b), void *ud, double margin,
                                    double want, double *step)
 {
-    if (!c || !step || (num_rates > 0 && !rate) || !(margin >= 0) || !(want > 0))
-        return MPB_EINVAL;
-    *step = 0.0;
-    for (int i = 0; i < num_rates; i++)
-        if (!(rate[i] >= 0) || !std::isfinite(rate[i]))
-            return MPB_EINVAL;
-    double best = want;         /* the step found so far: s units */
-    return guarded(c, [&]() -> int {
-        int rc = ensure_tree(c);
-        if (rc != MPB_OK)
-            return rc;
-        size_t n = c->movables.size();
-        /* the movables against the statics */
-        for (size_t i = 0; i < n && best > 0; i++) {
-            const Movable &m = c->movables[i];
-            double r = rate_of(c, i, rate, num_rates);
-            if (!m.enabled || m.self_only || m.shapes.empty() || !(r > 0))
-                continue;
-            double d = static_gap(c, m, best * r + margin);
-            best = std::min(best, std::max(0.0, (d - margin) / r));
-        }
-        /* the pairs of movables that may not touch, as in
-           mpb_collision_check_self() */
-        ensure_self_pairs(c);
-        for (size_t k = 0; k < c->self_pairs.size() && best > 0; k++) {
-            size_t i = (size_t)c->self_pairs[k].first, j = (size_t)c->self_pairs[k].second;
-            const Movable &mi = c->movables[i], &mj = c->movables[j];
-            double r = rate_of(c, i, rate, num_rates) + rate_of(c, j, rate, num_rates);
-            if (!mi.enabled || !mj.enabled || !(r > 0))
-                continue;
-            if (pair_rate) {
-                r = pair_rate(ud, mi.id, mj.id);
-                if (!(r >= 0) || !std::isfinite(r))
-                    return MPB_EINVAL;
-                if (!(r > 0))
-                    continue;   /* they move as one: their distance stays */
-            }
-            double d = movables_distance(c, mi, mj, best * r + margin);
-            best = std::min(best, std::max(0.0, (d - margin) / r));
-        }
-        *step = best;
-        return MPB_OK;
-    });
+    mpb__sweep st;              /* a chain of one step */
+    return mpb__collision_sweep_step(c, &st, -1.0, rate, num_rates, pair_rate, ud,
+                                     margin, want, step);
 }
 
 mpb__sweep *mpb__sweep_new(void)
