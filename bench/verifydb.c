@@ -8,6 +8,8 @@
  * result (mpb_measure_stage(): mpb_verify_path at the experiment's
  * resolution and every metric the daemon stores), over all of
  * them, repeated for at least S seconds. Opening the worlds is timed apart.
+ * With --verification both, certified and sampled verification are timed
+ * in the same run, interleaved, as ratios on a shared machine want.
  */
 #include <math.h>
 #include <stdint.h>
@@ -44,6 +46,11 @@ static void usage(FILE *out)
 "                    uses the URDF's folder)\n"
 "  --seconds S       repeat each measurement for at least S seconds\n"
 "                    (default 1)\n"
+"  --verification M  certified (the default), sampled, or both: each\n"
+"                    measurement of one mode, then of the other, --reps\n"
+"                    times, a RESULT line per mode (key_certified,\n"
+"                    key_sampled)\n"
+"  --reps N          repetitions, interleaved (default 1)\n"
 "  --key NAME        the RESULT line's key (default verify_db)\n"
 "  --label TEXT      names the trajectories in the output\n");
 }
@@ -491,6 +498,13 @@ static double count_checks(const db *d, double resolution)
     return checks;
 }
 
+/* Every world verifies in the given mode. */
+static void set_mode(db *d, int mode)
+{
+    for (int i = 0; i < d->num_worlds; i++)
+        mpb_world_set_verification(d->worlds[i].w, (mpb_verification)mode);
+}
+
 static void db_free(db *d)
 {
     for (int i = 0; i < d->num_stages; i++) {
@@ -538,6 +552,8 @@ int main(int argc, char **argv)
     const char *label = NULL;
     double resolution = 0, secs = 1;
     int64_t experiment = 0;
+    long reps = 1;
+    int modes[2] = {MPB_VERIFY_CERTIFIED, MPB_VERIFY_SAMPLED}, num_modes = 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
@@ -555,6 +571,20 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--key") == 0) key = v;
         else if (strcmp(a, "--label") == 0) label = v;
         else if (strcmp(a, "--seconds") == 0) ok = parse_double(v, &secs);
+        else if (strcmp(a, "--reps") == 0) {
+            char *end;
+            reps = strtol(v, &end, 10);
+            ok = end != v && *end == '\0' && reps > 0;
+        } else if (strcmp(a, "--verification") == 0) {
+            num_modes = strcmp(v, "both") == 0 ? 2 : 1;
+            if (strcmp(v, "sampled") == 0)
+                modes[0] = MPB_VERIFY_SAMPLED;
+            else if (strcmp(v, "certified") != 0 && num_modes == 1) {
+                fprintf(stderr, PROG ": --verification wants certified, "
+                        "sampled or both, not '%s'\n", v);
+                return 2;
+            }
+        }
         else if (strcmp(a, "--resolution") == 0)
             ok = parse_double(v, &resolution);
         else if (strcmp(a, "--experiment") == 0) {
@@ -604,49 +634,74 @@ int main(int argc, char **argv)
     if (load(&d, experiment, robot_dir, &open_secs) != 0)
         goto out;
 
-    /* Once, untimed: the verdicts, against the stored ones. */
-    mpb_verdict *verdicts = xcalloc((size_t)d.num_stages, sizeof *verdicts);
-    pass(&d, resolution, VERIFY, verdicts);
-    int same = 0, valid = 0;
-    for (int i = 0; i < d.num_stages; i++) {
-        const char *name = mpb_verdict_name(verdicts[i].code);
-        same += strcmp(name, d.stages[i].stored) == 0;
-        valid += verdicts[i].code == MPB_VERDICT_VALID;
-    }
-    timing t[NUM_WHAT];
-    for (int what = 0; what < NUM_WHAT; what++)
-        t[what] = timed(&d, resolution, what, secs, verdicts);
     double checks = count_checks(&d, resolution);
     double n = (double)d.waypoints;
-
     printf("%s, experiment %lld, resolution %.3g: %d runs with stages (of %d finished), "
            "%d stages, %ld waypoints (%.1f collision checks per waypoint)",
            label ? label : path, (long long)experiment, resolution, d.runs_with_stages,
            d.num_runs, d.num_stages, d.waypoints, checks / n);
     if (d.skipped)
         printf("; %d stages without whole waypoints left out", d.skipped);
-    printf("\n  verdicts: %d of %d as stored, %d valid\n", same,
-           d.num_stages, valid);
-    printf("  worlds: %d opened in %.3f s (%.1f ms each), not timed below\n",
+    printf("\n  worlds: %d opened in %.3f s (%.1f ms each), not timed below\n",
            d.num_worlds, open_secs, open_secs / d.num_worlds * 1e3);
-    printf("  verify + metrics %10.0f waypoints/s (%.2f us per waypoint; "
-           "CPU time %.0f/s), %ld passes\n", n / t[BOTH].wall,
-           t[BOTH].wall / n * 1e6, n / t[BOTH].cpu, t[BOTH].passes);
-    printf("  verify only      %10.0f waypoints/s (CPU time %.0f/s), "
-           "%.0f collision checks/s\n", n / t[VERIFY].wall,
-           n / t[VERIFY].cpu, checks / t[VERIFY].wall);
-    printf("  metrics only     %10.0f waypoints/s (CPU time %.0f/s)\n",
-           n / t[METRICS].wall, n / t[METRICS].cpu);
-    mpbb_result("%s runs=%d finished=%d stages=%d waypoints=%ld "
-                "resolution=%g checks_per_waypoint=%.2f same_verdicts=%d "
-                "valid=%d worlds=%d world_open_s=%.3f wps=%.0f "
-                "verify_wps=%.0f metrics_wps=%.0f cpu_wps=%.0f "
-                "cpu_verify_wps=%.0f cpu_metrics_wps=%.0f reps=%ld",
-                key, d.runs_with_stages, d.num_runs, d.num_stages,
-                d.waypoints, resolution, checks / n, same, valid,
-                d.num_worlds, open_secs, n / t[BOTH].wall,
-                n / t[VERIFY].wall, n / t[METRICS].wall, n / t[BOTH].cpu,
-                n / t[VERIFY].cpu, n / t[METRICS].cpu, t[BOTH].passes);
+
+    /* Once per mode, untimed: the verdicts, against the stored ones. */
+    mpb_verdict *verdicts = xcalloc((size_t)d.num_stages, sizeof *verdicts);
+    int same[2] = {0, 0}, valid[2] = {0, 0}, proved[2] = {0, 0};
+    for (int m = 0; m < num_modes; m++) {
+        set_mode(&d, modes[m]);
+        pass(&d, resolution, VERIFY, verdicts);
+        for (int i = 0; i < d.num_stages; i++) {
+            const char *name = mpb_verdict_name(verdicts[i].code);
+            same[m] += strcmp(name, d.stages[i].stored) == 0;
+            valid[m] += verdicts[i].code == MPB_VERDICT_VALID;
+            proved[m] += verdicts[i].certified;
+        }
+    }
+    /* Interleaved: every measurement of one mode, then of the other. */
+    timing t[2][NUM_WHAT] = {{{0, 0, 0}}};
+    for (long r = 0; r < reps; r++)
+        for (int m = 0; m < num_modes; m++) {
+            set_mode(&d, modes[m]);
+            for (int what = 0; what < NUM_WHAT; what++) {
+                timing one = timed(&d, resolution, what, secs, verdicts);
+                t[m][what].wall += one.wall / (double)reps;
+                t[m][what].cpu += one.cpu / (double)reps;
+                t[m][what].passes += one.passes;
+            }
+        }
+    for (int m = 0; m < num_modes; m++) {
+        const char *mode = mpb_verification_name((mpb_verification)modes[m]);
+        const timing *tm = t[m];
+        printf("%s verification:\n", mode);
+        printf("  verdicts: %d of %d as stored, %d valid, %d certified\n",
+               same[m], d.num_stages, valid[m], proved[m]);
+        printf("  verify + metrics %10.0f waypoints/s (%.2f us per waypoint; "
+               "CPU time %.0f/s), %ld passes\n", n / tm[BOTH].wall,
+               tm[BOTH].wall / n * 1e6, n / tm[BOTH].cpu, tm[BOTH].passes);
+        printf("  verify only      %10.0f waypoints/s (CPU time %.0f/s), "
+               "%.0f collision checks/s\n", n / tm[VERIFY].wall,
+               n / tm[VERIFY].cpu, checks / tm[VERIFY].wall);
+        printf("  metrics only     %10.0f waypoints/s (CPU time %.0f/s)\n",
+               n / tm[METRICS].wall, n / tm[METRICS].cpu);
+        char k[256];
+        if (num_modes > 1)
+            snprintf(k, sizeof k, "%s_%s", key, mode);
+        else
+            snprintf(k, sizeof k, "%s", key);
+        mpbb_result("%s verification=%s runs=%d finished=%d stages=%d "
+                    "waypoints=%ld resolution=%g checks_per_waypoint=%.2f "
+                    "same_verdicts=%d valid=%d certified=%d worlds=%d "
+                    "world_open_s=%.3f wps=%.0f verify_wps=%.0f "
+                    "metrics_wps=%.0f cpu_wps=%.0f cpu_verify_wps=%.0f "
+                    "cpu_metrics_wps=%.0f reps=%ld passes=%ld",
+                    k, mode, d.runs_with_stages, d.num_runs, d.num_stages,
+                    d.waypoints, resolution, checks / n, same[m], valid[m],
+                    proved[m], d.num_worlds, open_secs, n / tm[BOTH].wall,
+                    n / tm[VERIFY].wall, n / tm[METRICS].wall,
+                    n / tm[BOTH].cpu, n / tm[VERIFY].cpu,
+                    n / tm[METRICS].cpu, reps, tm[BOTH].passes);
+    }
     free(verdicts);
     status = 0;
 out:

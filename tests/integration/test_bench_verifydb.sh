@@ -66,6 +66,20 @@ check "... and the same in words" sh -c \
     "printf '%s\n' \"\$1\" | grep -q '^  verify + metrics .* waypoints/s'" _ "$out"
 check "the database is only read" test "$(md5sum <"$DB")" = "$sum"
 
+# Both modes in one run, interleaved: a RESULT line each, same verdicts.
+out=$("$bench" --db "$DB" --seconds 0.01 --reps 2 --verification both 2>&1)
+check "--verification both: a line per mode" test \
+    "$(printf '%s\n' "$out" | grep -c '^RESULT verify_db_\(certified\|sampled\) ')" = 2
+res=$(printf '%s\n' "$out" | grep '^RESULT verify_db_sampled ')
+check "... sampled: every verdict as stored, none certified, 2 reps" test \
+    "$(field same_verdicts) $(field certified) $(field reps)" = "8 0 2"
+res=$(printf '%s\n' "$out" | grep '^RESULT verify_db_certified ')
+check "... certified: every verdict as stored, every stage certified" test \
+    "$(field same_verdicts) $(field certified)" = "8 8"
+out=$("$bench" --db "$DB" --verification maybe 2>&1)
+check "a mode it does not know: one line, exit 2" test "$?:$out" = \
+    "2:mpb-bench-verifydb: --verification wants certified, sampled or both, not 'maybe'"
+
 # The runs of into_post verified again in a stored scene with a block on
 # their path (arm1 swept at j1 = 0.2, clear of it at the start and the
 # goal, and of the runs of fold): only their verdicts change.

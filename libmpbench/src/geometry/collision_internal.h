@@ -102,6 +102,37 @@ int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
                                    int a, int b), void *ud, double margin,
                                    double want, double *step);
 
+/*
+ * A chain of conservative-advancement steps that remembers, pair by pair,
+ * a lower bound on the distance where the robot stands (collision_sweep
+ * .cpp): each step lowers every bound by what the last step's motion may
+ * have closed (its rate of approach times the s it moved) and measures
+ * again only the pairs whose bound no longer covers the step, so a far
+ * pair is measured once for many steps, across segments too. Owned by
+ * the caller; one per collision world.
+ */
+typedef struct mpb__sweep mpb__sweep;
+mpb__sweep *mpb__sweep_new(void);       /* NULL: out of memory */
+void mpb__sweep_free(mpb__sweep *st);   /* NULL is fine */
+/* Pairs measured and pairs skipped since st was made (for tests). */
+void mpb__sweep_counts(const mpb__sweep *st, long *measured, long *skipped);
+
+/*
+ * As mpb__collision_safe_step_pairs(), remembering bounds in st. moved:
+ * how far (units of s) the robot went, along the last call's motion at
+ * its rates, from where the last call on st stood to where it stands now;
+ * negative to start afresh (a new path, or the world changed: the bounds
+ * are forgotten then too if the world's bodies, statics or pairs
+ * changed). The rates must hold over the whole of the last motion from
+ * the last call's place (they do for a straight joint-space segment).
+ * st NULL: mpb__collision_safe_step_pairs().
+ */
+int mpb__collision_sweep_step(mpb_collision *c, mpb__sweep *st, double moved,
+                              const double *rate, int num_rates,
+                              double (*pair_rate)(void *ud, int a, int b),
+                              void *ud, double margin, double want,
+                              double *step);
+
 #ifdef __cplusplus
 }
 #endif

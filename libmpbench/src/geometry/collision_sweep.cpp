@@ -13,14 +13,38 @@
  * 1e-10, measured below 5e-7 m; collision_fcl.cpp). Pairs that cannot
  * approach (r = 0: neither body moves) keep the distance they have, which
  * the caller's check of the start already judged.
+ *
+ * Chained (mpb__collision_sweep_step()): a lower bound per pair (movable
+ * shape against one static; two movables) is kept from step to step and
+ * lowered by rate x s moved; only a pair whose bound no longer covers the
+ * step is measured, cheap bounds first (boxes, spheres, capsules, a mesh's
+ * vertex hull against a static's box), FCL's distance only when those
+ * fall short of a tenth of what the step wants or under 1 mm. Any lower
+ * bound proves; a looser one only shortens the step.
  */
 #include "geometry/collision_world.h"
 #include "geometry/collision_internal.h"
 
+#include <cstring>
 #include <limits>
+
+#include "geometry/simplex.h"
+
+/* A cheap lower bound that is at least this part of what a step wants
+ * stands in for FCL's distance, unless it is under MPB__SWEEP_NEAR (m):
+ * near contact a loose bound would make the steps too short. */
+#define MPB__SWEEP_ENOUGH 0.1
+#define MPB__SWEEP_NEAR 1e-3
+/* Taken off a gap between vertex hulls: the rounding of the dot products
+ * (m), as collision_bounds.cpp's MPB__CAP_MARGIN. */
+#define MPB__HULL_MARGIN 1e-4
 
 namespace mpb {
 namespace coll {
+/* collision_bounds.cpp: the squared distance between segments p0 p1 and
+ * q0 q1 (not in collision_world.h). */
+double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
+                     const double q1[3]);
 namespace {
 
 /* The rate of movable index i (0 for an id past the caller's array). */
@@ -30,32 +54,166 @@ double rate_of(const mpb_collision *c, size_t i, const double *rate, int n)
     return id < n ? rate[id] : 0.0;
 }
 
-/* The distance from movable m to the statics it may not touch, or
- * `below` if it is at least that. */
-double static_gap(mpb_collision *c, const Movable &m, double below)
+/* A lower bound on the distance from movable shape ms to the static of
+ * leaf l, cheap ones first: the boxes, the bounding spheres, the mesh's
+ * vertices or capsule against the static's box; FCL's distance (stopped
+ * at `below`: FCL skips what is further) only when those say less than
+ * `need`. */
+double leaf_lower(mpb_collision *c, const Shape &ms, const Leaf &l, double need,
+                  double below)
 {
-    Query q = {};
-    q.c = c;
-    q.m = &m;
-    q.best = below;
-    q.static_id = -1;
-    for (int si : m.shapes) {
-        const Shape &ms = c->mshapes[(size_t)si];
-        static_distance(&q, ms, false);
-        for (const Plane &p : c->planes)
-            if (!allowed_static(&m, p.id))
-                q.best = std::min(q.best, plane_distance(ms, p, nullptr, nullptr));
-        if (q.best <= 0)
-            return 0.0;
+    double lb = std::sqrt(box_dist2(l.box, ms.box));
+    double dx = ms.wcenter[0] - l.center[0], dy = ms.wcenter[1] - l.center[1],
+           dz = ms.wcenter[2] - l.center[2];
+    lb = std::max(lb, std::sqrt(dx * dx + dy * dy + dz * dz) - ms.bradius - l.radius);
+    if (lb >= need)
+        return lb;
+    const Shape &ss = c->sshapes[(size_t)l.shape];
+    if (ms.verts) {
+        lb = std::max(lb, mesh_static_lower(ms, ss, need, true));
+        /* good enough, if not what the step wants: a step a little
+           shorter costs less than FCL's distance on the mesh */
+        if (lb >= need * MPB__SWEEP_ENOUGH && lb > MPB__SWEEP_NEAR)
+            return lb;
+    } else if (ms.has_cap) {
+        lb = std::max(lb, cap_static_lower(ms, ss));
+        if (lb >= need)
+            return lb;
     }
-    return q.best;
+    sync(ms);
+    c->dres.clear();
+    c->dres.min_distance = below;
+    double d = fcl::distance(ms.obj.get(), ss.obj.get(), c->dreq, c->dres);
+    return std::max(lb, std::min(below, d < 0 ? 0.0 : d));
+}
+
+/* A lower bound on the distance between meshes a and b: the widest gap
+ * between their vertex hulls (which hold them) along the directions of a
+ * GJK search of the hulls' difference (simplex.h), from the line between
+ * their centres, until a gap passes stop or no nearer point is found.
+ * (collision_bounds.cpp's gjk_gap() against a mesh, which it does not
+ * export.) */
+double hulls_lower(const Shape &a, const Shape &b, double stop)
+{
+    double d[3], simplex[4][3], best = -INFINITY;
+    for (int k = 0; k < 3; k++)
+        d[k] = b.wcenter[k] - a.wcenter[k];
+    int m = 0;
+    for (int iter = 0; iter < 16; iter++) {
+        double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], n = std::sqrt(dd);
+        if (!(n > 1e-12) || (iter > 0 && !(n > stop)))
+            return best;
+        double ahi, bhi, nd[3] = {-d[0], -d[1], -d[2]}, pa[3], pb[3], w[3];
+        int ia, ib;
+        mesh_reach(a, d, ahi, ia);
+        mesh_reach(b, nd, bhi, ib);
+        double gap = (-bhi - ahi) / n;
+        best = std::max(best, gap);
+        if (gap > stop)
+            return best;
+        mpb_pose_apply(&a.world, a.verts[ia].data(), pa);
+        mpb_pose_apply(&b.world, b.verts[ib].data(), pb);
+        for (int k = 0; k < 3; k++)
+            w[k] = pb[k] - pa[k];
+        if (iter > 0 && dd - (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) <= 1e-9 * dd)
+            return best;
+        memcpy(simplex[m++], w, sizeof w);
+        m = mpb__simplex_nearest(simplex, m, d);
+        if (m == 0 || m == 4)   /* the hulls overlap */
+            return best;
+    }
+    return best;
+}
+
+/* A lower bound on the distance between movables mi and mj: each pair
+ * of their shapes by boxes, bounding spheres and capsules (meshes), FCL's
+ * distance (stopped at below) only if those say less than enough of need
+ * for some pair. */
+double movables_lower(mpb_collision *c, const Movable &mi, const Movable &mj,
+                      double need, double below)
+{
+    double lb = std::sqrt(box_dist2(mi.box, mj.box));
+    if (lb >= need)
+        return lb;
+    double low = INFINITY;
+    for (int si : mi.shapes)
+        for (int sj : mj.shapes) {
+            const Shape &x = c->mshapes[(size_t)si], &y = c->mshapes[(size_t)sj];
+            double b = std::sqrt(box_dist2(x.box, y.box));
+            double dx = x.wcenter[0] - y.wcenter[0], dy = x.wcenter[1] - y.wcenter[1],
+                   dz = x.wcenter[2] - y.wcenter[2];
+            b = std::max(b, std::sqrt(dx * dx + dy * dy + dz * dz) - x.bradius - y.bradius);
+            if (x.has_cap && y.has_cap && b < need)
+                b = std::max(b, std::sqrt(seg_seg_dist2(x.wcap[0], x.wcap[1], y.wcap[0],
+                                                        y.wcap[1])) - x.cap_r - y.cap_r);
+            if (x.verts && y.verts && b < need)
+                b = std::max(b, hulls_lower(x, y, need) - MPB__HULL_MARGIN);
+            low = std::min(low, b);
+        }
+    lb = std::max(lb, low);
+    if (lb >= need * MPB__SWEEP_ENOUGH && lb > MPB__SWEEP_NEAR)
+        return lb;
+    return std::max(lb, movables_distance(c, mi, mj, below));
 }
 
 } // namespace
 } // namespace coll
 } // namespace mpb
 
+/*
+ * What a chain of steps knows (mpb__collision_sweep_step()): for each
+ * pair, a lower bound on its distance where the robot stands now, and
+ * the rates of approach the last step's motion had, to lower the bounds
+ * by what that motion may have closed.
+ */
+struct mpb__sweep {
+    const mpb_collision *c = nullptr;   /* the bounds hold for this world */
+    size_t               ns = 0, nt = 0, np = 0;  /* and these sizes */
+    std::vector<double>  stat;     /* movable shape x (leaves, planes) */
+    std::vector<double>  self;     /* by self pair */
+    std::vector<double>  mrate;    /* last rate by movable index */
+    std::vector<double>  prate;    /* last rate by self pair */
+    bool                 known = false;
+    long                 measured = 0, skipped = 0;  /* counters, tests */
+};
+
 using namespace mpb::coll;
+
+namespace {
+
+/* Forget every bound (a new chain, or a changed world). */
+void sweep_reset(mpb__sweep *st, const mpb_collision *c)
+{
+    st->c = c;
+    st->ns = c->mshapes.size();
+    st->nt = c->leaves.size() + c->planes.size();
+    st->np = c->self_pairs.size();
+    st->stat.assign(st->ns * st->nt, -1.0);
+    st->self.assign(st->np, -1.0);
+    st->mrate.assign(c->movables.size(), 0.0);
+    st->prate.assign(st->np, 0.0);
+    st->known = true;
+}
+
+/* The bounds lowered by what the last motion, moved units of s at the
+ * last rates, may have closed. */
+void sweep_decay(mpb__sweep *st, const mpb_collision *c, double moved)
+{
+    if (!(moved > 0))
+        return;
+    for (size_t si = 0; si < st->ns; si++) {
+        double r = st->mrate[(size_t)c->mshapes[si].body] * moved;
+        if (!(r > 0))
+            continue;
+        double *b = &st->stat[si * st->nt];
+        for (size_t t = 0; t < st->nt; t++)
+            b[t] -= r;
+    }
+    for (size_t k = 0; k < st->np; k++)
+        st->self[k] -= st->prate[k] * moved;
+}
+
+} // namespace
 
 extern "C" {
 
@@ -89,6 +247,36 @@ int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
                                    int a, int b), void *ud, double margin,
                                    double want, double *step)
 {
+    mpb__sweep st;              /* a chain of one step */
+    return mpb__collision_sweep_step(c, &st, -1.0, rate, num_rates, pair_rate, ud,
+                                     margin, want, step);
+}
+
+mpb__sweep *mpb__sweep_new(void)
+{
+    return new (std::nothrow) mpb__sweep();
+}
+
+void mpb__sweep_free(mpb__sweep *st)
+{
+    delete st;
+}
+
+void mpb__sweep_counts(const mpb__sweep *st, long *measured, long *skipped)
+{
+    *measured = st ? st->measured : 0;
+    *skipped = st ? st->skipped : 0;
+}
+
+int mpb__collision_sweep_step(mpb_collision *c, mpb__sweep *st, double moved,
+                              const double *rate, int num_rates,
+                              double (*pair_rate)(void *ud, int a, int b),
+                              void *ud, double margin, double want,
+                              double *step)
+{
+    if (!st)
+        return mpb__collision_safe_step_pairs(c, rate, num_rates, pair_rate, ud,
+                                              margin, want, step);
     if (!c || !step || (num_rates > 0 && !rate) || !(margin >= 0) || !(want > 0))
         return MPB_EINVAL;
     *step = 0.0;
@@ -96,27 +284,62 @@ int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
         if (!(rate[i] >= 0) || !std::isfinite(rate[i]))
             return MPB_EINVAL;
     double best = want;         /* the step found so far: s units */
-    return guarded(c, [&]() -> int {
-        int rc = ensure_tree(c);
-        if (rc != MPB_OK)
-            return rc;
-        size_t n = c->movables.size();
-        /* the movables against the statics */
-        for (size_t i = 0; i < n && best > 0; i++) {
+    int rc = guarded(c, [&]() -> int {
+        bool fresh = !(moved >= 0) || !st->known || st->c != c || c->dirty ||
+                     c->pairs_dirty;
+        int rc2 = ensure_tree(c);
+        if (rc2 != MPB_OK)
+            return rc2;
+        ensure_self_pairs(c);
+        if (fresh || st->ns != c->mshapes.size() ||
+            st->nt != c->leaves.size() + c->planes.size() ||
+            st->np != c->self_pairs.size() || st->mrate.size() != c->movables.size())
+            sweep_reset(st, c);
+        else
+            sweep_decay(st, c, moved);
+        /* Until the step is found the rates are set to 0: an error below
+           leaves bounds that no decay may trust, so forget them. */
+        st->known = false;
+        size_t n = c->movables.size(), nl = c->leaves.size();
+        /* the movables against the statics, shape by static */
+        for (size_t i = 0; i < n; i++) {
             const Movable &m = c->movables[i];
             double r = rate_of(c, i, rate, num_rates);
+            st->mrate[i] = 0.0;
             if (!m.enabled || m.self_only || m.shapes.empty() || !(r > 0))
                 continue;
-            double d = static_gap(c, m, best * r + margin);
-            best = std::min(best, std::max(0.0, (d - margin) / r));
+            st->mrate[i] = r;
+            for (int si : m.shapes) {
+                const Shape &ms = c->mshapes[(size_t)si];
+                double *b = &st->stat[(size_t)si * st->nt];
+                for (size_t t = 0; t < st->nt; t++) {
+                    double need = best * r + margin;
+                    if (b[t] >= need) {
+                        st->skipped++;
+                        continue;
+                    }
+                    int body = t < nl ? c->leaves[t].body : c->planes[t - nl].id;
+                    if (allowed_static(&m, body)) {
+                        b[t] = INFINITY;    /* never measured again */
+                        continue;
+                    }
+                    st->measured++;
+                    /* a bound to last: twice what this step needs */
+                    double below = 2 * need + 0.02;
+                    b[t] = t < nl ? leaf_lower(c, ms, c->leaves[t], need, below)
+                                  : plane_distance(ms, c->planes[t - nl], nullptr,
+                                                   nullptr);
+                    best = std::min(best, std::max(0.0, (b[t] - margin) / r));
+                }
+            }
         }
         /* the pairs of movables that may not touch, as in
            mpb_collision_check_self() */
-        ensure_self_pairs(c);
-        for (size_t k = 0; k < c->self_pairs.size() && best > 0; k++) {
+        for (size_t k = 0; k < c->self_pairs.size(); k++) {
             size_t i = (size_t)c->self_pairs[k].first, j = (size_t)c->self_pairs[k].second;
             const Movable &mi = c->movables[i], &mj = c->movables[j];
             double r = rate_of(c, i, rate, num_rates) + rate_of(c, j, rate, num_rates);
+            st->prate[k] = 0.0;
             if (!mi.enabled || !mj.enabled || !(r > 0))
                 continue;
             if (pair_rate) {
@@ -126,12 +349,24 @@ int mpb__collision_safe_step_pairs(mpb_collision *c, const double *rate,
                 if (!(r > 0))
                     continue;   /* they move as one: their distance stays */
             }
-            double d = movables_distance(c, mi, mj, best * r + margin);
-            best = std::min(best, std::max(0.0, (d - margin) / r));
+            st->prate[k] = r;
+            double need = best * r + margin;
+            if (st->self[k] >= need) {
+                st->skipped++;
+                continue;
+            }
+            st->measured++;
+            double lb = movables_lower(c, mi, mj, need, 2 * need + 0.02);
+            st->self[k] = lb;
+            best = std::min(best, std::max(0.0, (lb - margin) / r));
         }
+        st->known = true;
         *step = best;
         return MPB_OK;
     });
+    if (rc != MPB_OK)
+        st->known = false;
+    return rc;
 }
 
 } // extern "C"

@@ -517,8 +517,10 @@ static void planar_ee_position(void *impl, const double *q, double xyz[3])
  * last link's bound holds for every link.
  */
 static int planar_safe_step(void *impl, const double *q, const double *d,
-                            double margin, double want, double *step)
+                            double margin, double want, double moved,
+                            double *step)
 {
+    (void)moved;                /* distances are measured every time */
     planar *p = impl;
     double rate = 0.0, lever = p->radius;
     for (int j = p->n - 1; j >= 0; j--) {

@@ -74,9 +74,17 @@ typedef struct mpb__world_provider {
      * (docs/verification.md). 0 when some pair is within margin. MPB_OK;
      * a negative code if it cannot say (the caller then samples). NULL:
      * the world samples.
+     *
+     * moved chains the calls: how far (units of s) the robot went from
+     * the last call's q along the last call's d, to reach q; negative if
+     * q is not so reached (a new path; anything changed in the world
+     * since). A world may then keep, pair by pair, a lower bound on the
+     * distance lowered by what the motion may have closed, and measure
+     * again only the pairs whose bound no longer covers the step.
      */
     int    (*safe_step)(void *impl, const double *q, const double *d,
-                        double margin, double want, double *step);
+                        double margin, double want, double moved,
+                        double *step);
 } mpb__world_provider;
 
 struct mpb_world {
@@ -105,13 +113,16 @@ int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
  * link, robot frame) and moving by d per unit s; the bodies are those of
  * coll as world_urdf.c numbers them (movable id = link, or num_links + k
  * for scene object k attached to link attached_link[i], k = attached[i]).
+ * st, moved: as mpb__collision_sweep_step() (collision_internal.h).
  * world_sweep.c.
  */
 struct mpb_robot;
 struct mpb_collision;
+struct mpb__sweep;
 int mpb__urdf_safe_step(const struct mpb_robot *r, struct mpb_collision *coll,
                         const mpb_pose *poses, const int *attached,
                         const int *attached_link, int num_attached,
+                        struct mpb__sweep *st, double moved,
                         const double *d, double margin, double want,
                         double *step);
 

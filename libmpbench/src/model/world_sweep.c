@@ -123,8 +123,8 @@ static double pair_rate(void *ud, int a, int b)
 int mpb__urdf_safe_step(const mpb_robot *r, mpb_collision *coll,
                         const mpb_pose *poses, const int *attached,
                         const int *attached_link, int num_attached,
-                        const double *d, double margin, double want,
-                        double *step)
+                        mpb__sweep *st, double moved, const double *d,
+                        double margin, double want, double *step)
 {
     int nl = mpb_robot_num_links(r), ids = nl;
     for (int i = 0; i < num_attached; i++)
@@ -169,8 +169,8 @@ int mpb__urdf_safe_step(const mpb_robot *r, mpb_collision *coll,
             rc = MPB_EINVAL;
     sweep w = { r, poses, d, link_of, reach_of, ids };
     if (rc == MPB_OK)
-        rc = mpb__collision_safe_step_pairs(coll, rate, ids, pair_rate, &w,
-                                            margin, want, step);
+        rc = mpb__collision_sweep_step(coll, st, moved, rate, ids, pair_rate,
+                                       &w, margin, want, step);
     free(rate);
     free(reach_of);
     free(link_of);

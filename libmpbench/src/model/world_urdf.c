@@ -33,6 +33,7 @@
 #include "mpbench/scene.h"
 #include "mpbench/srdf.h"
 #include "core/errbuf.h"
+#include "geometry/collision_internal.h"
 #include "core/grow.h"
 #include "geometry/mesh_cache.h"
 #include "model/srdf_xml.h"
@@ -45,6 +46,7 @@ static void urdf_close(void *impl)
     if (!u)
         return;
     mpb_srdf_free(u->srdf);     /* it borrows the robot's names */
+    mpb__sweep_free(u->sweep);
     mpb_collision_destroy(u->coll);
     mpb_scene_free(u->scene);
     mpb_robot_free(u->robot);
@@ -621,14 +623,17 @@ static void urdf_ee_position(void *impl, const double *q, double xyz[3])
 
 /* Certified verification's step from q along d (world_sweep.c). */
 static int urdf_safe_step(void *impl, const double *q, const double *d,
-                          double margin, double want, double *step)
+                          double margin, double want, double moved,
+                          double *step)
 {
     urdf_world *u = impl;
+    if (!u->sweep && !(u->sweep = mpb__sweep_new()))
+        return MPB_ENOMEM;
     if (ensure_acm(u) != MPB_OK || mpb__urdf_place(u, q) != MPB_OK)
         return MPB_EINVAL;
     return mpb__urdf_safe_step(u->robot, u->coll, u->poses, u->attached,
-                               u->attached_link, u->num_attached, d, margin,
-                               want, step);
+                               u->attached_link, u->num_attached, u->sweep,
+                               moved, d, margin, want, step);
 }
 
 const mpb__world_provider mpb__world_urdf = {

@@ -50,6 +50,8 @@ typedef struct urdf_world {
         const mpb__wrist_table *table;  /* the cache's */
     }             *wrist;
     int            num_wrist, cap_wrist;
+    struct mpb__sweep *sweep;    /* certified verification's bounds
+                                    (collision_internal.h), or NULL */
 } urdf_world;
 
 /* Is link l a body of the collision world (has it shapes)? */

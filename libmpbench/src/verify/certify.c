@@ -12,6 +12,12 @@
  * robot runs into is found just past the contact. A segment left unproved
  * is sampled by the caller as well, so nothing the sampled check finds is
  * missed.
+ *
+ * The steps of a path form one chain (*chain): each call of safe_step
+ * says how far the robot went since the last one, along the last one's
+ * segment, so that the world may keep its pairs' distance bounds from
+ * step to step and from segment to segment (segment k's end is segment
+ * k + 1's start) and measure only the pairs whose bound ran out.
  */
 #include "mpbench/mpbench.h"
 
@@ -50,38 +56,63 @@ int mpb__certify_can(const mpb_world *w)
     return w->verification == MPB_VERIFY_CERTIFIED && w->provider->safe_step;
 }
 
-int mpb__certify_segment(mpb_world *w, const double *a, const double *d,
-                         double len, double *q, double *hit, int *proved)
+void mpb__certify_begin(mpb__certify_chain *chain)
+{
+    chain->moved = -1.0;
+}
+
+/* The segment left at its end b, having called safe_step last at s = at
+ * (negative: not at all on this segment, the chain unchanged). */
+static void chain_to_end(mpb__certify_chain *chain, double at)
+{
+    if (at >= 0)
+        chain->moved = 1.0 - at;
+}
+
+int mpb__certify_segment(mpb_world *w, mpb__certify_chain *chain,
+                         const double *a, const double *d, double len,
+                         double *q, double *hit, int *proved)
 {
     const int nj = w->num_joints;
     *hit = -1.0;
     *proved = 1;
     if (!(len > 0))
-        return MPB_OK;          /* a == b: the caller checked it */
+        return MPB_OK;          /* a == b: the caller checked it; the
+                                   chain stays where it is */
     const double floor_s = CERT_FLOOR / len;
-    double s = 0.0;
+    double s = 0.0, at = -1.0;  /* at: the s of the last safe_step */
     for (int steps = 0;; steps++) {
         if (steps >= CERT_MAX_STEPS) {
             *proved = 0;        /* too slow to prove: the caller samples */
+            chain_to_end(chain, at);
             return MPB_OK;
         }
         for (int j = 0; j < nj; j++)
             q[j] = a[j] + s * d[j];
         double want = 1.0 - s, ds = 0.0;
-        if (!(want > 0))
+        if (!(want > 0)) {
+            chain_to_end(chain, at);
             return MPB_OK;      /* s reached 1 by proved steps */
-        int rc = w->provider->safe_step(w->impl, q, d, CERT_MARGIN, want, &ds);
+        }
+        double moved = at >= 0 ? s - at : chain->moved;
+        int rc = w->provider->safe_step(w->impl, q, d, CERT_MARGIN, want,
+                                        moved, &ds);
+        at = s;
         if (rc != MPB_OK || !(ds >= 0)) {
             *proved = 0;
+            chain->moved = -1.0;    /* what the world knows is lost */
             return MPB_OK;
         }
-        if (ds >= want)
+        if (ds >= want) {
+            chain_to_end(chain, at);
             return MPB_OK;      /* [s, 1] proved: b included */
+        }
         if (ds < floor_s) {
             /* within the margin of contact: is q in collision? Else step
                over the floor, unproved, and look there. */
             if (s > 0 && mpb_world_in_collision(w, q)) {
                 *hit = s;
+                chain->moved = -1.0;
                 return MPB_OK;
             }
             *proved = 0;
@@ -91,6 +122,7 @@ int mpb__certify_segment(mpb_world *w, const double *a, const double *d,
                     q[j] = a[j] + d[j];
                 if (mpb_world_in_collision(w, q))
                     *hit = 1.0;
+                chain_to_end(chain, at);
                 return MPB_OK;
             }
         }

@@ -165,6 +165,8 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
         return bad_args(out, MPB_ENOMEM, "out of memory");
     }
     int rc = MPB_OK, all_proved = can_prove;
+    mpb__certify_chain chain;
+    mpb__certify_begin(&chain);
     out->code = MPB_VERDICT_VALID;
     for (int i = 0; i + 1 < num_waypoints && out->code == MPB_VERDICT_VALID; i++) {
         const double *a = wp + (size_t)i * (size_t)nj, *b = a + nj;
@@ -184,7 +186,7 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
         double hit = -1.0, at;
         int proved = 0;
         if (can_prove) {
-            mpb__certify_segment(w, a, d, sqrt(sq), q, &hit, &proved);
+            mpb__certify_segment(w, &chain, a, d, sqrt(sq), q, &hit, &proved);
             if (hit >= 0) {
                 contact(w, q, what, sizeof what);
                 verdict(out, MPB_VERDICT_COLLISION, i,
