@@ -179,6 +179,7 @@ typedef struct mpbd_latency {
 
 typedef struct mpbd_counters {
     long done, succeeded, failed, crashed, rejected, retried;
+    long unproven;   /* of rejected: right tag, echoing another process */
 } mpbd_counters;
 
 typedef struct mpbd {

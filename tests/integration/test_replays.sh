@@ -98,10 +98,15 @@ rejected_before=$(grep -c "mpbenchd: rejected " "$work/second.log")
 check "... with fewer than ten messages rejected before (all logged)" \
     test "$rejected_before" -lt 10
 # The dead planner's messages first (a daemon stopped by a status could
-# not show what they do), then the first daemon's statuses.
+# not show what they do), then the first daemon's statuses; four times
+# as fast as recorded, so that they are over well before the daemon's
+# runs are: at their recorded pace, the two passes over a log of the
+# first daemon's 8-13 runs outlasted the second daemon's remaining runs
+# on a loaded machine, and the replays it never heard were missing from
+# its count.
 {
-    replay "$work/first.lcm" 'MPB_(ANNOUNCE|ACK|RESULT)'
-    replay "$work/first.lcm" 'MPB_STATUS'
+    replay "$work/first.lcm" 'MPB_(ANNOUNCE|ACK|RESULT)' 4
+    replay "$work/first.lcm" 'MPB_STATUS' 4
 } >"$work/replayed-first" 2>"$work/replay-first.err" &
 replayer=$!
 # Meanwhile, a daemon started beside it with the same secret stops, as
@@ -126,6 +131,8 @@ replay "$work/second.lcm" 'MPB_RESULT' 10 >"$work/replayed-second" \
 check "results of the new planner were replayed" \
     ge "$(total "$work/replayed-second")" 5
 wait $replayer
+check "the replays ended while the restarted daemon still ran" \
+    sh -c "! grep -q 'complete:' '$work/second.log'"
 check "the first daemon's statuses were replayed" \
     grep -q "^MPB_STATUS [1-9]" "$work/replayed-first"
 check "... and the dead planner's announcements" \
