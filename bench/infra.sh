@@ -113,9 +113,9 @@ while [ "$r" -le "$ROUNDS" ]; do
         kill -INT "$logger"     # it writes out what it has
         wait "$logger"
         cleanup
+        [ -n "$KEEP" ] && cp "$db" "$db.lcm" "$KEEP/"
         "$python" "$src/bench/infra_split.py" "$BIN/lcmtypes/python" \
             "$db.lcm" "$db" "$mode" "$r" || exit 1
-        [ -n "$KEEP" ] && cp "$db" "$db.lcm" "$KEEP/"
     done
     r=$((r + 1))
 done
