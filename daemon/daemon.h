@@ -54,6 +54,9 @@
 /* How long a round of the loop waits for the results it handed to the
  * verifier, so that quick ones are stored in the same round (verifier.c). */
 #define MPBD_SETTLE_S           0.0005
+/* A result whose verification the scene's last cost per waypoint puts
+ * at most this is verified in the loop, the worker being idle. */
+#define MPBD_INLINE_S           0.0002
 #define MPBD_STATUS_PERIOD_S    1.0
 /* No request before this long after the loop starts: time to hear of an
  * older daemon on the same LCM URL (daemons.c). */
@@ -176,6 +179,7 @@ typedef struct mpbd_latency {
 
 typedef struct mpbd_counters {
     long done, succeeded, failed, crashed, rejected, retried;
+    long unproven;   /* of rejected: right tag, echoing another process */
 } mpbd_counters;
 
 typedef struct mpbd {
@@ -383,6 +387,12 @@ void mpbd_verifier_stop(mpbd *d);      /* results not stored are dropped */
 int  mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
                           const mpb_plan_result_t *m, double recv);
 int  mpbd_verifier_has(const mpbd *d, const char *uid);  /* handed over, not stored */
+/* 1: verify m in the loop (the worker idle, m quick by its scene's last
+ * cost), then mpbd_verifier_learn() its cost, as collecting does. */
+int  mpbd_verifier_quick(const mpbd *d, const mpbd_flight *f,
+                         const mpb_plan_result_t *m);
+void mpbd_verifier_learn(mpbd *d, const mpbd_flight *f,
+                         const mpb_plan_result_t *m, const mpbd_measured *ms);
 int  mpbd_verifier_pending(const mpbd *d);               /* how many */
 int  mpbd_verifier_fd(const mpbd *d);  /* readable when one is done; -1: none */
 /* Wait up to max_s for the results handed over since the last call to be

@@ -7,7 +7,8 @@
  * answers the other's results as strays, which stops the planner from
  * re-sending them. So one of the two stops: the one that started later,
  * before it sends anything. A daemon publishes its status as its loop
- * starts and sends no request in its first MPBD_LISTEN_S; one that hears
+ * starts and sends no request in its first MPBD_LISTEN_S (longer if it
+ * hears a planner echo another daemon meanwhile: main.c); one that hears
  * a younger daemon's status answers at once with its own, and the younger
  * one stops on hearing it. Daemons with different secrets (auth.h) do not
  * hear each other, and need not: their planners do not answer each other;

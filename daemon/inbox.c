@@ -24,7 +24,10 @@ int mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
     int ok = mpb_receive(d->auth, accept, type, channel, rbuf->data,
                          (size_t)rbuf->data_size, msg, &r);
     d->msg_from = r.info.instance;
-    if (!ok)
+    if (!ok) {
         mpbd_reject(d, channel, r.why);
+        if (r.verdict == MPB_AUTH_UNPROVEN)
+            d->count.unproven++;
+    }
     return ok;
 }

@@ -405,6 +405,8 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
 {
     int fd = lcm_get_fileno(d->lcm);
     double now = mpb_monotonic_s(), listen_until = now + MPBD_LISTEN_S;
+    const double start = now;
+    const long unproven = d->count.unproven;
 
     mpbd_status_publish(d, "waiting", now);
     while (!stop_signal) {
@@ -450,6 +452,13 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
          * not with the next run's request, and each request carries the
          * acknowledgements this commit made true (acks.c). */
         mpbd_acks_flush(d);
+        /* A message with the right tag echoing another process, heard
+         * while listening: a planner serving another daemon on this URL
+         * (or a replay). That daemon's answer to this one's status may
+         * be slow in coming on a loaded machine (263 ms seen): listen on
+         * through its next periodic status before sending anything. */
+        if (now < listen_until && d->count.unproven != unproven)
+            listen_until = start + MPBD_STATUS_PERIOD_S + MPBD_LISTEN_S;
         if (now >= listen_until)
             mpbd_scheduler_dispatch(d, now);
         mpbd_owed_send(d, now, 0);

@@ -468,15 +468,19 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         return;
     }
     /* Verified beside the loop (verifier.c): the run's flight ends now,
-     * so that its planner's next request need not wait. */
-    if (mpbd_verifier_submit(d, f, m, recv) == MPB_OK) {
+     * so that its planner's next request need not wait; unless it is
+     * known to be quick. */
+    if (!mpbd_verifier_quick(d, f, m) &&
+        mpbd_verifier_submit(d, f, m, recv) == MPB_OK) {
         mpbd_flight_remove(d, f);
         return;
     }
     mpbd_measured ms = {0};
-    int rc = mpbd_result_measure(d, f, m, &ms) == MPB_OK
-                 ? mpbd_result_store(d, f, m, recv, &ms)
-                 : MPBD_RETRY;   /* out of memory: the planner re-sends */
+    int rc = MPBD_RETRY;        /* out of memory: the planner re-sends */
+    if (mpbd_result_measure(d, f, m, &ms) == MPB_OK) {
+        mpbd_verifier_learn(d, f, m, &ms);
+        rc = mpbd_result_store(d, f, m, recv, &ms);
+    }
     mpbd_measured_free(&ms);
     if (rc != MPBD_RETRY)
         mpbd_flight_remove(d, f);

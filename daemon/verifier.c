@@ -10,6 +10,10 @@
  * What crosses: a job, owned by the loop until submitted, by the worker
  * while on the todo list, by the loop again once on the done list; the
  * lists are under mu. The job holds copies of the flight and the message.
+ *
+ * A result known to be quick (no waypoint, or a scene whose last cost
+ * per waypoint puts it under MPBD_INLINE_S) is verified in the loop
+ * instead, when the worker is idle: a hand-over would cost more.
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -47,6 +51,9 @@ struct mpbd_verifier {
     int             fresh;       /* submitted since the last settle (loop only) */
     int             pipe[2];     /* a byte per job done: wakes the loop */
     const mpbd     *d;           /* read by the worker: the experiment */
+    double         *rate;        /* per scene: s per waypoint last measured,
+                                    0 if none yet (loop only) */
+    double          any_rate;    /* the last measured, of any scene */
 };
 
 static void push(job_list *l, job *j)
@@ -75,6 +82,15 @@ static void job_free(job *j)
     if (j->m != NULL)
         mpb_plan_result_t_destroy(j->m);
     free(j);
+}
+
+/* A result's waypoints, over its stages: what its verification costs. */
+static long waypoints(const mpb_plan_result_t *m)
+{
+    long n = 0;
+    for (int i = 0; i < m->num_stages; i++)
+        n += m->stages[i].num_waypoints > 0 ? m->stages[i].num_waypoints : 0;
+    return n;
 }
 
 static void *worker(void *arg)
@@ -110,7 +126,13 @@ int mpbd_verifier_start(mpbd *d)
     if (v == NULL)
         return MPB_ENOMEM;
     v->d = d;
+    if ((v->rate = calloc((size_t)d->exp->num_scenes + 1,
+                          sizeof *v->rate)) == NULL) {
+        free(v);
+        return MPB_ENOMEM;
+    }
     if (pipe(v->pipe) != 0) {
+        free(v->rate);
         free(v);
         return MPB_EERROR;
     }
@@ -138,6 +160,7 @@ int mpbd_verifier_start(mpbd *d)
         pthread_cond_destroy(&v->idle);
         close(v->pipe[0]);
         close(v->pipe[1]);
+        free(v->rate);
         free(v);
         return MPB_EERROR;
     }
@@ -164,6 +187,7 @@ void mpbd_verifier_stop(mpbd *d)
     pthread_cond_destroy(&v->idle);
     close(v->pipe[0]);
     close(v->pipe[1]);
+    free(v->rate);
     free(v);
     d->verifier = NULL;
 }
@@ -186,8 +210,47 @@ int mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
     pthread_cond_signal(&v->cond);
     pthread_mutex_unlock(&v->mu);
     v->pending++;
-    v->fresh = 1;
+    /* Worth the settle unless its scene (or, not measured yet, the
+     * last one: the robot is the same) says it takes longer. */
+    double rate = v->rate[d->exp->queries[f->run.query].scene];
+    if (rate == 0)
+        rate = v->any_rate;
+    if (!(rate * (double)waypoints(m) > MPBD_SETTLE_S))
+        v->fresh = 1;
     return MPB_OK;
+}
+
+/*
+ * Whether to verify m in the loop rather than hand it over: the worker
+ * is idle (nothing submitted and not stored: it is touching no world,
+ * and stores keep their order) and m has no waypoint (a failure) or the
+ * scene's last cost per waypoint says it takes at most MPBD_INLINE_S.
+ * Handing over costs two wake-ups and a commit's wait (bench/run.sh: 1
+ * null planner 5,692 runs/s against 8,592 verifying inline); a quick
+ * verification costs less than that, and less than the settle the loop
+ * would wait for it anyway.
+ */
+int mpbd_verifier_quick(const mpbd *d, const mpbd_flight *f,
+                        const mpb_plan_result_t *m)
+{
+    const struct mpbd_verifier *v = d->verifier;
+    if (v == NULL || v->pending != 0)
+        return 0;
+    long n = waypoints(m);
+    double rate = v->rate[d->exp->queries[f->run.query].scene];
+    return n == 0 || (rate > 0 && rate * (double)n <= MPBD_INLINE_S);
+}
+
+void mpbd_verifier_learn(mpbd *d, const mpbd_flight *f,
+                         const mpb_plan_result_t *m, const mpbd_measured *ms)
+{
+    struct mpbd_verifier *v = d->verifier;
+    long n = waypoints(m);
+    if (v == NULL || n == 0)
+        return;
+    double t = ms->verified - ms->verify_start;
+    v->any_rate = v->rate[d->exp->queries[f->run.query].scene] =
+        (t > 0 ? t : 1e-9) / (double)n;
 }
 
 /*
@@ -196,7 +259,10 @@ int mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
  * short planar path), and stored in the same round of the loop they cost
  * one commit and no extra wake-up (bench/run.sh: 1 null planner's runs/s
  * halved without it). A long one is left to finish beside the loop,
- * which waits for it only once.
+ * which waits for it only once; one its scene's last cost per waypoint
+ * says is longer than MPBD_SETTLE_S is not waited for at all (a Panda
+ * path, tens of milliseconds: the wait would only delay the planner's
+ * next request).
  */
 void mpbd_verifier_settle(mpbd *d, double max_s)
 {
@@ -270,6 +336,7 @@ void mpbd_verifier_collect(mpbd *d)
             return;
         }
         pthread_mutex_unlock(&v->mu);
+        mpbd_verifier_learn(d, &j->f, j->m, &j->ms);
         if (mpbd_result_store(d, &j->f, j->m, j->recv, &j->ms) == MPBD_RETRY)
             return;     /* the store failed: this one first, next round */
         pthread_mutex_lock(&v->mu);
