@@ -3,8 +3,8 @@
  * the world the verifier checked it in opened, the pose of every moving
  * body computed at every frame of every stage (libmpbench's forward
  * kinematics), the configuration where a collision verdict stopped found
- * again (mpb_find_collision()) with the two bodies that touch there; and the page written
- * (view_page.c) into a file.
+ * again (mpb_find_collision()) with the two bodies that touch there; and
+ * the page written (view_page.c) into a file.
  */
 #include <errno.h>
 #include <math.h>
