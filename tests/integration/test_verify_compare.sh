@@ -103,6 +103,15 @@ check "the stored verdict names its s" test -n "$ds"
 check "mpb view writes the page" eq $? 0
 check "... with the certified collision at the verdict's s" \
     grep -q "\"collision\":{\"s\":$ds,\"certified\":1,\"q\":\[" "$work/thin.html"
+# Stored "sampled" by a certified check whose proof found the collision
+# after an earlier segment was left to sampling (run 109 of
+# docs/results-mbm.md): the sampled rule finds nothing there, the proof's
+# configuration is shown.
+cp "$CDB" "$work/fellback.db"
+sqlite3 "$work/fellback.db" "UPDATE stages SET verification = 'sampled' WHERE run_id = $crun"
+"$mpb" view "$work/fellback.db" "$crun" -o "$work/fellback.html" >/dev/null 2>&1
+check "... stored sampled, found by the proof: still shown" \
+    grep -q "\"collision\":{\"s\":$ds,\"certified\":1,\"q\":\[" "$work/fellback.html"
 # The thick wall stored certified too: found again by the proof.
 thick=$(sqlite3 "$CDB" "SELECT r.id FROM runs r JOIN queries q ON q.id = r.query_id JOIN scenes s ON s.id = q.scene_id WHERE s.name = 'thick'")
 "$mpb" view "$CDB" "$thick" -o "$work/thick.html" >/dev/null 2>&1

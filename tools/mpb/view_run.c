@@ -248,14 +248,20 @@ static int make_frames(view_run *v, view_stage *s, mpb_pose *all)
         s->fail_frame = s->segment * per;
     /* Found again by the library, by the rule the stage was verified
      * with (its stored verification): the proof's configuration, or the
-     * sample's; a database from another resolution or world may have
-     * none there. */
+     * sample's. A stage stored "sampled" by a certified check (some
+     * earlier segment only sampled) may have had its collision found by
+     * the proof: then the other rule finds it. A database from another
+     * resolution or world may have none there. */
     mpb_collision_at at;
-    mpb_world_set_verification(v->world, s->sampled ? MPB_VERIFY_SAMPLED
-                                                    : MPB_VERIFY_CERTIFIED);
-    if (rc == 0 && strcmp(s->verdict, "collision") == 0 &&
-        mpb_find_collision(v->world, wp, n, nj, v->resolution, s->segment, q,
-                           &at) == 1) {
+    int found = 0;
+    for (int k = 0; k < 2 && !found && rc == 0 &&
+                    strcmp(s->verdict, "collision") == 0; k++) {
+        mpb_world_set_verification(v->world, s->sampled == (k == 0)
+                                   ? MPB_VERIFY_SAMPLED : MPB_VERIFY_CERTIFIED);
+        found = mpb_find_collision(v->world, wp, n, nj, v->resolution,
+                                   s->segment, q, &at) == 1;
+    }
+    if (found) {
         s->has_collision = 1;
         s->segment = at.segment;
         s->collision_s = at.s;
