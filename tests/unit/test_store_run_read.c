@@ -66,7 +66,7 @@ static int setup(void **state)
         {.name = "raw", .time = 0.25, .num_waypoints = 3, .num_joints = 2,
          .waypoints = raw_wp, .valid = 0, .verdict = "collision",
          .verdict_detail = "segment 1 collides at s=0.5 (waypoints 1-2)",
-         .verdict_segment = 1},
+         .verdict_segment = 1, .verification = "certified"},
         {.name = "smoothed", .time = 0.5, .num_waypoints = 2, .num_joints = 2,
          .waypoints = raw_wp + 2, .valid = 0, .verdict = "start",
          .verdict_detail = "waypoint 0 ...", .verdict_segment = 0},
@@ -110,6 +110,7 @@ typedef struct got {
     mpb_run_detail   d;
     char             text[6][80];
     char             names[4][16], details[4][80], verdicts[4][16];
+    char             verification[4][16];
     int              n[4], nj[4], segment[4], valid[4];
     double           wp[4][6], time[4];
 } got;
@@ -133,6 +134,8 @@ static int on_stage(void *ud, const mpb_stage_record *st)
     snprintf(g->names[i], sizeof g->names[i], "%s", st->name);
     snprintf(g->details[i], sizeof g->details[i], "%s", st->verdict_detail);
     snprintf(g->verdicts[i], sizeof g->verdicts[i], "%s", st->verdict);
+    snprintf(g->verification[i], sizeof g->verification[i], "%s",
+             st->verification ? st->verification : "(null)");
     g->n[i] = st->num_waypoints;
     g->nj[i] = st->num_joints;
     g->segment[i] = st->verdict_segment;
@@ -174,6 +177,10 @@ static void stages_read_back_as_written(void **state)
     assert_string_equal(g.details[0], "segment 1 collides at s=0.5 (waypoints 1-2)");
     assert_int_equal(g.segment[0], 1);
     assert_int_equal(g.segment[1], 0);
+    /* how the collision was found, for mpb view to find it again so;
+       none where the check did not run */
+    assert_string_equal(g.verification[0], "certified");
+    assert_string_equal(g.verification[1], "(null)");
     assert_int_equal(g.valid[0], 0);
     assert_int_equal(g.n[0], 3);
     assert_int_equal(g.nj[0], 2);

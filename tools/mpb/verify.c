@@ -17,7 +17,7 @@
 static void usage(FILE *out)
 {
     fprintf(out,
-        "usage: mpb verify [-e ID] [-r STEP] DB\n"
+        "usage: mpb verify [-e ID] [-r STEP] [--compare] DB\n"
         "\n"
         "Check the finished runs of an experiment in the database DB again,\n"
         "with this mpbench's verifier and world model: every stage of every\n"
@@ -38,6 +38,16 @@ static void usage(FILE *out)
         "  -e, --experiment ID  the experiment (default: the newest)\n"
         "  -r, --resolution STEP  the collision step in rad (default: the\n"
         "                       one the experiment was verified at, else 0.01)\n"
+        "  -c, --compare        verify every stage both ways, certified and\n"
+        "                       sampled (docs/verification.md), whatever\n"
+        "                       was stored, and list where they differ:\n"
+        "                       each stage the certified check newly\n"
+        "                       refuses with the colliding configuration\n"
+        "                       and the bodies touching there, each\n"
+        "                       stage whose proof fell back to sampling,\n"
+        "                       and, as a bug, any sampled collision the\n"
+        "                       certified check passes; then the counts.\n"
+        "                       Exit 1 only for such a bug or an error\n"
         "  -h, --help           this text\n"
         "\n"
         "Meshes of a URDF robot are found as mpbenchd finds them\n"
@@ -123,15 +133,16 @@ int cmd_verify(int argc, char **argv)
     static const struct option longopts[] = {
         {"experiment", required_argument, NULL, 'e'},
         {"resolution", required_argument, NULL, 'r'},
+        {"compare", no_argument, NULL, 'c'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     int64_t experiment = 0;
     double step = 0;
-    int opt;
+    int opt, compare = 0;
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":e:r:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":e:r:ch", longopts, NULL)) != -1) {
         switch (opt) {
         case 'e':
             if (tool_parse_id(optarg, &experiment) != 0) {
@@ -150,6 +161,9 @@ int cmd_verify(int argc, char **argv)
             }
             break;
         }
+        case 'c':
+            compare = 1;
+            break;
         case 'h':
             usage(stdout);
             return MPB_EXIT_OK;
@@ -174,6 +188,10 @@ int cmd_verify(int argc, char **argv)
         goto out;
     if (view_select_runs(s, db, experiment, &sel) != 0)
         goto out;
+    if (compare) {
+        status = verify_compare(s, db, experiment, &sel, step);
+        goto out;
+    }
     totals t = {0};
     for (int i = 0; i < sel.num_runs; i++)
         if (verify_run(s, db, sel.runs[i], step, &t) != 0)

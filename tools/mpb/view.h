@@ -25,6 +25,9 @@ typedef struct view_stage {
     int     has_collision;
     double  collision_s;           /* where in its segment, 0 .. 1 */
     int     contact[2];            /* the two bodies touching, -1 if unknown */
+    int     sampled;               /* stored verification "sampled" (or none) */
+    int     collision_certified;   /* found by the proof, s exact */
+    double *collision_q;           /* the configuration, num_joints values */
     float  *collision_poses;       /* moving bodies x 7 */
 } view_stage;
 
@@ -126,5 +129,14 @@ void view_html_text(FILE *f, const char *s);
  * "cage_panda/0001"; a query "kitchen/x" of the scene "kitchen"). */
 const char *view_place(const char *scene, const char *query, char *buf,
                        size_t n);
+
+/*
+ * `mpb verify --compare` (verify_compare.c): the runs of sel verified
+ * again certified and sampled, at step (0: each run's resolution), the
+ * differences listed and counted on stdout. MPB_EXIT_OK, MPB_EXIT_ERROR
+ * when a sampled collision passes the certified check or on an error.
+ */
+int verify_compare(mpb_store *s, const char *db, int64_t experiment,
+                   const selection *sel, double step);
 
 #endif

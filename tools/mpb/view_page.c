@@ -220,8 +220,10 @@ static void json_stage(FILE *f, const view_run *v, const view_stage *s)
     fputs(",\"poses\":", f);
     json_b64_floats(f, s->poses, (size_t)s->num_frames * v->num_moving * 7);
     if (s->has_collision) {
-        fputs(",\"collision\":{\"s\":", f);
-        json_num(f, s->collision_s);
+        /* s exactly: the certified check names it with 17 digits. */
+        fprintf(f, ",\"collision\":{\"s\":%.17g,\"certified\":%d,"
+                "\"q\":", s->collision_s, s->collision_certified);
+        json_nums(f, s->collision_q, v->num_joints);
         fprintf(f, ",\"bodies\":[%d,%d],\"poses\":", s->contact[0],
                 s->contact[1]);
         json_b64_floats(f, s->collision_poses, (size_t)v->num_moving * 7);

@@ -294,8 +294,13 @@ function describe(s) {
   if (s.collision) {
     const [a, b] = s.collision.bodies;
     if (a >= 0) lines.push(data.bodies[a].name + ' touches ' + data.bodies[b].name);
-    lines.push('at s=' + s.collision.s.toFixed(4) + ' of segment ' + s.segment +
-      ', checked every ' + data.resolution + ' rad' + (data.resolution_known ? '' : ' (assumed)'));
+    if (s.collision.certified)
+      lines.push('at s=' + s.collision.s.toPrecision(17) + ' of segment ' + s.segment +
+        ', found by the certified check (the segment proved free up to it)');
+    else
+      lines.push('at s=' + s.collision.s.toFixed(4) + ' of segment ' + s.segment +
+        ', sampled every ' + data.resolution + ' rad' + (data.resolution_known ? '' : ' (assumed)'));
+    lines.push('configuration: [' + s.collision.q.map((x) => x.toFixed(6)).join(', ') + ']');
   }
   lines.push(s.waypoints ? s.waypoints + ' waypoints' : 'no waypoints to draw');
   for (const t of lines) {

@@ -3,8 +3,8 @@
  * the world the verifier checked it in opened, the pose of every moving
  * body computed at every frame of every stage (libmpbench's forward
  * kinematics), the configuration where a collision verdict stopped found
- * again with the two bodies that touch there; and the page written
- * (view_page.c) into a file.
+ * again (mpb_find_collision()) with the two bodies that touch there; and
+ * the page written (view_page.c) into a file.
  */
 #include <errno.h>
 #include <math.h>
@@ -167,6 +167,9 @@ static int on_stage(void *ud, const mpb_stage_record *st)
     s->verdict = view_strdup(st->verdict);
     s->detail = view_strdup(st->verdict_detail);
     s->valid = st->valid;
+    /* Stored before certified verification (NULL), or by it: the rule
+     * its collision was found by. */
+    s->sampled = !st->verification || strcmp(st->verification, "sampled") == 0;
     s->segment = st->verdict_segment;
     s->fail_frame = -1;
     s->contact[0] = s->contact[1] = -1;
@@ -208,61 +211,6 @@ static void interpolate(const view_run *v, const double *a, const double *b,
         q[j] = a[j] + s * mpb_joint_delta(a[j], b[j], wraps[j]);
 }
 
-/*
- * Where the verifier stopped on a collision in segment seg: its samples,
- * in its order (verify.c), at the experiment's resolution. 1 with the
- * configuration in q and its place s in the segment, 0 if no sample of
- * the segment collides here (a database from another resolution).
- */
-static int find_collision(view_run *v, const double *wp, int n, int seg,
-                          const char *detail, double *q, double *s_out)
-{
-    int nj = v->num_joints;
-    /* A certified verdict names its configuration exactly ("at s=" with
-     * 17 digits), between the samples, where sampling would not find it. */
-    const char *at = detail ? strstr(detail, " at s=") : NULL;
-    if (at && seg >= 0 && seg + 1 < n) {
-        double s = strtod(at + 6, NULL);
-        if (s > 0 && s <= 1) {
-            interpolate(v, wp + (size_t)seg * nj, wp + (size_t)(seg + 1) * nj, s, q);
-            if (mpb_world_in_collision(v->world, q) == 1) {
-                *s_out = s;
-                return 1;
-            }
-        }
-    }
-    if (seg == 0 && mpb_world_in_collision(v->world, wp) == 1) {
-        memcpy(q, wp, (size_t)nj * sizeof *q);
-        *s_out = 0.0;
-        return 1;
-    }
-    if (seg < 0 || seg + 1 >= n)
-        return 0;
-    const double *a = wp + (size_t)seg * nj, *b = a + nj;
-    const unsigned char *wraps = mpb_world_joint_wraps(v->world);
-    double sq = 0.0;
-    for (int j = 0; j < nj; j++) {
-        double d = mpb_joint_delta(a[j], b[j], wraps[j]);
-        sq += d * d;
-    }
-    double k = ceil(sqrt(sq) / v->resolution);
-    if (k < 1)
-        k = 1;
-    if (k > 1e7)
-        return 0;
-    for (double s = 1; s <= k; s++) {
-        if (s < k)
-            interpolate(v, a, b, s / k, q);
-        else
-            memcpy(q, b, (size_t)nj * sizeof *q);
-        if (mpb_world_in_collision(v->world, q) == 1) {
-            *s_out = s / k;
-            return 1;
-        }
-    }
-    return 0;
-}
-
 static int make_frames(view_run *v, view_stage *s, mpb_pose *all)
 {
     int n = s->num_waypoints, nj = v->num_joints;
@@ -298,12 +246,29 @@ static int make_frames(view_run *v, view_stage *s, mpb_pose *all)
      * where the verifier found it and the bodies that touch there. */
     if (rc == 0 && s->segment >= 0 && s->segment < n)
         s->fail_frame = s->segment * per;
-    double cs;
-    if (rc == 0 && strcmp(s->verdict, "collision") == 0 &&
-        find_collision(v, wp, n, s->segment, s->detail, q, &cs)) {
+    /* Found again by the library, by the rule the stage was verified
+     * with (its stored verification): the proof's configuration, or the
+     * sample's. A stage stored "sampled" by a certified check (some
+     * earlier segment only sampled) may have had its collision found by
+     * the proof: then the other rule finds it. A database from another
+     * resolution or world may have none there. */
+    mpb_collision_at at;
+    int found = 0;
+    for (int k = 0; k < 2 && !found && rc == 0 &&
+                    strcmp(s->verdict, "collision") == 0; k++) {
+        mpb_world_set_verification(v->world, s->sampled == (k == 0)
+                                   ? MPB_VERIFY_SAMPLED : MPB_VERIFY_CERTIFIED);
+        found = mpb_find_collision(v->world, wp, n, nj, v->resolution,
+                                   s->segment, q, &at) == 1;
+    }
+    if (found) {
         s->has_collision = 1;
-        s->collision_s = cs;
-        s->fail_frame = (int)lround((s->segment + cs) * per);
+        s->segment = at.segment;
+        s->collision_s = at.s;
+        s->collision_certified = at.certified;
+        s->collision_q = view_calloc((size_t)nj, sizeof *s->collision_q);
+        memcpy(s->collision_q, q, (size_t)nj * sizeof *q);
+        s->fail_frame = (int)lround((s->segment + at.s) * per);
         if (s->fail_frame >= s->num_frames)
             s->fail_frame = s->num_frames - 1;
         s->collision_poses = view_calloc((size_t)v->num_moving * 7,
@@ -394,6 +359,7 @@ void view_free(view_run *v)
         free(st->frame_at);
         free(st->poses);
         free(st->collision_poses);
+        free(st->collision_q);
     }
     free(v->stages);
     memset(v, 0, sizeof *v);

@@ -195,6 +195,50 @@ void mpb_measure_metrics(struct mpb_world *w, const double *wp,
                          int num_waypoints, int num_joints, double stage_time,
                          double resolution, mpb_stage_measure *out);
 
+/*
+ * Where a path collides, as mpb_find_collision() finds it: the
+ * configuration itself goes to the caller's array.
+ */
+typedef struct mpb_collision_at {
+    int    segment;     /* segment i joins waypoints i and i+1; 0 for
+                           waypoint 0 (of a path of one waypoint too) */
+    double s;           /* where in it, 0 .. 1: the configuration is
+                           waypoint i + s (waypoint i+1 - waypoint i),
+                           continuous joints the short way round; 0 is
+                           waypoint i itself */
+    int    certified;   /* 1 if the proof's search found it (s exact),
+                           0 if a sample of the sampled rule did */
+    char   bodies[400]; /* the bodies in contact there as the world names
+                           them (mpb_world_contact(): "self-collision
+                           between A and B", "A touches scene object B");
+                           "" where the world names none (planar) */
+} mpb_collision_at;
+
+/*
+ * Find again the configuration where path wp collides, by the rule
+ * mpb_verify_path() follows in w's verification mode
+ * (mpb_world_set_verification()): waypoint 0, then each segment in turn,
+ * in CERTIFIED mode proved free or the configuration the proof runs into
+ * found, a segment the proof leaves unproved sampled as in SAMPLED mode
+ * (a + (s/k)(b - a), s = 1..k, k = max(1, ceil(L/resolution))). It is
+ * the configuration of the verdict's "at s=" in the same world and mode,
+ * with the bodies touching there: what `mpb view` shows. Only collisions
+ * are looked for (not the start, goal or limits).
+ *
+ * segment < 0 searches the whole path; segment >= 0 that segment alone
+ * (and waypoint 0 with segment 0), where a stored verdict points.
+ *
+ * Returns 1 with the configuration in q (num_joints values, the
+ * caller's) and *out filled; 0 if nothing collides there (q and *out
+ * then unspecified); MPB_EINVAL for NULL w/q/out, NULL wp with
+ * waypoints, num_joints not the world's, a value not finite, resolution
+ * not finite and > 0, or a resolution so fine a segment needs over 1e9
+ * samples; MPB_ENOMEM.
+ */
+int mpb_find_collision(struct mpb_world *w, const double *wp,
+                       int num_waypoints, int num_joints, double resolution,
+                       int segment, double *q, mpb_collision_at *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -63,10 +63,16 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
                          int (*cb)(void *ud, const mpb_stage_record *stage),
                          void *ud)
 {
+    /* A database made before stages.verification (read-only, so never
+     * given the column) stored sampled verdicts: read as NULL. */
     sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
-        " verdict, verdict_detail, verdict_segment FROM stages"
-        " WHERE run_id = ? ORDER BY idx");
+        mpb__store_has_column(s, "stages", "verification")
+        ? "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
+          " verdict, verdict_detail, verdict_segment, verification"
+          " FROM stages WHERE run_id = ? ORDER BY idx"
+        : "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
+          " verdict, verdict_detail, verdict_segment, NULL"
+          " FROM stages WHERE run_id = ? ORDER BY idx");
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, run_id);
@@ -98,6 +104,7 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
             .verdict_detail = text_or_empty(st, 7),
             .verdict_segment = sqlite3_column_type(st, 8) == SQLITE_NULL
                                    ? -1 : sqlite3_column_int(st, 8),
+            .verification = (const char *)sqlite3_column_text(st, 9),
         };
         stop = cb(ud, &rec);
         free(wp);

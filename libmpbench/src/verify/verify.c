@@ -9,6 +9,7 @@
 
 #include "model/world_provider.h"
 #include "verify/certify.h"
+#include "verify/locate.h"
 
 static const char *const verdict_names[MPB_VERDICT_COUNT] = {
     [MPB_VERDICT_VALID]       = "valid",
@@ -103,9 +104,6 @@ static double joint_dist(const mpb_world *w, int j, double a, double b)
     return fabs(mpb_joint_delta(a, b, w->wraps[j]));
 }
 
-/* A guard against never finishing, not a practical limit. */
-#define MAX_STEPS 1e9
-
 /* ": " and the bodies in contact at q, where the world names them. */
 static void contact(mpb_world *w, const double *q, char *what, size_t len)
 {
@@ -114,28 +112,6 @@ static void contact(mpb_world *w, const double *q, char *what, size_t len)
         snprintf(what, len, ": %s", names);
     else
         what[0] = '\0';
-}
-
-/* Sample the segment a + (s/k) d, s = 1..k (k from the resolution): 1
- * with the first colliding sample's s/k in *at, 0 if none collides. */
-static int sample_segment(mpb_world *w, const double *a, const double *b,
-                          const double *d, double k, double *q, double *at)
-{
-    for (double s = 1; s <= k; s++) {
-        const double *p = b;
-        if (s < k) {
-            for (int j = 0; j < w->num_joints; j++)
-                q[j] = a[j] + (s / k) * d[j];
-            p = q;
-        }
-        if (mpb_world_in_collision(w, p)) {
-            if (p == b)
-                memcpy(q, b, (size_t)w->num_joints * sizeof *q);
-            *at = s / k;
-            return 1;
-        }
-    }
-    return 0;
 }
 
 /*
@@ -175,11 +151,8 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
             d[j] = mpb_joint_delta(a[j], b[j], w->wraps[j]);
             sq += d[j] * d[j];
         }
-        /* k steps of len / k <= resolution; the last lands on b itself. */
-        double k = ceil(sqrt(sq) / resolution);
-        if (k < 1)
-            k = 1;
-        if (k > MAX_STEPS) {
+        double k = mpb__sample_count(sqrt(sq), resolution);
+        if (k > MPB__MAX_SAMPLES) {
             rc = bad_args(out, MPB_EINVAL, "resolution too fine for the path");
             break;
         }
@@ -197,7 +170,7 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
         }
         if (!proved) {
             all_proved = 0;
-            if (sample_segment(w, a, b, d, k, q, &at)) {
+            if (mpb__sample_segment(w, a, b, d, k, q, &at)) {
                 contact(w, q, what, sizeof what);
                 verdict(out, MPB_VERDICT_COLLISION, i,
                         "segment %d collides at s=%.4g (waypoints %d-%d)%s",
