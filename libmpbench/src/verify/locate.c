@@ -42,7 +42,8 @@ int mpb__sample_segment(mpb_world *w, const double *a, const double *b,
 
 /* Segment i of the path, as check_collision() (verify.c) takes it: 1
  * found (q, out->s, out->certified), 0 free, MPB_EINVAL too fine. */
-static int segment_collision(mpb_world *w, const double *a, const double *b,
+static int segment_collision(mpb_world *w, mpb__certify_chain *chain,
+                             const double *a, const double *b,
                              double resolution, double *d, double *q,
                              mpb_collision_at *out)
 {
@@ -58,7 +59,7 @@ static int segment_collision(mpb_world *w, const double *a, const double *b,
     int proved = 0;
     if (mpb__certify_can(w)) {
         double hit = -1.0;
-        mpb__certify_segment(w, a, d, sqrt(sq), q, &hit, &proved);
+        mpb__certify_segment(w, chain, a, d, sqrt(sq), q, &hit, &proved);
         if (hit >= 0) {
             out->s = hit;
             out->certified = 1;
@@ -99,9 +100,25 @@ int mpb_find_collision(mpb_world *w, const double *wp, int num_waypoints,
         return MPB_ENOMEM;
     int first = segment < 0 ? 0 : segment;
     int last = segment < 0 ? num_waypoints - 2 : segment;
+    /* The proof carries its bounds from segment to segment (certify.h), and
+     * where it stops depends on them: walk the segments before the one
+     * asked for as the verifier did, so that s is the verdict's own. */
+    mpb__certify_chain chain;
+    mpb__certify_begin(&chain);
+    if (!found && mpb__certify_can(w))
+        for (int i = 0; i < first; i++) {
+            const double *a = wp + (size_t)i * (size_t)nj;
+            double sq = 0.0, hit = -1.0;
+            int proved = 0;
+            for (int j = 0; j < nj; j++) {
+                d[j] = mpb_joint_delta(a[j], a[nj + j], w->wraps[j]);
+                sq += d[j] * d[j];
+            }
+            mpb__certify_segment(w, &chain, a, d, sqrt(sq), q, &hit, &proved);
+        }
     for (int i = first; !found && i <= last && i + 1 < num_waypoints; i++) {
         const double *a = wp + (size_t)i * (size_t)nj;
-        found = segment_collision(w, a, a + nj, resolution, d, q, out);
+        found = segment_collision(w, &chain, a, a + nj, resolution, d, q, out);
         if (found < 0) {
             free(d);
             return found;
