@@ -24,33 +24,13 @@
 #include "geometry/collision_internal.h"
 #include "model/world_provider.h"
 #include "test_files.h"
+#include "test_panda.h"
 
-#define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"
-
-static const char *const joints[] = {
-    "panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
-    "panda_joint5", "panda_joint6", "panda_joint7"};
 
 /* The Panda alone, or NULL when its data is not fetched. */
 static mpb_world *open_panda(void)
 {
-    char dir[4096], urdf[4200], srdf[4200];
-    /* assimp reads "a/../b" as written: the folder without its ".." */
-    if (access(PANDA "/panda.urdf", R_OK) != 0 || !realpath(PANDA, dir))
-        return NULL;
-    snprintf(urdf, sizeof urdf, "%s/panda.urdf", dir);
-    snprintf(srdf, sizeof srdf, "%s/panda.srdf", dir);
-    strcat(dir, "/");
-    char *robot = test_read_robot(urdf, srdf);
-    mpb_world *w = NULL;
-    char err[512];
-    int rc = mpb_world_open_group_in("urdf", robot, dir, "moveit-scene",
-                                     "workspace\n.\n", joints, 7, &w, err,
-                                     sizeof err);
-    free(robot);
-    if (rc != MPB_OK)
-        fail_msg("%s", err);
-    return w;
+    return test_open_panda("workspace\n.\n");
 }
 
 #define OPEN_OR_SKIP(w, c, n)                                                 \

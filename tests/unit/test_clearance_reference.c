@@ -28,13 +28,9 @@
 #include "geometry/collision_internal.h"
 #include "model/world_provider.h"
 #include "test_files.h"
+#include "test_panda.h"
 
-#define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"
 #define NJ 7
-
-static const char *const joints[NJ] = {
-    "panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
-    "panda_joint5", "panda_joint6", "panda_joint7"};
 
 /* Uniform in [0, 1), from a 64-bit LCG. */
 static double rnd(uint64_t *x)
@@ -46,22 +42,9 @@ static double rnd(uint64_t *x)
 /* The Panda in the MotionBenchMaker scene, or NULL when not fetched. */
 static mpb_world *open_panda(void)
 {
-    char dir[4096], urdf[4200], srdf[4200];
-    if (access(PANDA "/panda.urdf", R_OK) != 0 || !realpath(PANDA, dir))
-        return NULL;
-    snprintf(urdf, sizeof urdf, "%s/panda.urdf", dir);
-    snprintf(srdf, sizeof srdf, "%s/panda.srdf", dir);
-    strcat(dir, "/");
-    char *robot = test_read_robot(urdf, srdf);
     char *scene = test_read_file(MPB_TEST_DATA "/mbm_table_pick_panda_0001.scene");
-    mpb_world *w = NULL;
-    char err[512];
-    int rc = mpb_world_open_group_in("urdf", robot, dir, "moveit-scene", scene,
-                                     joints, NJ, &w, err, sizeof err);
-    free(robot);
+    mpb_world *w = test_open_panda(scene);
     free(scene);
-    if (rc != MPB_OK)
-        fail_msg("%s", err);
     return w;
 }
 

@@ -30,13 +30,9 @@
 #include "geometry/collision_internal.h"
 #include "model/world_provider.h"
 #include "test_files.h"
+#include "test_panda.h"
 
-#define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"
 #define NJ 7
-
-static const char *const joints[NJ] = {
-    "panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
-    "panda_joint5", "panda_joint6", "panda_joint7"};
 
 /* A table, a shelf with two boards, a can and an octahedron mesh, in
  * reach of the arm: about half the random states touch something. */
@@ -56,26 +52,9 @@ static const char scene_text[] =
     "0 0 0\n0 0 0 1\n0 0 0 0\n0\n"
     ".\n";
 
-/* The Panda in the scene, or NULL when its data is not fetched. */
 static mpb_world *open_panda(void)
 {
-    char dir[4096], urdf[4200], srdf[4200];
-    /* assimp reads "a/../b" as written: the folder without its ".." */
-    if (access(PANDA "/panda.urdf", R_OK) != 0 || !realpath(PANDA, dir))
-        return NULL;
-    snprintf(urdf, sizeof urdf, "%s/panda.urdf", dir);
-    snprintf(srdf, sizeof srdf, "%s/panda.srdf", dir);
-    strcat(dir, "/");
-    char *robot = test_read_robot(urdf, srdf);
-    mpb_world *w = NULL;
-    char err[512];
-    int rc = mpb_world_open_group_in("urdf", robot, dir, "moveit-scene",
-                                     scene_text, joints, NJ, &w, err, sizeof err);
-    free(robot);
-    if (rc != MPB_OK)
-        fail_msg("%s", err);
-    assert_int_equal(mpb_world_num_joints(w), NJ);
-    return w;
+    return test_open_panda(scene_text);
 }
 
 #define OPEN_OR_SKIP(w)                                                       \

@@ -27,36 +27,17 @@
 #include "model/world_provider.h"
 #include "geometry/wrist_table.h"
 #include "test_files.h"
+#include "test_panda.h"
 
 #define SRC MPB_TEST_DATA "/../../.."
-#define PANDA SRC "/.cache/robots/vamp-planner-0.6.4/panda"
 #define NJ 7
-
-static const char *const joints[NJ] = {
-    "panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
-    "panda_joint5", "panda_joint6", "panda_joint7"};
 
 /* No obstacles: a verdict is the self check's. */
 static const char empty_scene[] = "empty\n.\n";
 
-/* The Panda in an empty scene, or NULL when its data is not fetched. */
 static mpb_world *open_panda(void)
 {
-    char dir[4096], urdf[4200], srdf[4200];
-    if (access(PANDA "/panda.urdf", R_OK) != 0 || !realpath(PANDA, dir))
-        return NULL;
-    snprintf(urdf, sizeof urdf, "%s/panda.urdf", dir);
-    snprintf(srdf, sizeof srdf, "%s/panda.srdf", dir);
-    strcat(dir, "/");
-    char *robot = test_read_robot(urdf, srdf);
-    mpb_world *w = NULL;
-    char err[512];
-    int rc = mpb_world_open_group_in("urdf", robot, dir, "moveit-scene",
-                                     empty_scene, joints, NJ, &w, err, sizeof err);
-    free(robot);
-    if (rc != MPB_OK)
-        fail_msg("%s", err);
-    return w;
+    return test_open_panda(empty_scene);
 }
 
 #define OPEN_OR_SKIP(w)                                                       \
