@@ -556,10 +556,12 @@ void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
             if (f->queued)
                 start_queued(d, f);
         } else if (!is_abandoned(p, active_runs[k]) &&
+                   !mpbd_verifier_has(d, active_runs[k]) &&
                    !mpbd_recently_done(d, active_runs[k]) &&
                    !pending_resend(d, active_runs[k])) {
-            unknown++;     /* not in flight, given up on, just stored, or
-                              to be sent again after a restart */
+            unknown++;     /* not in flight, given up on, being verified,
+                              just stored, or to be sent again after a
+                              restart */
         }
     }
     /* Runs it plans that this daemon did not send it: given up on by this
