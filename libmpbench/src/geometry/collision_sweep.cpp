@@ -205,7 +205,7 @@ void sweep_decay(mpb__sweep *st, const mpb_collision *c, double moved)
         double r = st->mrate[(size_t)c->mshapes[si].body] * moved;
         if (!(r > 0))
             continue;
-        double *b = &st->stat[si * st->nt];
+        double *b = st->stat.data() + si * st->nt;  /* empty: no statics */
         for (size_t t = 0; t < st->nt; t++)
             b[t] -= r;
     }
@@ -311,7 +311,7 @@ int mpb__collision_sweep_step(mpb_collision *c, mpb__sweep *st, double moved,
             st->mrate[i] = r;
             for (int si : m.shapes) {
                 const Shape &ms = c->mshapes[(size_t)si];
-                double *b = &st->stat[(size_t)si * st->nt];
+                double *b = st->stat.data() + (size_t)si * st->nt;
                 for (size_t t = 0; t < st->nt; t++) {
                     double need = best * r + margin;
                     if (b[t] >= need) {
