@@ -63,20 +63,48 @@ typedef struct totals {
     long successes, lost, lost_self, gained;
 } totals;
 
+int verify_read_run(mpb_store *s, const char *db, int64_t run_id,
+                    double step, view_run *v, double *res, mpb_goal *goal)
+{
+    char why[512] = "";
+    int got = view_read(CMD, s, db, run_id, v, why, sizeof why);
+    if (got != 0)
+        return got;
+    *res = step > 0 ? step : v->resolution;
+    *goal = mpb_query_goal(v->goal_kind, v->goal_joints, v->tolerance,
+                           v->goal_link, v->goal_region);
+    return 0;
+}
+
+int verify_stage(const view_run *v, const view_stage *st,
+                 const mpb_goal *goal, double res, const char *db,
+                 int64_t run_id, mpb_verdict *out)
+{
+    mpb_stage_measure m;
+    int rc = mpb_measure_stage(v->world, v->start, v->tolerance, goal,
+                               st->waypoints, st->num_waypoints, v->num_joints,
+                               0, res, MPB_MEASURE_NO_METRICS, &m);
+    *out = m.verdict;
+    if (rc != MPB_OK && rc != MPB_EINVAL) {
+        fprintf(stderr, "mpb " CMD ": %s: run %lld stage %s: %s\n", db,
+                (long long)run_id, st->name, mpb_strerror(rc));
+        return -1;
+    }
+    return 0;
+}
+
 /* One run: each stage verified again; 0, or -1 after one line. */
 static int verify_run(mpb_store *s, const char *db, int64_t run_id,
                       double step, totals *t)
 {
     view_run v = {0};
-    char why[512] = "";
-    int got = view_read(CMD, s, db, run_id, &v, why, sizeof why);
+    double res;
+    mpb_goal goal;
+    int got = verify_read_run(s, db, run_id, step, &v, &res, &goal);
     if (got != 0) {
         view_free(&v);
         return got < 0 ? -1 : 0;    /* no stages: nothing to check */
     }
-    double res = step > 0 ? step : v.resolution;
-    mpb_goal goal = mpb_query_goal(v.goal_kind, v.goal_joints, v.tolerance,
-                                   v.goal_link, v.goal_region);
     int final_valid = -1, final_self = 0, changed = 0;
     t->runs++;
     for (int i = 0; i < v.num_stages; i++) {
@@ -85,25 +113,17 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
          * check again, and the stored verdict stands. */
         if (st->num_waypoints == 0)
             continue;
-        /* The verdict alone: the metrics would cost many times more. */
-        mpb_stage_measure m;
-        int rc = mpb_measure_stage(v.world, v.start, v.tolerance, &goal,
-                                   st->waypoints, st->num_waypoints,
-                                   v.num_joints, 0, res,
-                                   MPB_MEASURE_NO_METRICS, &m);
-        const mpb_verdict *now = &m.verdict;
-        if (rc != MPB_OK && rc != MPB_EINVAL) {
-            fprintf(stderr, "mpb " CMD ": %s: run %lld stage %s: %s\n", db,
-                    (long long)run_id, st->name, mpb_strerror(rc));
+        mpb_verdict now;
+        if (verify_stage(&v, st, &goal, res, db, run_id, &now) != 0) {
             view_free(&v);
             return -1;
         }
-        const char *name = mpb_verdict_name(now->code);
-        int valid = now->code == MPB_VERDICT_VALID;
+        const char *name = mpb_verdict_name(now.code);
+        int valid = now.code == MPB_VERDICT_VALID;
         t->stages++;
         if (i == v.num_stages - 1) {
             final_valid = valid;
-            final_self = strstr(now->detail, "self-collision") != NULL;
+            final_self = strstr(now.detail, "self-collision") != NULL;
         }
         if (strcmp(name, st->verdict) == 0)
             continue;
@@ -111,8 +131,8 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         t->changed_stages++;
         printf("run %lld %s/%s %s stage %s: stored %s, now %s%s%s\n",
                (long long)run_id, v.scene, v.query, v.run.planner_config,
-               st->name, st->verdict, name, now->detail[0] ? ": " : "",
-               now->detail);
+               st->name, st->verdict, name, now.detail[0] ? ": " : "",
+               now.detail);
     }
     t->changed_runs += changed;
     if (v.run.success == 1) {

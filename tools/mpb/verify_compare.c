@@ -8,6 +8,7 @@
  * passes (which would be a bug).
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -34,19 +35,10 @@ static int verify_as(view_run *v, const view_stage *st, const mpb_goal *goal,
                      const char *db, compare_totals *t, mpb_verdict *out)
 {
     mpb_world_set_verification(v->world, mode);
-    mpb_stage_measure m;
     double t0 = now_s();
-    int rc = mpb_measure_stage(v->world, v->start, v->tolerance, goal,
-                               st->waypoints, st->num_waypoints, v->num_joints,
-                               0, res, MPB_MEASURE_NO_METRICS, &m);
+    int rc = verify_stage(v, st, goal, res, db, run_id, out);
     t->seconds[mode] += now_s() - t0;
-    *out = m.verdict;
-    if (rc != MPB_OK && rc != MPB_EINVAL) {
-        fprintf(stderr, "mpb " CMD ": %s: run %lld stage %s: %s\n", db,
-                (long long)run_id, st->name, mpb_strerror(rc));
-        return -1;
-    }
-    return 0;
+    return rc;
 }
 
 /* A stage the certified check refuses and the sampled one does not: the
@@ -61,10 +53,9 @@ static void print_refused(view_run *v, const view_stage *st, double res,
                                          sizeof place),
            v->run.planner_config, st->name, st->verdict, c->segment);
     mpb_world_set_verification(v->world, MPB_VERIFY_CERTIFIED);
-    double q[64];
+    double *q = view_calloc((size_t)v->num_joints, sizeof *q);
     mpb_collision_at at;
-    if (v->num_joints <= 64 &&
-        mpb_find_collision(v->world, st->waypoints, st->num_waypoints,
+    if (mpb_find_collision(v->world, st->waypoints, st->num_waypoints,
                            v->num_joints, res, c->segment, q, &at) == 1) {
         printf(" at s=%.17g, q = [", at.s);
         for (int j = 0; j < v->num_joints; j++)
@@ -74,21 +65,20 @@ static void print_refused(view_run *v, const view_stage *st, double res,
         printf(": %s", c->detail);
     }
     printf("; sampled: %s\n", mpb_verdict_name(sm->code));
+    free(q);
 }
 
 static int compare_run(mpb_store *s, const char *db, int64_t run_id,
                        double step, compare_totals *t)
 {
     view_run v = {0};
-    char why[512] = "";
-    int got = view_read(CMD, s, db, run_id, &v, why, sizeof why);
+    double res;
+    mpb_goal goal;
+    int got = verify_read_run(s, db, run_id, step, &v, &res, &goal);
     if (got != 0) {
         view_free(&v);
         return got < 0 ? -1 : 0;    /* no stages: nothing to check */
     }
-    double res = step > 0 ? step : v.resolution;
-    mpb_goal goal = mpb_query_goal(v.goal_kind, v.goal_joints, v.tolerance,
-                                   v.goal_link, v.goal_region);
     char place[512];
     view_place(v.scene, v.query, place, sizeof place);
     t->runs++;

@@ -131,6 +131,21 @@ const char *view_place(const char *scene, const char *query, char *buf,
                        size_t n);
 
 /*
+ * For `mpb verify` (verify.c): run run_id read as view_read() reads it,
+ * with the step it is verified at (step, or the run's own resolution when
+ * step is 0) and its query's goal, which points into *v. The same
+ * returns.
+ */
+int verify_read_run(mpb_store *s, const char *db, int64_t run_id,
+                    double step, view_run *v, double *res, mpb_goal *goal);
+/* Stage st of run v verified again at res, in the mode v's world is set
+ * to, without the metrics (they cost many times more): its verdict into
+ * *out. 0, or -1 after one line on stderr. */
+int verify_stage(const view_run *v, const view_stage *st,
+                 const mpb_goal *goal, double res, const char *db,
+                 int64_t run_id, mpb_verdict *out);
+
+/*
  * `mpb verify --compare` (verify_compare.c): the runs of sel verified
  * again certified and sampled, at step (0: each run's resolution), the
  * differences listed and counted on stdout. MPB_EXIT_OK, MPB_EXIT_ERROR
