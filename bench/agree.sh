@@ -1,18 +1,20 @@
 #!/bin/sh
 # bench/agree.sh - issue 37: do the certified and the sampled collision
 # checks agree on the stored paths of the paper's demo suite
-# (scenes/experiments/paper-demo.yaml, what `make demo` runs) and of
+# (scenes/experiments/paper-demo.yaml, what `make demo` runs), of its
+# quick suite (paper-quick.yaml) and of
 # scenes/experiments/mbm-panda-quick.yaml? (docs/results-paper.md,
 # docs/results-mbm.md)
 #
-#   bench/agree.sh [--bin DIR] DBDIR
+#   bench/agree.sh [--bin DIR] [--no-quick] DBDIR
 #
 #   1. Makes what DBDIR lacks, once, niced: DBDIR/paper-demo.db (the
-#      demo's experiment, planners ompl, arastar, python) and
-#      DBDIR/mbm-panda-quick.db (planner ompl; needs the Panda and
-#      MotionBenchMaker's problems in .cache/robots, tools/robot_data.sh;
-#      without them it is skipped), each by tools/run_benchmark.sh (root:
-#      a private network namespace). Minutes each.
+#      demo's experiment, planners ompl, arastar, python), DBDIR/
+#      paper-quick.db (the same planners; about 30 minutes on 2 cores;
+#      not with --no-quick) and DBDIR/mbm-panda-quick.db (planner ompl;
+#      needs the Panda and MotionBenchMaker's problems in .cache/robots,
+#      tools/robot_data.sh; without them it is skipped), each by
+#      tools/run_benchmark.sh (root: a private network namespace).
 #   2. Runs `mpb verify --compare` on each database there: every stored
 #      stage verified again certified and sampled, each stage the
 #      certified check newly refuses listed with its colliding
@@ -24,16 +26,17 @@
 # DIR is the build tree (default MPB_BUILD or build/).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
-BUILD=${MPB_BUILD:-$src/build}
+BUILD=${MPB_BUILD:-$src/build} QUICK=1
 while [ $# -gt 0 ]; do
     case $1 in
     --bin) BUILD=$2; shift 2 ;;
+    --no-quick) QUICK=0; shift ;;
     -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) echo "bench/agree.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
     *) break ;;
     esac
 done
-[ $# -eq 1 ] || { echo "usage: bench/agree.sh [--bin DIR] DBDIR" >&2; exit 2; }
+[ $# -eq 1 ] || { echo "usage: bench/agree.sh [--bin DIR] [--no-quick] DBDIR" >&2; exit 2; }
 dir=$1
 mkdir -p "$dir" || exit 1
 export MPB_BUILD=$BUILD
@@ -53,6 +56,7 @@ make_db() {   # make_db NAME PLANNERS: DBDIR/NAME.db from its experiment file
 
 status=0
 make_db paper-demo ompl,arastar,python || status=1
+[ "$QUICK" -eq 0 ] || make_db paper-quick ompl,arastar,python || status=1
 if [ -n "$data" ]; then
     make_db mbm-panda-quick ompl || status=1
     # The URDF's package:// meshes.
@@ -60,7 +64,7 @@ if [ -n "$data" ]; then
 else
     echo "bench/agree.sh: no robot data (tools/robot_data.sh): mbm-panda-quick skipped" >&2
 fi
-for db in "$dir"/paper-demo.db "$dir"/mbm-panda-quick.db; do
+for db in "$dir"/paper-demo.db "$dir"/paper-quick.db "$dir"/mbm-panda-quick.db; do
     [ -f "$db" ] || continue
     echo "== mpb verify --compare $db ($(date -u +%Y-%m-%dT%H:%MZ), load $(cut -d' ' -f1-3 /proc/loadavg))"
     nice -n 10 "$BUILD/tools/mpb" verify --compare "$db" || status=1
