@@ -72,6 +72,8 @@ typedef struct rates {
     double               *reach;     /* by id */
     int                  *bound_off, *bound_len; /* by id: in bounds */
     mpb__body_bound      *bounds;
+    double              (*at)[3][3]; /* by bound, each step: its sphere's
+                                        centre and capsule's ends, world */
     int                  *depth;     /* by link: hops to the root */
     int                  *anc;       /* ids x ids: common ancestor link */
     /* each step's */
@@ -94,6 +96,7 @@ static void rates_free(void *p)
     free(t->bound_off);
     free(t->bound_len);
     free(t->bounds);
+    free(t->at);
     free(t->depth);
     free(t->anc);
     free(t->rate);
@@ -212,7 +215,8 @@ static rates *rates_make(const mpb_robot *r, mpb_collision *coll,
         total += t->link[i] >= 0 ? t->depth[t->link[i]] + 1 : 0;
     }
     t->partial = calloc((size_t)total + 1, sizeof *t->partial);
-    if (*rc == MPB_OK && !t->partial)
+    t->at = calloc((size_t)used + 1, sizeof *t->at);
+    if (*rc == MPB_OK && (!t->partial || !t->at))
         *rc = MPB_ENOMEM;
     for (int a = 0; a < ids; a++)
         for (int b = 0; b < ids; b++)
@@ -250,22 +254,32 @@ static double line_dist(const double x[3], const double o[3], const double w[3])
     return sqrt(c0 * c0 + c1 * c1 + c2 * c2);
 }
 
+/* Body id's bounds where the robot stands (pose: the body's frame). */
+static void place_bounds(rates *t, int id, const mpb_pose *pose)
+{
+    const mpb__body_bound *b = t->bounds + t->bound_off[id];
+    double (*at)[3][3] = t->at + t->bound_off[id];
+    for (int k = 0; k < t->bound_len[id]; k++) {
+        mpb_pose_apply(pose, b[k].centre, at[k][0]);
+        if (b[k].cap_radius >= 0) {
+            mpb_pose_apply(pose, b[k].cap[0], at[k][1]);
+            mpb_pose_apply(pose, b[k].cap[1], at[k][2]);
+        }
+    }
+}
+
 /* How far body id's points lie from the axis through o along w, where the
- * robot stands (pose: the body's frame). */
-static double axis_reach(const rates *t, int id, const mpb_pose *pose,
-                         const double o[3], const double w[3])
+ * robot stands (place_bounds()). */
+static double axis_reach(const rates *t, int id, const double o[3],
+                         const double w[3])
 {
     double far = 0.0;
     const mpb__body_bound *b = t->bounds + t->bound_off[id];
+    double (*at)[3][3] = t->at + t->bound_off[id];
     for (int k = 0; k < t->bound_len[id]; k++) {
-        double x[3];
-        mpb_pose_apply(pose, b[k].centre, x);
-        double r = line_dist(x, o, w) + b[k].radius;
+        double r = line_dist(at[k][0], o, w) + b[k].radius;
         if (b[k].cap_radius >= 0) {
-            double e0[3], e1[3];
-            mpb_pose_apply(pose, b[k].cap[0], e0);
-            mpb_pose_apply(pose, b[k].cap[1], e1);
-            double rc = fmax(line_dist(e0, o, w), line_dist(e1, o, w)) +
+            double rc = fmax(line_dist(at[k][1], o, w), line_dist(at[k][2], o, w)) +
                         b[k].cap_radius;
             r = fmin(r, rc);
         }
@@ -284,7 +298,7 @@ static void body_walk(rates *t, const mpb_pose *poses, int id, const double *d,
     double *part = t->partial + t->partial_off[id];
     double rate = 0.0, acc = t->reach[id];
     part[0] = 0.0;
-    const mpb_pose *pose = &poses[l];
+    int placed = 0;
     while (l >= 0 && k < t->depth[t->link[id]]) {
         const mpb_robot_link *link = mpb_robot_get_link(r, l);
         if (link->parent < 0)
@@ -307,7 +321,9 @@ static void body_walk(rates *t, const mpb_pose *poses, int id, const double *d,
                 double w[3];
                 for (int i = 0; i < 3; i++)
                     w[i] = R[3 * i] * ax[0] + R[3 * i + 1] * ax[1] + R[3 * i + 2] * ax[2];
-                far = fmin(far, axis_reach(t, id, pose, a, w) + rate * h);
+                if (!placed++)
+                    place_bounds(t, id, &poses[t->link[id]]);
+                far = fmin(far, axis_reach(t, id, a, w) + rate * h);
             }
             rate += v * far;
             break;
