@@ -76,12 +76,19 @@ typedef struct rates {
                                         centre and capsule's ends, world */
     int                  *depth;     /* by link: hops to the root */
     int                  *anc;       /* ids x ids: common ancestor link */
+    const double        **axis;      /* by link: its joint's axis (own
+                                        frame) if an active revolute one */
     /* each step's */
     double               *rate;      /* by id: to the root */
+    struct hop {                     /* by link: the joint to its parent */
+        double v;                    /* |rate| */
+        double len;                  /* distance between the frame
+                                        origins, + v if prismatic */
+        double w[3];                 /* revolute: the axis, world */
+    }                    *hop;
     double               *partial;   /* by id, depth + 1 each: the rate of
                                         the first k hops of its walk */
     int                  *partial_off;
-    const double         *d;
 } rates;
 
 static void rates_free(void *p)
@@ -99,6 +106,8 @@ static void rates_free(void *p)
     free(t->at);
     free(t->depth);
     free(t->anc);
+    free(t->axis);
+    free(t->hop);
     free(t->rate);
     free(t->partial);
     free(t->partial_off);
@@ -183,8 +192,11 @@ static rates *rates_make(const mpb_robot *r, mpb_collision *coll,
     t->anc = malloc(n * n * sizeof *t->anc);
     t->rate = calloc(n, sizeof *t->rate);
     t->partial_off = calloc(n, sizeof *t->partial_off);
+    t->axis = calloc((size_t)nl + 1, sizeof *t->axis);
+    t->hop = calloc((size_t)nl + 1, sizeof *t->hop);
     if (!t->att || !t->att_link || !t->link || !t->reach || !t->bound_off ||
-        !t->bound_len || !t->depth || !t->anc || !t->rate || !t->partial_off) {
+        !t->bound_len || !t->depth || !t->anc || !t->rate || !t->partial_off ||
+        !t->axis || !t->hop) {
         rates_free(t);
         return NULL;
     }
@@ -201,6 +213,12 @@ static rates *rates_make(const mpb_robot *r, mpb_collision *coll,
              p = mpb_robot_get_link(r, p)->parent)
             k++;
         t->depth[l] = k;
+    }
+    for (int l = 0; l < nl; l++) {
+        const mpb_robot_link *link = mpb_robot_get_link(r, l);
+        if ((link->joint_type == MPB_JOINT_REVOLUTE ||
+             link->joint_type == MPB_JOINT_CONTINUOUS) && link->chain_joint >= 0)
+            t->axis[l] = mpb_robot_get_joint(r, link->chain_joint)->axis;
     }
     int used = 0, cap = 0;
     *rc = MPB_OK;
@@ -288,59 +306,65 @@ static double axis_reach(const rates *t, int id, const double o[3],
     return far;
 }
 
+/* Each link's joint for the motion d where the robot stands (t->hop). */
+static void links_step(rates *t, const mpb_pose *poses, const double *d)
+{
+    for (int l = 0; l < t->nl; l++) {
+        const mpb_robot_link *link = mpb_robot_get_link(t->r, l);
+        struct hop *o = &t->hop[l];
+        if (link->parent < 0)
+            continue;
+        o->v = joint_rate(t->r, link, d);
+        const double *a = poses[l].t, *b = poses[link->parent].t;
+        o->len = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                      (a[2] - b[2]) * (a[2] - b[2]));
+        if (link->joint_type == MPB_JOINT_PRISMATIC)
+            o->len += o->v;
+        if (t->axis[l] && o->v > 0) {
+            /* the child link's frame turns the joint's axis; it passes
+               through that frame's origin */
+            const double *R = poses[l].R, *ax = t->axis[l];
+            for (int i = 0; i < 3; i++)
+                o->w[i] = R[3 * i] * ax[0] + R[3 * i + 1] * ax[1] + R[3 * i + 2] * ax[2];
+        }
+    }
+}
+
 /* Body id's walk to the root: t->rate[id] and its partial sums (see the
- * top), over a horizon of h units of s. */
-static void body_walk(rates *t, const mpb_pose *poses, int id, const double *d,
-                      double h)
+ * top), over a horizon of h units of s (links_step() taken). */
+static void body_walk(rates *t, const mpb_pose *poses, int id, double h)
 {
     const mpb_robot *r = t->r;
-    int l = t->link[id], k = 0;
+    int l = t->link[id], k = 0, depth = t->depth[l];
     double *part = t->partial + t->partial_off[id];
     double rate = 0.0, acc = t->reach[id];
     part[0] = 0.0;
     int placed = 0;
-    while (l >= 0 && k < t->depth[t->link[id]]) {
+    while (k < depth) {
         const mpb_robot_link *link = mpb_robot_get_link(r, l);
-        if (link->parent < 0)
-            break;
-        double v = joint_rate(r, link, d);
-        const double *a = poses[l].t, *b = poses[link->parent].t;
-        double hop = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                          (a[2] - b[2]) * (a[2] - b[2]));
+        const struct hop *o = &t->hop[l];
         switch (link->joint_type) {
         case MPB_JOINT_REVOLUTE:
         case MPB_JOINT_CONTINUOUS: {
             double far = acc;
-            const mpb_robot_joint *j = link->chain_joint >= 0
-                ? mpb_robot_get_joint(r, link->chain_joint) : NULL;
-            if (v > 0 && j) {
-                /* the axis in the world: the child link's frame turns
-                   the joint's axis; it passes through that frame's
-                   origin */
-                const double *R = poses[l].R, *ax = j->axis;
-                double w[3];
-                for (int i = 0; i < 3; i++)
-                    w[i] = R[3 * i] * ax[0] + R[3 * i + 1] * ax[1] + R[3 * i + 2] * ax[2];
+            if (t->axis[l] && o->v > 0) {
                 if (!placed++)
                     place_bounds(t, id, &poses[t->link[id]]);
-                far = fmin(far, axis_reach(t, id, a, w) + rate * h);
+                far = fmin(far, axis_reach(t, id, poses[l].t, o->w) + rate * h);
             }
-            rate += v * far;
+            rate += o->v * far;
             break;
         }
         case MPB_JOINT_PRISMATIC:
-            rate += v;
-            hop += v;
+            rate += o->v;
             break;
         default:                /* fixed; floating and planar are held */
             break;
         }
-        acc += hop;
+        acc += o->len;
         part[++k] = rate;
         l = link->parent;
     }
-    while (k < t->depth[t->link[id]])
-        part[++k] = rate;
     t->rate[id] = rate;
 }
 
@@ -375,15 +399,15 @@ int mpb__urdf_safe_step(const mpb_robot *r, mpb_collision *coll,
     }
     if (!(want > 0))
         return MPB_EINVAL;
+    links_step(t, poses, d);
     for (int id = 0; id < t->ids; id++) {
         t->rate[id] = 0.0;
         if (t->link[id] < 0)
             continue;
-        body_walk(t, poses, id, d, want);
+        body_walk(t, poses, id, want);
         if (!isfinite(t->rate[id]))
             return MPB_EINVAL;
     }
-    t->d = d;
     return mpb__collision_sweep_step(coll, st, moved, t->rate, t->ids, pair_rate,
                                      t, margin, want, step);
 }
@@ -402,10 +426,11 @@ int mpb__urdf_rates(mpb_world *w, const double *q, const double *d,
                           u->num_attached, &rc);
     if (!t)
         return rc;
+    links_step(t, u->poses, d);
     for (int id = 0; id < t->ids; id++) {
         t->rate[id] = 0.0;
         if (t->link[id] >= 0)
-            body_walk(t, u->poses, id, d, horizon);
+            body_walk(t, u->poses, id, horizon);
     }
     for (int a = 0; a < n; a++) {
         rate[a] = a < t->ids && t->link[a] >= 0 ? t->rate[a] : NAN;
