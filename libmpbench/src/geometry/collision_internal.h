@@ -77,6 +77,21 @@ int mpb__collision_hint_apart(mpb_collision *c, int a, int b);
 double mpb__collision_body_reach(mpb_collision *c, int id);
 
 /*
+ * What holds each shape of movable body id, in the body's own frame: a
+ * sphere (centre, radius) and, for a mesh, a capsule (segment cap[0]
+ * cap[1], cap_radius; cap_radius < 0 if the shape has none). Up to max
+ * shapes are written to out; returns the body's number of shapes, or -1
+ * for an unknown id. For certified verification's motion bounds
+ * (world_sweep.c).
+ */
+typedef struct mpb__body_bound {
+    double centre[3], radius;
+    double cap[2][3], cap_radius;
+} mpb__body_bound;
+int mpb__collision_body_bounds(mpb_collision *c, int id, mpb__body_bound *out,
+                               int max);
+
+/*
  * Conservative advancement's step where the bodies stand now. rate[id]
  * (num_rates entries, by movable id; ids past the array count 0) bounds
  * how far any point of body id can move per unit of the caller's
@@ -116,6 +131,10 @@ mpb__sweep *mpb__sweep_new(void);       /* NULL: out of memory */
 void mpb__sweep_free(mpb__sweep *st);   /* NULL is fine */
 /* Pairs measured and pairs skipped since st was made (for tests). */
 void mpb__sweep_counts(const mpb__sweep *st, long *measured, long *skipped);
+/* The caller's own data kept with st (what it computes once per world),
+ * freed by user_free (if not NULL) when replaced or when st is freed. */
+void *mpb__sweep_user(const mpb__sweep *st);
+void mpb__sweep_set_user(mpb__sweep *st, void *user, void (*user_free)(void *));
 
 /*
  * As mpb__collision_safe_step_pairs(), remembering bounds in st. moved:
@@ -124,7 +143,9 @@ void mpb__sweep_counts(const mpb__sweep *st, long *measured, long *skipped);
  * negative to start afresh (a new path, or the world changed: the bounds
  * are forgotten then too if the world's bodies, statics or pairs
  * changed). The rates must hold over the whole of the last motion from
- * the last call's place (they do for a straight joint-space segment).
+ * the last call's place: moved never exceeds the last call's want, and
+ * the caller's rates hold for any s within want of where they were taken
+ * (world_sweep.c's do, for a straight joint-space segment).
  * st NULL: mpb__collision_safe_step_pairs().
  */
 int mpb__collision_sweep_step(mpb_collision *c, mpb__sweep *st, double moved,

@@ -69,8 +69,9 @@ double leaf_lower(mpb_collision *c, const Shape &ms, const Leaf &l, double need,
     if (lb >= need)
         return lb;
     const Shape &ss = c->sshapes[(size_t)l.shape];
+    double upper = INFINITY;
     if (ms.verts) {
-        lb = std::max(lb, mesh_static_lower(ms, ss, need, true));
+        lb = std::max(lb, mesh_static_lower(ms, ss, need, true, &upper));
         /* good enough, if not what the step wants: a step a little
            shorter costs less than FCL's distance on the mesh */
         if (lb >= need * MPB__SWEEP_ENOUGH && lb > MPB__SWEEP_NEAR)
@@ -80,11 +81,8 @@ double leaf_lower(mpb_collision *c, const Shape &ms, const Leaf &l, double need,
         if (lb >= need)
             return lb;
     }
-    sync(ms);
-    c->dres.clear();
-    c->dres.min_distance = below;
-    double d = fcl::distance(ms.obj.get(), ss.obj.get(), c->dreq, c->dres);
-    return std::max(lb, std::min(below, d < 0 ? 0.0 : d));
+    double d = pair_distance_upper(c, ms, ss, below, upper);
+    return std::max(lb, std::min(below, d));
 }
 
 /* A lower bound on the distance between meshes a and b: the widest gap
@@ -175,6 +173,9 @@ struct mpb__sweep {
     std::vector<double>  prate;    /* last rate by self pair */
     bool                 known = false;
     long                 measured = 0, skipped = 0;  /* counters, tests */
+    void                *user = nullptr;   /* the caller's (mpb__sweep_user) */
+    void               (*user_free)(void *) = nullptr;
+    ~mpb__sweep() { if (user_free) user_free(user); }
 };
 
 using namespace mpb::coll;
@@ -233,6 +234,45 @@ double mpb__collision_body_reach(mpb_collision *c, int id)
                                     s.bradius);
     }
     return reach;
+}
+
+int mpb__collision_body_bounds(mpb_collision *c, int id, mpb__body_bound *out,
+                               int max)
+{
+    Movable *m = c ? c->find(id) : nullptr;
+    if (!m || max < 0 || (max > 0 && !out))
+        return -1;
+    int n = 0;
+    for (int si : m->shapes) {
+        if (n < max) {
+            const Shape &s = c->mshapes[(size_t)si];
+            mpb__body_bound &b = out[n];
+            double bc[3] = { s.bcenter[0], s.bcenter[1], s.bcenter[2] };
+            mpb_pose_apply(&s.offset, bc, b.centre);
+            b.radius = s.bradius;
+            b.cap_radius = s.has_cap ? s.cap_r : -1.0;
+            for (int e = 0; e < 2; e++)
+                if (s.has_cap)
+                    mpb_pose_apply(&s.offset, s.cap[e], b.cap[e]);
+                else
+                    memcpy(b.cap[e], b.centre, sizeof b.centre);
+        }
+        n++;
+    }
+    return n;
+}
+
+void *mpb__sweep_user(const mpb__sweep *st)
+{
+    return st ? st->user : nullptr;
+}
+
+void mpb__sweep_set_user(mpb__sweep *st, void *user, void (*user_free)(void *))
+{
+    if (st->user_free)
+        st->user_free(st->user);
+    st->user = user;
+    st->user_free = user_free;
 }
 
 int mpb__collision_safe_step(mpb_collision *c, const double *rate, int num_rates,

@@ -126,6 +126,16 @@ int mpb__urdf_safe_step(const struct mpb_robot *r, struct mpb_collision *coll,
                         const double *d, double margin, double want,
                         double *step);
 
+/*
+ * For tests (test_certify_rates.c): the rates mpb__urdf_safe_step() takes
+ * at q for the motion d over a horizon of h units of s: rate[id], and
+ * pair[a * n + b] the rate at which bodies a and b may approach (ids
+ * below n; NaN where there is no body). MPB_OK; MPB_EINVAL for a world
+ * not "urdf" or bad arguments.
+ */
+int mpb__urdf_rates(mpb_world *w, const double *q, const double *d, double h,
+                    double *rate, double *pair, int n);
+
 /* The providers. */
 extern const mpb__world_provider mpb__world_planar;
 extern const mpb__world_provider mpb__world_urdf;

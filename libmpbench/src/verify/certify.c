@@ -18,6 +18,15 @@
  * segment, so that the world may keep its pairs' distance bounds from
  * step to step and from segment to segment (segment k's end is segment
  * k + 1's start) and measure only the pairs whose bound ran out.
+ *
+ * The world's motion bounds are tighter over a short horizon (a point's
+ * distance to a joint's axis grows only so fast; world_sweep.c): each
+ * step asks for at most twice the joint-space length of the last one
+ * (want), and the world's bounds hold over want. So no motion the world
+ * is told of (moved) is longer than the want of the step it follows: a
+ * proved step is at most want, a floor step at most want too (want is
+ * never below twice the floor unless the rest of the segment is), and
+ * a segment left after too many steps forgets the chain.
  */
 #include "mpbench/mpbench.h"
 
@@ -59,6 +68,7 @@ int mpb__certify_can(const mpb_world *w)
 void mpb__certify_begin(mpb__certify_chain *chain)
 {
     chain->moved = -1.0;
+    chain->horizon = 0.0;
 }
 
 /* The segment left at its end b, having called safe_step last at s = at
@@ -84,16 +94,22 @@ int mpb__certify_segment(mpb_world *w, mpb__certify_chain *chain,
     for (int steps = 0;; steps++) {
         if (steps >= CERT_MAX_STEPS) {
             *proved = 0;        /* too slow to prove: the caller samples */
-            chain_to_end(chain, at);
+            chain->moved = -1.0;    /* further than the last step asked */
             return MPB_OK;
         }
         for (int j = 0; j < nj; j++)
             q[j] = a[j] + s * d[j];
-        double want = 1.0 - s, ds = 0.0;
-        if (!(want > 0)) {
+        double rest = 1.0 - s, ds = 0.0;
+        if (!(rest > 0)) {
             chain_to_end(chain, at);
             return MPB_OK;      /* s reached 1 by proved steps */
         }
+        /* The world's rates hold over what a step asks for (want): the
+           less, the tighter. Ask for twice the last step, never less
+           than the floor (a floor step moves that far). */
+        double want = rest;
+        if (chain->horizon > 0)
+            want = fmin(rest, fmax(chain->horizon / len, 2 * floor_s));
         double moved = at >= 0 ? s - at : chain->moved;
         int rc = w->provider->safe_step(w->impl, q, d, CERT_MARGIN, want,
                                         moved, &ds);
@@ -103,10 +119,13 @@ int mpb__certify_segment(mpb_world *w, mpb__certify_chain *chain,
             chain->moved = -1.0;    /* what the world knows is lost */
             return MPB_OK;
         }
-        if (ds >= want) {
+        chain->horizon = fmax(2 * fmin(ds, want) * len, 2 * CERT_FLOOR);
+        if (ds >= want && want >= rest) {
             chain_to_end(chain, at);
             return MPB_OK;      /* [s, 1] proved: b included */
         }
+        if (ds >= want)
+            ds = want;
         if (ds < floor_s) {
             /* within the margin of contact: is q in collision? Else step
                over the floor, unproved, and look there. */

@@ -15,6 +15,8 @@ int mpb__certify_can(const mpb_world *w);
 typedef struct mpb__certify_chain {
     double moved;   /* s travelled along the last segment since its last
                        step was measured; negative: nothing carried */
+    double horizon; /* joint-space length (rad) the next step may ask
+                       for: twice the last step's; 0: no limit */
 } mpb__certify_chain;
 
 /* Start a chain: before the first segment of a path. */
