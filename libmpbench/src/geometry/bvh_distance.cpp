@@ -9,9 +9,12 @@
  * against a MotionBenchMaker table: ~60 a pair, 96 % of a clearance).
  * Here, in the frame of the shape's own box, a node is bounded by the
  * gap to its box's axis-aligned box there, and a triangle by that of
- * its own, the lines to its vertices and its normal; nearer bounds
- * first, and a node or triangle is measured only while its bound is
- * below the best so far by more than kTie: about two triangles a pair.
+ * its own, the lines to its vertices and its normal; dives down the
+ * nearer child to a triangle, each from the nearest bound waiting, and a
+ * node or triangle is measured only while its bound is below the best so
+ * far by more than kTie. A triangle measured is proved the nearest, and
+ * the walk ends, when the mesh's hull lies beyond the shape's box along
+ * the line between their nearest points (mostly the first or second).
  *
  * Why the answer is FCL's: FCL's distance is the least, over the
  * triangles its traversal reaches, of its solver's triangle distance
@@ -21,8 +24,10 @@
  * transforms, and those skipped lie at least the best so far away by
  * the bounds above (a gap along any direction is at most the distance;
  * every triangle lies in the box of each node above it; the shape lies
- * in its box). So both are the least triangle distance, up to the
- * solver's own tolerance. tests/unit/test_clearance_reference.c checks it.
+ * in its box; a gap along any line is at most the distance, and every
+ * triangle lies in the hull of the mesh's vertices). So both are the
+ * least triangle distance, up to the solver's own tolerance.
+ * tests/unit/test_clearance_reference.c checks it.
  */
 #include "geometry/bvh_distance.h"
 
@@ -169,6 +174,26 @@ inline double tri_lower(const double p[3][3], const double h[3], double best)
     return gap - kRound;
 }
 
+/* The gap between the mesh's hull (mesh frame, mapped by f) and the box
+ * of half sides h along unit direction u of the box's frame: a lower
+ * bound on their distance. */
+inline double hull_gap(const Frame &f, const BvhHull &hull, const double u[3],
+                       const double h[3])
+{
+    double l[3];                /* -u in the mesh's frame */
+    for (int j = 0; j < 3; j++)
+        l[j] = -(f.R[0][j] * u[0] + f.R[1][j] * u[1] + f.R[2][j] * u[2]);
+    int c = hull.dirs ? mpb__dirtable_cell(hull.dirs, l) : -1;
+    const int *list = c >= 0 ? &hull.dirs->idx[hull.dirs->start[c]] : nullptr;
+    int n = c >= 0 ? hull.dirs->start[c + 1] - hull.dirs->start[c] : hull.num;
+    double hi = -INFINITY;      /* the most of the hull along -u */
+    for (int k = 0; k < n; k++) {
+        const double *v = hull.verts[list ? list[k] : k].data();
+        hi = std::max(hi, v[0] * l[0] + v[1] * l[1] + v[2] * l[2]);
+    }
+    return -hi + (f.T[0] * u[0] + f.T[1] * u[1] + f.T[2] * u[2]) - box_support(u, h);
+}
+
 /* A node waiting in the queue, by its lower bound (a min-heap). */
 struct Later {
     bool operator()(const BvhQueued &a, const BvhQueued &b) const
@@ -180,7 +205,8 @@ struct Later {
 template <class Shape>
 double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
                 const fcl::Transform3d &tf2, const double c[3], const double h[3],
-                double tol, double best, std::vector<BvhQueued> &heap)
+                double tol, double best, std::vector<BvhQueued> &heap,
+                const BvhHull *hull)
 {
     /* x_box = R2^T (R1 x + t1 - t2) - c */
     Frame f;
@@ -197,13 +223,23 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
     const Node *nodes = &m.getBV(0);
     const Later later;
     heap.clear();
-    heap.push_back({node_lower(f, nodes[0].bv.obb, h, best), 0});
-    /* Nearest bound first: the first triangle measured is mostly the
-       nearest, and every other bound then falls short of it. */
-    while (!heap.empty()) {
-        std::pop_heap(heap.begin(), heap.end(), later);
-        BvhQueued top = heap.back();
-        heap.pop_back();
+    /* Dives first, down the nearer child, to a triangle: with the hull's
+       proof (mostly at hand) that is the answer, for a dozen levels of
+       bounds. A dive that ends above every triangle goes on from the
+       nearest bound waiting. Once a triangle is measured (or with no
+       hull), nearest bound first: every node whose bound falls short of
+       the best so far, the siblings of the dives among them. */
+    bool diving = hull != nullptr, next = true;
+    BvhQueued top = {node_lower(f, nodes[0].bv.obb, h, best), 0};
+    for (;;) {
+        if (!next) {
+            if (heap.empty())
+                break;
+            std::pop_heap(heap.begin(), heap.end(), later);
+            top = heap.back();
+            heap.pop_back();
+        }
+        next = false;
         if (!(top.lower < best - kTie))
             break;              /* nothing left can be nearer */
         const Node &n = nodes[top.node];
@@ -213,12 +249,22 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
             fcl::Vector3d q1, q2;
             solver.shapeTriangleDistance(s, tf2, m.vertices[t[0]], m.vertices[t[1]],
                                          m.vertices[t[2]], tf1, &d, &q2, &q1);
-            if (d < best)
-                best = d;
-            if (best <= 0)
+            if (best <= 0 || d <= 0)
                 return 0.0;
+            if (!(d < best))
+                continue;
+            best = d;
+            /* the line between the nearest points: should the hull lie
+               beyond the box along it by all but kTie, no triangle is
+               nearer than this one by more */
+            fcl::Vector3d w = R2.transpose() * (q1 - q2);
+            double wn = w.norm(), u[3] = {w[0] / wn, w[1] / wn, w[2] / wn};
+            if (hull && wn > 0 && hull_gap(f, *hull, u, h) >= best - kTie)
+                return best;
             continue;
         }
+        BvhQueued kid[2];
+        int nk = 0;
         for (int child = n.first_child; child <= n.first_child + 1; child++) {
             const Node &k = nodes[child];
             double lo;
@@ -232,9 +278,18 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
             } else {
                 lo = node_lower(f, k.bv.obb, h, best);
             }
-            if (!(lo < best - kTie))
-                continue;
-            heap.push_back({std::max(lo, top.lower), child});
+            if (lo < best - kTie)
+                kid[nk++] = {std::max(lo, top.lower), child};
+        }
+        if (diving && nk > 0) {     /* on down the nearer */
+            if (nk == 2 && kid[1].lower < kid[0].lower)
+                std::swap(kid[0], kid[1]);
+            top = kid[0];
+            next = true;
+            kid[0] = kid[--nk];
+        }
+        for (int i = 0; i < nk; i++) {
+            heap.push_back(kid[i]);
             std::push_heap(heap.begin(), heap.end(), later);
         }
     }
@@ -247,7 +302,7 @@ double bvh_shape_distance(const BvhObbRss &m, const fcl::Transform3d &tf1,
                           const fcl::CollisionGeometryd &g,
                           const fcl::Transform3d &tf2, const double box_c[3],
                           const double box_h[3], double tol, double below,
-                          std::vector<BvhQueued> &heap)
+                          std::vector<BvhQueued> &heap, const BvhHull *hull)
 {
     if (m.getModelType() != fcl::BVH_MODEL_TRIANGLES)
         return NAN;
@@ -255,13 +310,13 @@ double bvh_shape_distance(const BvhObbRss &m, const fcl::Transform3d &tf1,
         return below;
     switch (g.getNodeType()) {
     case fcl::GEOM_BOX:
-        return traverse(m, tf1, static_cast<const fcl::Boxd &>(g), tf2, box_c, box_h, tol, below, heap);
+        return traverse(m, tf1, static_cast<const fcl::Boxd &>(g), tf2, box_c, box_h, tol, below, heap, hull);
     case fcl::GEOM_CYLINDER:
-        return traverse(m, tf1, static_cast<const fcl::Cylinderd &>(g), tf2, box_c, box_h, tol, below, heap);
+        return traverse(m, tf1, static_cast<const fcl::Cylinderd &>(g), tf2, box_c, box_h, tol, below, heap, hull);
     case fcl::GEOM_CONE:
-        return traverse(m, tf1, static_cast<const fcl::Coned &>(g), tf2, box_c, box_h, tol, below, heap);
+        return traverse(m, tf1, static_cast<const fcl::Coned &>(g), tf2, box_c, box_h, tol, below, heap, hull);
     case fcl::GEOM_CAPSULE:
-        return traverse(m, tf1, static_cast<const fcl::Capsuled &>(g), tf2, box_c, box_h, tol, below, heap);
+        return traverse(m, tf1, static_cast<const fcl::Capsuled &>(g), tf2, box_c, box_h, tol, below, heap, hull);
     default:
         return NAN;
     }

@@ -389,9 +389,13 @@ bool caps_apart(const Shape &a, const Shape &b);
 void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi);
 bool meshes_apart(const Shape &a, const Shape &b);
 double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search,
-                         double *upper = nullptr);
+                         double *upper = nullptr, int *upper_vertex = nullptr);
 /* The distance from world point p to static ss (INFINITY: no bound). */
 double point_static_distance(const Shape &ss, const double p[3]);
+/* The same, and the unit direction from ss's nearest point to p. */
+double point_static_away(const Shape &ss, const double p[3], double u[3]);
+/* Mesh a's distance to static ss if vertex i is provably nearest, or NaN. */
+double mesh_static_vertex(const Shape &a, const Shape &ss, int i);
 bool cap_misses_static(const Shape &a, const Shape &ss);
 double cap_static_lower(const Shape &a, const Shape &ss);
 
@@ -405,7 +409,7 @@ double pair_distance(mpb_collision *c, const Obj *a, const Obj *b,
  * at least that; upper, if finite, bounds the distance from above (a
  * cutoff that prunes FCL's traversal, never the answer). */
 double pair_distance_upper(mpb_collision *c, const Shape &ms, const Shape &ss,
-                           double below, double upper);
+                           double below, double upper, int upper_vertex = -1);
 bool narrow_phase(mpb_collision *c, const Shape &a, const Shape &b);
 int static_hit(mpb_collision *c, const Movable &m, const Shape &ms, bool among);
 void static_distance(Query *q, const Shape &ms, bool among);
