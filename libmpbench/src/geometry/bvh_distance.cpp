@@ -229,6 +229,40 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
        nearest bound waiting. Once a triangle is measured (or with no
        hull), nearest bound first: every node whose bound falls short of
        the best so far, the siblings of the dives among them. */
+    /* the hint's triangle with the least bound, measured first: mostly
+       the nearest, proved so by the hull, with no node bounded */
+    if (hull && hull->hint >= 0 && hull->hint < hull->num && hull->tri_start) {
+        double lo = INFINITY;
+        int tri = -1;
+        for (int i = hull->tri_start[hull->hint]; i < hull->tri_start[hull->hint + 1]; i++) {
+            const fcl::Triangle &t = m.tri_indices[hull->tris[i]];
+            double p[3][3];
+            to_box(f, m.vertices[t[0]], p[0]);
+            to_box(f, m.vertices[t[1]], p[1]);
+            to_box(f, m.vertices[t[2]], p[2]);
+            double l = tri_lower(p, h, best);
+            if (l < lo) {
+                lo = l;
+                tri = hull->tris[i];
+            }
+        }
+        if (tri >= 0 && lo < best - kTie) {
+            const fcl::Triangle &t = m.tri_indices[tri];
+            double d;
+            fcl::Vector3d q1, q2;
+            solver.shapeTriangleDistance(s, tf2, m.vertices[t[0]], m.vertices[t[1]],
+                                         m.vertices[t[2]], tf1, &d, &q2, &q1);
+            if (d <= 0)
+                return 0.0;
+            if (d < best) {
+                best = d;
+                fcl::Vector3d w = R2.transpose() * (q1 - q2);
+                double wn = w.norm(), u[3] = {w[0] / wn, w[1] / wn, w[2] / wn};
+                if (wn > 0 && hull_gap(f, *hull, u, h) >= best - kTie)
+                    return best;
+            }
+        }
+    }
     bool diving = hull != nullptr, next = true;
     BvhQueued top = {node_lower(f, nodes[0].bv.obb, h, best), 0};
     for (;;) {

@@ -24,6 +24,12 @@ struct BvhHull {
     const fcl::Vector3d  *verts;
     int                   num;
     const mpb__dirtable  *dirs;
+    /* optional: the triangles of each vertex (indices in the model's
+       tri_indices), tris[tri_start[i] .. tri_start[i + 1]), and a vertex
+       likely nearest the shape (-1: none), whose nearest triangle is
+       measured first */
+    const int            *tri_start, *tris;
+    int                   hint;
 };
 
 /* A node of the traversal's queue: its tree index and lower bound. */

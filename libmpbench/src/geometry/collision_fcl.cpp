@@ -210,6 +210,10 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
             s.verts = ext.data();
             s.num_verts = (int)ext.size();
             s.dirs = &static_cast<MeshModel *>(geom.get())->dirs;
+            if (!ext.empty()) {
+                s.vtri_start = static_cast<MeshModel *>(geom.get())->tri_start.data();
+                s.vtris = static_cast<MeshModel *>(geom.get())->tris.data();
+            }
         }
         s.body = c->movable_index[(size_t)id];
         s.obj->setUserData((void *)(intptr_t)c->mshapes.size());

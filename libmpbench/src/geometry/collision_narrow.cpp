@@ -58,7 +58,8 @@ double pair_distance_upper(mpb_collision *c, const Shape &ms, const Shape &ss,
         double lim = pass == 0 ? cut : below, d = NAN;
         if (mesh) {
             sync(ss);
-            const BvhHull hull = {ms.verts, ms.num_verts, ms.dirs};
+            const BvhHull hull = {ms.verts, ms.num_verts, ms.dirs, ms.vtri_start,
+                                  ms.vtris, upper_vertex};
             d = bvh_shape_distance(
                 *static_cast<const BvhObbRss *>(ms.obj->collisionGeometry().get()),
                 ms.obj->getTransform(), *ss.obj->collisionGeometry(),

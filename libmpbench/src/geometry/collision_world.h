@@ -108,6 +108,8 @@ struct Shape {
                                       extreme (extreme_vertices()) */
     int                  num_verts = 0;
     const mpb__dirtable *dirs = nullptr; /* which of verts, by direction */
+    const int           *vtri_start = nullptr, *vtris = nullptr; /* the
+                                      triangles of each of verts (MeshModel) */
     /* A static: a box that holds it, in its own frame (centre, half
        sides), for the capsule tests. */
     double               lbox_c[3] = {0, 0, 0}, lbox_h[3] = {0, 0, 0};
@@ -155,6 +157,8 @@ struct Leaf {
 struct MeshModel : fcl::BVHModel<fcl::OBBRSSd> {
     std::once_flag             extreme_once;
     std::vector<fcl::Vector3d> extreme;
+    /* the triangles of extreme[i]: tris[tri_start[i] .. tri_start[i + 1]) */
+    std::vector<int>           tri_start, tris;
     mpb__dirtable              dirs = {0, nullptr, nullptr};
     ~MeshModel() { mpb__dirtable_free(&dirs); }
 };
