@@ -95,9 +95,10 @@ inline double aabb_gap(const double c[3], const double r[3], const double h[3],
  * own axis-aligned box in the box's frame and the gap between the two
  * along the line between those (obb's own axes as well cost more than
  * they spared: 175k against 169k instructions a Panda clearance); or
- * INFINITY once it is known to be at least best. */
+ * INFINITY once it is known to be at least best. centre (if not null):
+ * the distance from obb's centre to the box, which steers the dives. */
 inline double node_lower(const Frame &f, const fcl::OBBd &obb, const double h[3],
-                         double best)
+                         double best, double *centre)
 {
     double a[3][3], c[3], r[3]; /* a[j]: obb's axis j in the box's frame */
     const double *e = obb.extent.data();
@@ -106,6 +107,14 @@ inline double node_lower(const Frame &f, const fcl::OBBd &obb, const double h[3]
             a[j][k] = f.R[k][0] * obb.axis(0, j) + f.R[k][1] * obb.axis(1, j) +
                       f.R[k][2] * obb.axis(2, j);
     to_box(f, obb.To, c);
+    if (centre) {               /* its centre's distance to the box */
+        double s = 0;
+        for (int k = 0; k < 3; k++) {
+            double g = std::max(0.0, std::fabs(c[k]) - h[k]);
+            s += g * g;
+        }
+        *centre = std::sqrt(s);
+    }
     for (int k = 0; k < 3; k++)
         r[k] = std::fabs(a[0][k]) * e[0] + std::fabs(a[1][k]) * e[1] +
                std::fabs(a[2][k]) * e[2];
@@ -223,12 +232,13 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
     const Node *nodes = &m.getBV(0);
     const Later later;
     heap.clear();
-    /* Dives first, down the nearer child, to a triangle: with the hull's
-       proof (mostly at hand) that is the answer, for a dozen levels of
-       bounds. A dive that ends above every triangle goes on from the
-       nearest bound waiting. Once a triangle is measured (or with no
-       hull), nearest bound first: every node whose bound falls short of
-       the best so far, the siblings of the dives among them. */
+    /* Dives, each from the nearest bound waiting (the root first) down
+       the child whose centre is nearer (a better guide than the bounds:
+       79k against 84k instructions a Panda clearance) to a triangle,
+       the other child left waiting; with the hull's proof (mostly at
+       hand) the first triangles are the answer, for a dozen levels of
+       bounds. Without a hull, nearest bound first. Either way every
+       node whose bound falls short of the best so far is opened. */
     /* the hint's triangle with the least bound, measured first: mostly
        the nearest, proved so by the hull, with no node bounded */
     if (hull && hull->hint >= 0 && hull->hint < hull->num && hull->tri_start) {
@@ -264,7 +274,7 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
         }
     }
     bool diving = hull != nullptr, next = true;
-    BvhQueued top = {node_lower(f, nodes[0].bv.obb, h, best), 0};
+    BvhQueued top = {node_lower(f, nodes[0].bv.obb, h, best, nullptr), 0};
     for (;;) {
         if (!next) {
             if (heap.empty())
@@ -298,6 +308,7 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
             continue;
         }
         BvhQueued kid[2];
+        double ctr[2];
         int nk = 0;
         for (int child = n.first_child; child <= n.first_child + 1; child++) {
             const Node &k = nodes[child];
@@ -309,14 +320,15 @@ double traverse(const BvhObbRss &m, const fcl::Transform3d &tf1, const Shape &s,
                 to_box(f, m.vertices[t[1]], p[1]);
                 to_box(f, m.vertices[t[2]], p[2]);
                 lo = tri_lower(p, h, best);
+                ctr[nk] = lo;
             } else {
-                lo = node_lower(f, k.bv.obb, h, best);
+                lo = node_lower(f, k.bv.obb, h, best, &ctr[nk]);
             }
             if (lo < best - kTie)
                 kid[nk++] = {std::max(lo, top.lower), child};
         }
         if (diving && nk > 0) {     /* on down the nearer */
-            if (nk == 2 && kid[1].lower < kid[0].lower)
+            if (nk == 2 && ctr[1] < ctr[0])
                 std::swap(kid[0], kid[1]);
             top = kid[0];
             next = true;
