@@ -16,9 +16,11 @@ namespace coll {
  * check, by that most: 3: 52.7k, 6: 37.4k, 12: 32.1k, 24: 32.1k). */
 #define MPB__GJK_STEPS 16
 
-/* The squared distance between segments p0 p1 and q0 q1. */
-double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
-                     const double q1[3])
+/* The squared distance between segments p0 p1 and q0 q1, and in *s_out
+ * and *t_out the parameters of their nearest points (p0 + s (p1 - p0),
+ * q0 + t (q1 - q0)). */
+double seg_seg_nearest(const double p0[3], const double p1[3], const double q0[3],
+                       const double q1[3], double *s_out, double *t_out)
 {
     double d1[3], d2[3], r[3];
     for (int k = 0; k < 3; k++) {
@@ -59,7 +61,17 @@ double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
         double x = p0[k] + d1[k] * sp - (q0[k] + d2[k] * t);
         s2 += x * x;
     }
+    *s_out = sp;
+    *t_out = t;
     return s2;
+}
+
+/* The squared distance between segments p0 p1 and q0 q1. */
+double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
+                     const double q1[3])
+{
+    double s, t;
+    return seg_seg_nearest(p0, p1, q0, q1, &s, &t);
 }
 
 /* Are shape a (with a capsule) and shape b certainly apart: b's capsule,

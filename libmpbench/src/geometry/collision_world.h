@@ -386,6 +386,10 @@ void gather_near(mpb_collision *c, const Box3 &b, double d);
 bool robot_box(const mpb_collision *c, Box3 &all);
 
 /* collision_bounds.cpp */
+/* The squared distance between segments p0 p1 and q0 q1, and the
+ * parameters (0 to 1) of their nearest points along each. */
+double seg_seg_nearest(const double p0[3], const double p1[3], const double q0[3],
+                       const double q1[3], double *s_out, double *t_out);
 /* Capsule tests skip a pair only when it clears by this much (m). */
 #define MPB__CAP_MARGIN 1e-4
 bool caps_apart(const Shape &a, const Shape &b);
