@@ -7,7 +7,9 @@
  * table_pick scene 1 (data/mbm_table_pick_panda_0001.scene, made by
  * bench/mbm_scene.py) at fixed-seed random states and along fine paths;
  * a mesh against each primitive (box, sphere, cylinder, cone, capsule)
- * at random poses, which is where bvh_distance.cpp stands in for FCL; and
+ * at random poses, which is where bvh_distance.cpp stands in for FCL; a
+ * mesh bent into a U around a box and a sphere, where no hull proves the
+ * nearest point (a proof taken on trust shows); and
  * scenes made so that a wrong cutoff shows: the nearest static has the
  * largest bounding-sphere lower bound, and the nearest triangle of a mesh
  * lies in the node whose box is farthest.
@@ -207,6 +209,62 @@ static void mesh_against_each_primitive(void **state)
 }
 
 /*
+ * A mesh whose nearest point lies inside its own hull: the bar bent into
+ * a half circle (a U of radius len / pi around the origin), against a box
+ * and a sphere held in and around the U. There neither a vertex nor a
+ * triangle can be proved nearest by the hull (the hull spans the U's
+ * mouth), and the walk must go on to the end of its bounds.
+ */
+static void concave_mesh_inside(void **state)
+{
+    (void)state;
+    const double len = 1.2, R = len / 3.141592653589793;
+    mpb_mesh *m = bar(len, 0.05, 60);
+    for (int i = 0; i < m->num_vertices; i++) {
+        double *v = &m->vertices[3 * i], th = v[0] / R, r = R - v[1];
+        v[0] = r * sin(th);
+        v[1] = R - r * cos(th);
+    }
+    const mpb_geometry prims[] = {
+        {MPB_SHAPE_BOX, {0.12, 0.08, 0.2, 0}, NULL},
+        {MPB_SHAPE_SPHERE, {0.06, 0, 0, 0}, NULL},
+    };
+    mpb_geometry g = {MPB_SHAPE_MESH, {0, 0, 0, 0}, m};
+    uint64_t x = 5;
+    for (size_t p = 0; p < sizeof prims / sizeof prims[0]; p++) {
+        mpb_collision *c;
+        assert_int_equal(mpb_collision_create(&c), MPB_OK);
+        mpb_pose none;
+        mpb_pose_identity(&none);
+        assert_int_equal(mpb_collision_add_movable(c, 0, &g, &none), MPB_OK);
+        assert_int_equal(mpb_collision_add_static(c, 1, &prims[p], &none), MPB_OK);
+        int inside = 0;
+        for (int i = 0; i < 200; i++) {
+            /* the static about the U's centre (0, R), turned at random:
+               the U placed by the inverse, the static kept at the origin */
+            mpb_pose sp = random_pose(&x, 0.3), up;
+            sp.t[1] += R;
+            mpb_pose_inverse(&sp, &up);
+            assert_int_equal(mpb_collision_set_pose(c, 0, &up), MPB_OK);
+            mpb_collision_distance_result r;
+            assert_int_equal(mpb_collision_distance(c, 0, &r), MPB_OK);
+            double ref = mpb__collision_distance_brute(c);
+            if (ref > 0) {
+                inside += fabs(sp.t[0]) < 0.1 && sp.t[1] > 0.1;
+                if (fabs(r.distance - ref) > 1e-9)
+                    fail_msg("%s in the U: %.12g, FCL %.12g",
+                             mpb_shape_type_name(prims[p].type), r.distance, ref);
+            } else {
+                assert_true(r.distance == 0.0);
+            }
+        }
+        assert_true(inside > 30);
+        mpb_collision_destroy(c);
+    }
+    mpb_mesh_free(m);
+}
+
+/*
  * The nearest static has the largest bounding-sphere lower bound: a small
  * box 5 cm off the bar's tip (its bound ~5 cm), a huge box 20 cm from the
  * bar's side (its sphere's bound far below 0), a sphere 12 cm above the
@@ -261,6 +319,7 @@ int main(void)
         cmocka_unit_test(panda_random_states),
         cmocka_unit_test(panda_fine_paths),
         cmocka_unit_test(mesh_against_each_primitive),
+        cmocka_unit_test(concave_mesh_inside),
         cmocka_unit_test(cutoff_against_worst_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

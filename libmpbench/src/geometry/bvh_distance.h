@@ -8,12 +8,29 @@
 #define MPB_BVH_DISTANCE_H
 
 #include "geometry/bvh_collide.h"
+#include "geometry/dirtable.h"
 
 #include <fcl/geometry/collision_geometry.h>
 
 #include <vector>
 
 namespace mpb {
+
+/* The vertices of a mesh that may be extreme along some direction (own
+ * frame; every point of every triangle lies in their hull) and the table
+ * of them by direction (dirtable.h): a gap along any line bounds the
+ * mesh's distance to a shape from below. */
+struct BvhHull {
+    const fcl::Vector3d  *verts;
+    int                   num;
+    const mpb__dirtable  *dirs;
+    /* optional: the triangles of each vertex (indices in the model's
+       tri_indices), tris[tri_start[i] .. tri_start[i + 1]), and a vertex
+       likely nearest the shape (-1: none), whose nearest triangle is
+       measured first */
+    const int            *tri_start, *tris;
+    int                   hint;
+};
 
 /* A node of the traversal's queue: its tree index and lower bound. */
 struct BvhQueued {
@@ -31,12 +48,16 @@ struct BvhQueued {
  * sphere, which FCL measures against a triangle in closed form, not by
  * the GJK solver). heap:
  * the traversal's queue, kept by the caller so that it is allocated once.
+ * hull (may be null): m's hull vertices, to stop as soon as the nearest
+ * triangle found is proved the nearest (its nearest points' line has
+ * every vertex on one side and the shape's box on the other).
  */
 double bvh_shape_distance(const BvhObbRss &m, const fcl::Transform3d &tf1,
                           const fcl::CollisionGeometryd &g,
                           const fcl::Transform3d &tf2, const double box_c[3],
                           const double box_h[3], double tol, double below,
-                          std::vector<BvhQueued> &heap);
+                          std::vector<BvhQueued> &heap,
+                          const BvhHull *hull = nullptr);
 
 } // namespace mpb
 

@@ -16,9 +16,11 @@ namespace coll {
  * check, by that most: 3: 52.7k, 6: 37.4k, 12: 32.1k, 24: 32.1k). */
 #define MPB__GJK_STEPS 16
 
-/* The squared distance between segments p0 p1 and q0 q1. */
-double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
-                     const double q1[3])
+/* The squared distance between segments p0 p1 and q0 q1, and in *s_out
+ * and *t_out the parameters of their nearest points (p0 + s (p1 - p0),
+ * q0 + t (q1 - q0)). */
+double seg_seg_nearest(const double p0[3], const double p1[3], const double q0[3],
+                       const double q1[3], double *s_out, double *t_out)
 {
     double d1[3], d2[3], r[3];
     for (int k = 0; k < 3; k++) {
@@ -59,7 +61,17 @@ double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
         double x = p0[k] + d1[k] * sp - (q0[k] + d2[k] * t);
         s2 += x * x;
     }
+    *s_out = sp;
+    *t_out = t;
     return s2;
+}
+
+/* The squared distance between segments p0 p1 and q0 q1. */
+double seg_seg_dist2(const double p0[3], const double p1[3], const double q0[3],
+                     const double q1[3])
+{
+    double s, t;
+    return seg_seg_nearest(p0, p1, q0, q1, &s, &t);
 }
 
 /* Are shape a (with a capsule) and shape b certainly apart: b's capsule,
@@ -190,13 +202,16 @@ bool meshes_apart(const Shape &a, const Shape &b)
  * far cheaper than the FCL distance it may spare. upper (if not null):
  * the least distance from the vertices of a met on the search to ss
  * (point_static_distance()), an upper bound on the pair's distance;
- * INFINITY if none was measured.
+ * INFINITY if none was measured; upper_vertex (if not null): that
+ * vertex, an index in a.verts, or -1.
  */
 double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search,
-                         double *upper)
+                         double *upper, int *upper_vertex)
 {
     if (upper)
         *upper = INFINITY;
+    if (upper_vertex)
+        *upper_vertex = -1;
     const double *R = ss.world.R;
     double c[3];              /* the box's centre in the world */
     mpb_pose_apply(&ss.world, ss.lbox_c, c);
@@ -249,7 +264,12 @@ double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool sear
             return;
         double p[3];
         mpb_pose_apply(&a.world, a.verts[i].data(), p);
-        *upper = std::min(*upper, point_static_distance(ss, p));
+        double dp = point_static_distance(ss, p);
+        if (dp < *upper) {
+            *upper = dp;
+            if (upper_vertex)
+                *upper_vertex = i;
+        }
     };
     gap = std::max(gap, gjk_gap(a, lowest, point, d, stop + MPB__CAP_MARGIN, visit));
     return gap - MPB__CAP_MARGIN;
@@ -291,6 +311,106 @@ double point_static_distance(const Shape &ss, const double p[3])
     default:
         return INFINITY;
     }
+}
+
+/*
+ * The distance from world point p to static ss, and in u the unit
+ * direction (world) from the point of ss nearest to p towards p: exact
+ * (to rounding) for a box, sphere, cylinder or capsule; 0 (u unset) if p
+ * is in ss; INFINITY (u unset) for any other shape.
+ */
+double point_static_away(const Shape &ss, const double p[3], double u[3])
+{
+    const double *R = ss.world.R, *t = ss.world.t, *h = ss.dims;
+    double x[3], g[3] = {0, 0, 0}; /* p in ss's frame; p less its nearest */
+    for (int k = 0; k < 3; k++)
+        x[k] = R[k] * (p[0] - t[0]) + R[3 + k] * (p[1] - t[1]) + R[6 + k] * (p[2] - t[2]);
+    double d;
+    switch (ss.type) {
+    case MPB_SHAPE_BOX:
+        for (int k = 0; k < 3; k++) {
+            double e = std::fabs(x[k]) - h[k] / 2;
+            g[k] = e > 0 ? std::copysign(e, x[k]) : 0.0;
+        }
+        d = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        break;
+    case MPB_SHAPE_SPHERE: {
+        double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (!(r > h[0]))
+            return 0.0;
+        for (int k = 0; k < 3; k++)
+            g[k] = x[k] / r;
+        d = r - h[0];
+        break;
+    }
+    case MPB_SHAPE_CYLINDER: {
+        double r = std::sqrt(x[0] * x[0] + x[1] * x[1]), e = std::fabs(x[2]) - h[1] / 2;
+        if (r > h[0]) {
+            g[0] = x[0] * (1 - h[0] / r);
+            g[1] = x[1] * (1 - h[0] / r);
+        }
+        g[2] = e > 0 ? std::copysign(e, x[2]) : 0.0;
+        d = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        break;
+    }
+    case MPB_SHAPE_CAPSULE: {
+        double z = std::clamp(x[2], -h[1] / 2, h[1] / 2);
+        g[0] = x[0], g[1] = x[1], g[2] = x[2] - z;
+        double r = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        if (!(r > h[0]))
+            return 0.0;
+        d = r - h[0];
+        for (int k = 0; k < 3; k++)
+            g[k] /= r;
+        break;
+    }
+    default:
+        return INFINITY;
+    }
+    if (!(d > 0))
+        return 0.0;
+    double n = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    for (int k = 0; k < 3; k++)
+        u[k] = (R[3 * k] * g[0] + R[3 * k + 1] * g[1] + R[3 * k + 2] * g[2]) / n;
+    return d;
+}
+
+/*
+ * The distance from mesh a to static ss if vertex i of a (an index in
+ * a.verts) is provably the nearest to it, else NaN. The proof: with u
+ * the direction from ss's point nearest to the vertex towards it, every
+ * vertex of a lies at least as far along u as that one, so the plane
+ * through the vertex normal to u has a's hull (and every triangle) on
+ * one side, and ss (convex, its nearest point on the plane through that
+ * point normal to u) on the other: no two of their points are nearer
+ * than the vertex and its nearest point, which is the distance. A
+ * vertex in ss: they touch, 0. Each of a.verts is a vertex of some
+ * triangle (extreme_vertices()), so the distance is that of the
+ * surface, which FCL measures. Mostly so for a link above a table,
+ * for two dozen dot products where the triangle search took
+ * thousands of instructions. A box or a sphere only (see below).
+ */
+double mesh_static_vertex(const Shape &a, const Shape &ss, int i)
+{
+    /* FCL measures a triangle against a box by GJK, which ends on a
+       polytope's own features, and against a sphere in closed form:
+       both exact. Against a cylinder, cone or capsule its GJK stops up
+       to a few 1e-9 m above the distance: those are left to it. */
+    if (i < 0 || i >= a.num_verts ||
+        (ss.type != MPB_SHAPE_BOX && ss.type != MPB_SHAPE_SPHERE))
+        return NAN;
+    double p[3], u[3];
+    mpb_pose_apply(&a.world, a.verts[i].data(), p);
+    double d = point_static_away(ss, p, u);
+    if (d == INFINITY)
+        return NAN;
+    if (!(d > 0))
+        return 0.0;
+    double nu[3] = {-u[0], -u[1], -u[2]}, hi;
+    int ihi;
+    mesh_reach(a, nu, hi, ihi);         /* -hi: the least of a along u */
+    /* rounding of the two dot products: far below the 1e-9 m asked */
+    return -hi >= u[0] * p[0] + u[1] * p[1] + u[2] * p[2] - 1e-12 ? d : NAN;
 }
 
 /* The ends of a's capsule in the frame of static ss's box, from its centre. */

@@ -210,6 +210,10 @@ int mpb_collision_add_movable(mpb_collision *c, int id, const mpb_geometry *g,
             s.verts = ext.data();
             s.num_verts = (int)ext.size();
             s.dirs = &static_cast<MeshModel *>(geom.get())->dirs;
+            if (!ext.empty()) {
+                s.vtri_start = static_cast<MeshModel *>(geom.get())->tri_start.data();
+                s.vtris = static_cast<MeshModel *>(geom.get())->tris.data();
+            }
         }
         s.body = c->movable_index[(size_t)id];
         s.obj->setUserData((void *)(intptr_t)c->mshapes.size());
@@ -439,9 +443,10 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
         auto measure_seed = [&]() {
             const Shape &ms = *seed_ms, &ss = *seed_ss;
             double upper = INFINITY;
+            int uv = -1;
             if (ms.num_verts > 0)
-                mesh_static_lower(ms, ss, INFINITY, true, &upper);
-            q.best = pair_distance_upper(c, ms, ss, INFINITY, upper);
+                mesh_static_lower(ms, ss, INFINITY, true, &upper, &uv);
+            q.best = pair_distance_upper(c, ms, ss, INFINITY, upper, uv);
             q.best_m = q.seed_m = ms.obj.get();
             q.best_s = q.seed_s = ss.obj.get();
             q.static_id = ss.body;
@@ -511,10 +516,11 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
                 const Shape &ss = c->sshapes[(size_t)l.shape];
                 const Obj *st = ss.obj.get();
                 double upper = INFINITY;
+                int uv = -1;
                 if (sh.num_verts > 0 &&
-                    !(mesh_static_lower(sh, ss, lim, true, &upper) < lim))
+                    !(mesh_static_lower(sh, ss, lim, true, &upper, &uv) < lim))
                     continue;
-                double d = pair_distance_upper(c, sh, ss, lim, upper);
+                double d = pair_distance_upper(c, sh, ss, lim, upper, uv);
                 if (d < lim) {
                     q.best = d;
                     q.best_m = sh.obj.get();

@@ -38,11 +38,19 @@ double pair_distance(mpb_collision *c, const Obj *a, const Obj *b, double below)
  * only the parts of the mesh that may be that near are measured. The
  * answer stays FCL's: what is skipped is at least the cutoff away, and
  * something nearer was found; should nothing be (the solver a hair above
- * the bound), it is measured again with `below` alone.
+ * the bound), it is measured again with `below` alone. upper_vertex, the
+ * vertex of ms (an index in ms.verts) at `upper`, or -1: should it be
+ * provably the nearest (mesh_static_vertex()), its distance is the
+ * answer, with no triangle measured.
  */
 double pair_distance_upper(mpb_collision *c, const Shape &ms, const Shape &ss,
-                           double below, double upper)
+                           double below, double upper, int upper_vertex)
 {
+    if (upper_vertex >= 0) {
+        double d = mesh_static_vertex(ms, ss, upper_vertex);
+        if (!std::isnan(d))
+            return std::min(d, below);
+    }
     sync(ms);
     double cut = upper + 1e-7 * (1.0 + upper);
     bool mesh = ms.type == MPB_SHAPE_MESH && ss.type != MPB_SHAPE_MESH;
@@ -50,11 +58,14 @@ double pair_distance_upper(mpb_collision *c, const Shape &ms, const Shape &ss,
         double lim = pass == 0 ? cut : below, d = NAN;
         if (mesh) {
             sync(ss);
+            const BvhHull hull = {ms.verts, ms.num_verts, ms.dirs, ms.vtri_start,
+                                  ms.vtris, upper_vertex};
             d = bvh_shape_distance(
                 *static_cast<const BvhObbRss *>(ms.obj->collisionGeometry().get()),
                 ms.obj->getTransform(), *ss.obj->collisionGeometry(),
                 ss.obj->getTransform(), ss.lbox_c, ss.lbox_h,
-                c->dreq.distance_tolerance, lim, c->bvh_heap);
+                c->dreq.distance_tolerance, lim, c->bvh_heap,
+                ms.num_verts > 0 ? &hull : nullptr);
             d = d < 0 ? 0.0 : d;
         }
         if (std::isnan(d))
@@ -153,9 +164,11 @@ void leaf_distance(Query *q, const Shape &ms, int i)
     if (ms.has_cap && !(cap_static_lower(ms, ss) < q->best))
         return;
     double upper = INFINITY;
-    if (ms.num_verts > 0 && !(mesh_static_lower(ms, ss, q->best, true, &upper) < q->best))
+    int uv = -1;
+    if (ms.num_verts > 0 &&
+        !(mesh_static_lower(ms, ss, q->best, true, &upper, &uv) < q->best))
         return;
-    double d = pair_distance_upper(c, ms, ss, q->best, upper);
+    double d = pair_distance_upper(c, ms, ss, q->best, upper, uv);
     if (d < q->best) {
         q->best = d;
         q->best_m = ms.obj.get();

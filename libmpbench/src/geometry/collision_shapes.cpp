@@ -38,11 +38,45 @@ const std::vector<fcl::Vector3d> &extreme_vertices(MeshModel &m)
     std::call_once(m.extreme_once, [&m] {
         if (m.num_vertices <= 0)
             return;
-        std::vector<unsigned char> keep((size_t)m.num_vertices);
-        mpb__hull_keep(m.vertices[0].data(), m.num_vertices, keep.data());
+        /* only the vertices of a triangle: each kept is then a point of
+           the surface (mesh_static_vertex() relies on it) */
+        std::vector<unsigned char> used((size_t)m.num_vertices, 0);
+        for (int t = 0; t < m.num_tris; t++)
+            for (int k = 0; k < 3; k++)
+                used[(size_t)m.tri_indices[t][k]] = 1;
+        std::vector<fcl::Vector3d> pts;
+        std::vector<int> src;
         for (int i = 0; i < m.num_vertices; i++)
-            if (keep[(size_t)i])
-                m.extreme.push_back(m.vertices[i]);
+            if (used[(size_t)i]) {
+                pts.push_back(m.vertices[i]);
+                src.push_back(i);
+            }
+        if (pts.empty())
+            return;
+        std::vector<unsigned char> keep(pts.size());
+        mpb__hull_keep(pts[0].data(), (int)pts.size(), keep.data());
+        std::vector<int> at((size_t)m.num_vertices, -1);
+        for (size_t i = 0; i < pts.size(); i++)
+            if (keep[i]) {
+                at[(size_t)src[i]] = (int)m.extreme.size();
+                m.extreme.push_back(pts[i]);
+            }
+        /* each kept vertex's triangles, for bvh_distance.cpp's first guess */
+        m.tri_start.assign(m.extreme.size() + 1, 0);
+        for (int t = 0; t < m.num_tris; t++)
+            for (int k = 0; k < 3; k++)
+                if (at[(size_t)m.tri_indices[t][k]] >= 0)
+                    m.tri_start[(size_t)at[(size_t)m.tri_indices[t][k]] + 1]++;
+        for (size_t i = 0; i < m.extreme.size(); i++)
+            m.tri_start[i + 1] += m.tri_start[i];
+        m.tris.resize((size_t)m.tri_start.back());
+        std::vector<int> fill(m.tri_start.begin(), m.tri_start.end() - 1);
+        for (int t = 0; t < m.num_tris; t++)
+            for (int k = 0; k < 3; k++) {
+                int e = at[(size_t)m.tri_indices[t][k]];
+                if (e >= 0)
+                    m.tris[(size_t)fill[(size_t)e]++] = t;
+            }
         /* fewer cells for huge hulls: the build costs 12 g^2 dot products
            a vertex; no table (no memory): every vertex is scanned */
         int g = MPB__DIR_CELLS;

@@ -108,6 +108,8 @@ struct Shape {
                                       extreme (extreme_vertices()) */
     int                  num_verts = 0;
     const mpb__dirtable *dirs = nullptr; /* which of verts, by direction */
+    const int           *vtri_start = nullptr, *vtris = nullptr; /* the
+                                      triangles of each of verts (MeshModel) */
     /* A static: a box that holds it, in its own frame (centre, half
        sides), for the capsule tests. */
     double               lbox_c[3] = {0, 0, 0}, lbox_h[3] = {0, 0, 0};
@@ -155,6 +157,8 @@ struct Leaf {
 struct MeshModel : fcl::BVHModel<fcl::OBBRSSd> {
     std::once_flag             extreme_once;
     std::vector<fcl::Vector3d> extreme;
+    /* the triangles of extreme[i]: tris[tri_start[i] .. tri_start[i + 1]) */
+    std::vector<int>           tri_start, tris;
     mpb__dirtable              dirs = {0, nullptr, nullptr};
     ~MeshModel() { mpb__dirtable_free(&dirs); }
 };
@@ -382,6 +386,10 @@ void gather_near(mpb_collision *c, const Box3 &b, double d);
 bool robot_box(const mpb_collision *c, Box3 &all);
 
 /* collision_bounds.cpp */
+/* The squared distance between segments p0 p1 and q0 q1, and the
+ * parameters (0 to 1) of their nearest points along each. */
+double seg_seg_nearest(const double p0[3], const double p1[3], const double q0[3],
+                       const double q1[3], double *s_out, double *t_out);
 /* Capsule tests skip a pair only when it clears by this much (m). */
 #define MPB__CAP_MARGIN 1e-4
 bool caps_apart(const Shape &a, const Shape &b);
@@ -389,9 +397,13 @@ bool caps_apart(const Shape &a, const Shape &b);
 void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi);
 bool meshes_apart(const Shape &a, const Shape &b);
 double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search,
-                         double *upper = nullptr);
+                         double *upper = nullptr, int *upper_vertex = nullptr);
 /* The distance from world point p to static ss (INFINITY: no bound). */
 double point_static_distance(const Shape &ss, const double p[3]);
+/* The same, and the unit direction from ss's nearest point to p. */
+double point_static_away(const Shape &ss, const double p[3], double u[3]);
+/* Mesh a's distance to static ss if vertex i is provably nearest, or NaN. */
+double mesh_static_vertex(const Shape &a, const Shape &ss, int i);
 bool cap_misses_static(const Shape &a, const Shape &ss);
 double cap_static_lower(const Shape &a, const Shape &ss);
 
@@ -405,7 +417,7 @@ double pair_distance(mpb_collision *c, const Obj *a, const Obj *b,
  * at least that; upper, if finite, bounds the distance from above (a
  * cutoff that prunes FCL's traversal, never the answer). */
 double pair_distance_upper(mpb_collision *c, const Shape &ms, const Shape &ss,
-                           double below, double upper);
+                           double below, double upper, int upper_vertex = -1);
 bool narrow_phase(mpb_collision *c, const Shape &a, const Shape &b);
 int static_hit(mpb_collision *c, const Movable &m, const Shape &ms, bool among);
 void static_distance(Query *q, const Shape &ms, bool among);
