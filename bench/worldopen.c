@@ -38,9 +38,9 @@ int main(int argc, char **argv)
     char path[4096], dir[4096];
     snprintf(dir, sizeof dir, "%s/", argv[1]);
     snprintf(path, sizeof path, "%s/panda.urdf", argv[1]);
-    char *urdf = mpbb_slurp(path);
+    char *urdf = mpb_read_file(path, 0, NULL);
     snprintf(path, sizeof path, "%s/panda.srdf", argv[1]);
-    char *srdf = mpbb_slurp(path);
+    char *srdf = mpb_read_file(path, 0, NULL);
     if (!urdf || !srdf) {
         fprintf(stderr, "mpb-bench-worldopen: cannot read %s\n", path);
         return 1;
