@@ -366,7 +366,7 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     if (srdf) {
         char why[512];
         mpb__srdf raw;
-        if ((rc = mpb__srdf_parse(srdf, &raw, why, sizeof why)) != MPB_OK) {
+        if ((rc = mpb__srdf_parse_cached(srdf, &raw, why, sizeof why)) != MPB_OK) {
             mpb__set_err(err, errlen, "srdf %s", why);
             return rc;
         }
