@@ -321,7 +321,10 @@ static void split_srdf(const char *text, size_t *urdf_len, const char **srdf)
             }
             return;
         } else {
-            p++;
+            /* Both marks begin with '<': on to the next one. */
+            p = strchr(p + 1, '<');
+            if (!p)
+                return;
         }
     }
 }
