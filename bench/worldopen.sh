@@ -11,7 +11,10 @@
 #
 # N processes each for none and warm (default 5), one cold. Prints the
 # median wall and CPU milliseconds as RESULT lines (on a shared machine,
-# CPU time is the number to trust). The user's own cache is not touched.
+# CPU time is the number to trust). Then the later worlds of a process:
+# one process, warm, opens the scenes of the first 10 problems of each of
+# MotionBenchMaker's seven Panda sets (bench/mbm_scene.py) after its first
+# world, one world each; RESULT later_worlds, their median and mean. The user's own cache is not touched.
 # Needs the Panda in .cache/robots (tools/robot_data.sh).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
@@ -57,3 +60,14 @@ run() { # label cache-dir count
 run none "$work/not-a-dir/cache" "$RUNS"
 run cold "$work/cache" 1
 run warm "$work/cache" "$RUNS"
+python=$src/.venv/bin/python3
+[ -x "$python" ] || python=python3
+mkdir "$work/scenes"
+for set in $(ls "$data/panda/problems"); do
+    for f in $(ls "$data/panda/problems/$set"/scene*.yaml | head -10); do
+        "$python" "$src/bench/mbm_scene.py" "$f" \
+            >"$work/scenes/$set-$(basename "$f" .yaml).scene" || exit 1
+    done
+done
+MPB_CACHE_DIR=$work/cache "$prog" "$data/panda" "$work/scenes"/*.scene |
+    grep later_worlds || exit 1

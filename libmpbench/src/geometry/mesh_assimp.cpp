@@ -10,6 +10,7 @@
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/version.h>
 
 #include <cctype>
 #include <cmath>
@@ -211,6 +212,22 @@ int check_scale(const char *uri, const double scale[3], double s[3],
     return MPB_OK;
 }
 
+/* What read_mesh() is, for the disk cache's key: a newer assimp, or
+ * other steps, may read a file into another mesh. */
+const std::string &reader_id()
+{
+    static const std::string id = [] {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "assimp %u.%u.%u; remove components, "
+                      "triangulate, join identical vertices, sort by type; "
+                      "points and lines dropped; root scale kept",
+                      aiGetVersionMajor(), aiGetVersionMinor(),
+                      aiGetVersionRevision());
+        return std::string(buf);
+    }();
+    return id;
+}
+
 /* The mesh file at path (resolved), scaled by s, into *out. */
 int read_mesh(const std::string &path, const double s[3], mpb_mesh **out,
               char *err, size_t errlen)
@@ -382,14 +399,22 @@ int load_shared(const char *uri, const char *const *dirs, int num_dirs,
             return MPB_OK;
         }
     }
-    /* Read outside the lock: other threads' meshes need not wait. */
+    /* Read outside the lock: other threads' meshes need not wait. From
+     * the disk cache when it has these bytes, else by assimp. */
     std::unique_ptr<CacheEntry> e(new CacheEntry());
     e->key = key;
     e->refs = 1;
-    if ((rc = read_mesh(path, s, &e->mesh, err, errlen)) != MPB_OK)
+    mpb__mesh_disk_id id;
+    bool have_id = mpb__mesh_disk_key(path.c_str(), s, reader_id().c_str(),
+                                      &id) == MPB_OK;
+    bool from_disk = have_id && (e->mesh = mpb__mesh_disk_get(&id)) != nullptr;
+    if (!from_disk && (rc = read_mesh(path, s, &e->mesh, err, errlen)) != MPB_OK)
         return rc;
     CacheKey after;
     bool unchanged = file_key(path, s, after) && after.same_file(key);
+    /* Stored only when the file stayed the same from its key to here. */
+    if (unchanged && have_id && !from_disk)
+        mpb__mesh_disk_put(&id, e->mesh);
     std::lock_guard<std::mutex> lock(c.mu);
     c.reads++;
     if (unchanged) {

@@ -8,16 +8,12 @@
  * A file holds one table's bytes (its payload, mpb__wrist_table_encode())
  * under the hash of its key: everything the table is computed from (the
  * pair's kinematics, both links' shapes with every mesh vertex and
- * triangle, the build's parameters, MPB__WRIST_CACHE_VERSION). The directory is $MPB_CACHE_DIR/wrist, else
- * $XDG_CACHE_HOME/mpbench/wrist, else $HOME/.cache/mpbench/wrist (an empty
- * or relative variable counts as unset). A file is used only when its
- * header (magic, format version, byte order, key hash and length, payload
- * length) matches and its payload's checksum (BLAKE2b) is right; anything
- * else reads as a miss. Files are written whole to a temporary name and
- * renamed, so a reader never sees one half written, and two processes
- * writing the same table leave one good copy. Nothing here fails a
- * world: a miss means build, a failed write means the next process
- * builds too.
+ * triangle, the build's parameters, MPB__WRIST_CACHE_VERSION). The files
+ * are disk_cache.h's, kind "wrist" ($MPB_CACHE_DIR/wrist, else
+ * $XDG_CACHE_HOME/mpbench/wrist, else $HOME/.cache/mpbench/wrist), magic
+ * "MPBWRIST": checked, checksummed, written atomically. Nothing here
+ * fails a world: a miss means build, a failed write means the next
+ * process builds too.
  */
 #ifndef MPB_WRIST_CACHE_H
 #define MPB_WRIST_CACHE_H

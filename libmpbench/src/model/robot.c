@@ -420,7 +420,7 @@ static int load(const char *text, const char *base_name, const char *tip_name,
     int rc = MPB_ENOMEM;
     if (!r)
         goto fail;
-    rc = mpb__urdf_parse(text, &r->model, msg, sizeof msg);
+    rc = mpb__urdf_parse_cached(text, &r->model, msg, sizeof msg);
     if (rc != MPB_OK)
         goto fail;
     mpb__urdf_model *m = &r->model;

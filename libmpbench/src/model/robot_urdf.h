@@ -56,6 +56,13 @@ int mpb__urdf_parse(const char *text, mpb__urdf_model *m, char *err,
                     size_t errlen);
 
 /*
+ * mpb__urdf_parse() through the process's cache of parsed texts
+ * (parse_cache.h): the same results and errors, the text parsed once.
+ */
+int mpb__urdf_parse_cached(const char *text, mpb__urdf_model *m, char *err,
+                           size_t errlen);
+
+/*
  * What TinyXML is not trusted with, checked before it parses an XML text
  * (URDF or SRDF): MPB_OK, or MPB_EPARSE with one line in err ("empty
  * document", "not XML ...", "line 3, column 7: not UTF-8", "XML nested

@@ -106,6 +106,11 @@ typedef struct mpb__srdf {
  */
 int mpb__srdf_parse(const char *text, mpb__srdf *s, char *err, size_t errlen);
 
+/* mpb__srdf_parse() through the process's cache of parsed texts
+ * (parse_cache.h): the same results and errors, the text parsed once. */
+int mpb__srdf_parse_cached(const char *text, mpb__srdf *s, char *err,
+                           size_t errlen);
+
 /* Free everything *s holds and zero it; NULL does nothing. */
 void mpb__srdf_clear(mpb__srdf *s);
 

@@ -321,7 +321,10 @@ static void split_srdf(const char *text, size_t *urdf_len, const char **srdf)
             }
             return;
         } else {
-            p++;
+            /* Both marks begin with '<': on to the next one. */
+            p = strchr(p + 1, '<');
+            if (!p)
+                return;
         }
     }
 }
@@ -366,7 +369,7 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     if (srdf) {
         char why[512];
         mpb__srdf raw;
-        if ((rc = mpb__srdf_parse(srdf, &raw, why, sizeof why)) != MPB_OK) {
+        if ((rc = mpb__srdf_parse_cached(srdf, &raw, why, sizeof why)) != MPB_OK) {
             mpb__set_err(err, errlen, "srdf %s", why);
             return rc;
         }
