@@ -4,9 +4,11 @@
  * are opened with it; a text changed by one number or one element is
  * parsed again and the worlds show the change (joint limits, the allowed
  * collisions of the SRDF); a caller's copy is its own; a text that does
- * not parse fails the same way every time. The robot is the PR2 right arm
+ * not parse fails the same way every time; threads opening worlds of two
+ * texts at once each get their own text's. The robot is the PR2 right arm
  * of tests/unit/data with its SRDF.
  */
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -236,6 +238,67 @@ static void a_bad_text_fails_every_time(void **state)
     assert_string_equal(err1, err2);
 }
 
+/* Threads that open worlds of two texts in turn, more texts than the
+ * cache keeps among them, and check each world's limit. */
+enum { THREADS = 4, OPENS = 12 };
+
+typedef struct opener {
+    char *texts[6];
+    double lows[6];
+    int    wrong;
+} opener;
+
+static void *open_many(void *arg)
+{
+    opener *o = arg;
+    for (int i = 0; i < OPENS; i++) {
+        int k = i % 6;
+        mpb_world *w = NULL;
+        char err[256];
+        if (mpb_world_open_group("urdf", o->texts[k], "moveit-scene",
+                                 empty_scene, joints, 7, &w, err,
+                                 sizeof err) != MPB_OK) {
+            o->wrong++;
+            continue;
+        }
+        double lo, hi;
+        mpb_world_joint_limits(w, 5, &lo, &hi);
+        o->wrong += lo != o->lows[k];
+        mpb_world_close(w);
+    }
+    return NULL;
+}
+
+static void threads_get_their_own_texts(void **state)
+{
+    (void)state;
+    static const char *const lows[6] = {"-2.18", "-2.17", "-2.16", "-2.15",
+                                        "-2.14", "-2.13"};
+    opener o[THREADS];
+    memset(o, 0, sizeof o);
+    char *texts[6];
+    for (int k = 0; k < 6; k++) {
+        char to[64];
+        snprintf(to, sizeof to, "lower=\"%s\"", lows[k]);
+        texts[k] = robot_text(urdf, srdf, "lower=\"-2.18\"", to);
+    }
+    pthread_t t[THREADS];
+    for (int i = 0; i < THREADS; i++) {
+        for (int k = 0; k < 6; k++) {
+            /* Each thread starts at another text. */
+            o[i].texts[k] = texts[(k + i) % 6];
+            o[i].lows[k] = strtod(lows[(k + i) % 6], NULL);
+        }
+        assert_int_equal(pthread_create(&t[i], NULL, open_many, &o[i]), 0);
+    }
+    for (int i = 0; i < THREADS; i++) {
+        assert_int_equal(pthread_join(t[i], NULL), 0);
+        assert_int_equal(o[i].wrong, 0);
+    }
+    for (int k = 0; k < 6; k++)
+        free(texts[k]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -245,6 +308,7 @@ int main(void)
         cmocka_unit_test(a_copy_is_the_callers_own),
         cmocka_unit_test(a_copy_equals_a_fresh_parse),
         cmocka_unit_test(a_bad_text_fails_every_time),
+        cmocka_unit_test(threads_get_their_own_texts),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -213,7 +213,9 @@ int check_scale(const char *uri, const double scale[3], double s[3],
 }
 
 /* What read_mesh() is, for the disk cache's key: a newer assimp, or
- * other steps, may read a file into another mesh. */
+ * other steps, may read a file into another mesh. A change to what
+ * read_mesh() makes of a file must change this text, or the cache hands
+ * out meshes made the old way. */
 const std::string &reader_id()
 {
     static const std::string id = [] {
