@@ -55,7 +55,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "geometry/collision_internal.h"
 #include "model/world_provider.h"
