@@ -146,9 +146,9 @@ double gjk_gap(const Shape &a, const Lowest &lowest, const Point &point,
         mesh_reach(a, d, ahi, iahi);
         visit(iahi);
         int which = lowest(d, blo);
-        if (blo - ahi > stop * n)
-            return (blo - ahi) / n;
         best = std::max(best, (blo - ahi) / n);
+        if (blo - ahi > stop * n)
+            return best;
         point(which, pb);
         mpb_pose_apply(&a.world, a.verts[iahi].data(), pa);
         for (int k = 0; k < 3; k++)
@@ -165,15 +165,7 @@ double gjk_gap(const Shape &a, const Lowest &lowest, const Point &point,
     return best;
 }
 
-/*
- * Are meshes a and b certainly apart: is there a plane between all the
- * vertices of one and all of the other, with the margin (gjk_gap(), from
- * the line between the bounding spheres' centres)? Then their convex
- * hulls are apart, and the triangles within them too. Mesh pairs of robot
- * links near each other (two links apart along the arm) are mostly told
- * apart here, where FCL's BVH traversal went hundreds of box tests deep.
- */
-bool meshes_apart(const Shape &a, const Shape &b)
+double meshes_gap(const Shape &a, const Shape &b, double stop)
 {
     double d[3];
     for (int k = 0; k < 3; k++)
@@ -188,8 +180,20 @@ bool meshes_apart(const Shape &a, const Shape &b)
     auto point = [&b](int i, double p[3]) {
         mpb_pose_apply(&b.world, b.verts[i].data(), p);
     };
-    return gjk_gap(a, lowest, point, d, MPB__CAP_MARGIN, [](int) {}) >
-           MPB__CAP_MARGIN;
+    return gjk_gap(a, lowest, point, d, stop, [](int) {});
+}
+
+/*
+ * Are meshes a and b certainly apart: is there a plane between all the
+ * vertices of one and all of the other, with the margin (meshes_gap())?
+ * Then their convex hulls are apart, and the triangles within them too.
+ * Mesh pairs of robot links near each other (two links apart along the
+ * arm) are mostly told apart here, where FCL's BVH traversal went
+ * hundreds of box tests deep.
+ */
+bool meshes_apart(const Shape &a, const Shape &b)
+{
+    return meshes_gap(a, b, MPB__CAP_MARGIN) > MPB__CAP_MARGIN;
 }
 
 /*

@@ -28,7 +28,6 @@
 #include <cstring>
 #include <limits>
 
-#include "geometry/simplex.h"
 
 /* A cheap lower bound that is at least this part of what a step wants
  * stands in for FCL's distance, unless it is under MPB__SWEEP_NEAR (m):
@@ -85,44 +84,6 @@ double leaf_lower(mpb_collision *c, const Shape &ms, const Leaf &l, double need,
     return std::max(lb, std::min(below, d));
 }
 
-/* A lower bound on the distance between meshes a and b: the widest gap
- * between their vertex hulls (which hold them) along the directions of a
- * GJK search of the hulls' difference (simplex.h), from the line between
- * their centres, until a gap passes stop or no nearer point is found.
- * (collision_bounds.cpp's gjk_gap() against a mesh, which it does not
- * export.) */
-double hulls_lower(const Shape &a, const Shape &b, double stop)
-{
-    double d[3], simplex[4][3], best = -INFINITY;
-    for (int k = 0; k < 3; k++)
-        d[k] = b.wcenter[k] - a.wcenter[k];
-    int m = 0;
-    for (int iter = 0; iter < 16; iter++) {
-        double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], n = std::sqrt(dd);
-        if (!(n > 1e-12) || (iter > 0 && !(n > stop)))
-            return best;
-        double ahi, bhi, nd[3] = {-d[0], -d[1], -d[2]}, pa[3], pb[3], w[3];
-        int ia, ib;
-        mesh_reach(a, d, ahi, ia);
-        mesh_reach(b, nd, bhi, ib);
-        double gap = (-bhi - ahi) / n;
-        best = std::max(best, gap);
-        if (gap > stop)
-            return best;
-        mpb_pose_apply(&a.world, a.verts[ia].data(), pa);
-        mpb_pose_apply(&b.world, b.verts[ib].data(), pb);
-        for (int k = 0; k < 3; k++)
-            w[k] = pb[k] - pa[k];
-        if (iter > 0 && dd - (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) <= 1e-9 * dd)
-            return best;
-        memcpy(simplex[m++], w, sizeof w);
-        m = mpb__simplex_nearest(simplex, m, d);
-        if (m == 0 || m == 4)   /* the hulls overlap */
-            return best;
-    }
-    return best;
-}
-
 /* A lower bound on the distance between movables mi and mj: each pair
  * of their shapes by boxes, bounding spheres and capsules (meshes), FCL's
  * distance (stopped at below) only if those say less than enough of need
@@ -145,7 +106,7 @@ double movables_lower(mpb_collision *c, const Movable &mi, const Movable &mj,
                 b = std::max(b, std::sqrt(seg_seg_dist2(x.wcap[0], x.wcap[1], y.wcap[0],
                                                         y.wcap[1])) - x.cap_r - y.cap_r);
             if (x.verts && y.verts && b < need)
-                b = std::max(b, hulls_lower(x, y, need) - MPB__HULL_MARGIN);
+                b = std::max(b, meshes_gap(x, y, need) - MPB__HULL_MARGIN);
             low = std::min(low, b);
         }
     lb = std::max(lb, low);

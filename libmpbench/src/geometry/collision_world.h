@@ -395,6 +395,12 @@ double seg_seg_nearest(const double p0[3], const double p1[3], const double q0[3
 bool caps_apart(const Shape &a, const Shape &b);
 /* How far mesh shape s reaches along world direction d (vertex ihi). */
 void mesh_reach(const Shape &s, const double d[3], double &hi, int &ihi);
+/* A lower bound on the distance between meshes a and b: the widest gap
+ * between their vertex hulls (which hold them) along the directions of a
+ * GJK search of the hulls' difference, from the line between their
+ * centres, until a gap passes stop or no nearer point is found; -INFINITY
+ * if no direction gave one (collision_bounds.cpp). */
+double meshes_gap(const Shape &a, const Shape &b, double stop);
 bool meshes_apart(const Shape &a, const Shape &b);
 double mesh_static_lower(const Shape &a, const Shape &ss, double stop, bool search,
                          double *upper = nullptr, int *upper_vertex = nullptr);
