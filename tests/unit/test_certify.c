@@ -37,22 +37,7 @@
 
 #include "mpbench/mpbench.h"
 #include "test_files.h"
-
-static const char *const ARM =
-    "base 0 0\n"
-    "link_radius 0\n"
-    "joint shoulder -3.14159 3.14159 0.5\n"
-    "joint elbow    -2.8 2.8 0.4\n"
-    "joint wrist    -2.8 2.8 0.3\n";
-
-static mpb_world *planar(const char *scene)
-{
-    mpb_world *w = NULL;
-    char err[200];
-    if (mpb_world_open("planar", ARM, "planar", scene, &w, err, sizeof err) != MPB_OK)
-        fail_msg("open: %s", err);
-    return w;
-}
+#include "test_certify_worlds.h"
 
 /* Verify the straight path a -> b (nj joints) at resolution 0.01. */
 static mpb_verdict verify(mpb_world *w, const double *a, const double *b, int nj)
@@ -66,14 +51,6 @@ static mpb_verdict verify(mpb_world *w, const double *a, const double *b, int nj
     return v;
 }
 
-/* The s of "at s=..." in a collision verdict's detail. */
-static double at_s(const mpb_verdict *v)
-{
-    const char *p = strstr(v->detail, "at s=");
-    assert_non_null(p);
-    return strtod(p + 5, NULL);
-}
-
 /* Collision with a colliding configuration at s in the segment a -> b. */
 static void expect_collision_found(mpb_world *w, const double *a, const double *b,
                                    int nj)
@@ -82,7 +59,7 @@ static void expect_collision_found(mpb_world *w, const double *a, const double *
     assert_int_equal(v.code, MPB_VERDICT_COLLISION);
     assert_int_equal(v.certified, 1);
     assert_int_equal(v.segment, 0);
-    double s = at_s(&v), q[7];
+    double s = test_verdict_s(&v), q[7];
     assert_true(s > 0 && s < 1);
     for (int j = 0; j < nj; j++)
         q[j] = a[j] + s * (b[j] - a[j]);
@@ -102,7 +79,7 @@ static void planar_wall_and_foil_are_collisions(void **state)
     const char *const scenes[] = { "box 0.85 0 0.25 0.001\n",     /* 2 mm */
                                    "box 0.85 0 0.25 0.00005\n" }; /* 0.1 mm */
     for (int i = 0; i < 2; i++) {
-        mpb_world *w = planar(scenes[i]);
+        mpb_world *w = test_planar_arm(scenes[i]);
         expect_collision_found(w, a, b, 3);
         mpb_world_close(w);
     }
@@ -112,7 +89,7 @@ static void planar_graze_at_1e4_is_certified_free(void **state)
 {
     (void)state;
     /* The tip passes (1.2, 0) at shoulder 0: 1e-4 m from the circle. */
-    mpb_world *w = planar("circle 1.3001 0 0.1\n");
+    mpb_world *w = test_planar_arm("circle 1.3001 0 0.1\n");
     const double a[3] = { -0.5045, 0, 0 }, b[3] = { 0.5045, 0, 0 };
     mpb_verdict v = verify(w, a, b, 3);
     assert_int_equal(v.code, MPB_VERDICT_VALID);
@@ -120,49 +97,25 @@ static void planar_graze_at_1e4_is_certified_free(void **state)
     /* and nearer still: 2e-6 m is within no step the floor allows to
        prove; sampled there, valid, and said so */
     mpb_world_close(w);
-    w = planar("circle 1.300002 0 0.1\n");
+    w = test_planar_arm("circle 1.300002 0 0.1\n");
     v = verify(w, a, b, 3);
     assert_int_equal(v.code, MPB_VERDICT_VALID);
     mpb_world_close(w);
 }
 
-static const char *const pr2_joints[] = {
-    "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",
-    "r_elbow_flex_joint", "r_forearm_roll_joint", "r_wrist_flex_joint",
-    "r_wrist_roll_joint"};
-
-/* A plate 0.04 x 0.0001 x 0.05 over the forearm, its lower edge at z. */
-static mpb_world *pr2_with_plate(double z)
-{
-    char *urdf = test_read_robot(MPB_TEST_DATA "/pr2_right_arm.urdf",
-                                 MPB_TEST_DATA "/pr2_right_arm.srdf");
-    char scene[400];
-    snprintf(scene, sizeof scene,
-             "plate\n* plate\n0.6 -0.188 %.9f\n0 0 0 1\n1\nbox\n"
-             "0.04 0.0001 0.05\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n", z + 0.025);
-    mpb_world *w = NULL;
-    char err[256];
-    int rc = mpb_world_open_group("urdf", urdf, "moveit-scene", scene, pr2_joints,
-                                  7, &w, err, sizeof err);
-    free(urdf);
-    if (rc != MPB_OK)
-        fail_msg("open: %s", err);
-    return w;
-}
-
 static void pr2_forearm_through_a_plate_is_a_collision(void **state)
 {
     (void)state;
-    const double top = 0.739675 + 0.05;          /* the forearm's top */
+    const double top = TEST_PR2_FOREARM_TOP;
     const double a[7] = { -0.105 }, b[7] = { 0.095 };
-    mpb_world *w = pr2_with_plate(top - 1e-5);
+    mpb_world *w = test_pr2_with_plate(top - 1e-5);
     double q0[7] = { 0 };
     assert_int_equal(mpb_world_in_collision(w, q0), 1);
     expect_collision_found(w, a, b, 7);
     mpb_world_close(w);
 
     /* Grazed at 1e-4 m: proved free. */
-    w = pr2_with_plate(top + 1e-4);
+    w = test_pr2_with_plate(top + 1e-4);
     assert_int_equal(mpb_world_in_collision(w, q0), 0);
     mpb_verdict v = verify(w, a, b, 7);
     assert_int_equal(v.code, MPB_VERDICT_VALID);
@@ -183,7 +136,7 @@ static mpb_verdict verify_path7(mpb_world *w, const double *wp, int n)
 static void pr2_chain_reaches_the_plate_in_its_third_segment(void **state)
 {
     (void)state;
-    const double top = 0.739675 + 0.05;
+    const double top = TEST_PR2_FOREARM_TOP;
     /* pan -0.9 -> -0.6 -> -0.3 -> +0.095 (through 0) -> 0.3; the first
        two segments keep far from the plate, the elbow and wrist move */
     double wp[5 * 7] = { 0 };
@@ -192,12 +145,12 @@ static void pr2_chain_reaches_the_plate_in_its_third_segment(void **state)
         wp[i * 7] = pan[i];
     wp[1 * 7 + 3] = -0.2;       /* elbow flexed, then back straight */
     wp[1 * 7 + 5] = -0.3;
-    mpb_world *w = pr2_with_plate(top - 1e-5);
+    mpb_world *w = test_pr2_with_plate(top - 1e-5);
     mpb_verdict v = verify_path7(w, wp, 5);
     assert_int_equal(v.code, MPB_VERDICT_COLLISION);
     assert_int_equal(v.certified, 1);
     assert_int_equal(v.segment, 2);
-    double s = at_s(&v), q[7];
+    double s = test_verdict_s(&v), q[7];
     assert_true(s > 0 && s < 1);
     for (int j = 0; j < 7; j++)
         q[j] = wp[2 * 7 + j] + s * (wp[3 * 7 + j] - wp[2 * 7 + j]);
@@ -224,12 +177,12 @@ static void pr2_bounds_do_not_outlive_a_changed_world(void **state)
     (void)state;
     /* The plate 1 cm over the forearm's top: the path clears it. Lift
        the torso 2 cm and the same path sweeps the forearm through it. */
-    const double top = 0.739675 + 0.05;
+    const double top = TEST_PR2_FOREARM_TOP;
     double wp[3 * 7] = { 0 };
     wp[0] = -0.3;
     wp[7] = 0.0;
     wp[14] = 0.3;
-    mpb_world *w = pr2_with_plate(top + 0.01);
+    mpb_world *w = test_pr2_with_plate(top + 0.01);
     mpb_verdict v = verify_path7(w, wp, 3);
     assert_int_equal(v.code, MPB_VERDICT_VALID);
     assert_int_equal(v.certified, 1);

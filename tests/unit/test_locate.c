@@ -20,22 +20,7 @@
 
 #include "mpbench/mpbench.h"
 #include "test_files.h"
-
-static const char *const ARM =
-    "base 0 0\n"
-    "link_radius 0\n"
-    "joint shoulder -3.14159 3.14159 0.5\n"
-    "joint elbow    -2.8 2.8 0.4\n"
-    "joint wrist    -2.8 2.8 0.3\n";
-
-static mpb_world *planar(const char *scene)
-{
-    mpb_world *w = NULL;
-    char err[200];
-    if (mpb_world_open("planar", ARM, "planar", scene, &w, err, sizeof err) != MPB_OK)
-        fail_msg("open: %s", err);
-    return w;
-}
+#include "test_certify_worlds.h"
 
 /* A path of three waypoints: still, then through the wall, then still. */
 static const double PATH[9] = { -0.5045, 0, 0,  -0.5045, 0, 0,  0.5045, 0, 0 };
@@ -49,17 +34,10 @@ static mpb_verdict verify(mpb_world *w, const double *wp, int n)
     return v;
 }
 
-static double at_s(const mpb_verdict *v)
-{
-    const char *p = strstr(v->detail, "at s=");
-    assert_non_null(p);
-    return strtod(p + 5, NULL);
-}
-
 static void thin_wall_certified_is_the_verdicts_configuration(void **state)
 {
     (void)state;
-    mpb_world *w = planar("box 0.85 0 0.25 0.001\n");
+    mpb_world *w = test_planar_arm("box 0.85 0 0.25 0.001\n");
     mpb_verdict v = verify(w, PATH, 3);
     assert_int_equal(v.code, MPB_VERDICT_COLLISION);
     assert_int_equal(v.segment, 1);
@@ -71,7 +49,7 @@ static void thin_wall_certified_is_the_verdicts_configuration(void **state)
         assert_int_equal(mpb_find_collision(w, PATH, 3, 3, 0.01, seg, q, &at), 1);
         assert_int_equal(at.segment, 1);
         assert_int_equal(at.certified, 1);
-        assert_true(at.s == at_s(&v));
+        assert_true(at.s == test_verdict_s(&v));
         assert_true(q[0] == -0.5045 + at.s * 1.009);
         assert_int_equal(mpb_world_in_collision(w, q), 1);
         assert_string_equal(at.bodies, "");     /* planar names none */
@@ -91,7 +69,7 @@ static void thin_wall_certified_is_the_verdicts_configuration(void **state)
 static void thick_wall_sampled_is_the_verdicts_sample(void **state)
 {
     (void)state;
-    mpb_world *w = planar("box 0.85 0 0.25 0.1\n");
+    mpb_world *w = test_planar_arm("box 0.85 0 0.25 0.1\n");
     assert_int_equal(mpb_world_set_verification(w, MPB_VERIFY_SAMPLED), MPB_OK);
     mpb_verdict v = verify(w, PATH, 3);
     assert_int_equal(v.code, MPB_VERDICT_COLLISION);
@@ -102,7 +80,7 @@ static void thick_wall_sampled_is_the_verdicts_sample(void **state)
     assert_int_equal(at.certified, 0);
     /* the verdict prints the sample's s with 4 digits; it is sample s/k
        of k = ceil(1.009 / 0.01) = 101 */
-    assert_true(fabs(at.s - at_s(&v)) < 1e-4);
+    assert_true(fabs(at.s - test_verdict_s(&v)) < 1e-4);
     assert_true(fabs(at.s * 101 - round(at.s * 101)) < 1e-9);
     assert_int_equal(mpb_world_in_collision(w, q), 1);
     /* certified finds it too, no later than the sample */
@@ -118,7 +96,7 @@ static void thick_wall_sampled_is_the_verdicts_sample(void **state)
 static void waypoint_zero_and_bad_arguments(void **state)
 {
     (void)state;
-    mpb_world *w = planar("box 0.85 0 0.25 0.1\n");
+    mpb_world *w = test_planar_arm("box 0.85 0 0.25 0.1\n");
     const double in[3] = { 0, 0, 0 };            /* inside the wall */
     double q[3] = { 9, 9, 9 };
     mpb_collision_at at;
@@ -140,29 +118,11 @@ static void waypoint_zero_and_bad_arguments(void **state)
     mpb_world_close(w);
 }
 
-static const char *const pr2_joints[] = {
-    "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",
-    "r_elbow_flex_joint", "r_forearm_roll_joint", "r_wrist_flex_joint",
-    "r_wrist_roll_joint"};
-
 static void pr2_plate_names_the_bodies(void **state)
 {
     (void)state;
     /* test_certify.c's plate, its lower edge 1e-5 m into the forearm's top */
-    char *urdf = test_read_robot(MPB_TEST_DATA "/pr2_right_arm.urdf",
-                                 MPB_TEST_DATA "/pr2_right_arm.srdf");
-    char scene[400];
-    snprintf(scene, sizeof scene,
-             "plate\n* plate\n0.6 -0.188 %.9f\n0 0 0 1\n1\nbox\n"
-             "0.04 0.0001 0.05\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n",
-             0.739675 + 0.05 - 1e-5 + 0.025);
-    mpb_world *w = NULL;
-    char err[256];
-    int rc = mpb_world_open_group("urdf", urdf, "moveit-scene", scene, pr2_joints,
-                                  7, &w, err, sizeof err);
-    free(urdf);
-    if (rc != MPB_OK)
-        fail_msg("open: %s", err);
+    mpb_world *w = test_pr2_with_plate(TEST_PR2_FOREARM_TOP - 1e-5);
     const double wp[14] = { -0.105, 0, 0, 0, 0, 0, 0,  0.095, 0, 0, 0, 0, 0, 0 };
     double q[7];
     mpb_collision_at at;
