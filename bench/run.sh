@@ -340,11 +340,11 @@ done
 # scenes/paper/kitchen.scene exists, else in the unit tests' tabletop.
 PR2_JOINTS=r_shoulder_pan_joint,r_shoulder_lift_joint,r_upper_arm_roll_joint,r_elbow_flex_joint,r_forearm_roll_joint,r_wrist_flex_joint,r_wrist_roll_joint
 PR2_URDF=$src/scenes/robots/pr2_right_arm.urdf
-[ -f "$PR2_URDF" ] || PR2_URDF=$src/tests/unit/data/pr2_right_arm.urdf
+[ -f "$PR2_URDF" ] || PR2_URDF=$src/tests/support/data/pr2_right_arm.urdf
 if [ -f "$src/scenes/paper/kitchen.scene" ]; then
     PR2_SCENE=$src/scenes/paper/kitchen.scene PR2_WHERE=kitchen
 else
-    PR2_SCENE=$src/tests/unit/data/scene_tabletop.scene PR2_WHERE=tabletop
+    PR2_SCENE=$src/tests/support/data/scene_tabletop.scene PR2_WHERE=tabletop
 fi
 echo "== 4. verification + metrics (PR2 right arm, $PR2_WHERE)"
 put "verify_pr2_setup scene=$PR2_WHERE"

@@ -20,7 +20,9 @@ set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 reqs=$root/planners/peers/requirements
 dest=$root/.cache/peers
-ALL="ompl2 roboplan mplib pybullet_planning"
+# The peers: one requirements file each (planners/peers/mpbpeers/NAME.py
+# is its adapter).
+ALL=$(cd "$reqs" && ls *.txt | sed 's/\.txt$//' | tr '\n' ' ')
 
 module_of() {
     case $1 in
@@ -33,7 +35,7 @@ module_of() {
 kit_stamp_stale() {
     stamp=$dest/$1/.kit-stamp
     [ -f "$stamp" ] || return 0
-    [ -z "$(find "$root/planners/python/mpbplanner" "$root/lcmtypes" \
+    [ -z "$(find "$root/planners/python/mpbplanner" "$root/planners/python/mpbrrt" "$root/lcmtypes" \
                  "$root/planners/python/setup.py" "$root/planners/python/pyproject.toml" \
                  -newer "$stamp" \( -name '*.py' -o -name '*.lcm' -o -name '*.toml' \) \
                  2>/dev/null | head -n 1)" ] && return 1
@@ -117,7 +119,8 @@ for name in ${*:-$ALL}; do
     tmp=$(mktemp -d)
     mkdir -p "$tmp/planners/python" "$tmp/lcmtypes"
     cp -R "$root/planners/python/pyproject.toml" "$root/planners/python/setup.py" \
-          "$root/planners/python/mpbplanner" "$tmp/planners/python/"
+          "$root/planners/python/mpbplanner" "$root/planners/python/mpbrrt" \
+          "$tmp/planners/python/"
     cp "$root"/lcmtypes/*.lcm "$tmp/lcmtypes/"
     touch "$env/.kit-stamp.new"
     "$env/bin/python3" -m pip install --quiet --disable-pip-version-check \

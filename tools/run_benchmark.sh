@@ -132,9 +132,9 @@ done
 planner_program() {
     case $1 in
         null|ompl|arastar|python) echo "$MPB_BUILD/planners/$1/mpb-planner-$1" ;;
-        ompl2|roboplan|mplib|pybullet_planning)
+        *)  # a peer: planners/peers/requirements/NAME.txt
+            [ -f "$root/planners/peers/requirements/$1.txt" ] || return 1
             echo "$root/planners/peers/mpb-planner-$1" ;;
-        *) return 1 ;;
     esac
 }
 

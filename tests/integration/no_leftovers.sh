@@ -3,7 +3,7 @@
 # tests/CMakeLists.txt): no process of this build is left running. A
 # process is this build's when its program, its working directory or
 # its command line lies in MPB_BUILD, or its command line names the
-# Python planner (python3 -m mpbplanner) of MPB_SOURCE. This check and
+# Python planner (python3 -m mpbrrt) of MPB_SOURCE. This check and
 # the processes that started it (ctest, make, a shell) are not counted.
 #
 # Each found is listed with its pid, working directory and command line,
@@ -41,7 +41,7 @@ for d in /proc/[0-9]*; do
     inside "$cwd" "$build/tests" && ours=1
     case $cmd in
     *"$build"/*|*"$MPB_BUILD"/*) ours=1 ;;
-    *"-m mpbplanner"*) case $cmd in *"$source"*|*"$MPB_SOURCE"*) ours=1 ;; esac
+    *"-m mpbrrt"*) case $cmd in *"$source"*|*"$MPB_SOURCE"*) ours=1 ;; esac
                        inside "$cwd" "$source" && ours=1 ;;
     esac
     [ "$ours" -eq 1 ] || continue

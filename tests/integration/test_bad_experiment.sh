@@ -177,7 +177,7 @@ bad_case bad_urdf.yaml "broken.urdf: urdf: line 3, column .*not well-formed XML"
 printf 'bad\n* box\n0 0 0\n0 0 0 1\n1\nbox\n1 x 1\n' >"$work/broken.scene"
 cat >"$work/bad_scene.yaml" <<EOT
 experiment: {name: x, time_limit: 1}
-robot: {format: urdf, file: $MPB_SOURCE/tests/unit/data/pr2_right_arm.urdf, joints: [r_shoulder_pan_joint]}
+robot: {format: urdf, file: $MPB_SOURCE/tests/support/data/pr2_right_arm.urdf, joints: [r_shoulder_pan_joint]}
 scenes: [{name: s, format: moveit-scene, file: broken.scene, queries: [{name: q, start: [0], goal: [0]}]}]
 planners: [{planner: null, algorithms: [a]}]
 EOT

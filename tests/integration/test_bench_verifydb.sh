@@ -15,7 +15,7 @@ trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 daemon=$MPB_BUILD/daemon/mpbenchd
 bench=$MPB_BUILD/tests/mpb-bench-verifydb
-data=$MPB_SOURCE/tests/unit/data
+data=$MPB_SOURCE/tests/support/data
 
 # The folding arm with its SRDF (arm1 may pass through the post): two
 # queries, two runs each, of two configurations: 2-waypoint and

@@ -14,7 +14,7 @@ trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/doomed.db
 daemon=$MPB_BUILD/daemon/mpbenchd
 planner=$MPB_BUILD/planners/ompl/mpb-planner-ompl
-data=$MPB_SOURCE/tests/unit/data/meshes
+data=$MPB_SOURCE/tests/support/data/meshes
 unset MPB_MESH_PATH ROS_PACKAGE_PATH
 
 cat >"$work/exp.yaml" <<EOT

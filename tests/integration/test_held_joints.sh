@@ -1,6 +1,6 @@
 #!/bin/sh
 # Joints held outside the planning group reach every world of a run. The
-# PR2 test arm's torso (tests/unit/data/pr2_right_arm.urdf, prismatic,
+# PR2 test arm's torso (tests/support/data/pr2_right_arm.urdf, prismatic,
 # outside the group) is held at 0.3 m; a box sits where the forearm
 # sweeps only at that height. The null planner's straight line, free at
 # the default torso height, is refused by the daemon's verifier as a
@@ -15,7 +15,7 @@ FAILS=0
 work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
-data=$MPB_SOURCE/tests/unit/data
+data=$MPB_SOURCE/tests/support/data
 
 # The unit test's box (test_world_urdf.c), 0.3 m higher.
 cat >"$work/box.scene" <<EOT

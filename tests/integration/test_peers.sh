@@ -103,23 +103,16 @@ for peer in $PEERS; do
         ge "$(q "SELECT count(*) FROM runs WHERE world_setup_time > 0")" 1
 
     # The peer's own code asked for an algorithm it does not offer.
-    case $peer in
-        ompl2) file=ompl2.py; cls=Ompl2 ;;
-        roboplan) file=roboplan_peer.py; cls=Roboplan ;;
-        mplib) file=mplib_peer.py; cls=Mplib ;;
-        pybullet_planning) file=pybullet_peer.py; cls=PybulletPlanning ;;
-    esac
     out=$(cd "$work" && PYTHONPATH=$MPB_SOURCE/planners/peers \
         MPB_LIBMPBENCH=$MPB_BUILD/libmpbench/libmpbench.so \
         "$MPB_SOURCE/.cache/peers/$peer/bin/python3" -c "
 import os, sys
-import ${file%.py} as m
 from mpb import plan_request_t
-import peer
+from mpbpeers import $peer as m, peer
 req = plan_request_t()
 req.algorithm = 'NoSuchPlanner'
 req.params = []
-res = peer.Peer(m.$cls()).solve(req)
+res = peer.Peer(m.Adapter()).solve(req)
 print(res.status, res.message)
 sys.stdout.flush()
 os._exit(0)" 2>&1 | tail -n 1)

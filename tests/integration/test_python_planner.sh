@@ -225,7 +225,7 @@ check "with --secret-file: 10 runs verified valid" \
     eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 10
 
 # The kit's trailer is docs/protocol.md's test vector (the C library's is
-# checked by tests/unit/test_auth.c), and a replay is told from a message.
+# checked by tests/unit/net/test_auth.c), and a replay is told from a message.
 cat >"$work/vector.py" <<'EOT'
 import sys
 from mpb import run_ack_t

@@ -8,7 +8,7 @@ set -u
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 daemon=$MPB_BUILD/daemon/mpbenchd
-data=$MPB_SOURCE/tests/unit/data/meshes
+data=$MPB_SOURCE/tests/support/data/meshes
 
 # experiment FILE URDF
 experiment() {

@@ -22,7 +22,7 @@ joints=r_shoulder_pan_joint,r_shoulder_lift_joint,r_upper_arm_roll_joint,r_elbow
 
 # Free states on either side of the torso; the straight line between them
 # passes the tool frame through the torso column (its middle is the state
-# of tests/unit/test_self_collision.c).
+# of tests/unit/model/test_self_collision.c).
 side_a="[-2.0, 1.0, -2.9, -1.6, -0.5, 0.0, -2.4]"
 side_b="[-1.0, 1.0, -3.5, -1.8, -0.3, -0.4, -1.8]"
 in_torso="[-1.5, 1.0, -3.2, -1.7, -0.4, -0.2, -2.1]"

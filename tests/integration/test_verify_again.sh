@@ -17,7 +17,7 @@ trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/test.db
 daemon=$MPB_BUILD/daemon/mpbenchd
 mpb=$MPB_BUILD/tools/mpb
-data=$MPB_SOURCE/tests/unit/data
+data=$MPB_SOURCE/tests/support/data
 
 # The folding arm: its SRDF lets arm1 pass through the post. The straight
 # line from the origin to "through the post" is free with it.

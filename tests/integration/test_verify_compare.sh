@@ -2,7 +2,7 @@
 # mpb verify --compare, mpb view and mpb report's links on the thin-wall
 # case of docs/verification.md: a planar arm with zero-radius links
 # swings its shoulder from -0.5045 to +0.5045 rad through a 2 mm wall
-# (tests/unit/test_certify.c), which the sampled check (0.01 rad) steps
+# (tests/unit/verify/test_certify.c), which the sampled check (0.01 rad) steps
 # over. Stored sampled (verification: sampled), the run is valid;
 # compared, the certified check newly refuses it, with its colliding
 # configuration; a thick wall is a collision both ways (they agree);

@@ -46,7 +46,7 @@
  * 20 boxes, RelWithDebInfo, 2026-11-23): set_pose x7 + check 0.3-0.4 us
  * when free, ~1.4 us when colliding; set_pose x7 + distance 5-8 us along a
  * random walk, 14-22 us for unrelated configurations
- * (tests/unit/test_collision.c prints these). Mesh links cost more: the
+ * (tests/unit/geometry/test_collision.c prints these). Mesh links cost more: the
  * Panda (SRDF, collision meshes) in a MotionBenchMaker scene, 10-13 us a
  * check, 0.2-0.25 ms a distance (bench/meshcheck.c, docs/performance.md).
  *

@@ -15,7 +15,7 @@
  * are tested with FCL's own triangle test, on the relative transform
  * FCL computes. So the meshes collide here if and only if some triangle
  * pair intersects by FCL's test: FCL's answer, which stops at the first
- * such pair (one contact wanted). tests/unit/test_bvh_collide.c checks it.
+ * such pair (one contact wanted). tests/unit/geometry/test_bvh_collide.c checks it.
  */
 #include "geometry/bvh_collide.h"
 

@@ -30,7 +30,7 @@
  * in its box; a gap along any line is at most the distance, and every
  * triangle lies in the hull of the mesh's vertices). So both are the
  * least triangle distance, up to the solver's own tolerance.
- * tests/unit/test_clearance_reference.c checks it.
+ * tests/unit/geometry/test_clearance_reference.c checks it.
  */
 #include "geometry/bvh_distance.h"
 #include "geometry/collision_world.h"

@@ -24,7 +24,7 @@
  * query measures its pairs nearest lower bound first, and skips those
  * whose bound from the vertices is no better than the best so far. All
  * are exact bounds with a margin: verdicts and distances are those of
- * every pair through FCL (tests/unit/test_mesh_reference.c). A mesh's
+ * every pair through FCL (tests/unit/geometry/test_mesh_reference.c). A mesh's
  * extent along a direction is read from a few vertices of its hull, those
  * listed for the direction (hull.h, dirtable.h): the same numbers as from
  * all its vertices, for a few percent of the cost. Two meshes that get

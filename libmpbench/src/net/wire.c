@@ -1,7 +1,7 @@
 /*
  * wire.c - a walk over an encoded message that checks every length against
  * the bytes that remain, without allocating (see wire.h for why). The walk
- * follows the .lcm files of lcmtypes/ field by field; tests/unit/test_wire.c checks it
+ * follows the .lcm files of lcmtypes/ field by field; tests/unit/net/test_wire.c checks it
  * against real encodings of every type, so a change to a .lcm file that is
  * not made here too fails there.
  */

@@ -1,1 +1,3 @@
-"""mpbplanner - the Python planner of mpbench (see __main__.py)."""
+"""mpbplanner - the Python kit of mpbench: the protocol (node), the world
+of libmpbench through ctypes (world), reading a request (request), time
+and memory limits (limits, memory). docs/writing-a-planner.md."""

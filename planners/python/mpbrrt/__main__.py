@@ -8,8 +8,10 @@ import argparse
 import signal
 import sys
 
-from .node import Auth, Node, name_error
-from .solve import WorldCache, solve
+from mpbplanner.node import Auth, Node, name_error
+from mpbplanner.request import WorldCache
+
+from .solve import solve
 
 ALGORITHMS = ["RRTConnect"]
 

@@ -1,7 +1,7 @@
 /*
  * test_robot_malformed.c - the robot model's refusals: malformed URDF
  * text and files, each one line naming what is wrong, no robot made
- * (tests/unit/data/ holds the files).
+ * (tests/support/data/ holds the files).
  */
 #include <setjmp.h>
 #include <stdarg.h>

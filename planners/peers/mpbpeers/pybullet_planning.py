@@ -1,4 +1,4 @@
-"""pybullet_peer.py - the peer `pybullet_planning`: pybullet-planning
+"""pybullet_planning.py - the peer `pybullet_planning`: pybullet-planning
 0.6.1 (pip pybullet-planning==0.6.1) on pybullet 3.2.7: BiRRT with random
 restarts, collision checking by Bullet (closest points at distance 0) on
 Bullet's model of the URDF (its collision meshes as convex hulls, as
@@ -21,10 +21,10 @@ import pybullet_planning as pp
 from mpb import plan_result_t
 from pybullet_planning.motion_planners import meta
 
-import peer
+from . import peer
 
 
-class PybulletPlanning:
+class Adapter:
     NAME = "pybullet_planning"
     DESCRIPTION = ("pybullet-planning 0.6.1: birrt on Bullet collision "
                    "checking, then its smooth_path.")
@@ -110,4 +110,4 @@ class PybulletPlanning:
 
 
 if __name__ == "__main__":
-    peer.main(PybulletPlanning())
+    peer.main(Adapter())

@@ -27,13 +27,10 @@
                      __LINE__);                                             \
     } while (0)
 
-/* tests/unit/data/<name>, found next to this source file. */
+/* tests/support/data/<name> (MPB_TEST_DATA). */
 static void data_path(char *out, size_t len, const char *name)
 {
-    const char *file = __FILE__;
-    const char *slash = strrchr(file, '/');
-    int dir = slash ? (int)(slash - file) : 1;
-    snprintf(out, len, "%.*s/data/%s", dir, slash ? file : ".", name);
+    snprintf(out, len, "%s/%s", MPB_TEST_DATA, name);
 }
 
 static char *read_all(const char *path)

@@ -5,7 +5,7 @@
  * joints, the IK round trip over 1,000 random poses of the PR2 right arm
  * (success rate and times printed), goal regions (contains, distance,
  * sampling), and groups given as joint lists. Test robots are in
- * tests/unit/data/.
+ * tests/support/data/.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -34,13 +34,10 @@
 
 /* ---- helpers ------------------------------------------------------------ */
 
-/* tests/unit/data/<name>, found beside this source file. */
+/* tests/support/data/<name> (MPB_TEST_DATA). */
 static void data_path(const char *name, char *out, size_t len)
 {
-    const char *file = __FILE__;
-    const char *slash = strrchr(file, '/');
-    int dir = slash ? (int)(slash - file) : 1;
-    snprintf(out, len, "%.*s/data/%s", dir, slash ? file : ".", name);
+    snprintf(out, len, "%s/%s", MPB_TEST_DATA, name);
 }
 
 static char *read_data(const char *name)
@@ -239,7 +236,7 @@ static void test_fk3_structure(void **state)
 /* ---- fk3: poses by hand --------------------------------------------------- */
 
 /*
- * fk3 (tests/unit/data/fk3.urdf). Notation: Rz(90) = [0 -1 0; 1 0 0; 0 0 1]
+ * fk3 (tests/support/data/fk3.urdf). Notation: Rz(90) = [0 -1 0; 1 0 0; 0 0 1]
  * maps (x, y, z) to (-y, x, z); Rx(90) = [1 0 0; 0 0 -1; 0 1 0] maps z to
  * -y; a pose is (R, t) with p_world = R p + t.
  *   base -> l1:   Trans(0 0 1) Rz(q1)

@@ -3,7 +3,7 @@
  * allowed-collision matrix (world.h): the shipped PR2
  * (scenes/robots/pr2_right_arm.urdf) with its gripper inside its own torso,
  * the matrix generated without an SRDF, and one read from an SRDF
- * (tests/unit/data/folding_arm.urdf + .srdf, a folding planar arm beside a
+ * (tests/support/data/folding_arm.urdf + .srdf, a folding planar arm beside a
  * fixed post), and an arm in a cage it nearly always touches
  * (caged_arm.urdf).
  */
@@ -333,7 +333,7 @@ static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
 
 /*
  * A generated matrix is made for the values the joints outside the group
- * hold (tests/unit/data/sliding_block.urdf): at slide = 0 the block is on
+ * hold (tests/support/data/sliding_block.urdf): at slide = 0 the block is on
  * the arm at the default state, so the pair is allowed; held at 0.5 it is
  * clear at the default state and in the arm's way at j = pi/4, so the
  * pair is checked, whether the value is held before the first check (a

@@ -1,6 +1,6 @@
 /*
  * test_world_urdf.c - the "urdf" + "moveit-scene" world: the PR2 right arm
- * (tests/unit/data/pr2_right_arm.urdf, kinematics of shared/DESIGN.md)
+ * (tests/support/data/pr2_right_arm.urdf, kinematics of shared/DESIGN.md)
  * beside a box, collision, clearance, pose-region goals, and verification of
  * a planted invalid trajectory.
  *

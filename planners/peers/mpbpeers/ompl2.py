@@ -18,7 +18,7 @@ from ompl import base as ob
 from ompl import geometric as og
 from ompl import util as ou
 
-import peer
+from . import peer
 
 _seeded = []
 
@@ -27,7 +27,7 @@ ALGORITHMS = ["RRTConnect", "AORRTC", "BITstar", "RRTstar", "PRM", "PRMstar",
               "InformedRRTstar", "SORRTstar"]
 
 
-class Ompl2:
+class Adapter:
     NAME = "ompl2"
     DESCRIPTION = ("OMPL 2.0 (Python wheel), validity checked by "
                    "libmpbench's world through the kit.")
@@ -144,4 +144,4 @@ class Ompl2:
 
 
 if __name__ == "__main__":
-    peer.main(Ompl2())
+    peer.main(Adapter())

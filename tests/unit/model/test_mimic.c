@@ -2,7 +2,7 @@
  * test_mimic.c - mimic joints (URDF <mimic joint= multiplier= offset=>,
  * robot.h): a mimic joint follows its leader in forward kinematics,
  * whether the leader is planned or holds a value, through a mimic of a
- * mimic too (tests/unit/data/mimic_gripper.urdf, poses worked by hand),
+ * mimic too (tests/support/data/mimic_gripper.urdf, poses worked by hand),
  * and the world's collision checks with it; a mimic joint is never in the
  * group; the Panda's second finger follows
  * the first (the Panda of tools/robot_data.sh, fetched if missing).

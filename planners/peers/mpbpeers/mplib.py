@@ -1,4 +1,4 @@
-"""mplib_peer.py - the peer `mplib`: MPLib 0.2.1 (pip mplib==0.2.1), the motion
+"""mplib.py - the peer `mplib`: MPLib 0.2.1 (pip mplib==0.2.1), the motion
 planner of ManiSkill and SAPIEN: RRTConnect of OMPL inside, collision
 checking with FCL on its own model of the robot (the URDF's collision
 meshes, loaded by assimp) and the scene (FCL boxes, cylinders, spheres and
@@ -25,8 +25,8 @@ import numpy as np
 from mpb import plan_result_t
 from mplib.collision_detection import fcl
 
-import peer
-import repair_mesh
+from . import peer
+from . import repair_mesh
 
 RRT_RANGE = 0.1      # Planner.plan_qpos's default rrt_range
 TIME_STEP = 0.1      # Planner.plan_qpos's default time_step (TOPP)
@@ -45,7 +45,7 @@ def _last_link(urdf, joint):
     return m.group(1)
 
 
-class Mplib:
+class Adapter:
     NAME = "mplib"
     DESCRIPTION = ("MPLib 0.2.1: RRTConnect, FCL on its own robot and "
                    "scene model, simplify_path, TOPP-RA.")
@@ -131,4 +131,4 @@ class Mplib:
 
 
 if __name__ == "__main__":
-    peer.main(Mplib())
+    peer.main(Adapter())

@@ -6,7 +6,7 @@
  * collisions of the SRDF); a caller's copy is its own; a text that does
  * not parse fails the same way every time; threads opening worlds of two
  * texts at once each get their own text's. The robot is the PR2 right arm
- * of tests/unit/data with its SRDF.
+ * of tests/support/data with its SRDF.
  */
 #include <pthread.h>
 #include <setjmp.h>

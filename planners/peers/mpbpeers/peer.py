@@ -37,7 +37,7 @@ import time
 
 from mpb import goal_t, named_value_t, plan_request_t, plan_result_t, stage_t
 
-from mpbplanner import solve as kit_solve
+from mpbplanner import request as kit_request
 from mpbplanner.memory import Watch
 from mpbplanner.node import Auth, Node
 from mpbplanner.world import World, WorldError
@@ -318,9 +318,9 @@ class Peer:
             raise InvalidRequest(f"{self.adapter.NAME} takes joint goals "
                                  f"only")
         try:
-            return kit_solve._goal_configs(self.world, req, self.world,
+            return kit_request.goal_configs(self.world, req, self.world.free,
                                            deadline)
-        except kit_solve.InvalidRequest as e:
+        except kit_request.InvalidRequest as e:
             raise InvalidRequest(str(e)) from None
 
     def solve(self, req, ready=lambda: None):

@@ -10,7 +10,7 @@
  * over it (its samples nearest 0 are at -0.005 and +0.005 rad, where the
  * links clear 2 mm walls).
  *
- * The PR2 (tests/unit/data/pr2_right_arm.urdf, as test_world_urdf.c): at
+ * The PR2 (tests/support/data/pr2_right_arm.urdf, as test_world_urdf.c): at
  * q = 0 the forearm is a cylinder of radius 0.05 along x from x = 0.47 to
  * 0.75 whose axis lies at y = -0.188, z = 0.739675, the shoulder pan axis
  * at x = -0.05. A 0.1 mm plate across y, over x 0.58 .. 0.62, whose lower

@@ -1,4 +1,4 @@
-"""roboplan_peer.py - the peer `roboplan`: roboplan 0.7.0 (pip
+"""roboplan.py - the peer `roboplan`: roboplan 0.7.0 (pip
 roboplan==0.7.0): an RRT on Pinocchio's model of the robot, collision
 checking by Coal (FCL's successor) on the URDF's own collision meshes and
 the scene's boxes, cylinders, spheres and meshes added to its Scene.
@@ -19,12 +19,12 @@ import numpy as np
 from mpb import plan_result_t
 from roboplan import core, rrt
 
-import peer
+from . import peer
 
 GROUP = "mpb_group"
 
 
-class Roboplan:
+class Adapter:
     NAME = "roboplan"
     DESCRIPTION = ("roboplan 0.7.0: RRT (and its rrt_connect option) on "
                    "Pinocchio, Coal collision checking, PathShortcutter.")
@@ -120,4 +120,4 @@ class Roboplan:
 
 
 if __name__ == "__main__":
-    peer.main(Roboplan())
+    peer.main(Adapter())

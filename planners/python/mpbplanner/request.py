@@ -1,0 +1,113 @@
+"""request.py - reading a plan request, as every Python planner does.
+
+What is not a planner's own: the world a request names, built by
+libmpbench and kept while the hashes say it is the same (WorldCache);
+its numeric parameters (param); the goal as configurations, a joint goal
+as it is or IK samples inside a pose region (goal_configs); a stage of
+the result from a list of configurations (stage). The example planner
+(planners/python/mpbrrt) and the peers (planners/peers/mpbpeers) use
+them alike.
+"""
+import time
+
+from mpb import goal_t, stage_t
+
+from .world import World, WorldError
+
+
+class InvalidRequest(Exception):
+    """A request this planner cannot use; the message says why."""
+
+
+def param(req, key, default, lo):
+    """The request's parameter key as a number >= lo, or default."""
+    for p in req.params:
+        if p.key == key:
+            try:
+                v = float(p.value)
+            except ValueError:
+                raise InvalidRequest(f"param {key} must be a number, "
+                                     f"not '{p.value}'") from None
+            if not v >= lo:
+                raise InvalidRequest(f"param {key} must be >= {lo}")
+            return v
+    return default
+
+
+# The named value a planner reports the preparation of a world in (s):
+# loading its robot and scene, outside time_total (docs/protocol.md).
+WORLD_SETUP_TIME = "world_setup_time"
+
+
+class WorldCache:
+    """The last world built, reused while requests name the same robot,
+    scene and joints (their hashes say so)."""
+
+    def __init__(self):
+        self.key, self.world = None, None
+        self.setup_time = None  # s the last get() spent building a world
+
+    def get(self, req):
+        key = (req.robot_format, req.robot_hash, req.scene_format,
+               req.scene_hash, tuple(req.joint_names))
+        self.setup_time = None
+        if key != self.key:
+            t0 = time.monotonic()
+            if self.world:
+                self.world.close()
+            self.key, self.world = None, None
+            try:
+                self.world = World(req.robot_format, req.robot,
+                                   req.scene_format, req.scene,
+                                   list(req.joint_names))
+            except WorldError as e:
+                raise InvalidRequest(str(e)) from None
+            self.key = key
+            self.setup_time = time.monotonic() - t0
+        try:
+            self.world.hold(list(req.held_names), list(req.held_values))
+        except WorldError as e:
+            raise InvalidRequest(f"held joints: {e}") from None
+        return self.world
+
+
+def goal_configs(world, req, free, deadline):
+    """Configurations a planner may end at: the joint goal, or up to five
+    IK samples inside the pose region for which free(q) is true, sought
+    until deadline (time.monotonic())."""
+    g = req.goal
+    if g.kind == goal_t.JOINTS:
+        if g.num_joints != world.num_joints:
+            raise InvalidRequest(f"goal has {g.num_joints} joints, the "
+                                 f"robot {world.num_joints}")
+        return [list(g.joints)]
+    if g.kind != goal_t.POSE_REGION:
+        raise InvalidRequest(f"unknown goal kind {g.kind}")
+    try:
+        region = world.goal_region(g.link, g.position, g.position_tolerance,
+                                   g.orientation_rpy, g.orientation_tolerance)
+    except WorldError as e:
+        raise InvalidRequest(str(e)) from None
+    rng = [req.seed & 0xFFFFFFFFFFFFFFFF]
+    goals = []
+    for attempt in range(50):
+        if len(goals) == 5 or time.monotonic() >= deadline:
+            break
+        # IK seeded by the start lands near it, where the path is short;
+        # but near a colliding answer all collide: then start at random.
+        seed = list(req.start) if attempt % 8 == 0 else None
+        q = world.sample_goal(region, seed, rng)
+        if q is not None and free(q):
+            goals.append(q)
+    return goals
+
+
+def stage(name, seconds, path, num_joints):
+    """A stage_t named name: path (a list of configurations) taking
+    seconds."""
+    st = stage_t()
+    st.name, st.time = name, seconds
+    st.num_waypoints, st.num_joints = len(path), num_joints
+    st.waypoints = [float(x) for q in path for x in q]
+    st.num_values = len(st.waypoints)
+    return st
