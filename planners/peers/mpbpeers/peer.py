@@ -261,7 +261,9 @@ def acm_pairs(srdf):
 
 # ---- the run ----------------------------------------------------------------
 
-def _stage(name, seconds, path, n):
+def _stage(name, seconds, path, n, times=None):
+    """A stage_t; times (a waypoint's time, s) go on the wire where the
+    protocol carries them."""
     st = stage_t()
     st.name, st.time = name, seconds
     st.num_waypoints, st.num_joints = len(path), n
@@ -277,11 +279,16 @@ def _value(name, v):
 
 
 class Peer:
-    """Serves one library: adapter has NAME, ALGORITHMS, GOAL_REGIONS
-    (False: the kit samples IK goals), build(problem) -> model (cached
-    while the robot and scene hashes stay), and plan(model, algorithm,
-    start, goals, time_limit, seed, params) -> (stages, status, message,
-    values), stages a list of (name, seconds, path)."""
+    """Serves one library: adapter has NAME, ALGORITHMS, APPROACH (each
+    algorithm's kind of planner: "sampling", "search", "optimisation" or
+    "hybrid"), GOAL_REGIONS (False: the kit samples IK goals),
+    build(problem) -> model (cached while the robot and scene hashes
+    stay), and plan(model, algorithm, start, goals, time_limit, seed,
+    params) -> (stages, status, message, values), stages a list of
+    (name, seconds, path) or (name, seconds, path, times): times the
+    trajectory's time at each waypoint (s, from 0), for a library that
+    returns a time-parameterised trajectory. Return the path the library
+    gave whatever its own verdict: mpbench verifies it either way."""
 
     def __init__(self, adapter):
         self.adapter = adapter
@@ -365,9 +372,10 @@ class Peer:
                     req.seed, params)
                 t_plan = time.monotonic() - t_plan
                 res.status, res.message = status, message or ""
-                for name, seconds, path in stages:
+                for name, seconds, path, *times in stages:
                     res.stages.append(_stage(name, seconds, path,
-                                             self.world.num_joints))
+                                             self.world.num_joints,
+                                             times[0] if times else None))
                 for name, v in values:
                     res.values.append(_value(name, v))
             # The stages' times (the library's calls alone); a run
