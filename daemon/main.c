@@ -166,14 +166,15 @@ typedef struct input_check {
     int         differs;
 } input_check;
 
-/* Whether two robot texts differ in their URDF, the text up to its first
- * </robot>: 0 when only what follows it (the SRDF, world.h) differs. */
+/* Whether two robot texts differ in their URDF (mpb_robot_text_split()):
+ * 0 when only the SRDF that follows it differs. */
 static int urdf_part_differs(const char *a, const char *b)
 {
-    const char *ea = strstr(a, "</robot>"), *eb = strstr(b, "</robot>");
-    if (ea == NULL || eb == NULL)
+    size_t la, lb, sa, sb;
+    if (mpb_robot_text_split(a, &la, &sa) != MPB_OK ||
+        mpb_robot_text_split(b, &lb, &sb) != MPB_OK)
         return 1;
-    return ea - a != eb - b || memcmp(a, b, (size_t)(ea - a)) != 0;
+    return la != lb || memcmp(a, b, la) != 0;
 }
 
 /* The experiment file names its robot and scene files; their text is not

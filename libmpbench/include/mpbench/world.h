@@ -64,6 +64,19 @@ extern "C" {
 typedef struct mpb_world mpb_world;
 
 /*
+ * A robot text of format "urdf" is a URDF, perhaps followed by its SRDF
+ * (docs/scenes.md). Where one ends and the other begins: the URDF is
+ * text[0, *urdf_len), which ends with the line of its root element's end
+ * tag (the first "</robot" outside comments); the SRDF is text + *srdf_at
+ * to the end, or there is none when *srdf_at == strlen(text) (only blanks
+ * and comments follow). A text without that tag is all URDF. The one rule
+ * the library, the daemon and the planners (the Python kit, through
+ * ctypes) share. MPB_OK, or MPB_EINVAL for a NULL argument. No ownership:
+ * both are offsets into text.
+ */
+int mpb_robot_text_split(const char *text, size_t *urdf_len, size_t *srdf_at);
+
+/*
  * Build a world from the robot and scene texts. On success *out is a new
  * world, freed with mpb_world_close(). On failure *out is NULL, the return
  * is MPB_EPARSE / MPB_EUNSUPPORTED / MPB_ENOMEM (MPB_EINVAL for a NULL

@@ -277,58 +277,6 @@ static int ensure_acm(urdf_world *u)
     return rc;
 }
 
-/*
- * The robot text is a URDF, perhaps followed by an SRDF: the SRDF begins
- * on the line after the one where the URDF's root element ends (its first
- * "</robot>" outside comments), or right after it if more follows on that
- * line. *urdf_len is the URDF's length, *srdf the SRDF's text or NULL when
- * only blanks and comments follow.
- */
-static void split_srdf(const char *text, size_t *urdf_len, const char **srdf)
-{
-    const char *p = text;
-    *urdf_len = strlen(text);
-    *srdf = NULL;
-    while (*p) {
-        if (strncmp(p, "<!--", 4) == 0) {
-            const char *e = strstr(p + 4, "-->");
-            if (!e)
-                return;
-            p = e + 3;
-        } else if (strncmp(p, "</robot", 7) == 0 && (p[7] == '>' ||
-                   p[7] == ' ' || p[7] == '\t' || p[7] == '\r' || p[7] == '\n')) {
-            const char *e = strchr(p, '>');
-            if (!e)
-                return;
-            /* The next line, or right after the tag if more follows on
-             * its line. */
-            const char *start = e + 1;
-            while (*start == ' ' || *start == '\t' || *start == '\r')
-                start++;
-            start = *start == '\n' ? start + 1 : e + 1;
-            *urdf_len = (size_t)(start - text);
-            /* An SRDF only if an element follows, not just comments. */
-            for (const char *t = start; *t; t++) {
-                if (strncmp(t, "<!--", 4) == 0) {
-                    const char *ce = strstr(t + 4, "-->");
-                    if (!ce)
-                        break;
-                    t = ce + 2;
-                } else if (*t == '<') {
-                    *srdf = start;
-                    return;
-                }
-            }
-            return;
-        } else {
-            /* Both marks begin with '<': on to the next one. */
-            p = strchr(p + 1, '<');
-            if (!p)
-                return;
-        }
-    }
-}
-
 /* The chain's tip, followed down fixed joints while there is one child. */
 static int find_ee_link(const mpb_robot *r)
 {
@@ -363,9 +311,12 @@ static int urdf_open(mpb_world *w, const char *robot_text,
                      "its planning group");
         return MPB_EINVAL;
     }
-    size_t urdf_len;
-    const char *srdf;
-    split_srdf(robot_text, &urdf_len, &srdf);
+    size_t urdf_len, srdf_at;
+    const char *srdf = NULL;
+    if ((rc = mpb_robot_text_split(robot_text, &urdf_len, &srdf_at)) != MPB_OK)
+        return rc;
+    if (robot_text[srdf_at] != '\0')
+        srdf = robot_text + srdf_at;
     if (srdf) {
         char why[512];
         mpb__srdf raw;

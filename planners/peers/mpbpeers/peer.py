@@ -40,7 +40,7 @@ from mpb import goal_t, named_value_t, plan_request_t, plan_result_t, stage_t
 from mpbplanner import request as kit_request
 from mpbplanner.memory import Watch
 from mpbplanner.node import Auth, Node
-from mpbplanner.world import World, WorldError
+from mpbplanner.world import World, WorldError, split_robot_text
 
 
 class InvalidRequest(Exception):
@@ -216,11 +216,10 @@ class Problem:
         if req.scene_format not in ("moveit-scene", ""):
             raise InvalidRequest(f"scene format '{req.scene_format}' is not "
                                  f"taken by peers (moveit-scene)")
-        text = req.robot
-        end = text.find("</robot>")
-        if end < 0:
+        urdf, srdf = split_robot_text(req.robot)
+        if "</robot" not in urdf:
             raise InvalidRequest("robot: no </robot>")
-        urdf, srdf = text[:end + 8], text[end + 8:].strip()
+        srdf = (srdf or "").strip()
 
         def absolute(m):
             path = resolve_mesh(m.group(2))

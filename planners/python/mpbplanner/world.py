@@ -67,6 +67,21 @@ _region_contains = _declare("mpb_goal_region_contains", c_int, c_void_p,
                             POINTER(_GoalRegion), _doubles)
 
 
+_text_split = _declare("mpb_robot_text_split", c_int, c_char_p,
+                       POINTER(c_size_t), POINTER(c_size_t))
+
+
+def split_robot_text(text: str) -> "tuple[str, str | None]":
+    """A "urdf" robot text as (URDF, SRDF or None), split where libmpbench
+    splits it (mpb_robot_text_split(), world.h)."""
+    raw = text.encode()
+    urdf_len, srdf_at = c_size_t(), c_size_t()
+    if _text_split(raw, byref(urdf_len), byref(srdf_at)) != 0:
+        raise WorldError("robot text: cannot split")
+    srdf = raw[srdf_at.value:].decode() if srdf_at.value < len(raw) else None
+    return raw[:urdf_len.value].decode(), srdf
+
+
 def _names(names):
     return (c_char_p * len(names))(*[n.encode() for n in names])
 
