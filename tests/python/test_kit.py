@@ -1,0 +1,134 @@
+"""test_kit.py - the Python kit (planners/python/mpbplanner) on its own,
+with pytest: its authentication against the protocol's test vector (the
+file the C library's test reads too), the robot text split it shares with
+libmpbench, and reading a request. Run by ctest as unit.python_kit
+(tests/CMakeLists.txt), with the build's libmpbench and message types."""
+import os
+
+import pytest
+from mpb import goal_t, param_t, plan_request_t
+
+from mpbplanner import request
+from mpbplanner.node import Auth
+from mpbplanner.world import World, split_robot_text
+
+SOURCE = os.environ["MPB_SOURCE"]
+DATA = os.path.join(SOURCE, "tests", "support", "data")
+
+
+def _vector():
+    out = {}
+    with open(os.path.join(DATA, "auth_vector.txt")) as f:
+        for line in f:
+            if line.strip() and not line.startswith("#"):
+                key, _, value = line.rstrip("\n").partition(" ")
+                out[key] = value
+    return out
+
+
+def test_auth_gives_the_protocol_test_vector(tmp_path):
+    v = _vector()
+    secret = tmp_path / "secret"
+    secret.write_bytes(v["secret"].encode())
+    auth = Auth(str(secret))
+    auth.instance = int(v["instance"], 16)
+    auth.counter = int(v["counter"]) - 1      # seal() counts this one
+    message = bytes.fromhex(v["message"])
+    sealed = auth.seal(v["channel"], message, int(v["echo"], 16))
+    assert sealed[:len(message)] == message
+    assert sealed[len(message):].hex() == v["trailer"]
+
+
+def test_auth_believes_an_echo_and_refuses_a_replay(tmp_path):
+    secret = tmp_path / "secret"
+    secret.write_bytes(b"the same secret, 32 bytes long..")
+    me, peer = Auth(str(secret)), Auth(str(secret))
+    first = peer.seal("CH", b"hello", echo=0)
+    assert me.open("CH", first)[0] == Auth.UNPROVEN
+    answer = peer.seal("CH", b"hello", echo=me.instance)
+    verdict, body, sender = me.open("CH", answer)
+    assert (verdict, body, sender) == (Auth.FRESH, b"hello", peer.instance)
+    assert me.open("CH", answer)[0] == Auth.REPLAYED
+    assert me.open("OTHER", peer.seal("CH", b"x", me.instance))[0] == \
+        Auth.BAD_TAG
+
+
+def test_a_short_secret_is_refused(tmp_path):
+    secret = tmp_path / "secret"
+    secret.write_bytes(b"too short")
+    with pytest.raises(ValueError, match="at least 16 bytes"):
+        Auth(str(secret))
+
+
+URDF = '<robot name="r">\n  <link name="a"/>\n</robot>\n'
+SRDF = '<robot name="r">\n  <group name="g"/>\n</robot>\n'
+
+
+@pytest.mark.parametrize("text, urdf, srdf", [
+    (URDF, URDF, None),
+    (URDF + SRDF, URDF, SRDF),
+    # A "</robot>" in a comment is not the URDF's end.
+    ('<robot name="r"><!-- </robot> -->\n</robot>\n' + SRDF,
+     '<robot name="r"><!-- </robot> -->\n</robot>\n', SRDF),
+    # Comments and blanks after the URDF are no SRDF.
+    (URDF + "\n<!-- the end -->\n", URDF, None),
+    # More on the line of the end tag: the SRDF begins right after it.
+    ('<robot name="r"></robot >' + SRDF, '<robot name="r"></robot >', SRDF),
+])
+def test_the_robot_text_splits_where_libmpbench_splits_it(text, urdf, srdf):
+    assert split_robot_text(text) == (urdf, srdf)
+
+
+def _planar_world():
+    with open(os.path.join(SOURCE, "scenes", "planar", "arm3.robot")) as f:
+        robot = f.read()
+    with open(os.path.join(SOURCE, "scenes", "planar", "pillars.scene")) as f:
+        scene = f.read()
+    return World("planar", robot, "planar", scene,
+                 ["shoulder", "elbow", "wrist"])
+
+
+def _request(goal_joints, params=()):
+    req = plan_request_t()
+    req.goal = goal_t()
+    req.goal.kind = goal_t.JOINTS
+    req.goal.num_joints = len(goal_joints)
+    req.goal.joints = list(goal_joints)
+    req.params = []
+    for key, value in params:
+        p = param_t()
+        p.key, p.value = key, value
+        req.params.append(p)
+    req.num_params = len(req.params)
+    return req
+
+
+def test_a_joint_goal_is_its_own_goal_configuration():
+    world = _planar_world()
+    try:
+        req = _request([0.1, 0.2, 0.3])
+        assert request.goal_configs(world, req, world.free, 0) == \
+            [[0.1, 0.2, 0.3]]
+        with pytest.raises(request.InvalidRequest, match="goal has 2 joints"):
+            request.goal_configs(world, _request([0.1, 0.2]), world.free, 0)
+    finally:
+        world.close()
+
+
+def test_parameters_are_numbers_within_their_bounds():
+    req = _request([0, 0, 0], [("range", "0.25"), ("bad", "x"),
+                               ("low", "-1")])
+    assert request.param(req, "range", 0.5, 1e-6) == 0.25
+    assert request.param(req, "absent", 0.5, 1e-6) == 0.5
+    with pytest.raises(request.InvalidRequest, match="must be a number"):
+        request.param(req, "bad", 0.5, 0)
+    with pytest.raises(request.InvalidRequest, match=">= 0"):
+        request.param(req, "low", 0.5, 0)
+
+
+def test_a_stage_holds_its_waypoints_row_after_row():
+    st = request.stage("raw", 0.5, [[1, 2, 3], [4, 5, 6]], 3)
+    assert (st.name, st.time, st.num_waypoints, st.num_joints) == \
+        ("raw", 0.5, 2, 3)
+    assert st.waypoints == [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
+    assert st.num_values == 6
