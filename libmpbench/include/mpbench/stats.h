@@ -65,6 +65,48 @@ int    mpb_grouped_measured(const mpb_grouped *g);
  * that arrive interleaved and are kept apart until they end. */
 void   mpb_grouped_merge(mpb_grouped *into, const mpb_grouped *g);
 
+/* ---- intervals and tests for comparing planners (inference.c) -------- */
+
+/*
+ * Wilson's 95 % interval for a rate of k successes in n trials, into *lo
+ * and *hi (both NaN when n is 0). MPB_OK, or MPB_EINVAL (NULL out, n < 0,
+ * k outside 0..n).
+ */
+int mpb_wilson_interval(int k, int n, double *lo, double *hi);
+
+/* The q-quantile (0 <= q <= 1) of n sorted samples by linear
+ * interpolation (type 7, as mpb_summarize()); NaN when n <= 0. */
+double mpb_quantile(const double *sorted, int n, double q);
+
+/*
+ * An interval for the median of n sorted samples from their order
+ * statistics (distribution-free): the ranks l and n + 1 - l with the
+ * largest l that keeps the coverage at 95 % or more. With fewer than 6
+ * samples no ranks reach 95 %: the interval is the range, and *coverage
+ * (if not NULL) says what it reaches (50 % for two samples). MPB_OK or
+ * MPB_EINVAL.
+ */
+int mpb_median_interval(const double *sorted, int n, double *lo, double *hi,
+                        double *coverage);
+
+/*
+ * The Wilcoxon signed-rank test of n paired differences d (a - b):
+ * two-sided p value that their distribution is symmetric about 0, into
+ * *p. Zero differences are left out (Wilcoxon's way; *used, if not NULL,
+ * is how many were kept; none left gives p = 1). Exact when there are no
+ * ties among |d| and at most 50 remain, else the normal approximation
+ * with the ties' correction and a continuity correction. MPB_OK,
+ * MPB_EINVAL (a NaN difference), MPB_ENOMEM.
+ */
+int mpb_signed_rank_test(const double *d, int n, int *used, double *p);
+
+/*
+ * Holm's step-down adjustment of m p values for testing them together:
+ * adjusted[i] for p[i] (the arrays may be the same). MPB_OK, MPB_EINVAL
+ * (a p outside [0, 1]), MPB_ENOMEM.
+ */
+int mpb_holm(const double *p, int m, double *adjusted);
+
 #ifdef __cplusplus
 }
 #endif
