@@ -23,7 +23,8 @@
     X(import, "read OMPL and MoveIt benchmark logs into a database")       \
     X(srdf,   "write a robot's self-collision matrix as an SRDF, for review") \
     X(view,   "draw a run in 3-D: a self-contained HTML page (three.js)") \
-    X(verify, "check stored runs again with this mpbench's world model")
+    X(verify, "check stored runs again with this mpbench's world model") \
+    X(compare, "compare configurations problem by problem: intervals, paired tests")
 
 #define MPB__TOOL_DECLARE(name, summary) int cmd_##name(int argc, char **argv);
 MPB_TOOL_COMMANDS(MPB__TOOL_DECLARE)
