@@ -101,8 +101,23 @@ for k in $kinds; do
         test "$(head -c 8 "$f" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a
     check "... of a real picture's size" test "$(stat -c %s "$f")" -gt 8000
 done
-check "it writes nothing else" eq "$(ls "$work/png" | wc -l)" 6
-check "... and names nothing else" eq "$(wc -l <"$work/png.out")" 6
+# The success against the time budget of the one problem set (the scene).
+f=$work/png/plot-budget-pillars.png
+check "it writes and names plot-budget-pillars.png" grep -qx "$f" "$work/png.out"
+check "... a PNG file of a real picture's size" test "$(stat -c %s "$f")" -gt 8000
+check "it writes and names budget.csv" grep -qx "$work/png/budget.csv" "$work/png.out"
+for c in $(sqlite3 "$DB" "SELECT name FROM planner_configs"); do
+    n=$(sqlite3 "$DB" "SELECT count(*) FROM results WHERE planner = '$c'")
+    ok=$(sqlite3 "$DB" "SELECT sum(success) FROM results WHERE planner = '$c'")
+    last=$(grep "^\"pillars\",\"$c\",verified," "$work/png/budget.csv" | tail -n 1)
+    check "budget.csv: $c's verified curve ends at its $ok of $n runs" \
+        python3 -c "import sys; f = sys.argv[1].split(','); sys.exit(not (f[-1] == sys.argv[3] and abs(float(f[-2]) - int(sys.argv[2]) / int(sys.argv[3])) < 1e-8))" "$last" "$ok" "$n"
+    slowest=$(sqlite3 "$DB" "SELECT printf('%.9g', max(time_total)) FROM results WHERE planner = '$c' AND success = 1")
+    check "... at the time of its slowest success" \
+        test "$(echo "$last" | cut -d, -f4)" = "$slowest"
+done
+check "it writes nothing else" eq "$(ls "$work/png" | wc -l)" 8
+check "... and names nothing else" eq "$(wc -l <"$work/png.out")" 8
 
 # ---- SVG ----------------------------------------------------------------------
 "$mpb" plot --format svg --scene pillars -o "$work/svg" "$DB" >"$work/svg.out"

@@ -123,8 +123,7 @@ static int on_config(void *ud, const mpb_planner_config_row *c)
 /* The problem set a scene belongs to: its name before the last '/'. */
 static int set_index(data *d, const char *scene)
 {
-    const char *slash = strrchr(scene, '/');
-    size_t len = slash ? (size_t)(slash - scene) : strlen(scene);
+    size_t len = tool_problem_set(scene);
     for (int i = 0; i < d->ns; i++)
         if (strlen(d->set_names[i]) == len &&
             strncmp(d->set_names[i], scene, len) == 0)

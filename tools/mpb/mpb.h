@@ -64,6 +64,11 @@ int tool_parse_id(const char *text, int64_t *out);
 int tool_option_error(const char *cmd, int opt, char **argv);
 int tool_extra_argument(const char *cmd, const char *arg);
 
+/* The problem set a scene belongs to: the length of its name's part
+ * before the last '/' (MotionBenchMaker's "box_panda/0001" is in
+ * "box_panda"), or the whole name's when it has none. */
+size_t tool_problem_set(const char *scene);
+
 /* The length of the valid UTF-8 sequence at s, its code point in *cp; 0
  * when s does not start one. */
 int tool_utf8_char(const char *s, unsigned *cp);

@@ -43,6 +43,14 @@ static void usage(FILE *out)
         "                  box plots over successful runs, one box per\n"
         "                  configuration and stage (raw, shortcut, smoothed,\n"
         "                  ...), for the metrics the database holds\n"
+        "and, per problem set (a scene's name before its last '/') and over\n"
+        "all problems when there are several sets, DIR/plot-budget-SET.png:\n"
+        "  budget          the fraction of each configuration's runs solved\n"
+        "                  within every time budget t up to the time limit,\n"
+        "                  verified by mpbench (solid) and claimed by the\n"
+        "                  planner (dotted), log time axis; its numbers in\n"
+        "                  DIR/budget.csv (set, planner, curve, time,\n"
+        "                  fraction, runs: one row per step)\n"
         "SCENE is the scene's name with characters other than [A-Za-z0-9_.-]\n"
         "as '_', and -ID, the scene's id, added when two scenes would share it.\n"
         "Draws through gnuplot (Debian: gnuplot-nox), which must be on PATH.\n"
@@ -426,8 +434,8 @@ static void on_wrote(void *ud, const char *path)
 }
 
 /* Run gnuplot over the plots of every scene in one format. */
-static int draw(plot_scene *scenes, int num_scenes, const char *dir,
-                const char *ext)
+static int draw(plot_scene *scenes, int num_scenes,
+                const plot_budget *budget, const char *dir, const char *ext)
 {
     written w = {0};
     plot_glyphs gl = {.all = strcmp(ext, "svg") == 0};
@@ -444,6 +452,8 @@ static int draw(plot_scene *scenes, int num_scenes, const char *dir,
     for (int i = 0; i < num_scenes; i++)
         if (scenes[i].num_configs > 0)
             plot_gnuplot_scene(gp, &scenes[i], dir, ext, &gl, on_wrote, &w);
+    if (budget != NULL)
+        plot_gnuplot_budget(gp, budget, dir, ext, &gl, on_wrote, &w);
     int status = pclose(gp);
     if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127) {
         fprintf(stderr, "mpb " CMD ": gnuplot not found on PATH (Debian: "
@@ -550,6 +560,7 @@ int cmd_plot(int argc, char **argv)
     options o;
     gather g = {0};
     plot_scene *scenes = NULL;
+    plot_budget *budget = NULL;
     int rc = parse(argc, argv, &o), exit_code = MPB_EXIT_ERROR, wanted = -1;
     long finished = 0;
 
@@ -617,13 +628,34 @@ int cmd_plot(int argc, char **argv)
         goto out;
     /* A gnuplot that dies early must not take us with it. */
     signal(SIGPIPE, SIG_IGN);
+    /* Success against the time budget, per problem set: the whole
+     * experiment's, unless one scene was asked for. */
+    if (o.scene == NULL) {
+        if ((rc = plot_budget_read(s, g.experiment_id, 0, &budget)) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": %s: %s\n", o.db, rc == MPB_ENOMEM ?
+                    "out of memory" : mpb_store_errmsg(s));
+            goto out;
+        }
+        written csv = {0};
+        if (plot_budget_csv(budget, o.dir, on_wrote, &csv) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": cannot write %s/budget.csv: %s\n",
+                    o.dir, strerror(errno));
+            goto out;
+        }
+        for (int i = 0; i < csv.n; i++) {
+            printf("%s\n", csv.paths[i]);
+            free(csv.paths[i]);
+        }
+        free(csv.paths);
+    }
     exit_code = MPB_EXIT_OK;
-    if (o.png && draw(scenes, g.num_scenes, o.dir, "png") != MPB_EXIT_OK)
+    if (o.png && draw(scenes, g.num_scenes, budget, o.dir, "png") != MPB_EXIT_OK)
         exit_code = MPB_EXIT_ERROR;
     if (exit_code == MPB_EXIT_OK && o.svg &&
-        draw(scenes, g.num_scenes, o.dir, "svg") != MPB_EXIT_OK)
+        draw(scenes, g.num_scenes, budget, o.dir, "svg") != MPB_EXIT_OK)
         exit_code = MPB_EXIT_ERROR;
 out:
+    plot_budget_free(budget);
     for (int i = 0; scenes && i < g.num_scenes; i++)
         scene_free(&scenes[i]);
     free(scenes);

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "mpbench/metrics.h"
+#include "mpbench/store.h"
 
 /* The path metrics plotted per stage: those of the metric list
  * (MPB_METRIC_MAP, mpbench/metrics.h) that have a rank, in rank order;
@@ -84,5 +85,32 @@ int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
  */
 #define PLOT_PART_MAX 120
 void plot_file_part(char *out, size_t size, const char *scene);
+
+/* What every plot's writer shares (plot_gnuplot.c): text as a gnuplot
+ * string drawn as gl lets it, a path as one, and the terminal, output and
+ * axes' style of a new plot width pixels wide. */
+void plot_put_text(FILE *gp, const char *text, plot_glyphs *gl);
+void plot_put_path(FILE *gp, const char *path);
+void plot_begin(FILE *gp, const char *path, const char *ext, int width);
+
+/*
+ * Success against the time budget (plot_budget.c): for each problem set
+ * (a scene's name before its last '/', tool_problem_set()) and over all
+ * problems, each configuration's fraction of runs verified successful by
+ * time t, and the fraction claimed (status solved) by t, for every t up
+ * to the time limit: from the stored times, no run again. Read from the
+ * experiment (scene_id 0 for all scenes, else one), written as
+ * DIR/budget.csv and drawn into gp as plot-budget-SET.EXT; wrote() as
+ * for plot_gnuplot_scene(). MPB_OK, MPB_ENOMEM, or a store error.
+ */
+typedef struct plot_budget plot_budget;
+int  plot_budget_read(mpb_store *s, int64_t experiment_id, int64_t scene_id,
+                      plot_budget **out);
+int  plot_budget_csv(const plot_budget *b, const char *dir,
+                     void (*wrote)(void *ud, const char *path), void *ud);
+int  plot_gnuplot_budget(FILE *gp, const plot_budget *b, const char *dir,
+                         const char *ext, plot_glyphs *gl,
+                         void (*wrote)(void *ud, const char *path), void *ud);
+void plot_budget_free(plot_budget *b);
 
 #endif

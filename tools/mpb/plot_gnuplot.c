@@ -624,3 +624,21 @@ int plot_gnuplot_scene(FILE *gp, const plot_scene *sc, const char *dir,
     fprintf(gp, "unset output\n");
     return n;
 }
+
+/* ---- for the other plots' writers (plot.h) -------------------------- */
+
+void plot_put_text(FILE *gp, const char *text, plot_glyphs *gl)
+{
+    char clean[1024];
+    put_text(gp, clean_text(clean, sizeof clean, text, gl));
+}
+
+void plot_put_path(FILE *gp, const char *path)
+{
+    put_path(gp, path);
+}
+
+void plot_begin(FILE *gp, const char *path, const char *ext, int width)
+{
+    begin_plot(gp, path, ext, width);
+}

@@ -85,3 +85,9 @@ int tool_experiment(const char *cmd, mpb_store *s, const char *db,
     }
     return 0;
 }
+
+size_t tool_problem_set(const char *scene)
+{
+    const char *slash = strrchr(scene, '/');
+    return slash ? (size_t)(slash - scene) : strlen(scene);
+}
