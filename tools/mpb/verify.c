@@ -30,7 +30,12 @@ static void usage(FILE *out)
         "  now collision: segment 3 ... self-collision between A and B\n"
         "\n"
         "then one line of totals: the runs that were successes and no longer\n"
-        "are, and how many of them go through the robot's own body. The\n"
+        "are, and how many of them go through the robot's own body. Each run\n"
+        "is then decided again by mpbenchd's own success rule (docs/metrics.md,\n"
+        "\"Claims\"): its stored claim and time, its final stage's verdict now;\n"
+        "a run whose outcome (verified, refused, late, unclaimed_valid,\n"
+        "unclaimed) differs from the stored one is listed, and a last line\n"
+        "counts the outcomes and the runs decided otherwise. The\n"
         "database is not changed. Use it after upgrading mpbench or editing a\n"
         "robot's SRDF, to see what the stored results still say.\n"
         "\n"
@@ -61,6 +66,8 @@ static void usage(FILE *out)
 typedef struct totals {
     long runs, stages, changed_stages, changed_runs;
     long successes, lost, lost_self, gained;
+    long outcomes[MPB_OUTCOME_COUNT];   /* decided again, runs with stages */
+    long decided_otherwise;             /* outcome now not the stored one */
 } totals;
 
 int verify_read_run(mpb_store *s, const char *db, int64_t run_id,
@@ -105,7 +112,8 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         view_free(&v);
         return got < 0 ? -1 : 0;    /* no stages: nothing to check */
     }
-    int final_valid = -1, final_self = 0, changed = 0;
+    /* The final stage's verdict as stored, unless it is checked again. */
+    int final_valid = v.run.final_valid, final_self = 0, changed = 0;
     t->runs++;
     for (int i = 0; i < v.num_stages; i++) {
         const view_stage *st = &v.stages[i];
@@ -135,13 +143,28 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
                now.detail);
     }
     t->changed_runs += changed;
-    if (v.run.success == 1) {
+    /* The success rule again (outcome.h), as mpbenchd applied it: the
+     * planner's claim and the time it took as stored, the final verdict
+     * as found now. */
+    int stored_success = v.run.success == 1;
+    int success = mpb_run_success(v.run.claimed, final_valid, v.run.in_time);
+    mpb_outcome now = mpb_run_outcome(v.run.claimed, final_valid, success);
+    mpb_outcome was = mpb_run_outcome(v.run.claimed, v.run.final_valid,
+                                      stored_success);
+    t->outcomes[now]++;
+    if (now != was) {
+        t->decided_otherwise++;
+        printf("run %lld %s/%s %s: stored %s, now %s\n", (long long)run_id,
+               v.scene, v.query, v.run.planner_config, mpb_outcome_name(was),
+               mpb_outcome_name(now));
+    }
+    if (stored_success) {
         t->successes++;
-        if (final_valid == 0) {
+        if (!success) {
             t->lost++;
             t->lost_self += final_self;
         }
-    } else if (v.run.success == 0 && final_valid == 1 && changed) {
+    } else if (success) {
         t->gained++;
     }
     view_free(&v);
@@ -225,7 +248,13 @@ int cmd_verify(int argc, char **argv)
     if (t.gained)
         printf("; %ld failed runs now verify", t.gained);
     printf("\n");
-    status = t.changed_stages ? MPB_EXIT_ERROR : MPB_EXIT_OK;
+    printf("outcomes by the success rule:");
+    for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
+        printf(" %s %ld%s", mpb_outcome_name((mpb_outcome)o), t.outcomes[o],
+               o + 1 < MPB_OUTCOME_COUNT ? "," : "");
+    printf("; %ld runs decided otherwise than stored\n", t.decided_otherwise);
+    status = t.changed_stages || t.decided_otherwise ? MPB_EXIT_ERROR
+                                                     : MPB_EXIT_OK;
 out:
     view_selection_free(&sel);
     mpb_store_close(s);
