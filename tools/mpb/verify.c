@@ -100,6 +100,24 @@ int verify_stage(const view_run *v, const view_stage *st,
     return 0;
 }
 
+/* Whether the collision of verdict now on stage st is with the robot's
+ * own body: the colliding configuration found again where the verdict
+ * points (mpb_find_collision()) and asked what it touches. */
+static int self_collision(const view_run *v, const view_stage *st,
+                          const mpb_verdict *now, double res)
+{
+    if (now->code != MPB_VERDICT_COLLISION)
+        return 0;
+    double *q = view_calloc((size_t)v->num_joints, sizeof *q);
+    mpb_collision_at at;
+    int self = mpb_find_collision(v->world, st->waypoints, st->num_waypoints,
+                                  v->num_joints, res, now->segment, q,
+                                  &at) == 1 &&
+               mpb_world_contact(v->world, q, NULL, 0) == MPB_CONTACT_SELF;
+    free(q);
+    return self;
+}
+
 /* One run: each stage verified again; 0, or -1 after one line. */
 static int verify_run(mpb_store *s, const char *db, int64_t run_id,
                       double step, totals *t)
@@ -131,7 +149,7 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         t->stages++;
         if (i == v.num_stages - 1) {
             final_valid = valid;
-            final_self = strstr(now.detail, "self-collision") != NULL;
+            final_self = self_collision(&v, st, &now, res);
         }
         if (strcmp(name, st->verdict) == 0)
             continue;
