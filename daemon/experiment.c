@@ -189,6 +189,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
         }
         free(c->params);
         free(c->params_text);
+        free(c->approach);
     }
     for (int j = 0; j < e->num_joints && e->joint_names; j++)
         free(e->joint_names[j]);

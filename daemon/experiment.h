@@ -28,6 +28,10 @@ typedef struct mpbd_config {
     char       *params_text; /* "key=value;key=value", for the database */
     int         runs;        /* per query */
     int64_t     db_id;
+    char       *approach;    /* the experiment file's `approach:`, or
+                                NULL: the planner's announcement says */
+    int         approach_known; /* stored: the file's word, or one a
+                                   planner announced (planners.c) */
 } mpbd_config;
 
 typedef struct mpbd_scene {

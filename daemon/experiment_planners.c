@@ -89,7 +89,7 @@ static int check_family(mpbd_loader *L, const yaml_node_t *n,
 int mpbd_load_planners(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
 {
     static const char *const keys[] = {"planner", "algorithms", "params",
-                                       "runs", "name", NULL};
+                                       "runs", "name", "approach", NULL};
     yaml_node_t *list = need(L, root, "planners", YAML_SEQUENCE_NODE,
                              "a list of planners");
     size_t total = 0;
@@ -127,6 +127,16 @@ int mpbd_load_planners(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
             runs_node = default_runs ? default_runs : m;
         if ((n = get(L, m, "name")) != NULL && (suffix = scalar(n)) == NULL)
             return fail_at(L, n, "name must be a string");
+        /* The approach, the paper's word for the kind of planner, for
+         * each of these algorithms: over what the planner announces. */
+        const char *approach = NULL;
+        if ((n = get(L, m, "approach")) != NULL &&
+            (approach = scalar(n)) == NULL)
+            return fail_at(L, n, "approach must be one word: "
+                           MPB_APPROACHES_TEXT);
+        if (n != NULL && mpb_approach_index(approach) < 0)
+            return fail_at(L, n, "approach '%s' is none of "
+                           MPB_APPROACHES_TEXT, approach);
         if ((planner = need_string(L, m, "planner")) == NULL)
             return -1;
         if (check_family(L, get(L, m, "planner"), planner) != 0) {
@@ -148,7 +158,9 @@ int mpbd_load_planners(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
             snprintf(name, sizeof name, "%s/%s%s%s", planner, scalar(an),
                      suffix ? "#" : "", suffix ? suffix : "");
             c->name = strdup(name);
+            c->approach = approach ? strdup(approach) : NULL;
             if (!c->planner || !c->algorithm || !c->name ||
+                (approach && !c->approach) ||
                 load_params(L, c, get(L, m, "params")) != 0 ||
                 (c->params_text = params_text(c->params,
                                               c->num_params)) == NULL) {

@@ -337,6 +337,12 @@ static int setup_experiment(mpbd *d, int fresh)
         rc = mpb_store_planner_config_add(s, d->experiment_id, c->name,
                                           c->planner, c->algorithm,
                                           c->params_text, &c->db_id);
+        /* The file's approach stands over any a planner announces. */
+        if (rc == MPB_OK && c->approach != NULL) {
+            rc = mpb_store_planner_config_set_approach(s, c->db_id,
+                                                       c->approach, 0);
+            c->approach_known = 1;
+        }
         if (c->runs > max_runs)
             max_runs = c->runs;
     }

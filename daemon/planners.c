@@ -34,6 +34,45 @@ static void set_offer(mpbd_planner *p, const mpb_planner_announce_t *m)
             p->num_algorithms++;
 }
 
+/*
+ * The approaches a planner announces for its algorithms (docs/protocol.md):
+ * each configuration of its family and algorithm that the experiment file
+ * gave none gets the planner's word, stored once. A word that is none of
+ * proto.h's is said once and taken as none; an older planner (no
+ * approaches, planner_announce_v1_t) declares none.
+ */
+static void learn_approaches(mpbd *d, const mpb_planner_announce_t *m)
+{
+    if (d->exp == NULL || d->store == NULL ||
+        m->num_approaches != m->num_algorithms)
+        return;
+    for (int i = 0; i < m->num_algorithms; i++) {
+        const char *word = m->approaches[i];
+        if (word[0] == '\0')
+            continue;
+        if (mpb_approach_index(word) < 0) {
+            char shown[4 * 32 + 4], algo[4 * 32 + 4];
+            mpbd_log("planner %s announces approach '%s' for %s: none of "
+                     MPB_APPROACHES_TEXT "; taken as none", m->planner_id,
+                     mpb_escape(word, shown, sizeof shown),
+                     mpb_escape(m->algorithms[i], algo, sizeof algo));
+            continue;
+        }
+        for (int k = 0; k < d->exp->num_configs; k++) {
+            mpbd_config *c = &d->exp->configs[k];
+            if (c->approach_known || strcmp(c->planner, m->name) != 0 ||
+                strcmp(c->algorithm, m->algorithms[i]) != 0)
+                continue;
+            if (mpb_store_planner_config_set_approach(d->store, c->db_id,
+                                                      word, 1) != MPB_OK) {
+                mpbd_db_error(d);
+                return;
+            }
+            c->approach_known = 1;
+        }
+    }
+}
+
 /* Why an announcement cannot be taken, or NULL if it can. */
 static const char *announce_fault(const mpb_planner_announce_t *m,
                                   char *why, size_t len)
@@ -59,6 +98,12 @@ static const char *announce_fault(const mpb_planner_announce_t *m,
     }
     if (m->num_algorithms < 0) {
         snprintf(why, len, "planner %s announces %d algorithms", id,
+                 m->num_algorithms);
+        return why;
+    }
+    if (m->num_approaches != 0 && m->num_approaches != m->num_algorithms) {
+        snprintf(why, len, "planner %s announces %d approaches for %d "
+                 "algorithms (one each, or none)", id, m->num_approaches,
                  m->num_algorithms);
         return why;
     }
@@ -92,12 +137,14 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
         strcpy(p->id, m->planner_id);
         snprintf(p->host, sizeof p->host, "%s", m->host);
         set_offer(p, m);
+        learn_approaches(d, m);
         char language[4 * 32 + 4];
         mpbd_log("planner %s joined (%s, %d algorithm%s)", p->id,
                  mpb_escape(m->language, language, sizeof language),
                  m->num_algorithms, m->num_algorithms == 1 ? "" : "s");
     } else if (p->gone) {
         set_offer(p, m);
+        learn_approaches(d, m);
         p->gone = 0;
         mpbd_log("planner %s is back", p->id);
     }

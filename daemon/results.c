@@ -344,13 +344,17 @@ static int store_result(mpbd *d, const mpbd_flight *f,
                                                m->progress[i].values[k].name,
                                                m->progress[i].values[k].value};
 
-    /* Success: claimed, the final stage valid, and in time by the planner's
-     * clock and, with MPBD_WALL_SLACK_S for the network, by the daemon's
+    /* Success: the rule of outcome.h, mpb_run_success(): claimed, the
+     * final stage valid (every stage was verified above, whatever the
+     * status), and in time by the planner's clock and, with
+     * MPBD_WALL_SLACK_S for the network, by the daemon's
      * (docs/metrics.md). Each reason it is not is noted. */
     int claimed = status == MPB_PLAN_RESULT_T_SOLVED;
     int final_valid = m->num_stages > 0 && stages[m->num_stages - 1].valid;
     double took = recv - latest_start(d, f);
-    int success = claimed && final_valid && times_ok;
+    int in_time = mpb_run_in_time(times_ok, total, took, limit,
+                                  MPBD_WALL_SLACK_S);
+    int success = mpb_run_success(claimed, final_valid, in_time);
     if (claimed) {
         const mpb_stage_record *last =
             m->num_stages > 0 ? &stages[m->num_stages - 1] : NULL;
@@ -359,17 +363,13 @@ static int store_result(mpbd *d, const mpbd_flight *f,
         else if (!final_valid)
             note(&nt, "final stage %d '%.64s' is %s: %s", m->num_stages - 1,
                  last->name, last->verdict, last->verdict_detail);
-        if (isfinite(total) && total > limit) {
+        if (isfinite(total) && total > limit)
             note(&nt, "time_total %g s exceeds the time limit %g s", total,
                  limit);
-            success = 0;
-        }
-        if (took > limit + MPBD_WALL_SLACK_S) {
+        if (took > limit + MPBD_WALL_SLACK_S)
             note(&nt, "%.3f s by the daemon's clock, request to result, over "
                  "the time limit %g s plus %g s slack", took, limit,
                  MPBD_WALL_SLACK_S);
-            success = 0;
-        }
     } else if (nt.len == 0 && m->message[0] == '\0') {
         note(&nt, "the planner reported %s with no message",
              mpb_status_name(status));
@@ -390,6 +390,7 @@ static int store_result(mpbd *d, const mpbd_flight *f,
         .message = message ? message : m->message,
         .claimed_success = claimed,
         .success = success,
+        .late = !in_time,
         .time_total = total,
         .time_raw = total - other,
         .time_other = other,

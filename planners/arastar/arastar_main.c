@@ -93,12 +93,14 @@ int main(int argc, char **argv)
     sigaction(SIGTERM, &sa, NULL);
 
     static const char *const algorithms[] = { "ARAstar" };
+    static const char *const approaches[] = { "search" };
     mpb_planner_def def = {
         .name = opt.name,
         .language = "c",
         .version = MPB_VERSION_STRING,
         .algorithms = algorithms,
         .num_algorithms = 1,
+        .approaches = approaches,
         .solve = ara_solve,
         .user = &ctx,
         .on_ready = on_ready,

@@ -38,7 +38,13 @@ static void usage(FILE *out)
 "in 1 MB blocks, and free it before answering: tests use it for the run's\n"
 "peak memory and the experiment's memory_limit. An allocation that fails\n"
 "is answered as MEMORY, or with \"out_of_memory\" = \"abort\" kills the\n"
-"process with abort(), as an uncaught std::bad_alloc would.\n"
+"process with abort(), as an uncaught std::bad_alloc would. A parameter\n"
+"\"status\" (solved, failed, timeout or approximate; default solved) is\n"
+"the status it answers with, the same straight line as its stage: tests\n"
+"use it for claims in both directions, a path its planner calls failed\n"
+"that mpbench finds valid (an unclaimed valid path) and one it calls\n"
+"solved that collides (a refused claim). It declares no approach\n"
+"(docs/protocol.md): it is no kind of planner.\n"
 "\n"
 "It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
 "SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
@@ -88,13 +94,39 @@ static int allocate_mb(const mpb_plan_request_t *req, mpb_plan_result_t *res,
     return rc;
 }
 
+/* The status the request's "status" parameter asks for (SOLVED when it
+ * has none); -1 for a word that is none of them. */
+static int asked_status(const mpb_plan_request_t *req)
+{
+    static const struct { const char *word; int status; } words[] = {
+        {"solved", MPB_PLAN_RESULT_T_SOLVED},
+        {"failed", MPB_PLAN_RESULT_T_FAILED},
+        {"timeout", MPB_PLAN_RESULT_T_TIMEOUT},
+        {"approximate", MPB_PLAN_RESULT_T_APPROXIMATE},
+    };
+    const char *word = mpb_request_param(req, "status");
+    if (word == NULL)
+        return MPB_PLAN_RESULT_T_SOLVED;
+    for (size_t i = 0; i < sizeof words / sizeof *words; i++)
+        if (strcmp(word, words[i].word) == 0)
+            return words[i].status;
+    return -1;
+}
+
 static int solve_straight_line(void *user, const mpb_plan_request_t *req,
                                const mpb_solve_limits *lim,
                                mpb_plan_result_t *res)
 {
     double t0 = mpb_monotonic_s();
     const char *delay = mpb_request_param(req, "delay");
+    int status = asked_status(req);
     (void)user;
+    if (status < 0) {
+        mpb_result_set_message(res, "status must be solved, failed, timeout "
+                                    "or approximate, not '%.40s'",
+                               mpb_request_param(req, "status"));
+        return MPB_EINVAL;
+    }
     if (delay != NULL) {
         char *end;
         double s = strtod(delay, &end);
@@ -152,7 +184,10 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
         mpb_result_set_message(res, "%s", mpb_strerror(rc));
         return MPB_OK;
     }
-    res->status = MPB_PLAN_RESULT_T_SOLVED;
+    res->status = (int8_t)status;
+    if (status != MPB_PLAN_RESULT_T_SOLVED)
+        mpb_result_set_message(res, "answered %s as asked (parameter status)",
+                               mpb_status_name(status));
     res->time_total = mpb_monotonic_s() - t0;
     res->stages[0].time = res->time_total;
     return MPB_OK;

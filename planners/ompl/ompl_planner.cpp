@@ -174,9 +174,11 @@ int main(int argc, char **argv)
     sigaction(SIGINT, &sa, nullptr);
     sigaction(SIGTERM, &sa, nullptr);
 
-    std::vector<const char *> names;
-    for (const Algorithm &a : algorithms())
+    std::vector<const char *> names, approaches;
+    for (const Algorithm &a : algorithms()) {
         names.push_back(a.name);
+        approaches.push_back("sampling");   /* every one of OMPL's here */
+    }
 
     mpb_ompl::Context ctx;
     mpb_planner_def def;
@@ -186,6 +188,7 @@ int main(int argc, char **argv)
     def.version = k_version;
     def.algorithms = names.data();
     def.num_algorithms = static_cast<int>(names.size());
+    def.approaches = approaches.data();
     def.solve = mpb_ompl_solve;
     def.user = &ctx;
     def.on_ready = on_ready;

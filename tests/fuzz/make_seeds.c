@@ -60,8 +60,9 @@ int main(int argc, char **argv)
 
     char *algos[] = {"RRTConnect", "RRT"};
     char *active[] = {"0123456789abcdef0123456789abcdef"};
+    char *approaches[] = {"sampling", "sampling"};
     mpb_planner_announce_t ann = {1, "ompl@h:2", "ompl", "h", 2, "c++", "1",
-                                  500, 2, algos, 1, 1, active};
+                                  500, 2, algos, 1, 1, active, 2, approaches};
     ENCODE(mpb_planner_announce_t, ann, dir, "announce", 1);
 
     mpb_run_ack_t ack = {1, "0123456789abcdef0123456789abcdef", "null@h:1", 0};

@@ -46,6 +46,11 @@ const ROWS = {
   'waypoints (Mean)': ['waypoints', 'mean'],
   'claimed s_r (%)': ['claimed_success_rate', null],
   's_r (%)': ['success_rate', null],
+  // Claims in both directions: counts of runs (docs/metrics.md).
+  'claimed': ['claimed_successes', null],
+  'verified': ['outcomes', 'verified'],
+  'refused claims': ['outcomes', 'refused'],
+  'unclaimed valid': ['outcomes', 'unclaimed_valid'],
 };
 
 // Whether cell, as the page prints it, is x (a JSON number or null)
@@ -96,6 +101,10 @@ function checkTables(tables) {
         let x;
         if (what[0] === 'success_rate' || what[0] === 'claimed_success_rate')
           x = p[what[0]] === null ? null : 100 * p[what[0]];
+        else if (what[0] === 'claimed_successes')
+          x = p.runs > 0 ? p.claimed_successes : null;
+        else if (what[0] === 'outcomes')
+          x = p.runs > 0 ? p.outcomes[what[1]] : null;
         else
           x = p.metrics[what[0]][what[1]];
         cells++;

@@ -46,6 +46,8 @@ check "the planner, named ara, exits 0 by itself after its 4 runs" eq $? 0
 check "... having served as ara@" grep -q "serving as ara@" "$work/arastar.log"
 
 check "4 runs are done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 4
+check "its announced approach, search, is stored" \
+    test "$(q "SELECT group_concat(DISTINCT approach) FROM planner_configs")" = search
 check "the planner claims every run solved" \
     eq "$(q "SELECT count(*) FROM results WHERE status = 'solved'")" 4
 check "... and the daemon's verifier accepts every path" \

@@ -89,6 +89,9 @@ for peer in $PEERS; do
     check "$peer: a claimed path verified valid by mpbench" \
         ge "$(q "SELECT count(*) FROM results WHERE planner = '$peer/$alg'
                  AND claimed_success = 1 AND success = 1")" 1
+    check "$peer: the approach its adapter announces (APPROACH) is stored" \
+        eq "$(q "SELECT count(*) FROM planner_configs WHERE name = '$peer/$alg'
+                 AND approach IN ('sampling', 'search', 'optimisation', 'hybrid')")" 1
     check "$peer: an unknown parameter answered INVALID_REQUEST naming it" \
         eq "$(q "SELECT count(*) FROM results WHERE planner = '$peer/$alg#bogus'
                  AND status = 'invalid_request'

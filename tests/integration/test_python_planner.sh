@@ -49,6 +49,8 @@ check "planar: the experiment completes" eq $? 0
 check "planar: 10 runs stored" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 10
 check "planar: every run verified valid" \
     eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 10
+check "planar: the approach it announces, sampling, is stored" \
+    test "$(q "SELECT approach FROM planner_configs")" = sampling
 check "planar: the world's setup is reported once, by the first run" \
     eq "$(q "SELECT count(*) FROM planner_values WHERE name = 'world_setup_time'")" 1
 check "planar: raw and shortcut stages" \

@@ -46,8 +46,12 @@ check "... and nothing else beside it but views/" \
 for c in null/straight_line ompl/RRTConnect ompl/RRT; do
     check "... the table has a column for $c" grep -q "<th>$c</th>" "$page"
 done
+# The columns grouped by approach: OMPL's (sampling) first, then the null
+# planner's, which declares none.
 check "... the success rates of the text report" \
-    grep -q '<tr><td>s_r (%)</td><td>50.0</td><td>100.0</td><td>100.0</td></tr>' "$page"
+    grep -q '<tr><td>s_r (%)</td><td>100.0</td><td>100.0</td><td>50.0</td></tr>' "$page"
+check "... and its claims: the null planner's refused over the pillar" \
+    grep -q '<tr><td>refused claims</td><td>0</td><td>0</td><td>3</td></tr>' "$page"
 check "... six plots inlined as SVG (time, success, four path metrics)" \
     test "$(grep -c '^<svg' "$page")" = 6
 check "... and no file of theirs left behind" test -z "$(ls "$work/tmp")"
@@ -136,7 +140,7 @@ status=$?
 sed 's/^/    /' "$work/perturbed.out"
 check "... fails the check" test $status -ne 0
 check "... on that number" \
-    grep -q "^not ok - every number of every table.*tau_t (Mean, s), null/straight_line: the page" \
+    grep -q "^not ok - every number of every table.*tau_t (Mean, s), ompl/RRTConnect: the page" \
     "$work/perturbed.out"
 
 # Without gnuplot: the page, saying why there are no plots.

@@ -42,10 +42,17 @@ mpb_timeout 60 "$daemon" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1
 check "the experiment completes" eq $? 0
 check "... both runs succeed" eq "$(q 'SELECT count(*) FROM results WHERE success = 1')" 2
 
+# totals OUT: the line of the verdicts' totals; outcomes OUT: that of the
+# runs decided again by the success rule.
+totals() { printf '%s\n' "$1" | grep '^experiment '; }
+outcomes() { printf '%s\n' "$1" | grep '^outcomes '; }
 out=$("$mpb" verify "$DB")
 check "verified again under the same model: exit 0" eq $? 0
-check "... and the totals say nothing changed" test "$out" = \
+check "... and the totals say nothing changed" test "$(totals "$out")" = \
     "experiment 1: 2 runs with stages, 2 stages verified again; 0 stages of 0 runs changed verdict; 0 of 2 successes no longer hold (0 through the robot's own body)"
+check "... every run decided as the daemon did" test "$(outcomes "$out")" = \
+    "outcomes by the success rule: unclaimed 0, verified 2, refused 0, late 0, unclaimed_valid 0; 0 runs decided otherwise than stored"
+check "... in two lines, nothing else" eq "$(printf '%s\n' "$out" | wc -l)" 2
 
 # The stored robot without its SRDF: the matrix is generated, arm1 and the
 # post are checked, and the same paths go through the robot's own body.
@@ -56,8 +63,12 @@ out=$("$mpb" verify "$work/edited.db")
 check "with the SRDF gone the verdicts change: exit 1" eq $? 1
 check "... one line per changed stage, naming the new verdict and the links" eq \
     "$(printf '%s\n' "$out" | grep -c "^run [0-9]* empty/into_post null/straight_line stage raw: stored valid, now collision: segment 0 collides at s=.*self-collision between arm1 and post$")" 2
+check "... the runs once verified now refused claims, one line each" eq \
+    "$(printf '%s\n' "$out" | grep -c "^run [0-9]* empty/into_post null/straight_line: stored verified, now refused$")" 2
+check "... counted so by the success rule" test "$(outcomes "$out")" = \
+    "outcomes by the success rule: unclaimed 0, verified 0, refused 2, late 0, unclaimed_valid 0; 2 runs decided otherwise than stored"
 check "... and the totals count them as through the robot's body" test \
-    "$(printf '%s\n' "$out" | tail -1)" = \
+    "$(totals "$out")" = \
     "experiment 1: 2 runs with stages, 2 stages verified again; 2 stages of 2 runs changed verdict; 2 of 2 successes no longer hold (2 through the robot's own body)"
 
 # An obstacle on the path in the stored scene: a collision with it.
@@ -80,7 +91,7 @@ check "an obstacle on the path: exit 1" eq $? 1
 check "... the stage names the scene object" sh -c \
     "printf '%s\n' \"\$1\" | grep -q 'stored valid, now collision: .*touches scene object wall'" _ "$out"
 check "... not through the robot's body" sh -c \
-    "printf '%s\n' \"\$1\" | tail -1 | grep -q '2 of 2 successes no longer hold (0 through'" _ "$out"
+    "printf '%s\n' \"\$1\" | grep '^experiment ' | grep -q '2 of 2 successes no longer hold (0 through'" _ "$out"
 
 check "the database itself is untouched" test "$(md5sum <"$DB")" = "$sum"
 
@@ -113,8 +124,10 @@ check "... the line stored a collision with the block it holds in the way" \
 check "... the query's held value stored" test \
     "$(sqlite3 "$HDB" 'SELECT held FROM queries')" = "slide=0.5"
 out=$("$mpb" verify "$HDB")
-check "... verified again holding it: exit 0, nothing changed" test "$?:$out" = \
+check "... verified again holding it: exit 0, nothing changed" test "$?:$(totals "$out")" = \
     "0:experiment 1: 1 runs with stages, 1 stages verified again; 0 stages of 0 runs changed verdict; 0 of 0 successes no longer hold (0 through the robot's own body)"
+check "... its claim refused again" test "$(outcomes "$out")" = \
+    "outcomes by the success rule: unclaimed 0, verified 0, refused 1, late 0, unclaimed_valid 0; 0 runs decided otherwise than stored"
 
 # Bad command lines and inputs: one line each.
 "$mpb" verify >/dev/null 2>&1

@@ -108,6 +108,17 @@ void report_rows_init(void)
         "claimed s_r (%)", "claimed $s_r$ (\\%)", 0, SHOW_CLAIMED, 0, 1};
     report_rows[report_num_rows++] = (table_row){
         "s_r (%)", "$s_r$ (\\%)", 0, SHOW_RATE, 0, 1};
+    /* Claims in both directions, as counts of runs (outcome.h). */
+    report_rows[report_num_rows++] = (table_row){
+        "claimed", "claimed", COUNT_CLAIMED, SHOW_COUNT, 0, 0};
+    report_rows[report_num_rows++] = (table_row){
+        "verified", "verified", MPB_OUTCOME_VERIFIED, SHOW_COUNT, 0, 0};
+    report_rows[report_num_rows++] = (table_row){
+        "refused claims", "refused claims", MPB_OUTCOME_REFUSED, SHOW_COUNT,
+        0, 0};
+    report_rows[report_num_rows++] = (table_row){
+        "unclaimed valid", "unclaimed valid", MPB_OUTCOME_UNCLAIMED_VALID,
+        SHOW_COUNT, 0, 0};
 }
 
 typedef enum {
@@ -136,7 +147,9 @@ static void usage(FILE *out)
         "Print the results of an experiment in the database DB as the tables\n"
         "of Cohen, Sucan and Chitta, \"A Generic Infrastructure for\n"
         "Benchmarking Motion Planners\": one table per scene, one column per\n"
-        "planner configuration. Rows:\n"
+        "planner configuration, grouped by approach (sampling, search,\n"
+        "optimisation, hybrid, then those that declare none), each column's\n"
+        "approach above its name. Rows:\n"
         "  tau_t, tau_r, tau_o  total, planning and other time (s)\n"
         "  world setup          the planner's loading of the robot and scene,\n"
         "                       outside tau_t, over the runs that loaded one\n"
@@ -157,6 +170,13 @@ static void usage(FILE *out)
         "  claimed s_r          runs the planner said it solved / finished\n"
         "                       runs (%%): its own claim, beside s_r\n"
         "  s_r                  successful runs / finished runs (%%)\n"
+        "  claimed              runs the planner said it solved\n"
+        "  verified             claimed, valid and in time: the successes\n"
+        "  refused claims       claimed, and the final stage not valid\n"
+        "  unclaimed valid      not claimed (failed, approximate, timeout\n"
+        "                       by the planner's word), yet the final stage\n"
+        "                       valid by mpbench's verification\n"
+        "                       (docs/metrics.md, \"Claims\")\n"
         "Means are over successful runs; sigma is the standard deviation of\n"
         "each query's successful runs, averaged over the scene's queries;\n"
         "a sigma marked * counts a query with one successful run as 0.\n"
@@ -247,9 +267,40 @@ static int on_config(void *ud, const mpb_planner_config_row *c)
     if ((cf->name = dup_or(r, c->name, "?")) == NULL ||
         (cf->planner = dup_or(r, c->planner, "")) == NULL ||
         (cf->algorithm = dup_or(r, c->algorithm, "")) == NULL ||
-        (cf->params = dup_or(r, c->params, "")) == NULL)
+        (cf->params = dup_or(r, c->params, "")) == NULL ||
+        (c->approach != NULL && mpb_approach_index(c->approach) >= 0 &&
+         (cf->approach = dup_or(r, c->approach, "")) == NULL))
         return 1;
     return 0;
+}
+
+int report_approach_group(const config_ref *c)
+{
+    int i = mpb_approach_index(c->approach);
+    return i >= 0 ? i : MPB_NUM_APPROACHES;
+}
+
+const char *report_approach_label(const config_ref *c)
+{
+    return c->approach != NULL ? c->approach : "-";
+}
+
+int report_any_approach(const report *r)
+{
+    for (int c = 0; c < r->num_configs; c++)
+        if (r->configs[c].approach != NULL)
+            return 1;
+    return 0;
+}
+
+/* Columns by approach (the paper compares kinds of planner), then id. */
+static int cmp_config(const void *a, const void *b)
+{
+    const config_ref *x = a, *y = b;
+    int gx = report_approach_group(x), gy = report_approach_group(y);
+    if (gx != gy)
+        return gx < gy ? -1 : 1;
+    return (x->id > y->id) - (x->id < y->id);
 }
 
 static int on_scene(void *ud, const mpb_scene_row *sc)
@@ -289,17 +340,15 @@ static int cmp_query(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The configurations are few and grouped by approach, not id: a walk,
+ * from the one found last (a run's neighbours are often its own). */
 static int find_config(const report *r, int64_t id)
 {
-    int lo = 0, hi = r->num_configs - 1;
-    while (lo <= hi) {
-        int mid = lo + (hi - lo) / 2;
-        if (r->configs[mid].id == id)
-            return mid;
-        if (r->configs[mid].id < id)
-            lo = mid + 1;
-        else
-            hi = mid - 1;
+    static int last;
+    for (int k = 0; k < r->num_configs; k++) {
+        int i = (last + k) % r->num_configs;
+        if (r->configs[i].id == id)
+            return last = i;
     }
     return -1;
 }
@@ -337,6 +386,8 @@ static int on_result(void *ud, const mpb_result_row *row)
     /* The planner's own claim (SOLVED), verified or not. */
     if (row->status && strcmp(row->status, "solved") == 0)
         c->claimed++;
+    if (row->outcome >= 0 && row->outcome < MPB_OUTCOME_COUNT)
+        c->outcomes[row->outcome]++;
     if (!row->success)
         return 0;
     c->succeeded++;
@@ -365,6 +416,9 @@ static int gather(report *r, mpb_store *s)
     if ((rc = mpb_store_planner_configs(s, r->experiment_id, on_config, r)) ||
         (rc = mpb_store_scenes(s, r->experiment_id, on_scene, r)))
         return rc;
+    if (r->num_configs > 1)
+        qsort(r->configs, (size_t)r->num_configs, sizeof *r->configs,
+              cmp_config);
     for (int i = 0; i < r->num_scenes; i++) {
         r->scene_index = i;
         if ((rc = mpb_store_queries(s, r->scenes[i].id, on_query, r)))
@@ -407,6 +461,7 @@ static void report_free(report *r)
         free(r->configs[i].planner);
         free(r->configs[i].algorithm);
         free(r->configs[i].params);
+        free(r->configs[i].approach);
     }
     for (int i = 0; i < r->num_scenes; i++)
         free(r->scenes[i].name);
@@ -427,6 +482,7 @@ long report_scene_columns(const report *r, int si, column *cols)
     for (int c = 0; c < r->num_configs; c++) {
         cols[c].finished = cols[c].succeeded = cols[c].stage_invalid = 0;
         cols[c].claimed = 0;
+        memset(cols[c].outcomes, 0, sizeof cols[c].outcomes);
         for (int k = 0; k < M_COUNT; k++)
             mpb_grouped_init(&cols[c].m[k]);
         for (int q = 0; q < r->num_queries; q++) {
@@ -437,6 +493,8 @@ long report_scene_columns(const report *r, int si, column *cols)
             cols[c].finished += cl->finished;
             cols[c].succeeded += cl->succeeded;
             cols[c].claimed += cl->claimed;
+            for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
+                cols[c].outcomes[o] += cl->outcomes[o];
             cols[c].stage_invalid += cl->stage_invalid;
             for (int k = 0; k < M_COUNT; k++)
                 mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
@@ -472,6 +530,11 @@ double report_row_value(const table_row *tr, const column *c)
         return c->finished > 0 ? 100.0 * (double)c->claimed /
                                      (double)c->finished
                                : NAN;
+    case SHOW_COUNT:
+        if (c->finished == 0)
+            return NAN;
+        return tr->metric == COUNT_CLAIMED ? (double)c->claimed
+             : (double)c->outcomes[tr->metric];
     }
     return NAN;
 }
@@ -581,10 +644,14 @@ static int print_scene(const report *r, int si, FILE *out)
         if (len > label_width)
             label_width = len;
     }
+    int approaches = report_any_approach(r);
     for (int c = 0; c < nc; c++) {
         width[c] = tool_text_cols(r->configs[c].name, NULL);
         if (width[c] < 8)
             width[c] = 8;
+        if (approaches &&
+            (int)strlen(report_approach_label(&r->configs[c])) > width[c])
+            width[c] = (int)strlen(report_approach_label(&r->configs[c]));
         for (int i = 0; i < report_num_rows; i++)
             if (tool_text_cols(text[i * nc + c], NULL) > width[c])
                 width[c] = tool_text_cols(text[i * nc + c], NULL);
@@ -594,6 +661,15 @@ static int print_scene(const report *r, int si, FILE *out)
             r->scenes[si].name, r->experiment_name,
             (long long)r->experiment_id, finished, finished == 1 ? "" : "s");
     int rule = label_width;
+    /* Each column's approach above its name, the columns grouped by it. */
+    if (approaches) {
+        fprintf(out, "%-*s", label_width, "Approach");
+        for (int c = 0; c < nc; c++) {
+            fputs("  ", out);
+            print_right(out, report_approach_label(&r->configs[c]), width[c]);
+        }
+        fputc('\n', out);
+    }
     fprintf(out, "%-*s", label_width, "Metric");
     for (int c = 0; c < nc; c++) {
         fputs("  ", out);

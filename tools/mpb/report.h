@@ -30,7 +30,10 @@ typedef struct metric_info {
 } metric_info;
 extern const metric_info report_metrics[M_COUNT];
 
-typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE, SHOW_CLAIMED } show;
+/* SHOW_COUNT: a count of runs, metric the mpb_outcome counted
+ * (outcome.h), or COUNT_CLAIMED for every claimed one. */
+typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE, SHOW_CLAIMED, SHOW_COUNT } show;
+#define COUNT_CLAIMED (-1)
 
 typedef struct table_row {
     const char *label;      /* text and Markdown */
@@ -43,7 +46,7 @@ typedef struct table_row {
 
 /* The paper's rows, in its order, then the list's other metrics;
  * report_rows_init() fills them (once; later calls do nothing). */
-#define REPORT_MAX_ROWS (2 * M_COUNT + 2)
+#define REPORT_MAX_ROWS (2 * M_COUNT + 6)
 extern table_row report_rows[REPORT_MAX_ROWS];
 extern int report_num_rows;
 void report_rows_init(void);
@@ -53,6 +56,9 @@ typedef struct column {
     long        finished, succeeded;
     long        claimed;        /* finished runs the planner said it
                                    solved (verified or not) */
+    long        outcomes[MPB_OUTCOME_COUNT]; /* finished runs by their
+                                   outcome (outcome.h): verified,
+                                   refused, late, unclaimed valid ... */
     long        stage_invalid;  /* successful runs whose --stage failed
                                    verification: its metrics left out */
     mpb_grouped m[M_COUNT];     /* successful runs; M_WS: every finished
@@ -65,6 +71,7 @@ typedef struct column {
 typedef struct config_ref {
     int64_t id;
     char   *name, *planner, *algorithm, *params;
+    char   *approach;   /* planner_configs.approach, or NULL: none declared */
 } config_ref;
 
 typedef struct scene_ref {
@@ -85,7 +92,9 @@ typedef struct report {
     int         runs_per_query;
     long        certified, sampled; /* stages by stages.verification */
     double      time_limit, created, finished;
-    config_ref *configs;        /* in id order */
+    config_ref *configs;        /* grouped by approach, in the order of
+                                   MPB_APPROACHES, none last; in id order
+                                   within a group */
     int         num_configs, configs_cap;
     scene_ref  *scenes;         /* in id order */
     int         num_scenes, scenes_cap;
@@ -102,6 +111,16 @@ typedef struct report {
     const char *three_js;       /* three.js's source, for those views */
     int         nomem;
 } report;
+
+/* The group of a configuration's approach: its place among
+ * MPB_APPROACHES (proto.h), MPB_NUM_APPROACHES for none. */
+int report_approach_group(const config_ref *c);
+
+/* The word a report shows for c's approach: "-" for none. */
+const char *report_approach_label(const config_ref *c);
+
+/* Whether any configuration of r declares an approach. */
+int report_any_approach(const report *r);
 
 /* The sigma the report shows of g: NaN ('-') from fewer than two values,
  * where there is no spread to compute. */

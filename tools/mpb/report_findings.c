@@ -5,11 +5,16 @@
  * qualitative findings of the paper (section V), each marked as holding or
  * not here, with the numbers that decide it.
  *
- * The paper's planners are recognised by name: the search-based planner is
- * the `arastar` family, the sampling-based ones the `ompl` family, RRTConnect
- * the algorithm of that name, and the narrow passage the scene whose name
- * contains "narrow". A finding whose planners or scene are absent is
- * reported as not checked.
+ * The kinds of planner come from the data: each configuration's approach
+ * (planner_configs.approach: sampling, search, optimisation, hybrid), and
+ * per scene the best configuration of each approach is named. The search-
+ * based planners of the paper's findings are the configurations of
+ * approach "search", the sampling-based ones those of "sampling"; only in
+ * a database that records no approach at all (made before it was kept)
+ * are the `arastar` and `ompl` families taken as search and sampling, as
+ * the paper's own planners. RRTConnect is the algorithm of that name, and
+ * the narrow passage the scene whose name contains "narrow". A finding
+ * whose planners or scene are absent is reported as not checked.
  */
 #include <math.h>
 #include <stdio.h>
@@ -18,8 +23,8 @@
 
 #include "report.h"
 
-#define SEARCH_FAMILY   "arastar"
-#define SAMPLING_FAMILY "ompl"
+#define SEARCH          "search"
+#define SAMPLING        "sampling"
 #define FASTEST_ALGO    "RRTConnect"
 #define HARD_SCENE_PART "narrow"
 
@@ -44,9 +49,26 @@ static double measured_sigma_of(const column *c, int metric)
     return mpb_grouped_measured(&c->m[metric]) > 0 ? sigma_of(c, metric) : NAN;
 }
 
-static int is_family(const config_ref *cf, const char *family)
+/* Set by report_write_findings(): whether the database records any
+ * approach; if not, the paper's families stand in for them. */
+static int g_recorded;
+
+/* A configuration's approach for the findings (see the top). */
+static const char *approach_of(const config_ref *cf)
 {
-    return strcmp(cf->planner, family) == 0;
+    if (g_recorded || cf->approach != NULL)
+        return cf->approach;
+    if (strcmp(cf->planner, "arastar") == 0)
+        return SEARCH;
+    if (strcmp(cf->planner, "ompl") == 0)
+        return SAMPLING;
+    return NULL;
+}
+
+static int is_approach(const config_ref *cf, const char *approach)
+{
+    const char *a = approach_of(cf);
+    return a != NULL && strcmp(a, approach) == 0;
 }
 
 /* The configuration with the smallest value of f among those where select
@@ -69,9 +91,9 @@ static int argmin(const report *r, const column *cols,
     return best;
 }
 
-static int not_family(const config_ref *cf, const char *family)
+static int not_approach(const config_ref *cf, const char *approach)
 {
-    return !is_family(cf, family);
+    return !is_approach(cf, approach);
 }
 
 static int is_hard_scene(const report *r, int s)
@@ -112,25 +134,59 @@ static double rate_of(const column *c)
  * rate: a planner that failed runs its rivals solved is not the fastest
  * for having timed only its easy ones. -1 if none solved a run.
  */
-static int fastest_of_most_successful(const report *r, const column *cols)
+static int fastest_of_most_successful(const report *r, const column *cols,
+                                      const char *approach)
 {
     double best = -1.0;
     for (int c = 0; c < r->num_configs; c++)
-        if (cols[c].m[M_TT].n > 0 && rate_of(&cols[c]) > best)
+        if ((approach == NULL || is_approach(&r->configs[c], approach)) &&
+            cols[c].m[M_TT].n > 0 && rate_of(&cols[c]) > best)
             best = rate_of(&cols[c]);
     int fast = -1;
     for (int c = 0; c < r->num_configs; c++)
-        if (cols[c].m[M_TT].n > 0 && rate_of(&cols[c]) == best &&
+        if ((approach == NULL || is_approach(&r->configs[c], approach)) &&
+            cols[c].m[M_TT].n > 0 && rate_of(&cols[c]) == best &&
             (fast < 0 || mean_of(&cols[c], M_TT) < mean_of(&cols[fast], M_TT)))
             fast = c;
     return fast;
+}
+
+/* Per scene, the best configuration of each approach the experiment
+ * has: its best success rate, the fastest among those (as "fastest"
+ * above), with its verified and unclaimed valid counts. */
+static void print_best_by_approach(const report *r, const column *cols,
+                                   FILE *out)
+{
+    static const char *const words[MPB_NUM_APPROACHES] = {MPB_APPROACHES};
+    int any = 0;
+    for (int a = 0; a < MPB_NUM_APPROACHES; a++) {
+        int present = 0;
+        for (int c = 0; c < r->num_configs; c++)
+            present |= is_approach(&r->configs[c], words[a]);
+        if (!present)
+            continue;
+        fputs(any++ ? "; " : "      best by approach: ", out);
+        int best = fastest_of_most_successful(r, cols, words[a]);
+        if (best < 0) {
+            fprintf(out, "%s none solved a run", words[a]);
+            continue;
+        }
+        const column *c = &cols[best];
+        fprintf(out, "%s %s (success %.0f%%, tau_t %.3g s, %ld verified of "
+                "%ld claimed, %ld unclaimed valid)", words[a],
+                r->configs[best].name, 100.0 * rate_of(c), mean_of(c, M_TT),
+                c->outcomes[MPB_OUTCOME_VERIFIED], c->claimed,
+                c->outcomes[MPB_OUTCOME_UNCLAIMED_VALID]);
+    }
+    if (any)
+        fputs(".\n", out);
 }
 
 static void print_scene_findings(const report *r, int s,
                                  const scene_summary *sum, FILE *out)
 {
     const column *cols = sum->cols;
-    int fast = fastest_of_most_successful(r, cols);
+    int fast = fastest_of_most_successful(r, cols, NULL);
     int any_fast = argmin(r, cols, mean_of, M_TT, NULL, NULL);
     int shortest = argmin(r, cols, mean_of, M_LP, NULL, NULL);
     int steady = argmin(r, cols, measured_sigma_of, M_LP, NULL, NULL);
@@ -160,6 +216,7 @@ static void print_scene_findings(const report *r, int s,
                 "%.0f%%)", r->configs[steady].name,
                 sigma_of(&cols[steady], M_LP), 100.0 * rate_of(&cols[steady]));
     fputs(".\n", out);
+    print_best_by_approach(r, cols, out);
 }
 
 static const char *verdict(int held, int checked)
@@ -182,7 +239,7 @@ static void check_search_planner(const report *r, const scene_summary *sums,
     size_t used = 0;
     for (int s = 0; s < r->num_scenes; s++) {
         const column *cols = sums[s].cols;
-        int ara = argmin(r, cols, mean_of, M_LP, is_family, SEARCH_FAMILY);
+        int ara = argmin(r, cols, mean_of, M_LP, is_approach, SEARCH);
         if (ara < 0)
             continue;
         double sd = measured_sigma_of(&cols[ara], M_LP);  /* NaN: no repeat */
@@ -193,7 +250,7 @@ static void check_search_planner(const report *r, const scene_summary *sums,
             snprintf(sd_text, sizeof sd_text, "%.3g rad", sd);
         /* Shortest of one is no finding: with no other planner's path
          * the scene is not checked. */
-        int other = argmin(r, cols, mean_of, M_LP, not_family, SEARCH_FAMILY);
+        int other = argmin(r, cols, mean_of, M_LP, not_approach, SEARCH);
         char other_text[160] = ", no other planner's path to compare";
         if (other >= 0) {
             int shortest = mean_of(&cols[ara], M_LP) <=
@@ -221,7 +278,7 @@ static void check_search_planner(const report *r, const scene_summary *sums,
 static int is_sampling(const config_ref *cf, const char *unused)
 {
     (void)unused;
-    return is_family(cf, SAMPLING_FAMILY);
+    return is_approach(cf, SAMPLING);
 }
 
 static int is_fastest_algo(const config_ref *cf, const char *unused)
@@ -340,6 +397,7 @@ int report_write_findings(const report *r, FILE *out)
         free(cols);
         return MPB_ENOMEM;
     }
+    g_recorded = report_any_approach(r);
     for (int s = 0; s < r->num_scenes; s++) {
         sums[s].cols = cols + (size_t)s * (size_t)r->num_configs;
         summarise(r, s, &sums[s]);

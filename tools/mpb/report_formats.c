@@ -109,6 +109,13 @@ int report_write_markdown(const report *r, FILE *out)
         for (int c = 0; c < nc; c++)
             fputs("---:|", out);
         fputc('\n', out);
+        /* The columns come grouped by approach: each labelled. */
+        if (report_any_approach(r)) {
+            fputs("| approach |", out);
+            for (int c = 0; c < nc; c++)
+                fprintf(out, " %s |", report_approach_label(&r->configs[c]));
+            fputc('\n', out);
+        }
         for (int i = 0; i < report_num_rows; i++) {
             if (!t.visible[i])
                 continue;
@@ -217,6 +224,15 @@ int report_write_csv(const report *r, FILE *out)
                                          : NAN, out);
             fprintf(out, ",,%ld,%d,\n", col->finished,
                     r->scenes[si].unfinished);
+            /* Claims in both directions: counts of runs by outcome. */
+            for (int o = 0; o < MPB_OUTCOME_COUNT; o++) {
+                char key[40];
+                snprintf(key, sizeof key, "%s_runs",
+                         mpb_outcome_name((mpb_outcome)o));
+                csv_row_start(r, si, c, key, "", out);
+                fprintf(out, "%ld,,%ld,%d,\n", col->outcomes[o],
+                        col->finished, r->scenes[si].unfinished);
+            }
         }
         scene_table_free(&t);
     }
@@ -404,6 +420,11 @@ int report_write_json(const report *r, FILE *out)
             json_string(cf->algorithm, out);
             fputs(",\n          \"params\": ", out);
             json_string(cf->params, out);
+            fputs(",\n          \"approach\": ", out);
+            if (cf->approach != NULL)
+                json_string(cf->approach, out);
+            else
+                fputs("null", out);
             fprintf(out, ",\n          \"runs\": %ld,\n"
                     "          \"successes\": %ld,\n"
                     "          \"success_rate\": ", col->finished,
@@ -416,6 +437,12 @@ int report_write_json(const report *r, FILE *out)
             json_number(col->finished > 0 ? (double)col->claimed /
                                                 (double)col->finished
                                           : NAN, out);
+            /* Claims in both directions (outcome.h). */
+            fputs(",\n          \"outcomes\": {", out);
+            for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
+                fprintf(out, "%s\"%s\": %ld", o ? ", " : "",
+                        mpb_outcome_name((mpb_outcome)o), col->outcomes[o]);
+            fputs("}", out);
             fputs(",\n          \"metrics\": {", out);
             for (int k = 0; k < M_COUNT; k++) {
                 if (!report_metric_shown(k))

@@ -30,7 +30,12 @@ static void usage(FILE *out)
         "  now collision: segment 3 ... self-collision between A and B\n"
         "\n"
         "then one line of totals: the runs that were successes and no longer\n"
-        "are, and how many of them go through the robot's own body. The\n"
+        "are, and how many of them go through the robot's own body. Each run\n"
+        "is then decided again by mpbenchd's own success rule (docs/metrics.md,\n"
+        "\"Claims\"): its stored claim and time, its final stage's verdict now;\n"
+        "a run whose outcome (verified, refused, late, unclaimed_valid,\n"
+        "unclaimed) differs from the stored one is listed, and a last line\n"
+        "counts the outcomes and the runs decided otherwise. The\n"
         "database is not changed. Use it after upgrading mpbench or editing a\n"
         "robot's SRDF, to see what the stored results still say.\n"
         "\n"
@@ -61,6 +66,8 @@ static void usage(FILE *out)
 typedef struct totals {
     long runs, stages, changed_stages, changed_runs;
     long successes, lost, lost_self, gained;
+    long outcomes[MPB_OUTCOME_COUNT];   /* decided again, runs with stages */
+    long decided_otherwise;             /* outcome now not the stored one */
 } totals;
 
 int verify_read_run(mpb_store *s, const char *db, int64_t run_id,
@@ -93,6 +100,24 @@ int verify_stage(const view_run *v, const view_stage *st,
     return 0;
 }
 
+/* Whether the collision of verdict now on stage st is with the robot's
+ * own body: the colliding configuration found again where the verdict
+ * points (mpb_find_collision()) and asked what it touches. */
+static int self_collision(const view_run *v, const view_stage *st,
+                          const mpb_verdict *now, double res)
+{
+    if (now->code != MPB_VERDICT_COLLISION)
+        return 0;
+    double *q = view_calloc((size_t)v->num_joints, sizeof *q);
+    mpb_collision_at at;
+    int self = mpb_find_collision(v->world, st->waypoints, st->num_waypoints,
+                                  v->num_joints, res, now->segment, q,
+                                  &at) == 1 &&
+               mpb_world_contact(v->world, q, NULL, 0) == MPB_CONTACT_SELF;
+    free(q);
+    return self;
+}
+
 /* One run: each stage verified again; 0, or -1 after one line. */
 static int verify_run(mpb_store *s, const char *db, int64_t run_id,
                       double step, totals *t)
@@ -105,7 +130,8 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         view_free(&v);
         return got < 0 ? -1 : 0;    /* no stages: nothing to check */
     }
-    int final_valid = -1, final_self = 0, changed = 0;
+    /* The final stage's verdict as stored, unless it is checked again. */
+    int final_valid = v.run.final_valid, final_self = 0, changed = 0;
     t->runs++;
     for (int i = 0; i < v.num_stages; i++) {
         const view_stage *st = &v.stages[i];
@@ -123,7 +149,7 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         t->stages++;
         if (i == v.num_stages - 1) {
             final_valid = valid;
-            final_self = strstr(now.detail, "self-collision") != NULL;
+            final_self = self_collision(&v, st, &now, res);
         }
         if (strcmp(name, st->verdict) == 0)
             continue;
@@ -135,13 +161,28 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
                now.detail);
     }
     t->changed_runs += changed;
-    if (v.run.success == 1) {
+    /* The success rule again (outcome.h), as mpbenchd applied it: the
+     * planner's claim and the time it took as stored, the final verdict
+     * as found now. */
+    int stored_success = v.run.success == 1;
+    int success = mpb_run_success(v.run.claimed, final_valid, v.run.in_time);
+    mpb_outcome now = mpb_run_outcome(v.run.claimed, final_valid, success);
+    mpb_outcome was = mpb_run_outcome(v.run.claimed, v.run.final_valid,
+                                      stored_success);
+    t->outcomes[now]++;
+    if (now != was) {
+        t->decided_otherwise++;
+        printf("run %lld %s/%s %s: stored %s, now %s\n", (long long)run_id,
+               v.scene, v.query, v.run.planner_config, mpb_outcome_name(was),
+               mpb_outcome_name(now));
+    }
+    if (stored_success) {
         t->successes++;
-        if (final_valid == 0) {
+        if (!success) {
             t->lost++;
             t->lost_self += final_self;
         }
-    } else if (v.run.success == 0 && final_valid == 1 && changed) {
+    } else if (success) {
         t->gained++;
     }
     view_free(&v);
@@ -225,7 +266,13 @@ int cmd_verify(int argc, char **argv)
     if (t.gained)
         printf("; %ld failed runs now verify", t.gained);
     printf("\n");
-    status = t.changed_stages ? MPB_EXIT_ERROR : MPB_EXIT_OK;
+    printf("outcomes by the success rule:");
+    for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
+        printf(" %s %ld%s", mpb_outcome_name((mpb_outcome)o), t.outcomes[o],
+               o + 1 < MPB_OUTCOME_COUNT ? "," : "");
+    printf("; %ld runs decided otherwise than stored\n", t.decided_otherwise);
+    status = t.changed_stages || t.decided_otherwise ? MPB_EXIT_ERROR
+                                                     : MPB_EXIT_OK;
 out:
     view_selection_free(&sel);
     mpb_store_close(s);

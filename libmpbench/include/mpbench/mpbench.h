@@ -80,6 +80,7 @@ char *mpb_read_file(const char *path, size_t max, size_t *len);
 #include "mpbench/proto.h"
 #include "mpbench/world.h"
 #include "mpbench/verify.h"
+#include "mpbench/outcome.h"
 #include "mpbench/wire.h"
 #include "mpbench/auth.h"
 #include "mpbench/receive.h"

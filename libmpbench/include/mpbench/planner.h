@@ -102,6 +102,14 @@ typedef struct mpb_planner_def {
      * (lcm_filter.h); print it. NULL: the line is lost.
      */
     void      (*on_warning)(void *user, const char *line);
+    /*
+     * Optional: each algorithm's approach, the paper's word for the kind
+     * of planner ("sampling", "search", "optimisation", "hybrid"; "" for
+     * none), approaches[i] for algorithms[i], announced with them
+     * (docs/protocol.md). NULL: the planner declares none. Not to be
+     * confused with name, the planner's family.
+     */
+    const char *const *approaches;
 } mpb_planner_def;
 
 /*

@@ -104,6 +104,21 @@ const char *mpb_status_name(int status);
  */
 int mpb_status_is_planners(int status);
 
+/*
+ * A planner configuration's approach: the paper's word for its kind of
+ * planner, declared per algorithm by a planner's announcement or by an
+ * experiment file's `approach:` (docs/protocol.md). Not the planner's
+ * name, which is its family ("ompl"). MPB_APPROACHES lists the words in
+ * the order reports group them.
+ */
+#define MPB_APPROACHES "sampling", "search", "optimisation", "hybrid"
+#define MPB_NUM_APPROACHES 4
+#define MPB_APPROACHES_TEXT "sampling, search, optimisation or hybrid"
+
+/* The place of approach among MPB_APPROACHES (0 ..), or -1 for a word
+ * that is none of them (NULL and "" too). */
+int mpb_approach_index(const char *approach);
+
 struct _mpb_stage_t;
 
 /*

@@ -120,6 +120,16 @@ int mpb_store_planner_config_add(mpb_store *s, int64_t experiment_id,
                                  const char *algorithm, const char *params,
                                  int64_t *id);
 
+/*
+ * Record configuration config_id's approach (planner_configs.approach,
+ * proto.h's words: "sampling", "search", "optimisation", "hybrid"), as
+ * the experiment file gives it (keep 0: written over what is there) or
+ * as a planner announces it (keep 1: written only where none is yet, so
+ * that the file's word stands). MPB_OK (also when keep left it), MPB_EDB.
+ */
+int mpb_store_planner_config_set_approach(mpb_store *s, int64_t config_id,
+                                          const char *approach, int keep);
+
 /* A property an imported log declares for each run ("graph states
  * INTEGER") or for each progress sample. */
 typedef struct mpb_log_property {
@@ -273,7 +283,8 @@ typedef struct mpb_run_record {
     const char *status;           /* mpb_status_name() of the planner's status */
     const char *message;          /* planner's message, may be "" */
     int         claimed_success;  /* planner said solved */
-    int         success;          /* solved in time and verified valid */
+    int         success;          /* solved in time and verified valid
+                                     (mpb_run_success(), outcome.h) */
     double      time_total, time_raw, time_other; /* tau_t, tau_r, tau_o, s */
     double      wall_time;        /* request sent (or started) to result
                                      verified and measured, s */
@@ -292,11 +303,17 @@ typedef struct mpb_run_record {
     int         num_exact;
     const mpb_exact_value *exact; /* values that are integers, as such
                                      (planner_values.exact); may be NULL */
+    int         late;             /* 1 where the run was not in time
+                                     (mpb_run_in_time() said 0): stored
+                                     as runs.in_time = 0, so that `mpb
+                                     verify` can apply the success rule
+                                     again; 0 (in time) by default */
 } mpb_run_record;
 
 /*
  * Store a finished run: its outcome, stages, metrics, planner values and
- * progress. Returns MPB_OK, or MPB_EEXISTS (writing nothing) if the run was
+ * progress. runs.outcome is mpb_run_outcome(claimed_success, the final
+ * stage's validity, success) (outcome.h), runs.in_time !late. Returns MPB_OK, or MPB_EEXISTS (writing nothing) if the run was
  * already done, or MPB_ENOTFOUND if run_uid is not the run's current
  * attempt.
  */
@@ -349,6 +366,9 @@ typedef struct mpb_planner_config_row {
     int64_t     id;
     const char *name;          /* e.g. "ompl/RRTConnect" */
     const char *planner, *algorithm, *params;
+    const char *approach;      /* "sampling", "search", ...; NULL where
+                                  none was declared (or the database was
+                                  made before planner_configs.approach) */
 } mpb_planner_config_row;
 
 /* The planner configurations of an experiment. */
@@ -431,6 +451,11 @@ typedef struct mpb_result_row {
     const mpb_named *named;    /* every metric of that stage, by name */
     double      verify_time;   /* runs.verify_time (s), NaN if none */
     double      memory;        /* runs.memory (MB), NaN if none */
+    int         outcome;       /* mpb_outcome (outcome.h): verified,
+                                  refused, late, unclaimed_valid or
+                                  unclaimed, by mpb_run_outcome() from the
+                                  run's claim, final stage and success
+                                  (databases made before runs.outcome too) */
 } mpb_result_row;
 
 /*
@@ -464,6 +489,11 @@ typedef struct mpb_run_detail {
     const char *status, *message, *verdict;   /* the same */
     int         success;        /* 1, 0, or -1 while the run is not done */
     double      time_total;     /* s; NaN if none */
+    int         claimed;        /* runs.claimed_success (0 if none) */
+    int         final_valid;    /* runs.valid: the final stage's stored
+                                   verdict was valid (0 if none) */
+    int         in_time;        /* runs.in_time (1 if none): the facts
+                                   the success rule takes (outcome.h) */
 } mpb_run_detail;
 
 /*

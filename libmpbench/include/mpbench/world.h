@@ -228,13 +228,20 @@ int mpb_world_num_allowed_pairs(const mpb_world *w);
 int mpb_world_allowed_pair(const mpb_world *w, int i,
                            mpb_world_acm_pair *out);
 
+/* What mpb_world_contact() found the robot touching. */
+#define MPB_CONTACT_SCENE 1  /* a scene object (or, in a world that cannot
+                                tell, something) */
+#define MPB_CONTACT_SELF  2  /* its own body: two of its links the
+                                allowed-collision matrix does not allow */
+
 /*
- * Is the robot at q in collision, and with what? 1 with one phrase in what
- * (may be NULL) naming the bodies in contact ("self-collision between
- * r_gripper_palm_link and torso_lift_link", "r_forearm_link touches scene
- * object table"); 0 if free; negative on error (MPB_EINVAL for NULL w or
- * q, a non-finite q). Worlds that cannot name bodies (planar) answer as
- * mpb_world_in_collision() with what empty.
+ * Is the robot at q in collision, and with what? MPB_CONTACT_SCENE or
+ * MPB_CONTACT_SELF (a scene object is looked for first) with one phrase
+ * in what (may be NULL) naming the bodies in contact ("self-collision
+ * between r_gripper_palm_link and torso_lift_link", "r_forearm_link
+ * touches scene object table"); 0 if free; negative on error (MPB_EINVAL
+ * for NULL w or q, a non-finite q). Worlds that cannot name bodies
+ * (planar) answer as mpb_world_in_collision() with what empty.
  */
 int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len);
 

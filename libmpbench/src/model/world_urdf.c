@@ -442,7 +442,7 @@ static int urdf_contact(void *impl, const double *q, char *what, size_t len)
         const char *name = body_name(u, m, &ka);
         mpb__set_err(what, len, "%s%s touches scene object %s", ka, name,
                      o ? o->id : "?");
-        return 1;
+        return MPB_CONTACT_SCENE;
     }
     if ((hit = mpb_collision_check_self(u->coll, &a, &b)) != 0) {
         if (hit < 0)
@@ -450,7 +450,7 @@ static int urdf_contact(void *impl, const double *q, char *what, size_t len)
         const char *na = body_name(u, a, &ka), *nb = body_name(u, b, &kb);
         mpb__set_err(what, len, "self-collision between %s%s and %s%s", ka, na,
                      kb, nb);
-        return 1;
+        return MPB_CONTACT_SELF;
     }
     return 0;
 }

@@ -197,6 +197,15 @@ double mpb_monotonic_s(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
+int mpb_approach_index(const char *approach)
+{
+    static const char *const words[MPB_NUM_APPROACHES] = {MPB_APPROACHES};
+    for (int i = 0; approach != NULL && i < MPB_NUM_APPROACHES; i++)
+        if (strcmp(approach, words[i]) == 0)
+            return i;
+    return -1;
+}
+
 const char *mpb_status_name(int status)
 {
     switch (status) {

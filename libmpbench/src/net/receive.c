@@ -1,16 +1,49 @@
 /* receive.c - the receive gate: trailer, bytes, decoding (receive.h). */
 #include <limits.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "mpbench/mpbench.h"
 #include "mpbench/receive.h"
+#include "mpb_planner_announce_v1_t.h"
+
+/*
+ * An announcement, checked by mpb_wire_check() as either form: one of an
+ * older planner (planner_announce_v1_t's fingerprint, before approaches)
+ * is decoded as that and handed on as a planner_announce_t that declares
+ * no approach, its strings and arrays moved over, so that
+ * mpb_planner_announce_t_decode_cleanup() frees them as its own.
+ */
+static int decode_announce(const void *data, int len, mpb_planner_announce_t *m)
+{
+    const unsigned char *p = data;
+    uint64_t fp = 0;
+    for (int i = 0; i < 8 && i < len; i++)
+        fp = (fp << 8) | p[i];
+    if ((int64_t)fp != __mpb_planner_announce_v1_t_get_hash())
+        return mpb_planner_announce_t_decode(data, 0, len, m);
+    mpb_planner_announce_v1_t v;
+    int n = mpb_planner_announce_v1_t_decode(data, 0, len, &v);
+    if (n < 0)
+        return n;
+    *m = (mpb_planner_announce_t){
+        .utime = v.utime, .planner_id = v.planner_id, .name = v.name,
+        .host = v.host, .pid = v.pid, .language = v.language,
+        .version = v.version, .heartbeat_ms = v.heartbeat_ms,
+        .num_algorithms = v.num_algorithms, .algorithms = v.algorithms,
+        .capacity = v.capacity, .num_active = v.num_active,
+        .active_runs = v.active_runs,
+        .num_approaches = 0, .approaches = NULL,
+    };
+    return n;
+}
 
 /* The generated decoder of each type, through one signature. */
 static int decode(mpb_wire_type type, const void *data, int len, void *msg)
 {
     switch (type) {
     case MPB_WIRE_PLANNER_ANNOUNCE:
-        return mpb_planner_announce_t_decode(data, 0, len, msg);
+        return decode_announce(data, len, msg);
     case MPB_WIRE_PLAN_REQUEST:
         return mpb_plan_request_t_decode(data, 0, len, msg);
     case MPB_WIRE_PLAN_RESULT:

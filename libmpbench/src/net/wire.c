@@ -15,6 +15,7 @@
 #include "mpb_plan_request_t.h"
 #include "mpb_plan_result_t.h"
 #include "mpb_planner_announce_t.h"
+#include "mpb_planner_announce_v1_t.h"
 #include "mpb_run_ack_t.h"
 
 typedef struct cursor {
@@ -102,9 +103,14 @@ static void fingerprint(cursor *c, int64_t expected)
         fail(c, "not this message type (fingerprint differs)");
 }
 
+/* An announcement: planner_announce_t, or planner_announce_v1_t as older
+ * planners send it, the same fields without the approaches. */
 static void announce(cursor *c)
 {
-    fingerprint(c, (int64_t)__mpb_planner_announce_t_get_hash());
+    int64_t fp = read_int(c, 8);
+    int v1 = fp == (int64_t)__mpb_planner_announce_v1_t_get_hash();
+    if (!c->bad && !v1 && fp != (int64_t)__mpb_planner_announce_t_get_hash())
+        fail(c, "not this message type (fingerprint differs)");
     doubles(c, 1);                         /* utime */
     string(c); string(c); string(c);       /* planner_id, name, host */
     skip(c, 4);                            /* pid */
@@ -115,6 +121,10 @@ static void announce(cursor *c)
     skip(c, 2);                            /* capacity */
     for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
         string(c);                         /* active_runs */
+    if (v1)
+        return;
+    for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
+        string(c);                         /* approaches */
 }
 
 static void goal(cursor *c)

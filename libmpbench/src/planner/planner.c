@@ -285,6 +285,10 @@ static void announce_fill(mpb__server *s, mpb_planner_announce_t *a)
     a->heartbeat_ms = s->heartbeat_ms;
     a->num_algorithms = (int16_t)d->num_algorithms;
     a->algorithms = (char **)d->algorithms;
+    if (d->approaches != NULL) {
+        a->num_approaches = (int16_t)d->num_algorithms;
+        a->approaches = (char **)d->approaches;
+    }
 }
 
 /* ---- heartbeat --------------------------------------------------------- */

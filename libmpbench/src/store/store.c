@@ -10,6 +10,8 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
+
+#include "mpbench/outcome.h"
 #include <unistd.h>
 
 #include "store/store_internal.h"
@@ -28,7 +30,7 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
         " valid = ?7, verdict = ?8, success = ?9, time_total = ?10,"
         " time_raw = ?11, time_other = ?12, wall_time = ?13, final_stage = ?14,"
         " final_metrics = ?15, world_setup_time = ?17, verify_time = ?18,"
-        " memory = ?19"
+        " memory = ?19, outcome = ?20, in_time = ?21"
         " WHERE id = ?1 AND run_uid = ?2 AND state != 'done'",
     [MPB__ST_STAGE_INSERT] =
         "INSERT OR REPLACE INTO stages(run_id, idx, name, time, num_waypoints,"
@@ -131,23 +133,71 @@ int mpb__store_has_column(mpb_store *s, const char *table, const char *column)
     return present;
 }
 
-/* Add a column that a database made by an earlier mpbench lacks. */
-static int add_missing_column(mpb_store *s, const char *table,
-                              const char *column, const char *type)
+/* Add a column that a database made by an earlier mpbench lacks; *added
+ * (may be NULL) says whether it did. */
+static int add_column(mpb_store *s, const char *table, const char *column,
+                      const char *type, int *added)
 {
     char sql[160], what[96];
+    if (added != NULL)
+        *added = 0;
     if (mpb__store_has_column(s, table, column))
         return MPB_OK;
+    if (added != NULL)
+        *added = 1;
     snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", table,
              column, type);
     snprintf(what, sizeof what, "add %s.%s", table, column);
     return exec(s, sql, what);
 }
 
+static int add_missing_column(mpb_store *s, const char *table,
+                              const char *column, const char *type)
+{
+    return add_column(s, table, column, type, NULL);
+}
+
+/* The migration step of claims in both directions (docs/schema.md): a
+ * database made before runs.outcome gets it for its finished runs, from
+ * the success rule's own function (outcome.h) over what it kept, and
+ * runs.in_time 0 where a claimed run with a valid final stage was no
+ * success (the only such reason then was time), else 1. */
+static int add_outcomes(mpb_store *s)
+{
+    int added, rc;
+    if ((rc = add_column(s, "runs", "outcome", "TEXT", &added)) != MPB_OK ||
+        (rc = add_missing_column(s, "runs", "in_time", "INTEGER")) != MPB_OK ||
+        !added)
+        return rc;
+    sqlite3_stmt *rd = mpb__store_prepare(s,
+        "SELECT id, coalesce(claimed_success, 0), coalesce(valid, 0),"
+        " coalesce(success, 0) FROM runs WHERE state = 'done'");
+    sqlite3_stmt *wr = mpb__store_prepare(s,
+        "UPDATE runs SET outcome = ?2, in_time = ?3 WHERE id = ?1");
+    rc = rd != NULL && wr != NULL ? MPB_OK : MPB_EDB;
+    while (rc == MPB_OK && sqlite3_step(rd) == SQLITE_ROW) {
+        int claimed = sqlite3_column_int(rd, 1);
+        int valid = sqlite3_column_int(rd, 2);
+        int success = sqlite3_column_int(rd, 3);
+        mpb_outcome o = mpb_run_outcome(claimed, valid, success);
+        sqlite3_bind_int64(wr, 1, sqlite3_column_int64(rd, 0));
+        sqlite3_bind_text(wr, 2, mpb_outcome_name(o), -1, SQLITE_STATIC);
+        sqlite3_bind_int(wr, 3, o != MPB_OUTCOME_LATE);
+        if (sqlite3_step(wr) != SQLITE_DONE)
+            rc = mpb__store_db_fail(s, "add runs.outcome");
+        sqlite3_reset(wr);
+    }
+    sqlite3_finalize(rd);
+    sqlite3_finalize(wr);
+    return rc;
+}
+
 static int refresh_results_view(mpb_store *s)
 {
     if (mpb__store_has_column(s, "results", "experiment_id") &&
-        mpb__store_has_column(s, "results", "message"))
+        mpb__store_has_column(s, "results", "message") &&
+        mpb__store_has_column(s, "results", "outcome") &&
+        mpb__store_has_column(s, "results", "approach"))
         return MPB_OK;
     int rc = exec(s, "DROP VIEW IF EXISTS results", "drop results view");
     return rc != MPB_OK ? rc
@@ -209,7 +259,9 @@ static int create_schema(mpb_store *s)
         (rc = add_missing_column(s, "stages", "verification", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK ||
         (rc = add_log_header(s)) != MPB_OK ||
-        (rc = add_exact_values(s)) != MPB_OK)
+        (rc = add_exact_values(s)) != MPB_OK ||
+        (rc = add_outcomes(s)) != MPB_OK ||
+        (rc = add_missing_column(s, "planner_configs", "approach", "TEXT")) != MPB_OK)
         goto fail;
     /* The results view is made again when it lacks a column this version
      * gives it (a database made before results.experiment_id). */

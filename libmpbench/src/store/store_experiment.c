@@ -212,6 +212,23 @@ int mpb_store_planner_config_add(mpb_store *s, int64_t experiment_id,
     return insert_or_get(s, ins, sel, "add planner config", id);
 }
 
+int mpb_store_planner_config_set_approach(mpb_store *s, int64_t config_id,
+                                          const char *approach, int keep)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s, keep
+        ? "UPDATE planner_configs SET approach = ?2 WHERE id = ?1"
+          " AND approach IS NULL"
+        : "UPDATE planner_configs SET approach = ?2 WHERE id = ?1");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, config_id);
+    sqlite3_bind_text(st, 2, approach, -1, SQLITE_STATIC);
+    int rc = sqlite3_step(st) == SQLITE_DONE
+                 ? MPB_OK : mpb__store_db_fail(s, "set approach");
+    sqlite3_finalize(st);
+    return rc;
+}
+
 int mpb_store_log_properties(mpb_store *s, int64_t config_id, int progress,
                              int n, const mpb_log_property *props)
 {

@@ -122,9 +122,14 @@ int mpb_store_planner_configs(mpb_store *s, int64_t experiment_id,
                                         const mpb_planner_config_row *row),
                               void *ud)
 {
+    /* A database made before planner_configs.approach, opened
+     * read-only, has none: NULL. */
     sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT id, name, planner, algorithm, params FROM planner_configs"
-        " WHERE experiment_id = ? ORDER BY id");
+        mpb__store_has_column(s, "planner_configs", "approach")
+        ? "SELECT id, name, planner, algorithm, params, approach"
+          " FROM planner_configs WHERE experiment_id = ? ORDER BY id"
+        : "SELECT id, name, planner, algorithm, params, NULL"
+          " FROM planner_configs WHERE experiment_id = ? ORDER BY id");
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, experiment_id);
@@ -136,6 +141,7 @@ int mpb_store_planner_configs(mpb_store *s, int64_t experiment_id,
             .planner = col_text(st, 2),
             .algorithm = col_text(st, 3),
             .params = col_text(st, 4),
+            .approach = col_text(st, 5),
         };
         stop = cb(ud, &row);
     }
@@ -296,6 +302,9 @@ static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
         .world_setup_time = col_double(st, 14),
         .verify_time = col_double(st, 15),
         .memory = col_double(st, 16),
+        .outcome = mpb_run_outcome(sqlite3_column_int(st, 17),
+                                   sqlite3_column_int(st, 18),
+                                   sqlite3_column_int(st, 4) != 0),
     };
     for (int i = 0; i < w->num_names; i++)
         w->metrics[i] = NAN;
@@ -420,6 +429,10 @@ static int64_t query_scene(query_scenes *qs, int64_t query_id)
     return 0;
 }
 
+/* Columns 17 and 18 of both results walks: the run's claim and its final
+ * stage's stored validity, for its outcome (outcome.h). */
+#define CLAIM "coalesce(r.claimed_success, 0), coalesce(r.valid, 0)"
+
 /* The planner's world setup time of run r (MPB_WORLD_SETUP_TIME of
  * planner.h) for the statement that joins the metrics: one seek of
  * planner_values' key (run_id, name), NULL for the runs that built no
@@ -444,7 +457,7 @@ static int results_packed(mpb_store *s, int64_t experiment_id,
     "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
     " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
     " r.final_stage, r.final_metrics, NULL, NULL, r.valid, " setup         \
-    " FROM runs r WHERE r.experiment_id = ?1 AND r.state = 'done'"         \
+    ", " CLAIM " FROM runs r WHERE r.experiment_id = ?1 AND r.state = 'done'"         \
     scene_where " ORDER BY r.id"
 #define IN_SCENE " AND r.query_id IN (SELECT id FROM queries WHERE scene_id = ?2)"
     /* Without runs.memory or runs.verify_time (a database made before
@@ -549,7 +562,7 @@ int mpb_store_results(mpb_store *s, int64_t experiment_id, int64_t scene_id,
     "SELECT r.id, r.planner_config_id, r.query_id, r.repetition,"          \
     " r.success, r.status, r.time_total, r.time_raw, r.time_other,"        \
     " coalesce(?3, r.final_stage), m.name, m.value, q.scene_id, st.valid," \
-    " " WORLD_SETUP ", " verify                                             \
+    " " WORLD_SETUP ", " verify ", " CLAIM                                  \
     " FROM runs r JOIN queries q ON q.id = r.query_id"                     \
     " LEFT JOIN metrics m ON m.run_id = r.id"                              \
     "  AND m.stage = coalesce(?3, r.final_stage)"                          \

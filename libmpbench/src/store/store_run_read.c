@@ -4,6 +4,7 @@
  * and every stage with its waypoints and verdict.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,12 +20,22 @@ static const char *text_or_empty(sqlite3_stmt *st, int i)
 int mpb_store_run_get(mpb_store *s, int64_t run_id,
                       int (*cb)(void *ud, const mpb_run_detail *row), void *ud)
 {
-    sqlite3_stmt *st = mpb__store_prepare(s,
+    /* runs.in_time, or for a database made before it, what its runs
+     * say: only a claimed run with a valid final stage could be no
+     * success, and then for its time alone (store.c, add_outcomes()). */
+    char sql[640];
+    snprintf(sql, sizeof sql,
         "SELECT r.id, r.experiment_id, r.planner_config_id, r.query_id,"
         " q.scene_id, r.repetition, r.state, p.name, r.planner_id, r.status,"
-        " r.message, r.verdict, r.success, r.time_total"
+        " r.message, r.verdict, r.success, r.time_total,"
+        " coalesce(r.claimed_success, 0), coalesce(r.valid, 0), %s"
         " FROM runs r JOIN planner_configs p ON p.id = r.planner_config_id"
-        " JOIN queries q ON q.id = r.query_id WHERE r.id = ?");
+        " JOIN queries q ON q.id = r.query_id WHERE r.id = ?",
+        mpb__store_has_column(s, "runs", "in_time")
+            ? "coalesce(r.in_time, 1)"
+            : "NOT (coalesce(r.claimed_success, 0) AND coalesce(r.valid, 0)"
+              " AND NOT coalesce(r.success, 0))");
+    sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, run_id);
@@ -47,6 +58,9 @@ int mpb_store_run_get(mpb_store *s, int64_t run_id,
                            ? -1 : sqlite3_column_int(st, 12),
             .time_total = sqlite3_column_type(st, 13) == SQLITE_NULL
                               ? NAN : sqlite3_column_double(st, 13),
+            .claimed = sqlite3_column_int(st, 14),
+            .final_valid = sqlite3_column_int(st, 15),
+            .in_time = sqlite3_column_int(st, 16),
         };
         rc = cb(ud, &d);
     } else if (step == SQLITE_DONE) {

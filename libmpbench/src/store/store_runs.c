@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mpbench/outcome.h"
 #include "store/store_internal.h"
 
 int mpb_store_runs_unfinished(mpb_store *s, int64_t experiment_id,
@@ -319,6 +320,11 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
             sqlite3_bind_blob(st, 15, packed, len, SQLITE_STATIC);
     }
     sqlite3_bind_int(st, 9, r->success);
+    /* The run's outcome by the rule's own function (outcome.h). */
+    sqlite3_bind_text(st, 20, mpb_outcome_name(mpb_run_outcome(
+                          r->claimed_success, last != NULL && last->valid,
+                          r->success)), -1, SQLITE_STATIC);
+    sqlite3_bind_int(st, 21, !r->late);
     sqlite3_bind_double(st, 10, r->time_total);
     sqlite3_bind_double(st, 11, r->time_raw);
     sqlite3_bind_double(st, 12, r->time_other);

@@ -31,6 +31,7 @@ const char mpb__schema_v1[] =
     "  planner       TEXT NOT NULL,\n"
     "  algorithm     TEXT NOT NULL,\n"
     "  params        TEXT NOT NULL,\n"
+    "  approach      TEXT,\n"
     "  UNIQUE(experiment_id, name));\n"
 
     "CREATE TABLE IF NOT EXISTS scenes(\n"
@@ -95,6 +96,8 @@ const char mpb__schema_v1[] =
     "  world_setup_time  REAL,\n"
     "  verify_time       REAL,\n"
     "  memory            REAL,\n"
+    "  outcome           TEXT,\n"
+    "  in_time           INTEGER,\n"
     "  UNIQUE(experiment_id, planner_config_id, query_id, repetition));\n"
     /* By experiment, in run order: what reports and a resume read. Not by
      * state: each change of state would move an entry between three
@@ -174,9 +177,10 @@ const char mpb__schema_results_view[] =
     "CREATE VIEW IF NOT EXISTS results AS\n"
     "SELECT r.id AS run, r.experiment_id, e.name AS experiment,\n"
     "       s.name AS scene,\n"
-    "       q.name AS query, c.name AS planner, r.repetition, r.status,\n"
+    "       q.name AS query, c.name AS planner, c.approach,\n"
+    "       r.repetition, r.status,\n"
     "       r.claimed_success,\n"
-    "       r.success, r.verdict, r.message,\n"
+    "       r.success, r.outcome, r.verdict, r.message,\n"
     "       r.time_total, r.time_raw, r.time_other,\n"
     "       r.final_stage,\n"
     "       (SELECT value FROM metrics m WHERE m.run_id = r.id\n"

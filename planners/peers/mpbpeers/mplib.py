@@ -50,6 +50,7 @@ class Adapter:
     DESCRIPTION = ("MPLib 0.2.1: RRTConnect, FCL on its own robot and "
                    "scene model, simplify_path, TOPP-RA.")
     ALGORITHMS = ["RRTConnect"]
+    APPROACH = {a: "sampling" for a in ALGORITHMS}
     GOAL_REGIONS = False     # it takes goal configurations (IK by the kit)
 
     def mesh_map(self, path):

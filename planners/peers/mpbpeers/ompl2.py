@@ -32,6 +32,7 @@ class Adapter:
     DESCRIPTION = ("OMPL 2.0 (Python wheel), validity checked by "
                    "libmpbench's world through the kit.")
     ALGORITHMS = ALGORITHMS
+    APPROACH = {a: "sampling" for a in ALGORITHMS}
     GOAL_REGIONS = False     # the kit samples goal states (GoalStates)
 
     def build(self, problem, world):

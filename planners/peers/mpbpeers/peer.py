@@ -531,7 +531,7 @@ def main(adapter, argv=None):
     auth = Auth(args.secret_file) if args.secret_file else None
     worker = Worker(adapter)    # forked before LCM's threads start
     node = Node(adapter.NAME, adapter.ALGORITHMS, args.lcm_url, auth,
-                args.verbose)
+                args.verbose, getattr(adapter, "APPROACH", None))
     import signal
     signal.signal(signal.SIGTERM, lambda *_: node.stop())
     signal.signal(signal.SIGINT, lambda *_: node.stop())

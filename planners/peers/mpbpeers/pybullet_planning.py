@@ -29,6 +29,7 @@ class Adapter:
     DESCRIPTION = ("pybullet-planning 0.6.1: birrt on Bullet collision "
                    "checking, then its smooth_path.")
     ALGORITHMS = ["birrt"]
+    APPROACH = {a: "sampling" for a in ALGORITHMS}
     GOAL_REGIONS = False     # birrt takes one goal configuration
 
     def build(self, problem, world):

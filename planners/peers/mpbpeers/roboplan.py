@@ -29,6 +29,7 @@ class Adapter:
     DESCRIPTION = ("roboplan 0.7.0: RRT (and its rrt_connect option) on "
                    "Pinocchio, Coal collision checking, PathShortcutter.")
     ALGORITHMS = ["RRT", "RRTConnect"]
+    APPROACH = {a: "sampling" for a in ALGORITHMS}
     GOAL_REGIONS = False     # RRT.plan takes one goal configuration
 
     def build(self, problem, world):

@@ -147,13 +147,29 @@ class Auth:
             return self.FRESH, body, sender
 
 
+# The approaches a planner may declare per algorithm (docs/protocol.md).
+APPROACHES = ("sampling", "search", "optimisation", "hybrid")
+
+
 class Node:
     """A planner process on the network: name is its family (what
     experiment files name), algorithms the names it offers, url LCM's URL
-    ("" for LCM's default), auth an Auth or None. Raises ValueError for a
-    name the C kit would refuse too."""
+    ("" for LCM's default), auth an Auth or None. approaches (optional)
+    maps an algorithm to its approach, the paper's word for its kind of
+    planner ("sampling", "search", "optimisation", "hybrid"), announced
+    with it (docs/protocol.md); an algorithm it leaves out declares none.
+    Raises ValueError for a name the C kit would refuse too, or an
+    approach that is none of those words."""
 
-    def __init__(self, name, algorithms, url, auth=None, verbose=False):
+    def __init__(self, name, algorithms, url, auth=None, verbose=False,
+                 approaches=None):
+        approaches = dict(approaches or {})
+        for algorithm, word in approaches.items():
+            if word not in APPROACHES:
+                raise ValueError(f"algorithm {algorithm}: approach "
+                                 f"'{word}' is none of "
+                                 f"{', '.join(APPROACHES)}")
+        self.approaches = approaches
         error = name_error(name)
         if error:
             raise ValueError(error)
@@ -211,6 +227,9 @@ class Node:
         a.pid, a.language, a.version = os.getpid(), "python", "0.1.0"
         a.heartbeat_ms = int(HEARTBEAT_S * 1000)
         a.algorithms, a.num_algorithms = list(self.algorithms), len(self.algorithms)
+        if self.approaches:
+            a.approaches = [self.approaches.get(x, "") for x in a.algorithms]
+            a.num_approaches = len(a.approaches)
         a.capacity = 1
         with self.lock:
             a.active_runs = list(self.active)

@@ -60,7 +60,8 @@ def main(argv=None):
         print(f"mpb-planner-python: {e}", file=sys.stderr)
         return 1
     try:
-        node = Node(args.name, ALGORITHMS, args.lcm_url, auth, args.verbose)
+        node = Node(args.name, ALGORITHMS, args.lcm_url, auth, args.verbose,
+                    {a: "sampling" for a in ALGORITHMS})
     except Exception as e:
         print(f"mpb-planner-python: cannot start LCM: {e}", file=sys.stderr)
         return 1

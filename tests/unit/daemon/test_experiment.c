@@ -302,6 +302,56 @@ static void a_planner_family_must_fit_an_id(void **state)
     mpbd_experiment_free(e);
 }
 
+/* approach: on a planners entry is the kind of planner of each of its
+ * algorithms; none (NULL) where it is not given; a word that is none of
+ * the four is refused at its line and column. */
+static void a_planner_entry_names_its_approach(void **state)
+{
+    mpbd_experiment *e;
+    (void)state;
+    assert_non_null(e = load_text(
+        "experiment: {name: x, time_limit: 1}\n" ROBOT
+        "scenes: [{name: s, format: planar, text: \"\", " QUERIES "}]\n"
+        "planners:\n"
+        "  - {planner: srmp, algorithms: [wAstar, ARAstar], approach: search}\n"
+        "  - {planner: drake, algorithms: [KTO], approach: optimisation}\n"
+        "  - {planner: ompl, algorithms: [RRTConnect]}\n"));
+    assert_int_equal(e->num_configs, 4);
+    assert_string_equal(e->configs[0].approach, "search");
+    assert_string_equal(e->configs[1].approach, "search");
+    assert_string_equal(e->configs[2].approach, "optimisation");
+    assert_null(e->configs[3].approach);
+    mpbd_experiment_free(e);
+    static const char *const words[] = {"sampling", "search", "optimisation",
+                                        "hybrid"};
+    for (size_t i = 0; i < sizeof words / sizeof *words; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+                 ROBOT "scenes: [{name: s, format: planar, text: \"\", "
+                 QUERIES "}]\n"
+                 "planners: [{planner: p, algorithms: [a], approach: %s}]\n",
+                 words[i]);
+        assert_non_null(e = load_text(text));
+        assert_string_equal(e->configs[0].approach, words[i]);
+        mpbd_experiment_free(e);
+    }
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n" ROBOT
+                          "scenes: [{name: s, format: planar, text: \"\", "
+                          QUERIES "}]\n"
+                          "planners:\n"
+                          "  - {planner: p, algorithms: [a],\n"
+                          "     approach: optimization}\n"));
+    assert_error("6:16", "approach 'optimization' is none of sampling, "
+                         "search, optimisation or hybrid");
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n" ROBOT
+                          "scenes: [{name: s, format: planar, text: \"\", "
+                          QUERIES "}]\n"
+                          "planners: [{planner: p, algorithms: [a], "
+                          "approach: [search]}]\n"));
+    assert_error("4:52", "approach must be one word: sampling, search, "
+                         "optimisation or hybrid");
+}
+
 /* An experiment of the Panda with its SRDF, the robot's extra keys and
  * the query as given. */
 static mpbd_experiment *load_panda(const char *robot_keys, const char *query)
@@ -700,6 +750,7 @@ int main(void)
         cmocka_unit_test(faults_are_where_their_file_is_named),
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),
+        cmocka_unit_test(a_planner_entry_names_its_approach),
         cmocka_unit_test(a_group_of_the_srdf),
         cmocka_unit_test(a_group_state_by_name),
         cmocka_unit_test(bytes_are_placed_at_their_line),

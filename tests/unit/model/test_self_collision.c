@@ -95,7 +95,8 @@ static void the_gripper_inside_the_torso_collides_naming_both_links(void **state
 
     assert_int_equal(mpb_world_in_collision(w, gripper_in_torso), 1);
     char what[160];
-    assert_int_equal(mpb_world_contact(w, gripper_in_torso, what, sizeof what), 1);
+    assert_int_equal(mpb_world_contact(w, gripper_in_torso, what, sizeof what),
+                     MPB_CONTACT_SELF);
     assert_string_equal(what, "self-collision between torso_lift_link and "
                               "r_gripper_palm_link");
     /* Self-collision is no part of the clearance to the (empty) scene. */
@@ -180,7 +181,8 @@ static void an_srdf_gives_its_pairs_and_the_adjacent_ones(void **state)
     char what[160];
     assert_int_equal(mpb_world_in_collision(w, through_post), 0);
     /* arm3 across arm1: no line allows it. */
-    assert_int_equal(mpb_world_contact(w, folded, what, sizeof what), 1);
+    assert_int_equal(mpb_world_contact(w, folded, what, sizeof what),
+                     MPB_CONTACT_SELF);
     assert_string_equal(what, "self-collision between arm1 and arm3");
     mpb_world_close(w);
     free(m);
@@ -190,7 +192,8 @@ static void an_srdf_gives_its_pairs_and_the_adjacent_ones(void **state)
      * (they meet in some states), so the same state collides. */
     text = robot_text(MPB_TEST_DATA "/folding_arm.urdf", NULL);
     w = open_text(text, folding, 3);
-    assert_int_equal(mpb_world_contact(w, through_post, what, sizeof what), 1);
+    assert_int_equal(mpb_world_contact(w, through_post, what, sizeof what),
+                     MPB_CONTACT_SELF);
     assert_string_equal(what, "self-collision between arm1 and post");
     mpb_world_close(w);
     free(text);
@@ -362,7 +365,8 @@ static void held_values_decide_the_generated_matrix(void **state)
     assert_int_equal(mpb_world_hold(w, slide, &at_half, 1, err, sizeof err),
                      MPB_OK);
     assert_int_equal(mpb_world_in_collision(w, diagonal), 1);
-    assert_int_equal(mpb_world_contact(w, diagonal, what, sizeof what), 1);
+    assert_int_equal(mpb_world_contact(w, diagonal, what, sizeof what),
+                     MPB_CONTACT_SELF);
     assert_string_equal(what, "self-collision between arm and block");
     assert_int_equal(mpb_world_in_collision(w, straight), 0);
     m = matrix_text(w);

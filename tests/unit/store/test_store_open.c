@@ -183,6 +183,119 @@ static void a_database_in_a_read_only_folder_is_read(void **state)
     assert_false(present(f->wal));
 }
 
+static int run_ids(void *ud, const mpb_run_row *row)
+{
+    ((int64_t *)ud)[row->repetition] = row->id;
+    return 0;
+}
+
+static void exec_sql(const char *path, const char *sql)
+{
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
+    char *msg = NULL;
+    if (sqlite3_exec(db, sql, NULL, NULL, &msg) != SQLITE_OK)
+        fail_msg("%s: %s", sql, msg);
+    sqlite3_close(db);
+}
+
+static char *column_text(const char *path, const char *sql)
+{
+    sqlite3 *db;
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_prepare_v2(db, sql, -1, &st, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+    const unsigned char *t = sqlite3_column_text(st, 0);
+    char *out = strdup(t ? (const char *)t : "NULL");
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+    return out;
+}
+
+/*
+ * A database made before runs.outcome, runs.in_time and
+ * planner_configs.approach (the columns dropped, as an older mpbench
+ * left it) gets them when a writer opens it: each finished run's outcome
+ * by mpb_run_outcome() from what it kept, in_time 0 only where a claimed
+ * run with a valid final stage was no success; the approach NULL. Its
+ * runs keep their place, and a new run's outcome is written as usual.
+ */
+static void an_older_database_gets_its_runs_outcomes(void **state)
+{
+    fixture *f = *state;
+    mpb_store *s;
+    int64_t cfg, scene, query, ids[5];
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    /* status, claimed, final stage valid, success: verified, refused,
+     * late, unclaimed valid, unclaimed. */
+    static const struct { const char *status; int claimed, valid, success; }
+        kinds[5] = {{"solved", 1, 1, 1}, {"solved", 1, 0, 0},
+                    {"solved", 1, 1, 0}, {"failed", 0, 1, 0},
+                    {"timeout", 0, 0, 0}};
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, 1, "p/a", "p", "a", "",
+                                                  &cfg), MPB_OK);
+    mpb_scene_info sc = {"s", "planar", "r", "r", "planar", "x", "x"};
+    assert_int_equal(mpb_store_scene_add(s, 1, &sc, &scene), MPB_OK);
+    mpb_query_info q = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    for (int i = 0; i < 6; i++)
+        assert_int_equal(mpb_store_run_add(s, 1, cfg, query, i, i), MPB_OK);
+    int64_t all[6];
+    assert_int_equal(mpb_store_runs_unfinished(s, 1, run_ids, all), MPB_OK);
+    memcpy(ids, all, sizeof ids);
+    for (int i = 0; i < 5; i++) {
+        char uid[16];
+        snprintf(uid, sizeof uid, "u%d", i);
+        assert_int_equal(mpb_store_run_sent(s, ids[i], uid, "p@h:1"), MPB_OK);
+        mpb_stage_record st = {.name = "raw", .valid = kinds[i].valid,
+                               .verdict = kinds[i].valid ? "valid"
+                                                         : "collision",
+                               .verdict_segment = -1};
+        mpb_run_record rec = {
+            .run_id = ids[i], .run_uid = uid, .planner_id = "p@h:1",
+            .status = kinds[i].status, .message = "",
+            .claimed_success = kinds[i].claimed, .success = kinds[i].success,
+            .late = i == 2, .time_total = 1, .time_raw = 1, .time_other = 0,
+            .wall_time = 1, .num_stages = 1, .stages = &st,
+            .verify_time = 0.1, .memory = 1,
+        };
+        assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+    }
+    mpb_store_close(s);
+    char *now = column_text(f->db, "SELECT group_concat(outcome || ':' || "
+                            "in_time, ' ') FROM (SELECT outcome, in_time "
+                            "FROM runs WHERE state = 'done' ORDER BY id)");
+    static const char want[] = "verified:1 refused:1 late:0 "
+                               "unclaimed_valid:1 unclaimed:1";
+    assert_string_equal(now, want);
+    free(now);
+
+    exec_sql(f->db, "DROP VIEW results;"
+             " ALTER TABLE runs DROP COLUMN outcome;"
+             " ALTER TABLE runs DROP COLUMN in_time;"
+             " ALTER TABLE planner_configs DROP COLUMN approach");
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    mpb_store_close(s);
+    now = column_text(f->db, "SELECT group_concat(outcome || ':' || "
+                      "in_time, ' ') FROM (SELECT outcome, in_time FROM runs"
+                      " WHERE state = 'done' ORDER BY id)");
+    assert_string_equal(now, want);
+    free(now);
+    now = column_text(f->db, "SELECT count(*) || ' ' || count(outcome) || "
+                      "' ' || coalesce(max(p.approach), 'none') FROM runs r"
+                      " JOIN planner_configs p ON p.id = r.planner_config_id");
+    assert_string_equal(now, "6 5 none");     /* the pending run has none */
+    free(now);
+    now = column_text(f->db, "SELECT group_concat(outcome, ' ') FROM results");
+    assert_string_equal(now, "verified refused late unclaimed_valid "
+                             "unclaimed");
+    free(now);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -190,6 +303,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(each_error_names_the_file_and_what_is_wrong, setup, teardown),
         cmocka_unit_test_setup_teardown(reading_leaves_no_wal_or_shm_behind, setup, teardown),
         cmocka_unit_test_setup_teardown(a_database_in_a_read_only_folder_is_read, setup, teardown),
+        cmocka_unit_test_setup_teardown(an_older_database_gets_its_runs_outcomes, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -616,7 +616,7 @@ static void markdown_has_the_same_tables(void **state)
     assert_non_null(strstr(t, "| s_r (%) | 100.0 | - |\n"));
     assert_null(strstr(t, "not finished"));
     /* The header, the rule and 15 rows (no l_e: nothing measured it). */
-    assert_int_equal(count(t, "\n|"), 17);
+    assert_int_equal(count(t, "\n|"), 21);
 
     /* Names cannot break the table or turn into emphasis. */
     run(&o, "stdout", "report -f markdown '%s'", f->odd);
@@ -638,9 +638,9 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "unfinished,sigma_single\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
     /* 2 scenes x 2 configurations x (12 metrics + the success rate and
-     * the claimed one), and the header: always the same rows, empty where
-     * nothing was measured. */
-    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 14);
+     * the claimed one + 5 outcomes), and the header: always the same
+     * rows, empty where nothing was measured. */
+    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 19);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1,0\n"));
@@ -655,6 +655,11 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
                                    "success_rate,,0.5,,2,1,\n"));
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
                                    "time_total,s,0.5,,1,1,\n"));
+    /* Claims: B's K2 run claimed, its final stage refused. */
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
+                                   "refused_runs,,1,,2,1,\n"));
+    assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ara/ARAstar,"
+                                   "verified_runs,,1,,2,1,\n"));
     /* Not measured, never run: empty values, n = 0. */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "clearance,m,,,0,1,\n"));
@@ -682,7 +687,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "                r['metric'], r['mean'], r['n']]))\n",
         "report -f csv '%s'", f->odd);
     assert_int_equal(o.status, 0);
-    assert_string_equal(o.text, "14\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
+    assert_string_equal(o.text, "19\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
                                 "time_total|2|1\n");
 }
 
@@ -707,6 +712,10 @@ static void latex_has_a_tabular_per_scene(void **state)
     assert_non_null(strstr(k, "    $\\kappa'$ (Mean, rad$^2$) & 0.360 & "
                               "1.500 \\\\\n"));
     assert_non_null(strstr(k, "    $s_r$ (\\%) & 83.3 & 50.0 \\\\\n"
+                              "    claimed & 6 & 2 \\\\\n"
+                              "    verified & 5 & 1 \\\\\n"
+                              "    refused claims & 1 & 1 \\\\\n"
+                              "    unclaimed valid & 0 & 0 \\\\\n"
                               "    \\hline\n  \\end{tabular}\n"));
     assert_null(strstr(k, "$d_n$"));
     const char *t = section(&o, "\\caption{TABLETOP", "\\end{table}");
@@ -898,6 +907,154 @@ static void bad_command_lines_exit_2(void **state)
     assert_int_equal(o.status, 2);
 }
 
+/* One run of a configuration of the approach experiment: the planner's
+ * status, its final stage's verdict and mpbench's success. */
+static void finish_claim(mpb_store *s, int64_t run_id, const char *status,
+                         int valid, int success)
+{
+    char uid[32];
+    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
+    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "planner-1"), MPB_OK);
+    mpb_named m[] = {{"path_length", 1.0}, {"time", 0.01}};
+    mpb_stage_record st = {.name = "raw", .valid = valid,
+                           .verdict = valid ? "valid" : "collision",
+                           .verdict_segment = -1, .num_metrics = 2,
+                           .metrics = m};
+    mpb_run_record rec = {
+        .run_id = run_id, .run_uid = uid, .planner_id = "planner-1",
+        .status = status, .claimed_success = strcmp(status, "solved") == 0,
+        .success = success, .time_total = 0.5, .time_raw = 0.5,
+        .time_other = 0, .num_stages = 1, .stages = &st,
+        .verify_time = NAN, .memory = NAN,
+    };
+    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+}
+
+static int each_run(void *ud, const mpb_run_row *row)
+{
+    int64_t (*ids)[2] = ud;
+    ids[row->planner_config_id - 1][row->repetition] = row->id;
+    return 0;
+}
+
+/*
+ * Columns grouped and labelled by approach (sampling, search,
+ * optimisation, hybrid, then none), whatever the order of the
+ * configurations' ids; the claims counted both ways; the findings name
+ * the best configuration of each approach from the data.
+ */
+static void columns_are_grouped_by_approach_and_claims_counted(void **state)
+{
+    fixture *f = *state;
+    char db[128];
+    mpb_store *s;
+    int64_t exp, scene, query, cfg[4], ids[4][2] = {{0}};
+    snprintf(db, sizeof db, "%s/approach.db", f->dir);
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    mpb_experiment_info e = {"kinds", "k.yaml", "h4", "text", 2, 10.0, NULL, 0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    static const char *const names[4][3] = {
+        {"null/straight_line", "null", NULL},
+        {"srmp/wAstar", "srmp", "search"},
+        {"klampt/sbl", "klampt", "sampling"},
+        {"drake/KTO", "drake", "optimisation"},
+    };
+    for (int c = 0; c < 4; c++) {
+        assert_int_equal(mpb_store_planner_config_add(s, exp, names[c][0],
+                             names[c][1], strchr(names[c][0], '/') + 1, "",
+                             &cfg[c]), MPB_OK);
+        assert_int_equal(cfg[c], c + 1);
+        if (names[c][2] != NULL)
+            assert_int_equal(mpb_store_planner_config_set_approach(s, cfg[c],
+                                 names[c][2], c == 1), MPB_OK);
+    }
+    /* A planner's word does not replace the file's: kept. */
+    assert_int_equal(mpb_store_planner_config_set_approach(s, cfg[1],
+                                                           "hybrid", 1),
+                     MPB_OK);
+    mpb_scene_info sc = {"wall", "planar", "r", "r", "planar", "w", "w"};
+    assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    mpb_query_info q = {"w1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    for (int c = 0; c < 4; c++)
+        for (int rep = 0; rep < 2; rep++)
+            assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query, rep,
+                                               rep), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(s, exp, each_run, ids), MPB_OK);
+    /* null: failed by its word, valid by mpbench's, twice. */
+    finish_claim(s, ids[0][0], "failed", 1, 0);
+    finish_claim(s, ids[0][1], "approximate", 1, 0);
+    /* srmp: verified, then a claim refused. */
+    finish_claim(s, ids[1][0], "solved", 1, 1);
+    finish_claim(s, ids[1][1], "solved", 0, 0);
+    /* klampt: verified twice. */
+    finish_claim(s, ids[2][0], "solved", 1, 1);
+    finish_claim(s, ids[2][1], "solved", 1, 1);
+    /* drake: "infeasible" with a valid path, and a plain failure. */
+    finish_claim(s, ids[3][0], "failed", 1, 0);
+    finish_claim(s, ids[3][1], "failed", 0, 0);
+    mpb_store_close(s);
+
+    output o;
+    run(&o, "stdout", "report --findings '%s'", db);
+    assert_int_equal(o.status, 0);
+    const char *approach = strstr(o.text, "\nApproach ");
+    const char *metric = strstr(o.text, "\nMetric ");
+    assert_non_null(approach);
+    assert_non_null(metric);
+    assert_true(approach < metric);
+    /* sampling, search, optimisation, then the one that declares none,
+     * each label over its column. */
+    const char *a1 = strstr(approach, "sampling"), *a2 = strstr(approach, "search"),
+               *a3 = strstr(approach, "optimisation"), *a4 = strstr(approach + 1, " -\n");
+    assert_true(a1 && a2 && a3 && a4 && a1 < a2 && a2 < a3 && a3 < a4 &&
+                a4 < metric);
+    const char *m1 = strstr(metric, "klampt/sbl"), *m2 = strstr(metric, "srmp/wAstar"),
+               *m3 = strstr(metric, "drake/KTO"), *m4 = strstr(metric, "null/straight_line");
+    assert_true(m1 && m2 && m3 && m4 && m1 < m2 && m2 < m3 && m3 < m4);
+    /* The counts, in that column order (the text's runs of spaces as
+     * one). */
+    static char sq[sizeof o.text];
+    size_t n = 0;
+    for (const char *p = o.text; *p; p++)
+        if (!(*p == ' ' && n > 0 && sq[n - 1] == ' '))
+            sq[n++] = *p;
+    sq[n] = '\0';
+    assert_non_null(strstr(sq, "\nclaimed 2 2 0 0\n"));
+    assert_non_null(strstr(sq, "\nverified 2 1 0 0\n"));
+    assert_non_null(strstr(sq, "\nrefused claims 0 1 0 0\n"));
+    assert_non_null(strstr(sq, "\nunclaimed valid 0 0 1 2\n"));
+    /* s_r stays the claims confirmed: the unclaimed valid paths are no
+     * successes. */
+    assert_non_null(strstr(sq, "\ns_r (%) 100.0 50.0 0.0 0.0\n"));
+    assert_non_null(strstr(o.text, "best by approach: sampling klampt/sbl "
+                                   "(success 100%, tau_t 0.5 s, 2 verified "
+                                   "of 2 claimed, 0 unclaimed valid); search "
+                                   "srmp/wAstar (success 50%, tau_t 0.5 s, 1 "
+                                   "verified of 2 claimed, 0 unclaimed "
+                                   "valid); optimisation none solved a run.\n"));
+    /* The search-based planner of the paper's findings is the one of
+     * approach search, whatever its family. */
+    assert_non_null(strstr(o.text, "wall: sigma(l_p) - (no query run twice); "
+                                   "l_p 1 rad, next klampt/sbl (1 rad)"));
+    run(&o, "stdout", "report -f json '%s'", db);
+    assert_int_equal(o.status, 0);
+    assert_non_null(strstr(o.text, "\"approach\": \"sampling\""));
+    assert_non_null(strstr(o.text, "\"approach\": null"));
+    assert_non_null(strstr(o.text, "\"outcomes\": {\"unclaimed\": 1, "
+                                   "\"verified\": 0, \"refused\": 0, "
+                                   "\"late\": 0, \"unclaimed_valid\": 1}"));
+    run(&o, "stdout", "report -f csv '%s'", db);
+    assert_non_null(strstr(o.text, "\n1,kinds,wall,null/straight_line,"
+                                   "unclaimed_valid_runs,,2,,2,0,\n"));
+    run(&o, "stdout", "report -f markdown '%s'", db);
+    assert_non_null(strstr(o.text, "| approach | sampling | search | "
+                                   "optimisation | - |\n"));
+}
+
 static void help_is_clear(void **state)
 {
     (void)state;
@@ -964,6 +1121,7 @@ int main(void)
         cmocka_unit_test(a_missing_file_is_one_line_and_exit_1),
         cmocka_unit_test(what_is_not_a_report_says_so),
         cmocka_unit_test(bad_command_lines_exit_2),
+        cmocka_unit_test(columns_are_grouped_by_approach_and_claims_counted),
         cmocka_unit_test(help_is_clear),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
