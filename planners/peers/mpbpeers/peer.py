@@ -31,6 +31,7 @@ import math
 import multiprocessing
 import os
 import re
+import struct
 import sys
 import tempfile
 import time
@@ -330,9 +331,10 @@ class Peer:
         except kit_request.InvalidRequest as e:
             raise InvalidRequest(str(e)) from None
 
-    def solve(self, req, ready=lambda: None):
-        """The result of one request; ready() is called once the models
-        are built, when planning starts."""
+    def solve(self, req, ready=lambda setup: None):
+        """The result of one request; ready(setup) is called once the
+        models are built, when planning starts: setup the seconds they
+        took (None: cached)."""
         res = plan_result_t()
         res.stages, res.values, res.progress = [], [], []
         res.message = ""
@@ -354,7 +356,7 @@ class Peer:
             if setup is not None:
                 res.values.append(_value("world_setup_time", setup))
             self.world.hold(list(req.held_names), list(req.held_values))
-            ready()
+            ready(setup)
             if req.num_joints != self.world.num_joints:
                 raise InvalidRequest(f"start has {req.num_joints} joints, "
                                      f"the robot {self.world.num_joints}")
@@ -425,7 +427,8 @@ def _worker(adapter, conn, parent_end):
         req = plan_request_t.decode(data)
         with Watch(req.memory_limit) as watch:
             try:
-                res = p.solve(req, lambda: conn.send_bytes(b"S"))
+                res = p.solve(req, lambda setup: conn.send_bytes(
+                    b"S" + struct.pack("<d", -1.0 if setup is None else setup)))
             except MemoryError:
                 res = None
             except Exception as e:      # the library's: say so, go on
@@ -459,6 +462,7 @@ class Worker:
         self.adapter = adapter
         self.ctx = multiprocessing.get_context("fork")
         self.proc = self.conn = None
+        self.stopped = []       # killed workers, reaped later
         self._start()
 
     def _start(self):
@@ -471,12 +475,17 @@ class Worker:
         self.conn = mine
 
     def _restart(self):
+        # SIGKILL, and a new worker at once: the old one's exit (its
+        # memory given back, 50-100 ms for a built model) is not waited
+        # for before the TIMEOUT answer; it is reaped at the next request.
         self.proc.kill()
-        self.proc.join()
+        self.stopped.append(self.proc)
         self.conn.close()
         self._start()
 
     def solve(self, req):
+        while self.stopped:
+            self.stopped.pop().join()
         t0 = time.monotonic()
         # mpbenchd gives up on a run 5 s past its time limit, counted from
         # its request (MPBD_DEADLINE_GRACE_S): a slow model build must not
@@ -486,6 +495,7 @@ class Worker:
         # Building the models may come first: not the run's time, so the
         # deadline starts when the worker says planning starts (b"S").
         limit = req.time_limit + GRACE_S + SETUP_MAX_S
+        setup = None
         while True:
             if self.conn.poll(0.05):
                 try:
@@ -496,9 +506,10 @@ class Worker:
                     self._start()
                     raise RuntimeError(f"{self.adapter.NAME}'s worker died "
                                        f"(exit {code})") from None
-                if data != b"S":
+                if len(data) != 9 or data[:1] != b"S":
                     return plan_result_t.decode(data)
                 t0 = time.monotonic()
+                setup = struct.unpack("<d", data[1:])[0]
                 limit = req.time_limit + GRACE_S
                 continue
             if not self.proc.is_alive():
@@ -517,6 +528,11 @@ class Worker:
                                f"was built, or {DAEMON_GRACE_S - 0.5:g} s "
                                f"after the request: stopped")
                 res.time_total = time.monotonic() - t0
+                # The model built for this run (by the worker now gone)
+                # stays the world's setup, outside the run's time.
+                if setup is not None and setup >= 0:
+                    res.values = [_value("world_setup_time", setup)]
+                    res.num_values = 1
                 return res
 
 
