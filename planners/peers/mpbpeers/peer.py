@@ -21,7 +21,9 @@ past the time limit after the request (mpbenchd waits 5); the library's
 own limit comes first.
 
 Timing: building the library's model (and the kit's World) is reported as
-world_setup_time, outside time_total; each stage's time is the library's
+world_setup_time, outside time_total (also in a TIMEOUT answer for a
+worker that was stopped: the worker says what it took when planning
+starts); each stage's time is the library's
 call alone (raw: its planning call; then its own simplification or
 smoothing); time_total is time_other plus the stages (plus the
 planning call, for a run that returns no path).
