@@ -24,11 +24,17 @@ Algorithms:
 - `OMPL+TrajOpt` (hybrid): what Tesseract's own free-space pipeline
   does: OMPLMotionPlanner with OMPLRealVectorPlanProfile's defaults
   (RRTConnect, run in parallel instances as the profile sets, planning
-  time at most the profile's 5 s, states checked by Tesseract's discrete
-  manager at its longest valid segment) on the same program, its path as
-  Tesseract returns it (interpolated to at least the program's states)
-  as the stage "raw"; then TrajOpt as above seeded with that path, the
-  stage "optimized".
+  time at most the profile's 5 s: "Exceeded allowed time" is answered
+  TIMEOUT; states checked by Tesseract's discrete manager at its longest
+  valid segment) on the straight-seeded program, its path as Tesseract
+  returns it (OMPL's path interpolated to the program's 21 states) as the
+  stage "raw"; then TrajOpt as above seeded with that path, the stage
+  "optimized". Tesseract hands OMPL's states back as StateWaypoints,
+  which TrajOpt would hold fixed (it fails at once then): the seed
+  program is made of them as generateInterpolatedProgram makes a seed,
+  start and goal constrained JointWaypoints, the states between
+  unconstrained ones (what Tesseract's own OMPL-then-TrajOpt pipeline
+  means: OMPL's path as TrajOpt's seed).
 
 Each stage's time is its planner's solve() call alone (with the seed's
 interpolation for TrajOpt). The path is returned whatever the library's
@@ -98,7 +104,7 @@ OMPL_NS = "OMPLMotionPlannerTask"
 SEED_STEPS = 20     # straight-line seed: 21 states
 
 
-def _geometry(shape, folder, k):
+def _geometry(shape):
     if shape.kind == "box":
         return Box(*shape.dims)
     if shape.kind == "sphere":
@@ -166,7 +172,7 @@ class Adapter:
             link = Link(f"mpb_scene_{k}")
             col = Collision()
             col.origin = Isometry3d(np.array(s.matrix(), dtype=float))
-            col.geometry = _geometry(s, folder, k)
+            col.geometry = _geometry(s)
             link.collision.append(col)
             joint = Joint(f"mpb_scene_{k}_joint")
             joint.type = JointType_FIXED
@@ -241,8 +247,11 @@ class Adapter:
             response = planner.solve(request)
             t_raw = time.monotonic() - t0
             if not response.successful:
-                return [], plan_result_t.FAILED, \
-                    f"tesseract OMPL: {response.message}", []
+                # "Exceeded allowed time": the profile's own planning
+                # time (5 s), which Python cannot change in 0.5.1.
+                message = str(response.message)
+                return [], plan_result_t.TIMEOUT if "time" in message \
+                    else plan_result_t.FAILED, f"tesseract OMPL: {message}", []
             results = response.results
             raw = _states(results)
             stages.append(("raw", t_raw, raw))
