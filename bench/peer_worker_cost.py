@@ -11,8 +11,9 @@ Two measurements:
 - `null`: an adapter whose plan returns at once a 21-waypoint stage (the
   size of TrajOpt's): the worker's own cost, IPC of request and result
   plus the kit's handling, in ms per run;
-- the peer's algorithm (default tesseract TrajOpt, deterministic: both
-  sides do the same work): its wall time per run both ways, and the ratio.
+- the peer's algorithm (default tesseract TrajOpt, which has no random
+  seed: both sides do about the same work): its wall time per run both
+  ways, and the ratio.
 
 Run with the peer's environment and the build's libmpbench:
 
