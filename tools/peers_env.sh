@@ -27,6 +27,7 @@ ALL=$(cd "$reqs" && ls *.txt | sed 's/\.txt$//' | tr '\n' ' ')
 module_of() {
     case $1 in
         ompl2) echo ompl ;;
+        tesseract) echo tesseract_robotics ;;
         *) echo "$1" ;;
     esac
 }

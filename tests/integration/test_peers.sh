@@ -16,7 +16,7 @@ set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 PASSES=0
 FAILS=0
-PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning}
+PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning tesseract}
 
 # The data and the environments before the private network (no way out).
 if [ -z "${MPB_IN_NETNS:-}" ]; then
@@ -51,6 +51,7 @@ algorithm_of() {
         roboplan) echo RRTConnect ;;
         mplib) echo RRTConnect ;;
         pybullet_planning) echo birrt ;;
+        tesseract) echo TrajOpt ;;
     esac
 }
 
@@ -160,10 +161,11 @@ os._exit(0)" 2>&1 | tail -n 1)
     check "$peer: ... its run was re-sent (2 attempts) and stored" \
         eq "$(q "SELECT count(*) FROM runs WHERE state = 'done' AND attempts = 2
                  AND status != 'crash'")" 1
-    check "$peer: ... once: 2 runs, one raw stage each" \
+    check "$peer: ... once: 2 runs, one first stage each" \
         eq "$(q "SELECT count(*) FROM runs r WHERE state = 'done' AND
                  (status != 'solved' OR (SELECT count(*) FROM stages s
-                   WHERE s.run_id = r.id AND s.name = 'raw') = 1)")" 2
+                   WHERE s.run_id = r.id AND s.name = (SELECT f.name
+                   FROM stages f WHERE f.run_id = r.id AND f.idx = 0)) = 1)")" 2
 done
 
 mpb_finish

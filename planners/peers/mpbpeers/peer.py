@@ -21,7 +21,9 @@ past the time limit after the request (mpbenchd waits 5); the library's
 own limit comes first.
 
 Timing: building the library's model (and the kit's World) is reported as
-world_setup_time, outside time_total; each stage's time is the library's
+world_setup_time, outside time_total (also in a TIMEOUT answer for a
+worker that was stopped: the worker says what it took when planning
+starts); each stage's time is the library's
 call alone (raw: its planning call; then its own simplification or
 smoothing); time_total is time_other plus the stages (plus the
 planning call, for a run that returns no path).
@@ -31,6 +33,7 @@ import math
 import multiprocessing
 import os
 import re
+import struct
 import sys
 import tempfile
 import time
@@ -329,9 +332,10 @@ class Peer:
         except kit_request.InvalidRequest as e:
             raise InvalidRequest(str(e)) from None
 
-    def solve(self, req, ready=lambda: None):
-        """The result of one request; ready() is called once the models
-        are built, when planning starts."""
+    def solve(self, req, ready=lambda setup: None):
+        """The result of one request; ready(setup) is called once the
+        models are built, when planning starts: setup the seconds they
+        took (None: cached)."""
         res = plan_result_t()
         res.stages, res.values, res.progress = [], [], []
         res.message = ""
@@ -353,7 +357,7 @@ class Peer:
             if setup is not None:
                 res.values.append(_value("world_setup_time", setup))
             self.world.hold(list(req.held_names), list(req.held_values))
-            ready()
+            ready(setup)
             if req.num_joints != self.world.num_joints:
                 raise InvalidRequest(f"start has {req.num_joints} joints, "
                                      f"the robot {self.world.num_joints}")
@@ -424,7 +428,8 @@ def _worker(adapter, conn, parent_end):
         req = plan_request_t.decode(data)
         with Watch(req.memory_limit) as watch:
             try:
-                res = p.solve(req, lambda: conn.send_bytes(b"S"))
+                res = p.solve(req, lambda setup: conn.send_bytes(
+                    b"S" + struct.pack("<d", -1.0 if setup is None else setup)))
             except MemoryError:
                 res = None
             except Exception as e:      # the library's: say so, go on
@@ -458,6 +463,7 @@ class Worker:
         self.adapter = adapter
         self.ctx = multiprocessing.get_context("fork")
         self.proc = self.conn = None
+        self.stopped = []       # killed workers, reaped later
         self._start()
 
     def _start(self):
@@ -470,12 +476,17 @@ class Worker:
         self.conn = mine
 
     def _restart(self):
+        # SIGKILL, and a new worker at once: the old one's exit (its
+        # memory given back, 50-100 ms for a built model) is not waited
+        # for before the TIMEOUT answer; it is reaped at the next request.
         self.proc.kill()
-        self.proc.join()
+        self.stopped.append(self.proc)
         self.conn.close()
         self._start()
 
     def solve(self, req):
+        while self.stopped:
+            self.stopped.pop().join()
         t0 = time.monotonic()
         # mpbenchd gives up on a run 5 s past its time limit, counted from
         # its request (MPBD_DEADLINE_GRACE_S): a slow model build must not
@@ -485,6 +496,7 @@ class Worker:
         # Building the models may come first: not the run's time, so the
         # deadline starts when the worker says planning starts (b"S").
         limit = req.time_limit + GRACE_S + SETUP_MAX_S
+        setup = None
         while True:
             if self.conn.poll(0.05):
                 try:
@@ -495,9 +507,10 @@ class Worker:
                     self._start()
                     raise RuntimeError(f"{self.adapter.NAME}'s worker died "
                                        f"(exit {code})") from None
-                if data != b"S":
+                if len(data) != 9 or data[:1] != b"S":
                     return plan_result_t.decode(data)
                 t0 = time.monotonic()
+                setup = struct.unpack("<d", data[1:])[0]
                 limit = req.time_limit + GRACE_S
                 continue
             if not self.proc.is_alive():
@@ -516,6 +529,11 @@ class Worker:
                                f"was built, or {DAEMON_GRACE_S - 0.5:g} s "
                                f"after the request: stopped")
                 res.time_total = time.monotonic() - t0
+                # The model built for this run (by the worker now gone)
+                # stays the world's setup, outside the run's time.
+                if setup is not None and setup >= 0:
+                    res.values = [_value("world_setup_time", setup)]
+                    res.num_values = 1
                 return res
 
 
