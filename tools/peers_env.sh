@@ -27,6 +27,7 @@ ALL=$(cd "$reqs" && ls *.txt | sed 's/\.txt$//' | tr '\n' ' ')
 module_of() {
     case $1 in
         ompl2) echo ompl ;;
+        drake) echo pydrake ;;
         *) echo "$1" ;;
     esac
 }
