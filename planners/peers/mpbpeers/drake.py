@@ -66,6 +66,7 @@ INFLUENCE_M = 0.01         # its influence distance, past the bound
 DURATION_S = (0.1, 20.0)   # the spline's duration bounds
 MAX_STEP_RAD = 0.01        # largest joint change between stage samples
 RRT_STEP_RAD = 0.2         # the RRT's extension step
+ROUNDING_RAD = 1e-9        # past a limit by rounding (see _sample)
 SNOPT_LIMIT_SHARE = 0.9    # of the time left, SNOPT's own limit
 
 SNOPT_TIME_LIMIT_INFO = 74  # SNOPT: "time limit reached"
@@ -182,9 +183,12 @@ class Adapter:
         return x
 
     @staticmethod
-    def _sample(traj, index):
+    def _sample(traj, index, lower, upper):
         """The spline sampled uniformly in time, consecutive samples at
-        most MAX_STEP_RAD apart in the largest joint: (path, times)."""
+        most MAX_STEP_RAD apart in the largest joint: (path, times).
+        A sample past a joint limit by rounding alone (the spline lies
+        in its control points' hull, and they in the limits: 5e-16 rad
+        was seen) is put on the limit."""
         t0, t1 = traj.start_time(), traj.end_time()
         m = 101
         while True:
@@ -194,6 +198,9 @@ class Adapter:
             if step <= MAX_STEP_RAD or m >= 64001:
                 break
             m = int(math.ceil((m - 1) * step / MAX_STEP_RAD * 1.1)) + 1
+        lo, hi = lower[index], upper[index]
+        qs = np.where((qs < lo) & (qs > lo - ROUNDING_RAD), lo, qs)
+        qs = np.where((qs > hi) & (qs < hi + ROUNDING_RAD), hi, qs)
         return qs.tolist(), (ts - t0).tolist()
 
     def _rrt(self, model, a, b, deadline, rng):
@@ -384,7 +391,7 @@ class Adapter:
                                  (deadline - time.monotonic()))
             infos.append(result.get_solver_details().info if result
                          else "stopped")
-        path, times = self._sample(traj, idx)
+        path, times = self._sample(traj, idx, model["lower"], model["upper"])
         t_opt = time.monotonic() - t_opt
         stages.append(("optimized" if seed_path is not None else "raw",
                        t_opt, path, times))
