@@ -26,13 +26,20 @@ AddDurationConstraint(0.1, 20 s), start and goal as path constraints at
 s = 0 and 1 with zero velocity there. Seed: the straight line from start
 to goal, solved first without collision constraints; that solution then
 seeds a second solve with MinimumDistanceLowerBoundConstraint(plant,
-0.02 m, influence 0.01 m more) at 100 evenly spaced path parameters (25
+0.02 m, influence 0.01 m more; a bound of 0.9 times the start's or
+goal's own clearance in Drake's model where that is less: else the
+constraint at s = 0 or 1 cannot hold) at 100 evenly spaced path parameters (25
 left collisions between samples in the checks of
 shared/reference/trajectory-optimisation-libraries.md). The request's
-time limit becomes SNOPT's "Time limit" option (split between the two
-solves). Status: result.is_success() of the second solve (SOLVED), else
-FAILED (TIMEOUT when SNOPT says its time limit ended it); the spline is
-returned either way, for mpbench to verify.
+time limit becomes SNOPT's "Time limit" option (a fifth for the first
+solve, 0.9 of what is left for the second); SNOPT counts CPU seconds
+there, so a callback at each evaluation also stops it at the wall-clock
+deadline and the last iterate is returned (status TIMEOUT). When the
+first solution already keeps the distance at every sample, the
+constraints are inactive at it and it is returned without the second
+solve (which would only confirm it). Status: result.is_success() of the
+last solve (SOLVED), else FAILED (TIMEOUT when SNOPT says its time limit
+ended it); the spline is returned either way, for mpbench to verify.
 
 KTO+RRT (hybrid): a bidirectional RRT (RRT-Connect, written here: pydrake
 has none) on Drake's own SceneGraphCollisionChecker (edges checked every
@@ -40,6 +47,9 @@ has none) on Drake's own SceneGraphCollisionChecker (edges checked every
 KTO, its control points seeded by that path resampled to 16 points along
 its length, optimises it with the collision constraints from the start
 (stage "optimized").
+
+Parameters (strings, as every planner's): control_points (16),
+samples (100), margin (0.02 m), the values above.
 
 Deviations from a user's use: the stage is the spline sampled uniformly
 in time, so densely that consecutive samples are at most 0.01 rad apart
@@ -90,6 +100,12 @@ class Adapter:
     ALGORITHMS = ["KTO", "KTO+RRT"]
     APPROACH = {"KTO": "optimisation", "KTO+RRT": "hybrid"}
     GOAL_REGIONS = False     # KTO takes one goal configuration
+    PARAMS = {"control_points": f"an integer >= {SPLINE_ORDER} (the "
+                                f"B-spline's, default {NUM_CONTROL_POINTS})",
+              "samples": f"an integer >= 2 (path parameters with the "
+                         f"distance constraint, default {NUM_SAMPLES})",
+              "margin": f"a number (the distance bound in m, default "
+                        f"{MARGIN_M})"}
 
     def build(self, problem, world):
         from pydrake.geometry import (Box, CollisionFilterDeclaration,
@@ -257,14 +273,34 @@ class Adapter:
             trees.reverse()
         return None
 
-    def _seed(self, path, index):
+    def _params(self, params):
+        """control_points, samples, margin from the request, or the
+        defaults."""
+        out = []
+        for key, kind, default, least in (
+                ("control_points", int, NUM_CONTROL_POINTS, SPLINE_ORDER),
+                ("samples", int, NUM_SAMPLES, 2),
+                ("margin", float, MARGIN_M, -math.inf)):
+            text = params.get(key)
+            try:
+                v = default if text is None else kind(text)
+            except ValueError:
+                v = None
+            if v is None or not v >= least or (kind is float and
+                                                not math.isfinite(v)):
+                raise peer.InvalidRequest(
+                    f"parameter '{key}': '{text}' is not {self.PARAMS[key]}")
+            out.append(v)
+        return out
+
+    def _seed(self, path, index, ncp):
         """A path's points resampled to the control points' count, evenly
         along its length (largest joint change)."""
         pts = np.array(path)
         seg = np.max(np.abs(np.diff(pts[:, index], axis=0)), axis=1)
         s = np.concatenate([[0.0], np.cumsum(seg)])
         s = s / s[-1] if s[-1] > 0 else np.linspace(0, 1, len(pts))
-        u = np.linspace(0, 1, NUM_CONTROL_POINTS)
+        u = np.linspace(0, 1, ncp)
         return np.array([[np.interp(v, s, pts[:, k]) for v in u]
                          for k in range(pts.shape[1])])
 
@@ -278,6 +314,7 @@ class Adapter:
         from pydrake.solvers import SnoptSolver, SolverOptions
         from pydrake.trajectories import BsplineTrajectory
 
+        ncp, samples, margin = self._params(params)
         t_start = time.monotonic()
         deadline = t_start + time_limit
         plant, idx = model["plant"], model["index"]
@@ -305,7 +342,7 @@ class Adapter:
 
         t_opt = time.monotonic()
         trajopt = KinematicTrajectoryOptimization(
-            n, NUM_CONTROL_POINTS, SPLINE_ORDER, duration)
+            n, ncp, SPLINE_ORDER, duration)
         prog = trajopt.get_mutable_prog()
         trajopt.AddDurationCost(1.0)
         trajopt.AddPathLengthCost(1.0)
@@ -317,14 +354,14 @@ class Adapter:
         zero = np.zeros(n)
         trajopt.AddPathVelocityConstraint(zero, zero, 0)
         trajopt.AddPathVelocityConstraint(zero, zero, 1)
-        basis = BsplineBasis(SPLINE_ORDER, NUM_CONTROL_POINTS,
+        basis = BsplineBasis(SPLINE_ORDER, ncp,
                              KnotVectorType.kClampedUniform, 0.0, duration)
         if seed_path is None:
-            cps = np.linspace(q0, qf, NUM_CONTROL_POINTS).T
+            cps = np.linspace(q0, qf, ncp).T
         else:
-            cps = self._seed(seed_path, list(range(n)))
+            cps = self._seed(seed_path, list(range(n)), ncp)
         trajopt.SetInitialGuess(BsplineTrajectory(
-            basis, [cps[:, [k]] for k in range(NUM_CONTROL_POINTS)]))
+            basis, [cps[:, [k]] for k in range(ncp)]))
         # SNOPT's "Time limit" counts CPU seconds; on a loaded machine the
         # wall clock runs ahead, so a callback at every evaluation stops
         # SNOPT at the wall-clock deadline too (Drake catches the
@@ -350,8 +387,8 @@ class Adapter:
             # SNOPT hands user code its nonlinear variables only: the
             # duration (in linear terms alone) is not among them, so it
             # is the least that keeps the velocity bounds.
-            cp = np.asarray(x)[cp_index].reshape(n, NUM_CONTROL_POINTS)
-            cps = [cp[:, [k]] for k in range(NUM_CONTROL_POINTS)]
+            cp = np.asarray(x)[cp_index].reshape(n, ncp)
+            cps = [cp[:, [k]] for k in range(ncp)]
             unit = BsplineTrajectory(BsplineBasis(SPLINE_ORDER, list(knots)),
                                      cps)
             d = np.abs(np.hstack(unit.MakeDerivative().control_points()))
@@ -382,11 +419,30 @@ class Adapter:
                          else "stopped")
             stopped = result is None
             trajopt.SetInitialGuess(traj)
-        if not stopped:
-            dist = MinimumDistanceLowerBoundConstraint(
-                plant, MARGIN_M, model["plant_context"], None, INFLUENCE_M)
-            for s in np.linspace(0.0, 1.0, NUM_SAMPLES):
-                trajopt.AddPathPositionConstraint(dist, s)
+        # The bound no tighter than the start's and goal's own clearance
+        # in Drake's model (MotionBenchMaker's goals come 9-22 mm from an
+        # object): at or above it, the constraints at s = 0 or 1 can
+        # never hold and SNOPT can only report infeasible.
+        ends = [model["checker"].CalcRobotClearance(q, margin + INFLUENCE_M)
+                for q in (q0, qf)]
+        clear = min([float(np.min(c.distances())) for c in ends
+                     if len(c.distances())] + [margin / 0.9])
+        bound = min(margin, 0.9 * clear) if clear > 0 else 1.1 * clear - 1e-4
+        dist = MinimumDistanceLowerBoundConstraint(
+            plant, bound, model["plant_context"], None, INFLUENCE_M)
+        params_s = np.linspace(0.0, 1.0, samples)
+        # The collision-free optimum already keeps the distance at every
+        # sample: it is the optimum with the constraints too (they are
+        # inactive there), and the second solve would only confirm it.
+        inactive = (seed_path is None and not stopped and
+                    result.is_success() and all(
+                        dist.CheckSatisfied(traj.value(
+                            traj.start_time() + v * (traj.end_time() -
+                                                     traj.start_time()))[:, 0])
+                        for v in params_s))
+        if not stopped and not inactive:
+            for v in params_s:
+                trajopt.AddPathPositionConstraint(dist, v)
             traj, result = solve(SNOPT_LIMIT_SHARE *
                                  (deadline - time.monotonic()))
             infos.append(result.get_solver_details().info if result
@@ -395,7 +451,8 @@ class Adapter:
         t_opt = time.monotonic() - t_opt
         stages.append(("optimized" if seed_path is not None else "raw",
                        t_opt, path, times))
-        values = [("duration", traj.end_time() - traj.start_time())]
+        values = [("duration", traj.end_time() - traj.start_time()),
+                  ("distance_bound", bound), ("solves", len(infos))]
         solves = ", ".join(map(str, infos))
         if result is None:
             return stages, plan_result_t.TIMEOUT, (
