@@ -28,6 +28,7 @@ module_of() {
     case $1 in
         ompl2) echo ompl ;;
         tesseract) echo tesseract_robotics ;;
+        drake) echo pydrake ;;
         *) echo "$1" ;;
     esac
 }

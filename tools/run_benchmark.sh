@@ -24,8 +24,8 @@ print its report. Stop with Ctrl-C; the same command resumes.
 Options:
   -d, --db FILE        the results database (default: ./mpbench.db)
   -p, --planners LIST  planner processes to start, comma-separated, from
-                       null, ompl, arastar, python, and the peers ompl2,
-                       roboplan, mplib, pybullet_planning (default: every
+                       null, ompl, arastar, python, and the peers (each
+                       of planners/peers/requirements/NAME.txt) (default: every
                        one that is built, the peers whose environments
                        make deps made)
   -n, --copies N       processes of each planner (default 1; more than one
@@ -151,7 +151,7 @@ elif [ -z "$planners" ]; then
 fi
 for p in $planners; do
     prog=$(planner_program "$p") || {
-        echo "run_benchmark: unknown planner '$p' (null, ompl, arastar, python, ompl2, roboplan, mplib, pybullet_planning)" >&2
+        echo "run_benchmark: unknown planner '$p' (null, ompl, arastar, python, or a peer of planners/peers/requirements)" >&2
         exit 2
     }
     [ -x "$prog" ] || {
