@@ -16,7 +16,7 @@ set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 PASSES=0
 FAILS=0
-PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning}
+PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning klampt}
 
 # The data and the environments before the private network (no way out).
 if [ -z "${MPB_IN_NETNS:-}" ]; then
@@ -51,6 +51,7 @@ algorithm_of() {
         roboplan) echo RRTConnect ;;
         mplib) echo RRTConnect ;;
         pybullet_planning) echo birrt ;;
+        klampt) echo sbl ;;
     esac
 }
 
