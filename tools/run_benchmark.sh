@@ -145,7 +145,7 @@ elif [ -z "$planners" ]; then
         [ -x "$(planner_program $p)" ] && planners="$planners $p"
     done
     # The peers whose environments `make deps` made (tools/peers_env.sh).
-    for p in ompl2 roboplan mplib pybullet_planning; do
+    for p in ompl2 roboplan mplib pybullet_planning klampt; do
         [ -x "$root/.cache/peers/$p/bin/python3" ] && planners="$planners $p"
     done
 fi

@@ -7,8 +7,10 @@ request's robot; run as a script it writes the copy of a URDF file:
 
 Three edits, nothing else changes:
 
-- Mesh file names relative to the copy's folder: Klampt resolves a
-  mesh's name against the URDF's own folder (and knows no package://).
+- Mesh file names absolute: Klampt knows no package:// (relative names
+  are taken from the URDF's folder, but Klampt 0.10.1 lost the Panda's
+  hand.obj, silently, when its relative name began with ../../../ while
+  the other meshes loaded; absolute names loaded at every depth tried).
 - <klampt freeze_root_link="1"/> in the robot element: without it
   Klampt gives the root link a 6-dof floating base (six virtual links
   ahead of the URDF's), which the URDF does not have. (Klampt still
@@ -41,20 +43,18 @@ def _attr(tag, name, default=None):
 
 def klampt_urdf(urdf, directory):
     """(text, mimics): the URDF text edited for Klampt, its meshes named
-    relative to directory (where the copy is written), and the removed
-    <mimic> tags as Mimic objects."""
-    def relative(m):
+    absolutely (a relative name is taken from directory, the source
+    URDF's folder), and the removed <mimic> tags as Mimic objects."""
+    def absolute(m):
         name = m.group(2)
         if name.startswith("file://"):
             name = name[7:]
-        if os.path.isabs(name):
-            name = os.path.relpath(name, directory)
-        return m.group(1) + name + m.group(3)
+        if name.startswith("package://"):
+            raise ValueError(f"mesh '{name}': resolve package:// names "
+                             f"first (mpbench's peers do)")
+        return m.group(1) + os.path.join(directory, name) + m.group(3)
 
-    text = re.sub(r'(<mesh[^>]*filename=")([^"]+)(")', relative, urdf)
-    if "package://" in text:
-        raise ValueError("a mesh named package://: make mesh names absolute "
-                         "first (mpbench's peers do)")
+    text = re.sub(r'(<mesh[^>]*filename=")([^"]+)(")', absolute, urdf)
 
     mimics = []
 
@@ -96,14 +96,8 @@ def main(argv):
     src, dst = argv
     with open(src) as f:
         urdf = f.read()
-    # Relative names are the source's: absolute first, then relative to
-    # the copy.
-    base = os.path.dirname(os.path.abspath(src))
-    urdf = re.sub(r'(<mesh[^>]*filename=")([^":]+)(")',
-                  lambda m: m.group(1) + os.path.join(base, m.group(2))
-                  + m.group(3), urdf)
     try:
-        text, mimics = klampt_urdf(urdf, os.path.dirname(os.path.abspath(dst)))
+        text, mimics = klampt_urdf(urdf, os.path.dirname(os.path.abspath(src)))
     except ValueError as e:
         print(f"{src}: {e}", file=sys.stderr)
         return 1
