@@ -16,7 +16,7 @@ set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 PASSES=0
 FAILS=0
-PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning tesseract drake}
+PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning tesseract drake klampt}
 
 # The data and the environments before the private network (no way out).
 if [ -z "${MPB_IN_NETNS:-}" ]; then
@@ -53,6 +53,7 @@ algorithm_of() {
         pybullet_planning) echo birrt ;;
         tesseract) echo TrajOpt ;;
         drake) echo KTO ;;
+        klampt) echo sbl ;;
     esac
 }
 
