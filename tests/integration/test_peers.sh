@@ -16,7 +16,7 @@ set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 PASSES=0
 FAILS=0
-PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning tesseract drake klampt}
+PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning tesseract drake klampt srmp}
 
 # The data and the environments before the private network (no way out).
 if [ -z "${MPB_IN_NETNS:-}" ]; then
@@ -54,6 +54,7 @@ algorithm_of() {
         tesseract) echo TrajOpt ;;
         drake) echo KTO ;;
         klampt) echo sbl ;;
+        srmp) echo wAstar ;;
     esac
 }
 

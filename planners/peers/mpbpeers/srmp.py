@@ -1,0 +1,116 @@
+"""srmp.py - the peer `srmp`: srmp 0.2.1 (pip srmp==0.2.1), search-based
+motion planning: A*, weighted A*, ARA* and multi-heuristic A* over a
+joint-space lattice, collision checking by coal on the URDF's own
+collision meshes and the scene's boxes, spheres, cylinders and meshes.
+
+Licence: srmp is AGPL-3.0-or-later. mpbench runs it in a process of its
+own, through its Python bindings, and never links it.
+
+As a user: PlannerInterface().add_robot(urdf, name, srdf_path=...,
+end_effector=...) with the request's URDF and SRDF as they are (its
+disabled pairs are srmp's own filter), the scene's shapes added with
+add_box / add_sphere / add_cylinder / add_mesh (Pose's quaternion is w,
+x, y, z), then make_planner([robot], {planner_id, time_limit,
+validity_backend: coal}) with srmp's own defaults for everything else
+(heuristic, weight, lattice of 1 degree a joint), and plan(start,
+GoalConstraint(JOINTS, [goal])).
+
+Its lattice path ends within srmp's goal tolerance of the goal (about
+0.008 rad short), not at it: the exact goal is appended as the last
+waypoint of the stage "raw", as a user who needs the goal reached does;
+docs/results-approaches.md says so. srmp's own time limit is the
+request's less what the kit spent on IK goals.
+"""
+import time
+
+import numpy as np
+from mpb import plan_result_t
+from srmp import GoalConstraint, GoalType, PlannerInterface, Pose
+
+from . import peer
+
+ROBOT = "robot"
+
+
+def _last_link(urdf, joint):
+    import re
+    m = re.search(r'<joint[^>]*name="%s".*?<child\s+link="([^"]+)"'
+                  % re.escape(joint), urdf, re.S)
+    if not m:
+        raise peer.InvalidRequest(f"joint '{joint}' not in the URDF")
+    return m.group(1)
+
+
+class Adapter:
+    NAME = "srmp"
+    DESCRIPTION = ("srmp 0.2.1 (AGPL, a separate process): A*, weighted A*, "
+                   "ARA*, MHA* on a joint lattice, coal collision checking, "
+                   "the exact goal appended.")
+    ALGORITHMS = ["wAstar", "ARAstar", "MHAstar", "Astar"]
+    APPROACH = {a: "search" for a in ALGORITHMS}
+    GOAL_REGIONS = False     # joint goals; the kit samples IK for regions
+
+    def build(self, problem, world):
+        if problem.held:
+            raise peer.InvalidRequest("srmp: joints held outside the group "
+                                      "are not taken by this peer")
+        pi = PlannerInterface()
+        try:
+            pi.add_robot(problem.urdf_path, name=ROBOT,
+                         srdf_path=problem.srdf_path,
+                         end_effector=_last_link(problem.urdf,
+                                                 problem.joints[-1]))
+        except peer.InvalidRequest:
+            raise
+        except Exception as e:
+            raise peer.InvalidRequest(f"srmp refuses the robot: {e}") from None
+        names = list(pi.get_move_group_joint_names(ROBOT))
+        if names != problem.joints:
+            raise peer.InvalidRequest(
+                f"srmp's move group is {', '.join(names)}, the request's "
+                f"joints {', '.join(problem.joints)}")
+        for k, s in enumerate(problem.shapes):
+            x, y, z, w = s.quat
+            pose = Pose(np.array(s.position, dtype=float),
+                        np.array([w, x, y, z], dtype=float))
+            name = f"scene{k}"
+            if s.kind == "box":
+                pi.add_box(name, np.array(s.dims, dtype=float), pose)
+            elif s.kind == "sphere":
+                pi.add_sphere(name, float(s.dims[0]), pose)
+            elif s.kind == "cylinder":
+                pi.add_cylinder(name, float(s.dims[0]), float(s.dims[1]), pose)
+            else:
+                pi.add_mesh(name, vertices=np.array(s.vertices, dtype=float),
+                            triangles=np.array(s.triangles, dtype=np.int32),
+                            pose=pose)
+        return {"pi": pi, "planner": None}
+
+    def plan(self, model, algorithm, start, goals, time_limit, seed, params):
+        pi = model["pi"]
+        # srmp is deterministic: the seed changes nothing.
+        pi.make_planner([ROBOT], {"planner_id": algorithm,
+                                  "time_limit": repr(float(time_limit)),
+                                  "validity_backend": "coal"})
+        goal = goals[0]
+        t0 = time.monotonic()
+        try:
+            traj = pi.plan(np.array(start, dtype=float),
+                           GoalConstraint(GoalType.JOINTS,
+                                          [np.array(goal, dtype=float)]))
+            path = [list(map(float, q)) for q in traj.positions]
+            error = ""
+        except Exception as e:      # its own "no plan found" and the like
+            path, error = [], f"srmp: {e}"
+        seconds = time.monotonic() - t0
+        if not path:
+            status = plan_result_t.TIMEOUT if seconds >= 0.95 * time_limit \
+                else plan_result_t.FAILED
+            return [], status, error or "srmp: no path", []
+        if max(abs(a - b) for a, b in zip(path[-1], goal)) > 1e-12:
+            path.append([float(v) for v in goal])
+        return [("raw", seconds, path)], plan_result_t.SOLVED, "", []
+
+
+if __name__ == "__main__":
+    peer.main(Adapter())
