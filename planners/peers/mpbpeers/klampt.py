@@ -63,6 +63,7 @@ import time
 from mpb import plan_result_t
 
 from klampt import GeometricPrimitive, Geometry3D, TriangleMesh, WorldModel
+from klampt import robotsim
 from klampt.plan import motionplanning, robotplanning
 
 from . import peer
@@ -71,6 +72,10 @@ from .klampt_urdf import klampt_urdf
 ITERATIONS = 20            # planMore's iterations between clock checks
 SHORTCUT_ITERATIONS = 40   # planMore's iterations of shortcutting
 CYLINDER_SIDES = 32
+
+# Klampt's C++ logs every link and mesh it loads to stdout (some 30 lines
+# a model): its errors only, in the planner's log.
+robotsim.set_log_level("ERROR")
 
 OPTIONS = {
     "sbl": {"type": "sbl", "perturbationRadius": 0.5,
