@@ -87,7 +87,7 @@ extern "C" {
       "largest joint velocity between waypoints (rad/s)",                    \
       "lower is gentler", "max velocity")                                    \
     X(VELOCITY_RATIO, "velocity_limit_ratio", "",                            \
-      MPB_METRIC_F_PATH | MPB_METRIC_F_TIMED, 0, "v/v_lim", "$v/v_{lim}$",                                           \
+      MPB_METRIC_F_PATH | MPB_METRIC_F_TIMED, 0, "v/v_lim", "$v/v_{lim}$",  \
       "Largest joint velocity over the joint's limit",                       \
       "largest joint velocity over its URDF limit",                          \
       "at most 1 keeps to the limits", "velocity limit ratio")               \

@@ -111,8 +111,9 @@ const char *mpb_verdict_name(mpb_verdict_code code);
 
 /*
  * How v's collision check was made, for the verdicts that make one (VALID,
- * COLLISION, VELOCITY_LIMIT, checked after it): "certified" (v->certified) or "sampled"; NULL for any other
- * verdict, and for NULL v. As the store keeps it (stages.verification).
+ * COLLISION, VELOCITY_LIMIT, checked after it): "certified"
+ * (v->certified) or "sampled"; NULL for any other verdict, and for NULL
+ * v. As the store keeps it (stages.verification).
  */
 const char *mpb_verdict_verification(const mpb_verdict *v);
 

@@ -175,7 +175,8 @@ void mpb_measure_metrics_timed(mpb_world *w, const double *wp,
         unsigned flags = metric_info[i].flags;
         if ((flags & MPB_METRIC_F_PATH) && !path)
             continue;
-        if ((flags & MPB_METRIC_F_TIMED) && (times == NULL || num_waypoints < 1))
+        if ((flags & MPB_METRIC_F_TIMED) &&
+            (times == NULL || num_waypoints < 1))
             continue;
         double value = metric_fn[i](&m);
         if ((flags & MPB_METRIC_F_TIMED) && isnan(value))
