@@ -55,6 +55,7 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
     const mpbd_experiment *e = d->exp;
     mpb_world *world = e->scenes[q->scene].world;
     mpb_goal goal = mpbd_query_goal(q);
+    char why[200];
 
     w->rec.name = st->name;
     w->rec.time = st->time;
@@ -73,13 +74,36 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
         mpb_measure_metrics(world, w->rec.waypoints, w->rec.num_waypoints,
                             w->rec.num_joints, st->time, d->resolution,
                             &w->m);
+    } else if (st->num_times != 0 &&
+               !mpb_times_ok(st->times, st->num_times, st->num_waypoints,
+                             why, sizeof why)) {
+        /* Times that are no timing of the waypoints: refused, the path's
+         * own metrics measured (of a path whose values are all finite),
+         * the times kept when there is one per waypoint. */
+        int finite = 1;
+        for (int32_t k = 0; k < st->num_values && finite; k++)
+            finite = isfinite(st->waypoints[k]);
+        w->m.verdict.code = MPB_VERDICT_BAD_TIMES;
+        w->m.verdict.segment = -1;
+        snprintf(w->m.verdict.detail, sizeof w->m.verdict.detail,
+                 "stage '%.40s' waypoint times: %s", st->name, why);
+        w->rec.num_waypoints = st->num_waypoints;
+        w->rec.num_joints = st->num_joints;
+        w->rec.waypoints = st->waypoints;
+        if (st->num_times == st->num_waypoints)
+            w->rec.times = st->times;
+        mpb_measure_metrics(world, finite ? st->waypoints : NULL,
+                            st->num_waypoints, st->num_joints, st->time,
+                            d->resolution, &w->m);
     } else {
         w->rec.num_waypoints = st->num_waypoints;
         w->rec.num_joints = st->num_joints;
         w->rec.waypoints = st->waypoints;
-        mpb_measure_stage(world, q->start, q->tolerance, &goal,
-                          st->waypoints, st->num_waypoints, st->num_joints,
-                          st->time, d->resolution, 0, &w->m);
+        w->rec.times = st->num_times > 0 ? st->times : NULL;
+        mpb_measure_stage_timed(world, q->start, q->tolerance, &goal,
+                                st->waypoints, w->rec.times,
+                                st->num_waypoints, st->num_joints, st->time,
+                                d->resolution, 0, &w->m);
     }
     /* Proved over the whole segment, or sampled where the proof could
      * not close (docs/verification.md); a verdict of no path, none. */

@@ -45,6 +45,12 @@ static void usage(FILE *out)
 "that mpbench finds valid (an unclaimed valid path) and one it calls\n"
 "solved that collides (a refused claim). It declares no approach\n"
 "(docs/protocol.md): it is no kind of planner.\n"
+"A parameter \"duration\" (s, -3600 to 3600) makes the stage a timed\n"
+"trajectory: waypoint "
+"i at time i * duration / (waypoints - 1), from 0 to the duration, as a\n"
+"time-parameterising library would send it; tests use it for the daemon's\n"
+"velocity limits (a short duration moves the joints too fast) and, with\n"
+"a negative duration (times decreasing), for times it refuses.\n"
 "\n"
 "It announces itself on LCM as NAME@host:pid and serves until SIGINT or\n"
 "SIGTERM (or N runs). It prints one line when it starts, nothing per run.\n"
@@ -179,6 +185,23 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
     memcpy(wp + (m - 1) * n, req->goal.joints, (size_t)n * sizeof *wp);
     int rc = mpb_result_add_stage(res, "raw", 0.0, wp, (int)m, n);
     free(wp);
+    const char *duration = mpb_request_param(req, "duration");
+    if (rc == MPB_OK && duration != NULL) {
+        char *end;
+        double d = strtod(duration, &end);
+        if (end == duration || *end != '\0' || !(d >= -3600 && d <= 3600)) {
+            mpb_result_set_message(res, "duration must be seconds in "
+                                        "[-3600, 3600], not '%.40s'", duration);
+            return MPB_EINVAL;
+        }
+        double *times = malloc((size_t)m * sizeof *times);
+        if (times == NULL)
+            return MPB_ENOMEM;
+        for (long i = 0; i < m; i++)
+            times[i] = i == 0 ? 0.0 : d * (double)i / (double)(m - 1);
+        rc = mpb_result_set_times(res, 0, times, (int)m);
+        free(times);
+    }
     if (rc != MPB_OK) {
         res->status = MPB_PLAN_RESULT_T_FAILED;
         mpb_result_set_message(res, "%s", mpb_strerror(rc));

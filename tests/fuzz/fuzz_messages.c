@@ -43,6 +43,15 @@ static void check_result(const mpb_plan_result_t *r)
             continue;
         mpb_verify_path(w, start, 0.01, &g, st->waypoints, st->num_waypoints,
                         3, 0.05, &v);
+        if (st->num_times != 0 &&
+            mpb_times_ok(st->times, st->num_times, st->num_waypoints, why,
+                         sizeof why) &&
+            v.code != MPB_VERDICT_NOT_FINITE) {
+            static const double limits[3] = {1.0, 0, 2.0};
+            mpb_timing t;
+            mpb_path_timing(st->waypoints, st->times, st->num_waypoints, 3,
+                            mpb_world_joint_wraps(w), limits, &t);
+        }
         mpb_verdict_name(v.code);
         if (v.code != MPB_VERDICT_NOT_FINITE) {
             mpb_path_length(st->waypoints, st->num_waypoints, 3,
@@ -68,7 +77,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     switch (data[0] % 5) {
     case 0: {
         mpb_plan_result_t m;
-        if (mpb_plan_result_t_decode(buf, 0, len, &m) >= 0) {
+        if (mpb_receive_decode_result(buf, len, &m) >= 0) {
             check_result(&m);
             mpb_plan_result_t_decode_cleanup(&m);
         }

@@ -9,6 +9,7 @@
 #include "mpbench/mpbench.h"
 #include "mpb_plan_request_t.h"
 #include "mpb_plan_result_t.h"
+#include "mpb_plan_result_v1_t.h"
 #include "mpb_planner_announce_t.h"
 #include "mpb_run_ack_t.h"
 
@@ -49,14 +50,24 @@ int main(int argc, char **argv)
     mpb_named_value_t val = {"graph states", 12};
     mpb_named_value_t pv = {"best cost", 1.5};
     mpb_progress_t prog = {0.01, 1, &pv};
+    double times[] = {0, 0.25, 1.0}, bad_times[] = {0.5, 0.25};
     mpb_stage_t stages[] = {
-        {"raw", 0.001, 3, 3, 9, wp},
-        {"shortcut", 0.0005, 2, 3, 6, bad},
+        {"raw", 0.001, 3, 3, 9, wp, 3, times},
+        {"shortcut", 0.0005, 2, 3, 6, bad, 2, bad_times},
     };
     mpb_plan_result_t res = {1, "0123456789abcdef0123456789abcdef", "null@h:1",
                              0, "", 0.002, 0.0001, 3.5, 2, stages, 1, &val, 1,
                              &prog};
     ENCODE(mpb_plan_result_t, res, dir, "result", 0);
+    /* As a planner built before waypoint times sends it. */
+    mpb_stage_v1_t stages_v1[] = {
+        {"raw", 0.001, 3, 3, 9, wp},
+        {"shortcut", 0.0005, 2, 3, 6, bad},
+    };
+    mpb_plan_result_v1_t res_v1 = {1, "0123456789abcdef0123456789abcdef",
+                                   "null@h:1", 0, "", 0.002, 0.0001, 3.5, 2,
+                                   stages_v1, 1, &val, 1, &prog};
+    ENCODE(mpb_plan_result_v1_t, res_v1, dir, "result-v1", 0);
 
     char *algos[] = {"RRTConnect", "RRT"};
     char *active[] = {"0123456789abcdef0123456789abcdef"};

@@ -16,6 +16,8 @@ typedef struct view_stage {
     int     valid, segment;        /* segment: the verdict's, -1 if none */
     int     num_waypoints;
     double *waypoints;             /* as stored; freed once framed */
+    double *times;                 /* the waypoints' times as stored, or
+                                      NULL (an untimed stage) */
     int     num_frames;            /* waypoints, and samples between them
                                       when there are few */
     float  *frame_at;              /* per frame: waypoint index + fraction */

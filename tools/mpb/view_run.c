@@ -179,6 +179,11 @@ static int on_stage(void *ud, const mpb_stage_record *st)
         size_t n = (size_t)st->num_waypoints * (size_t)st->num_joints;
         s->waypoints = view_calloc(n, sizeof *s->waypoints);
         memcpy(s->waypoints, st->waypoints, n * sizeof *s->waypoints);
+        if (st->times != NULL) {
+            s->times = view_calloc((size_t)st->num_waypoints, sizeof *s->times);
+            memcpy(s->times, st->times,
+                   (size_t)st->num_waypoints * sizeof *s->times);
+        }
     }
     return 0;
 }
@@ -356,6 +361,7 @@ void view_free(view_run *v)
         free(st->verdict);
         free(st->detail);
         free(st->waypoints);
+        free(st->times);
         free(st->frame_at);
         free(st->poses);
         free(st->collision_poses);

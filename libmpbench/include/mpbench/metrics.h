@@ -9,6 +9,8 @@
 #ifndef MPBENCH_METRICS_H
 #define MPBENCH_METRICS_H
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -25,7 +27,8 @@ extern "C" {
  *
  * ID      MPB_METRIC_<ID>, the metric's index in this list
  * name    as stored and in machine-readable reports ("path_length")
- * unit    "s", "m", "rad", "rad^2"; "" for a count
+ * unit    "s", "m", "rad", "rad^2", "rad/s", "rad/s^2"; "" for a count or
+ *         a ratio
  * flags   MPB_METRIC_F_* below
  * rank    its place in Planner Arena's property lists and in `mpb plot`
  *         (1, 2, ...); 0: not plotted, listed after the ranked ones by name
@@ -74,7 +77,25 @@ extern "C" {
       "higher keeps further away", "min_clearance")                          \
     X(TIME, "time", "s", 0, 0, "tau_s", "$\\tau_s$", "Stage time",           \
       "the stage's time as the planner reported it (s)",                     \
-      "shorter is better", NULL)
+      "shorter is better", NULL)                                             \
+    X(DURATION, "duration", "s", MPB__METRIC_F_TIMED_ROW, 0, "t_d",          \
+      "$t_d$", "Trajectory duration",                                        \
+      "duration of the timed trajectory (s)", "shorter is faster",           \
+      "duration")                                                            \
+    X(MAX_VELOCITY, "max_velocity", "rad/s", MPB__METRIC_F_TIMED_ROW, 0,     \
+      "v_max", "$v_{max}$", "Largest joint velocity",                        \
+      "largest joint velocity between waypoints (rad/s)",                    \
+      "lower is gentler", "max velocity")                                    \
+    X(VELOCITY_RATIO, "velocity_limit_ratio", "",                            \
+      MPB_METRIC_F_PATH | MPB_METRIC_F_TIMED, 0, "v/v_lim", "$v/v_{lim}$",  \
+      "Largest joint velocity over the joint's limit",                       \
+      "largest joint velocity over its URDF limit",                          \
+      "at most 1 keeps to the limits", "velocity limit ratio")               \
+    X(MAX_ACCELERATION, "max_acceleration", "rad/s^2",                       \
+      MPB__METRIC_F_TIMED_ROW, 0, "a_max", "$a_{max}$",                      \
+      "Largest joint acceleration",                                          \
+      "largest joint acceleration between segments (rad/s^2)",               \
+      "lower is gentler", "max acceleration")
 
 /* A metric's flags. */
 #define MPB_METRIC_F_PATH     1  /* measured only on a path of the right
@@ -83,6 +104,14 @@ extern "C" {
 #define MPB_METRIC_F_SIGMA    4  /* and a row of its standard deviation */
 #define MPB_METRIC_F_OPTIONAL 8  /* a row only where some run has it */
 #define MPB_METRIC_F_COUNT   16  /* a count: its mean shows one decimal */
+#define MPB_METRIC_F_TIMED   32  /* measured only on a stage that has
+                                    waypoint times (stage_t.times), and
+                                    left out where its value is NaN (no
+                                    joint has a limit to compare with) */
+/* A timed metric that is a row of `mpb report` where some run has it. */
+#define MPB__METRIC_F_TIMED_ROW                                             \
+    (MPB_METRIC_F_PATH | MPB_METRIC_F_TIMED | MPB_METRIC_F_TABLE |           \
+     MPB_METRIC_F_OPTIONAL)
 
 typedef enum mpb_metric_id {
 #define MPB__METRIC_ENUM(id, ...) MPB_METRIC_##id,
@@ -153,6 +182,56 @@ double mpb_smoothness(const double *wp, int num_waypoints, int num_joints,
  */
 double mpb_smoothness_resampled(const double *wp, int num_waypoints,
                                 int num_joints, mpb_joint_wrap continuous);
+
+/*
+ * How a timed trajectory moves (docs/metrics.md, "Timed trajectories"):
+ * num_waypoints waypoints wp with the time of each, times (s, finite,
+ * non-decreasing: mpb_times_ok()). By finite differences between
+ * waypoints: segment i (waypoints i, i+1) moves joint j at
+ * v_ij = delta_j / (t_{i+1} - t_i) (continuous joints the short way);
+ * a segment of no time and no motion (a waypoint repeated) is dropped, one
+ * of no time that moves has an infinite velocity. The acceleration
+ * between consecutive segments that remain is
+ * (v_{i+1,j} - v_ij) / ((dt_i + dt_{i+1}) / 2), the change of velocity
+ * between the segments' midpoints.
+ */
+typedef struct mpb_timing {
+    double duration;          /* s: the last time less the first */
+    double max_velocity;      /* the largest |v_ij| (rad/s or m/s); 0 for
+                                 fewer than two waypoints */
+    double max_acceleration;  /* the largest |a_ij|; 0 with fewer than two
+                                 segments that move */
+    double velocity_ratio;    /* the largest |v_ij| / limit_j over the
+                                 joints with a limit; NaN if none has one */
+    int    ratio_segment;     /* where velocity_ratio is: its segment and */
+    int    ratio_joint;       /* joint; -1 and -1 when it is NaN */
+} mpb_timing;
+
+/* A timed stage whose velocity_ratio is above 1 + this is refused with
+ * MPB_VERDICT_VELOCITY_LIMIT (verify.h): 1% for the rounding of a time
+ * parameterisation (a planner's finite-difference velocity is a chord of
+ * its true velocity, never above the true peak). */
+#define MPB_VELOCITY_TOLERANCE 0.01
+
+/*
+ * Fill *out with the timing of path wp at times; max_velocity (NULL: no
+ * limits) holds each joint's limit, 0 where it has none
+ * (mpb_world_joint_max_velocity()). MPB_OK; MPB_EINVAL for NULL wp,
+ * times or out, or num_waypoints < 1 or num_joints < 1 (*out then NaN).
+ */
+int mpb_path_timing(const double *wp, const double *times, int num_waypoints,
+                    int num_joints, mpb_joint_wrap continuous,
+                    const double *max_velocity, mpb_timing *out);
+
+/*
+ * 1 if times is a timing of a stage of num_waypoints waypoints:
+ * num_times == num_waypoints, every time finite, the first >= 0, none
+ * below the one before. Else 0 with a one-line reason in why (if not
+ * NULL), e.g. "time 3 (0.25 s) is below time 2 (0.5 s)". num_times 0
+ * (an untimed stage) is not a timing: callers check it first.
+ */
+int mpb_times_ok(const double *times, int num_times, int num_waypoints,
+                 char *why, size_t whylen);
 
 struct mpb_world;
 

@@ -176,11 +176,23 @@ int mpb_planner_option(int argc, char **argv, int *i, mpb_planner_options *o,
 
 /*
  * Append a stage of num_waypoints x num_joints values (copied, row after
- * row) to res. These four return MPB_OK, MPB_EINVAL or MPB_ENOMEM.
+ * row) to res. These five return MPB_OK, MPB_EINVAL or MPB_ENOMEM.
  */
 int mpb_result_add_stage(mpb_plan_result_t *res, const char *name,
                          double time, const double *waypoints,
                          int num_waypoints, int num_joints);
+
+/*
+ * Give stage (0-based, added already) of res the time of each of its
+ * waypoints (copied; s from the trajectory's start, finite, the first
+ * >= 0, non-decreasing, num_times its num_waypoints: what the daemon
+ * checks), for a planner whose output is time-parameterised; num_times 0
+ * makes it untimed again. The daemon then measures the trajectory's
+ * duration, velocities and accelerations and refuses one faster than the
+ * URDF's velocity limits (docs/metrics.md, "Timed trajectories").
+ */
+int mpb_result_set_times(mpb_plan_result_t *res, int stage,
+                         const double *times, int num_times);
 
 /*
  * The value a planner reports the preparation of a world in (s): parsing

@@ -51,6 +51,18 @@ int mpb_receive(mpb_auth *auth, unsigned accept, mpb_wire_type type,
                 const char *channel, const void *data, size_t size,
                 void *msg, mpb_received *r);
 
+/*
+ * Decode a result that mpb_wire_check(MPB_WIRE_PLAN_RESULT) passed, in
+ * either layout it takes: plan_result_t, or plan_result_v1_t (from a
+ * planner built before waypoint times), read as a plan_result_t whose
+ * stages have no times (num_times 0). Returns the bytes decoded, or < 0
+ * as the generated decoder does; free with
+ * mpb_plan_result_t_decode_cleanup(). mpb_receive() decodes results so.
+ */
+struct _mpb_plan_result_t;
+int mpb_receive_decode_result(const void *data, int len,
+                              struct _mpb_plan_result_t *out);
+
 /* Free what mpb_receive() decoded into *msg, a message of type. */
 void mpb_receive_done(mpb_wire_type type, void *msg);
 

@@ -260,6 +260,11 @@ typedef struct mpb_stage_record {
                                      colliding configuration found),
                                      "sampled" (mpb_verdict.certified 0),
                                      NULL when the check did not run */
+    /* Last, so that the fields above keep their places. */
+    const double *times;          /* s, the time of each waypoint
+                                     (num_waypoints values), as the planner
+                                     sent them (stages.times); NULL for an
+                                     untimed stage */
 } mpb_stage_record;
 
 /* A planner value that is an integer, kept exactly: the record's

@@ -42,7 +42,10 @@ typedef struct mpb_goal {
 mpb_goal mpb_query_goal(int kind, const double *joints, double joint_tolerance,
                         const char *link, const double *region);
 
-/* Why a trajectory is not a solution; the first failure found wins. */
+/* Why a trajectory is not a solution; the first failure found wins.
+ * BAD_TIMES is set by the caller for a stage whose waypoint times are not
+ * a timing (mpb_times_ok()); VELOCITY_LIMIT is the last check, made on a
+ * timed stage that passes every other (mpb_measure_stage_timed()). */
 #define MPB_VERDICT_MAP(X)                                              \
     X(VALID,         "valid")                                           \
     X(EMPTY,         "no waypoints")                                    \
@@ -52,7 +55,9 @@ mpb_goal mpb_query_goal(int kind, const double *joints, double joint_tolerance,
     X(GOAL,          "does not end in the goal region")                 \
     X(JOINT_LIMIT,   "a waypoint is outside the joint limits")          \
     X(COLLISION,     "collides")                                        \
-    X(UNSUPPORTED,   "goal kind not supported by this world")
+    X(UNSUPPORTED,   "goal kind not supported by this world")           \
+    X(BAD_TIMES,     "waypoint times are not a timing of the waypoints")\
+    X(VELOCITY_LIMIT, "a joint moves faster than its velocity limit")
 
 typedef enum mpb_verdict_code {
 #define MPB__VERDICT_ENUM(name, text) MPB_VERDICT_##name,
@@ -106,8 +111,9 @@ const char *mpb_verdict_name(mpb_verdict_code code);
 
 /*
  * How v's collision check was made, for the verdicts that make one (VALID,
- * COLLISION): "certified" (v->certified) or "sampled"; NULL for any other
- * verdict, and for NULL v. As the store keeps it (stages.verification).
+ * COLLISION, VELOCITY_LIMIT, checked after it): "certified"
+ * (v->certified) or "sampled"; NULL for any other verdict, and for NULL
+ * v. As the store keeps it (stages.verification).
  */
 const char *mpb_verdict_verification(const mpb_verdict *v);
 
@@ -183,6 +189,23 @@ int mpb_measure_stage(struct mpb_world *w, const double *start,
                       mpb_stage_measure *out);
 
 /*
+ * mpb_measure_stage() of a stage with the time of each waypoint, times
+ * (NULL: untimed, as mpb_measure_stage()), which the caller has checked
+ * (mpb_times_ok()). A stage that passes every check of mpb_verify_path()
+ * is then refused with MPB_VERDICT_VELOCITY_LIMIT when a joint's velocity
+ * between two waypoints is more than MPB_VELOCITY_TOLERANCE above its URDF
+ * limit (mpb_path_timing(), mpb_world_joint_max_velocity()): segment is
+ * that segment, detail names the joint, its velocity and its limit. The
+ * metrics flagged MPB_METRIC_F_TIMED are measured too.
+ */
+int mpb_measure_stage_timed(struct mpb_world *w, const double *start,
+                            double start_tolerance, const mpb_goal *goal,
+                            const double *wp, const double *times,
+                            int num_waypoints, int num_joints,
+                            double stage_time, double resolution,
+                            unsigned flags, mpb_stage_measure *out);
+
+/*
  * The metrics of a stage whose verdict is out->verdict already (set by the
  * caller, e.g. MPB_VERDICT_WRONG_SIZE for a message whose sizes disagree):
  * every metric of the list, except that those flagged MPB_METRIC_F_PATH
@@ -194,6 +217,14 @@ int mpb_measure_stage(struct mpb_world *w, const double *start,
 void mpb_measure_metrics(struct mpb_world *w, const double *wp,
                          int num_waypoints, int num_joints, double stage_time,
                          double resolution, mpb_stage_measure *out);
+
+/* mpb_measure_metrics() with the waypoints' times (NULL: untimed, the
+ * metrics flagged MPB_METRIC_F_TIMED left out; else those too, each left
+ * out where it is NaN). */
+void mpb_measure_metrics_timed(struct mpb_world *w, const double *wp,
+                               const double *times, int num_waypoints,
+                               int num_joints, double stage_time,
+                               double resolution, mpb_stage_measure *out);
 
 /*
  * Where a path collides, as mpb_find_collision() finds it: the

@@ -158,6 +158,10 @@ const char *mpb_world_joint_name(const mpb_world *w, int joint);
 void        mpb_world_joint_limits(const mpb_world *w, int joint,
                                    double *lo, double *hi);
 int         mpb_world_joint_is_continuous(const mpb_world *w, int joint);
+/* A joint's velocity limit, rad/s or m/s, as its URDF <limit velocity>
+ * gives it; 0 where none is given (a planar world's joints, a continuous
+ * joint without <limit>, a joint out of range). */
+double      mpb_world_joint_max_velocity(const mpb_world *w, int joint);
 /* One byte per joint, nonzero where the joint wraps; owned by the world. */
 const unsigned char *mpb_world_joint_wraps(const mpb_world *w);
 

@@ -18,17 +18,21 @@ static const mpb__world_provider *const providers[] = {
 #define NUM_PROVIDERS ((int)(sizeof providers / sizeof providers[0]))
 
 int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
-                         double lo, double hi, int continuous)
+                         double lo, double hi, int continuous,
+                         double max_velocity)
 {
     if (w->num_joints == w->cap) {
-        /* Four arrays of one capacity, each grown from the same one. */
-        int need = w->num_joints + 1, cap[4] = {w->cap, w->cap, w->cap, w->cap};
+        /* Five arrays of one capacity, each grown from the same one. */
+        int need = w->num_joints + 1,
+            cap[5] = {w->cap, w->cap, w->cap, w->cap, w->cap};
         if (mpb__grow((void **)&w->joint_names, &cap[0], need,
                       sizeof *w->joint_names) != MPB_OK ||
             mpb__grow((void **)&w->lo, &cap[1], need, sizeof *w->lo) != MPB_OK ||
             mpb__grow((void **)&w->hi, &cap[2], need, sizeof *w->hi) != MPB_OK ||
             mpb__grow((void **)&w->wraps, &cap[3], need, sizeof *w->wraps) !=
-                MPB_OK)
+                MPB_OK ||
+            mpb__grow((void **)&w->max_velocity, &cap[4], need,
+                      sizeof *w->max_velocity) != MPB_OK)
             return MPB_ENOMEM;
         w->cap = cap[0];
     }
@@ -42,6 +46,8 @@ int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
     w->wraps[i] = continuous ? 1 : 0;
     w->lo[i] = continuous ? -M_PI : lo;
     w->hi[i] = continuous ? M_PI : hi;
+    w->max_velocity[i] = isfinite(max_velocity) && max_velocity > 0
+                             ? max_velocity : 0.0;
     return MPB_OK;
 }
 
@@ -151,6 +157,7 @@ void mpb_world_close(mpb_world *w)
     free(w->lo);
     free(w->hi);
     free(w->wraps);
+    free(w->max_velocity);
     free(w);
 }
 
@@ -174,6 +181,12 @@ void mpb_world_joint_limits(const mpb_world *w, int joint,
         *lo = ok ? w->lo[joint] : NAN;
     if (hi)
         *hi = ok ? w->hi[joint] : NAN;
+}
+
+double mpb_world_joint_max_velocity(const mpb_world *w, int joint)
+{
+    return w && joint >= 0 && joint < w->num_joints ? w->max_velocity[joint]
+                                                    : 0.0;
 }
 
 int mpb_world_joint_is_continuous(const mpb_world *w, int joint)

@@ -218,7 +218,7 @@ static int parse_robot(mpb_world *w, planar *p, const char *text,
                           sizeof *p->length) != MPB_OK)
                 return MPB_ENOMEM;
             int rc = mpb__world_add_joint(w, name->p, (size_t)name->len,
-                                          v[0], v[1], continuous);
+                                          v[0], v[1], continuous, 0.0);
             if (rc != MPB_OK)
                 return rc;
             p->length[p->n++] = v[2];

@@ -97,15 +97,19 @@ struct mpb_world {
     char         **joint_names;
     double        *lo, *hi;
     unsigned char *wraps;         /* nonzero where the joint is continuous */
+    double        *max_velocity;  /* URDF <limit velocity>, rad/s or m/s;
+                                     0 where none is given */
     int            verification;  /* mpb_verification: 0 certified */
 };
 
 /*
  * Append a joint (name is copied, namelen bytes). Continuous joints get the
- * limits -pi .. pi whatever lo and hi say. MPB_OK or MPB_ENOMEM.
+ * limits -pi .. pi whatever lo and hi say; max_velocity not finite and
+ * above 0 is kept as 0 (none). MPB_OK or MPB_ENOMEM.
  */
 int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
-                         double lo, double hi, int continuous);
+                         double lo, double hi, int continuous,
+                         double max_velocity);
 
 /*
  * URDF only, for world_urdf.c's safe_step: the step of certified

@@ -374,7 +374,8 @@ static int urdf_open(mpb_world *w, const char *robot_text,
     for (int j = 0; j < num_joints; j++) {
         const mpb_robot_joint *jt = mpb_robot_get_joint(u->robot, j);
         rc = mpb__world_add_joint(w, jt->name, strlen(jt->name), jt->lo, jt->hi,
-                                  jt->type == MPB_JOINT_CONTINUOUS);
+                                  jt->type == MPB_JOINT_CONTINUOUS,
+                                  jt->max_velocity);
         if (rc != MPB_OK) {
             free(q0);
             return rc;

@@ -2,10 +2,13 @@
 #include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "mpbench/mpbench.h"
 #include "mpbench/receive.h"
 #include "mpb_planner_announce_v1_t.h"
+#include "mpb_plan_result_v1_t.h"
 
 /*
  * An announcement, checked by mpb_wire_check() as either form: one of an
@@ -38,6 +41,54 @@ static int decode_announce(const void *data, int len, mpb_planner_announce_t *m)
     return n;
 }
 
+/* LCM's fingerprint, the first 8 bytes of an encoding, big-endian. */
+static uint64_t fingerprint_of(const void *data, int len)
+{
+    const unsigned char *p = data;
+    uint64_t v = 0;
+    for (int i = 0; i < 8 && i < len; i++)
+        v = (v << 8) | p[i];
+    return v;
+}
+
+int mpb_receive_decode_result(const void *data, int len, mpb_plan_result_t *out)
+{
+    if (fingerprint_of(data, len) !=
+        (uint64_t)__mpb_plan_result_v1_t_get_hash())
+        return mpb_plan_result_t_decode(data, 0, len, out);
+    mpb_plan_result_v1_t old;
+    int rc = mpb_plan_result_v1_t_decode(data, 0, len, &old);
+    if (rc < 0)
+        return rc;
+    mpb_stage_t *stages = old.num_stages > 0
+        ? calloc((size_t)old.num_stages, sizeof *stages) : NULL;
+    if (old.num_stages > 0 && stages == NULL) {
+        mpb_plan_result_v1_t_decode_cleanup(&old);
+        return -1;
+    }
+    /* Every pointer moves over: the strings and arrays the decoder
+     * allocated are freed by mpb_plan_result_t_decode_cleanup(). */
+    for (int i = 0; i < old.num_stages; i++)
+        stages[i] = (mpb_stage_t){
+            .name = old.stages[i].name,
+            .time = old.stages[i].time,
+            .num_waypoints = old.stages[i].num_waypoints,
+            .num_joints = old.stages[i].num_joints,
+            .num_values = old.stages[i].num_values,
+            .waypoints = old.stages[i].waypoints,
+        };
+    free(old.stages);
+    *out = (mpb_plan_result_t){
+        .utime = old.utime, .run_id = old.run_id, .planner_id = old.planner_id,
+        .status = old.status, .message = old.message,
+        .time_total = old.time_total, .time_other = old.time_other,
+        .memory = old.memory, .num_stages = old.num_stages, .stages = stages,
+        .num_values = old.num_values, .values = old.values,
+        .num_progress = old.num_progress, .progress = old.progress,
+    };
+    return rc;
+}
+
 /* The generated decoder of each type, through one signature. */
 static int decode(mpb_wire_type type, const void *data, int len, void *msg)
 {
@@ -47,7 +98,7 @@ static int decode(mpb_wire_type type, const void *data, int len, void *msg)
     case MPB_WIRE_PLAN_REQUEST:
         return mpb_plan_request_t_decode(data, 0, len, msg);
     case MPB_WIRE_PLAN_RESULT:
-        return mpb_plan_result_t_decode(data, 0, len, msg);
+        return mpb_receive_decode_result(data, len, msg);
     case MPB_WIRE_RUN_ACK:
         return mpb_run_ack_t_decode(data, 0, len, msg);
     case MPB_WIRE_DAEMON_STATUS:

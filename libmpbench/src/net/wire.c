@@ -14,6 +14,7 @@
 #include "mpb_daemon_status_t.h"
 #include "mpb_plan_request_t.h"
 #include "mpb_plan_result_t.h"
+#include "mpb_plan_result_v1_t.h"
 #include "mpb_planner_announce_t.h"
 #include "mpb_planner_announce_v1_t.h"
 #include "mpb_run_ack_t.h"
@@ -161,24 +162,35 @@ static void request(cursor *c)
         string(c);                         /* stored */
 }
 
-static void stage(cursor *c)
+/* A stage_t, or with timed 0 a stage_v1_t (no num_times, no times). */
+static void stage(cursor *c, int timed)
 {
     string(c);                             /* name */
     doubles(c, 1);                         /* time */
     skip(c, 4 + 2);                        /* num_waypoints, num_joints */
     doubles(c, count(c, 4, 8));            /* waypoints */
+    if (timed)
+        doubles(c, count(c, 4, 8));        /* times */
 }
 
+/* Either layout of a result: plan_result_t, or plan_result_v1_t as
+ * planners built before waypoint times send it (its own fingerprint). */
 static void result(cursor *c)
 {
-    fingerprint(c, (int64_t)__mpb_plan_result_t_get_hash());
+    int64_t fp = read_int(c, 8);
+    int timed = fp == (int64_t)__mpb_plan_result_t_get_hash();
+    if (!c->bad && !timed && fp != (int64_t)__mpb_plan_result_v1_t_get_hash()) {
+        fail(c, "not this message type (fingerprint differs)");
+        return;
+    }
     doubles(c, 1);                         /* utime */
     string(c); string(c);                  /* run_id, planner_id */
     skip(c, 1);                            /* status */
     string(c);                             /* message */
     doubles(c, 3);                         /* time_total, time_other, memory */
-    for (int64_t i = count(c, 2, 5 + 8 + 10); i > 0 && !c->bad; i--)
-        stage(c);
+    for (int64_t i = count(c, 2, 5 + 8 + (timed ? 14 : 10)); i > 0 && !c->bad;
+         i--)
+        stage(c, timed);
     for (int64_t i = count(c, 2, 5 + 8); i > 0 && !c->bad; i--)
         named_value(c);
     for (int64_t i = count(c, 4, 8 + 2); i > 0 && !c->bad; i--) {

@@ -129,6 +129,25 @@ int mpb_result_add_stage(mpb_plan_result_t *res, const char *name,
     return MPB_OK;
 }
 
+int mpb_result_set_times(mpb_plan_result_t *res, int stage,
+                         const double *times, int num_times)
+{
+    if (res == NULL || stage < 0 || stage >= res->num_stages ||
+        num_times < 0 || (num_times > 0 && times == NULL))
+        return MPB_EINVAL;
+    mpb_stage_t *st = &res->stages[stage];
+    double *copy = NULL;
+    if (num_times > 0) {
+        if ((copy = malloc((size_t)num_times * sizeof *copy)) == NULL)
+            return MPB_ENOMEM;
+        memcpy(copy, times, (size_t)num_times * sizeof *copy);
+    }
+    free(st->times);
+    st->times = copy;
+    st->num_times = num_times;
+    return MPB_OK;
+}
+
 int mpb_result_add_value(mpb_plan_result_t *res, const char *name,
                          double value)
 {
@@ -174,6 +193,7 @@ static void mpb__result_clear_lists(mpb_plan_result_t *res)
     for (int i = 0; i < res->num_stages; i++) {
         free(res->stages[i].name);
         free(res->stages[i].waypoints);
+        free(res->stages[i].times);
     }
     free(res->stages);
     for (int i = 0; i < res->num_values; i++)

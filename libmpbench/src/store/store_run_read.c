@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -78,15 +79,17 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
                          void *ud)
 {
     /* A database made before stages.verification (read-only, so never
-     * given the column) stored sampled verdicts: read as NULL. */
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        mpb__store_has_column(s, "stages", "verification")
-        ? "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
-          " verdict, verdict_detail, verdict_segment, verification"
-          " FROM stages WHERE run_id = ? ORDER BY idx"
-        : "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
-          " verdict, verdict_detail, verdict_segment, NULL"
-          " FROM stages WHERE run_id = ? ORDER BY idx");
+     * given the column) stored sampled verdicts: read as NULL; one made
+     * before stages.times had no timed stages. */
+    char sql[256];
+    snprintf(sql, sizeof sql,
+             "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
+             " verdict, verdict_detail, verdict_segment, %s, %s"
+             " FROM stages WHERE run_id = ? ORDER BY idx",
+             mpb__store_has_column(s, "stages", "verification")
+                 ? "verification" : "NULL",
+             mpb__store_has_column(s, "stages", "times") ? "times" : "NULL");
+    sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, run_id);
@@ -106,6 +109,20 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
             }
             memcpy(wp, blob, bytes);   /* aligned; little-endian as stored */
         }
+        /* Times that are not one double per waypoint are given as none. */
+        const void *tblob = sqlite3_column_blob(st, 10);
+        size_t tbytes = (size_t)sqlite3_column_bytes(st, 10);
+        double *times = NULL;
+        if (wp != NULL && tblob != NULL &&
+            tbytes == sizeof(double) * (size_t)n) {
+            if ((times = malloc(tbytes)) == NULL) {
+                free(wp);
+                sqlite3_finalize(st);
+                return mpb__store_fail(s, MPB_ENOMEM, "out of memory "
+                                       "reading run %lld", (long long)run_id);
+            }
+            memcpy(times, tblob, tbytes);
+        }
         mpb_stage_record rec = {
             .name = text_or_empty(st, 0),
             .time = sqlite3_column_type(st, 1) == SQLITE_NULL
@@ -119,8 +136,10 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
             .verdict_segment = sqlite3_column_type(st, 8) == SQLITE_NULL
                                    ? -1 : sqlite3_column_int(st, 8),
             .verification = (const char *)sqlite3_column_text(st, 9),
+            .times = times,
         };
         stop = cb(ud, &rec);
+        free(times);
         free(wp);
     }
     sqlite3_finalize(st);

@@ -230,6 +230,11 @@ static int write_stage(mpb_store *s, int64_t run_id, int idx,
     sqlite3_bind_int(st, 11, sg->verdict_segment);
     if (sg->verification)
         sqlite3_bind_text(st, 12, sg->verification, -1, SQLITE_STATIC);
+    /* Times as raw float64 too, one per waypoint; NULL: untimed. */
+    if (sg->times != NULL && sg->num_waypoints > 0)
+        sqlite3_bind_blob(st, 13, sg->times,
+                          (int)(sizeof(double) * (size_t)sg->num_waypoints),
+                          SQLITE_STATIC);
     if (sqlite3_step(st) != SQLITE_DONE)
         return mpb__store_db_fail(s, "store stage");
 

@@ -118,6 +118,7 @@ const char mpb__schema_v1[] =
     "  verdict_detail  TEXT,\n"
     "  verdict_segment INTEGER,\n"
     "  verification    TEXT,\n"
+    "  times           BLOB,\n"
     "  PRIMARY KEY(run_id, idx)) WITHOUT ROWID;\n"
 
     "CREATE TABLE IF NOT EXISTS metrics(\n"

@@ -7,19 +7,48 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* What a metric is computed from; clearances are measured once for both
  * metrics that read them (a distance query per waypoint, the dear part). */
 typedef struct mpb__measure {
     mpb_world    *w;
-    const double *wp;
+    const double *wp, *times;     /* times NULL: untimed */
     int           n, nj;
     double        time, resolution;
     const unsigned char *wraps;
     int           have_clearances;
     double        mean_clearance, least_clearance;
+    int           have_timing;
+    mpb_timing    timing;
 } mpb__measure;
+
+/* Each joint's velocity limit, 0 where none, into v (num_joints values);
+ * NULL where no joint has one or memory runs out. */
+static double *velocity_limits(mpb_world *w, int num_joints)
+{
+    int any = 0;
+    for (int j = 0; j < num_joints; j++)
+        any |= mpb_world_joint_max_velocity(w, j) > 0;
+    double *v = any ? malloc((size_t)num_joints * sizeof *v) : NULL;
+    for (int j = 0; v != NULL && j < num_joints; j++)
+        v[j] = mpb_world_joint_max_velocity(w, j);
+    return v;
+}
+
+static const mpb_timing *timing(mpb__measure *m)
+{
+    if (!m->have_timing) {
+        double *limits = velocity_limits(m->w, m->nj);
+        mpb_path_timing(m->wp, m->times, m->n, m->nj, m->wraps, limits,
+                        &m->timing);
+        free(limits);
+    }
+    m->have_timing = 1;
+    return &m->timing;
+}
 
 static void clearances(mpb__measure *m)
 {
@@ -71,6 +100,26 @@ static double metric_TIME(mpb__measure *m)
     return m->time;
 }
 
+static double metric_DURATION(mpb__measure *m)
+{
+    return timing(m)->duration;
+}
+
+static double metric_MAX_VELOCITY(mpb__measure *m)
+{
+    return timing(m)->max_velocity;
+}
+
+static double metric_VELOCITY_RATIO(mpb__measure *m)
+{
+    return timing(m)->velocity_ratio;
+}
+
+static double metric_MAX_ACCELERATION(mpb__measure *m)
+{
+    return timing(m)->max_acceleration;
+}
+
 static const mpb_metric_info metric_info[MPB_NUM_METRICS] = {
 #define MPB__METRIC_INFO(id, name, unit, flags, rank, symbol, latex, title,  \
                          axis, better, word)                                 \
@@ -103,8 +152,18 @@ void mpb_measure_metrics(mpb_world *w, const double *wp, int num_waypoints,
                          int num_joints, double stage_time, double resolution,
                          mpb_stage_measure *out)
 {
+    mpb_measure_metrics_timed(w, wp, NULL, num_waypoints, num_joints,
+                              stage_time, resolution, out);
+}
+
+void mpb_measure_metrics_timed(mpb_world *w, const double *wp,
+                               const double *times, int num_waypoints,
+                               int num_joints, double stage_time,
+                               double resolution, mpb_stage_measure *out)
+{
     mpb__measure m = {
-        .w = w, .wp = wp, .n = num_waypoints, .nj = num_joints,
+        .w = w, .wp = wp, .times = times, .n = num_waypoints,
+        .nj = num_joints,
         .time = stage_time, .resolution = resolution,
         .wraps = w != NULL ? mpb_world_joint_wraps(w) : NULL,
     };
@@ -113,10 +172,17 @@ void mpb_measure_metrics(mpb_world *w, const double *wp, int num_waypoints,
                v != MPB_VERDICT_WRONG_SIZE;
     out->num_metrics = 0;
     for (int i = 0; i < MPB_NUM_METRICS; i++) {
-        if ((metric_info[i].flags & MPB_METRIC_F_PATH) && !path)
+        unsigned flags = metric_info[i].flags;
+        if ((flags & MPB_METRIC_F_PATH) && !path)
+            continue;
+        if ((flags & MPB_METRIC_F_TIMED) &&
+            (times == NULL || num_waypoints < 1))
+            continue;
+        double value = metric_fn[i](&m);
+        if ((flags & MPB_METRIC_F_TIMED) && isnan(value))
             continue;
         out->metrics[out->num_metrics].name = metric_info[i].name;
-        out->metrics[out->num_metrics].value = metric_fn[i](&m);
+        out->metrics[out->num_metrics].value = value;
         out->num_metrics++;
     }
 }
@@ -127,13 +193,53 @@ int mpb_measure_stage(mpb_world *w, const double *start,
                       double stage_time, double resolution, unsigned flags,
                       mpb_stage_measure *out)
 {
+    return mpb_measure_stage_timed(w, start, start_tolerance, goal, wp, NULL,
+                                   num_waypoints, num_joints, stage_time,
+                                   resolution, flags, out);
+}
+
+/* The last check of a timed stage that passed the others: no joint faster
+ * than its limit, beyond MPB_VELOCITY_TOLERANCE. */
+static void check_velocity(mpb_world *w, const double *wp,
+                           const double *times, int num_waypoints,
+                           int num_joints, mpb_verdict *v)
+{
+    double *limits = velocity_limits(w, num_joints);
+    mpb_timing t;
+    int rc = mpb_path_timing(wp, times, num_waypoints, num_joints,
+                             mpb_world_joint_wraps(w), limits, &t);
+    free(limits);
+    if (rc != MPB_OK || !(t.velocity_ratio > 1.0 + MPB_VELOCITY_TOLERANCE))
+        return;
+    int i = t.ratio_segment, j = t.ratio_joint;
+    double limit = mpb_world_joint_max_velocity(w, j);
+    v->code = MPB_VERDICT_VELOCITY_LIMIT;
+    v->segment = i;
+    snprintf(v->detail, sizeof v->detail,
+             "segment %d (waypoints %d-%d, %.6g s to %.6g s): joint %.80s at "
+             "%.6g, %.4g times its URDF velocity limit %.6g", i, i, i + 1,
+             times[i], times[i + 1], mpb_world_joint_name(w, j),
+             t.velocity_ratio * limit, t.velocity_ratio, limit);
+}
+
+int mpb_measure_stage_timed(mpb_world *w, const double *start,
+                            double start_tolerance, const mpb_goal *goal,
+                            const double *wp, const double *times,
+                            int num_waypoints, int num_joints,
+                            double stage_time, double resolution,
+                            unsigned flags, mpb_stage_measure *out)
+{
     int rc = mpb_verify_path(w, start, start_tolerance, goal, wp,
                              num_waypoints, num_joints, resolution,
                              &out->verdict);
+    if (rc == MPB_OK && times != NULL &&
+        out->verdict.code == MPB_VERDICT_VALID)
+        check_velocity(w, wp, times, num_waypoints, num_joints,
+                       &out->verdict);
     if (flags & MPB_MEASURE_NO_METRICS)
         out->num_metrics = 0;
     else
-        mpb_measure_metrics(w, wp, num_waypoints, num_joints, stage_time,
-                            resolution, out);
+        mpb_measure_metrics_timed(w, wp, times, num_waypoints, num_joints,
+                                  stage_time, resolution, out);
     return rc;
 }

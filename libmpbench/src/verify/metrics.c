@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -264,4 +265,94 @@ double mpb_ee_path_length(mpb_world *w, const double *wp, int num_waypoints,
         }
     }
     return total;
+}
+
+int mpb_times_ok(const double *times, int num_times, int num_waypoints,
+                 char *why, size_t whylen)
+{
+    char local[8];
+    if (why == NULL) {
+        why = local;
+        whylen = sizeof local;
+    }
+    if (num_times != num_waypoints) {
+        snprintf(why, whylen, "%d waypoint times for %d waypoints", num_times,
+                 num_waypoints);
+        return 0;
+    }
+    for (int i = 0; i < num_times; i++) {
+        if (times == NULL || !isfinite(times[i])) {
+            snprintf(why, whylen, "time %d is %s", i,
+                     times == NULL ? "missing" : "not finite");
+            return 0;
+        }
+        if (i == 0 && times[0] < 0) {
+            snprintf(why, whylen, "time 0 (%.17g s) is negative", times[0]);
+            return 0;
+        }
+        if (i > 0 && times[i] < times[i - 1]) {
+            snprintf(why, whylen, "time %d (%.17g s) is below time %d "
+                     "(%.17g s)", i, times[i], i - 1, times[i - 1]);
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Joint j's velocity from waypoint a to b, dt apart: 0 where it does not
+ * move (even in no time), infinite where it moves in none. */
+static double joint_velocity(const double *a, const double *b, int j,
+                             double dt, mpb_joint_wrap continuous)
+{
+    double d = mpb_joint_delta(a[j], b[j], continuous && continuous[j]);
+    return d == 0.0 ? 0.0 : d / dt;
+}
+
+int mpb_path_timing(const double *wp, const double *times, int num_waypoints,
+                    int num_joints, mpb_joint_wrap continuous,
+                    const double *max_velocity, mpb_timing *out)
+{
+    if (out == NULL)
+        return MPB_EINVAL;
+    *out = (mpb_timing){NAN, NAN, NAN, NAN, -1, -1};
+    if (wp == NULL || times == NULL || num_waypoints < 1 || num_joints < 1)
+        return MPB_EINVAL;
+    out->duration = times[num_waypoints - 1] - times[0];
+    out->max_velocity = out->max_acceleration = 0.0;
+    int prev = -1;          /* the segment before that was kept */
+    for (int i = 0; i + 1 < num_waypoints; i++) {
+        const double *a = wp + (size_t)i * (size_t)num_joints;
+        const double *b = a + num_joints;
+        double dt = times[i + 1] - times[i];
+        int moves = 0;
+        for (int j = 0; j < num_joints && !moves; j++)
+            moves = joint_velocity(a, b, j, 1.0, continuous) != 0.0;
+        if (!moves && !(dt > 0.0))
+            continue;               /* a waypoint repeated at its time */
+        for (int j = 0; j < num_joints; j++) {
+            double v = joint_velocity(a, b, j, dt, continuous);
+            if (fabs(v) > out->max_velocity)
+                out->max_velocity = fabs(v);
+            if (max_velocity != NULL && max_velocity[j] > 0) {
+                double r = fabs(v) / max_velocity[j];
+                if (isnan(out->velocity_ratio) || r > out->velocity_ratio) {
+                    out->velocity_ratio = r;
+                    out->ratio_segment = i;
+                    out->ratio_joint = j;
+                }
+            }
+            if (prev < 0)
+                continue;
+            const double *p = wp + (size_t)prev * (size_t)num_joints;
+            double pdt = times[prev + 1] - times[prev];
+            double pv = joint_velocity(p, a, j, pdt, continuous);
+            double acc = fabs(v - pv) / ((dt + pdt) / 2.0);
+            if (isnan(acc))         /* infinite velocities, or no time */
+                acc = v == pv && isfinite(v) ? 0.0 : INFINITY;
+            if (acc > out->max_acceleration)
+                out->max_acceleration = acc;
+        }
+        prev = i;
+    }
+    return MPB_OK;
 }

@@ -21,6 +21,8 @@ static const char *const verdict_names[MPB_VERDICT_COUNT] = {
     [MPB_VERDICT_JOINT_LIMIT] = "joint_limit",
     [MPB_VERDICT_COLLISION]   = "collision",
     [MPB_VERDICT_UNSUPPORTED] = "unsupported",
+    [MPB_VERDICT_BAD_TIMES]   = "bad_times",
+    [MPB_VERDICT_VELOCITY_LIMIT] = "velocity_limit",
 };
 
 const char *mpb_verdict_name(mpb_verdict_code code)
@@ -33,7 +35,8 @@ const char *mpb_verdict_name(mpb_verdict_code code)
 const char *mpb_verdict_verification(const mpb_verdict *v)
 {
     if (v == NULL ||
-        (v->code != MPB_VERDICT_VALID && v->code != MPB_VERDICT_COLLISION))
+        (v->code != MPB_VERDICT_VALID && v->code != MPB_VERDICT_COLLISION &&
+         v->code != MPB_VERDICT_VELOCITY_LIMIT))
         return NULL;
     return mpb_verification_name(v->certified ? MPB_VERIFY_CERTIFIED
                                               : MPB_VERIFY_SAMPLED);

@@ -9,8 +9,9 @@ the last joint's child link, the scene's shapes added as FCLObjects, then
 what Planner.plan_qpos does, stage by stage: its OMPLPlanner.plan
 (RRTConnect, range 0.1, plan_qpos's default) without simplification, as
 "raw"; OMPLPlanner.simplify_path, as "simplified"; Planner.TOPP (TOPP-RA
-at plan_qpos's time step 0.1 s) sampled positions, as "toppra". Its time
-limit: plan(time=...).
+at plan_qpos's time step 0.1 s) sampled positions with the time of each
+sample, as "toppra", a timed stage (mpbench measures its duration and
+velocities against the URDF's limits). Its time limit: plan(time=...).
 
 mplib refuses the Panda's link6.obj ("face with 2 vertices"): as a user
 would, every mesh goes through repair_mesh.py, which loads a copy without
@@ -124,8 +125,9 @@ class Adapter:
         stages.append(("simplified", time.monotonic() - t1, simple.tolist()))
         t2 = time.monotonic()
         try:
-            _, pos, _, _, _ = planner.TOPP(simple, TIME_STEP)
-            stages.append(("toppra", time.monotonic() - t2, pos.tolist()))
+            ts, pos, _, _, _ = planner.TOPP(simple, TIME_STEP)
+            stages.append(("toppra", time.monotonic() - t2, pos.tolist(),
+                           ts.tolist()))
         except Exception as e:      # TOPP-RA's own failures: say so
             return stages, plan_result_t.SOLVED, f"TOPP-RA failed: {e}", []
         return stages, plan_result_t.SOLVED, "", []

@@ -38,7 +38,7 @@ import sys
 import tempfile
 import time
 
-from mpb import goal_t, named_value_t, plan_request_t, plan_result_t, stage_t
+from mpb import goal_t, named_value_t, plan_request_t, plan_result_t
 
 from mpbplanner import request as kit_request
 from mpbplanner.memory import Watch
@@ -264,14 +264,10 @@ def acm_pairs(srdf):
 # ---- the run ----------------------------------------------------------------
 
 def _stage(name, seconds, path, n, times=None):
-    """A stage_t; times (a waypoint's time, s) go on the wire where the
-    protocol carries them."""
-    st = stage_t()
-    st.name, st.time = name, seconds
-    st.num_waypoints, st.num_joints = len(path), n
-    st.waypoints = [float(x) for q in path for x in q]
-    st.num_values = len(st.waypoints)
-    return st
+    """A stage_t; times (a waypoint's time, s), when given, go on the wire
+    as stage_t.times (the daemon checks them: one per waypoint, finite,
+    from 0 or later, non-decreasing)."""
+    return kit_request.stage(name, seconds, path, n, times)
 
 
 def _value(name, v):

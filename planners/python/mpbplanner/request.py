@@ -102,12 +102,16 @@ def goal_configs(world, req, free, deadline):
     return goals
 
 
-def stage(name, seconds, path, num_joints):
+def stage(name, seconds, path, num_joints, times=None):
     """A stage_t named name: path (a list of configurations) taking
-    seconds."""
+    seconds. times, for a time-parameterised trajectory: the time of each
+    waypoint (s from its start; the daemon checks there is one per
+    waypoint, finite, from 0 or later, non-decreasing); None: untimed."""
     st = stage_t()
     st.name, st.time = name, seconds
     st.num_waypoints, st.num_joints = len(path), num_joints
     st.waypoints = [float(x) for q in path for x in q]
     st.num_values = len(st.waypoints)
+    st.times = [] if times is None else [float(t) for t in times]
+    st.num_times = len(st.times)
     return st

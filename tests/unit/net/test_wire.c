@@ -1,6 +1,7 @@
 /* test_wire.c - the pre-decode check of encoded messages: real encodings of
- * every type pass; truncated, padded, mistyped and hostile ones do not; and
- * whatever passes decodes. */
+ * every type pass (a result in either layout: with waypoint times, and
+ * plan_result_v1_t as planners built before them send it); truncated,
+ * padded, mistyped and hostile ones do not; and whatever passes decodes. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -13,6 +14,7 @@
 #include "mpb_daemon_status_t.h"
 #include "mpb_plan_request_t.h"
 #include "mpb_plan_result_t.h"
+#include "mpb_plan_result_v1_t.h"
 #include "mpb_planner_announce_t.h"
 #include "mpb_planner_announce_v1_t.h"
 #include "mpb_run_ack_t.h"
@@ -23,7 +25,10 @@ typedef struct sample {
     int len;
 } sample;
 
-static sample samples[5];
+/* One per type, and a sixth: a result in the layout before waypoint
+ * times (plan_result_v1_t). */
+#define NUM_SAMPLES 6
+static sample samples[NUM_SAMPLES];
 
 #define ENCODE(i, wtype, T, msg)                                             \
     do {                                                                     \
@@ -48,7 +53,13 @@ static int decodes(mpb_wire_type t, const void *buf, int len)
     }
     TRY(MPB_WIRE_PLANNER_ANNOUNCE, mpb_planner_announce_t)
     TRY(MPB_WIRE_PLAN_REQUEST, mpb_plan_request_t)
-    TRY(MPB_WIRE_PLAN_RESULT, mpb_plan_result_t)
+    case MPB_WIRE_PLAN_RESULT: {    /* either layout, as mpb_receive() */
+        mpb_plan_result_t m;
+        rc = mpb_receive_decode_result(buf, len, &m);
+        if (rc >= 0)
+            mpb_plan_result_t_decode_cleanup(&m);
+        break;
+    }
     TRY(MPB_WIRE_RUN_ACK, mpb_run_ack_t)
     TRY(MPB_WIRE_DAEMON_STATUS, mpb_daemon_status_t)
 #undef TRY
@@ -64,9 +75,16 @@ static int setup(void **state)
     double wp[] = {0, 1, 0.5, 0.5, 1, 0};
     mpb_named_value_t v = {"graph states", 3};
     mpb_progress_t prog = {0.1, 1, &v};
-    mpb_stage_t st[] = {{"raw", 0.01, 3, 2, 6, wp}, {"empty", 0, 0, 2, 0, NULL}};
+    double times[] = {0, 0.5, 1.25};
+    mpb_stage_t st[] = {{"raw", 0.01, 3, 2, 6, wp, 3, times},
+                        {"empty", 0, 0, 2, 0, NULL, 0, NULL}};
     mpb_plan_result_t res = {1, "0123456789abcdef0123456789abcdef", "p@h:1", 0,
                              "ok", 0.02, 0.001, 12.5, 2, st, 1, &v, 1, &prog};
+    mpb_stage_v1_t st1[] = {{"raw", 0.01, 3, 2, 6, wp},
+                            {"empty", 0, 0, 2, 0, NULL}};
+    mpb_plan_result_v1_t res1 = {1, "0123456789abcdef0123456789abcdef",
+                                 "p@h:1", 0, "ok", 0.02, 0.001, 12.5, 2, st1,
+                                 1, &v, 1, &prog};
     char *algos[] = {"RRT", "RRTConnect"};
     char *approaches[] = {"sampling", ""};
     mpb_planner_announce_t ann = {1, "p@h:1", "p", "h", 7, "c", "1", 500,
@@ -96,13 +114,14 @@ static int setup(void **state)
     ENCODE(2, MPB_WIRE_PLAN_RESULT, mpb_plan_result_t, res);
     ENCODE(3, MPB_WIRE_RUN_ACK, mpb_run_ack_t, ack);
     ENCODE(4, MPB_WIRE_DAEMON_STATUS, mpb_daemon_status_t, status);
+    ENCODE(5, MPB_WIRE_PLAN_RESULT, mpb_plan_result_v1_t, res1);
     return 0;
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    for (int i = 0; i < 5; i++)
+    for (int i = 0; i < NUM_SAMPLES; i++)
         free(samples[i].buf);
     return 0;
 }
@@ -111,7 +130,7 @@ static void real_encodings_pass(void **state)
 {
     (void)state;
     char why[128];
-    for (int i = 0; i < 5; i++) {
+    for (int i = 0; i < NUM_SAMPLES; i++) {
         assert_true(mpb_wire_check(samples[i].type, samples[i].buf,
                                    (size_t)samples[i].len, why, sizeof why));
     }
@@ -121,7 +140,7 @@ static void each_type_is_told_apart(void **state)
 {
     (void)state;
     char why[128];
-    for (int i = 0; i < 5; i++)
+    for (int i = 0; i < NUM_SAMPLES; i++)
         for (int t = 0; t < 5; t++)
             if (t != (int)samples[i].type) {
                 assert_false(mpb_wire_check((mpb_wire_type)t, samples[i].buf,
@@ -184,7 +203,7 @@ static void an_older_planners_announcement_is_taken(void **state)
 static void every_truncation_and_padding_fails(void **state)
 {
     (void)state;
-    for (int i = 0; i < 5; i++) {
+    for (int i = 0; i < NUM_SAMPLES; i++) {
         for (int n = 0; n < samples[i].len; n++)
             assert_false(mpb_wire_check(samples[i].type, samples[i].buf,
                                         (size_t)n, NULL, 0));
@@ -227,7 +246,7 @@ static void whatever_passes_decodes(void **state)
 {
     (void)state;
     unsigned seed = 12345;
-    for (int i = 0; i < 5; i++) {
+    for (int i = 0; i < NUM_SAMPLES; i++) {
         sample *s = &samples[i];
         unsigned char *b = malloc((size_t)s->len);
         int passed = 0;
@@ -247,6 +266,53 @@ static void whatever_passes_decodes(void **state)
     }
 }
 
+/* A result in either layout reads the same through the gate, the old one
+ * as stages without times; a result whose fingerprint is neither is
+ * refused. */
+static void both_result_layouts_decode(void **state)
+{
+    (void)state;
+    for (int i = 2; i <= 5; i += 3) {
+        mpb_plan_result_t m;
+        mpb_received r;
+        assert_int_equal(mpb_receive(NULL, MPB_RECEIVE_FRESH,
+                                     MPB_WIRE_PLAN_RESULT, "MPB_RESULT",
+                                     samples[i].buf, (size_t)samples[i].len,
+                                     &m, &r), 1);
+        assert_string_equal(m.run_id, "0123456789abcdef0123456789abcdef");
+        assert_string_equal(m.message, "ok");
+        assert_int_equal(m.num_stages, 2);
+        assert_string_equal(m.stages[0].name, "raw");
+        assert_int_equal(m.stages[0].num_waypoints, 3);
+        assert_int_equal(m.stages[0].num_values, 6);
+        assert_true(m.stages[0].waypoints[2] == 0.5);
+        assert_string_equal(m.stages[1].name, "empty");
+        assert_int_equal(m.num_values, 1);
+        assert_string_equal(m.values[0].name, "graph states");
+        assert_int_equal(m.num_progress, 1);
+        if (i == 2) {
+            assert_int_equal(m.stages[0].num_times, 3);
+            assert_true(m.stages[0].times[2] == 1.25);
+        } else {
+            assert_int_equal(m.stages[0].num_times, 0);
+            assert_null(m.stages[0].times);
+        }
+        assert_int_equal(m.stages[1].num_times, 0);
+        mpb_receive_done(MPB_WIRE_PLAN_RESULT, &m);
+    }
+    /* The two fingerprints differ: each is the layout it says. */
+    assert_true(__mpb_plan_result_t_get_hash() !=
+                __mpb_plan_result_v1_t_get_hash());
+    unsigned char *b = malloc((size_t)samples[5].len);
+    memcpy(b, samples[5].buf, (size_t)samples[5].len);
+    b[7] ^= 1;
+    char why[128];
+    assert_false(mpb_wire_check(MPB_WIRE_PLAN_RESULT, b,
+                                (size_t)samples[5].len, why, sizeof why));
+    assert_non_null(strstr(why, "fingerprint"));
+    free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -256,6 +322,7 @@ int main(void)
         cmocka_unit_test(every_truncation_and_padding_fails),
         cmocka_unit_test(hostile_lengths_fail),
         cmocka_unit_test(whatever_passes_decodes),
+        cmocka_unit_test(both_result_layouts_decode),
     };
     return cmocka_run_group_tests_name("wire", tests, setup, teardown);
 }

@@ -93,6 +93,12 @@ static void test_result_round_trip(void **state)
     memset(&res, 0, sizeof res);
     double wp[4] = { 0.5, -0.5, 1.5, -1.5 };
     assert_int_equal(mpb_result_add_stage(&res, "raw", 0.125, wp, 2, 2), MPB_OK);
+    assert_int_equal(mpb_result_add_stage(&res, "timed", 0.5, wp, 2, 2), MPB_OK);
+    double times[2] = { 0.0, 0.75 };
+    assert_int_equal(mpb_result_set_times(&res, 1, times, 2), MPB_OK);
+    times[1] = 9;                           /* copied: no change */
+    assert_int_equal(mpb_result_set_times(&res, 2, times, 2), MPB_EINVAL);
+    assert_int_equal(mpb_result_set_times(&res, 0, NULL, 2), MPB_EINVAL);
     assert_int_equal(mpb_result_add_value(&res, "graph states", 7), MPB_OK);
     assert_int_equal(mpb_result_set_message(&res, "ok"), MPB_OK);
     res.run_id = strdup("0123456789abcdef0123456789abcdef");
@@ -109,6 +115,9 @@ static void test_result_round_trip(void **state)
     assert_int_equal(mpb_plan_result_t_decode(buf, 0, n, &back), n);
     assert_string_equal(back.stages[0].name, "raw");
     assert_true(back.stages[0].waypoints[3] == -1.5);
+    assert_int_equal(back.stages[0].num_times, 0);
+    assert_int_equal(back.stages[1].num_times, 2);
+    assert_true(back.stages[1].times[1] == 0.75);
     assert_true(back.values[0].value == 7);
     assert_string_equal(back.message, "ok");
     mpb_plan_result_t_decode_cleanup(&back);

@@ -116,7 +116,7 @@ static void a_run_is_finished_once(void **state)
     double wp[] = {0.0, 0.5, 1.0, -0.25};
     mpb_named metrics[] = {{"path_length", 1.25}, {"smoothness", 0.0}};
     mpb_stage_record stage = {"raw", 0.01, 2, 2, wp, 1, "valid", "", -1,
-                              2, metrics, NULL};
+                              2, metrics, NULL, NULL};
     mpb_named values[] = {{"graph states", 17}};
     mpb_run_record r = {
         .run_id = 0, .run_uid = "0123456789abcdef0123456789abcdef",
@@ -195,7 +195,7 @@ static void a_failed_write_leaves_no_half_run(void **state)
     fixture *f = *state;
     mpb_named metrics[] = {{"path_length", 1.0}, {NULL, 2.0}}; /* NULL name: NOT NULL fails */
     mpb_stage_record stage = {"raw", 0.01, 0, 2, NULL, 0, "empty", "", -1,
-                              2, metrics, NULL};
+                              2, metrics, NULL, NULL};
     mpb_run_record r = {
         .run_uid = "00000000000000000000000000000001", .planner_id = "p",
         .status = "solved", .num_stages = 1, .stages = &stage,
@@ -431,6 +431,95 @@ static void memory_is_stored_and_added_to_an_older_database(void **state)
     assert_int_equal(peek(f, "SELECT count(*) FROM runs WHERE memory IS NULL"), 3);
 }
 
+/* Finish repetition rep with two stages: "raw" untimed, "timed" with
+ * the time of each of its waypoints. */
+static void finish_with_times(fixture *f, int rep, const double *times)
+{
+    mpb_run_row rows[3] = {{0}};
+    char uid[33];
+    static const double wp[] = {0.0, 0.5, 0.5, 0.0, 1.0, -0.25};
+    snprintf(uid, sizeof uid, "%032d", rep + 1);
+    mpb_stage_record st[2] = {
+        {.name = "raw", .time = 0.1, .num_waypoints = 3, .num_joints = 2,
+         .waypoints = wp, .valid = 1, .verdict = "valid",
+         .verdict_segment = -1},
+        {.name = "timed", .time = 0.1, .num_waypoints = 3, .num_joints = 2,
+         .waypoints = wp, .valid = 1, .verdict = "valid",
+         .verdict_segment = -1, .times = times},
+    };
+    mpb_run_record r = {
+        .run_uid = uid, .planner_id = "p", .status = "solved", .message = "",
+        .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
+        .wall_time = 0.2, .verify_time = NAN, .memory = NAN,
+        .num_stages = 2, .stages = st,
+    };
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, rep, 1),
+                     MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows),
+                     MPB_OK);
+    r.run_id = rows[1].id;
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, uid, "p"), MPB_OK);
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_OK);
+}
+
+typedef struct seen_times {
+    int stages, timed;
+    double last;
+} seen_times;
+
+static int keep_times(void *ud, const mpb_stage_record *st)
+{
+    seen_times *t = ud;
+    t->stages++;
+    if (st->times != NULL) {
+        t->timed++;
+        t->last = st->times[st->num_waypoints - 1];
+    }
+    return 0;
+}
+
+/* stages.times (one float64 per waypoint, NULL untimed) is stored and
+ * read back; a database made before it reads (no stage timed) and gets
+ * the column when opened for writing, NULL for the stages it had. */
+static void times_are_stored_and_added_to_an_older_database(void **state)
+{
+    fixture *f = *state;
+    sqlite3 *db;
+    static const double times[] = {0.0, 0.75, 2.5};
+    finish_with_times(f, 0, times);
+    assert_int_equal(peek(f, "SELECT length(times) FROM stages WHERE name = 'timed'"),
+                     3 * 8);
+    assert_int_equal(peek(f, "SELECT times IS NULL FROM stages WHERE name = 'raw'"),
+                     1);
+    int64_t run = peek(f, "SELECT id FROM runs WHERE repetition = 0");
+    seen_times t = {0};
+    assert_int_equal(mpb_store_run_stages(f->s, run, keep_times, &t), MPB_OK);
+    assert_int_equal(t.stages, 2);
+    assert_int_equal(t.timed, 1);
+    assert_true(t.last == 2.5);
+
+    /* An older database: no stages.times. */
+    mpb_store_close(f->s);
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "ALTER TABLE stages DROP COLUMN times",
+                                  NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(mpb_store_open(f->path, 1, &f->s), MPB_OK);
+    t = (seen_times){0};
+    assert_int_equal(mpb_store_run_stages(f->s, run, keep_times, &t), MPB_OK);
+    assert_int_equal(t.stages, 2);
+    assert_int_equal(t.timed, 0);
+    mpb_store_close(f->s);
+
+    /* A writer adds it, NULL for the stages there were, and stores the
+     * times of a run it finishes. */
+    assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM stages WHERE times IS NULL"), 2);
+    finish_with_times(f, 1, times);
+    assert_int_equal(peek(f, "SELECT count(*) FROM stages WHERE times IS NOT NULL"),
+                     1);
+}
+
 /*
  * Another database moved over ours while we write: the check says so, and
  * what we wrote after the move does not end up in the other file (our -wal
@@ -503,6 +592,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(an_older_state_index_is_dropped, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_results_view_is_replaced, setup, teardown),
         cmocka_unit_test_setup_teardown(verify_time_is_stored_and_added_to_an_older_database,
+                                        setup, teardown),
+        cmocka_unit_test_setup_teardown(times_are_stored_and_added_to_an_older_database,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(memory_is_stored_and_added_to_an_older_database,
                                         setup, teardown),

@@ -637,10 +637,10 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "experiment_id,experiment,scene,planner,metric,unit,mean,sigma,n,"
         "unfinished,sigma_single\n";
     assert_int_equal(strncmp(o.text, header, strlen(header)), 0);
-    /* 2 scenes x 2 configurations x (12 metrics + the success rate and
+    /* 2 scenes x 2 configurations x (15 metrics + the success rate and
      * the claimed one + 5 outcomes), and the header: always the same
      * rows, empty where nothing was measured. */
-    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 19);
+    assert_int_equal(count(o.text, "\n"), 1 + 2 * 2 * 22);
     /* tau_t of A on KITCHEN: mean 16/5, sigma (1 + sqrt 2)/2 over 5 runs */
     assert_non_null(strstr(o.text, "\n1,paper,KITCHEN,ompl/RRTConnect,"
                                    "time_total,s,3.2,1.20710678118655,5,1,0\n"));
@@ -687,7 +687,7 @@ static void csv_has_a_row_per_scene_planner_and_metric(void **state)
         "                r['metric'], r['mean'], r['n']]))\n",
         "report -f csv '%s'", f->odd);
     assert_int_equal(o.status, 0);
-    assert_string_equal(o.text, "19\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
+    assert_string_equal(o.text, "22\nodd \"one\"|S_1 & 50% {#}|x/a,b|c*d|"
                                 "time_total|2|1\n");
 }
 
@@ -773,6 +773,9 @@ static void json_holds_every_number_by_name(void **state)
         "    smoothness 0.36 0.120711 5 0\n"
         "    smoothness_resampled None None 0 None\n"
         "    waypoints 30.0 8.535534 5 0\n"
+        "    duration None None 0 None\n"
+        "    max_velocity None None 0 None\n"
+        "    max_acceleration None None 0 None\n"
         "  ara/ARAstar ara ARAstar eps=100 2 1 0.5\n"
         "    time_total 0.5 None 1 None\n"
         "    time_raw 0.3 None 1 None\n"
@@ -786,6 +789,9 @@ static void json_holds_every_number_by_name(void **state)
         "    smoothness 1.5 None 1 None\n"
         "    smoothness_resampled None None 0 None\n"
         "    waypoints 8.0 None 1 None\n"
+        "    duration None None 0 None\n"
+        "    max_velocity None None 0 None\n"
+        "    max_acceleration None None 0 None\n"
         "TABLETOP 1 0\n"
         "  ompl/RRTConnect ompl RRTConnect  1 1 1.0\n"
         "    time_total 7.0 None 1 None\n"
@@ -800,6 +806,9 @@ static void json_holds_every_number_by_name(void **state)
         "    smoothness 0.4 None 1 None\n"
         "    smoothness_resampled None None 0 None\n"
         "    waypoints 12.0 None 1 None\n"
+        "    duration None None 0 None\n"
+        "    max_velocity None None 0 None\n"
+        "    max_acceleration None None 0 None\n"
         "  ara/ARAstar ara ARAstar eps=100 0 0 None\n"
         "    time_total None None 0 None\n"
         "    time_raw None None 0 None\n"
@@ -812,7 +821,10 @@ static void json_holds_every_number_by_name(void **state)
         "    ee_path_length None None 0 None\n"
         "    smoothness None None 0 None\n"
         "    smoothness_resampled None None 0 None\n"
-        "    waypoints None None 0 None\n");
+        "    waypoints None None 0 None\n"
+        "    duration None None 0 None\n"
+        "    max_velocity None None 0 None\n"
+        "    max_acceleration None None 0 None\n");
 
     /* In the raw stage K2 keeps one valid run: path_length's sigma counts
      * that query as 0 spread, and says so. */

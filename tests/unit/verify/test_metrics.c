@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
@@ -304,7 +305,13 @@ static void test_measure_stage_follows_the_list(void **state)
     assert_int_equal(mpb_measure_stage(w, start, 1e-6, &goal, wp, 2, 1, 0.25,
                                        0.01, 0, &m), MPB_OK);
     assert_int_equal(m.verdict.code, MPB_VERDICT_VALID);
-    assert_int_equal(m.num_metrics, MPB_NUM_METRICS);
+    /* Untimed: every metric but the timed ones, which come last. */
+    int untimed = 0;
+    for (int i = 0; i < MPB_NUM_METRICS; i++)
+        if (!(mpb_metric_info_of(i)->flags & MPB_METRIC_F_TIMED))
+            assert_int_equal(i, untimed++);
+    assert_true(untimed < MPB_NUM_METRICS);
+    assert_int_equal(m.num_metrics, untimed);
     for (int i = 0; i < m.num_metrics; i++)
         assert_string_equal(m.metrics[i].name, mpb_metric_info_of(i)->name);
     assert_float_equal(m.metrics[MPB_METRIC_CLEARANCE].value, 0.9, 1e-9);
@@ -320,7 +327,8 @@ static void test_measure_stage_follows_the_list(void **state)
     assert_int_equal(m.verdict.code, MPB_VERDICT_NOT_FINITE);
     int n = 0;
     for (int i = 0; i < MPB_NUM_METRICS; i++)
-        n += !(mpb_metric_info_of(i)->flags & MPB_METRIC_F_PATH);
+        n += !(mpb_metric_info_of(i)->flags &
+               (MPB_METRIC_F_PATH | MPB_METRIC_F_TIMED));
     assert_int_equal(m.num_metrics, n);
 
     assert_int_equal(mpb_measure_stage(w, start, 1e-6, &goal, wp, 2, 1, 0.25,
@@ -330,6 +338,174 @@ static void test_measure_stage_follows_the_list(void **state)
     assert_int_equal(m.verdict.certified, valid.certified);
     assert_string_equal(m.verdict.detail, valid.detail);
     assert_int_equal(m.num_metrics, 0);
+    mpb_world_close(w);
+}
+
+/*
+ * Timing by finite differences, worked by hand. Joints x, y; waypoints
+ * (0,0) (1,0) (1,0) (1,2) at 0, 1, 1, 2 s: segment 0 moves x at 1 rad/s,
+ * segment 1 is the waypoint repeated at its time (dropped), segment 2
+ * moves y at 2 rad/s. Duration 2 s; largest velocity 2; between segments
+ * 0 and 2 the velocity changes by (-1, 2) over (1 + 1) / 2 = 1 s: largest
+ * acceleration 2. With limits (0.5, none): x at 1 is twice its limit, in
+ * segment 0; y has none, so the ratio is 2.
+ */
+static void test_path_timing(void **state)
+{
+    (void)state;
+    const double wp[] = {0, 0, 1, 0, 1, 0, 1, 2};
+    const double t[] = {0, 1, 1, 2};
+    const double limits[] = {0.5, 0};
+    mpb_timing tm;
+    assert_int_equal(mpb_path_timing(wp, t, 4, 2, NULL, limits, &tm), MPB_OK);
+    assert_near(tm.duration, 2.0, EPS);
+    assert_near(tm.max_velocity, 2.0, EPS);
+    assert_near(tm.max_acceleration, 2.0, EPS);
+    assert_near(tm.velocity_ratio, 2.0, EPS);
+    assert_int_equal(tm.ratio_segment, 0);
+    assert_int_equal(tm.ratio_joint, 0);
+    /* No limits at all: no ratio. */
+    assert_int_equal(mpb_path_timing(wp, t, 4, 2, NULL, NULL, &tm), MPB_OK);
+    assert_true(isnan(tm.velocity_ratio));
+    assert_int_equal(tm.ratio_segment, -1);
+    /* A start that is not at 0: the duration is last less first. */
+    const double late[] = {5, 6, 6, 7};
+    assert_int_equal(mpb_path_timing(wp, late, 4, 2, NULL, NULL, &tm), MPB_OK);
+    assert_near(tm.duration, 2.0, EPS);
+    /* A continuous joint the short way: 3 -> -3 is 2 pi - 6 rad in 0.5 s. */
+    const double wrap[] = {3.0, -3.0};
+    const double t2[] = {0, 0.5};
+    const unsigned char wraps[] = {1};
+    assert_int_equal(mpb_path_timing(wrap, t2, 2, 1, wraps, NULL, &tm), MPB_OK);
+    assert_near(tm.max_velocity, (2 * M_PI - 6.0) / 0.5, 1e-12);
+    assert_near(tm.max_acceleration, 0.0, 0);   /* one segment: none */
+    /* Moving in no time: infinitely fast, and an infinite acceleration. */
+    const double jump[] = {0, 1, 2};
+    const double t3[] = {0, 1, 1};
+    const double lim1[] = {10};
+    assert_int_equal(mpb_path_timing(jump, t3, 3, 1, NULL, lim1, &tm), MPB_OK);
+    assert_true(isinf(tm.max_velocity));
+    assert_true(isinf(tm.max_acceleration));
+    assert_true(isinf(tm.velocity_ratio));
+    assert_int_equal(tm.ratio_segment, 1);
+    /* One waypoint: no motion, no duration. */
+    assert_int_equal(mpb_path_timing(wp, t, 1, 2, NULL, NULL, &tm), MPB_OK);
+    assert_near(tm.duration, 0.0, 0);
+    assert_near(tm.max_velocity, 0.0, 0);
+    assert_int_equal(mpb_path_timing(NULL, t, 2, 2, NULL, NULL, &tm),
+                     MPB_EINVAL);
+    assert_true(isnan(tm.duration));
+}
+
+/* What a timing is: one time per waypoint, finite, from 0 or later,
+ * non-decreasing (a repeat is fine). */
+static void test_times_ok(void **state)
+{
+    (void)state;
+    char why[128];
+    const double good[] = {0, 0.5, 0.5, 2};
+    assert_true(mpb_times_ok(good, 4, 4, why, sizeof why));
+    const double later[] = {1.5, 2};
+    assert_true(mpb_times_ok(later, 2, 2, NULL, 0));
+    assert_false(mpb_times_ok(good, 3, 4, why, sizeof why));
+    assert_string_equal(why, "3 waypoint times for 4 waypoints");
+    const double down[] = {0, 0.5, 0.25};
+    assert_false(mpb_times_ok(down, 3, 3, why, sizeof why));
+    assert_string_equal(why, "time 2 (0.25 s) is below time 1 (0.5 s)");
+    const double neg[] = {-0.5, 1};
+    assert_false(mpb_times_ok(neg, 2, 2, why, sizeof why));
+    assert_string_equal(why, "time 0 (-0.5 s) is negative");
+    const double nan[] = {0, NAN};
+    assert_false(mpb_times_ok(nan, 2, 2, why, sizeof why));
+    assert_string_equal(why, "time 1 is not finite");
+    const double inf[] = {0, INFINITY};
+    assert_false(mpb_times_ok(inf, 2, 2, NULL, 0));
+}
+
+/* A one-joint arm whose URDF limits its joint to 1 rad/s, and a
+ * continuous second joint with no limit, in an empty scene. */
+static const char ARM[] =
+    "<robot name='arm'><link name='base'/>"
+    "<link name='l1'><collision><geometry><sphere radius='0.05'/></geometry>"
+    "</collision></link>"
+    "<link name='l2'><collision><origin xyz='1 0 0'/><geometry>"
+    "<sphere radius='0.05'/></geometry></collision></link>"
+    "<joint name='j1' type='revolute'><parent link='base'/><child link='l1'/>"
+    "<axis xyz='0 0 1'/><limit lower='-3' upper='3' effort='1' velocity='1'/>"
+    "</joint>"
+    "<joint name='j2' type='continuous'><parent link='l1'/><child link='l2'/>"
+    "<origin xyz='0 0 1'/><axis xyz='0 0 1'/></joint></robot>";
+
+/*
+ * The verdict of a timed stage: j1 from 0 to 1 rad (j2 from 0 to 3 rad,
+ * unlimited) in T seconds. T = 0.5: 2 rad/s, twice the limit: refused
+ * (velocity_limit, segment 0, the joint named). T = 2: 0.5 rad/s, valid,
+ * with duration, velocities and no acceleration (one segment). T = 0.995:
+ * 1.005 times the limit, inside the 1% tolerance: valid. The same path
+ * untimed: valid, without the timed metrics. A path that fails another
+ * check keeps that verdict.
+ */
+static void test_velocity_limit_verdict(void **state)
+{
+    (void)state;
+    static const char *const joints[] = {"j1", "j2"};
+    mpb_world *w = NULL;
+    char err[256];
+    if (mpb_world_open_group("urdf", ARM, "moveit-scene", "empty\n.\n", joints,
+                             2, &w, err, sizeof err) != MPB_OK)
+        fail_msg("open: %s", err);
+    assert_near(mpb_world_joint_max_velocity(w, 0), 1.0, 0);
+    assert_near(mpb_world_joint_max_velocity(w, 1), 0.0, 0);
+    assert_near(mpb_world_joint_max_velocity(w, 2), 0.0, 0);
+    double wp[] = {0, 0, 0.5, 1.5, 1, 3}, start[] = {0, 0}, end[] = {1, 3};
+    mpb_goal goal = {.kind = MPB_GOAL_JOINTS, .joints = end,
+                     .joint_tolerance = 1e-6};
+    mpb_stage_measure m;
+
+    double fast[] = {0, 0.25, 0.5};
+    assert_int_equal(mpb_measure_stage_timed(w, start, 1e-6, &goal, wp, fast,
+                                             3, 2, 0.1, 0.01, 0, &m), MPB_OK);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_VELOCITY_LIMIT);
+    assert_string_equal(mpb_verdict_name(m.verdict.code), "velocity_limit");
+    assert_int_equal(m.verdict.segment, 0);
+    assert_non_null(strstr(m.verdict.detail, "joint j1 at 2,"));
+    assert_non_null(strstr(m.verdict.detail, "limit 1"));
+    assert_non_null(mpb_verdict_verification(&m.verdict));
+    int found = 0;
+    for (int i = 0; i < m.num_metrics; i++)
+        if (strcmp(m.metrics[i].name, "velocity_limit_ratio") == 0) {
+            assert_near(m.metrics[i].value, 2.0, 1e-12);
+            found = 1;
+        }
+    assert_true(found);
+
+    double slow[] = {0, 1, 2};
+    assert_int_equal(mpb_measure_stage_timed(w, start, 1e-6, &goal, wp, slow,
+                                             3, 2, 0.1, 0.01, 0, &m), MPB_OK);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_VALID);
+    assert_int_equal(m.num_metrics, MPB_NUM_METRICS);
+    assert_near(m.metrics[MPB_METRIC_DURATION].value, 2.0, EPS);
+    assert_near(m.metrics[MPB_METRIC_MAX_VELOCITY].value, 1.5, EPS);
+    assert_near(m.metrics[MPB_METRIC_VELOCITY_RATIO].value, 0.5, EPS);
+    assert_near(m.metrics[MPB_METRIC_MAX_ACCELERATION].value, 0.0, EPS);
+    assert_string_equal(m.metrics[MPB_METRIC_DURATION].name, "duration");
+
+    double edge[] = {0, 0.4975, 0.995};
+    assert_int_equal(mpb_measure_stage_timed(w, start, 1e-6, &goal, wp, edge,
+                                             3, 2, 0.1, 0.01, 0, &m), MPB_OK);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_VALID);
+
+    assert_int_equal(mpb_measure_stage_timed(w, start, 1e-6, &goal, wp, NULL,
+                                             3, 2, 0.1, 0.01, 0, &m), MPB_OK);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_VALID);
+    for (int i = 0; i < m.num_metrics; i++)
+        assert_false(mpb_metric_info_of(mpb_metric_find(m.metrics[i].name))
+                         ->flags & MPB_METRIC_F_TIMED);
+
+    double off[] = {0.5, 0};    /* not its start: that verdict first */
+    assert_int_equal(mpb_measure_stage_timed(w, off, 1e-6, &goal, wp, fast,
+                                             3, 2, 0.1, 0.01, 0, &m), MPB_OK);
+    assert_int_equal(m.verdict.code, MPB_VERDICT_START);
     mpb_world_close(w);
 }
 
@@ -351,6 +527,9 @@ int main(void)
         cmocka_unit_test(test_clearance_mean_and_min),
         cmocka_unit_test(test_ee_path_length_follows_the_arc),
         cmocka_unit_test(test_measure_stage_follows_the_list),
+        cmocka_unit_test(test_path_timing),
+        cmocka_unit_test(test_times_ok),
+        cmocka_unit_test(test_velocity_limit_verdict),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
