@@ -46,6 +46,10 @@
  * the request's last send, is no success whatever time it reports: room
  * for the network both ways and for reading the request. */
 #define MPBD_WALL_SLACK_S       1.0
+/* At most this much of a planner's reported world_setup_time is left out
+ * of the daemon's clock (results.c): as long as the peers' kit allows a
+ * model to build (planners/peers/mpbpeers/peer.py, SETUP_MAX_S). */
+#define MPBD_SETUP_ALLOWANCE_S  120.0
 #define MPBD_PLANNER_MISSED     3      /* heartbeats missed = planner gone */
 /* A round of the daemon's loop (at most 20 ms waiting for messages, then
  * handling them) that took longer than this: the daemon did not run
