@@ -6,6 +6,7 @@
  * self-collision, an SRDF's matrix), which stored successes still hold.
  */
 #include <getopt.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,7 +62,44 @@ static void usage(FILE *out)
 typedef struct totals {
     long runs, stages, changed_stages, changed_runs;
     long successes, lost, lost_self, gained;
+    /* the depths of the collision verdicts now, mm (upper, lower) */
+    double *depth_up, *depth_lo;
+    long    collisions, depths, depth_cap;
 } totals;
+
+/* A collision verdict's depth kept for the totals; 0, -1 out of memory. */
+static int keep_depth(totals *t, const mpb_verdict *v)
+{
+    if (v->code != MPB_VERDICT_COLLISION)
+        return 0;
+    t->collisions++;
+    if (!isfinite(v->depth_upper))
+        return 0;
+    if (t->depths == t->depth_cap) {
+        long cap = t->depth_cap ? 2 * t->depth_cap : 64;
+        double *u = realloc(t->depth_up, (size_t)cap * sizeof *u);
+        if (u)
+            t->depth_up = u;
+        double *l = u ? realloc(t->depth_lo, (size_t)cap * sizeof *l) : NULL;
+        if (!l)
+            return -1;
+        t->depth_lo = l;
+        t->depth_cap = cap;
+    }
+    t->depth_up[t->depths] = 1e3 * v->depth_upper;
+    t->depth_lo[t->depths++] = 1e3 * v->depth_lower;
+    return 0;
+}
+
+/* " (depth L-U mm)" of a collision verdict that has one, else "". */
+static const char *depth_text(const mpb_verdict *v, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (v->code == MPB_VERDICT_COLLISION && isfinite(v->depth_upper))
+        snprintf(buf, len, " (depth %.3g-%.3g mm)", 1e3 * v->depth_lower,
+                 1e3 * v->depth_upper);
+    return buf;
+}
 
 int verify_read_run(mpb_store *s, const char *db, int64_t run_id,
                     double step, view_run *v, double *res, mpb_goal *goal)
@@ -121,6 +159,11 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         const char *name = mpb_verdict_name(now.code);
         int valid = now.code == MPB_VERDICT_VALID;
         t->stages++;
+        if (keep_depth(t, &now) != 0) {
+            fprintf(stderr, "mpb " CMD ": out of memory\n");
+            view_free(&v);
+            return -1;
+        }
         if (i == v.num_stages - 1) {
             final_valid = valid;
             final_self = strstr(now.detail, "self-collision") != NULL;
@@ -129,10 +172,12 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
             continue;
         changed = 1;
         t->changed_stages++;
-        printf("run %lld %s/%s %s stage %s: stored %s, now %s%s%s\n",
+        char deep[64];
+        printf("run %lld %s/%s %s stage %s: stored %s, now %s%s%s%s\n",
                (long long)run_id, v.scene, v.query, v.run.planner_config,
-               st->name, st->verdict, name, now.detail[0] ? ": " : "",
-               now.detail);
+               st->name, st->verdict, name,
+               depth_text(&now, deep, sizeof deep),
+               now.detail[0] ? ": " : "", now.detail);
     }
     t->changed_runs += changed;
     if (v.run.success == 1) {
@@ -225,6 +270,20 @@ int cmd_verify(int argc, char **argv)
     if (t.gained)
         printf("; %ld failed runs now verify", t.gained);
     printf("\n");
+    /* How deep the refused stages go (docs/verification.md). */
+    mpb_summary lo, up;
+    if (t.depths > 0 &&
+        mpb_summarize(t.depth_lo, (int)t.depths, &lo) == MPB_OK &&
+        mpb_summarize(t.depth_up, (int)t.depths, &up) == MPB_OK) {
+        long graze = 0;
+        for (long i = 0; i < t.depths; i++)
+            graze += t.depth_up[i] < 0.1;
+        printf("%ld collision verdicts, %ld with a depth: median %.3g-%.3g "
+               "mm, deepest %.3g-%.3g mm, %ld under 0.1 mm\n", t.collisions,
+               t.depths, lo.median, up.median, lo.max, up.max, graze);
+    }
+    free(t.depth_up);
+    free(t.depth_lo);
     status = t.changed_stages ? MPB_EXIT_ERROR : MPB_EXIT_OK;
 out:
     view_selection_free(&sel);

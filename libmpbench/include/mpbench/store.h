@@ -250,6 +250,13 @@ typedef struct mpb_stage_record {
                                      colliding configuration found),
                                      "sampled" (mpb_verdict.certified 0),
                                      NULL when the check did not run */
+    /* A collision verdict: how deep the refused segment goes, mm, at its
+     * worst configuration examined (mpb_verdict.depth_*): the deepest
+     * robot point found inside what it hits, and the penetration of the
+     * colliding shapes' convex hulls (stages.depth_lower_mm,
+     * depth_upper_mm). Stored only with a collision verdict, NaN (NULL)
+     * where not measured; read back NaN for a database made before them. */
+    double        depth_lower_mm, depth_upper_mm;
 } mpb_stage_record;
 
 /* A planner value that is an integer, kept exactly: the record's
@@ -395,6 +402,20 @@ int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
                                   int (*cb)(void *ud, int64_t scene_id,
                                             int unfinished),
                                   void *ud);
+
+/*
+ * How deep the experiment's refused paths go (stages.depth_lower_mm,
+ * depth_upper_mm, docs/verification.md): cb(ud, planner_config_id,
+ * lower_mm, upper_mm) for each finished run whose last stage was refused
+ * for a collision, by configuration id; NaN where the depth was not
+ * measured (a database made before it, a world that cannot say). A
+ * nonzero return from cb stops the walk and is returned. MPB_OK or
+ * MPB_EDB.
+ */
+int mpb_store_refusal_depths(mpb_store *s, int64_t experiment_id,
+                             int (*cb)(void *ud, int64_t config_id,
+                                       double lower_mm, double upper_mm),
+                             void *ud);
 
 /*
  * How the experiment's stages were checked for collision

@@ -5,6 +5,7 @@
  */
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -64,15 +65,18 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
                          void *ud)
 {
     /* A database made before stages.verification (read-only, so never
-     * given the column) stored sampled verdicts: read as NULL. */
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        mpb__store_has_column(s, "stages", "verification")
-        ? "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
-          " verdict, verdict_detail, verdict_segment, verification"
-          " FROM stages WHERE run_id = ? ORDER BY idx"
-        : "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
-          " verdict, verdict_detail, verdict_segment, NULL"
-          " FROM stages WHERE run_id = ? ORDER BY idx");
+     * given the column) stored sampled verdicts: read as NULL; one made
+     * before the depth columns, no depths. */
+    char sql[400];
+    snprintf(sql, sizeof sql,
+             "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
+             " verdict, verdict_detail, verdict_segment, %s, %s"
+             " FROM stages WHERE run_id = ? ORDER BY idx",
+             mpb__store_has_column(s, "stages", "verification")
+                 ? "verification" : "NULL",
+             mpb__store_has_column(s, "stages", "depth_upper_mm")
+                 ? "depth_lower_mm, depth_upper_mm" : "NULL, NULL");
+    sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, run_id);
@@ -105,6 +109,10 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
             .verdict_segment = sqlite3_column_type(st, 8) == SQLITE_NULL
                                    ? -1 : sqlite3_column_int(st, 8),
             .verification = (const char *)sqlite3_column_text(st, 9),
+            .depth_lower_mm = sqlite3_column_type(st, 10) == SQLITE_NULL
+                                  ? NAN : sqlite3_column_double(st, 10),
+            .depth_upper_mm = sqlite3_column_type(st, 11) == SQLITE_NULL
+                                  ? NAN : sqlite3_column_double(st, 11),
         };
         stop = cb(ud, &rec);
         free(wp);
