@@ -88,6 +88,8 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
     w->rec.verdict = mpb_verdict_name(w->m.verdict.code);
     w->rec.verdict_detail = w->m.verdict.detail;
     w->rec.verdict_segment = w->m.verdict.segment;
+    w->rec.has_depth = w->m.verdict.code == MPB_VERDICT_COLLISION &&
+                       isfinite(w->m.verdict.depth_upper);
     w->rec.depth_lower_mm = w->m.verdict.code == MPB_VERDICT_COLLISION
                                 ? 1e3 * w->m.verdict.depth_lower : NAN;
     w->rec.depth_upper_mm = w->m.verdict.code == MPB_VERDICT_COLLISION

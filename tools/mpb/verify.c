@@ -30,7 +30,9 @@ static void usage(FILE *out)
         "  run 41 kitchen/counter_cup ompl/RRT stage simplified: stored valid,\n"
         "  now collision: segment 3 ... self-collision between A and B\n"
         "\n"
-        "then one line of totals: the runs that were successes and no longer\n"
+        "then how deep the collision verdicts go: the median and deepest of\n"
+        "their lower and upper bounds (mm) and how many are under 0.1 mm; and\n"
+        "one line of totals: the runs that were successes and no longer\n"
         "are, and how many of them go through the robot's own body. The\n"
         "database is not changed. Use it after upgrading mpbench or editing a\n"
         "robot's SRDF, to see what the stored results still say.\n"
@@ -175,9 +177,8 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         char deep[64];
         printf("run %lld %s/%s %s stage %s: stored %s, now %s%s%s%s\n",
                (long long)run_id, v.scene, v.query, v.run.planner_config,
-               st->name, st->verdict, name,
-               depth_text(&now, deep, sizeof deep),
-               now.detail[0] ? ": " : "", now.detail);
+               st->name, st->verdict, name, now.detail[0] ? ": " : "",
+               now.detail, depth_text(&now, deep, sizeof deep));
     }
     t->changed_runs += changed;
     if (v.run.success == 1) {
@@ -261,15 +262,6 @@ int cmd_verify(int argc, char **argv)
     for (int i = 0; i < sel.num_runs; i++)
         if (verify_run(s, db, sel.runs[i], step, &t) != 0)
             goto out;
-    printf("experiment %lld: %ld runs with stages, %ld stages verified "
-           "again; %ld "
-           "stages of %ld runs changed verdict; %ld of %ld successes no "
-           "longer hold (%ld through the robot's own body)",
-           (long long)experiment, t.runs, t.stages, t.changed_stages,
-           t.changed_runs, t.lost, t.successes, t.lost_self);
-    if (t.gained)
-        printf("; %ld failed runs now verify", t.gained);
-    printf("\n");
     /* How deep the refused stages go (docs/verification.md). */
     mpb_summary lo, up;
     if (t.depths > 0 &&
@@ -282,6 +274,15 @@ int cmd_verify(int argc, char **argv)
                "mm, deepest %.3g-%.3g mm, %ld under 0.1 mm\n", t.collisions,
                t.depths, lo.median, up.median, lo.max, up.max, graze);
     }
+    printf("experiment %lld: %ld runs with stages, %ld stages verified "
+           "again; %ld "
+           "stages of %ld runs changed verdict; %ld of %ld successes no "
+           "longer hold (%ld through the robot's own body)",
+           (long long)experiment, t.runs, t.stages, t.changed_stages,
+           t.changed_runs, t.lost, t.successes, t.lost_self);
+    if (t.gained)
+        printf("; %ld failed runs now verify", t.gained);
+    printf("\n");
     free(t.depth_up);
     free(t.depth_lo);
     status = t.changed_stages ? MPB_EXIT_ERROR : MPB_EXIT_OK;

@@ -254,8 +254,10 @@ typedef struct mpb_stage_record {
      * worst configuration examined (mpb_verdict.depth_*): the deepest
      * robot point found inside what it hits, and the penetration of the
      * colliding shapes' convex hulls (stages.depth_lower_mm,
-     * depth_upper_mm). Stored only with a collision verdict, NaN (NULL)
-     * where not measured; read back NaN for a database made before them. */
+     * depth_upper_mm), when has_depth is 1: stored only with a collision
+     * verdict; read back has_depth 0 (NULL) where not measured, and for a
+     * database made before them. */
+    int           has_depth;
     double        depth_lower_mm, depth_upper_mm;
 } mpb_stage_record;
 

@@ -109,6 +109,7 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
             .verdict_segment = sqlite3_column_type(st, 8) == SQLITE_NULL
                                    ? -1 : sqlite3_column_int(st, 8),
             .verification = (const char *)sqlite3_column_text(st, 9),
+            .has_depth = sqlite3_column_type(st, 11) != SQLITE_NULL,
             .depth_lower_mm = sqlite3_column_type(st, 10) == SQLITE_NULL
                                   ? NAN : sqlite3_column_double(st, 10),
             .depth_upper_mm = sqlite3_column_type(st, 11) == SQLITE_NULL

@@ -229,8 +229,8 @@ static int write_stage(mpb_store *s, int64_t run_id, int idx,
     sqlite3_bind_int(st, 11, sg->verdict_segment);
     if (sg->verification)
         sqlite3_bind_text(st, 12, sg->verification, -1, SQLITE_STATIC);
-    /* Only a collision has a depth; NaN, none, binds as NULL. */
-    if (sg->verdict && strcmp(sg->verdict, "collision") == 0 &&
+    /* Only a collision has a depth; none binds as NULL. */
+    if (sg->has_depth && sg->verdict && strcmp(sg->verdict, "collision") == 0 &&
         isfinite(sg->depth_lower_mm) && isfinite(sg->depth_upper_mm)) {
         sqlite3_bind_double(st, 13, sg->depth_lower_mm);
         sqlite3_bind_double(st, 14, sg->depth_upper_mm);

@@ -116,7 +116,7 @@ static void a_run_is_finished_once(void **state)
     double wp[] = {0.0, 0.5, 1.0, -0.25};
     mpb_named metrics[] = {{"path_length", 1.25}, {"smoothness", 0.0}};
     mpb_stage_record stage = {"raw", 0.01, 2, 2, wp, 1, "valid", "", -1,
-                              2, metrics, NULL, NAN, NAN};
+                              2, metrics, NULL, 0, NAN, NAN};
     mpb_named values[] = {{"graph states", 17}};
     mpb_run_record r = {
         .run_id = 0, .run_uid = "0123456789abcdef0123456789abcdef",
@@ -195,7 +195,7 @@ static void a_failed_write_leaves_no_half_run(void **state)
     fixture *f = *state;
     mpb_named metrics[] = {{"path_length", 1.0}, {NULL, 2.0}}; /* NULL name: NOT NULL fails */
     mpb_stage_record stage = {"raw", 0.01, 0, 2, NULL, 0, "empty", "", -1,
-                              2, metrics, NULL, NAN, NAN};
+                              2, metrics, NULL, 0, NAN, NAN};
     mpb_run_record r = {
         .run_uid = "00000000000000000000000000000001", .planner_id = "p",
         .status = "solved", .num_stages = 1, .stages = &stage,
