@@ -33,7 +33,8 @@
  * 1e-6 leaves errors up to ~3 mm for cones and cylinders), which measures
  * below 5e-7 m against closed forms and finely tessellated shapes. Planes
  * are handled by mpbench itself, exactly (FCL 0.7's plane distances are
- * broken). Overlapping pairs are at distance 0 (no penetration depth);
+ * broken). Overlapping pairs are at distance 0 (how deep they go:
+ * mpb_collision_depth());
  * touching within ~1e-9 m may be reported either way by the two queries.
  *
  * Cost: queries allocate nothing in this API (the static objects sit in a
