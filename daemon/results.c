@@ -113,6 +113,12 @@ static void measure_stage(const mpbd *d, const mpbd_query *q,
     w->rec.verdict = mpb_verdict_name(w->m.verdict.code);
     w->rec.verdict_detail = w->m.verdict.detail;
     w->rec.verdict_segment = w->m.verdict.segment;
+    w->rec.has_depth = w->m.verdict.code == MPB_VERDICT_COLLISION &&
+                       isfinite(w->m.verdict.depth_upper);
+    w->rec.depth_lower_mm = w->m.verdict.code == MPB_VERDICT_COLLISION
+                                ? 1e3 * w->m.verdict.depth_lower : NAN;
+    w->rec.depth_upper_mm = w->m.verdict.code == MPB_VERDICT_COLLISION
+                                ? 1e3 * w->m.verdict.depth_upper : NAN;
     for (int i = 0; i < w->m.num_metrics; i++)
         w->metrics[i] = (mpb_named){w->m.metrics[i].name,
                                     w->m.metrics[i].value};

@@ -65,6 +65,27 @@ check "mpbenchd completes the experiment and exits 0" eq "$status" 0
 check "the straight line, free with the torso at 0, collides with it at 0.3" \
     eq "$(q "SELECT count(*) FROM results WHERE planner = 'null/straight_line'
              AND claimed_success = 1 AND success = 0 AND verdict = 'collision'")" 1
+# How deep the refused line goes (docs/verification.md): both bounds
+# stored with the verdict, 0 < lower <= upper, in mm; the forearm's
+# straight sweep plunges centimetres into the box, no graze. Valid
+# stages have none.
+null_depth="SELECT g.depth_lower_mm, g.depth_upper_mm FROM stages g
+            JOIN runs r ON r.id = g.run_id JOIN planner_configs c
+            ON c.id = r.planner_config_id WHERE c.name = 'null/straight_line'"
+check "the refused stage stores a lower and an upper bound on its depth" \
+    eq "$(q "SELECT count(*) FROM ($null_depth) WHERE depth_lower_mm > 1
+             AND depth_upper_mm >= depth_lower_mm AND depth_upper_mm < 100")" 1
+q "$null_depth" | sed 's/^/# depth lower|upper mm: /'
+check "valid stages store no depth" \
+    eq "$(q "SELECT count(*) FROM stages WHERE valid = 1
+             AND (depth_lower_mm IS NOT NULL OR depth_upper_mm IS NOT NULL)")" 0
+"$MPB_BUILD/tools/mpb" verify "$DB" >"$work/verify.out" 2>&1
+check "mpb verify shows how deep the collision verdicts go" \
+    grep -q "^1 collision verdicts, 1 with a depth: median" "$work/verify.out"
+"$MPB_BUILD/tools/mpb" report "$DB" >"$work/report.out" 2>&1
+check "mpb report gives the refused configuration's depth distribution" \
+    grep -Eq "^  null/straight_line +1 +1 +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ +0$" \
+    "$work/report.out"
 check "the query's held value is stored with it, exactly" \
     test "$(q "SELECT held FROM queries")" = "torso_lift_joint=0.29999999999999999"
 for p in ompl/RRTConnect ara/ARAstar python/RRTConnect; do

@@ -62,7 +62,7 @@ sqlite3 "$work/edited.db" "UPDATE scenes SET robot = substr(robot, 1, instr(robo
 out=$("$mpb" verify "$work/edited.db")
 check "with the SRDF gone the verdicts change: exit 1" eq $? 1
 check "... one line per changed stage, naming the new verdict and the links" eq \
-    "$(printf '%s\n' "$out" | grep -c "^run [0-9]* empty/into_post null/straight_line stage raw: stored valid, now collision: segment 0 collides at s=.*self-collision between arm1 and post$")" 2
+    "$(printf '%s\n' "$out" | grep -c "^run [0-9]* empty/into_post null/straight_line stage raw: stored valid, now collision: segment 0 collides at s=.*self-collision between arm1 and post (depth [0-9.e+-]*-[0-9.e+-]* mm)$")" 2
 check "... the runs once verified now refused claims, one line each" eq \
     "$(printf '%s\n' "$out" | grep -c "^run [0-9]* empty/into_post null/straight_line: stored verified, now refused$")" 2
 check "... counted so by the success rule" test "$(outcomes "$out")" = \
@@ -128,6 +128,8 @@ check "... verified again holding it: exit 0, nothing changed" test "$?:$(totals
     "0:experiment 1: 1 runs with stages, 1 stages verified again; 0 stages of 0 runs changed verdict; 0 of 0 successes no longer hold (0 through the robot's own body)"
 check "... its claim refused again" test "$(outcomes "$out")" = \
     "outcomes by the success rule: unclaimed 0, verified 0, refused 1, late 0, unclaimed_valid 0; 0 runs decided otherwise than stored"
+check "... and the depth of its collision counted" \
+    sh -c "printf '%s\\n' \"\$1\" | grep -q '^1 collision verdicts, 1 with a depth: '" _ "$out"
 
 # Bad command lines and inputs: one line each.
 "$mpb" verify >/dev/null 2>&1

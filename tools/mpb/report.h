@@ -175,4 +175,8 @@ int report_write_html(const report *r, FILE *out);   /* report_html.c */
  * findings hold (report_findings.c). */
 int report_write_findings(const report *r, FILE *out);
 
+/* The depth of refused paths per configuration, text or markdown
+ * (report_depth.c); nothing when no run was refused for a collision. */
+int report_write_depth(mpb_store *s, const report *r, int markdown, FILE *out);
+
 #endif

@@ -6,6 +6,7 @@
  * self-collision, an SRDF's matrix), which stored successes still hold.
  */
 #include <getopt.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,7 +30,9 @@ static void usage(FILE *out)
         "  run 41 kitchen/counter_cup ompl/RRT stage simplified: stored valid,\n"
         "  now collision: segment 3 ... self-collision between A and B\n"
         "\n"
-        "then one line of totals: the runs that were successes and no longer\n"
+        "then how deep the collision verdicts go: the median and deepest of\n"
+        "their lower and upper bounds (mm) and how many are under 0.1 mm; and\n"
+        "one line of totals: the runs that were successes and no longer\n"
         "are, and how many of them go through the robot's own body. Each run\n"
         "is then decided again by mpbenchd's own success rule (docs/metrics.md,\n"
         "\"Claims\"): its stored claim and time, its final stage's verdict now;\n"
@@ -68,7 +71,44 @@ typedef struct totals {
     long successes, lost, lost_self, gained;
     long outcomes[MPB_OUTCOME_COUNT];   /* decided again, runs with stages */
     long decided_otherwise;             /* outcome now not the stored one */
+    /* the depths of the collision verdicts now, mm (upper, lower) */
+    double *depth_up, *depth_lo;
+    long    collisions, depths, depth_cap;
 } totals;
+
+/* A collision verdict's depth kept for the totals; 0, -1 out of memory. */
+static int keep_depth(totals *t, const mpb_verdict *v)
+{
+    if (v->code != MPB_VERDICT_COLLISION)
+        return 0;
+    t->collisions++;
+    if (!isfinite(v->depth_upper))
+        return 0;
+    if (t->depths == t->depth_cap) {
+        long cap = t->depth_cap ? 2 * t->depth_cap : 64;
+        double *u = realloc(t->depth_up, (size_t)cap * sizeof *u);
+        if (u)
+            t->depth_up = u;
+        double *l = u ? realloc(t->depth_lo, (size_t)cap * sizeof *l) : NULL;
+        if (!l)
+            return -1;
+        t->depth_lo = l;
+        t->depth_cap = cap;
+    }
+    t->depth_up[t->depths] = 1e3 * v->depth_upper;
+    t->depth_lo[t->depths++] = 1e3 * v->depth_lower;
+    return 0;
+}
+
+/* " (depth L-U mm)" of a collision verdict that has one, else "". */
+static const char *depth_text(const mpb_verdict *v, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (v->code == MPB_VERDICT_COLLISION && isfinite(v->depth_upper))
+        snprintf(buf, len, " (depth %.3g-%.3g mm)", 1e3 * v->depth_lower,
+                 1e3 * v->depth_upper);
+    return buf;
+}
 
 int verify_read_run(mpb_store *s, const char *db, int64_t run_id,
                     double step, view_run *v, double *res, mpb_goal *goal)
@@ -155,6 +195,11 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
         const char *name = mpb_verdict_name(now.code);
         int valid = now.code == MPB_VERDICT_VALID;
         t->stages++;
+        if (keep_depth(t, &now) != 0) {
+            fprintf(stderr, "mpb " CMD ": out of memory\n");
+            view_free(&v);
+            return -1;
+        }
         if (i == v.num_stages - 1) {
             final_valid = valid;
             final_self = self_collision(&v, st, &now, res);
@@ -163,10 +208,11 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
             continue;
         changed = 1;
         t->changed_stages++;
-        printf("run %lld %s/%s %s stage %s: stored %s, now %s%s%s\n",
+        char deep[64];
+        printf("run %lld %s/%s %s stage %s: stored %s, now %s%s%s%s\n",
                (long long)run_id, v.scene, v.query, v.run.planner_config,
                st->name, st->verdict, name, now.detail[0] ? ": " : "",
-               now.detail);
+               now.detail, depth_text(&now, deep, sizeof deep));
     }
     t->changed_runs += changed;
     /* The success rule again (outcome.h), as mpbenchd applied it: the
@@ -265,6 +311,18 @@ int cmd_verify(int argc, char **argv)
     for (int i = 0; i < sel.num_runs; i++)
         if (verify_run(s, db, sel.runs[i], step, &t) != 0)
             goto out;
+    /* How deep the refused stages go (docs/verification.md). */
+    mpb_summary lo, up;
+    if (t.depths > 0 &&
+        mpb_summarize(t.depth_lo, (int)t.depths, &lo) == MPB_OK &&
+        mpb_summarize(t.depth_up, (int)t.depths, &up) == MPB_OK) {
+        long graze = 0;
+        for (long i = 0; i < t.depths; i++)
+            graze += t.depth_up[i] < 0.1;
+        printf("%ld collision verdicts, %ld with a depth: median %.3g-%.3g "
+               "mm, deepest %.3g-%.3g mm, %ld under 0.1 mm\n", t.collisions,
+               t.depths, lo.median, up.median, lo.max, up.max, graze);
+    }
     printf("experiment %lld: %ld runs with stages, %ld stages verified "
            "again; %ld "
            "stages of %ld runs changed verdict; %ld of %ld successes no "
@@ -274,6 +332,8 @@ int cmd_verify(int argc, char **argv)
     if (t.gained)
         printf("; %ld failed runs now verify", t.gained);
     printf("\n");
+    free(t.depth_up);
+    free(t.depth_lo);
     printf("outcomes by the success rule:");
     for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
         printf(" %s %ld%s", mpb_outcome_name((mpb_outcome)o), t.outcomes[o],

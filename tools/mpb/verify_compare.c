@@ -7,6 +7,7 @@
  * sampling, and, loudly, any sampled collision the certified check
  * passes (which would be a bug).
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -64,6 +65,9 @@ static void print_refused(view_run *v, const view_stage *st, double res,
     } else {
         printf(": %s", c->detail);
     }
+    if (isfinite(c->depth_upper))
+        printf("; depth %.3g-%.3g mm", 1e3 * c->depth_lower,
+               1e3 * c->depth_upper);
     printf("; sampled: %s\n", mpb_verdict_name(sm->code));
     free(q);
 }

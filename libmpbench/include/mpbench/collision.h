@@ -33,7 +33,8 @@
  * 1e-6 leaves errors up to ~3 mm for cones and cylinders), which measures
  * below 5e-7 m against closed forms and finely tessellated shapes. Planes
  * are handled by mpbench itself, exactly (FCL 0.7's plane distances are
- * broken). Overlapping pairs are at distance 0 (no penetration depth);
+ * broken). Overlapping pairs are at distance 0 (how deep they go:
+ * mpb_collision_depth());
  * touching within ~1e-9 m may be reported either way by the two queries.
  *
  * Cost: queries allocate nothing in this API (the static objects sit in a
@@ -229,6 +230,32 @@ typedef struct mpb_collision_distance_result {
  */
 int mpb_collision_distance(mpb_collision *c, int nearest_points,
                            mpb_collision_distance_result *out);
+
+/*
+ * How deep the bodies overlap where they stand (collision_depth.cpp): over
+ * every colliding pair that mpb_collision_check() and
+ * mpb_collision_check_self() test (a movable shape against a static
+ * shape or plane, a shape of one movable against one of another, pairs
+ * allowed to touch excepted), bounds on the penetration depth of each
+ * pair of shapes (the shortest translation that parts them), m:
+ *   lower  the most, over the pairs, of the deepest point found of one
+ *          shape inside the other (mesh vertices; a primitive's corners
+ *          and extreme points), its distance to that shape's surface;
+ *   upper  the most, over the pairs, of the least h_A(n) + h_B(-n) found
+ *          over unit directions n (h: the support function), the depth
+ *          of the shapes' convex hulls when the search finds its least.
+ * lower <= the deepest pair's depth <= upper; a plane's pair is exact.
+ * Both 0 when nothing overlaps. movable, other: the pair of the upper
+ * bound (other a static id, or a movable id when self is 1); -1 if none.
+ * MPB_OK, or a negative code as for mpb_collision_check(). For refused
+ * paths only: a few milliseconds a configuration on meshes.
+ */
+typedef struct mpb_collision_depth_result {
+    double lower, upper;
+    int    movable, other, self;
+} mpb_collision_depth_result;
+
+int mpb_collision_depth(mpb_collision *c, mpb_collision_depth_result *out);
 
 /* Counts, for tests and reports. */
 int mpb_collision_num_static_shapes(const mpb_collision *c);

@@ -260,6 +260,15 @@ typedef struct mpb_stage_record {
                                      colliding configuration found),
                                      "sampled" (mpb_verdict.certified 0),
                                      NULL when the check did not run */
+    /* A collision verdict: how deep the refused segment goes, mm, at its
+     * worst configuration examined (mpb_verdict.depth_*): the deepest
+     * robot point found inside what it hits, and the penetration of the
+     * colliding shapes' convex hulls (stages.depth_lower_mm,
+     * depth_upper_mm), when has_depth is 1: stored only with a collision
+     * verdict; read back has_depth 0 (NULL) where not measured, and for a
+     * database made before them. */
+    int           has_depth;
+    double        depth_lower_mm, depth_upper_mm;
     /* Last, so that the fields above keep their places. */
     const double *times;          /* s, the time of each waypoint
                                      (num_waypoints values), as the planner
@@ -420,6 +429,20 @@ int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
                                   int (*cb)(void *ud, int64_t scene_id,
                                             int unfinished),
                                   void *ud);
+
+/*
+ * How deep the experiment's refused paths go (stages.depth_lower_mm,
+ * depth_upper_mm, docs/verification.md): cb(ud, planner_config_id,
+ * lower_mm, upper_mm) for each finished run whose last stage was refused
+ * for a collision, by configuration id; NaN where the depth was not
+ * measured (a database made before it, a world that cannot say). A
+ * nonzero return from cb stops the walk and is returned. MPB_OK or
+ * MPB_EDB.
+ */
+int mpb_store_refusal_depths(mpb_store *s, int64_t experiment_id,
+                             int (*cb)(void *ud, int64_t config_id,
+                                       double lower_mm, double upper_mm),
+                             void *ud);
 
 /*
  * How the experiment's stages were checked for collision

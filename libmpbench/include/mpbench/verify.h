@@ -80,6 +80,16 @@ typedef struct mpb_verdict {
                               (VALID), or a colliding configuration found
                               by the certified search (COLLISION); 0 if any
                               segment was only sampled (mpb_verification) */
+    /* COLLISION: how deep the refused segment goes (docs/verification.md),
+     * m, at its worst configuration examined, the one whose lower bound is
+     * the largest (then the upper): the colliding configuration found and
+     * the sampled rule's configurations of the segment, a + (j/k)(b - a),
+     * j = 0..k, k = max(1, ceil(L/resolution)) (mpb_world_depth()). lower:
+     * the deepest robot point found inside an obstacle or another link;
+     * upper: the penetration depth of the shapes' convex hulls as found;
+     * lower <= upper. depth_s: that configuration's s in the segment. NaN
+     * for any other verdict and in a world that cannot say (planar). */
+    double depth_lower, depth_upper, depth_s;
 } mpb_verdict;
 
 /*

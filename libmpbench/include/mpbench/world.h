@@ -249,6 +249,19 @@ int mpb_world_allowed_pair(const mpb_world *w, int i,
  */
 int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len);
 
+/*
+ * How deep the robot at q goes into what it collides with, m
+ * (mpb_collision_depth(), collision.h): *lower, the deepest robot point
+ * found inside an obstacle (or another link), its distance to that
+ * body's surface; *upper, the penetration depth of the colliding shapes'
+ * convex hulls as found. lower <= the true depth <= upper; both 0 when q
+ * is free. MPB_OK; MPB_EUNSUPPORTED for a world that cannot say (planar);
+ * MPB_EINVAL for NULL arguments or a non-finite q; another negative code
+ * on error.
+ */
+int mpb_world_depth(mpb_world *w, const double *q, double *lower,
+                    double *upper);
+
 struct mpb_goal;
 
 /*

@@ -11,6 +11,7 @@
  *   collision_tree.cpp     the static tree
  *   collision_bounds.cpp   cheap "certainly apart" bounds (capsules, GJK gaps)
  *   collision_narrow.cpp   the narrow phase: FCL on the pairs that remain
+ *   collision_depth.cpp    bounds on how deep overlapping pairs go
  * C++ only.
  */
 #ifndef MPB_COLLISION_WORLD_H

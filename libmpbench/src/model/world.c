@@ -261,6 +261,17 @@ int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len)
     return w->provider->contact(w->impl, q, what, len);
 }
 
+int mpb_world_depth(mpb_world *w, const double *q, double *lower,
+                    double *upper)
+{
+    if (!w || !q || !lower || !upper || !all_finite(w, q))
+        return MPB_EINVAL;
+    *lower = *upper = NAN;
+    if (!w->provider->depth)
+        return MPB_EUNSUPPORTED;
+    return w->provider->depth(w->impl, q, lower, upper);
+}
+
 int mpb_world_hold(mpb_world *w, const char *const *joints,
                    const double *values, int n, char *err, size_t errlen)
 {

@@ -85,6 +85,11 @@ typedef struct mpb__world_provider {
     int    (*safe_step)(void *impl, const double *q, const double *d,
                         double margin, double want, double moved,
                         double *step);
+
+    /* Optional: bounds on how deep the robot at q collides
+     * (mpb_world_depth()). NULL: the world cannot say. */
+    int    (*depth)(void *impl, const double *q, double *lower,
+                    double *upper);
 } mpb__world_provider;
 
 struct mpb_world {

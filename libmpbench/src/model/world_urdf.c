@@ -591,6 +591,24 @@ static int urdf_safe_step(void *impl, const double *q, const double *d,
                                moved, d, margin, want, step);
 }
 
+/* How deep the robot at q collides (mpb_collision_depth()). */
+static int urdf_depth(void *impl, const double *q, double *lower,
+                      double *upper)
+{
+    urdf_world *u = impl;
+    mpb_collision_depth_result r;
+    int rc = ensure_acm(u);
+    if (rc == MPB_OK)
+        rc = mpb__urdf_place(u, q);
+    if (rc == MPB_OK)
+        rc = mpb_collision_depth(u->coll, &r);
+    if (rc != MPB_OK)
+        return rc;
+    *lower = r.lower;
+    *upper = r.upper;
+    return MPB_OK;
+}
+
 const mpb__world_provider mpb__world_urdf = {
     .robot_format = "urdf",
     .scene_format = "moveit-scene",
@@ -606,6 +624,7 @@ const mpb__world_provider mpb__world_urdf = {
     .hold         = urdf_hold,
     .held         = urdf_held,
     .safe_step    = urdf_safe_step,
+    .depth        = urdf_depth,
 };
 
 struct mpb_collision *mpb__urdf_collision(mpb_world *w)

@@ -35,8 +35,8 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
     [MPB__ST_STAGE_INSERT] =
         "INSERT OR REPLACE INTO stages(run_id, idx, name, time, num_waypoints,"
         " num_joints, waypoints, valid, verdict, verdict_detail,"
-        " verdict_segment, verification, times)"
-        " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)",
+        " verdict_segment, verification, times, depth_lower_mm, depth_upper_mm)"
+        " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15)",
     [MPB__ST_METRIC_INSERT] =
         "INSERT OR REPLACE INTO metrics(run_id, stage, name, value)"
         " VALUES (?1, ?2, ?3, ?4)",
@@ -249,7 +249,9 @@ static int create_schema(mpb_store *s)
      * runs.memory, NULL: no planner reported its memory; one made before
      * queries.held, NULL: its joints outside the group held defaults; one
      * made before stages.verification, NULL: its stages were sampled;
-     * one made before stages.times, NULL: no stage had waypoint times. */
+     * one made before stages.times, NULL: no stage had waypoint times;
+     * one made before stages.depth_lower_mm and depth_upper_mm, NULL:
+     * the depth of its collisions was not measured. */
     if ((rc = add_missing_column(s, "runs", "final_metrics", "BLOB")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "world_setup_time", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "runs", "verify_time", "REAL")) != MPB_OK ||
@@ -259,6 +261,8 @@ static int create_schema(mpb_store *s)
         (rc = add_missing_column(s, "queries", "held", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "stages", "verification", "TEXT")) != MPB_OK ||
         (rc = add_missing_column(s, "stages", "times", "BLOB")) != MPB_OK ||
+        (rc = add_missing_column(s, "stages", "depth_lower_mm", "REAL")) != MPB_OK ||
+        (rc = add_missing_column(s, "stages", "depth_upper_mm", "REAL")) != MPB_OK ||
         (rc = add_missing_column(s, "experiments", "resolution", "REAL")) != MPB_OK ||
         (rc = add_log_header(s)) != MPB_OK ||
         (rc = add_exact_values(s)) != MPB_OK ||

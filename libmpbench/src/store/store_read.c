@@ -226,6 +226,39 @@ int mpb_store_verification_counts(mpb_store *s, int64_t experiment_id,
     return walk_end(s, st, 0, step, "count verifications");
 }
 
+int mpb_store_refusal_depths(mpb_store *s, int64_t experiment_id,
+                             int (*cb)(void *ud, int64_t config_id,
+                                       double lower_mm, double upper_mm),
+                             void *ud)
+{
+    int depths = mpb__store_has_column(s, "stages", "depth_upper_mm");
+    sqlite3_stmt *st = mpb__store_prepare(s, depths
+        ? "SELECT r.planner_config_id, g.depth_lower_mm, g.depth_upper_mm"
+          " FROM runs r JOIN stages g ON g.run_id = r.id"
+          " WHERE r.experiment_id = ? AND r.state = 'done'"
+          " AND g.verdict = 'collision'"
+          " AND g.idx = (SELECT max(idx) FROM stages WHERE run_id = r.id)"
+          " ORDER BY r.planner_config_id, r.id"
+        : "SELECT r.planner_config_id, NULL, NULL"
+          " FROM runs r JOIN stages g ON g.run_id = r.id"
+          " WHERE r.experiment_id = ? AND r.state = 'done'"
+          " AND g.verdict = 'collision'"
+          " AND g.idx = (SELECT max(idx) FROM stages WHERE run_id = r.id)"
+          " ORDER BY r.planner_config_id, r.id");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    int step, stop = 0;
+    while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
+        double lo = sqlite3_column_type(st, 1) == SQLITE_NULL
+                        ? NAN : sqlite3_column_double(st, 1);
+        double up = sqlite3_column_type(st, 2) == SQLITE_NULL
+                        ? NAN : sqlite3_column_double(st, 2);
+        stop = cb(ud, sqlite3_column_int64(st, 0), lo, up);
+    }
+    return walk_end(s, st, stop, step, "read refusal depths");
+}
+
 /* ---- the results walk ---------------------------------------------------- */
 
 /*

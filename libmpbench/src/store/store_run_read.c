@@ -80,15 +80,18 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
 {
     /* A database made before stages.verification (read-only, so never
      * given the column) stored sampled verdicts: read as NULL; one made
-     * before stages.times had no timed stages. */
-    char sql[256];
+     * before stages.times had no timed stages; one made before the depth
+     * columns, no depths. */
+    char sql[400];
     snprintf(sql, sizeof sql,
              "SELECT name, time, num_waypoints, num_joints, waypoints, valid,"
-             " verdict, verdict_detail, verdict_segment, %s, %s"
+             " verdict, verdict_detail, verdict_segment, %s, %s, %s"
              " FROM stages WHERE run_id = ? ORDER BY idx",
              mpb__store_has_column(s, "stages", "verification")
                  ? "verification" : "NULL",
-             mpb__store_has_column(s, "stages", "times") ? "times" : "NULL");
+             mpb__store_has_column(s, "stages", "times") ? "times" : "NULL",
+             mpb__store_has_column(s, "stages", "depth_upper_mm")
+                 ? "depth_lower_mm, depth_upper_mm" : "NULL, NULL");
     sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
@@ -137,6 +140,11 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
                                    ? -1 : sqlite3_column_int(st, 8),
             .verification = (const char *)sqlite3_column_text(st, 9),
             .times = times,
+            .has_depth = sqlite3_column_type(st, 12) != SQLITE_NULL,
+            .depth_lower_mm = sqlite3_column_type(st, 11) == SQLITE_NULL
+                                  ? NAN : sqlite3_column_double(st, 11),
+            .depth_upper_mm = sqlite3_column_type(st, 12) == SQLITE_NULL
+                                  ? NAN : sqlite3_column_double(st, 12),
         };
         stop = cb(ud, &rec);
         free(times);

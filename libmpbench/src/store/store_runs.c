@@ -235,6 +235,12 @@ static int write_stage(mpb_store *s, int64_t run_id, int idx,
         sqlite3_bind_blob(st, 13, sg->times,
                           (int)(sizeof(double) * (size_t)sg->num_waypoints),
                           SQLITE_STATIC);
+    /* Only a collision has a depth; none binds as NULL. */
+    if (sg->has_depth && sg->verdict && strcmp(sg->verdict, "collision") == 0 &&
+        isfinite(sg->depth_lower_mm) && isfinite(sg->depth_upper_mm)) {
+        sqlite3_bind_double(st, 14, sg->depth_lower_mm);
+        sqlite3_bind_double(st, 15, sg->depth_upper_mm);
+    }
     if (sqlite3_step(st) != SQLITE_DONE)
         return mpb__store_db_fail(s, "store stage");
 

@@ -119,6 +119,8 @@ const char mpb__schema_v1[] =
     "  verdict_segment INTEGER,\n"
     "  verification    TEXT,\n"
     "  times           BLOB,\n"
+    "  depth_lower_mm  REAL,\n"
+    "  depth_upper_mm  REAL,\n"
     "  PRIMARY KEY(run_id, idx)) WITHOUT ROWID;\n"
 
     "CREATE TABLE IF NOT EXISTS metrics(\n"

@@ -71,6 +71,7 @@ static int verdict(mpb_verdict *out, mpb_verdict_code code, int segment,
     out->code = code;
     out->segment = segment;
     out->certified = 0;
+    out->depth_lower = out->depth_upper = out->depth_s = NAN;
     va_start(ap, fmt);
     vsnprintf(out->detail, sizeof out->detail, fmt, ap);
     va_end(ap);
@@ -118,6 +119,41 @@ static void contact(mpb_world *w, const double *q, char *what, size_t len)
 }
 
 /*
+ * How deep a collision verdict goes (mpb_verdict.depth_*): at q (the
+ * configuration found, at s = at of the segment a + s d) and at the
+ * sampled rule's configurations of the segment, s = j/k, j = 0..k, those
+ * in collision; the worst by lower bound, then upper. a NULL: q alone.
+ * Left NaN where the world cannot say.
+ */
+static void collision_depth(mpb_world *w, const double *q, double at,
+                            const double *a, const double *d, double k,
+                            mpb_verdict *out)
+{
+    double lo, up;
+    if (mpb_world_depth(w, q, &lo, &up) != MPB_OK)
+        return;
+    out->depth_lower = lo;
+    out->depth_upper = up;
+    out->depth_s = at;
+    const int nj = w->num_joints;
+    double *p = a ? malloc((size_t)nj * sizeof *p) : NULL;
+    for (double j = 0; p && j <= k; j++) {
+        for (int i = 0; i < nj; i++)
+            p[i] = a[i] + (j / k) * d[i];
+        if (mpb_world_in_collision(w, p) != 1 ||
+            mpb_world_depth(w, p, &lo, &up) != MPB_OK)
+            continue;
+        if (lo > out->depth_lower ||
+            (lo == out->depth_lower && up > out->depth_upper)) {
+            out->depth_lower = lo;
+            out->depth_upper = up;
+            out->depth_s = j / k;
+        }
+    }
+    free(p);
+}
+
+/*
  * Collision along the path: each segment proved free or a colliding
  * configuration found (certify.c), or sampled in steps of at most
  * resolution (SAMPLED mode, a world that cannot prove, a segment the
@@ -134,6 +170,16 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
                 ? "segment 0 collides at s=0 (waypoint 0)%s"
                 : "waypoint 0 collides%s", what);
         out->certified = can_prove;
+        double *d0 = num_waypoints > 1 ? malloc((size_t)nj * sizeof *d0) : NULL;
+        double sq = 0.0;
+        for (int j = 0; d0 && j < nj; j++) {
+            d0[j] = mpb_joint_delta(wp[j], wp[nj + j], w->wraps[j]);
+            sq += d0[j] * d0[j];
+        }
+        double k = mpb__sample_count(sqrt(sq), resolution);
+        collision_depth(w, wp, 0.0, d0 && k <= MPB__MAX_SAMPLES ? wp : NULL,
+                        d0, k, out);
+        free(d0);
         return MPB_OK;
     }
     double *q = malloc((size_t)nj * sizeof *q);
@@ -168,6 +214,7 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
                 verdict(out, MPB_VERDICT_COLLISION, i,
                         "segment %d collides at s=%.17g (waypoints %d-%d)%s",
                         i, hit, i, i + 1, what);
+                collision_depth(w, q, hit, a, d, k, out);
                 break;
             }
         }
@@ -178,6 +225,7 @@ static int check_collision(mpb_world *w, const double *wp, int num_waypoints,
                 verdict(out, MPB_VERDICT_COLLISION, i,
                         "segment %d collides at s=%.4g (waypoints %d-%d)%s",
                         i, at, i, i + 1, what);
+                collision_depth(w, q, at, a, d, k, out);
             }
         }
     }

@@ -116,7 +116,7 @@ static void a_run_is_finished_once(void **state)
     double wp[] = {0.0, 0.5, 1.0, -0.25};
     mpb_named metrics[] = {{"path_length", 1.25}, {"smoothness", 0.0}};
     mpb_stage_record stage = {"raw", 0.01, 2, 2, wp, 1, "valid", "", -1,
-                              2, metrics, NULL, NULL};
+                              2, metrics, NULL, 0, NAN, NAN, NULL};
     mpb_named values[] = {{"graph states", 17}};
     mpb_run_record r = {
         .run_id = 0, .run_uid = "0123456789abcdef0123456789abcdef",
@@ -195,7 +195,7 @@ static void a_failed_write_leaves_no_half_run(void **state)
     fixture *f = *state;
     mpb_named metrics[] = {{"path_length", 1.0}, {NULL, 2.0}}; /* NULL name: NOT NULL fails */
     mpb_stage_record stage = {"raw", 0.01, 0, 2, NULL, 0, "empty", "", -1,
-                              2, metrics, NULL, NULL};
+                              2, metrics, NULL, 0, NAN, NAN, NULL};
     mpb_run_record r = {
         .run_uid = "00000000000000000000000000000001", .planner_id = "p",
         .status = "solved", .num_stages = 1, .stages = &stage,
@@ -355,6 +355,77 @@ static void verify_time_is_stored_and_added_to_an_older_database(void **state)
                                        keep_verify_time, got), MPB_OK);
     assert_true(isnan(got[0]));
     assert_true(got[1] == 0.5);
+}
+
+/* Finish repetition rep with one stage refused for a collision, with a
+ * depth (has_depth) or without. */
+static void finish_refused(fixture *f, int rep, int has_depth)
+{
+    mpb_run_row rows[3] = {{0}};
+    char uid[33];
+    snprintf(uid, sizeof uid, "%032d", rep + 1);
+    double wp[] = {0.0, 0.5, 1.0, -0.25};
+    mpb_stage_record st = {.name = "raw", .time = 0.01, .num_waypoints = 2,
+        .num_joints = 2, .waypoints = wp, .valid = 0, .verdict = "collision",
+        .verdict_detail = "segment 0 collides", .verdict_segment = 0,
+        .has_depth = has_depth, .depth_lower_mm = 0.25, .depth_upper_mm = 1.5};
+    mpb_run_record r = {
+        .run_uid = uid, .planner_id = "p", .status = "solved", .message = "",
+        .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
+        .wall_time = 0.2, .verify_time = 0.0, .stages = &st, .num_stages = 1,
+    };
+    assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, rep, 1),
+                     MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows),
+                     MPB_OK);
+    r.run_id = rows[1].id;
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, uid, "p"), MPB_OK);
+    assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_OK);
+}
+
+static int keep_depth(void *ud, int64_t config, double lo, double up)
+{
+    double *out = ud;
+    (void)config;
+    int i = out[4]++ > 0 ? 2 : 0;
+    out[i] = lo;
+    out[i + 1] = up;
+    return 0;
+}
+
+/* A collision's depth is stored with its stage and read back; one
+ * without (has_depth 0) is NULL; a database made before the columns
+ * reads NaN and gets them, NULL, when opened for writing. */
+static void depth_is_stored_and_added_to_an_older_database(void **state)
+{
+    fixture *f = *state;
+    sqlite3 *db;
+    finish_refused(f, 0, 1);
+    assert_int_equal(peek(f, "SELECT depth_lower_mm * 100 FROM stages"), 25);
+    assert_int_equal(peek(f, "SELECT depth_upper_mm * 100 FROM stages"), 150);
+    double got[5] = {0};
+    assert_int_equal(mpb_store_refusal_depths(f->s, f->exp, keep_depth, got),
+                     MPB_OK);
+    assert_true(got[4] == 1 && got[0] == 0.25 && got[1] == 1.5);
+    finish_refused(f, 1, 0);
+    assert_int_equal(peek(f, "SELECT count(*) FROM stages"
+                             " WHERE depth_upper_mm IS NULL"), 1);
+
+    mpb_store_close(f->s);
+    assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "ALTER TABLE stages DROP COLUMN depth_lower_mm;"
+                                  "ALTER TABLE stages DROP COLUMN depth_upper_mm",
+                                  NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    assert_int_equal(mpb_store_open(f->path, 1, &f->s), MPB_OK);
+    memset(got, 0, sizeof got);
+    assert_int_equal(mpb_store_refusal_depths(f->s, f->exp, keep_depth, got),
+                     MPB_OK);
+    assert_true(got[4] == 2 && isnan(got[0]) && isnan(got[3]));
+    mpb_store_close(f->s);
+    assert_int_equal(mpb_store_open(f->path, 0, &f->s), MPB_OK);
+    assert_int_equal(peek(f, "SELECT count(*) FROM stages"
+                             " WHERE depth_upper_mm IS NULL"), 2);
 }
 
 static int keep_memory(void *ud, const mpb_result_row *row)
@@ -594,6 +665,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(verify_time_is_stored_and_added_to_an_older_database,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(times_are_stored_and_added_to_an_older_database,
+        cmocka_unit_test_setup_teardown(depth_is_stored_and_added_to_an_older_database,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(memory_is_stored_and_added_to_an_older_database,
                                         setup, teardown),

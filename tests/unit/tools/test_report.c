@@ -609,7 +609,7 @@ static void markdown_has_the_same_tables(void **state)
     assert_null(strstr(k, "d_n"));      /* nothing measured it there */
     assert_non_null(strstr(k, "\n1 more run not finished yet, not counted "
                               "above.\n"));
-    const char *t = section(&o, "## Scene TABLETOP", NULL);
+    const char *t = section(&o, "## Scene TABLETOP", "\n### How deep");
     assert_non_null(strstr(t, "## Scene TABLETOP: 1 run\n"));
     assert_non_null(strstr(t, "| d_n (Mean, m) | 0.0500 | - |\n"
                               "| d_n (sigma, m) | - | - |\n"));
