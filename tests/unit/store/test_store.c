@@ -665,6 +665,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(verify_time_is_stored_and_added_to_an_older_database,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(times_are_stored_and_added_to_an_older_database,
+                                        setup, teardown),
         cmocka_unit_test_setup_teardown(depth_is_stored_and_added_to_an_older_database,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(memory_is_stored_and_added_to_an_older_database,
