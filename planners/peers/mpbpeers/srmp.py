@@ -13,7 +13,9 @@ add_box / add_sphere / add_cylinder / add_mesh (Pose's quaternion is w,
 x, y, z), then make_planner([robot], {planner_id, time_limit,
 validity_backend: coal}) with srmp's own defaults for everything else
 (heuristic, weight, lattice of 1 degree a joint), and plan(start,
-GoalConstraint(JOINTS, [goal])).
+GoalConstraint(JOINTS, [goal])); its heuristic's occupancy grid reaches
+1 m below the robot's base instead of stopping at it, which srmp's own
+refusal of goals under a table asks for.
 
 Its lattice path ends within srmp's goal tolerance of the goal (about
 0.008 rad short), not at it: the exact goal is appended as the last
@@ -25,7 +27,7 @@ import time
 
 import numpy as np
 from mpb import plan_result_t
-from srmp import GoalConstraint, GoalType, PlannerInterface, Pose
+from srmp import GoalConstraint, GoalType, GridConfig, PlannerInterface, Pose
 
 from . import peer
 
@@ -54,7 +56,14 @@ class Adapter:
         if problem.held:
             raise peer.InvalidRequest("srmp: joints held outside the group "
                                       "are not taken by this peer")
-        pi = PlannerInterface()
+        # srmp's default heuristic searches an occupancy grid of x, y in
+        # [-1, 1] and z in [0, 2] m and refuses a goal outside it, as the
+        # goals below a MotionBenchMaker table are; its message says to
+        # give a grid that covers the workspace, as a user then does:
+        # 1 m more below the base (its resolution, 2 cm, its own).
+        grid = GridConfig()
+        grid.origin_z, grid.size_z = -1.0, 3.0
+        pi = PlannerInterface(grid)
         try:
             pi.add_robot(problem.urdf_path, name=ROBOT,
                          srdf_path=problem.srdf_path,
