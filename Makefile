@@ -9,8 +9,9 @@
 #               ompl_benchmark_statistics.py from Debian's source package
 #               of the installed OMPL into .cache/ompl-peer, which the
 #               import parity test runs (bench/ompl_peer.sh), and the peer
-#               planners' libraries (ompl 2, roboplan, mplib,
-#               pybullet-planning), each pinned by hash into its own
+#               planners' libraries (planners/peers/requirements: OMPL 2,
+#               roboplan, MPLib, pybullet-planning, Klampt, srmp,
+#               Tesseract, Drake), each pinned by hash into its own
 #               environment under .cache/peers (tools/peers_env.sh)
 #               (idempotent)
 #   make        build everything into build/
