@@ -192,6 +192,32 @@ void mpbd_verifier_stop(mpbd *d)
     d->verifier = NULL;
 }
 
+/* A copy of m for the job to own, made through the wire format, not by
+ * mpb_plan_result_t_copy(): LCM 1.3's generated copy hands memcpy() a
+ * NULL destination for an empty double array (an untimed stage's times:
+ * lcm_malloc(0) is NULL), which is undefined and stops UBSan. Destroyed
+ * with mpb_plan_result_t_destroy(). */
+static mpb_plan_result_t *result_copy(const mpb_plan_result_t *m)
+{
+    int n = mpb_plan_result_t_encoded_size(m);
+    mpb_plan_result_t *c = n > 0 ? calloc(1, sizeof *c) : NULL;
+    void *buf = c ? malloc((size_t)n) : NULL;
+    if (buf == NULL || mpb_plan_result_t_encode(buf, 0, n, m) != n) {
+        free(buf);
+        free(c);
+        return NULL;
+    }
+    int got = mpb_plan_result_t_decode(buf, 0, n, c);
+    free(buf);
+    if (got != n) {
+        if (got >= 0)
+            mpb_plan_result_t_decode_cleanup(c);
+        free(c);
+        return NULL;
+    }
+    return c;
+}
+
 int mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
                          const mpb_plan_result_t *m, double recv)
 {
@@ -199,7 +225,7 @@ int mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
     if (v == NULL || d->replaying)
         return MPB_EINVAL;
     job *j = calloc(1, sizeof *j);
-    if (j == NULL || (j->m = mpb_plan_result_t_copy(m)) == NULL) {
+    if (j == NULL || (j->m = result_copy(m)) == NULL) {
         free(j);
         return MPB_ENOMEM;
     }
