@@ -38,13 +38,6 @@ def _repair_dir():
                         "mesh-repair")
 
 
-def _last_link(urdf, joint):
-    m = re.search(r'<joint[^>]*name="%s".*?<child\s+link="([^"]+)"'
-                  % re.escape(joint), urdf, re.S)
-    if not m:
-        raise peer.InvalidRequest(f"joint '{joint}' not in the URDF")
-    return m.group(1)
-
 
 class Adapter:
     NAME = "mplib"
@@ -66,7 +59,7 @@ class Adapter:
         path = problem.urdf_path[:-5] + "-mplib.urdf"
         with open(path, "w") as f:
             f.write(urdf)
-        move_group = _last_link(problem.urdf, problem.joints[-1])
+        move_group = peer.child_link(problem.urdf, problem.joints[-1])
         try:
             planner = _mplib.Planner(path, move_group,
                                      srdf=problem.srdf_path or None)

@@ -245,6 +245,16 @@ class Problem:
         self.held = dict(zip(req.held_names, req.held_values))
 
 
+def child_link(urdf, joint):
+    """The child link of joint in the URDF text: a planning group's tip is
+    its last joint's child (MPLib's move group, srmp's end effector)."""
+    m = re.search(r'<joint[^>]*name="%s".*?<child\s+link="([^"]+)"'
+                  % re.escape(joint), urdf, re.S)
+    if not m:
+        raise InvalidRequest(f"joint '{joint}' not in the URDF")
+    return m.group(1)
+
+
 def write_obj(path, shape):
     """A scene's mesh shape as an OBJ file (for libraries that load meshes
     from files only)."""

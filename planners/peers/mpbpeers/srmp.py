@@ -34,14 +34,6 @@ from . import peer
 ROBOT = "robot"
 
 
-def _last_link(urdf, joint):
-    import re
-    m = re.search(r'<joint[^>]*name="%s".*?<child\s+link="([^"]+)"'
-                  % re.escape(joint), urdf, re.S)
-    if not m:
-        raise peer.InvalidRequest(f"joint '{joint}' not in the URDF")
-    return m.group(1)
-
 
 class Adapter:
     NAME = "srmp"
@@ -67,7 +59,7 @@ class Adapter:
         try:
             pi.add_robot(problem.urdf_path, name=ROBOT,
                          srdf_path=problem.srdf_path,
-                         end_effector=_last_link(problem.urdf,
+                         end_effector=peer.child_link(problem.urdf,
                                                  problem.joints[-1]))
         except peer.InvalidRequest:
             raise
