@@ -173,8 +173,11 @@ int plot_budget_read(mpb_store *s, int64_t experiment_id, int64_t scene_id,
     for (int i = 0; i <= b->nsets; i++)
         for (int c = 0; c < b->nconfigs; c++) {
             curve *k = curve_of(b, i, c);
-            qsort(k->verified, (size_t)k->nv, sizeof *k->verified, by_value);
-            qsort(k->claimed, (size_t)k->nc, sizeof *k->claimed, by_value);
+            /* qsort() of no array (NULL) is undefined even for 0 items. */
+            if (k->nv > 0)
+                qsort(k->verified, (size_t)k->nv, sizeof *k->verified, by_value);
+            if (k->nc > 0)
+                qsort(k->claimed, (size_t)k->nc, sizeof *k->claimed, by_value);
         }
     *out = b;
     return MPB_OK;
