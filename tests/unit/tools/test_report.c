@@ -4,7 +4,6 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <libgen.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +13,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
+#include "test_tool.h"
 
 static char mpb_tool[4096];     /* the built mpb */
 
@@ -251,33 +251,10 @@ static int teardown(void **state)
 
 /* ---- running the tool ------------------------------------------------------ */
 
-typedef struct output {
-    char text[16384];
-    int  status;                /* exit status */
-} output;
-
-/* Run `mpb ARGS` with the shell; keep stdout, stderr or both (which). */
-static void run(output *o, const char *which, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void run(output *o, const char *which, const char *fmt, ...)
-{
-    char args[1024], cmd[6144];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
-    snprintf(cmd, sizeof cmd, "'%s' %s %s", mpb_tool, args,
-             strcmp(which, "stdout") == 0   ? "2>/dev/null"
-             : strcmp(which, "stderr") == 0 ? "2>&1 >/dev/null"
-                                            : "2>&1");
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(o->text, 1, sizeof o->text - 1, p);
-    o->text[n] = '\0';
-    int st = pclose(p);
-    assert_true(WIFEXITED(st));
-    o->status = WEXITSTATUS(st);
-}
+/* `mpb ARGS` run as a user runs it (test_tool.h), its output kept: which
+ * is "stdout", "stderr" or "both". */
+typedef test_output output;
+#define run(o, which, ...) test_run((o), mpb_tool, (which), __VA_ARGS__)
 
 /*
  * The text of column col (0 = the first configuration) in the row labelled
@@ -1100,25 +1077,8 @@ static void help_is_clear(void **state)
 
 int main(void)
 {
-    const char *build = getenv("MPB_BUILD");
-    if (build != NULL) {
-        snprintf(mpb_tool, sizeof mpb_tool, "%s/tools/mpb", build);
-    } else {
-        /* This test is BUILD/tests/test_report; the tool BUILD/tools/mpb. */
-        char self[2048];
-        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-        if (n <= 0) {
-            fprintf(stderr, "test_report: cannot find myself; set MPB_BUILD\n");
-            return 1;
-        }
-        self[n] = '\0';
-        snprintf(mpb_tool, sizeof mpb_tool, "%s/../tools/mpb", dirname(self));
-    }
-    if (access(mpb_tool, X_OK) != 0) {
-        fprintf(stderr, "test_report: no mpb at %s (build it first)\n",
-                mpb_tool);
+    if (test_built_program("tools/mpb", mpb_tool, sizeof mpb_tool) != 0)
         return 1;
-    }
 
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(the_kitchen_table_matches_the_hand_computed_values),
