@@ -7,6 +7,7 @@
 #define MPBD_EXPERIMENT_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include <stdint.h>
 
 #include "mpbench/mpbench.h"
@@ -217,5 +218,14 @@ int mpbd_mesh_note(const mpbd_experiment *e, char *buf, size_t len);
  */
 int mpbd_mesh_path(const char *path, char *out, size_t n, char *err,
                    size_t errlen);
+
+/*
+ * The planner families (each configuration's `planner:`) the experiment
+ * file at path names, each once, one per line to out, in the file's
+ * order. Reads only the file's YAML. 0, or -1 with one line in err.
+ * experiment_families.c.
+ */
+int mpbd_planner_families(const char *path, FILE *out, char *err,
+                          size_t errlen);
 
 #endif

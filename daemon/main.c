@@ -52,6 +52,9 @@ static void usage(FILE *out)
 "      --mesh-path       print the folder planners need in MPB_MESH_PATH to\n"
 "                        find the robot's meshes as mpbenchd does (its URDF's\n"
 "                        folder), and exit\n"
+"      --list-planners   print the planner families the experiment names\n"
+"                        (its configurations' planner:), one per line, and\n"
+"                        exit\n"
 "      --replay LOG      rebuild the experiment's results from LOG, an\n"
 "                        lcm-logger log of a live run, into a new experiment\n"
 "                        in the database; plans nothing, sends nothing\n"
@@ -66,7 +69,7 @@ typedef struct options {
     const char *db, *lcm_url, *experiment, *secret_file;
     const char *replay;              /* --replay LOG, or NULL */
     double resolution;
-    int fresh, again, check, verbose, mesh_path;
+    int fresh, again, check, verbose, mesh_path, list_planners;
 } options;
 
 static int parse_options(int argc, char **argv, options *o)
@@ -80,6 +83,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"secret-file", required_argument, NULL, 'S'},
         {"check", no_argument, NULL, 'C'},
         {"mesh-path", no_argument, NULL, 'M'},
+        {"list-planners", no_argument, NULL, 'L'},
         {"replay", required_argument, NULL, 'R'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -109,6 +113,7 @@ static int parse_options(int argc, char **argv, options *o)
         case 'S': o->secret_file = optarg; break;
         case 'C': o->check = 1; break;
         case 'M': o->mesh_path = 1; break;
+        case 'L': o->list_planners = 1; break;
         case 'R': o->replay = optarg; break;
         case 'v': o->verbose = 1; break;
         case 'h': usage(stdout); exit(0);
@@ -524,6 +529,13 @@ int main(int argc, char **argv)
         }
         if (dir[0] != '\0')
             printf("%s\n", dir);
+        return 0;
+    }
+    if (o.list_planners) {
+        if (mpbd_planner_families(o.experiment, stdout, err, sizeof err)) {
+            fprintf(stderr, "mpbenchd: %s\n", err);
+            return 1;
+        }
         return 0;
     }
     /* Read and check the whole experiment before touching the database. */

@@ -25,9 +25,9 @@ Options:
   -d, --db FILE        the results database (default: ./mpbench.db)
   -p, --planners LIST  planner processes to start, comma-separated, from
                        null, ompl, arastar, python, and the peers (each
-                       of planners/peers/requirements/NAME.txt) (default: every
-                       one that is built, the peers whose environments
-                       make deps made)
+                       of planners/peers/requirements/NAME.txt) (default:
+                       those the experiment files name, of those built
+                       and, for peers, installed by make deps)
   -n, --copies N       processes of each planner (default 1; more than one
                        per core skews timings)
   -f, --format FORMAT  the report's format: text, markdown, csv, latex, json
@@ -141,12 +141,21 @@ planner_program() {
 if [ "$planners" = none ]; then
     planners=" "    # the caller's own, on --lcm-url
 elif [ -z "$planners" ]; then
-    for p in null ompl arastar python; do
-        [ -x "$(planner_program $p)" ] && planners="$planners $p"
-    done
-    # The peers whose environments `make deps` made (tools/peers_env.sh).
-    for p in $(cd "$root/planners/peers/requirements" && ls *.txt | sed 's/\.txt$//'); do
-        [ -x "$root/.cache/peers/$p/bin/python3" ] && planners="$planners $p"
+    # The planner families the experiments name (mpbenchd --list-planners),
+    # each whose program is here: a peer's when make deps made its
+    # environment (tools/peers_env.sh).
+    for experiment in "$@"; do
+        named=$("$MPB_BUILD/daemon/mpbenchd" --list-planners "$experiment") || exit 2
+        for p in $named; do
+            case " $planners " in *" $p "*) continue ;; esac
+            prog=$(planner_program "$p") && [ -x "$prog" ] &&
+                { [ -x "$MPB_BUILD/planners/$p/mpb-planner-$p" ] ||
+                  [ -x "$root/.cache/peers/$p/bin/python3" ]; } && {
+                planners="$planners $p"
+                continue
+            }
+            echo "run_benchmark: warning: $experiment names planner '$p', which is not built or installed here (make, make deps); its runs wait for one you start (--lcm-url)" >&2
+        done
     done
 fi
 for p in $planners; do

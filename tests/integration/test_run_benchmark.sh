@@ -34,6 +34,16 @@ check "a second call runs the finished experiment again, as a new one" \
 check "... and keeps the first one's runs" \
     eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 16
 
+# Without --planners: the planners the experiment names, and no others
+# (arastar and python are built, peers may be installed).
+MPB_BUILD=$MPB_BUILD mpb_timeout 120 sh "$script" -d "$work/named.db" \
+    -l "$work/named-logs" "$work/exp.yaml" >"$work/named.out" 2>&1
+check "without --planners the batch completes" eq $? 0
+check "... starting the planners the experiment names: $(ls "$work/named-logs" | tr '\n' ' ')" \
+    test "$(ls "$work/named-logs" | grep -- '-1\.log$' | sort | tr '\n' ' ')" = "null-1.log ompl-1.log "
+check "... which ran its 8 runs" \
+    test "$(sqlite3 "$work/named.db" "SELECT count(*) FROM runs WHERE state = 'done'")" = 8
+
 # --lcm-url: on the caller's own URL, in the caller's network (here a
 # namespace of the test's own), where a planner started apart joins; with
 # --planners none the script starts none of its own.
