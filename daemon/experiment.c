@@ -168,6 +168,7 @@ void mpbd_experiment_free(mpbd_experiment *e)
         free(s->scene_format);
         free(s->scene);
         free(s->scene_file);
+        free(s->problem_set);
         mpb_world_close(s->world);
     }
     for (int i = 0; i < e->num_queries; i++) {

@@ -40,6 +40,8 @@ typedef struct mpbd_scene {
     char      *robot_format, *robot, robot_hash[MPB_HASH_SIZE];
     char      *scene_format, *scene, scene_hash[MPB_HASH_SIZE];
     char      *scene_file;   /* where the scene was read from, or NULL */
+    char      *problem_set;  /* the entry's `set:`, or NULL: the store's
+                                default (the name before its last '/') */
     mpb_world *world;        /* for verification */
     int64_t    db_id;
 } mpbd_scene;

@@ -112,6 +112,19 @@ static inline int parse_positive_int(mpbd_loader *L, yaml_node_t *n,
     return mpbd_yaml_int_in(&L->y, n, what, 1, 1000000000, out);
 }
 
+/* ---- experiment_scenes.c ------------------------------------------ */
+
+/* Longest problem set name `set:` may give, in bytes. */
+#define MPBD_SET_MAX 255
+
+/*
+ * A scene entry's `set:` (m a scenes entry), into *out (NULL when the key
+ * is absent: the store's default): a non-empty name of at most
+ * MPBD_SET_MAX bytes without control characters. 0, or -1 with one line
+ * at the key's value.
+ */
+int mpbd_load_set(mpbd_loader *L, yaml_node_t *m, char **out);
+
 /* ---- experiment_robot.c ------------------------------------------- */
 
 /* A robot or scene (what: "robot" or "scene"): inline `text:` or a

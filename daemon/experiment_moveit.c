@@ -424,6 +424,8 @@ static int moveit_scene(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *entry,
             fail_at(L, entry, "scene '%s' appears twice", name);
             goto done;
         }
+    if (mpbd_load_set(L, entry, &sc->problem_set) != 0)
+        goto done;
     sc->name = strdup(name);
     sc->scene_format = strdup("moveit-scene");
     sc->scene_file = strdup(scene_path);
@@ -575,7 +577,7 @@ static void path_from(const mpbd_loader *L, const char *f, char *out, size_t n)
 static const char *const moveit_keys[] = {"problems", "first", "count",
                                           "moveit_scene", "requests", "name",
                                           "tolerance", "clamp_joint_values",
-                                          NULL};
+                                          "set", NULL};
 
 int mpbd_is_moveit_entry(mpbd_loader *L, yaml_node_t *m)
 {

@@ -22,7 +22,7 @@ int mpbd_load_model(mpbd_loader *L, yaml_node_t *m, const char *what,
                                              "joints", "group", "srdf",
                                              "joint_values", NULL};
     static const char *const scene_keys[] = {"format", "file", "text", "name",
-                                             "queries", "joints", NULL};
+                                             "queries", "joints", "set", NULL};
     const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
                                                          : scene_keys;
     yaml_node_t *file, *inline_text;

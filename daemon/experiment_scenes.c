@@ -352,6 +352,24 @@ static int load_queries(mpbd_loader *L, mpbd_experiment *e, int scene,
     return 0;
 }
 
+int mpbd_load_set(mpbd_loader *L, yaml_node_t *m, char **out)
+{
+    yaml_node_t *n = get(L, m, "set");
+    *out = NULL;
+    if (n == NULL)
+        return 0;
+    const char *v = scalar(n);
+    size_t len = v != NULL ? strlen(v) : 0;
+    int control = 0;
+    for (size_t i = 0; i < len; i++)
+        control |= (unsigned char)v[i] < 0x20 || v[i] == 0x7f;
+    if (v == NULL || len == 0 || len > MPBD_SET_MAX || control)
+        return fail_at(L, n, "set must be a problem set's name: a "
+                       "non-empty string of at most %d bytes, no control "
+                       "characters", MPBD_SET_MAX);
+    return (*out = dup_str(L, n, v)) != NULL ? 0 : -1;
+}
+
 /* After the first scene's world opens: the robot's held joint values,
  * which need a world to check them against. */
 int mpbd_first_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc)
@@ -423,7 +441,8 @@ int mpbd_load_scenes(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
         }
         if ((sc->name = need_string(L, m, "name")) == NULL ||
             mpbd_load_model(L, m, "scene", &sc->scene_format, &sc->scene,
-                            &sc->scene_file) != 0)
+                            &sc->scene_file) != 0 ||
+            mpbd_load_set(L, m, &sc->problem_set) != 0)
             goto done;
         for (mpbd_scene *o = e->scenes; o < sc; o++)
             if (strcmp(o->name, sc->name) == 0) {

@@ -360,6 +360,9 @@ static int setup_experiment(mpbd *d, int fresh)
             .scene_hash = sc->scene_hash, .scene = sc->scene,
         };
         rc = mpb_store_scene_add(s, d->experiment_id, &si, &sc->db_id);
+        if (rc == MPB_OK && sc->problem_set != NULL)
+            rc = mpb_store_scene_set_problem_set(s, sc->db_id,
+                                                 sc->problem_set);
     }
     for (int i = 0; rc == MPB_OK && i < e->num_queries; i++) {
         mpbd_query *q = &e->queries[i];

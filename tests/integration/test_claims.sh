@@ -155,7 +155,7 @@ check "... and counts the same outcomes" test "$(printf '%s\n' "$out" | tail -1)
 # A database made before outcome, in_time and approach (as an older
 # mpbench left it), read only: the report counts the claims the same.
 cp "$DB" "$work/old.db"
-sqlite3 "$work/old.db" "DROP VIEW results;
+sqlite3 "$work/old.db" "DROP VIEW results; DROP VIEW run_summary;
     ALTER TABLE runs DROP COLUMN outcome; ALTER TABLE runs DROP COLUMN in_time;
     ALTER TABLE planner_configs DROP COLUMN approach"
 chmod a-w "$work/old.db"

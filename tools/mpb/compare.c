@@ -36,9 +36,9 @@ static void usage(FILE *out)
         "\n"
         "Compare planner configurations (as `mpb report` names them, e.g.\n"
         "ompl/RRTConnect) on the problems both ran, one problem set at a time\n"
-        "and over every problem. A problem set is the part of a scene's name\n"
-        "before its last '/' (MotionBenchMaker's box_panda/0001 is in\n"
-        "box_panda), else the scene itself.\n"
+        "and over every problem. A problem set is the scene's `set:` in the\n"
+        "experiment file, else the part of its name before its last '/'\n"
+        "(MotionBenchMaker's box_panda/0001 is in box_panda), else the scene.\n"
         "\n"
         "With A and B: how many problems each solved alone, the median of the\n"
         "per-problem time ratio A/B with its 95 %% interval and the Wilcoxon\n"
@@ -120,19 +120,19 @@ static int on_config(void *ud, const mpb_planner_config_row *c)
     return 0;
 }
 
-/* The problem set a scene belongs to: its name before the last '/'. */
-static int set_index(data *d, const char *scene)
+/* The index of the problem set a scene belongs to (tool_problem_set()),
+ * added if new; -1 without memory. */
+static int set_index(data *d, const mpb_scene_row *scene)
 {
-    size_t len = tool_problem_set(scene);
+    const char *set = tool_problem_set(scene);
     for (int i = 0; i < d->ns; i++)
-        if (strlen(d->set_names[i]) == len &&
-            strncmp(d->set_names[i], scene, len) == 0)
+        if (strcmp(d->set_names[i], set) == 0)
             return i;
     char **names = realloc(d->set_names, (size_t)(d->ns + 1) * sizeof *names);
     if (names == NULL)
         return -1;
     d->set_names = names;
-    if ((names[d->ns] = strndup(scene, len)) == NULL)
+    if ((names[d->ns] = strdup(set)) == NULL)
         return -1;
     return d->ns++;
 }
@@ -140,7 +140,7 @@ static int set_index(data *d, const char *scene)
 static int on_scene(void *ud, const mpb_scene_row *s)
 {
     data *d = ud;
-    int set = set_index(d, s->name);
+    int set = set_index(d, s);
     int64_t *ids = set < 0 ? NULL : realloc(d->scene_ids,
                               (size_t)(d->num_scenes + 1) * sizeof *ids);
     if (ids != NULL)

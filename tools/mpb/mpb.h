@@ -64,10 +64,12 @@ int tool_parse_id(const char *text, int64_t *out);
 int tool_option_error(const char *cmd, int opt, char **argv);
 int tool_extra_argument(const char *cmd, const char *arg);
 
-/* The problem set a scene belongs to: the length of its name's part
- * before the last '/' (MotionBenchMaker's "box_panda/0001" is in
- * "box_panda"), or the whole name's when it has none. */
-size_t tool_problem_set(const char *scene);
+/* The problem set a scene belongs to, as the database keeps it
+ * (scenes.problem_set: the experiment file's `set:`, else
+ * MotionBenchMaker's "box_panda/0001" is in "box_panda" and a scene
+ * without a '/' is its own; mpb_store_problem_set_len()). Every tool
+ * groups by it, so all agree. Valid as long as the row. */
+const char *tool_problem_set(const mpb_scene_row *scene);
 
 /* The length of the valid UTF-8 sequence at s, its code point in *cp; 0
  * when s does not start one. */

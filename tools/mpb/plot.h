@@ -95,7 +95,7 @@ void plot_begin(FILE *gp, const char *path, const char *ext, int width);
 
 /*
  * Success against the time budget (plot_budget.c): for each problem set
- * (a scene's name before its last '/', tool_problem_set()) and over all
+ * (scenes.problem_set, tool_problem_set()) and over all
  * problems, each configuration's fraction of runs verified successful by
  * time t, and the fraction claimed (status solved) by t, for every t up
  * to the time limit: from the stored times, no run again. Read from the

@@ -81,14 +81,13 @@ static int on_config(void *ud, const mpb_planner_config_row *c)
 static int on_scene(void *ud, const mpb_scene_row *row)
 {
     plot_budget *b = ud;
-    size_t len = tool_problem_set(row->name);
+    const char *name = tool_problem_set(row);
     int set = 0;
-    while (set < b->nsets && !(strlen(b->sets[set]) == len &&
-                               strncmp(b->sets[set], row->name, len) == 0))
+    while (set < b->nsets && strcmp(b->sets[set], name) != 0)
         set++;
     if (set == b->nsets) {
         char **sets = realloc(b->sets, (size_t)(b->nsets + 1) * sizeof *sets);
-        if (sets == NULL || (sets[b->nsets] = strndup(row->name, len)) == NULL) {
+        if (sets == NULL || (sets[b->nsets] = strdup(name)) == NULL) {
             if (sets)
                 b->sets = sets;
             b->nomem = 1;

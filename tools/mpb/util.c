@@ -86,8 +86,7 @@ int tool_experiment(const char *cmd, mpb_store *s, const char *db,
     return 0;
 }
 
-size_t tool_problem_set(const char *scene)
+const char *tool_problem_set(const mpb_scene_row *scene)
 {
-    const char *slash = strrchr(scene, '/');
-    return slash ? (size_t)(slash - scene) : strlen(scene);
+    return scene->problem_set != NULL ? scene->problem_set : scene->name;
 }

@@ -11,7 +11,9 @@
 #ifndef MPBENCH_STORE_H
 #define MPBENCH_STORE_H
 
+#include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -152,8 +154,28 @@ typedef struct mpb_scene_info {
     const char *scene_format, *scene_hash, *scene;
 } mpb_scene_info;
 
+/*
+ * The default problem set of a scene named scene: the length of its
+ * name's part before the last '/' (a MotionBenchMaker problem
+ * "box_panda/0001" is in "box_panda"), or of the whole name when it has
+ * none ("KITCHEN" is its own). The store fills scenes.problem_set so
+ * where a scene is added without one, and in a database made before the
+ * column.
+ */
+size_t mpb_store_problem_set_len(const char *scene);
+
+/* Add a scene, in its default problem set (mpb_store_problem_set_len());
+ * an existing scene of that name is left as it is, its id in *id. */
 int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
                         const mpb_scene_info *scene, int64_t *id);
+
+/*
+ * Put scene scene_id in the problem set named set (scenes.problem_set),
+ * as an experiment file's `set:` says, over the default. MPB_OK,
+ * MPB_ENOTFOUND if there is no such scene, MPB_EDB.
+ */
+int mpb_store_scene_set_problem_set(mpb_store *s, int64_t scene_id,
+                                    const char *set);
 
 typedef struct mpb_query_info {
     const char   *name;
@@ -370,6 +392,9 @@ typedef struct mpb_scene_row {
     const char *name;
     const char *robot_format, *robot_hash, *robot;
     const char *scene_format, *scene_hash, *scene;
+    const char *problem_set;   /* scenes.problem_set, never NULL (the
+                                  default rule for a database made before
+                                  the column, opened read-only) */
 } mpb_scene_row;
 
 /* The scenes of an experiment. */
@@ -601,6 +626,21 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
 int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
                                const int64_t *ids, int num_ids, int flags,
                                mpb_export_counts *counts);
+
+/*
+ * Write the run_summary view (docs/schema.md: one row per finished run,
+ * its experiment, problem set, scene, query, planner, seed, outcome,
+ * times and final-stage metrics) of the experiments ids[0..num_ids)
+ * (every experiment when num_ids is 0) to out as CSV: a header of the
+ * view's column names, then a row per run in run id order; NULL as an
+ * empty field, numbers in the fewest digits that read back exactly,
+ * text quoted as RFC 4180 says where it must be. A database made before
+ * the view is read the same. *rows (may be NULL) counts the rows.
+ * MPB_OK, MPB_ENOTFOUND (nothing written) if an id is no experiment,
+ * MPB_EIO if out reports an error, MPB_EDB, MPB_ENOMEM.
+ */
+int mpb_store_export_runs_csv(mpb_store *s, FILE *out, const int64_t *ids,
+                              int num_ids, long *rows);
 
 #ifdef __cplusplus
 }

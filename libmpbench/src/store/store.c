@@ -232,6 +232,18 @@ static int add_exact_values(mpb_store *s)
                                     "create log_properties");
 }
 
+/* The migration step of problem sets (docs/schema.md): a database made
+ * before scenes.problem_set gets it, each scene's by the default rule
+ * (mpb_store_problem_set_len()), and the run_summary view over it. */
+static int add_problem_sets(mpb_store *s)
+{
+    int rc = add_missing_column(s, "scenes", "problem_set", "TEXT");
+    if (rc == MPB_OK)
+        rc = exec(s, mpb__schema_fill_problem_sets, "fill scenes.problem_set");
+    return rc != MPB_OK ? rc : exec(s, mpb__schema_run_summary_view,
+                                    "create run_summary view");
+}
+
 static int create_schema(mpb_store *s)
 {
     int version, rc;
@@ -267,7 +279,8 @@ static int create_schema(mpb_store *s)
         (rc = add_log_header(s)) != MPB_OK ||
         (rc = add_exact_values(s)) != MPB_OK ||
         (rc = add_outcomes(s)) != MPB_OK ||
-        (rc = add_missing_column(s, "planner_configs", "approach", "TEXT")) != MPB_OK)
+        (rc = add_missing_column(s, "planner_configs", "approach", "TEXT")) != MPB_OK ||
+        (rc = add_problem_sets(s)) != MPB_OK)
         goto fail;
     /* The results view is made again when it lacks a column this version
      * gives it (a database made before results.experiment_id). */

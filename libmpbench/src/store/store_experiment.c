@@ -260,13 +260,19 @@ int mpb_store_log_properties(mpb_store *s, int64_t config_id, int progress,
     return rc;
 }
 
+size_t mpb_store_problem_set_len(const char *scene)
+{
+    const char *slash = strrchr(scene, '/');
+    return slash ? (size_t)(slash - scene) : strlen(scene);
+}
+
 int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
                         const mpb_scene_info *sc, int64_t *id)
 {
     sqlite3_stmt *ins = mpb__store_prepare(s,
         "INSERT OR IGNORE INTO scenes(experiment_id, name, robot_format,"
-        " robot_hash, robot, scene_format, scene_hash, scene)"
-        " VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+        " robot_hash, robot, scene_format, scene_hash, scene, problem_set)"
+        " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
     sqlite3_stmt *sel = mpb__store_prepare(s,
         "SELECT id FROM scenes WHERE experiment_id = ? AND name = ?");
     if (ins == NULL || sel == NULL) {
@@ -282,9 +288,29 @@ int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
     sqlite3_bind_text(ins, 6, sc->scene_format, -1, SQLITE_STATIC);
     sqlite3_bind_text(ins, 7, sc->scene_hash, -1, SQLITE_STATIC);
     sqlite3_bind_text(ins, 8, sc->scene, -1, SQLITE_STATIC);
+    sqlite3_bind_text(ins, 9, sc->name,
+                      (int)mpb_store_problem_set_len(sc->name), SQLITE_STATIC);
     sqlite3_bind_int64(sel, 1, experiment_id);
     sqlite3_bind_text(sel, 2, sc->name, -1, SQLITE_STATIC);
     return insert_or_get(s, ins, sel, "add scene", id);
+}
+
+int mpb_store_scene_set_problem_set(mpb_store *s, int64_t scene_id,
+                                    const char *set)
+{
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "UPDATE scenes SET problem_set = ?2 WHERE id = ?1");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, scene_id);
+    sqlite3_bind_text(st, 2, set, -1, SQLITE_STATIC);
+    int rc = sqlite3_step(st) == SQLITE_DONE
+             ? MPB_OK : mpb__store_db_fail(s, "set a scene's problem set");
+    sqlite3_finalize(st);
+    if (rc == MPB_OK && sqlite3_changes(s->db) == 0)
+        rc = mpb__store_fail(s, MPB_ENOTFOUND, "no scene %lld",
+                             (long long)scene_id);
+    return rc;
 }
 
 /* v in the fewest digits that read back as v: 0.08, not the

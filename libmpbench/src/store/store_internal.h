@@ -13,6 +13,13 @@ extern const char mpb__schema_v1[];
 extern const char mpb__schema_results_view[];
 extern const char mpb__schema_experiment_params[];
 extern const char mpb__schema_log_properties[];
+extern const char mpb__schema_fill_problem_sets[];
+extern const char mpb__schema_run_summary_view[];
+/* run_summary's SELECT (no ';'), and the same for a database made before
+ * scenes.problem_set (opened read-only, not migrated): the sets by the
+ * default rule. */
+extern const char mpb__run_summary_select[];
+extern const char mpb__run_summary_select_old[];
 
 /* Whether the table (or view) has the column: a database made by an earlier
  * mpbench and opened read-only may lack one that a writer would add. */

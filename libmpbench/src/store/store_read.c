@@ -94,15 +94,33 @@ int mpb_store_experiment_get(mpb_store *s, int64_t id,
 int mpb_store_scenes(mpb_store *s, int64_t experiment_id,
                      int (*cb)(void *ud, const mpb_scene_row *row), void *ud)
 {
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT id, name, robot_format, robot_hash, robot, scene_format,"
-        " scene_hash, scene FROM scenes WHERE experiment_id = ? ORDER BY id");
+    /* A database made before scenes.problem_set, opened read-only, has
+     * none: the default rule, here. */
+    int has_set = mpb__store_has_column(s, "scenes", "problem_set");
+    sqlite3_stmt *st = mpb__store_prepare(s, has_set
+        ? "SELECT id, name, robot_format, robot_hash, robot, scene_format,"
+          " scene_hash, scene, problem_set FROM scenes"
+          " WHERE experiment_id = ? ORDER BY id"
+        : "SELECT id, name, robot_format, robot_hash, robot, scene_format,"
+          " scene_hash, scene, NULL FROM scenes"
+          " WHERE experiment_id = ? ORDER BY id");
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, experiment_id);
     int step, stop = 0;
+    char *set = NULL;
     while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
+        const char *name = col_text(st, 1);
+        const char *stored = (const char *)sqlite3_column_text(st, 8);
+        if (stored == NULL) {
+            free(set);
+            if ((set = strndup(name, mpb_store_problem_set_len(name))) == NULL) {
+                sqlite3_finalize(st);
+                return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
+            }
+        }
         mpb_scene_row row = {
+            .problem_set = stored != NULL ? stored : set,
             .id = sqlite3_column_int64(st, 0),
             .name = col_text(st, 1),
             .robot_format = col_text(st, 2),
@@ -114,6 +132,7 @@ int mpb_store_scenes(mpb_store *s, int64_t experiment_id,
         };
         stop = cb(ud, &row);
     }
+    free(set);
     return walk_end(s, st, stop, step, "list scenes");
 }
 

@@ -44,6 +44,7 @@ const char mpb__schema_v1[] =
     "  scene_format  TEXT NOT NULL,\n"
     "  scene_hash    TEXT NOT NULL,\n"
     "  scene         TEXT NOT NULL,\n"
+    "  problem_set   TEXT,\n"
     "  UNIQUE(experiment_id, name));\n"
 
     "CREATE TABLE IF NOT EXISTS queries(\n"
@@ -200,3 +201,49 @@ const char mpb__schema_results_view[] =
     "  JOIN scenes s ON s.id = q.scene_id\n"
     "  JOIN planner_configs c ON c.id = r.planner_config_id\n"
     "WHERE r.state = 'done';\n";
+
+/* The default rule of scenes.problem_set (mpb_store_problem_set_len()) in
+ * SQL, of the scene name N: the part before its last '/', else all of it.
+ * rtrim(N, the characters of N but '/') leaves N up to its last '/'. */
+#define DEFAULT_SET(n)                                                       \
+    "CASE WHEN instr(" n ", '/') > 0 THEN substr(rtrim(" n ", replace(" n    \
+    ", '/', '')), 1, length(rtrim(" n ", replace(" n ", '/', ''))) - 1)"     \
+    " ELSE " n " END"
+
+/* A database made before scenes.problem_set: each scene's set by the
+ * default rule. */
+const char mpb__schema_fill_problem_sets[] =
+    "UPDATE scenes SET problem_set = " DEFAULT_SET("name")
+    " WHERE problem_set IS NULL";
+
+/* run_summary's columns, for the view and for a reader of a database
+ * made before it (PS: the scene's problem set there). */
+#define RUN_SUMMARY(ps)                                                      \
+    "SELECT r.id AS run, r.experiment_id, e.name AS experiment,\n"          \
+    "       " ps " AS problem_set, s.name AS scene, q.name AS query,\n"     \
+    "       c.name AS planner, c.planner AS family, c.algorithm,\n"          \
+    "       c.approach, r.repetition, r.seed, r.status,\n"                   \
+    "       r.claimed_success AS claimed, r.success AS verified,\n"          \
+    "       r.outcome, r.verdict,\n"                                         \
+    "       r.time_total, r.time_raw, r.time_other, r.wall_time,\n"          \
+    "       r.final_stage,\n"                                                \
+    METRIC("path_length") METRIC("smoothness") METRIC("clearance")           \
+    METRIC("ee_path_length") METRIC("waypoints")                             \
+    "       r.planner_id\n"                                                  \
+    "FROM runs r JOIN experiments e ON e.id = r.experiment_id\n"             \
+    "  JOIN queries q ON q.id = r.query_id\n"                                \
+    "  JOIN scenes s ON s.id = q.scene_id\n"                                 \
+    "  JOIN planner_configs c ON c.id = r.planner_config_id\n"               \
+    "WHERE r.state = 'done'"
+#define METRIC(m)                                                            \
+    "       (SELECT value FROM metrics m WHERE m.run_id = r.id\n"            \
+    "          AND m.stage = r.final_stage AND m.name = '" m "') AS " m ",\n"
+
+/* For users who analyse the runs themselves (docs/analysis.md): one row
+ * per finished run, every name spelled out, the final stage's metrics. */
+const char mpb__schema_run_summary_view[] =
+    "CREATE VIEW IF NOT EXISTS run_summary AS\n" RUN_SUMMARY("s.problem_set")
+    ";\n";
+
+const char mpb__run_summary_select[] = RUN_SUMMARY("s.problem_set");
+const char mpb__run_summary_select_old[] = RUN_SUMMARY(DEFAULT_SET("s.name"));

@@ -352,6 +352,57 @@ static void a_planner_entry_names_its_approach(void **state)
                          "optimisation or hybrid");
 }
 
+/* `set:` on a scene entry names its problem set; without it the store's
+ * default stands (NULL here); a value that is no name is refused at its
+ * line and column. */
+static void a_scene_entry_names_its_set(void **state)
+{
+    mpbd_experiment *e;
+    (void)state;
+    assert_non_null(e = load_text(
+        "experiment: {name: x, time_limit: 1}\n" ROBOT
+        "scenes:\n"
+        "  - {name: s1, set: shelves, format: planar, text: \"\", " QUERIES "}\n"
+        "  - {name: t/1, format: planar, text: \"\", " QUERIES "}\n"
+        PLANNERS));
+    assert_int_equal(e->num_scenes, 2);
+    assert_string_equal(e->scenes[0].problem_set, "shelves");
+    assert_null(e->scenes[1].problem_set);
+    mpbd_experiment_free(e);
+    static const char *const bad[] = {"[a, b]", "{a: 1}", "''", "\"a\\tb\"",
+                                      NULL};
+    for (int i = 0; bad[i]; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+                 ROBOT "scenes:\n"
+                 "  - {name: s, format: planar, text: \"\", set: %s,\n"
+                 "     " QUERIES "}\n" PLANNERS, bad[i]);
+        assert_null(load_text(text));
+        assert_error("4:46", "set must be a problem set's name: a non-empty "
+                             "string of at most 255 bytes, no control "
+                             "characters");
+    }
+    char text[2048], name[300];
+    memset(name, 'a', 256);
+    name[256] = '\0';
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             ROBOT "scenes:\n"
+             "  - {name: s, format: planar, text: \"\", set: %s,\n"
+             "     " QUERIES "}\n" PLANNERS, name);
+    assert_null(load_text(text));
+    assert_error("4:46", "set must be a problem set's name: a non-empty "
+                         "string of at most 255 bytes, no control "
+                         "characters");
+    name[255] = '\0';
+    snprintf(text, sizeof text, "experiment: {name: x, time_limit: 1}\n"
+             ROBOT "scenes:\n"
+             "  - {name: s, format: planar, text: \"\", set: %s,\n"
+             "     " QUERIES "}\n" PLANNERS, name);
+    assert_non_null(e = load_text(text));
+    assert_string_equal(e->scenes[0].problem_set, name);
+    mpbd_experiment_free(e);
+}
+
 /* An experiment of the Panda with its SRDF, the robot's extra keys and
  * the query as given. */
 static mpbd_experiment *load_panda(const char *robot_keys, const char *query)
@@ -584,9 +635,10 @@ static void moveit_files_become_scenes_and_queries(void **state)
              "robot: {format: urdf, file: slide.urdf, joints: [j]}\n"        \
              "scenes: [{name: m, moveit_scene: s.yaml, requests: [%s]%s}]\n" \
              PLANNERS, requests, extra)
-    MOVEIT_EXP("r1.yaml, r2.yaml", ", clamp_joint_values: true");
+    MOVEIT_EXP("r1.yaml, r2.yaml", ", clamp_joint_values: true, set: slides");
     assert_non_null(e = load_text(text));
     assert_int_equal(e->num_scenes, 1);
+    assert_string_equal(e->scenes[0].problem_set, "slides");
     assert_int_equal(e->num_queries, 2);
     assert_string_equal(e->queries[0].name, "r1");
     assert_true(e->queries[0].start[0] == 1.5);
@@ -751,6 +803,7 @@ int main(void)
         cmocka_unit_test(a_directory_is_not_a_file),
         cmocka_unit_test(a_planner_family_must_fit_an_id),
         cmocka_unit_test(a_planner_entry_names_its_approach),
+        cmocka_unit_test(a_scene_entry_names_its_set),
         cmocka_unit_test(a_group_of_the_srdf),
         cmocka_unit_test(a_group_state_by_name),
         cmocka_unit_test(bytes_are_placed_at_their_line),

@@ -274,7 +274,7 @@ static void an_older_database_gets_its_runs_outcomes(void **state)
     assert_string_equal(now, want);
     free(now);
 
-    exec_sql(f->db, "DROP VIEW results;"
+    exec_sql(f->db, "DROP VIEW results; DROP VIEW run_summary;"
              " ALTER TABLE runs DROP COLUMN outcome;"
              " ALTER TABLE runs DROP COLUMN in_time;"
              " ALTER TABLE planner_configs DROP COLUMN approach");
@@ -296,6 +296,78 @@ static void an_older_database_gets_its_runs_outcomes(void **state)
     free(now);
 }
 
+typedef struct sets_seen {
+    char text[512];
+} sets_seen;
+
+static int on_scene_set(void *ud, const mpb_scene_row *row)
+{
+    sets_seen *x = ud;
+    size_t n = strlen(x->text);
+    snprintf(x->text + n, sizeof x->text - n, "%s%s=%s", n ? " " : "",
+             row->name, row->problem_set);
+    return 0;
+}
+
+/*
+ * Problem sets (scenes.problem_set): a scene is added in its default set
+ * (its name before the last '/', else the name), an experiment file's
+ * `set:` is written over it, and a database made before the column is
+ * read with the default sets and, opened by a writer, gets the column
+ * filled by the same rule (in SQL, here checked against the C one on
+ * names with several '/', a trailing one, UTF-8) and the run_summary
+ * view.
+ */
+static void an_older_database_gets_its_problem_sets(void **state)
+{
+    fixture *f = *state;
+    static const char *const names[] = {"box_panda/0001", "KITCHEN",
+                                        "a/b/c", "\u53f0\u6240/7\u00e4",
+                                        "x/", "mine"};
+    static const char want[] =
+        "box_panda/0001=box_panda KITCHEN=KITCHEN a/b/c=a/b "
+        "\u53f0\u6240/7\u00e4=\u53f0\u6240 x/=x mine=mine";
+    mpb_store *s;
+    int64_t scene = 0;
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        mpb_scene_info sc = {names[i], "planar", "r", "r", "planar", "x", "x"};
+        assert_int_equal(mpb_store_scene_add(s, 1, &sc, &scene), MPB_OK);
+    }
+    assert_int_equal(mpb_store_scene_set_problem_set(s, scene, "shelves"),
+                     MPB_OK);
+    assert_int_equal(mpb_store_scene_set_problem_set(s, scene + 1, "x"),
+                     MPB_ENOTFOUND);
+    sets_seen seen = {""};
+    assert_int_equal(mpb_store_scenes(s, 1, on_scene_set, &seen), MPB_OK);
+    char want_set[600];
+    snprintf(want_set, sizeof want_set, "%.*s=shelves",
+             (int)(sizeof want - 1 - strlen("=mine")), want);
+    assert_string_equal(seen.text, want_set);
+    mpb_store_close(s);
+
+    /* As an older mpbench left it. */
+    exec_sql(f->db, "DROP VIEW run_summary;"
+             " ALTER TABLE scenes DROP COLUMN problem_set");
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    seen.text[0] = '\0';
+    assert_int_equal(mpb_store_scenes(s, 1, on_scene_set, &seen), MPB_OK);
+    assert_string_equal(seen.text, want);
+    mpb_store_close(s);
+
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    mpb_store_close(s);
+    char *now = column_text(f->db, "SELECT group_concat(name || '=' || "
+                            "problem_set, ' ') FROM (SELECT name, problem_set"
+                            " FROM scenes ORDER BY id)");
+    assert_string_equal(now, want);
+    free(now);
+    now = column_text(f->db, "SELECT count(*) FROM sqlite_master WHERE "
+                      "type = 'view' AND name = 'run_summary'");
+    assert_string_equal(now, "1");
+    free(now);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -304,6 +376,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(reading_leaves_no_wal_or_shm_behind, setup, teardown),
         cmocka_unit_test_setup_teardown(a_database_in_a_read_only_folder_is_read, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_database_gets_its_runs_outcomes, setup, teardown),
+        cmocka_unit_test_setup_teardown(an_older_database_gets_its_problem_sets, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
