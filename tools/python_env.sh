@@ -1,7 +1,8 @@
 #!/bin/sh
 # python_env.sh - the project's own Python environment, .venv: the PyPI
 # `lcm` package that the Python planner (planners/python) speaks LCM with,
-# and pytest for the kit's tests (tests/python), exact versions and
+# pytest for the kit's tests (tests/python) and pandas for
+# docs/analysis.md's example, exact versions and
 # hashes from planners/python/requirements.txt. Run by `make deps` after
 # tools/deps.sh (which installs python3-venv).
 #
@@ -25,5 +26,5 @@ echo "deps: making .venv from $reqs"
 [ -x "$venv/bin/python3" ] || "$python" -m venv "$venv"
 "$venv/bin/python3" -m pip install --quiet --disable-pip-version-check \
     --require-hashes -r "$reqs"
-"$venv/bin/python3" -c "import lcm, pytest"
+"$venv/bin/python3" -c "import lcm, pytest, pandas"
 cp "$reqs" "$venv/.installed"

@@ -1,8 +1,9 @@
 /*
  * export.c - `mpb export`: an mpbench database as other tools read it: a
- * Planner Arena database (--planner-arena) or OMPL benchmark logs
- * (--ompl-log). The work is the store's (store_export.c); this is the
- * command line. docs/planner-arena.md describes what is written.
+ * Planner Arena database (--planner-arena), OMPL benchmark logs
+ * (--ompl-log), or the run_summary view as CSV (--runs-csv). The work is
+ * the store's (store_export*.c); this is the command line.
+ * docs/planner-arena.md and docs/analysis.md describe what is written.
  */
 #include <errno.h>
 #include <getopt.h>
@@ -24,6 +25,7 @@ static void usage(FILE *out)
         "usage: mpb export --planner-arena [--experiment ID]... [--append|--force]\n"
         "                  DB OUT.db\n"
         "       mpb export --ompl-log [--experiment ID]... [--force] DB DIR\n"
+        "       mpb export --runs-csv [--experiment ID]... [--force] DB OUT.csv\n"
         "\n"
         "Write the finished runs of the database DB as another tool reads them.\n"
         "\n"
@@ -46,6 +48,12 @@ static void usage(FILE *out)
         "                   [A-Za-z0-9.-] as '_'; names that would be alike\n"
         "                   get +QUERYID before .log); OMPL's\n"
         "                   ompl_benchmark_statistics.py reads them.\n"
+        "  --runs-csv       the database's run_summary view as CSV, one row\n"
+        "                   per finished run: experiment, problem set, scene,\n"
+        "                   query, planner, algorithm, approach, seed, status,\n"
+        "                   claimed, verified, outcome, verdict, times and the\n"
+        "                   final stage's metrics (docs/schema.md); OUT.csv -\n"
+        "                   writes to standard output. See docs/analysis.md.\n"
         "\n"
         "Options:\n"
         "  -e, --experiment ID  export experiment ID (repeat for more, each\n"
@@ -57,7 +65,7 @@ static void usage(FILE *out)
         "                       same name, query, date, run count and host,\n"
         "                       there before this export) is skipped with its\n"
         "                       runs, and said so\n"
-        "  -f, --force          replace OUT.db (or the logs) if it exists\n"
+        "  -f, --force          replace OUT.db (the logs, OUT.csv) if it exists\n"
         "  -h, --help           print this help\n"
         "\n"
         "Without --append or --force an existing OUT.db or log is left alone\n"
@@ -67,12 +75,60 @@ static void usage(FILE *out)
         "a bad command line.\n");
 }
 
+/* --runs-csv: the run_summary view into out ("-": standard output). A
+ * file is written beside its name first and renamed when whole, so that
+ * a failure leaves no half CSV (and an existing one as it was). */
+static int runs_csv_export(const char *db, const char *out,
+                           const int64_t *ids, int num_ids, int force)
+{
+    int to_stdout = strcmp(out, "-") == 0;
+    char tmp[4200];
+    if (!to_stdout && !force && access(out, F_OK) == 0) {
+        fprintf(stderr, "mpb " CMD ": %s exists (--force replaces it)\n", out);
+        return MPB_EXIT_ERROR;
+    }
+    mpb_store *s = tool_open_readonly(CMD, db);
+    if (s == NULL)
+        return MPB_EXIT_ERROR;
+    FILE *f = stdout;
+    if (!to_stdout) {
+        snprintf(tmp, sizeof tmp, "%s.part", out);
+        if ((f = fopen(tmp, "w")) == NULL) {
+            fprintf(stderr, "mpb " CMD ": cannot write %s: %s\n", tmp,
+                    strerror(errno));
+            mpb_store_close(s);
+            return MPB_EXIT_ERROR;
+        }
+    }
+    long rows = 0;
+    int rc = mpb_store_export_runs_csv(s, f, ids, num_ids, &rows);
+    if (rc != MPB_OK)
+        fprintf(stderr, "mpb " CMD ": %s: %s\n", db, mpb_store_errmsg(s));
+    mpb_store_close(s);
+    if (to_stdout)
+        return rc == MPB_OK && fflush(stdout) == 0 ? MPB_EXIT_OK
+                                                   : MPB_EXIT_ERROR;
+    int bad = fclose(f) != 0;
+    if (rc == MPB_OK && (bad || rename(tmp, out) != 0)) {
+        fprintf(stderr, "mpb " CMD ": cannot write %s: %s\n", out,
+                strerror(errno));
+        rc = MPB_EIO;
+    }
+    if (rc != MPB_OK) {
+        unlink(tmp);
+        return MPB_EXIT_ERROR;
+    }
+    printf("%s: %ld run%s\n", out, rows, rows == 1 ? "" : "s");
+    return MPB_EXIT_OK;
+}
+
 int cmd_export(int argc, char **argv)
 {
-    enum { OPT_PLANNER_ARENA = 256, OPT_OMPL_LOG };
+    enum { OPT_PLANNER_ARENA = 256, OPT_OMPL_LOG, OPT_RUNS_CSV };
     static const struct option longopts[] = {
         {"planner-arena", no_argument, NULL, OPT_PLANNER_ARENA},
         {"ompl-log", no_argument, NULL, OPT_OMPL_LOG},
+        {"runs-csv", no_argument, NULL, OPT_RUNS_CSV},
         {"experiment", required_argument, NULL, 'e'},
         {"append", no_argument, NULL, 'a'},
         {"force", no_argument, NULL, 'f'},
@@ -80,7 +136,8 @@ int cmd_export(int argc, char **argv)
         {NULL, 0, NULL, 0},
     };
     int64_t ids[MAX_EXPERIMENTS];
-    int num_ids = 0, planner_arena = 0, ompl_log = 0, append = 0, force = 0;
+    int num_ids = 0, planner_arena = 0, ompl_log = 0, runs_csv = 0;
+    int append = 0, force = 0;
     int opt, rc;
     mpb_store *s = NULL;
 
@@ -93,6 +150,9 @@ int cmd_export(int argc, char **argv)
             break;
         case OPT_OMPL_LOG:
             ompl_log = 1;
+            break;
+        case OPT_RUNS_CSV:
+            runs_csv = 1;
             break;
         case 'e':
             if (num_ids == MAX_EXPERIMENTS) {
@@ -120,13 +180,14 @@ int cmd_export(int argc, char **argv)
             return tool_option_error(CMD, opt, argv);
         }
     }
-    if (planner_arena + ompl_log != 1) {
+    if (planner_arena + ompl_log + runs_csv != 1) {
         fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",
-                planner_arena ? "--planner-arena or --ompl-log, not both"
-                              : "which format? --planner-arena or --ompl-log");
+                planner_arena + ompl_log + runs_csv
+                ? "one of --planner-arena, --ompl-log and --runs-csv"
+                : "which format? --planner-arena, --ompl-log or --runs-csv");
         return MPB_EXIT_USAGE;
     }
-    if (ompl_log && append) {
+    if ((ompl_log || runs_csv) && append) {
         fprintf(stderr, "mpb " CMD ": --append is for --planner-arena\n");
         return MPB_EXIT_USAGE;
     }
@@ -152,6 +213,8 @@ int cmd_export(int argc, char **argv)
         return MPB_EXIT_USAGE;
     }
 
+    if (runs_csv)
+        return runs_csv_export(path, out, ids, num_ids, force);
     if ((s = tool_open_readonly(CMD, path)) == NULL)
         return MPB_EXIT_ERROR;
     mpb_export_counts counts;

@@ -19,7 +19,7 @@
     X(plot,   "draw box plots per metric and success-rate bars, per scene (gnuplot)") \
     X(status, "follow a running experiment: progress, rate, time left, planners") \
     X(spy,    "start lcm-spy with mpbench's message types, to watch the traffic") \
-    X(export, "write results for Planner Arena (and OMPL's tools)")          \
+    X(export, "write results for Planner Arena, OMPL's tools, or as CSV")    \
     X(import, "read OMPL and MoveIt benchmark logs into a database")       \
     X(srdf,   "write a robot's self-collision matrix as an SRDF, for review") \
     X(view,   "draw a run in 3-D: a self-contained HTML page (three.js)") \
