@@ -1,8 +1,9 @@
 #!/bin/sh
 # mpb plot on a real benchmark's database (the demo's scene, OMPL and null
 # planners, 3 runs per query, run over LCM in a private network namespace):
-# the expected images, each a real PNG or a well-formed SVG that names the
-# planners and says what the database says; and one-line errors for an
+# the expected images (the performance profiles too), each a real PNG or
+# a well-formed SVG that names the planners and says what the database
+# says; and one-line errors for an
 # unknown scene, an experiment without finished runs, a missing database
 # and a missing gnuplot. A second experiment, left unfinished (its OMPL
 # planner never comes), has scenes whose names differ only in non-ASCII
@@ -116,8 +117,16 @@ for c in $(sqlite3 "$DB" "SELECT name FROM planner_configs"); do
     check "... at the time of its slowest success" \
         test "$(echo "$last" | cut -d, -f4)" = "$slowest"
 done
-check "it writes nothing else" eq "$(ls "$work/png" | wc -l)" 8
-check "... and names nothing else" eq "$(wc -l <"$work/png.out")" 8
+# The performance profiles of that set (values: unit/test_plot_profile).
+f=$work/png/plot-profile-pillars.png
+check "it writes and names plot-profile-pillars.png" grep -qx "$f" "$work/png.out"
+check "... a PNG file of a real picture's size" test "$(stat -c %s "$f")" -gt 8000
+check "it writes and names profile.csv" grep -qx "$work/png/profile.csv" "$work/png.out"
+check "... over the scene's 2 queries, for time and path length" test \
+    "$(sed 1d "$work/png/profile.csv" | cut -d, -f1,2,6 | sort -u | tr '\n' ' ')" = \
+    '"pillars",path_length,2 "pillars",time,2 '
+check "it writes nothing else" eq "$(ls "$work/png" | wc -l)" 10
+check "... and names nothing else" eq "$(wc -l <"$work/png.out")" 10
 
 # ---- SVG ----------------------------------------------------------------------
 "$mpb" plot --format svg --scene pillars -o "$work/svg" "$DB" >"$work/svg.out"

@@ -52,6 +52,14 @@ static void usage(FILE *out)
         "                  planner (dotted), log time axis; its numbers in\n"
         "                  DIR/budget.csv (set, planner, curve, time,\n"
         "                  fraction, runs: one row per step)\n"
+        "and DIR/plot-profile-SET.png:\n"
+        "  profile         performance profiles (Dolan and More) of planning\n"
+        "                  time and path length: the fraction of the set's\n"
+        "                  problems on which each configuration's median run\n"
+        "                  (a failed run counting as infinite) is within a\n"
+        "                  factor tau of the best configuration's, log tau\n"
+        "                  axis; its numbers in DIR/profile.csv (set, metric,\n"
+        "                  planner, tau, fraction, problems: one row per step)\n"
         "SCENE is the scene's name with characters other than [A-Za-z0-9_.-]\n"
         "as '_', and -ID, the scene's id, added when two scenes would share it.\n"
         "Draws through gnuplot (Debian: gnuplot-nox), which must be on PATH.\n"
@@ -436,7 +444,8 @@ static void on_wrote(void *ud, const char *path)
 
 /* Run gnuplot over the plots of every scene in one format. */
 static int draw(plot_scene *scenes, int num_scenes,
-                const plot_budget *budget, const char *dir, const char *ext)
+                const plot_budget *budget, const plot_profile *profile,
+                const char *dir, const char *ext)
 {
     written w = {0};
     plot_glyphs gl = {.all = strcmp(ext, "svg") == 0};
@@ -455,6 +464,8 @@ static int draw(plot_scene *scenes, int num_scenes,
             plot_gnuplot_scene(gp, &scenes[i], dir, ext, &gl, on_wrote, &w);
     if (budget != NULL)
         plot_gnuplot_budget(gp, budget, dir, ext, &gl, on_wrote, &w);
+    if (profile != NULL)
+        plot_gnuplot_profile(gp, profile, dir, ext, &gl, on_wrote, &w);
     int status = pclose(gp);
     if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127) {
         fprintf(stderr, "mpb " CMD ": gnuplot not found on PATH (Debian: "
@@ -562,6 +573,7 @@ int cmd_plot(int argc, char **argv)
     gather g = {0};
     plot_scene *scenes = NULL;
     plot_budget *budget = NULL;
+    plot_profile *profile = NULL;
     int rc = parse(argc, argv, &o), exit_code = MPB_EXIT_ERROR, wanted = -1;
     long finished = 0;
 
@@ -637,9 +649,19 @@ int cmd_plot(int argc, char **argv)
                     "out of memory" : mpb_store_errmsg(s));
             goto out;
         }
+        if ((rc = plot_profile_read(s, g.experiment_id, &profile)) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": %s: %s\n", o.db, rc == MPB_ENOMEM ?
+                    "out of memory" : mpb_store_errmsg(s));
+            goto out;
+        }
         written csv = {0};
         if (plot_budget_csv(budget, o.dir, on_wrote, &csv) != MPB_OK) {
             fprintf(stderr, "mpb " CMD ": cannot write %s/budget.csv: %s\n",
+                    o.dir, strerror(errno));
+            goto out;
+        }
+        if (plot_profile_csv(profile, o.dir, on_wrote, &csv) != MPB_OK) {
+            fprintf(stderr, "mpb " CMD ": cannot write %s/profile.csv: %s\n",
                     o.dir, strerror(errno));
             goto out;
         }
@@ -650,13 +672,15 @@ int cmd_plot(int argc, char **argv)
         free(csv.paths);
     }
     exit_code = MPB_EXIT_OK;
-    if (o.png && draw(scenes, g.num_scenes, budget, o.dir, "png") != MPB_EXIT_OK)
+    if (o.png && draw(scenes, g.num_scenes, budget, profile, o.dir, "png") !=
+            MPB_EXIT_OK)
         exit_code = MPB_EXIT_ERROR;
     if (exit_code == MPB_EXIT_OK && o.svg &&
-        draw(scenes, g.num_scenes, budget, o.dir, "svg") != MPB_EXIT_OK)
+        draw(scenes, g.num_scenes, budget, profile, o.dir, "svg") != MPB_EXIT_OK)
         exit_code = MPB_EXIT_ERROR;
 out:
     plot_budget_free(budget);
+    plot_profile_free(profile);
     for (int i = 0; scenes && i < g.num_scenes; i++)
         scene_free(&scenes[i]);
     free(scenes);

@@ -113,4 +113,28 @@ int  plot_gnuplot_budget(FILE *gp, const plot_budget *b, const char *dir,
                          void (*wrote)(void *ud, const char *path), void *ud);
 void plot_budget_free(plot_budget *b);
 
+/*
+ * Performance profiles (plot_profile.c; Dolan and Moré): for each problem
+ * set (tool_problem_set()) and over all problems when there are several,
+ * for planning time and for path length (the final stage's), each
+ * configuration's fraction of the set's problems (queries) on which its
+ * value is within a factor tau of the best configuration's, for every
+ * tau >= 1. A configuration's value on a problem is the median over its
+ * runs there, a run that is no verified success counting as infinite;
+ * an infinite value is within no factor. Read from the experiment,
+ * written as DIR/profile.csv (set, metric time or path_length, planner,
+ * tau, fraction, problems: one row per step) and drawn into gp as
+ * plot-profile-SET.EXT, both metrics side by side; wrote() as for
+ * plot_gnuplot_scene(). MPB_OK, MPB_ENOMEM, or a store error.
+ */
+#define PLOT_PROFILE_METRICS 2
+typedef struct plot_profile plot_profile;
+int  plot_profile_read(mpb_store *s, int64_t experiment_id, plot_profile **out);
+int  plot_profile_csv(const plot_profile *p, const char *dir,
+                      void (*wrote)(void *ud, const char *path), void *ud);
+int  plot_gnuplot_profile(FILE *gp, const plot_profile *p, const char *dir,
+                          const char *ext, plot_glyphs *gl,
+                          void (*wrote)(void *ud, const char *path), void *ud);
+void plot_profile_free(plot_profile *p);
+
 #endif
