@@ -57,8 +57,8 @@ PARAMS override the options above.
 """
 import math
 import os
-import re
 import time
+import xml.etree.ElementTree as ET
 
 from mpb import plan_result_t
 
@@ -140,19 +140,17 @@ def _geometry(s):
 
 def _collision_links(urdf):
     """The URDF's links that have a <collision>."""
-    return [m.group(1) for m in re.finditer(
-        r'<link\s+name\s*=\s*"([^"]+)"[^>]*>(?:(?!</link>).)*<collision',
-        urdf, re.S)]
+    return [link.get("name") for link in ET.fromstring(urdf).iter("link")
+            if link.find("collision") is not None]
 
 
 def _child_links(urdf):
     """joint name -> its child link, from the URDF."""
     out = {}
-    for m in re.finditer(r'<joint\b(.*?)</joint>', urdf, re.S):
-        name = re.search(r'name\s*=\s*"([^"]+)"', m.group(1))
-        child = re.search(r'<child\s+link\s*=\s*"([^"]+)"', m.group(1))
-        if name and child:
-            out[name.group(1)] = child.group(1)
+    for joint in ET.fromstring(urdf).iter("joint"):
+        child = joint.find("child")
+        if joint.get("name") and child is not None and child.get("link"):
+            out[joint.get("name")] = child.get("link")
     return out
 
 
