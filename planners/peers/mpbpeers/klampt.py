@@ -171,7 +171,7 @@ class Adapter:
     def build(self, problem, world):
         directory = os.path.dirname(problem.urdf_path)
         try:
-            text, mimics = klampt_urdf(problem.urdf, directory)
+            text, mimics, parts = klampt_urdf(problem.urdf, directory)
         except ValueError as e:
             raise peer.InvalidRequest(f"robot: {e}") from None
         path = os.path.join(directory, "robot-klampt.urdf")
@@ -209,9 +209,20 @@ class Adapter:
                     f"subset cannot keep the coupling")
             lead = problem.held.get(mi.leader, 0.0)
             held[config_index(mi.joint)] = mi.multiplier * lead + mi.offset
+        # A link's collision parts (klampt_urdf) are that link: with it
+        # and with each other never checked, in each of its pairs.
+        def pieces(link):
+            return [link] + parts.get(link, [])
+        for link, names in parts.items():
+            for a in pieces(link):
+                for b in pieces(link):
+                    if a < b and a in index and b in index:
+                        robot.enableSelfCollision(index[a], index[b], False)
         for a, b in peer.acm_pairs(problem.srdf):
-            if a in index and b in index:
-                robot.enableSelfCollision(index[a], index[b], False)
+            for pa in pieces(a):
+                for pb in pieces(b):
+                    if pa in index and pb in index:
+                        robot.enableSelfCollision(index[pa], index[pb], False)
         for k, s in enumerate(problem.shapes):
             terrain = kworld.makeTerrain(f"scene{k}")
             terrain.geometry().set(_geometry(s))

@@ -5,7 +5,7 @@ request's robot; run as a script it writes the copy of a URDF file:
 
     python3 -m mpbpeers.klampt_urdf IN.urdf OUT.urdf
 
-Three edits, nothing else changes:
+Four edits, nothing else changes:
 
 - Mesh file names absolute: Klampt knows no package:// (relative names
   are taken from the URDF's folder, but Klampt 0.10.1 lost the Panda's
@@ -21,6 +21,12 @@ Three edits, nothing else changes:
   embedding. The removed tags are returned, so that the adapter sets a
   follower from its leader (and refuses a request whose moving joints
   lead one: Klampt's planner could not keep the coupling).
+- A link's second and later <collision> elements each moved into a link
+  of its own, LINK__collision2, ..., fixed to LINK at its origin:
+  Klampt 0.10.1 keeps only a link's first (the PR2 gripper's palm kept,
+  its fingers lost, and paths through shelves claimed free). The parts
+  are returned, so that the adapter treats them as their link in
+  self-collision.
 """
 import os
 import re
@@ -41,10 +47,44 @@ def _attr(tag, name, default=None):
     return m.group(1) if m else default
 
 
+PART = "__collision"     # LINK__collision2: a link's second <collision>
+
+
+def _split_collisions(text):
+    """text with every link's second and later <collision> in a link of
+    its own, fixed to it; and {link: [its parts' names]}."""
+    parts = {}
+
+    def link(m):
+        body = m.group(0)
+        name = _attr(body[:body.find(">") + 1], "name")
+        found = list(re.finditer(r'<collision\b.*?</collision>|'
+                                 r'<collision\b[^>]*/>', body, re.S))
+        if name is None or len(found) < 2:
+            return body
+        kept = body
+        extra = []
+        for k, c in reversed(list(enumerate(found))):
+            if k == 0:
+                break
+            part = f"{name}{PART}{k + 1}"
+            kept = kept[:c.start()] + kept[c.end():]
+            extra.insert(0, f'\n  <link name="{part}">{c.group(0)}</link>'
+                            f'\n  <joint name="{part}_joint" type="fixed">'
+                            f'<parent link="{name}"/><child link="{part}"/>'
+                            f'<origin xyz="0 0 0" rpy="0 0 0"/></joint>')
+            parts.setdefault(name, []).insert(0, part)
+        return kept + "".join(extra)
+
+    return re.sub(r'<link\b[^>]*(?<!/)>.*?</link>', link, text,
+                  flags=re.S), parts
+
+
 def klampt_urdf(urdf, directory):
-    """(text, mimics): the URDF text edited for Klampt, its meshes named
-    absolutely (a relative name is taken from directory, the source
-    URDF's folder), and the removed <mimic> tags as Mimic objects."""
+    """(text, mimics, parts): the URDF text edited for Klampt, its meshes
+    named absolutely (a relative name is taken from directory, the source
+    URDF's folder), the removed <mimic> tags as Mimic objects, and
+    {link: [the links holding its second and later collisions]}."""
     def absolute(m):
         name = m.group(2)
         if name.startswith("file://"):
@@ -72,6 +112,7 @@ def klampt_urdf(urdf, directory):
         return body[:mm.start()] + body[mm.end():]
 
     text = re.sub(r'<joint\b.*?</joint>', joint, text, flags=re.S)
+    text, parts = _split_collisions(text)
 
     m = re.search(r'<klampt\b[^>]*?/?>', text)
     if m:
@@ -85,7 +126,7 @@ def klampt_urdf(urdf, directory):
             raise ValueError("no <robot> element")
         text = (text[:r.end()] + '\n  <klampt freeze_root_link="1"/>'
                 + text[r.end():])
-    return text, mimics
+    return text, mimics, parts
 
 
 def main(argv):
@@ -97,7 +138,8 @@ def main(argv):
     with open(src) as f:
         urdf = f.read()
     try:
-        text, mimics = klampt_urdf(urdf, os.path.dirname(os.path.abspath(src)))
+        text, mimics, parts = klampt_urdf(
+            urdf, os.path.dirname(os.path.abspath(src)))
     except ValueError as e:
         print(f"{src}: {e}", file=sys.stderr)
         return 1
@@ -106,6 +148,9 @@ def main(argv):
     for mi in mimics:
         print(f"{src}: removed <mimic> of joint '{mi.joint}' ({mi.kind}), "
               f"leader '{mi.leader}'", file=sys.stderr)
+    for link, names in parts.items():
+        print(f"{src}: link '{link}': collisions 2-{len(names) + 1} moved "
+              f"into {', '.join(names)}", file=sys.stderr)
     return 0
 
 
