@@ -52,7 +52,15 @@ static void usage(FILE *out)
 "                    key_sampled)\n"
 "  --reps N          repetitions, interleaved (default 1)\n"
 "  --key NAME        the RESULT line's key (default verify_db)\n"
-"  --label TEXT      names the trajectories in the output\n");
+"  --label TEXT      names the trajectories in the output\n"
+"  --compare-stored FILE  instead: measure every stage once as mpbenchd\n"
+"                    does, compare its verdict (name, detail, how\n"
+"                    checked) with the stored one, one line per\n"
+"                    difference, exit 1 if any; every metric into FILE\n"
+"                    as run|stage|name|value (- for none)\n"
+"  --per-run N       instead: each run's CPU time of verification and\n"
+"                    metrics (every stage, the mean of N passes), their\n"
+"                    median, percentiles, mean and largest\n");
 }
 
 /* CPU time of this thread, s: waiting for a core on a shared machine is
@@ -131,8 +139,13 @@ typedef struct stage {
     int64_t      run_id;
     const query *q;
     char        *name, *stored;   /* stored: the verdict in the database */
+    char        *stored_detail, *stored_verification;   /* "" if none */
     int          n;
-    double      *wp;
+    double      *wp, *times;      /* times NULL: untimed */
+    double       time;            /* the stage's time, as stored */
+    int          num_metrics;     /* stored */
+    char       **metric_names;
+    double      *metric_values;
 } stage;
 
 typedef struct db {
@@ -253,9 +266,24 @@ static int on_stage(void *ud, const mpb_stage_record *st)
     s->q = d->cur_query;
     s->name = xstrdup(st->name);
     s->stored = xstrdup(st->verdict);
+    s->stored_detail = xstrdup(st->verdict_detail);
+    s->stored_verification = xstrdup(st->verification);
     s->n = st->num_waypoints;
     s->wp = xcalloc(nv, sizeof *s->wp);
     memcpy(s->wp, st->waypoints, nv * sizeof *s->wp);
+    s->times = NULL;
+    if (st->times != NULL) {
+        s->times = xcalloc((size_t)s->n, sizeof *s->times);
+        memcpy(s->times, st->times, (size_t)s->n * sizeof *s->times);
+    }
+    s->time = st->time;
+    s->num_metrics = st->num_metrics;
+    s->metric_names = xcalloc((size_t)st->num_metrics, sizeof (char *));
+    s->metric_values = xcalloc((size_t)st->num_metrics, sizeof (double));
+    for (int k = 0; k < st->num_metrics; k++) {
+        s->metric_names[k] = xstrdup(st->metrics[k].name);
+        s->metric_values[k] = st->metrics[k].value;
+    }
     d->waypoints += st->num_waypoints;
     return 0;
 }
@@ -472,6 +500,117 @@ static timing timed(const db *d, double resolution, int what, double secs,
     return out;
 }
 
+/* Stage i as mpbenchd measures it: its time, its waypoint times. */
+static void measure_as_stored(const db *d, int i, double resolution,
+                              mpb_stage_measure *m)
+{
+    const stage *s = &d->stages[i];
+    const query *q = s->q;
+    mpb_goal goal = mpb_query_goal(q->goal_kind, q->goal_joints,
+                                   q->tolerance, q->goal_link,
+                                   q->goal_region);
+    mpb_measure_stage_timed(q->world->w, q->start, q->tolerance, &goal,
+                            s->wp, s->times, s->n, q->num_joints, s->time,
+                            resolution, 0, m);
+}
+
+/*
+ * --compare-stored: every stage measured once as mpbenchd does, its
+ * verdict (name, detail, how it was checked) against what the database
+ * holds, one line per difference; every metric into dump (when not
+ * NULL) as run|stage|name|value. Returns how many verdicts differ.
+ */
+static int compare_stored(const db *d, double resolution, FILE *dump,
+                          const char *label)
+{
+    int differ = 0, metrics = 0;
+    mpb_stage_measure m;
+    for (int i = 0; i < d->num_stages; i++) {
+        const stage *s = &d->stages[i];
+        measure_as_stored(d, i, resolution, &m);
+        const char *name = mpb_verdict_name(m.verdict.code);
+        const char *how = mpb_verdict_verification(&m.verdict);
+        int bad = 0;
+        if (strcmp(name, s->stored) != 0 ||
+            strcmp(m.verdict.detail, s->stored_detail) != 0 ||
+            strcmp(how ? how : "", s->stored_verification) != 0) {
+            printf("  run %lld stage %s: stored %s (%s, %s), now %s (%s, "
+                   "%s)\n", (long long)s->run_id, s->name, s->stored,
+                   s->stored_detail, s->stored_verification, name,
+                   m.verdict.detail, how ? how : "");
+            bad = 1;
+        }
+        for (int k = 0; dump != NULL && k < m.num_metrics; k++)
+            fprintf(dump, "%lld|%s|%s|%.17g\n", (long long)s->run_id,
+                    s->name, m.metrics[k].name, m.metrics[k].value);
+        metrics += m.num_metrics;
+        differ += bad;
+    }
+    printf("%s: %d of %d stages have another verdict than the stored one "
+           "(%d metrics measured)\n", label, differ, d->num_stages, metrics);
+    mpbb_result("verify_compare_stored stages=%d differ=%d metrics=%d",
+                d->num_stages, differ, metrics);
+    return differ;
+}
+
+static int by_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/*
+ * --per-run: the CPU time of each run's verification and metrics, all
+ * its stages as mpbenchd measures them (the mean of reps passes over the
+ * run after one to warm), and their median, 10th and 90th percentile,
+ * mean and largest, ms.
+ */
+static void per_run(const db *d, double resolution, long reps,
+                    const char *key)
+{
+    double *ms = xcalloc((size_t)d->num_stages + 1, sizeof *ms);
+    int runs = 0;
+    long waypoints = 0;
+    mpb_stage_measure m;
+    for (int i = 0; i < d->num_stages;) {
+        int j = i;
+        while (j < d->num_stages && d->stages[j].run_id == d->stages[i].run_id)
+            j++;
+        for (int k = i; k < j; k++)
+            measure_as_stored(d, k, resolution, &m);
+        double c0 = cpu_now();
+        for (long r = 0; r < reps; r++)
+            for (int k = i; k < j; k++) {
+                measure_as_stored(d, k, resolution, &m);
+                sink += m.num_metrics > 0 ? m.metrics[0].value : 0;
+            }
+        ms[runs++] = (cpu_now() - c0) / (double)reps * 1e3;
+        for (int k = i; k < j; k++)
+            waypoints += d->stages[k].n;
+        i = j;
+    }
+    double sum = 0;
+    for (int r = 0; r < runs; r++)
+        sum += ms[r];
+    qsort(ms, (size_t)runs, sizeof *ms, by_double);
+    if (runs > 0) {
+        double med = runs % 2 ? ms[runs / 2]
+                              : (ms[runs / 2 - 1] + ms[runs / 2]) / 2;
+        double p10 = ms[(runs - 1) / 10], p90 = ms[(runs - 1) * 9 / 10];
+        printf("  per run, CPU time of verification + metrics (ms): median "
+               "%.3f, 10th percentile %.3f, 90th %.3f, mean %.3f, max %.3f "
+               "(%d runs, %.1f waypoints a run, %ld passes each)\n", med, p10,
+               p90, sum / runs, ms[runs - 1], runs,
+               (double)waypoints / runs, reps);
+        mpbb_result("%s_per_run runs=%d waypoints_per_run=%.1f "
+                    "cpu_ms_median=%.4f cpu_ms_p10=%.4f cpu_ms_p90=%.4f "
+                    "cpu_ms_mean=%.4f cpu_ms_max=%.4f reps=%ld", key, runs,
+                    (double)waypoints / runs, med, p10, p90, sum / runs,
+                    ms[runs - 1], reps);
+    }
+    free(ms);
+}
+
 /* Collision checks one verification makes, as bench/verify.c counts
  * them: one at the first waypoint, then ceil(segment / resolution) per
  * segment (continuous joints the short way). */
@@ -510,7 +649,14 @@ static void db_free(db *d)
     for (int i = 0; i < d->num_stages; i++) {
         free(d->stages[i].name);
         free(d->stages[i].stored);
+        free(d->stages[i].stored_detail);
+        free(d->stages[i].stored_verification);
         free(d->stages[i].wp);
+        free(d->stages[i].times);
+        for (int k = 0; k < d->stages[i].num_metrics; k++)
+            free(d->stages[i].metric_names[k]);
+        free(d->stages[i].metric_names);
+        free(d->stages[i].metric_values);
     }
     free(d->stages);
     for (int i = 0; i < d->num_worlds; i++)
@@ -552,7 +698,8 @@ int main(int argc, char **argv)
     const char *label = NULL;
     double resolution = 0, secs = 1;
     int64_t experiment = 0;
-    long reps = 1;
+    long reps = 1, run_reps = 0;
+    const char *compare = NULL;
     int modes[2] = {MPB_VERIFY_CERTIFIED, MPB_VERIFY_SAMPLED}, num_modes = 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -571,7 +718,12 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--key") == 0) key = v;
         else if (strcmp(a, "--label") == 0) label = v;
         else if (strcmp(a, "--seconds") == 0) ok = parse_double(v, &secs);
-        else if (strcmp(a, "--reps") == 0) {
+        else if (strcmp(a, "--compare-stored") == 0) compare = v;
+        else if (strcmp(a, "--per-run") == 0) {
+            char *end;
+            run_reps = strtol(v, &end, 10);
+            ok = end != v && *end == '\0' && run_reps > 0;
+        } else if (strcmp(a, "--reps") == 0) {
             char *end;
             reps = strtol(v, &end, 10);
             ok = end != v && *end == '\0' && reps > 0;
@@ -634,6 +786,27 @@ int main(int argc, char **argv)
     if (load(&d, experiment, robot_dir, &open_secs) != 0)
         goto out;
 
+    if (compare != NULL || run_reps > 0) {
+        set_mode(&d, modes[0]);
+        status = 0;
+        FILE *dump = compare && strcmp(compare, "-") != 0
+            ? fopen(compare, "w") : NULL;
+        if (compare && strcmp(compare, "-") != 0 && dump == NULL) {
+            fprintf(stderr, PROG ": %s: cannot write\n", compare);
+            status = 1;
+            goto out;
+        }
+        if (compare != NULL &&
+            compare_stored(&d, resolution, dump, label ? label : path))
+            status = 1;
+        if (dump != NULL && fclose(dump) != 0) {
+            fprintf(stderr, PROG ": %s: cannot write\n", compare);
+            status = 1;
+        }
+        if (run_reps > 0)
+            per_run(&d, resolution, run_reps, key);
+        goto out;
+    }
     double checks = count_checks(&d, resolution);
     double n = (double)d.waypoints;
     printf("%s, experiment %lld, resolution %.3g: %d runs with stages (of %d finished), "

@@ -177,3 +177,128 @@ int mpb_robot_link_pose(const mpb_robot *r, const double *q, int link,
     *out = a;
     return MPB_OK;
 }
+
+/* ---- a link's origin along a straight joint-space segment ---------------- */
+
+/* The longest path (moving ancestors and the link) a sweep takes. */
+#define MPB__SWEEP_MAX_PATH 64
+
+int mpb__robot_link_sweep(const mpb_robot *r, int link, const double *a,
+                          const double *d, int steps, int first, int count,
+                          double *xyz);
+
+/* Joints whose cosine and sine are re-taken from cos() and sin() after
+ * this many steps of the rotation recurrence, so rounding cannot pile up
+ * (each step adds about 1e-16 to them). */
+#define MPB__SWEEP_RESEED 32
+
+/* One joint of a link's path as the sweep takes it. */
+typedef struct sweep_joint {
+    const mpb__kin *k;
+    double v0, dv;          /* value at a, and per step of s */
+    double c, s, cd, sd;    /* revolute: cos, sin now and of one step */
+} sweep_joint;
+
+/* x <- motion of joint j at its value now, then the joint's origin. */
+static void sweep_apply(const sweep_joint *j, double v, double x[3])
+{
+    const mpb__kin *k = j->k;
+    double y[3];
+    if (k->chain < 0 && k->mimic < 0) {
+        if (k->fixed_pure) {
+            for (int i = 0; i < 3; i++)
+                x[i] += k->fixed.t[i];
+        } else {
+            mpb__mat3_vec(k->fixed.R, x, y);
+            for (int i = 0; i < 3; i++)
+                x[i] = y[i] + k->fixed.t[i];
+        }
+        return;
+    }
+    if (k->type == MPB_JOINT_PRISMATIC) {
+        for (int i = 0; i < 3; i++)
+            y[i] = x[i] + k->axis[i] * v;
+    } else if (k->axis_k >= 0) {
+        int a = (k->axis_k + 1) % 3, b = (k->axis_k + 2) % 3;
+        y[k->axis_k] = x[k->axis_k];
+        y[a] = j->c * x[a] - j->s * x[b];
+        y[b] = j->s * x[a] + j->c * x[b];
+    } else {
+        double M[9], c = j->c, s = j->s, C = 1.0 - c;
+        double ax = k->axis[0], ay = k->axis[1], az = k->axis[2];
+        M[0] = c + ax * ax * C;      M[1] = ax * ay * C - az * s;
+        M[2] = ax * az * C + ay * s; M[3] = ay * ax * C + az * s;
+        M[4] = c + ay * ay * C;      M[5] = ay * az * C - ax * s;
+        M[6] = az * ax * C - ay * s; M[7] = az * ay * C + ax * s;
+        M[8] = c + az * az * C;
+        mpb__mat3_vec(M, x, y);
+    }
+    if (k->origin_pure) {
+        for (int i = 0; i < 3; i++)
+            x[i] = y[i] + k->origin.t[i];
+    } else {
+        mpb__mat3_vec(k->origin.R, y, x);
+        for (int i = 0; i < 3; i++)
+            x[i] += k->origin.t[i];
+    }
+}
+
+int mpb__robot_link_sweep(const mpb_robot *r, int link, const double *a,
+                          const double *d, int steps, int first, int count,
+                          double *xyz)
+{
+    if (!r || !a || !d || !xyz || steps < 1 || first < 0 || count < 0 ||
+        link < 0 || link >= r->num_links)
+        return MPB_EINVAL;
+    int len = r->path_len[link];
+    if (len > MPB__SWEEP_MAX_PATH)
+        return MPB_EUNSUPPORTED;
+    sweep_joint J[MPB__SWEEP_MAX_PATH];
+    const int *path = len > 0 ? r->path_pool + r->path_off[link] : NULL;
+    const mpb_pose *base = len > 0
+        ? &r->static_pose[r->links[path[0]].parent] : &r->static_pose[link];
+    for (int e = 0; e < len; e++) {
+        const mpb__kin *k = &r->kin[path[e]];
+        sweep_joint *j = &J[e];
+        j->k = k;
+        j->v0 = j->dv = 0.0;
+        if (k->chain >= 0) {
+            j->v0 = a[k->chain];
+            j->dv = d[k->chain];
+        } else if (k->mimic >= 0) {
+            j->v0 = k->mimic_m * a[k->mimic] + k->mimic_o;
+            j->dv = k->mimic_m * d[k->mimic];
+        }
+    }
+    for (int n = first; n < first + count; n++) {
+        double f = (double)n / steps;
+        for (int e = 0; e < len; e++) {
+            sweep_joint *j = &J[e];
+            const mpb__kin *k = j->k;
+            if ((k->chain < 0 && k->mimic < 0) ||
+                k->type == MPB_JOINT_PRISMATIC)
+                continue;
+            double sign = k->axis_k >= 0 ? k->axis_sign : 1.0;
+            if ((n - first) % MPB__SWEEP_RESEED == 0) {
+                double ang = sign * (j->v0 + f * j->dv);
+                double step = sign * j->dv / steps;
+                j->c = cos(ang);
+                j->s = sin(ang);
+                j->cd = cos(step);
+                j->sd = sin(step);
+            } else {
+                double c = j->c * j->cd - j->s * j->sd;
+                double s = j->s * j->cd + j->c * j->sd;
+                j->c = c;
+                j->s = s;
+            }
+        }
+        double x[3] = {0.0, 0.0, 0.0}, y[3];
+        for (int e = len - 1; e >= 0; e--)
+            sweep_apply(&J[e], J[e].v0 + f * J[e].dv, x);
+        mpb__mat3_vec(base->R, x, y);
+        for (int i = 0; i < 3; i++)
+            xyz[3 * (n - first) + i] = y[i] + base->t[i];
+    }
+    return MPB_OK;
+}

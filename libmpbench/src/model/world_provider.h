@@ -48,6 +48,17 @@ typedef struct mpb__world_provider {
     void   (*ee_position)(void *impl, const double *q, double xyz[3]);
 
     /*
+     * Optional: where the end effector is at q = a + (n / steps) d, for
+     * n = first..first + count - 1, into xyz (3 count values), as
+     * ee_position would say
+     * to within rounding; d is the joint-space step from a (continuous
+     * joints the short way). Returns MPB_OK or a negative code (the
+     * caller then asks ee_position point by point). NULL: no such path.
+     */
+    int    (*ee_sweep)(void *impl, const double *a, const double *d,
+                       int steps, int first, int count, double *xyz);
+
+    /*
      * Optional: 1 if the robot at q is in collision, with a phrase in what
      * naming the bodies in contact ("self-collision between a and b"), 0
      * if free, negative on error. NULL: no names to give.
@@ -146,6 +157,20 @@ int mpb__urdf_rates(mpb_world *w, const double *q, const double *d, double h,
                     double *rate, double *pair, int n);
 
 /* The providers. */
+/* robot_fk.c, for world_urdf.c's ee_sweep. */
+/*
+ * The origin of `link` in the robot's frame at q = a + (n / steps) d for
+ * n = first..first + count - 1, into xyz (3 count values): forward kinematics of that
+ * link alone, position only, each revolute joint's cosine and sine
+ * carried from one point to the next by a rotation (re-taken from cos()
+ * and sin() every few points). Equal to mpb_robot_link_pose() at the
+ * same points within about 1e-15 m. Returns MPB_OK, MPB_EINVAL, or
+ * MPB_EUNSUPPORTED for a path of more than 64 links.
+ */
+int mpb__robot_link_sweep(const struct mpb_robot *r, int link, const double *a,
+                          const double *d, int steps, int first, int count,
+                          double *xyz);
+
 extern const mpb__world_provider mpb__world_planar;
 extern const mpb__world_provider mpb__world_urdf;
 

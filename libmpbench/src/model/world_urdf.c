@@ -576,6 +576,15 @@ static void urdf_ee_position(void *impl, const double *q, double xyz[3])
     memcpy(xyz, p.t, sizeof p.t);
 }
 
+/* The end effector along a segment (mpb__robot_link_sweep()). */
+static int urdf_ee_sweep(void *impl, const double *a, const double *d,
+                         int steps, int first, int count, double *xyz)
+{
+    urdf_world *u = impl;
+    return mpb__robot_link_sweep(u->robot, u->ee_link, a, d, steps, first,
+                                 count, xyz);
+}
+
 /* Certified verification's step from q along d (world_sweep.c). */
 static int urdf_safe_step(void *impl, const double *q, const double *d,
                           double margin, double want, double moved,
@@ -618,6 +627,7 @@ const mpb__world_provider mpb__world_urdf = {
     .clearance    = urdf_clearance,
     .goal_region  = urdf_goal_region,
     .ee_position  = urdf_ee_position,
+    .ee_sweep     = urdf_ee_sweep,
     .contact      = urdf_contact,
     .num_allowed  = urdf_num_allowed,
     .allowed_pair = urdf_allowed_pair,

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/mathconst.h"
+#include "model/world_provider.h"
 
 /* A segment at most this long (joint-space norm) has no direction. */
 #define MPB__ZERO_SEGMENT 1e-12
@@ -231,14 +232,52 @@ double mpb_path_min_clearance(mpb_world *w, const double *wp,
     return least;
 }
 
+/* Points of one segment the end effector's positions are taken in at a
+ * time (mpb_ee_path_length()). */
+#define MPB__EE_CHUNK 64
+
+/* |b - a| of two points. */
+static double dist3(const double *a, const double *b)
+{
+    return sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                (b[2] - a[2]) * (b[2] - a[2]));
+}
+
+/*
+ * The end effector at a + (k / steps) d, k = first..first + count - 1, into
+ * xyz: the world's sweep of the segment where it has one (forward
+ * kinematics of the end effector alone, model/robot_fk.c), else point by
+ * point. Returns MPB_OK or a negative code.
+ */
+static int ee_points(mpb_world *w, const double *a, const double *d,
+                     int steps, int first, int count, double *q, double *xyz)
+{
+    const int nj = w->num_joints;
+    if (w->provider->ee_sweep != NULL &&
+        w->provider->ee_sweep(w->impl, a, d, steps, first, count, xyz) ==
+            MPB_OK)
+        return MPB_OK;
+    for (int k = 0; k < count; k++) {
+        double s = (double)(first + k) / steps;
+        for (int j = 0; j < nj; j++)
+            q[j] = a[j] + s * d[j];
+        if (mpb_world_ee_position(w, q, xyz + 3 * k) != MPB_OK)
+            return MPB_EINVAL;
+    }
+    return MPB_OK;
+}
+
 double mpb_ee_path_length(mpb_world *w, const double *wp, int num_waypoints,
                           int num_joints, double resolution)
 {
     if (!w || !wp || num_waypoints < 1 || !(resolution > 0) ||
         num_joints != mpb_world_num_joints(w) || num_joints > 64)
         return NAN;
+    for (size_t i = 0; i < (size_t)num_waypoints * (size_t)num_joints; i++)
+        if (!isfinite(wp[i]))
+            return NAN;
     const unsigned char *wraps = mpb_world_joint_wraps(w);
-    double q[64], prev[3], cur[3], total = 0.0;
+    double q[64], prev[3], pts[3 * MPB__EE_CHUNK], total = 0.0;
     if (mpb_world_ee_position(w, wp, prev) != MPB_OK)
         return NAN;
     for (int i = 0; i + 1 < num_waypoints; i++) {
@@ -252,16 +291,15 @@ double mpb_ee_path_length(mpb_world *w, const double *wp, int num_waypoints,
         int steps = (int)ceil(sqrt(len2) / resolution);
         if (steps < 1)
             steps = 1;
-        for (int k = 1; k <= steps; k++) {
-            double s = (double)k / steps;
-            for (int j = 0; j < num_joints; j++)
-                q[j] = a[j] + s * d[j];
-            if (mpb_world_ee_position(w, q, cur) != MPB_OK)
+        for (int k = 1; k <= steps; k += MPB__EE_CHUNK) {
+            int count = steps - k + 1 < MPB__EE_CHUNK ? steps - k + 1
+                                                      : MPB__EE_CHUNK;
+            if (ee_points(w, a, d, steps, k, count, q, pts) != MPB_OK)
                 return NAN;
-            total += sqrt((cur[0] - prev[0]) * (cur[0] - prev[0]) +
-                          (cur[1] - prev[1]) * (cur[1] - prev[1]) +
-                          (cur[2] - prev[2]) * (cur[2] - prev[2]));
-            memcpy(prev, cur, sizeof prev);
+            for (int n = 0; n < count; n++) {
+                total += dist3(prev, pts + 3 * n);
+                memcpy(prev, pts + 3 * n, sizeof prev);
+            }
         }
     }
     return total;
