@@ -71,6 +71,12 @@ int tool_extra_argument(const char *cmd, const char *arg);
  * groups by it, so all agree. Valid as long as the row. */
 const char *tool_problem_set(const mpb_scene_row *scene);
 
+/* The index of scene's problem set (tool_problem_set()) among the *n
+ * names of *sets, the set added at the end (a copy of its name) when it
+ * is not there yet; -1 when out of memory. free() each name and the
+ * array. */
+int tool_set_index(char ***sets, int *n, const char *scene);
+
 /* The length of the valid UTF-8 sequence at s, its code point in *cp; 0
  * when s does not start one. */
 int tool_utf8_char(const char *s, unsigned *cp);
