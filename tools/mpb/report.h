@@ -229,6 +229,12 @@ int report_write_html(const report *r, FILE *out);   /* report_html.c */
  * findings hold (report_findings.c). */
 int report_write_findings(const report *r, FILE *out);
 
+/* Its paired tests (report_paired.c): per problem set and approach, the
+ * fastest and the best-path configuration where the signed-rank test
+ * says so at 5 %, Holm-adjusted, else "no significant difference".
+ * Needs r->want_pairs. MPB_OK or MPB_ENOMEM. */
+int report_write_paired(const report *r, FILE *out);
+
 /* The depth of refused paths per configuration, text or markdown
  * (report_depth.c); nothing when no run was refused for a collision. */
 int report_write_depth(mpb_store *s, const report *r, int markdown, FILE *out);
