@@ -492,7 +492,7 @@ static int gather(report *r, mpb_store *s)
     size_t n = (size_t)r->num_configs * (size_t)r->num_queries;
     if (n > 0 && (r->cells = calloc(n, sizeof *r->cells)) == NULL)
         return r->nomem = 1;
-    if (r->by != BY_SCENE && n > 0 &&
+    if ((r->by != BY_SCENE || r->want_pairs) && n > 0 &&
         (r->times = calloc((size_t)(r->num_sets + 1) *
                            (size_t)r->num_configs, sizeof *r->times)) == NULL)
         return r->nomem = 1;
