@@ -11,10 +11,10 @@
 #include "plot.h"
 #include "view.h"
 
-#define W 640
+#define W 545
 #define H 300
 #define LEFT 50
-#define RIGHT 170       /* the legend */
+#define RIGHT 175       /* the legend */
 #define TOP 14
 #define BOTTOM 40
 
@@ -94,7 +94,7 @@ int plot_budget_svg(FILE *out, const plot_budget *b, int set)
                 LEFT - 4, y + 4, i / 4.0);
     }
     fprintf(out, "<text x=\"%d\" y=\"%d\" text-anchor=\"middle\" stroke=\"none\">"
-            "time budget t (s, log scale); solid: verified, dotted: claimed"
+            "time budget t (s, log); solid: verified, dotted: claimed"
             "</text>\n</g>\n", (LEFT + W - RIGHT) / 2, H - 8);
     for (int c = 0; c < nc; c++) {
         plot_budget_steps k;
@@ -113,6 +113,8 @@ int plot_budget_svg(FILE *out, const plot_budget *b, int set)
         view_html_text(out, name);
         fprintf(out, " %.0f%%</text>\n", 100.0 * k.nv / k.runs);
     }
-    fputs("</svg></figure>\n", out);
+    fputs("</svg><figcaption>", out);
+    view_html_text(out, plot_budget_set(b, set));
+    fputs("</figcaption></figure>\n", out);
     return paths;
 }

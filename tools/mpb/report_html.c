@@ -36,7 +36,7 @@ static const char STYLE[] =
     "#d5dae3;text-align:right}th:first-child,td:first-child{text-align:left}"
     "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;white-space:pre-wrap;"
     "overflow:auto}.note{color:#5b6579}.budget{display:flex;flex-wrap:wrap;"
-    "gap:8px}.budget figure{margin:0}td.win{background:#d9f2e3}td.lose{"
+    "gap:8px}.budget figure{margin:0}.budget figcaption{text-align:center;font-weight:600}td.win{background:#d9f2e3}td.lose{"
     "background:#f9dede}details>summary{cursor:pointer;font-weight:600;"
     "margin:10px 0}.plots{display:grid;grid-template-columns:"
     "1fr 1fr;gap:8px}.plots svg{max-width:100%;height:auto;"
