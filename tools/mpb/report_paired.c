@@ -35,6 +35,7 @@ static void say_winner(const report *r, const group *g, pairs_pair *pairs,
                        int np, int length, FILE *out)
 {
     const char *what = length ? "best paths" : "fastest";
+    fprintf(out, "    %s, ", g->label);
     int winner = -1;
     for (int i = 0; i < g->n && winner < 0; i++) {
         int x = g->members[i], all = 1;
@@ -49,10 +50,21 @@ static void say_winner(const report *r, const group *g, pairs_pair *pairs,
     }
     if (winner < 0) {
         int any = 0;
-        for (int k = 0; k < np; k++)
-            any |= pairs_verdict(length ? &pairs[k].length : &pairs[k].time) != 0;
-        fprintf(out, "%s: no significant difference%s", what,
-                any ? " (between some pairs only, no one ahead of all)" : "");
+        fprintf(out, "%s: no significant difference", what);
+        for (int k = 0; k < np; k++) {
+            const pairs_pair *q = &pairs[k];
+            const pairs_ratio *x = length ? &q->length : &q->time;
+            int v = pairs_verdict(x);
+            if (v == 0)
+                continue;
+            fprintf(out, "%s      %s %s than %s (ratio %.3g)",
+                    any++ ? "\n" : " of one to all others; only:\n",
+                    r->configs[v < 0 ? q->a : q->b].name,
+                    length ? "shorter" : "faster",
+                    r->configs[v < 0 ? q->b : q->a].name,
+                    v < 0 ? x->median : 1.0 / x->median);
+        }
+        fputc('\n', out);
         return;
     }
     /* The narrowest of its wins: the largest ratio and p. */
@@ -73,17 +85,16 @@ static void say_winner(const report *r, const group *g, pairs_pair *pairs,
         if (x->p_holm > p)
             p = x->p_holm;
     }
-    fprintf(out, "%s %s (%s ratio %.3g to %s on %d problems, adjusted p "
-            "%s %.2g)", what, r->configs[winner].name,
+    fprintf(out, "%s: %s (%s ratio %.3g to %s on %d problems, adjusted p "
+            "%s %.2g)\n", what, r->configs[winner].name,
             length ? "path-length" : "time", ratio, next, problems,
             g->n > 2 ? "<=" : "=", p);
 }
 
 static int write_group(report *r, const group *g, int set, FILE *out)
 {
-    fprintf(out, "    %s: ", g->label);
     if (g->n < 2) {
-        fprintf(out, "%s alone, nothing to compare.\n",
+        fprintf(out, "    %s: %s alone, nothing to compare\n", g->label,
                 g->n ? r->configs[g->members[0]].name : "none");
         return MPB_OK;
     }
@@ -99,9 +110,7 @@ static int write_group(report *r, const group *g, int set, FILE *out)
         rc = pairs_holm(pairs, np);
     if (rc == MPB_OK) {
         say_winner(r, g, pairs, np, 0, out);
-        fputs("; ", out);
         say_winner(r, g, pairs, np, 1, out);
-        fputs(".\n", out);
     }
     free(pairs);
     return rc;
