@@ -15,7 +15,7 @@
  * and a file NAME.c defining cmd_NAME; main.c needs no change.
  */
 #define MPB_TOOL_COMMANDS(X)                                                  \
-    X(report, "print an experiment's results as the paper's tables, per scene") \
+    X(report, "print an experiment's results as the paper's tables, per scene or set") \
     X(plot,   "draw box plots per metric and success-rate bars, per scene (gnuplot)") \
     X(status, "follow a running experiment: progress, rate, time left, planners") \
     X(spy,    "start lcm-spy with mpbench's message types, to watch the traffic") \
