@@ -92,27 +92,10 @@ static int on_config(void *ud, const mpb_planner_config_row *c)
     return 0;
 }
 
-/* The index of the problem set a scene belongs to (tool_problem_set()),
- * added if new; -1 without memory. */
-static int set_index(data *d, const mpb_scene_row *scene)
-{
-    const char *set = tool_problem_set(scene);
-    for (int i = 0; i < d->ns; i++)
-        if (strcmp(d->set_names[i], set) == 0)
-            return i;
-    char **names = realloc(d->set_names, (size_t)(d->ns + 1) * sizeof *names);
-    if (names == NULL)
-        return -1;
-    d->set_names = names;
-    if ((names[d->ns] = strdup(set)) == NULL)
-        return -1;
-    return d->ns++;
-}
-
 static int on_scene(void *ud, const mpb_scene_row *s)
 {
     data *d = ud;
-    int set = set_index(d, s);
+    int set = tool_set_index(&d->set_names, &d->ns, s);
     int64_t *ids = set < 0 ? NULL : realloc(d->scene_ids,
                               (size_t)(d->num_scenes + 1) * sizeof *ids);
     if (ids != NULL)

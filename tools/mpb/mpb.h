@@ -75,7 +75,7 @@ const char *tool_problem_set(const mpb_scene_row *scene);
  * names of *sets, the set added at the end (a copy of its name) when it
  * is not there yet; -1 when out of memory. free() each name and the
  * array. */
-int tool_set_index(char ***sets, int *n, const char *scene);
+int tool_set_index(char ***sets, int *n, const mpb_scene_row *scene);
 
 /* The length of the valid UTF-8 sequence at s, its code point in *cp; 0
  * when s does not start one. */

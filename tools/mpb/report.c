@@ -213,8 +213,9 @@ static void usage(FILE *out)
         "                       the runs that are no success, each linked to\n"
         "                       its mpb view page (see -o); docs/reports.md\n"
         "                       describes each format\n"
-        "  -b, --by BY          set: a table per problem set (a scene's name\n"
-        "                       before its last '/') and one over all\n"
+        "  -b, --by BY          set: a table per problem set (the experiment\n"
+        "                       file's set:, else a scene's name before its\n"
+        "                       last '/') and one over all\n"
         "                       problems, adding s_r's 95%% Wilson interval and\n"
         "                       tau_t's median, its 95%% interval and p95;\n"
         "                       all: that one only; scene: a table per scene.\n"
@@ -339,7 +340,7 @@ static int on_scene(void *ud, const mpb_scene_row *sc)
     r->num_scenes++;
     if ((s->name = dup_or(r, sc->name, "?")) == NULL)
         return 1;
-    s->set = tool_set_index(&r->sets, &r->num_sets, s->name);
+    s->set = tool_set_index(&r->sets, &r->num_sets, sc);
     if (s->set < 0)
         return r->nomem = 1;
     return 0;
