@@ -23,6 +23,7 @@ typedef struct options {
     const char *db, *robot, *scene;
     long runs, batch;
     int configs, queries, stages, waypoints;
+    int scenes, sets;       /* scenes, in problem sets named set_K */
 } options;
 
 static void usage(FILE *out)
@@ -37,7 +38,11 @@ static void usage(FILE *out)
 "\n"
 "options:\n"
 "  --configs C    planner configurations (default 3)\n"
-"  --queries Q    queries (default 5)\n"
+"  --queries Q    queries per scene (default 5)\n"
+"  --scenes N     scenes (default 1, named pillars); with more, named\n"
+"                 set_K/NNNN, K from 1 to --sets (default 7), as\n"
+"                 MotionBenchMaker's problem sets\n"
+"  --sets K       problem sets the scenes are dealt into (default 7)\n"
 "  --stages S     stages per run, 1..3: raw, shortcut, smoothed (default 3)\n"
 "  --waypoints W  waypoints per stage (default 4)\n"
 "  --batch B      runs per transaction (default 10000; 1 = the daemon)\n");
@@ -46,7 +51,7 @@ static void usage(FILE *out)
 static int parse(int argc, char **argv, options *o)
 {
     *o = (options){.configs = 3, .queries = 5, .stages = 3, .waypoints = 4,
-                   .batch = 10000};
+                   .batch = 10000, .scenes = 1, .sets = 7};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--help") == 0) {
@@ -65,11 +70,13 @@ static int parse(int argc, char **argv, options *o)
         else if (strcmp(a, "--queries") == 0) o->queries = atoi(v);
         else if (strcmp(a, "--stages") == 0) o->stages = atoi(v);
         else if (strcmp(a, "--waypoints") == 0) o->waypoints = atoi(v);
+        else if (strcmp(a, "--scenes") == 0) o->scenes = atoi(v);
+        else if (strcmp(a, "--sets") == 0) o->sets = atoi(v);
         else goto bad;
     }
     if (o->db && o->robot && o->scene && o->runs > 0 && o->batch > 0 &&
         o->configs > 0 && o->queries > 0 && o->stages >= 1 && o->stages <= 3 &&
-        o->waypoints >= 2)
+        o->waypoints >= 2 && o->scenes >= 1 && o->sets >= 1)
         return 0;
 bad:
     usage(stderr);
@@ -152,12 +159,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "mpb-bench-mkdb: %s\n", mpb_store_errmsg(s));
         return 1;
     }
-    long per = o.runs / ((long)o.configs * o.queries);
+    int nq = o.scenes * o.queries;
+    long per = o.runs / ((long)o.configs * nq);
     if (per < 1)
         per = 1;
-    long total = per * o.configs * o.queries;
+    long total = per * o.configs * nq;
     int64_t exp_id, scene_id, *cfg = calloc((size_t)o.configs, sizeof *cfg),
-            *qid = calloc((size_t)o.queries, sizeof *qid);
+            *qid = calloc((size_t)nq, sizeof *qid);
     double t0 = mpbb_now();
 
     CHECK(mpb_store_begin(s));
@@ -174,25 +182,33 @@ int main(int argc, char **argv)
         CHECK(mpb_store_planner_config_add(s, exp_id, name, "ompl", algo, "",
                                            &cfg[c]));
     }
-    mpb_scene_info si = {.name = "pillars", .robot_format = "planar",
-                         .robot_hash = rh, .robot = robot,
-                         .scene_format = "planar", .scene_hash = sh,
-                         .scene = scene};
-    CHECK(mpb_store_scene_add(s, exp_id, &si, &scene_id));
     double *start = calloc((size_t)nj, sizeof *start),
            *goal = calloc((size_t)nj, sizeof *goal);
-    for (int q = 0; q < o.queries; q++) {
-        snprintf(name, sizeof name, "query_%d", q);
-        for (int j = 0; j < nj; j++)
-            goal[j] = 0.1 * (q + 1) * (j % 2 ? -1 : 1);
-        mpb_query_info qi = {.name = name, .num_joints = nj, .joint_names = jn,
-                             .start = start, .goal_kind = MPB_GOAL_JOINTS,
-                             .goal_joints = goal, .goal_tolerance = 0.01};
-        CHECK(mpb_store_query_add(s, scene_id, &qi, &qid[q]));
+    for (int k = 0; k < o.scenes; k++) {
+        char scene_name[64] = "pillars";
+        if (o.scenes > 1)
+            snprintf(scene_name, sizeof scene_name, "set_%d/%04d",
+                     k % o.sets + 1, k / o.sets + 1);
+        mpb_scene_info si = {.name = scene_name, .robot_format = "planar",
+                             .robot_hash = rh, .robot = robot,
+                             .scene_format = "planar", .scene_hash = sh,
+                             .scene = scene};
+        CHECK(mpb_store_scene_add(s, exp_id, &si, &scene_id));
+        for (int q = 0; q < o.queries; q++) {
+            snprintf(name, sizeof name, "query_%d", q);
+            for (int j = 0; j < nj; j++)
+                goal[j] = 0.1 * (q + 1) * (j % 2 ? -1 : 1);
+            mpb_query_info qi = {.name = name, .num_joints = nj,
+                                 .joint_names = jn, .start = start,
+                                 .goal_kind = MPB_GOAL_JOINTS,
+                                 .goal_joints = goal, .goal_tolerance = 0.01};
+            CHECK(mpb_store_query_add(s, scene_id, &qi,
+                                      &qid[k * o.queries + q]));
+        }
     }
     long added = 0;
     for (long r = 0; r < per; r++)
-        for (int q = 0; q < o.queries; q++)
+        for (int q = 0; q < nq; q++)
             for (int c = 0; c < o.configs; c++) {
                 CHECK(mpb_store_run_add(s, exp_id, cfg[c], qid[q], (int)r,
                                         (int64_t)(r * 1000003 + q * 101 + c)));
@@ -263,7 +279,7 @@ int main(int argc, char **argv)
 
     printf("%s: %ld runs (%d configurations x %d queries x %ld), %d stage%s of "
            "%d waypoints, %d metric rows per run\n", o.db, col.n, o.configs,
-           o.queries, per, o.stages, o.stages == 1 ? "" : "s", nwp,
+           nq, per, o.stages, o.stages == 1 ? "" : "s", nwp,
            5 * o.stages);
     printf("  added in %.2f s (%.0f runs/s); sent+finished in %.2f s "
            "(%.0f runs/s, %.1f us/run) with %ld runs per transaction\n",

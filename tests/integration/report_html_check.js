@@ -148,6 +148,19 @@ function check(name, ok, detail) {
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));
   await page.goto('file://' + path.resolve(report));
+  // The success-against-budget curves, drawn: each path of some length,
+  // and some verified curve rising off the axis.
+  const curves = await page.evaluate(() => Array.from(
+    document.querySelectorAll('svg.budget path.curve')).map((p) => ({
+      cls: p.getAttribute('class'), length: p.getTotalLength(),
+      height: p.getBBox().height,
+      width: p.getBoundingClientRect().width })));
+  check('the budget curves are drawn (' + curves.length + ' paths)',
+        curves.length > 0 && curves.every((c) => c.length > 0 && c.width > 100),
+        JSON.stringify(curves));
+  check('... a verified one rises', curves.some((c) => /verified/.test(c.cls) && c.height > 10));
+  // The scenes' detail, folded away under sets: open, as a reader would.
+  await page.evaluate(() => document.querySelectorAll('details').forEach((d) => { d.open = true; }));
   const shown = await page.evaluate(() => Array.from(document.querySelectorAll('.plots svg'))
     .filter((s) => s.getBoundingClientRect().width > 100).length);
   check('the report shows its ' + plots + ' plots', shown === Number(plots), 'shows ' + shown);

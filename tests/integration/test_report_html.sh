@@ -68,6 +68,18 @@ check "... no successful run is" \
 check "... and views/ holds those three pages only" \
     test "$(ls "$work/site/views" | wc -l)" = 3
 check "... the findings are there" grep -q 'What the tables say' "$page"
+check "... with the paired tests' part" grep -q 'no significant difference' "$page"
+# At the top: the table over all problems, the budget curves (one plot:
+# one set; a solid and a dotted curve per configuration), the matrix.
+check "... the table over all problems first" \
+    test "$(grep -n -m1 '<h2>' "$page" | cut -d: -f2-)" = '<h2>All problems</h2>'
+check "... its median row" grep -q '<tr><td>tau_t (median, s)</td>' "$page"
+check "... one budget plot of six curves" \
+    test "$(grep -c '<svg class="budget"' "$page")" = 1 -a \
+         "$(grep -c '<path class="curve' "$page")" = 6
+check "... and the comparison matrix" grep -q '<table class="matrix">' "$page"
+check "... the scene's detail after them, open (no sets to fold under)" \
+    grep -q '^<details open><summary>scene ' "$page"
 
 # To stdout, the same page, saying how to make the views.
 TMPDIR=$work/tmp "$mpb" report --format html "$DB" >"$work/stdout.html" 2>"$work/stdout.err"
@@ -125,7 +137,10 @@ check "... its tables checked against the JSON" \
 
 # One number off, the last digit of its first cell (before any exponent)
 # changed: the check must see it.
-awk '!done && /^<tr><td>tau_t \(Mean, s\)<\/td>/ {
+# The scene's table: the last tau_t row (the one over all problems is
+# first, the same numbers).
+last=$(grep -n '^<tr><td>tau_t (Mean, s)</td>' "$page" | tail -1 | cut -d: -f1)
+awk -v last="$last" 'NR == last {
         i = index($0, "</td><td>") + 8; rest = substr($0, i + 1)
         cell = substr(rest, 1, index(rest, "</td>") - 1)
         k = match(cell, /[0-9](e[-+][0-9]+)?$/); d = substr(cell, k, 1)
@@ -146,7 +161,9 @@ check "... on that number" \
 # Without gnuplot: the page, saying why there are no plots.
 PATH=/nonexistent "$mpb" report --format html "$DB" >"$work/noplot.html" 2>"$work/noplot.err"
 check "without gnuplot the page is still written" eq $? 0
-check "... without plots" test "$(grep -c '<svg' "$work/noplot.html")" = 0
+check "... without mpb plot's plots" test "$(grep -c '^<svg' "$work/noplot.html")" = 0
+check "... but with the budget curves, which need no gnuplot" \
+    test "$(grep -c '<path class="curve' "$work/noplot.html")" = 6
 check "... saying why" grep -q 'No plots: mpb plot did not draw them' "$work/noplot.html"
 check "... and mpb plot's own line on stderr" grep -q 'gnuplot' "$work/noplot.err"
 

@@ -4,16 +4,8 @@
  * over every problem. The question it answers: is A faster (or shorter)
  * than B on the same problems, and how sure is that?
  *
- * Per configuration and problem (query), its runs give: solved (more than
- * half of the runs verified successes), a time (the median over the runs
- * of time_total, a run that is no success counted at the time limit: the
- * budget it used up) and a path length (the median over its successful
- * runs). A pair is compared on the problems both ran: how many each
- * solved alone; the per-problem time ratio A/B on the problems at least
- * one solved, its median with a distribution-free 95 % interval and the
- * Wilcoxon signed-rank test of the log ratios; the path-length ratio
- * likewise on the problems both solved. Every pair of an experiment gets
- * its p values adjusted together by Holm's method (stats.h).
+ * How each problem's numbers are made and compared: pairs.h. Every pair
+ * of an experiment gets its p values adjusted together by Holm's method.
  */
 #include <getopt.h>
 #include <math.h>
@@ -25,9 +17,10 @@
 #include "mpbench/stats.h"
 #include "mpbench/store.h"
 #include "mpb.h"
+#include "pairs.h"
 
 #define CMD "compare"
-#define ALPHA 0.05
+#define ALPHA PAIRS_ALPHA
 
 static void usage(FILE *out)
 {
@@ -59,14 +52,6 @@ static void usage(FILE *out)
         "2 on a bad command line. docs/reports.md.\n");
 }
 
-/* What one configuration did on one problem. */
-typedef struct cell {
-    int     runs, successes;
-    double *times;      /* per run: time_total, or the limit if no success */
-    double *lengths;    /* per successful run: path_length */
-    int     cap_t, cap_l;
-} cell;
-
 typedef struct data {
     double   limit;
     int      nc, nq, ns;         /* configurations, queries, sets */
@@ -78,22 +63,9 @@ typedef struct data {
     char   **set_names;
     int64_t *query_ids;
     int     *query_set;
-    cell    *cells;              /* [config * nq + query] */
+    pairs_data pairs;            /* the runs, per configuration and query */
     int      nomem;
 } data;
-
-static int grow(double **v, int *cap, int n)
-{
-    if (n < *cap)
-        return 0;
-    int c = *cap ? 2 * *cap : 4;
-    double *nv = realloc(*v, (size_t)c * sizeof *nv);
-    if (nv == NULL)
-        return -1;
-    *v = nv;
-    *cap = c;
-    return 0;
-}
 
 static int on_experiment(void *ud, const mpb_experiment_row *e)
 {
@@ -120,27 +92,10 @@ static int on_config(void *ud, const mpb_planner_config_row *c)
     return 0;
 }
 
-/* The index of the problem set a scene belongs to (tool_problem_set()),
- * added if new; -1 without memory. */
-static int set_index(data *d, const mpb_scene_row *scene)
-{
-    const char *set = tool_problem_set(scene);
-    for (int i = 0; i < d->ns; i++)
-        if (strcmp(d->set_names[i], set) == 0)
-            return i;
-    char **names = realloc(d->set_names, (size_t)(d->ns + 1) * sizeof *names);
-    if (names == NULL)
-        return -1;
-    d->set_names = names;
-    if ((names[d->ns] = strdup(set)) == NULL)
-        return -1;
-    return d->ns++;
-}
-
 static int on_scene(void *ud, const mpb_scene_row *s)
 {
     data *d = ud;
-    int set = set_index(d, s);
+    int set = tool_set_index(&d->set_names, &d->ns, s);
     int64_t *ids = set < 0 ? NULL : realloc(d->scene_ids,
                               (size_t)(d->num_scenes + 1) * sizeof *ids);
     if (ids != NULL)
@@ -194,120 +149,15 @@ static int on_run(void *ud, const mpb_result_row *row)
     int q = find(d->query_ids, d->nq, row->query_id);
     if (c < 0 || q < 0)
         return 0;
-    cell *x = &d->cells[(size_t)c * (size_t)d->nq + (size_t)q];
-    double t = row->success && isfinite(row->time_total) ? row->time_total
-                                                         : d->limit;
-    if (grow(&x->times, &x->cap_t, x->runs) != 0) {
+    if (pairs_add(&d->pairs, c, q, row->success, row->time_total,
+                  row->metrics[0]) != MPB_OK) {
         d->nomem = 1;
         return 1;
-    }
-    x->times[x->runs++] = t;
-    if (row->success) {
-        if (grow(&x->lengths, &x->cap_l, x->successes) != 0) {
-            d->nomem = 1;
-            return 1;
-        }
-        x->lengths[x->successes++] = row->metrics[0];   /* NaN: none */
     }
     return 0;
 }
 
-static int by_value(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median_of(double *v, int n)
-{
-    int m = 0;
-    for (int i = 0; i < n; i++)
-        if (isfinite(v[i]))
-            v[m++] = v[i];
-    if (m == 0)
-        return NAN;
-    qsort(v, (size_t)m, sizeof *v, by_value);
-    return mpb_quantile(v, m, 0.5);
-}
-
-/* One side of a comparison: a ratio's median, interval and p value. */
-typedef struct ratio {
-    int    n;              /* problems compared */
-    double median, lo, hi, p;
-} ratio;
-
-typedef struct pair {
-    int   a, b;
-    int   problems, both, only_a, only_b, neither;
-    ratio time, length;
-    double time_p_holm;
-} pair;
-
-/* ratio of x[i] / y[i] over n problems: median, interval, signed-rank p of
- * the log ratios. x and y are overwritten. */
-static int ratio_of(double *x, double *y, int n, ratio *r)
-{
-    *r = (ratio){.n = n, .median = NAN, .lo = NAN, .hi = NAN, .p = NAN};
-    if (n == 0)
-        return MPB_OK;
-    for (int i = 0; i < n; i++) {
-        double a = fmax(x[i], 1e-9), b = fmax(y[i], 1e-9);
-        x[i] = a / b;
-        y[i] = log(x[i]);   /* of the ratio: equal ratios tie exactly */
-    }
-    int rc = mpb_signed_rank_test(y, n, NULL, &r->p);
-    if (rc != MPB_OK)
-        return rc;
-    qsort(x, (size_t)n, sizeof *x, by_value);
-    r->median = mpb_quantile(x, n, 0.5);
-    return mpb_median_interval(x, n, &r->lo, &r->hi, NULL);
-}
-
-/* Compare configurations a and b on the problems of set (-1: all). */
-static int compare(data *d, int a, int b, int set, pair *out)
-{
-    *out = (pair){.a = a, .b = b};
-    size_t nq = (size_t)d->nq;
-    double *ta = malloc((nq + 1) * sizeof *ta), *tb = malloc((nq + 1) * sizeof *tb);
-    double *la = malloc((nq + 1) * sizeof *la), *lb = malloc((nq + 1) * sizeof *lb);
-    int rc = MPB_ENOMEM, nt = 0, nl = 0;
-    if (!ta || !tb || !la || !lb)
-        goto done;
-    for (int q = 0; q < d->nq; q++) {
-        if (set >= 0 && d->query_set[q] != set)
-            continue;
-        cell *x = &d->cells[(size_t)a * nq + (size_t)q];
-        cell *y = &d->cells[(size_t)b * nq + (size_t)q];
-        if (x->runs == 0 || y->runs == 0)
-            continue;
-        out->problems++;
-        int sa = 2 * x->successes > x->runs, sb = 2 * y->successes > y->runs;
-        out->both += sa && sb;
-        out->only_a += sa && !sb;
-        out->only_b += !sa && sb;
-        out->neither += !sa && !sb;
-        if (sa || sb) {
-            ta[nt] = median_of(x->times, x->runs);
-            tb[nt++] = median_of(y->times, y->runs);
-        }
-        if (sa && sb) {
-            la[nl] = median_of(x->lengths, x->successes);
-            lb[nl] = median_of(y->lengths, y->successes);
-            if (isfinite(la[nl]) && isfinite(lb[nl]))
-                nl++;
-        }
-    }
-    if ((rc = ratio_of(ta, tb, nt, &out->time)) == MPB_OK)
-        rc = ratio_of(la, lb, nl, &out->length);
-done:
-    free(ta);
-    free(tb);
-    free(la);
-    free(lb);
-    return rc;
-}
-
-static const char *verdict(const ratio *r, double p, const char *a,
+static const char *verdict(const pairs_ratio *r, double p, const char *a,
                            const char *b, const char *less, char *buf,
                            size_t size)
 {
@@ -318,7 +168,7 @@ static const char *verdict(const ratio *r, double p, const char *a,
     return buf;
 }
 
-static void print_pair(const data *d, const pair *p, const char *set)
+static void print_pair(const data *d, const pairs_pair *p, const char *set)
 {
     const char *a = d->config_names[p->a], *b = d->config_names[p->b];
     char v[512];
@@ -353,7 +203,7 @@ static void csv_text(const char *s)
     putchar('"');
 }
 
-static void print_csv(const data *d, const pair *p, const char *set)
+static void print_csv(const data *d, const pairs_pair *p, const char *set)
 {
     csv_text(set);
     putchar(',');
@@ -363,7 +213,7 @@ static void print_csv(const data *d, const pair *p, const char *set)
     printf(",%d,%d,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%.9g,%.9g,"
            "%.9g\n", p->problems, p->both, p->only_a, p->only_b, p->neither,
            p->time.n, p->time.median, p->time.lo, p->time.hi, p->time.p,
-           p->time_p_holm, p->length.n, p->length.median, p->length.lo,
+           p->time.p_holm, p->length.n, p->length.median, p->length.lo,
            p->length.hi, p->length.p);
 }
 
@@ -371,23 +221,11 @@ static void print_csv(const data *d, const pair *p, const char *set)
 static int all_pairs(data *d, int set, int csv)
 {
     const char *name = set < 0 ? "all problems" : d->set_names[set];
-    int n = d->nc * (d->nc - 1) / 2, k = 0, rc = MPB_OK;
-    pair *pairs = calloc((size_t)(n > 0 ? n : 1), sizeof *pairs);
-    double *p = calloc((size_t)(n > 0 ? n : 1), sizeof *p);
-    if (pairs == NULL || p == NULL) {
-        rc = MPB_ENOMEM;
+    int n = d->nc * (d->nc - 1) / 2, k;
+    pairs_pair *pairs = NULL;
+    int rc = pairs_all(&d->pairs, set, &pairs);
+    if (rc != MPB_OK)
         goto done;
-    }
-    for (int a = 0; a < d->nc; a++)
-        for (int b = a + 1; b < d->nc; b++, k++) {
-            if ((rc = compare(d, a, b, set, &pairs[k])) != MPB_OK)
-                goto done;
-            p[k] = isnan(pairs[k].time.p) ? 1.0 : pairs[k].time.p;
-        }
-    if ((rc = mpb_holm(p, n, p)) != MPB_OK)
-        goto done;
-    for (k = 0; k < n; k++)
-        pairs[k].time_p_holm = p[k];
     if (csv) {
         for (k = 0; k < n; k++)
             print_csv(d, &pairs[k], name);
@@ -406,31 +244,29 @@ static int all_pairs(data *d, int set, int csv)
                 printf(" %8s", "-");
                 continue;
             }
-            int lo = a < b ? a : b, hi = a < b ? b : a;
-            int idx = lo * d->nc - lo * (lo + 1) / 2 + (hi - lo - 1);
-            const pair *q = &pairs[idx];
+            const pairs_pair *q = &pairs[pairs_index(d->nc, a, b)];
             double r = a < b ? q->time.median : 1.0 / q->time.median;
             char cellbuf[16];
             if (q->time.n == 0)
                 snprintf(cellbuf, sizeof cellbuf, "n/a");
             else
                 snprintf(cellbuf, sizeof cellbuf, "%.3g%s", r,
-                         q->time_p_holm < ALPHA ? "*" : "");
+                         q->time.p_holm < ALPHA ? "*" : "");
             printf(" %8s", cellbuf);
         }
         printf("\n");
     }
     int any = 0;
     for (k = 0; k < n; k++) {
-        const pair *q = &pairs[k];
-        if (!(q->time_p_holm < ALPHA) || q->time.median == 1)
+        const pairs_pair *q = &pairs[k];
+        if (!(q->time.p_holm < ALPHA) || q->time.median == 1)
             continue;
         int faster = q->time.median < 1 ? q->a : q->b;
         int slower = faster == q->a ? q->b : q->a;
         double r = q->time.median < 1 ? q->time.median : 1 / q->time.median;
         printf("  %s faster than %s: time ratio %.3g, adjusted p = %.2g "
                "(%d problems)\n", d->config_names[faster],
-               d->config_names[slower], r, q->time_p_holm, q->time.n);
+               d->config_names[slower], r, q->time.p_holm, q->time.n);
         any = 1;
     }
     if (!any)
@@ -438,7 +274,6 @@ static int all_pairs(data *d, int set, int csv)
     printf("\n");
 done:
     free(pairs);
-    free(p);
     return rc;
 }
 
@@ -448,11 +283,7 @@ static void data_free(data *d)
         free(d->config_names[i]);
     for (int i = 0; i < d->ns; i++)
         free(d->set_names[i]);
-    if (d->cells != NULL)
-        for (size_t i = 0; i < (size_t)d->nc * (size_t)d->nq; i++) {
-            free(d->cells[i].times);
-            free(d->cells[i].lengths);
-        }
+    pairs_free(&d->pairs);
     free(d->config_ids);
     free(d->config_names);
     free(d->set_names);
@@ -460,7 +291,6 @@ static void data_free(data *d)
     free(d->scene_set);
     free(d->query_ids);
     free(d->query_set);
-    free(d->cells);
 }
 
 static int read_data(mpb_store *s, int64_t experiment, data *d)
@@ -473,10 +303,10 @@ static int read_data(mpb_store *s, int64_t experiment, data *d)
     for (int i = 0; i < d->num_scenes; i++)
         if ((rc = mpb_store_queries(s, d->scene_ids[i], on_query, d)))
             return d->nomem ? MPB_ENOMEM : rc;
-    d->cells = calloc((size_t)(d->nc > 0 ? d->nc : 1) *
-                      (size_t)(d->nq > 0 ? d->nq : 1), sizeof *d->cells);
-    if (d->cells == NULL)
+    if (pairs_init(&d->pairs, d->nc, d->nq, d->limit) != MPB_OK)
         return MPB_ENOMEM;
+    memcpy(d->pairs.query_set, d->query_set,
+           (size_t)d->nq * sizeof *d->query_set);
     const char *const names[] = {"path_length"};
     rc = mpb_store_results(s, experiment, 0, NULL, names, 1, on_run, d);
     return d->nomem ? MPB_ENOMEM : rc;
@@ -592,12 +422,11 @@ int cmd_compare(int argc, char **argv)
             goto done;
         }
         for (int k = first; k <= last; k++) {
-            pair p;
-            if ((rc = compare(&d, a, b, k, &p)) != MPB_OK) {
+            pairs_pair p;
+            if ((rc = pairs_compare(&d.pairs, a, b, k, &p)) != MPB_OK) {
                 fprintf(stderr, "mpb " CMD ": out of memory\n");
                 goto done;
             }
-            p.time_p_holm = p.time.p;
             const char *name = k < 0 ? "all problems" : d.set_names[k];
             if (csv)
                 print_csv(&d, &p, name);

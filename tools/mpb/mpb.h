@@ -15,7 +15,7 @@
  * and a file NAME.c defining cmd_NAME; main.c needs no change.
  */
 #define MPB_TOOL_COMMANDS(X)                                                  \
-    X(report, "print an experiment's results as the paper's tables, per scene") \
+    X(report, "print an experiment's results as the paper's tables, per scene or set") \
     X(plot,   "draw box plots per metric and success-rate bars, per scene (gnuplot)") \
     X(status, "follow a running experiment: progress, rate, time left, planners") \
     X(spy,    "start lcm-spy with mpbench's message types, to watch the traffic") \
@@ -70,6 +70,12 @@ int tool_extra_argument(const char *cmd, const char *arg);
  * without a '/' is its own; mpb_store_problem_set_len()). Every tool
  * groups by it, so all agree. Valid as long as the row. */
 const char *tool_problem_set(const mpb_scene_row *scene);
+
+/* The index of scene's problem set (tool_problem_set()) among the *n
+ * names of *sets, the set added at the end (a copy of its name) when it
+ * is not there yet; -1 when out of memory. free() each name and the
+ * array. */
+int tool_set_index(char ***sets, int *n, const mpb_scene_row *scene);
 
 /* The length of the valid UTF-8 sequence at s, its code point in *cp; 0
  * when s does not start one. */

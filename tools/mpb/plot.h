@@ -113,6 +113,38 @@ int  plot_gnuplot_budget(FILE *gp, const plot_budget *b, const char *dir,
                          void (*wrote)(void *ud, const char *path), void *ud);
 void plot_budget_free(plot_budget *b);
 
+/* What b holds, for writers of their own (the HTML report's SVG): its
+ * sets (index plot_budget_num_sets() is all problems, drawn only when
+ * there are several: plot_budget_drawn()), configurations (in id order),
+ * the time limit, and per set and configuration its finished runs and
+ * the sorted times of the verified and of the claimed ones, owned by b. */
+typedef struct plot_budget_steps {
+    int           runs;
+    const double *verified;
+    int           nv;
+    const double *claimed;
+    int           nc;
+} plot_budget_steps;
+int         plot_budget_num_sets(const plot_budget *b);
+const char *plot_budget_set(const plot_budget *b, int set);
+int         plot_budget_drawn(const plot_budget *b, int set);
+int         plot_budget_num_configs(const plot_budget *b);
+const char *plot_budget_config(const plot_budget *b, int config);
+double      plot_budget_limit(const plot_budget *b);
+void        plot_budget_curve(const plot_budget *b, int set, int config,
+                              plot_budget_steps *out);
+/* The colour configuration config is drawn in, "#rrggbb", in every
+ * budget plot (gnuplot's and the SVG). */
+const char *plot_budget_color(int config);
+
+/*
+ * Set set's curves as one inline SVG element (plot_budget_svg.c), with
+ * no gnuplot: a log time axis, per configuration a solid step path
+ * (class "curve verified") and a dotted one ("curve claimed"), a legend.
+ * Returns the number of paths drawn (0: no run, nothing written).
+ */
+int plot_budget_svg(FILE *out, const plot_budget *b, int set);
+
 /*
  * Performance profiles (plot_profile.c; Dolan and Moré): for each problem
  * set (tool_problem_set()) and over all problems when there are several,

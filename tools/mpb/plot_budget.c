@@ -376,3 +376,47 @@ int plot_gnuplot_budget(FILE *gp, const plot_budget *b, const char *dir,
     }
     return plots;
 }
+
+/* ---- what other writers read (plot.h) ------------------------------------- */
+
+int plot_budget_num_sets(const plot_budget *b)
+{
+    return b->nsets;
+}
+
+const char *plot_budget_set(const plot_budget *b, int set)
+{
+    return set_name(b, set);
+}
+
+int plot_budget_drawn(const plot_budget *b, int set)
+{
+    return drawn(b, set);
+}
+
+int plot_budget_num_configs(const plot_budget *b)
+{
+    return b->nconfigs;
+}
+
+const char *plot_budget_config(const plot_budget *b, int config)
+{
+    return b->configs[config];
+}
+
+double plot_budget_limit(const plot_budget *b)
+{
+    return b->limit;
+}
+
+void plot_budget_curve(const plot_budget *b, int set, int config,
+                       plot_budget_steps *out)
+{
+    const curve *k = curve_of(b, set, config);
+    *out = (plot_budget_steps){k->runs, k->verified, k->nv, k->claimed, k->nc};
+}
+
+const char *plot_budget_color(int config)
+{
+    return colors[config % NUM_COLORS];
+}

@@ -44,15 +44,15 @@ int report_metric_shown(int k)
 
 /* The run's times, rows of their own; the metrics' rows follow. */
 static const table_row time_rows[] = {
-    {"tau_t (Mean, s)",       "$\\tau_t$ (Mean, s)",            M_TT,    SHOW_MEAN,  0, -1},
-    {"tau_t (sigma, s)",      "$\\tau_t$ ($\\sigma$, s)",       M_TT,    SHOW_SIGMA, 0, -1},
-    {"tau_r (Mean, s)",       "$\\tau_r$ (Mean, s)",            M_TR,    SHOW_MEAN,  0, -1},
-    {"tau_r (sigma, s)",      "$\\tau_r$ ($\\sigma$, s)",       M_TR,    SHOW_SIGMA, 0, -1},
-    {"tau_o (Mean, s)",       "$\\tau_o$ (Mean, s)",            M_TO,    SHOW_MEAN,  0, -1},
-    {"tau_o (sigma, s)",      "$\\tau_o$ ($\\sigma$, s)",       M_TO,    SHOW_SIGMA, 0, -1},
-    {"world setup (Mean, s)", "world setup (Mean, s)",         M_WS,    SHOW_MEAN,  1, -1},
-    {"verify (Mean, s)",      "verify (Mean, s)",              M_VT,    SHOW_MEAN,  1, -1},
-    {"memory (Mean, MB)",     "memory (Mean, MB)",             M_MEM,   SHOW_MEAN,  1, -1},
+    {"tau_t (Mean, s)",       "$\\tau_t$ (Mean, s)",            M_TT,    SHOW_MEAN,  0, -1, 0},
+    {"tau_t (sigma, s)",      "$\\tau_t$ ($\\sigma$, s)",       M_TT,    SHOW_SIGMA, 0, -1, 0},
+    {"tau_r (Mean, s)",       "$\\tau_r$ (Mean, s)",            M_TR,    SHOW_MEAN,  0, -1, 0},
+    {"tau_r (sigma, s)",      "$\\tau_r$ ($\\sigma$, s)",       M_TR,    SHOW_SIGMA, 0, -1, 0},
+    {"tau_o (Mean, s)",       "$\\tau_o$ (Mean, s)",            M_TO,    SHOW_MEAN,  0, -1, 0},
+    {"tau_o (sigma, s)",      "$\\tau_o$ ($\\sigma$, s)",       M_TO,    SHOW_SIGMA, 0, -1, 0},
+    {"world setup (Mean, s)", "world setup (Mean, s)",         M_WS,    SHOW_MEAN,  1, -1, 0},
+    {"verify (Mean, s)",      "verify (Mean, s)",              M_VT,    SHOW_MEAN,  1, -1, 0},
+    {"memory (Mean, MB)",     "memory (Mean, MB)",             M_MEM,   SHOW_MEAN,  1, -1, 0},
 };
 #define NUM_TIME_ROWS ((int)(sizeof time_rows / sizeof time_rows[0]))
 
@@ -87,15 +87,28 @@ static void add_metric_row(int id, show what)
     report_rows[i] = (table_row){
         row_text[i][0], row_text[i][1], FIRST_STORED + id, what,
         (mi->flags & MPB_METRIC_F_OPTIONAL) != 0,
-        (mi->flags & MPB_METRIC_F_COUNT) ? 1 : -1};
+        (mi->flags & MPB_METRIC_F_COUNT) ? 1 : -1, 0};
 }
 
 void report_rows_init(void)
 {
     if (report_num_rows > 0)
         return;
-    for (int i = 0; i < NUM_TIME_ROWS; i++)
+    for (int i = 0; i < NUM_TIME_ROWS; i++) {
         report_rows[report_num_rows++] = time_rows[i];
+        /* A problem set's: the median and the tail beside the mean. */
+        if (time_rows[i].metric == M_TT && time_rows[i].what == SHOW_SIGMA) {
+            report_rows[report_num_rows++] = (table_row){
+                "tau_t (median, s)", "$\\tau_t$ (median, s)", M_TT,
+                SHOW_MEDIAN, 1, -1, 1};
+            report_rows[report_num_rows++] = (table_row){
+                "tau_t median 95% CI", "$\\tau_t$ median 95\\% CI", M_TT,
+                SHOW_MEDIAN_CI, 1, -1, 1};
+            report_rows[report_num_rows++] = (table_row){
+                "tau_t (p95, s)", "$\\tau_t$ (p95, s)", M_TT, SHOW_P95, 1,
+                -1, 1};
+        }
+    }
     for (int id = 0; id < MPB_NUM_METRICS; id++) {
         unsigned flags = mpb_metric_info_of(id)->flags;
         if (flags & MPB_METRIC_F_TABLE)
@@ -105,20 +118,22 @@ void report_rows_init(void)
     }
     /* The planner's own claim of success beside mpbench's verdict. */
     report_rows[report_num_rows++] = (table_row){
-        "claimed s_r (%)", "claimed $s_r$ (\\%)", 0, SHOW_CLAIMED, 0, 1};
+        "claimed s_r (%)", "claimed $s_r$ (\\%)", 0, SHOW_CLAIMED, 0, 1, 0};
     report_rows[report_num_rows++] = (table_row){
-        "s_r (%)", "$s_r$ (\\%)", 0, SHOW_RATE, 0, 1};
+        "s_r (%)", "$s_r$ (\\%)", 0, SHOW_RATE, 0, 1, 0};
+    report_rows[report_num_rows++] = (table_row){
+        "s_r 95% CI (%)", "$s_r$ 95\\% CI (\\%)", 0, SHOW_RATE_CI, 1, 1, 1};
     /* Claims in both directions, as counts of runs (outcome.h). */
     report_rows[report_num_rows++] = (table_row){
-        "claimed", "claimed", COUNT_CLAIMED, SHOW_COUNT, 0, 0};
+        "claimed", "claimed", COUNT_CLAIMED, SHOW_COUNT, 0, 0, 0};
     report_rows[report_num_rows++] = (table_row){
-        "verified", "verified", MPB_OUTCOME_VERIFIED, SHOW_COUNT, 0, 0};
+        "verified", "verified", MPB_OUTCOME_VERIFIED, SHOW_COUNT, 0, 0, 0};
     report_rows[report_num_rows++] = (table_row){
         "refused claims", "refused claims", MPB_OUTCOME_REFUSED, SHOW_COUNT,
-        0, 0};
+        0, 0, 0};
     report_rows[report_num_rows++] = (table_row){
         "unclaimed valid", "unclaimed valid", MPB_OUTCOME_UNCLAIMED_VALID,
-        SHOW_COUNT, 0, 0};
+        SHOW_COUNT, 0, 0, 0};
 }
 
 typedef enum {
@@ -142,7 +157,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
         "usage: mpb report [--experiment ID] [--stage NAME] [--format FORMAT]\n"
-        "                  [--findings] [-o FILE] DB\n"
+        "                  [--by set|scene|all] [--findings] [-o FILE] DB\n"
         "\n"
         "Print the results of an experiment in the database DB as the tables\n"
         "of Cohen, Sucan and Chitta, \"A Generic Infrastructure for\n"
@@ -198,13 +213,24 @@ static void usage(FILE *out)
         "                       the runs that are no success, each linked to\n"
         "                       its mpb view page (see -o); docs/reports.md\n"
         "                       describes each format\n"
+        "  -b, --by BY          set: a table per problem set (the experiment\n"
+        "                       file's set:, else a scene's name before its\n"
+        "                       last '/') and one over all\n"
+        "                       problems, adding s_r's 95%% Wilson interval and\n"
+        "                       tau_t's median, its 95%% interval and p95;\n"
+        "                       all: that one only; scene: a table per scene.\n"
+        "                       Default: set where scenes outnumber sets, else\n"
+        "                       scene. Text and html only\n"
         "  -F, --findings       after the tables, what they say: per scene the\n"
         "                       fastest planner (of those with the best success\n"
         "                       rate), the shortest and the steadiest paths,\n"
         "                       each with its success rate, the hardest scene,\n"
         "                       and whether the\n"
         "                       paper's findings hold (ARA* paths, RRTConnect's\n"
-        "                       speed, the narrow passage); with the text\n"
+        "                       speed, the narrow passage) (--by scene); per\n"
+        "                       set and approach the fastest and best only\n"
+        "                       where a paired signed-rank test, Holm-adjusted,\n"
+        "                       says so at 5%%; with the text\n"
         "                       format only (another --format is refused)\n"
         "  -o, --output FILE    write the report to FILE (replaced if it\n"
         "                       exists) instead of stdout; with html, also\n"
@@ -312,7 +338,12 @@ static int on_scene(void *ud, const mpb_scene_row *sc)
     scene_ref *s = &r->scenes[r->num_scenes];
     *s = (scene_ref){.id = sc->id};
     r->num_scenes++;
-    return (s->name = dup_or(r, sc->name, "?")) == NULL;
+    if ((s->name = dup_or(r, sc->name, "?")) == NULL)
+        return 1;
+    s->set = tool_set_index(&r->sets, &r->num_sets, sc);
+    if (s->set < 0)
+        return r->nomem = 1;
+    return 0;
 }
 
 static int on_query(void *ud, const mpb_query_row *q)
@@ -367,6 +398,26 @@ static void add_sample(mpb_grouped *g, double x)
         mpb_grouped_add(g, x);
 }
 
+static int push_sample(report_samples *x, double v)
+{
+    if (x->n == x->cap) {
+        long cap = x->cap ? 2 * x->cap : 16;
+        double *nv = realloc(x->v, (size_t)cap * sizeof *nv);
+        if (nv == NULL)
+            return 1;
+        x->v = nv;
+        x->cap = cap;
+    }
+    x->v[x->n++] = v;
+    return 0;
+}
+
+static int by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 static int on_result(void *ud, const mpb_result_row *row)
 {
     report *r = ud;
@@ -388,10 +439,22 @@ static int on_result(void *ud, const mpb_result_row *row)
         c->claimed++;
     if (row->outcome >= 0 && row->outcome < MPB_OUTCOME_COUNT)
         c->outcomes[row->outcome]++;
+    if (r->want_pairs &&
+        pairs_add(&r->pairs, ci, qi, row->success, row->time_total,
+                  row->metrics[MPB_METRIC_PATH_LENGTH]) != MPB_OK)
+        return r->nomem = 1;
     if (!row->success)
         return 0;
     c->succeeded++;
     add_sample(&c->m[M_TT], row->time_total);
+    if (r->times != NULL && !isnan(row->time_total)) {
+        int set = r->scenes[r->queries[qi].scene].set;
+        if (push_sample(&r->times[(size_t)set * (size_t)r->num_configs +
+                                  (size_t)ci], row->time_total) ||
+            push_sample(&r->times[(size_t)r->num_sets * (size_t)r->num_configs
+                                  + (size_t)ci], row->time_total))
+            return r->nomem = 1;
+    }
     add_sample(&c->m[M_TR], row->time_raw);
     add_sample(&c->m[M_TO], row->time_other);
     /* A stage that failed verification inside a successful run (a raw
@@ -419,6 +482,10 @@ static int gather(report *r, mpb_store *s)
     if (r->num_configs > 1)
         qsort(r->configs, (size_t)r->num_configs, sizeof *r->configs,
               cmp_config);
+    /* By set where sets gather scenes (MotionBenchMaker's), else by
+     * scene (the paper's), as the tables have always been. */
+    if (r->by_default)
+        r->by = r->num_scenes > r->num_sets ? BY_SET : BY_SCENE;
     for (int i = 0; i < r->num_scenes; i++) {
         r->scene_index = i;
         if ((rc = mpb_store_queries(s, r->scenes[i].id, on_query, r)))
@@ -436,6 +503,17 @@ static int gather(report *r, mpb_store *s)
     size_t n = (size_t)r->num_configs * (size_t)r->num_queries;
     if (n > 0 && (r->cells = calloc(n, sizeof *r->cells)) == NULL)
         return r->nomem = 1;
+    if ((r->by != BY_SCENE || r->want_pairs) && n > 0 &&
+        (r->times = calloc((size_t)(r->num_sets + 1) *
+                           (size_t)r->num_configs, sizeof *r->times)) == NULL)
+        return r->nomem = 1;
+    if (r->want_pairs) {
+        if (pairs_init(&r->pairs, r->num_configs, r->num_queries,
+                       r->time_limit) != MPB_OK)
+            return r->nomem = 1;
+        for (int q = 0; q < r->num_queries; q++)
+            r->pairs.query_set[q] = r->scenes[r->queries[q].scene].set;
+    }
     for (size_t i = 0; i < n; i++)
         for (int k = 0; k < M_COUNT; k++)
             mpb_grouped_init(&r->cells[i].m[k]);
@@ -451,6 +529,11 @@ static int gather(report *r, mpb_store *s)
     for (size_t i = 0; i < n; i++)
         for (int k = 0; k < M_COUNT; k++)
             mpb_grouped_end_group(&r->cells[i].m[k]);
+    for (size_t i = 0; r->times && i < (size_t)(r->num_sets + 1) *
+                                        (size_t)r->num_configs; i++)
+        if (r->times[i].n > 1)
+            qsort(r->times[i].v, (size_t)r->times[i].n, sizeof *r->times[i].v,
+                  by_value);
     return 0;
 }
 
@@ -469,6 +552,14 @@ static void report_free(report *r)
     free(r->scenes);
     free(r->queries);
     free(r->cells);
+    for (int i = 0; i < r->num_sets; i++)
+        free(r->sets[i]);
+    free(r->sets);
+    for (size_t i = 0; r->times && i < (size_t)(r->num_sets + 1) *
+                                        (size_t)r->num_configs; i++)
+        free(r->times[i].v);
+    free(r->times);
+    pairs_free(&r->pairs);
     free(r->experiment_name);
     free(r->host);
     free(r->version);
@@ -482,6 +573,9 @@ long report_scene_columns(const report *r, int si, column *cols)
     for (int c = 0; c < r->num_configs; c++) {
         cols[c].finished = cols[c].succeeded = cols[c].stage_invalid = 0;
         cols[c].claimed = 0;
+        cols[c].in_set = 0;
+        cols[c].times = NULL;
+        cols[c].ntimes = 0;
         memset(cols[c].outcomes, 0, sizeof cols[c].outcomes);
         for (int k = 0; k < M_COUNT; k++)
             mpb_grouped_init(&cols[c].m[k]);
@@ -502,6 +596,61 @@ long report_scene_columns(const report *r, int si, column *cols)
         finished += cols[c].finished;
     }
     return finished;
+}
+
+long report_set_columns(const report *r, int set, column *cols,
+                        int *unfinished)
+{
+    long finished = 0;
+    int waiting = 0;
+    for (int c = 0; c < r->num_configs; c++) {
+        cols[c] = (column){.in_set = 1};
+        for (int k = 0; k < M_COUNT; k++)
+            mpb_grouped_init(&cols[c].m[k]);
+        if (r->times != NULL) {
+            const report_samples *x =
+                &r->times[(size_t)(set < 0 ? r->num_sets : set) *
+                          (size_t)r->num_configs + (size_t)c];
+            cols[c].times = x->v;
+            cols[c].ntimes = x->n;
+        }
+    }
+    for (int q = 0; q < r->num_queries; q++) {
+        if (set >= 0 && r->scenes[r->queries[q].scene].set != set)
+            continue;
+        for (int c = 0; c < r->num_configs; c++) {
+            const column *cl = &r->cells[(size_t)c * (size_t)r->num_queries +
+                                         (size_t)q];
+            cols[c].finished += cl->finished;
+            cols[c].succeeded += cl->succeeded;
+            cols[c].claimed += cl->claimed;
+            for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
+                cols[c].outcomes[o] += cl->outcomes[o];
+            cols[c].stage_invalid += cl->stage_invalid;
+            for (int k = 0; k < M_COUNT; k++)
+                mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
+            finished += cl->finished;
+        }
+    }
+    for (int i = 0; i < r->num_scenes; i++)
+        if (set < 0 || r->scenes[i].set == set)
+            waiting += r->scenes[i].unfinished;
+    if (unfinished != NULL)
+        *unfinished = waiting;
+    return finished;
+}
+
+const char *report_set_name(const report *r, int set)
+{
+    return set < 0 ? "all problems" : r->sets[set];
+}
+
+int report_set_scenes(const report *r, int set)
+{
+    int n = 0;
+    for (int i = 0; i < r->num_scenes; i++)
+        n += set < 0 || r->scenes[i].set == set;
+    return n;
 }
 
 double report_sigma(const mpb_grouped *g)
@@ -535,8 +684,39 @@ double report_row_value(const table_row *tr, const column *c)
             return NAN;
         return tr->metric == COUNT_CLAIMED ? (double)c->claimed
              : (double)c->outcomes[tr->metric];
+    case SHOW_MEDIAN:
+        return c->ntimes > 0 ? mpb_quantile(c->times, (int)c->ntimes, 0.5)
+                             : NAN;
+    case SHOW_P95:
+        return c->ntimes > 0 ? mpb_quantile(c->times, (int)c->ntimes, 0.95)
+                             : NAN;
+    case SHOW_RATE_CI:
+    case SHOW_MEDIAN_CI: {
+        double lo, hi;
+        report_row_interval(tr, c, &lo, &hi);
+        return lo;
+    }
     }
     return NAN;
+}
+
+int report_row_interval(const table_row *tr, const column *c, double *lo,
+                        double *hi)
+{
+    double coverage = 0;
+    *lo = *hi = NAN;
+    if (tr->what == SHOW_RATE_CI && c->finished > 0 &&
+        mpb_wilson_interval((int)c->succeeded, (int)c->finished, lo, hi) ==
+            MPB_OK) {
+        *lo *= 100.0;
+        *hi *= 100.0;
+    } else if (tr->what == SHOW_MEDIAN_CI && c->ntimes > 0 &&
+               (mpb_median_interval(c->times, (int)c->ntimes, lo, hi,
+                                    &coverage) != MPB_OK ||
+                coverage < 0.95)) {
+        *lo = *hi = NAN;    /* too few runs for a 95 % interval */
+    }
+    return !isnan(*lo);
 }
 
 /* A mean or sigma smaller than this in magnitude is the rounding of
@@ -589,14 +769,26 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
                                          : row_decimals(cols, nc, tr);
         int any = 0;
         for (int c = 0; c < nc; c++) {
-            double v = report_row_value(tr, &cols[c]);
+            double v = report_row_value(tr, &cols[c]), lo, hi;
+            if (tr->sets_only) {
+                any |= cols[c].in_set;
+                if (report_row_interval(tr, &cols[c], &lo, &hi)) {
+                    char a[CELL_TEXT], b[CELL_TEXT];
+                    format_value(a, decimals, denoise(lo));
+                    format_value(b, decimals, denoise(hi));
+                    snprintf(text[i * nc + c], CELL_TEXT, "%.14s-%.14s", a, b);
+                } else {
+                    format_value(text[i * nc + c], decimals, denoise(v));
+                }
+                continue;
+            }
             format_value(text[i * nc + c], decimals, denoise(v));
             if (tr->what == SHOW_SIGMA && !isnan(v) &&
                 report_sigma_single(&cols[c].m[tr->metric]) > 0)
                 strcat(text[i * nc + c], SIGMA_SINGLE_MARK);
             any |= !isnan(v) || cols[c].m[tr->metric].n > 0;  /* measured */
         }
-        visible[i] = !tr->optional || any;
+        visible[i] = tr->sets_only ? any : !tr->optional || any;
     }
 }
 
@@ -620,7 +812,10 @@ static void print_right(FILE *out, const char *s, int width)
     fputs(s, out);
 }
 
-static int print_scene(const report *r, int si, FILE *out)
+/* A table: kind "Scene" with index a scene's, "Problem set" a set's,
+ * index -1 for all problems. */
+static int print_table(const report *r, const char *kind, int index,
+                       FILE *out)
 {
     int nc = r->num_configs;
     size_t ncols = (size_t)(nc > 0 ? nc : 1);
@@ -635,7 +830,11 @@ static int print_scene(const report *r, int si, FILE *out)
         rc = MPB_ENOMEM;
         goto done;
     }
-    long finished = report_scene_columns(r, si, cols);
+    int scene = strcmp(kind, "Scene") == 0, unfinished;
+    long finished = scene ? report_scene_columns(r, index, cols)
+                          : report_set_columns(r, index, cols, &unfinished);
+    if (scene)
+        unfinished = r->scenes[index].unfinished;
     report_cells(r, cols, text, visible);
 
     int label_width = (int)strlen("Metric");
@@ -657,8 +856,17 @@ static int print_scene(const report *r, int si, FILE *out)
                 width[c] = tool_text_cols(text[i * nc + c], NULL);
     }
 
-    fprintf(out, "Scene %s - experiment %s (%lld), %ld run%s\n",
-            r->scenes[si].name, r->experiment_name,
+    if (scene) {
+        fprintf(out, "Scene %s", r->scenes[index].name);
+    } else {
+        int n = report_set_scenes(r, index);
+        if (index < 0)
+            fputs("All problems", out);
+        else
+            fprintf(out, "%s %s", kind, r->sets[index]);
+        fprintf(out, " (%d scene%s)", n, n == 1 ? "" : "s");
+    }
+    fprintf(out, " - experiment %s (%lld), %ld run%s\n", r->experiment_name,
             (long long)r->experiment_id, finished, finished == 1 ? "" : "s");
     int rule = label_width;
     /* Each column's approach above its name, the columns grouped by it. */
@@ -699,10 +907,9 @@ static int print_scene(const report *r, int si, FILE *out)
                     r->stage ? r->stage : "?");
     if (report_any_single(text, visible, nc))
         fputs(SIGMA_SINGLE_NOTE "\n", out);
-    if (r->scenes[si].unfinished > 0)
+    if (unfinished > 0)
         fprintf(out, "%d more run%s not finished yet, not counted above\n",
-                r->scenes[si].unfinished,
-                r->scenes[si].unfinished == 1 ? "" : "s");
+                unfinished, unfinished == 1 ? "" : "s");
 done:
     free(cols);
     free(text);
@@ -731,9 +938,23 @@ int report_write_text(const report *r, FILE *out)
         fprintf(out, "Collision checks: %ld stage%s certified, %ld sampled "
                 "(docs/verification.md).\n", r->certified,
                 r->certified == 1 ? "" : "s", r->sampled);
-    for (int i = 0; i < r->num_scenes; i++) {
+    if (r->by == BY_SCENE) {
+        for (int i = 0; i < r->num_scenes; i++) {
+            fputc('\n', out);
+            if ((rc = print_table(r, "Scene", i, out)) != MPB_OK)
+                return rc;
+        }
+        return MPB_OK;
+    }
+    fputs("Problem sets: s_r's 95% CI is Wilson's; tau_t's median and p95 "
+          "are over\nsuccessful runs, the median's 95% CI from order "
+          "statistics ('-' with fewer\nthan 6 successful runs).\n", out);
+    for (int i = r->by == BY_SET ? 0 : r->num_sets; i <= r->num_sets; i++) {
+        if (i == r->num_sets && r->by == BY_SET && r->num_sets < 2)
+            break;      /* all problems are the one set */
         fputc('\n', out);
-        if ((rc = print_scene(r, i, out)) != MPB_OK)
+        if ((rc = print_table(r, "Problem set", i < r->num_sets ? i : -1,
+                              out)) != MPB_OK)
             return rc;
     }
     return MPB_OK;
@@ -748,12 +969,13 @@ int cmd_report(int argc, char **argv)
         {"stage", required_argument, NULL, 's'},
         {"format", required_argument, NULL, 'f'},
         {"findings", no_argument, NULL, 'F'},
+        {"by", required_argument, NULL, 'b'},
         {"output", required_argument, NULL, 'o'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     report r = {0};
-    const char *experiment = NULL, *path, *output = NULL;
+    const char *experiment = NULL, *path, *output = NULL, *by = NULL;
     char *three = NULL, *views = NULL, *tmp = NULL;
     FILE *out = stdout;
     int64_t experiment_id = 0;
@@ -763,7 +985,7 @@ int cmd_report(int argc, char **argv)
     report_rows_init();
     optind = 1;
     opterr = 0;
-    while ((opt = getopt_long(argc, argv, ":e:s:f:Fo:h", longopts, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":e:s:f:Fb:o:h", longopts, NULL)) != -1) {
         switch (opt) {
         case 'e':
             experiment = optarg;
@@ -787,6 +1009,20 @@ int cmd_report(int argc, char **argv)
         case 'F':
             findings = 1;
             break;
+        case 'b':
+            by = optarg;
+            if (strcmp(by, "scene") == 0)
+                r.by = BY_SCENE;
+            else if (strcmp(by, "set") == 0)
+                r.by = BY_SET;
+            else if (strcmp(by, "all") == 0)
+                r.by = BY_ALL;
+            else {
+                fprintf(stderr, "mpb " CMD ": --by wants set, scene or all, "
+                        "not '%s'\n", by);
+                return MPB_EXIT_USAGE;
+            }
+            break;
         case 'o':
             output = optarg;
             break;
@@ -802,6 +1038,15 @@ int cmd_report(int argc, char **argv)
                 "--format %s (try 'mpb " CMD " --help')\n", formats[fmt].name);
         return MPB_EXIT_USAGE;
     }
+    /* The machine-readable layouts stay per scene (docs/reports.md). */
+    int grouped = fmt == FORMAT_TEXT || strcmp(formats[fmt].name, "html") == 0;
+    if (by != NULL && r.by != BY_SCENE && !grouped) {
+        fprintf(stderr, "mpb " CMD ": --format %s is per scene; --by %s is "
+                "for text and html\n", formats[fmt].name, by);
+        return MPB_EXIT_USAGE;
+    }
+    r.by_default = by == NULL && grouped;
+    r.want_pairs = findings || strcmp(formats[fmt].name, "html") == 0;
     if (argc - optind != 1) {
         fprintf(stderr, "mpb " CMD ": %s (try 'mpb " CMD " --help')\n",
                 argc - optind < 1 ? "which database?"

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "mpb.h"
+#include "pairs.h"
 
 /* What is averaged: the run's times, then the stage metrics of the list
  * (MPB_METRIC_MAP, mpbench/metrics.h), metric id k at FIRST_STORED + k;
@@ -32,7 +33,12 @@ extern const metric_info report_metrics[M_COUNT];
 
 /* SHOW_COUNT: a count of runs, metric the mpb_outcome counted
  * (outcome.h), or COUNT_CLAIMED for every claimed one. */
-typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE, SHOW_CLAIMED, SHOW_COUNT } show;
+/* The problem-set tables' own rows (sets_only): SHOW_RATE_CI the success
+ * rate's 95 % Wilson interval, SHOW_MEDIAN and SHOW_P95 the median and
+ * 95th percentile of tau_t over successful runs, SHOW_MEDIAN_CI the
+ * median's 95 % order-statistic interval. */
+typedef enum { SHOW_MEAN, SHOW_SIGMA, SHOW_RATE, SHOW_CLAIMED, SHOW_COUNT,
+               SHOW_RATE_CI, SHOW_MEDIAN, SHOW_MEDIAN_CI, SHOW_P95 } show;
 #define COUNT_CLAIMED (-1)
 
 typedef struct table_row {
@@ -42,11 +48,12 @@ typedef struct table_row {
     show        what;
     int         optional;   /* printed only if some column has a value */
     int         decimals;   /* fixed decimals, or -1: the general format */
+    int         sets_only;  /* only in a problem set's table (--by set) */
 } table_row;
 
 /* The paper's rows, in its order, then the list's other metrics;
  * report_rows_init() fills them (once; later calls do nothing). */
-#define REPORT_MAX_ROWS (2 * M_COUNT + 6)
+#define REPORT_MAX_ROWS (2 * M_COUNT + 10)
 extern table_row report_rows[REPORT_MAX_ROWS];
 extern int report_num_rows;
 void report_rows_init(void);
@@ -66,6 +73,11 @@ typedef struct column {
                                    finished run the daemon verified;
                                    M_MEM: every finished run whose
                                    planner reported its memory */
+    int         in_set;         /* a problem set's column (or all of
+                                   them): times below, the sets_only rows */
+    const double *times;        /* then: tau_t of the successful runs,
+                                   sorted */
+    long        ntimes;
 } column;
 
 typedef struct config_ref {
@@ -78,7 +90,17 @@ typedef struct scene_ref {
     int64_t id;
     char   *name;
     int     unfinished;         /* runs not done yet */
+    int     set;                /* index into sets (tool_problem_set()) */
 } scene_ref;
+
+/* What the tables are one per (--by). */
+typedef enum { BY_SCENE, BY_SET, BY_ALL } report_by;
+
+/* Samples grown as runs come. */
+typedef struct report_samples {
+    double *v;
+    long    n, cap;
+} report_samples;
 
 typedef struct query_ref {
     int64_t id;
@@ -109,6 +131,18 @@ typedef struct report {
                                    missing), views/ beside it; NULL when
                                    the page goes to stdout */
     const char *three_js;       /* three.js's source, for those views */
+    report_by   by;
+    int         by_default;     /* no --by: chosen once the scenes are
+                                   read */
+    char      **sets;           /* problem sets' names, in order of
+                                   their first scene */
+    int         num_sets;
+    report_samples *times;      /* by set or all: [(set) * num_configs +
+                                   config], set num_sets: all problems;
+                                   tau_t of successful runs, sorted */
+    int         want_pairs;     /* fill pairs (--findings, html) */
+    pairs_data  pairs;          /* the runs per configuration and query,
+                                   query_set the query's set */
     int         nomem;
 } report;
 
@@ -138,11 +172,31 @@ int report_sigma_single(const mpb_grouped *g);
 /* The value a row shows for a column; NaN when there is nothing. */
 double report_row_value(const table_row *tr, const column *c);
 
+/* The interval a SHOW_RATE_CI or SHOW_MEDIAN_CI row shows for a column,
+ * into *lo and *hi; 1, or 0 (both NaN) when there is none: no run, or
+ * too few for a median's 95 % interval (mpb_median_interval()). */
+int report_row_interval(const table_row *tr, const column *c, double *lo,
+                        double *hi);
+
 /*
  * Fold the cells of scene si into one column per configuration:
  * cols[num_configs], filled in. Returns the scene's finished runs.
  */
 long report_scene_columns(const report *r, int si, column *cols);
+
+/*
+ * The same of problem set set (-1: every problem), with its times and
+ * sets_only rows. Returns the set's finished runs; *unfinished (if not
+ * NULL) gets its runs not done yet.
+ */
+long report_set_columns(const report *r, int set, column *cols,
+                        int *unfinished);
+
+/* The name of set (-1: "all problems"). */
+const char *report_set_name(const report *r, int set);
+
+/* How many scenes of r are in set. */
+int report_set_scenes(const report *r, int set);
 
 #define CELL_TEXT 32
 
@@ -174,6 +228,12 @@ int report_write_html(const report *r, FILE *out);   /* report_html.c */
 /* `--findings`: what the tables say, and whether the paper's qualitative
  * findings hold (report_findings.c). */
 int report_write_findings(const report *r, FILE *out);
+
+/* Its paired tests (report_paired.c): per problem set and approach, the
+ * fastest and the best-path configuration where the signed-rank test
+ * says so at 5 %, Holm-adjusted, else "no significant difference".
+ * Needs r->want_pairs. MPB_OK or MPB_ENOMEM. */
+int report_write_paired(const report *r, FILE *out);
 
 /* The depth of refused paths per configuration, text or markdown
  * (report_depth.c); nothing when no run was refused for a collision. */

@@ -389,6 +389,16 @@ int report_write_findings(const report *r, FILE *out)
 {
     if (r->num_configs == 0 || r->num_scenes == 0)
         return MPB_OK;
+    /* By problem set, the tests' findings; the means' sentences per
+     * scene and the paper's findings (checked scene by scene) with --by
+     * scene. */
+    if (r->by != BY_SCENE) {
+        int rc = report_write_paired(r, out);
+        if (rc == MPB_OK)
+            fputs("\nPer scene, and the paper's findings: mpb report "
+                  "--by scene --findings.\n", out);
+        return rc;
+    }
     scene_summary *sums = calloc((size_t)r->num_scenes, sizeof *sums);
     column *cols = calloc((size_t)r->num_scenes * (size_t)r->num_configs,
                           sizeof *cols);
@@ -412,5 +422,5 @@ int report_write_findings(const report *r, FILE *out)
     check_hardest(r, sums, out);
     free(cols);
     free(sums);
-    return MPB_OK;
+    return report_write_paired(r, out);
 }

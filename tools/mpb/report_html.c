@@ -1,9 +1,13 @@
 /*
  * report_html.c - `mpb report --format html`: an experiment as one
- * self-contained HTML page: the paper's tables per scene (the numbers of
- * the text report), what they say (--findings' text), the plots of `mpb
- * plot` inlined as SVG, and per scene the runs that are no success, each
- * linked to its `mpb view` page (views/run-ID.html beside the report).
+ * self-contained HTML page. At the top the table over all problems, the
+ * success-against-budget curves (drawn here as SVG) and the comparison
+ * matrix of `mpb compare`; then a table per problem set (--by set); then
+ * per scene, folded away when there are sets: the paper's tables (the
+ * numbers of the text report), the plots of `mpb plot` inlined as SVG,
+ * and the runs that are no success, each linked to its `mpb view` page
+ * (views/run-ID.html beside the report); last what they say (--findings'
+ * text).
  * Written to a file (-o), the report writes those pages too, with the
  * view code; written to stdout, it says how to make them.
  */
@@ -31,7 +35,10 @@ static const char STYLE[] =
     "collapse;margin:8px 0}th,td{padding:3px 10px;border-bottom:1px solid "
     "#d5dae3;text-align:right}th:first-child,td:first-child{text-align:left}"
     "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;white-space:pre-wrap;"
-    "overflow:auto}.note{color:#5b6579}.plots{display:grid;grid-template-columns:"
+    "overflow:auto}.note{color:#5b6579}.budget{display:flex;flex-wrap:wrap;"
+    "gap:8px}.budget figure{margin:0}.budget figcaption{text-align:center;font-weight:600}td.win{background:#d9f2e3}td.lose{"
+    "background:#f9dede}details>summary{cursor:pointer;font-weight:600;"
+    "margin:10px 0}.plots{display:grid;grid-template-columns:"
     "1fr 1fr;gap:8px}.plots svg{max-width:100%;height:auto;"
     "display:block;margin:8px 0}\n";
 
@@ -39,7 +46,8 @@ static const char STYLE[] =
 
 /* ---- the tables ---------------------------------------------------------- */
 
-static int write_table(const report *r, int si, FILE *out)
+/* The table of scene si, or (scene 0) of problem set si (-1: all). */
+static int write_table(const report *r, int scene, int si, FILE *out)
 {
     int nc = r->num_configs;
     column *cols = calloc((size_t)nc + 1, sizeof *cols);
@@ -52,12 +60,19 @@ static int write_table(const report *r, int si, FILE *out)
         free(visible);
         return MPB_ENOMEM;
     }
-    long finished = report_scene_columns(r, si, cols);
+    int unfinished;
+    long finished = scene ? report_scene_columns(r, si, cols)
+                          : report_set_columns(r, si, cols, &unfinished);
+    if (scene)
+        unfinished = r->scenes[si].unfinished;
     report_cells(r, cols, text, visible);
     fprintf(out, "<p>%ld finished run%s", finished, finished == 1 ? "" : "s");
-    if (r->scenes[si].unfinished > 0)
+    if (!scene)
+        fprintf(out, " on %d scene%s", report_set_scenes(r, si),
+                report_set_scenes(r, si) == 1 ? "" : "s");
+    if (unfinished > 0)
         fprintf(out, "; <b>%d more not finished yet, not counted here</b>",
-                r->scenes[si].unfinished);
+                unfinished);
     fputs(".</p>\n<table><tr><th>Metric</th>", out);
     for (int c = 0; c < nc; c++) {
         fputs("<th>", out);
@@ -381,6 +396,94 @@ static int write_failed(failed *f, int si)
     return rc;
 }
 
+/* ---- the top: all problems, the budget curves, the comparison matrix ------ */
+
+/* The time ratios row/column of every pair on all problems, marked where
+ * the Holm-adjusted signed-rank test says so at 5 % (mpb compare). */
+static int write_matrix(const report *r_, FILE *out)
+{
+    report *r = (report *)r_;   /* pairs_all() sorts samples in place */
+    int nc = r->num_configs;
+    pairs_pair *pairs = NULL;
+    if (nc < 2 || r->pairs.cells == NULL)
+        return MPB_OK;
+    int rc = pairs_all(&r->pairs, -1, &pairs);
+    if (rc != MPB_OK)
+        return rc;
+    fputs("<h2>Comparison matrix</h2>\n<p class=\"note\">Median over the "
+          "problems either solved of the per-problem time ratio row/column "
+          "(a run that is no success counts at the time limit); * and the "
+          "colour where the Wilcoxon signed-rank test, Holm-adjusted over "
+          "every pair, says so at 5 %. <code>mpb compare</code> gives the "
+          "intervals and path lengths.</p>\n<table class=\"matrix\"><tr><th>"
+          "</th>", out);
+    for (int b = 0; b < nc; b++) {
+        fputs("<th>", out);
+        H(r->configs[b].name);
+        fputs("</th>", out);
+    }
+    fputs("</tr>\n", out);
+    for (int a = 0; a < nc; a++) {
+        fputs("<tr><td>", out);
+        H(r->configs[a].name);
+        fputs("</td>", out);
+        for (int b = 0; b < nc; b++) {
+            if (a == b) {
+                fputs("<td>-</td>", out);
+                continue;
+            }
+            const pairs_pair *q = &pairs[pairs_index(nc, a, b)];
+            if (q->time.n == 0) {
+                fputs("<td>n/a</td>", out);
+                continue;
+            }
+            double ratio = a < b ? q->time.median : 1.0 / q->time.median;
+            int v = pairs_verdict(&q->time) * (a < b ? 1 : -1);
+            fprintf(out, "<td%s title=\"%d problems, adjusted p = %.2g\">"
+                    "%.3g%s</td>", v < 0 ? " class=\"win\"" : v > 0 ?
+                    " class=\"lose\"" : "", q->time.n, q->time.p_holm, ratio,
+                    v ? "*" : "");
+        }
+        fputs("</tr>\n", out);
+    }
+    fputs("</table>\n", out);
+    free(pairs);
+    return MPB_OK;
+}
+
+/* The success-against-budget curves: over all problems, then per set. */
+static int write_budget(const report *r, mpb_store *s, FILE *out)
+{
+    plot_budget *b = NULL;
+    int rc = plot_budget_read(s, r->experiment_id, 0, &b);
+    if (rc != MPB_OK)
+        return rc;
+    fputs("<h2>Success against the time budget</h2>\n<p class=\"note\">Per "
+          "configuration, the fraction of its runs verified successful "
+          "within t seconds (solid) and claimed by the planner within t "
+          "(dotted), from the stored times.</p>\n<div class=\"budget\">\n",
+          out);
+    int n = plot_budget_num_sets(b);
+    for (int k = 0; k <= n; k++) {  /* all problems first */
+        int i = k == 0 ? n : k - 1;
+        if (plot_budget_drawn(b, i))
+            plot_budget_svg(out, b, i);
+    }
+    fputs("</div>\n", out);
+    plot_budget_free(b);
+    return MPB_OK;
+}
+
+static int write_overview(const report *r, mpb_store *s, FILE *out)
+{
+    int rc;
+    fputs("<h2>All problems</h2>\n", out);
+    if ((rc = write_table(r, 0, -1, out)) != MPB_OK ||
+        (rc = write_budget(r, s, out)) != MPB_OK)
+        return rc;
+    return write_matrix(r, out);
+}
+
 /* ---- the page -------------------------------------------------------------- */
 
 int report_write_html(const report *r, FILE *out)
@@ -432,14 +535,28 @@ int report_write_html(const report *r, FILE *out)
     }
     for (int si = 0; si < r->num_scenes && rc == MPB_OK; si++)
         rc = mpb_store_queries(f.store, r->scenes[si].id, on_query_name, &f);
+    if (rc == MPB_OK)
+        rc = write_overview(r, f.store, out);
+    for (int set = 0; r->by == BY_SET && set < r->num_sets && rc == MPB_OK;
+         set++) {
+        fputs("<h2>Problem set ", out);
+        H(r->sets[set]);
+        fputs("</h2>\n", out);
+        rc = write_table(r, 0, set, out);
+    }
+    /* The scenes' detail: folded away under the sets. */
     for (int si = 0; si < r->num_scenes && rc == MPB_OK; si++) {
-        fputs("<h2>Scene ", out);
+        fprintf(out, "<details%s><summary>scene ",
+                r->by == BY_SCENE ? " open" : "");
+        H(r->scenes[si].name);
+        fputs("</summary>\n<h2>Scene ", out);
         H(r->scenes[si].name);
         fputs("</h2>\n", out);
-        if ((rc = write_table(r, si, out)) == MPB_OK)
+        if ((rc = write_table(r, 1, si, out)) == MPB_OK)
             write_plots(r, si, &p, out);
         if (rc == MPB_OK)
             rc = write_failed(&f, si);
+        fputs("</details>\n", out);
     }
     if (rc == MPB_OK && p.why[0]) {
         fputs("<p class=\"note\">No plots: ", out);

@@ -90,3 +90,18 @@ const char *tool_problem_set(const mpb_scene_row *scene)
 {
     return scene->problem_set != NULL ? scene->problem_set : scene->name;
 }
+
+int tool_set_index(char ***sets, int *n, const mpb_scene_row *scene)
+{
+    const char *set = tool_problem_set(scene);
+    for (int i = 0; i < *n; i++)
+        if (strcmp((*sets)[i], set) == 0)
+            return i;
+    char **grown = realloc(*sets, (size_t)(*n + 1) * sizeof *grown);
+    if (grown == NULL)
+        return -1;
+    *sets = grown;
+    if ((grown[*n] = strdup(set)) == NULL)
+        return -1;
+    return (*n)++;
+}

@@ -1057,7 +1057,8 @@ static void help_is_clear(void **state)
     assert_int_equal(o.status, 0);
     assert_non_null(strstr(o.text, "usage: mpb report [--experiment ID] "
                                    "[--stage NAME] [--format FORMAT]\n"
-                                   "                  [--findings] [-o FILE] DB\n"));
+                                   "                  [--by set|scene|all] "
+                                   "[--findings] [-o FILE] DB\n"));
     assert_non_null(strstr(o.text, "  -o, --output FILE    write the report to "
                                    "FILE"));
     assert_non_null(strstr(o.text, "views/run-ID.html"));

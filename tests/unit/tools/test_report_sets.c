@@ -1,0 +1,270 @@
+/* test_report_sets.c - `mpb report` by problem set, run as a user runs
+ * it: the built tool on a database written through the store; its set
+ * tables' intervals and quantiles against values worked out by hand, and
+ * --findings' paired tests naming a configuration only where the
+ * difference is significant.
+ *
+ * Experiment "ten" (time limit 10 s, one run per problem): set s, scenes
+ * s/0001-0010, configurations a/x and b/y. a/x solves problem i (0-9) in
+ * 1 + 0.1 i s; b/y the same, but fails problem 0: one run out of ten.
+ * Experiment "hundred": set t, scenes t/0001-0100; a/x solves problem i
+ * in 0.01 (1 + i % 10) s, b/y in ten times that; paths of 2 rad each. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mpbench/mpbench.h"
+#include "test_tool.h"
+
+static char mpb_tool[4096];
+
+typedef struct fixture {
+    char dir[64];
+    char db[128];
+    int64_t ten, hundred;
+} fixture;
+
+static void finish(mpb_store *s, int64_t run_id, int success, double time,
+                   double length)
+{
+    char uid[32];
+    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
+    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p-1"), MPB_OK);
+    mpb_named m[] = {{"path_length", length}};
+    mpb_stage_record st = {.name = "raw", .valid = success,
+                           .verdict = success ? "valid" : "collision",
+                           .verdict_segment = -1, .num_metrics = 1,
+                           .metrics = m};
+    mpb_run_record rec = {
+        .run_id = run_id, .run_uid = uid, .planner_id = "p-1",
+        .status = success ? "solved" : "timeout",
+        .claimed_success = success, .success = success, .time_total = time,
+        .time_raw = time, .num_stages = 1, .stages = &st,
+        .verify_time = NAN, .memory = NAN,
+    };
+    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+}
+
+#define MAX_PROBLEMS 100
+
+typedef struct ids {
+    int64_t run[2][MAX_PROBLEMS];
+    int64_t cfg[2], query[MAX_PROBLEMS];
+} ids;
+
+static int find_ids(void *ud, const mpb_run_row *row)
+{
+    ids *x = ud;
+    for (int c = 0; c < 2; c++)
+        for (int q = 0; q < MAX_PROBLEMS; q++)
+            if (x->cfg[c] == row->planner_config_id &&
+                x->query[q] == row->query_id)
+                x->run[c][q] = row->id;
+    return 0;
+}
+
+/* An experiment of n problems in set `set`; runs as the top says. */
+static int64_t experiment(mpb_store *s, const char *name, const char *set,
+                          int n)
+{
+    int64_t exp;
+    mpb_experiment_info e = {name, "sets.yaml", "h", "text", 1, 10.0, NULL, 0};
+    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    static ids x;
+    memset(&x, 0, sizeof x);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "a/x", "a", "x", "",
+                                                  &x.cfg[0]), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, exp, "b/y", "b", "y", "",
+                                                  &x.cfg[1]), MPB_OK);
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    for (int q = 0; q < n; q++) {
+        char scene_name[32];
+        snprintf(scene_name, sizeof scene_name, "%s/%04d", set, q + 1);
+        mpb_scene_info sc = {scene_name, "planar", "r", "r", "planar", "h", "s"};
+        int64_t scene;
+        assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
+        mpb_query_info qi = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                             NULL, NULL};
+        assert_int_equal(mpb_store_query_add(s, scene, &qi, &x.query[q]),
+                         MPB_OK);
+        for (int c = 0; c < 2; c++)
+            assert_int_equal(mpb_store_run_add(s, exp, x.cfg[c], x.query[q],
+                                               0, 2 * q + c), MPB_OK);
+    }
+    assert_int_equal(mpb_store_runs_unfinished(s, exp, find_ids, &x), MPB_OK);
+    for (int q = 0; q < n; q++) {
+        if (n == 10) {
+            finish(s, x.run[0][q], 1, 1.0 + 0.1 * q, 2.0);
+            finish(s, x.run[1][q], q != 0, q != 0 ? 1.0 + 0.1 * q : 10.0, 2.0);
+        } else {
+            double t = 0.01 * (1 + q % 10);
+            finish(s, x.run[0][q], 1, t, 2.0);
+            finish(s, x.run[1][q], 1, 10 * t, 2.0);
+        }
+    }
+    return exp;
+}
+
+static int setup(void **state)
+{
+    fixture *f = calloc(1, sizeof *f);
+    test_make_dir(f->dir, sizeof f->dir, "report_sets");
+    snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
+    mpb_store *s;
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    f->ten = experiment(s, "ten", "s", 10);
+    f->hundred = experiment(s, "hundred", "t", 100);
+    mpb_store_close(s);
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    fixture *f = *state;
+    test_remove_dir(f->dir);
+    free(f);
+    return 0;
+}
+
+static void says(const test_output *o, const char *text)
+{
+    if (strstr(o->text, text) == NULL) {
+        fprintf(stderr, "%s", o->text);
+        fail_msg("expected \"%s\" in the output above", text);
+    }
+}
+
+/* The row of label in the output, its cells after the label. */
+static void row_is(const test_output *o, const char *label, const char *a,
+                   const char *b)
+{
+    char want[256];
+    snprintf(want, sizeof want, "\n%-19s", label);
+    const char *at = strstr(o->text, want);
+    if (at == NULL) {
+        fprintf(stderr, "%s", o->text);
+        fail_msg("no row \"%s\"", label);
+    }
+    char ca[64], cb[64];
+    assert_int_equal(sscanf(at + 1 + strlen(label), "%63s %63s", ca, cb), 2);
+    assert_string_equal(ca, a);
+    assert_string_equal(cb, b);
+}
+
+/*
+ * Ten scenes in one set: by set unasked. s_r 100 % and 90 %: Wilson's
+ * intervals 72.2-100.0 and 59.6-98.2. a/x's times 1.0-1.9: median 1.45,
+ * p95 1.8 + 0.55 * 0.1 = 1.855, the median's interval the 2nd and 9th
+ * (coverage 1 - 2 * 11/1024 = 97.9 %; the 3rd and 8th reach 89 %). b/y's
+ * nine: median 1.5, 2nd and 8th of nine (96.1 %).
+ */
+static void a_set_table_with_intervals(void **state)
+{
+    fixture *f = *state;
+    test_output o;
+    test_run(&o, mpb_tool, "stdout", "report -e %lld '%s'",
+             (long long)f->ten, f->db);
+    assert_int_equal(o.status, 0);
+    says(&o, "\nProblem set s (10 scenes) - experiment ten (1), 20 runs\n");
+    assert_null(strstr(o.text, "Scene s/0001"));
+    /* One set: no second table over all problems, the same numbers. */
+    assert_null(strstr(o.text, "All problems"));
+    row_is(&o, "s_r (%)", "100.0", "90.0");
+    row_is(&o, "s_r 95% CI (%)", "72.2-100.0", "59.6-98.2");
+    row_is(&o, "claimed s_r (%)", "100.0", "90.0");
+    row_is(&o, "tau_t (Mean, s)", "1.450", "1.500");
+    row_is(&o, "tau_t (median, s)", "1.450", "1.500");
+    row_is(&o, "tau_t median 95% CI", "1.100-1.800", "1.200-1.800");
+    row_is(&o, "tau_t (p95, s)", "1.855", "1.860");
+}
+
+static void by_scene_is_the_table_of_before(void **state)
+{
+    fixture *f = *state;
+    test_output o;
+    test_run(&o, mpb_tool, "stdout", "report --by scene -e %lld '%s'",
+             (long long)f->ten, f->db);
+    assert_int_equal(o.status, 0);
+    says(&o, "\nScene s/0001 - experiment ten (1), 2 runs\n");
+    says(&o, "\nScene s/0010 - experiment ten (1), 2 runs\n");
+    assert_null(strstr(o.text, "Problem set"));
+    assert_null(strstr(o.text, "tau_t (median, s)"));
+    assert_null(strstr(o.text, "s_r 95% CI"));
+    test_run(&o, mpb_tool, "stdout", "report --by all -e %lld '%s'",
+             (long long)f->ten, f->db);
+    assert_int_equal(o.status, 0);
+    says(&o, "\nAll problems (10 scenes) - experiment ten (1), 20 runs\n");
+    assert_null(strstr(o.text, "Problem set s "));
+}
+
+static void bad_by(void **state)
+{
+    fixture *f = *state;
+    test_output o;
+    test_run(&o, mpb_tool, "stderr", "report --by query '%s'", f->db);
+    assert_int_equal(o.status, 2);
+    assert_string_equal(o.text, "mpb report: --by wants set, scene or all, "
+                                "not 'query'\n");
+    test_run(&o, mpb_tool, "stderr", "report --by set --format csv '%s'",
+             f->db);
+    assert_int_equal(o.status, 2);
+    assert_string_equal(o.text, "mpb report: --format csv is per scene; --by "
+                                "set is for text and html\n");
+}
+
+/* One run out of ten: a single nonzero difference, p = 1. */
+static void one_run_in_ten_is_no_finding(void **state)
+{
+    fixture *f = *state;
+    test_output o;
+    test_run(&o, mpb_tool, "stdout", "report --findings -e %lld '%s'",
+             (long long)f->ten, f->db);
+    assert_int_equal(o.status, 0);
+    says(&o, "\n  s:\n    all configurations, fastest: no significant "
+             "difference\n    all configurations, best paths: no significant "
+             "difference\n");
+    assert_null(strstr(o.text, "fastest: a/x"));
+    assert_null(strstr(o.text, "fastest: b/y"));
+}
+
+/* Ten times as fast on every one of 100 problems: named, beside its
+ * ratio; the same paths: no best. */
+static void ten_times_faster_on_a_hundred_is(void **state)
+{
+    fixture *f = *state;
+    test_output o;
+    test_run(&o, mpb_tool, "stdout", "report --findings -e %lld '%s'",
+             (long long)f->hundred, f->db);
+    assert_int_equal(o.status, 0);
+    says(&o, "\n  t:\n    all configurations, fastest: a/x (time ratio 0.1 "
+             "to b/y on 100 problems, adjusted p = ");
+    says(&o, ")\n    all configurations, best paths: no significant "
+             "difference\n");
+    /* The p value: all 100 log ratios tie, W+ = 0 against a mean of 2525
+     * (normal approximation): far below 1e-10. */
+    const char *p = strstr(o.text, "adjusted p = ");
+    assert_non_null(p);
+    double v = strtod(p + strlen("adjusted p = "), NULL);
+    assert_true(v > 0 && v < 1e-10);
+}
+
+int main(void)
+{
+    if (test_built_program("tools/mpb", mpb_tool, sizeof mpb_tool) != 0)
+        return 1;
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(a_set_table_with_intervals),
+        cmocka_unit_test(by_scene_is_the_table_of_before),
+        cmocka_unit_test(bad_by),
+        cmocka_unit_test(one_run_in_ten_is_no_finding),
+        cmocka_unit_test(ten_times_faster_on_a_hundred_is),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
