@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "experiment_load.h"
+#include "mpbench/scene.h"
 
 /*
  * A robot or scene: inline `text:` or a `file:` relative to the experiment
@@ -59,6 +60,17 @@ int mpbd_load_model(mpbd_loader *L, yaml_node_t *m, const char *what,
     if (strlen(*text) != len)
         return fail_at(L, file, "%s: not a text file (a NUL byte at offset "
                        "%zu)", path, strlen(*text));
+    /* A scene's octree and cloud files, read against its folder: the
+       text that travels holds their data (scene.h). */
+    if (strcmp(what, "robot") != 0 && strcmp(*format, "moveit-scene") == 0) {
+        char dir[4096], why[512], *whole;
+        const char *slash = strrchr(path, '/');
+        snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path + 1) : 0, path);
+        if (mpb_scene_resolve(*text, dir, &whole, why, sizeof why) != MPB_OK)
+            return fail_at(L, file, "%s: %s", path, why);
+        free(*text);
+        *text = whole;
+    }
     return 0;
 }
 
