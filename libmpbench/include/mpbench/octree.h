@@ -35,7 +35,7 @@ extern "C" {
 #define MPB_OCTREE_MIN_RESOLUTION 1e-4
 #define MPB_OCTREE_MAX_RESOLUTION 1.0
 /* The most occupied cells a tree may hold (after pruning). */
-#define MPB_OCTREE_MAX_CELLS 2000000
+#define MPB_OCTREE_MAX_CELLS 500000
 
 typedef struct mpb_octree mpb_octree;
 

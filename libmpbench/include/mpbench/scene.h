@@ -55,6 +55,7 @@
 #include <stddef.h>
 
 #include "mpbench/collision.h"
+#include "mpbench/octree.h"
 #include "mpbench/pose.h"
 
 #ifdef __cplusplus
@@ -144,6 +145,15 @@ void mpb_scene_free(mpb_scene *s);
  */
 int mpb_scene_resolve(const char *text, const char *dir, char **out,
                       char *err, size_t errlen);
+
+/*
+ * The octree line (above) of tree o as object `id` (one word) at pose
+ * x y z qx qy qz qw (NULL: the identity), then its binary data in base64,
+ * into *out (the caller frees it): text to put after a scene's '.'. The
+ * same tree gives the same text. MPB_OK; MPB_EINVAL; MPB_ENOMEM.
+ */
+int mpb_scene_octree_text(mpb_octree *o, const char *id, const double pose[7],
+                          char **out);
 
 /* The name line (trimmed); owned by the scene. */
 const char *mpb_scene_name(const mpb_scene *s);

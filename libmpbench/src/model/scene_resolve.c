@@ -90,23 +90,26 @@ static int is(const word *w, const char *s)
     return (size_t)w->len == strlen(s) && memcmp(w->p, s, strlen(s)) == 0;
 }
 
-/* The pose words (none: identity) as text "x y z qx qy qz qw". */
-static int pose_text(const word *w, int n, char *out, size_t len)
+/* The pose words (none: identity) as 7 numbers x y z qx qy qz qw. */
+static int pose_vals(const word *w, int n, double v[7])
 {
+    static const double id[7] = {0, 0, 0, 0, 0, 0, 1};
     if (n == 0) {
-        snprintf(out, len, "0 0 0 0 0 0 1");
+        memcpy(v, id, sizeof id);
         return 0;
     }
     if (n != 7)
         return -1;
-    size_t at = 0;
-    for (int i = 0; i < 7; i++) {
-        double v;
-        if (!mpb__number(w[i].p, w[i].len, &v))
+    for (int i = 0; i < 7; i++)
+        if (!mpb__number(w[i].p, w[i].len, &v[i]))
             return -1;
-        at += (size_t)snprintf(out + at, len - at, i ? " %.17g" : "%.17g", v);
-    }
     return 0;
+}
+
+static void pose_text(const double v[7], char *out, size_t len)
+{
+    snprintf(out, len, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g", v[0], v[1], v[2],
+             v[3], v[4], v[5], v[6]);
 }
 
 static void path_of(const word *w, const char *dir, char *out, size_t len)
@@ -118,8 +121,13 @@ static void path_of(const word *w, const char *dir, char *out, size_t len)
                  w->len, w->p);
 }
 
-static int octree_lines(buf *b, const word *id, mpb_octree *o, const char *pose)
+int mpb_scene_octree_text(mpb_octree *o, const char *id, const double pose[7],
+                          char **out)
 {
+    static const double identity[7] = {0, 0, 0, 0, 0, 0, 1};
+    if (!o || !id || !*id || strpbrk(id, " \t\r\n") || !out)
+        return MPB_EINVAL;
+    *out = NULL;
     unsigned char *data;
     size_t n;
     int rc = mpb_octree_write(o, 0, &data, &n);
@@ -130,8 +138,27 @@ static int octree_lines(buf *b, const word *id, mpb_octree *o, const char *pose)
     free(data);
     if (rc != MPB_OK)
         return rc;
-    putf(b, "octree %.*s binary %.17g %zu %s\n", id->len, id->p,
-         mpb_octree_resolution(o), n, pose);
+    char p[256];
+    pose_text(pose ? pose : identity, p, sizeof p);
+    buf b = {0};
+    putf(&b, "octree %s binary %.17g %zu %s\n", id, mpb_octree_resolution(o), n, p);
+    put(&b, text, strlen(text));
+    free(text);
+    if (b.oom) {
+        free(b.s);
+        return MPB_ENOMEM;
+    }
+    *out = b.s;
+    return MPB_OK;
+}
+
+static int octree_lines(buf *b, const word *id, mpb_octree *o, const double pose[7])
+{
+    char name[256], *text;
+    snprintf(name, sizeof name, "%.*s", id->len, id->p);
+    int rc = mpb_scene_octree_text(o, name, pose, &text);
+    if (rc != MPB_OK)
+        return rc;
     put(b, text, strlen(text));
     free(text);
     return MPB_OK;
@@ -141,7 +168,8 @@ static int octree_lines(buf *b, const word *id, mpb_octree *o, const char *pose)
 static int resolve_line(buf *b, const word *w, int n, const char *dir, int line,
                         char *err, size_t errlen)
 {
-    char path[4096], pose[256], why[400];
+    char path[4096], why[400];
+    double pose[7];
     int cloud = is(&w[0], "cloud");
     int fixed = cloud ? 6 : 4;      /* words before the pose */
     if (n < fixed || (n != fixed && n != fixed + 7) ||
@@ -153,7 +181,7 @@ static int resolve_line(buf *b, const word *w, int n, const char *dir, int line,
                        "[<x y z> <qx qy qz qw>]", line);
         return MPB_EPARSE;
     }
-    if (pose_text(w + fixed, n - fixed, pose, sizeof pose) != 0) {
+    if (pose_vals(w + fixed, n - fixed, pose) != 0) {
         mpb__set_err(err, errlen, "scene line %d: %.*s pose needs <x y z> <qx qy qz qw>",
                      line, w[0].len, w[0].p);
         return MPB_EPARSE;
@@ -186,7 +214,9 @@ static int resolve_line(buf *b, const word *w, int n, const char *dir, int line,
             rc = mpb_cloud_load_points(path, MPB_SCENE_MAX_SPHERES, &xyz, &np, why,
                                        sizeof why);
             if (rc == MPB_OK) {
-                putf(b, "spheres %.*s %.17g %ld %s\n", w[1].len, w[1].p, size, np, pose);
+                char pt[256];
+                pose_text(pose, pt, sizeof pt);
+                putf(b, "spheres %.*s %.17g %ld %s\n", w[1].len, w[1].p, size, np, pt);
                 for (long i = 0; i < np; i++)
                     putf(b, "%.9g %.9g %.9g\n", xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
                 free(xyz);
