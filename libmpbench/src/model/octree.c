@@ -125,7 +125,8 @@ static int normalise(mpb_octree *o)
     }
     if (o->normal)
         return o->num_cells > MPB_OCTREE_MAX_CELLS ? MPB_EPARSE : MPB_OK;
-    qsort(o->cells, o->num_cells, sizeof *o->cells, by_code);
+    if (o->num_cells > 1)
+        qsort(o->cells, o->num_cells, sizeof *o->cells, by_code);
     /* a stack over the cells array itself: n <= i always */
     size_t n = 0;
     for (size_t i = 0; i < o->num_cells; i++) {
