@@ -43,7 +43,17 @@ int mpbd_load_model(mpbd_loader *L, yaml_node_t *m, const char *what,
         if (scalar(inline_text) == NULL)
             return fail_at(L, inline_text, "%s text must be a string", what);
         *text = dup_str(L, inline_text, scalar(inline_text));
-        return *text ? 0 : -1;
+        if (*text == NULL)
+            return -1;
+        /* its octree and cloud files beside the experiment file */
+        if (strcmp(what, "robot") != 0 && strcmp(*format, "moveit-scene") == 0) {
+            char why[512], *whole;
+            if (mpb_scene_resolve(*text, L->dir, &whole, why, sizeof why) != MPB_OK)
+                return fail_at(L, inline_text, "%s", why);
+            free(*text);
+            *text = whole;
+        }
+        return 0;
     }
     if (scalar(file) == NULL || scalar(file)[0] == '\0')
         return fail_at(L, file, "%s file must be a path", what);

@@ -574,6 +574,13 @@ static void a_scene_file_names_its_octree(void **state)
     snprintf(text, sizeof text, "%s", OCT_EXPERIMENT("0"));
     assert_null(load_text(text));
     assert_non_null(strstr(err, "start is in collision"));
+    /* inline text names its octree beside the experiment file */
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n"
+                          "robot: {format: urdf, file: slide.urdf, joints: [j]}\n"
+                          "scenes: [{name: s, format: moveit-scene, text: "
+                          "\"t\\n.\\noctree cells file box.bt 0 0 -0.4 0 0 0 1\\n\",\n"
+                          "  queries: [{name: q, start: [0], goal: [1.5]}]}]\n" PLANNERS));
+    assert_non_null(strstr(err, "start is in collision"));
     /* a missing octree file: at the scene's file key, both files named */
     f = fopen(path, "w");
     fputs("oct\n.\noctree cells file gone.bt\n", f);
