@@ -75,6 +75,16 @@ int mpb_octree_num_cells(mpb_octree *o);
 int mpb_octree_cell(mpb_octree *o, int i, double center[3], double *side);
 
 /*
+ * The occupied cells as fewer axis-aligned boxes, their union exactly the
+ * cells' (runs of cells merged along x, then y, then z where their other
+ * sides match): *boxes (6 doubles a box, lower then upper corner, the
+ * tree's frame; the caller frees it) and *n. MPB_OK; MPB_EINVAL; a code
+ * of mpb_octree_num_cells(); MPB_ENOMEM. The same cells give the same
+ * boxes.
+ */
+int mpb_octree_boxes(mpb_octree *o, double **boxes, int *n);
+
+/*
  * Read OctoMap data of `len` bytes at resolution `resolution`: the
  * binary stream (binary 1: what OcTree::writeBinaryData() writes, the
  * body of a .bt file, MoveIt's data with binary: true) or the full one

@@ -39,8 +39,8 @@
  *     <the OctoMap data (octree.h), base64, over any number of lines>
  *     spheres <id> <radius> <count> <x y z> <qx qy qz qw>
  *     <count points x y z>
- * The octree's object has a box shape per occupied cell (kind
- * MPB_SCENE_OCTREE); the spheres' a sphere per point (MPB_SCENE_SPHERES).
+ * The octree's object has box shapes whose union is its occupied cells
+ * (mpb_octree_boxes(): cells side by side merged; kind MPB_SCENE_OCTREE); the spheres' a sphere per point (MPB_SCENE_SPHERES).
  * A scene file may instead name files, which mpb_scene_resolve() (and so
  * mpb_scene_load()) turns into the lines above:
  *     octree <id> file <path.bt|path.ot> [<x y z> <qx qy qz qw>]
@@ -102,7 +102,7 @@ typedef struct mpb_scene_object {
 /* What an object was written as. */
 typedef enum mpb_scene_kind {
     MPB_SCENE_SHAPES = 0,   /* a '*' object: primitives and meshes */
-    MPB_SCENE_OCTREE = 1,   /* an octree line: a box per occupied cell */
+    MPB_SCENE_OCTREE = 1,   /* an octree line: boxes, the occupied cells */
     MPB_SCENE_SPHERES = 2   /* a spheres line: a sphere per point */
 } mpb_scene_kind;
 

@@ -667,15 +667,18 @@ static int parse_octree(parser *ps, mpb_scene *s, const tok *t, int n, int line)
     sobj *o = NULL;
     if (rc == MPB_OK)
         rc = new_object(ps, s, &t[1], line, &o);
-    int cells = rc == MPB_OK ? mpb_octree_num_cells(oc) : 0;
-    if (cells < 0)
-        rc = cells;
-    for (int i = 0; rc == MPB_OK && i < cells; i++) {
-        double c[3], side;
-        mpb_octree_cell(oc, i, c, &side);
-        mpb_geometry g = {.type = MPB_SHAPE_BOX, .dims = {side, side, side, 0}};
+    double *boxes = NULL;
+    int nb = 0;
+    if (rc == MPB_OK)
+        rc = mpb_octree_boxes(oc, &boxes, &nb);
+    for (int i = 0; rc == MPB_OK && i < nb; i++) {
+        const double *b = boxes + 6 * i;
+        double c[3] = {(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2};
+        mpb_geometry g = {.type = MPB_SHAPE_BOX,
+                          .dims = {b[3] - b[0], b[4] - b[1], b[5] - b[2], 0}};
         rc = add_shape(o, &g, c, line);
     }
+    free(boxes);
     mpb_octree_free(oc);
     if (o) {
         o->pub.pose = pose;

@@ -170,8 +170,23 @@ static void test_box_surface_collision(void **state)
     const mpb_scene_object *ob = mpb_scene_object_at(s, 0);
     assert_int_equal(ob->kind, MPB_SCENE_OCTREE);
     assert_true(ob->resolution == 0.01);
-    assert_true(ob->num_shapes > 4000);
-    assert_int_equal(ob->shapes[0].geometry.type, MPB_SHAPE_BOX);
+    /* the boxes are the cells: the same volume, far fewer shapes */
+    mpb_octree *tree = test_box_octree();
+    int cells = mpb_octree_num_cells(tree);
+    double vc = 0, vb = 0;
+    for (int i = 0; i < cells; i++) {
+        double c[3], side;
+        assert_int_equal(mpb_octree_cell(tree, i, c, &side), MPB_OK);
+        vc += side * side * side;
+    }
+    for (int i = 0; i < ob->num_shapes; i++) {
+        const double *d = ob->shapes[i].geometry.dims;
+        assert_int_equal(ob->shapes[i].geometry.type, MPB_SHAPE_BOX);
+        vb += d[0] * d[1] * d[2];
+    }
+    assert_true(cells > 4000 && ob->num_shapes * 10 < cells);
+    assert_true(fabs(vb - vc) < 1e-9 * vc);
+    mpb_octree_free(tree);
     mpb_scene_free(s);
     /* on each face (and 8 mm inside or outside it): both collide */
     unsigned seed = 7;
