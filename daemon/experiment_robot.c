@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "experiment_load.h"
+#include "mpbench/scene.h"
 
 /*
  * A robot or scene: inline `text:` or a `file:` relative to the experiment
@@ -42,7 +43,17 @@ int mpbd_load_model(mpbd_loader *L, yaml_node_t *m, const char *what,
         if (scalar(inline_text) == NULL)
             return fail_at(L, inline_text, "%s text must be a string", what);
         *text = dup_str(L, inline_text, scalar(inline_text));
-        return *text ? 0 : -1;
+        if (*text == NULL)
+            return -1;
+        /* its octree and cloud files beside the experiment file */
+        if (strcmp(what, "robot") != 0 && strcmp(*format, "moveit-scene") == 0) {
+            char why[512], *whole;
+            if (mpb_scene_resolve(*text, L->dir, &whole, why, sizeof why) != MPB_OK)
+                return fail_at(L, inline_text, "%s", why);
+            free(*text);
+            *text = whole;
+        }
+        return 0;
     }
     if (scalar(file) == NULL || scalar(file)[0] == '\0')
         return fail_at(L, file, "%s file must be a path", what);
@@ -59,6 +70,17 @@ int mpbd_load_model(mpbd_loader *L, yaml_node_t *m, const char *what,
     if (strlen(*text) != len)
         return fail_at(L, file, "%s: not a text file (a NUL byte at offset "
                        "%zu)", path, strlen(*text));
+    /* A scene's octree and cloud files, read against its folder: the
+       text that travels holds their data (scene.h). */
+    if (strcmp(what, "robot") != 0 && strcmp(*format, "moveit-scene") == 0) {
+        char dir[4096], why[512], *whole;
+        const char *slash = strrchr(path, '/');
+        snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path + 1) : 0, path);
+        if (mpb_scene_resolve(*text, dir, &whole, why, sizeof why) != MPB_OK)
+            return fail_at(L, file, "%s: %s", path, why);
+        free(*text);
+        *text = whole;
+    }
     return 0;
 }
 

@@ -15,7 +15,9 @@
 #include "moveit.h"
 #include "mpbench/pose.h"
 #include "mpbench/proto.h"
+#include "core/base64.h"
 #include "core/mathconst.h"
+#include "mpbench/octree.h"
 
 
 /* One file being read (yamldoc.h). */
@@ -492,6 +494,86 @@ static int acm(reader *R, yaml_node_t *m, mpbd_moveit_scene *s)
     return 0;
 }
 
+/*
+ * world.octomap (moveit_msgs/OctomapWithPose): its origin and its
+ * octomap_msgs/Octomap (binary or full data of an "OcTree", resolution,
+ * data as int8 values) as the scene's octree line (scene.h), after the
+ * '.'; absent or without data: nothing. The data is read here too, so
+ * that a fault is named at its place in the YAML file.
+ */
+static int octomap(reader *R, yaml_node_t *world, text *t)
+{
+    yaml_node_t *ow = get(R, world, "octomap");
+    if (ow == NULL)
+        return 0;
+    if (ow->type != YAML_MAPPING_NODE)
+        return fail_at(R, ow, "octomap must be a mapping of origin and octomap");
+    yaml_node_t *om = get(R, ow, "octomap");
+    if (om == NULL || om->type != YAML_MAPPING_NODE)
+        return fail_at(R, om ? om : ow, "octomap needs an 'octomap' mapping (binary, "
+                       "id, resolution, data)");
+    yaml_node_t *data = get(R, om, "data");
+    if (data == NULL || count(data) == 0)
+        return 0;
+    if (data->type != YAML_SEQUENCE_NODE)
+        return fail_at(R, data, "octomap data must be a list of int8 values");
+    double p[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, res;
+    yaml_node_t *origin = get(R, ow, "origin");
+    if (origin != NULL && pose(R, origin, p, q) != 0)
+        return -1;
+    yaml_node_t *id = get(R, om, "id"), *bin = get(R, om, "binary");
+    if (id != NULL && (scalar(id) == NULL || strcmp(scalar(id), "OcTree") != 0))
+        return fail_at(R, id, "octomap id '%.40s' is not supported (only OcTree)",
+                       scalar(id) ? scalar(id) : "");
+    int binary = 1;
+    if (bin != NULL) {
+        const char *b = scalar(bin);
+        if (b == NULL || (strcmp(b, "true") != 0 && strcmp(b, "false") != 0))
+            return fail_at(R, bin, "octomap binary must be true or false");
+        binary = strcmp(b, "true") == 0;
+    }
+    yaml_node_t *rn = get(R, om, "resolution");
+    if (number(R, rn, "octomap resolution", &res) != 0)
+        return -1;
+    if (!(res >= MPB_OCTREE_MIN_RESOLUTION && res <= MPB_OCTREE_MAX_RESOLUTION))
+        return fail_at(R, rn, "octomap resolution %g is outside %g .. %g m", res,
+                       MPB_OCTREE_MIN_RESOLUTION, MPB_OCTREE_MAX_RESOLUTION);
+    int n = count(data);
+    unsigned char *bytes = malloc((size_t)n);
+    if (bytes == NULL)
+        return fail_at(R, data, "out of memory");
+    for (int i = 0; i < n; i++) {
+        yaml_node_t *v = item(R, data, i);
+        double x;
+        if (number(R, v, "octomap data value", &x) != 0 || x != floor(x) ||
+            x < -128 || x > 255) {
+            free(bytes);
+            return R->failed ? -1 : fail_at(R, v, "octomap data value %d is not an "
+                                            "int8", i);
+        }
+        bytes[i] = (unsigned char)(int)x;
+    }
+    char why[300];
+    mpb_octree *o = NULL;
+    if (mpb_octree_read_data(bytes, (size_t)n, res, binary, "octomap data", &o, why,
+                             sizeof why) != MPB_OK) {
+        free(bytes);
+        return fail_at(R, data, "%s", why);
+    }
+    mpb_octree_free(o);
+    char *b64 = NULL;
+    if (mpb__base64_encode(bytes, (size_t)n, &b64, NULL) != MPB_OK) {
+        free(bytes);
+        return fail_at(R, data, "out of memory");
+    }
+    free(bytes);
+    add(t, "octree octomap %s %.17g %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n",
+        binary ? "binary" : "full", res, n, p[0], p[1], p[2], q[0], q[1], q[2], q[3]);
+    add(t, "%s", b64);
+    free(b64);
+    return 0;
+}
+
 int mpbd_moveit_scene_read(const char *path, const char *name,
                            mpbd_moveit_scene *s, char *err, size_t errlen)
 {
@@ -518,6 +600,8 @@ int mpbd_moveit_scene_read(const char *path, const char *name,
         for (int i = 0; ids && i < nobj && !R.failed; i++)
             collision_object(&R, item(&R, objs, i), &t, ids, i);
         add(&t, ".\n");
+        if (!R.failed)
+            octomap(&R, world, &t);
         if (t.oom)
             fail_at(&R, NULL, "out of memory");
     }

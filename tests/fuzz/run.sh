@@ -17,7 +17,7 @@ CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DMPB_FUZZ=ON \
 cmake --build "$build" -j "$(nproc)" --target fuzz_messages fuzz_planar fuzz_experiment fuzz_scene fuzz_urdf fuzz_ompl_log fuzz_lcm_filter
 cd "$build"
 status=0
-for target in messages planar experiment scene urdf ompl_log lcm_filter; do
+for target in messages planar experiment scene urdf ompl_log lcm_filter octree; do
     mkdir -p "corpus/$target"
     echo "== fuzz_$target, $secs s"
     if ! UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \

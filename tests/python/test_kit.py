@@ -132,3 +132,48 @@ def test_a_stage_holds_its_waypoints_row_after_row():
         ("raw", 0.5, 2, 3)
     assert st.waypoints == [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
     assert st.num_values == 6
+
+
+# A ball of radius 1 cm on prismatic joints x, y, z; one 1 cm octree cell
+# whose centre is at (0.005, 0.005, 0.005): the binary stream of a root
+# with child 7 (the positive octant) down to a leaf, in base64.
+BALL_URDF = (
+    "<robot name='ball'><link name='base'/><link name='lx'/><link name='ly'/>"
+    "<link name='ball'><collision><geometry><sphere radius='0.01'/></geometry>"
+    "</collision></link>" + "".join(
+        f"<joint name='{j}' type='prismatic'><parent link='{p}'/><child link='{c}'/>"
+        f"<axis xyz='{a}'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+        for j, p, c, a in (("x", "base", "lx", "1 0 0"), ("y", "lx", "ly", "0 1 0"),
+                           ("z", "ly", "ball", "0 0 1"))) + "</robot>")
+
+
+def _one_cell_stream():
+    import base64
+    data = bytes([0x00, 0xC0])                 # root: child 7 an inner node
+    data += bytes([0x03, 0x00]) * 14           # child 0 inner, 14 levels
+    data += bytes([0x02, 0x00])                # child 0 an occupied leaf
+    return base64.b64encode(data).decode(), len(data)
+
+
+def test_the_kit_world_checks_an_octree_of_the_scene():
+    b64, n = _one_cell_stream()
+    scene = f"cell\n.\noctree c binary 0.01 {n} 0 0 0 0 0 0 1\n{b64}\n"
+    w = World("urdf", BALL_URDF, "moveit-scene", scene, ["x", "y", "z"])
+    try:
+        assert not w.free([0.005, 0.005, 0.005])    # in the cell
+        assert not w.free([0.005, 0.005, 0.019])    # 9 mm above it: touching
+        assert w.free([0.005, 0.005, 0.025])        # 1.5 cm above: clear
+        assert w.free([-0.02, 0.005, 0.005])
+    finally:
+        w.close()
+
+
+def test_a_peer_refuses_an_octree_it_cannot_take():
+    import sys
+    sys.path.insert(0, os.path.join(SOURCE, "planners", "peers"))
+    from mpbpeers import peer
+    b64, n = _one_cell_stream()
+    box = "s\n* b\n0 0 0\n0 0 0 1\n1\nbox\n1 1 1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n"
+    assert len(peer.parse_scene(box)) == 1
+    with pytest.raises(peer.InvalidRequest, match="octrees and point clouds"):
+        peer.parse_scene(box + f"octree c binary 0.01 {n} 0 0 0 0 0 0 1\n{b64}\n")

@@ -24,7 +24,8 @@
     X(srdf,   "write a robot's self-collision matrix as an SRDF, for review") \
     X(view,   "draw a run in 3-D: a self-contained HTML page (three.js)") \
     X(verify, "check stored runs again with this mpbench's world model") \
-    X(compare, "compare configurations problem by problem: intervals, paired tests")
+    X(compare, "compare configurations problem by problem: intervals, paired tests") \
+    X(sense,  "what depth cameras see of a scene, as a scene of one octree")
 
 #define MPB__TOOL_DECLARE(name, summary) int cmd_##name(int argc, char **argv);
 MPB_TOOL_COMMANDS(MPB__TOOL_DECLARE)

@@ -89,6 +89,8 @@ char *mpb_read_file(const char *path, size_t max, size_t *len);
 #include "mpbench/pose.h"
 #include "mpbench/mesh.h"
 #include "mpbench/collision.h"
+#include "mpbench/octree.h"
+#include "mpbench/cloud.h"
 #include "mpbench/scene.h"
 #include "mpbench/robot.h"
 #include "mpbench/srdf.h"

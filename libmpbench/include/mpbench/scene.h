@@ -32,6 +32,22 @@
  * mpb_scene_attach()). The scene does not know the robot: a "urdf" world
  * (world.h) refuses a <link> or touch link the robot lacks, naming the
  * attach line.
+ *
+ * Octrees and point clouds (mpbench's extension too, docs/scenes.md), as
+ * lines after the '.', each an object of its own after the objects above:
+ *     octree <id> <binary|full> <resolution> <bytes> <x y z> <qx qy qz qw>
+ *     <the OctoMap data (octree.h), base64, over any number of lines>
+ *     spheres <id> <radius> <count> <x y z> <qx qy qz qw>
+ *     <count points x y z>
+ * The octree's object has box shapes whose union is its occupied cells
+ * (mpb_octree_boxes(): cells side by side merged; kind MPB_SCENE_OCTREE); the spheres' a sphere per point (MPB_SCENE_SPHERES).
+ * A scene file may instead name files, which mpb_scene_resolve() (and so
+ * mpb_scene_load()) turns into the lines above:
+ *     octree <id> file <path.bt|path.ot> [<x y z> <qx qy qz qw>]
+ *     cloud <id> file <path.ply|path.pcd> voxel <side> [<pose>]
+ *     cloud <id> file <path.ply|path.pcd> radius <r> [<pose>]
+ * mpb_scene_parse() refuses those: the text that travels (to planners,
+ * into the store, under the content hash) holds the data itself.
  */
 #ifndef MPBENCH_SCENE_H
 #define MPBENCH_SCENE_H
@@ -39,6 +55,7 @@
 #include <stddef.h>
 
 #include "mpbench/collision.h"
+#include "mpbench/octree.h"
 #include "mpbench/pose.h"
 
 #ifdef __cplusplus
@@ -76,7 +93,21 @@ typedef struct mpb_scene_object {
     int                     attach_line;  /* of its attach line; 0 if not
                                              attached or attached by
                                              mpb_scene_attach() */
+    int                     kind;   /* mpb_scene_kind */
+    double                  resolution;  /* MPB_SCENE_OCTREE: the finest
+                                            cell's side; MPB_SCENE_SPHERES:
+                                            the radius; 0 otherwise */
 } mpb_scene_object;
+
+/* What an object was written as. */
+typedef enum mpb_scene_kind {
+    MPB_SCENE_SHAPES = 0,   /* a '*' object: primitives and meshes */
+    MPB_SCENE_OCTREE = 1,   /* an octree line: boxes, the occupied cells */
+    MPB_SCENE_SPHERES = 2   /* a spheres line: a sphere per point */
+} mpb_scene_kind;
+
+/* The most spheres a spheres line may give (a larger cloud: a voxel). */
+#define MPB_SCENE_MAX_SPHERES 200000
 
 /* The two variants of the format. */
 typedef enum mpb_scene_variant {
@@ -94,13 +125,35 @@ typedef enum mpb_scene_variant {
 int mpb_scene_parse(const char *text, mpb_scene **out, char *err, size_t errlen);
 
 /*
- * Read and parse the file at path. As mpb_scene_parse(), with the file's
- * name in front of the message ("kitchen.scene: scene line 7: ..."), and
- * MPB_EIO when the file cannot be read.
+ * Read, resolve (mpb_scene_resolve(), against the file's folder) and
+ * parse the file at path. As mpb_scene_parse(), with the file's name in
+ * front of the message ("kitchen.scene: scene line 7: ..."), and MPB_EIO
+ * when the file (or one it names) cannot be read.
  */
 int mpb_scene_load(const char *path, mpb_scene **out, char *err, size_t errlen);
 
 void mpb_scene_free(mpb_scene *s);
+
+/*
+ * The scene text with its octree-file and cloud-file lines (above) made
+ * into octree and spheres lines, reading the files (relative paths
+ * against dir; NULL or "": the current directory), into *out (the caller
+ * frees it; the text itself when it names no file). MPB_OK; MPB_EIO,
+ * MPB_EPARSE, MPB_EUNSUPPORTED with one line in err naming the scene
+ * line and the file's place ("scene line 9: map.bt: data byte 40:
+ * truncated ..."); MPB_ENOMEM.
+ */
+int mpb_scene_resolve(const char *text, const char *dir, char **out,
+                      char *err, size_t errlen);
+
+/*
+ * The octree line (above) of tree o as object `id` (one word) at pose
+ * x y z qx qy qz qw (NULL: the identity), then its binary data in base64,
+ * into *out (the caller frees it): text to put after a scene's '.'. The
+ * same tree gives the same text. MPB_OK; MPB_EINVAL; MPB_ENOMEM.
+ */
+int mpb_scene_octree_text(mpb_octree *o, const char *id, const double pose[7],
+                          char **out);
 
 /* The name line (trimmed); owned by the scene. */
 const char *mpb_scene_name(const mpb_scene *s);

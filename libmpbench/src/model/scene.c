@@ -6,6 +6,9 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/scene.h"
 
+#include "mpbench/octree.h"
+
+#include "core/base64.h"
 #include "core/grow.h"
 #include "core/number.h"
 #include "core/readfile.h"
@@ -528,6 +531,212 @@ static int line_tokens(const char *b, const char *e, tok *t, int max, int line)
 
 #define MAX_ATTACH_TOKENS 64
 
+/* A new object of id t (not yet in s) at `line`, identity pose; *out. */
+static int new_object(parser *ps, mpb_scene *s, const tok *t, int line, sobj **out)
+{
+    int prev = find_n(s, t->p, (size_t)t->len);
+    if (prev >= 0)
+        return fail(ps, line, "object '%.*s' is defined twice (first on line %d)",
+                    shown(t), t->p, s->objects[prev].pub.line);
+    if (mpb__grow((void **)&s->objects, &s->cap_objects, s->num_objects + 1,
+                  sizeof *s->objects) != MPB_OK)
+        return MPB_ENOMEM;
+    sobj *o = &s->objects[s->num_objects];
+    memset(o, 0, sizeof *o);
+    o->id = dup_n(t->p, (size_t)t->len);
+    if (!o->id)
+        return MPB_ENOMEM;
+    s->num_objects++;
+    o->pub.line = line;
+    mpb_pose_identity(&o->pub.pose);
+    sync_pub(o);
+    *out = o;
+    return MPB_OK;
+}
+
+/* Seven tokens, position and quaternion, into *pose. */
+static int tokens_pose(parser *ps, const tok *t, int line, const char *what,
+                       mpb_pose *pose)
+{
+    double v[7];
+    for (int i = 0; i < 7; i++)
+        if (!mpb__number(t[i].p, t[i].len, &v[i]))
+            return fail(ps, line, "%s pose needs <x y z> <qx qy qz qw>, found '%.*s'",
+                        what, shown(&t[i]), t[i].p);
+    for (int i = 0; i < 3; i++)
+        if (fabs(v[i]) > MPB_COLLISION_MAX_COORD)
+            return fail(ps, line, "%s position: %g is beyond %g m", what, v[i],
+                        MPB_COLLISION_MAX_COORD);
+    pose->t[0] = v[0];
+    pose->t[1] = v[1];
+    pose->t[2] = v[2];
+    if (mpb_pose_set_quat(pose, v[3], v[4], v[5], v[6]) != 0)
+        return fail(ps, line, "%s orientation: the quaternion is zero", what);
+    return MPB_OK;
+}
+
+static int add_shape(sobj *o, const mpb_geometry *g, const double at[3], int line)
+{
+    if (mpb__grow((void **)&o->shapes, &o->cap_shapes, o->num_shapes + 1,
+                  sizeof *o->shapes) != MPB_OK)
+        return MPB_ENOMEM;
+    mpb_scene_shape *sh = &o->shapes[o->num_shapes++];
+    memset(sh, 0, sizeof *sh);
+    sh->geometry = *g;
+    mpb_pose_identity(&sh->pose);
+    memcpy(sh->pose.t, at, sizeof sh->pose.t);
+    sh->line = line;
+    return MPB_OK;
+}
+
+/* "octree <id> <binary|full> <resolution> <bytes> <pose>" (n tokens t at
+ * line), then its data in base64 from ps on. */
+static int parse_octree(parser *ps, mpb_scene *s, const tok *t, int n, int line)
+{
+    if (n >= 3 && tok_is(&t[2], "file"))
+        return fail(ps, line, "octree '%.*s' names a file: a scene file's "
+                    "octree is read by mpb_scene_load() or mpb_scene_resolve()",
+                    shown(&t[1]), t[1].p);
+    if (n != 12)
+        return fail(ps, line, "octree needs <id> <binary|full> <resolution> <bytes> "
+                    "<x y z> <qx qy qz qw>, then its data in base64");
+    int binary = tok_is(&t[2], "binary");
+    if (!binary && !tok_is(&t[2], "full"))
+        return fail(ps, line, "octree data is 'binary' or 'full', found '%.*s'",
+                    shown(&t[2]), t[2].p);
+    double res;
+    long bytes;
+    if (!mpb__number(t[3].p, t[3].len, &res))
+        return fail(ps, line, "octree resolution: '%.*s' is not a number",
+                    shown(&t[3]), t[3].p);
+    if (!(res >= MPB_OCTREE_MIN_RESOLUTION && res <= MPB_OCTREE_MAX_RESOLUTION))
+        return fail(ps, line, "octree resolution %g is outside %g .. %g m", res,
+                    MPB_OCTREE_MIN_RESOLUTION, MPB_OCTREE_MAX_RESOLUTION);
+    if (!tok_count(&t[4], &bytes))
+        return fail(ps, line, "octree needs its data's size in bytes, found '%.*s'",
+                    shown(&t[4]), t[4].p);
+    mpb_pose pose;
+    int rc = tokens_pose(ps, t + 5, line, "octree", &pose);
+    if (rc != MPB_OK)
+        return rc;
+    size_t chars = ((size_t)bytes + 2) / 3 * 4;
+    if (chars > ps->left)
+        return fail(ps, line, "octree of %ld bytes: more than the rest of the text "
+                    "holds", bytes);
+    char *b64 = malloc(chars + 1);
+    unsigned char *data = malloc(chars / 4 * 3 + 1);
+    if (!b64 || !data) {
+        free(b64);
+        free(data);
+        return MPB_ENOMEM;
+    }
+    size_t have = 0;
+    while (have < chars) {
+        tok d;
+        if (!next_tok(ps, &d)) {
+            rc = fail(ps, ps->last_line, "octree '%.*s': the text ends after %zu of its "
+                      "%zu base64 characters", shown(&t[1]), t[1].p, have, chars);
+            break;
+        }
+        if ((size_t)d.len > chars - have) {
+            rc = fail(ps, d.line, "octree '%.*s': more base64 than %ld bytes",
+                      shown(&t[1]), t[1].p, bytes);
+            break;
+        }
+        memcpy(b64 + have, d.p, (size_t)d.len);
+        have += (size_t)d.len;
+    }
+    size_t got = 0;
+    if (rc == MPB_OK) {
+        long bad = mpb__base64_decode(b64, chars, data, &got);
+        if (bad < 0 || got != (size_t)bytes)
+            rc = fail(ps, ps->last_line, "octree '%.*s': bad base64 at character %ld "
+                      "of its data", shown(&t[1]), t[1].p, bad < 0 ? -1 - bad : (long)got);
+    }
+    free(b64);
+    mpb_octree *oc = NULL;
+    if (rc == MPB_OK) {
+        char name[80], why[200];
+        snprintf(name, sizeof name, "octree '%.*s'", shown(&t[1]), t[1].p);
+        rc = mpb_octree_read_data(data, (size_t)bytes, res, binary, name, &oc, why,
+                                  sizeof why);
+        if (rc != MPB_OK && rc != MPB_ENOMEM)
+            rc = fail(ps, line, "%s", why);
+    }
+    free(data);
+    sobj *o = NULL;
+    if (rc == MPB_OK)
+        rc = new_object(ps, s, &t[1], line, &o);
+    double *boxes = NULL;
+    int nb = 0;
+    if (rc == MPB_OK)
+        rc = mpb_octree_boxes(oc, &boxes, &nb);
+    for (int i = 0; rc == MPB_OK && i < nb; i++) {
+        const double *b = boxes + 6 * i;
+        double c[3] = {(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2};
+        mpb_geometry g = {.type = MPB_SHAPE_BOX,
+                          .dims = {b[3] - b[0], b[4] - b[1], b[5] - b[2], 0}};
+        rc = add_shape(o, &g, c, line);
+    }
+    free(boxes);
+    mpb_octree_free(oc);
+    if (o) {
+        o->pub.pose = pose;
+        o->pub.kind = MPB_SCENE_OCTREE;
+        o->pub.resolution = res;
+        sync_pub(o);
+    }
+    return rc;
+}
+
+/* "spheres <id> <radius> <count> <pose>", then count points. */
+static int parse_spheres(parser *ps, mpb_scene *s, const tok *t, int n, int line)
+{
+    if (n != 11)
+        return fail(ps, line, "spheres needs <id> <radius> <count> <x y z> "
+                    "<qx qy qz qw>, then count points <x y z>");
+    double r;
+    long count;
+    if (!mpb__number(t[2].p, t[2].len, &r) || !(r >= MPB_COLLISION_MIN_SIZE &&
+                                                 r <= MPB_COLLISION_MAX_COORD))
+        return fail(ps, line, "spheres radius '%.*s' is not a number from %g to %g m",
+                    shown(&t[2]), t[2].p, MPB_COLLISION_MIN_SIZE, MPB_COLLISION_MAX_COORD);
+    if (!tok_count(&t[3], &count))
+        return fail(ps, line, "spheres needs a count, found '%.*s'", shown(&t[3]), t[3].p);
+    if (count > MPB_SCENE_MAX_SPHERES)
+        return fail(ps, line, "spheres: %ld points, more than %d (give the cloud a "
+                    "voxel size instead)", count, MPB_SCENE_MAX_SPHERES);
+    if ((size_t)count > ps->left / 6)
+        return fail(ps, line, "spheres: %ld points, more than the rest of the text "
+                    "holds", count);
+    mpb_pose pose;
+    int rc = tokens_pose(ps, t + 4, line, "spheres", &pose);
+    if (rc != MPB_OK)
+        return rc;
+    sobj *o;
+    if ((rc = new_object(ps, s, &t[1], line, &o)) != MPB_OK)
+        return rc;
+    o->pub.pose = pose;
+    o->pub.kind = MPB_SCENE_SPHERES;
+    o->pub.resolution = r;
+    mpb_geometry g = {.type = MPB_SHAPE_SPHERE, .dims = {r, 0, 0, 0}};
+    for (long i = 0; i < count && rc == MPB_OK; i++) {
+        double p[3];
+        char expected[64];
+        snprintf(expected, sizeof expected, "spheres point %ld needs <x> <y> <z>", i);
+        if ((rc = read_nums(ps, p, 3, expected)) != MPB_OK)
+            break;
+        for (int k = 0; k < 3; k++)
+            if (fabs(p[k]) > MPB_COLLISION_MAX_COORD)
+                rc = fail(ps, ps->last_line, "spheres point %ld: %g is beyond %g m", i,
+                          p[k], MPB_COLLISION_MAX_COORD);
+        if (rc == MPB_OK)
+            rc = add_shape(o, &g, p, ps->last_line);
+    }
+    sync_pub(o);
+    return rc;
+}
+
 /* mpbench's lines after the '.': blanks, '#' comments and attach lines. */
 static int parse_extension(parser *ps, mpb_scene *s)
 {
@@ -543,10 +752,23 @@ static int parse_extension(parser *ps, mpb_scene *s)
         int n = line_tokens(b, e, t, MAX_ATTACH_TOKENS, line);
         if (n == 0 || t[0].p[0] == '#')
             continue;
+        if (tok_is(&t[0], "octree") || tok_is(&t[0], "spheres")) {
+            if (n < 2)
+                return fail(ps, line, "%.*s needs an object id", shown(&t[0]), t[0].p);
+            int rc = tok_is(&t[0], "octree") ? parse_octree(ps, s, t, n, line)
+                                             : parse_spheres(ps, s, t, n, line);
+            if (rc != MPB_OK)
+                return rc;
+            continue;
+        }
+        if (tok_is(&t[0], "cloud"))
+            return fail(ps, line, "cloud '%.*s' names a file: a scene file's "
+                        "cloud is read by mpb_scene_load() or mpb_scene_resolve()",
+                        n > 1 ? shown(&t[1]) : 0, n > 1 ? t[1].p : "");
         if (!tok_is(&t[0], "attach"))
-            return fail(ps, line, "after the '.' end marker only attach lines "
-                        "and '#' comments may follow, found '%.*s'",
-                        shown(&t[0]), t[0].p);
+            return fail(ps, line, "after the '.' end marker only attach, octree, "
+                        "spheres and cloud lines and '#' comments may follow, "
+                        "found '%.*s'", shown(&t[0]), t[0].p);
         if (n < 3)
             return fail(ps, line, "attach needs <object id> <link> [<touch link> ...]");
         if (n > MAX_ATTACH_TOKENS)
@@ -667,9 +889,19 @@ int mpb_scene_load(const char *path, mpb_scene **out, char *err, size_t errlen)
         free(buf);
         return MPB_EPARSE;
     }
-    char msg[256];
-    rc = mpb_scene_parse(buf, out, msg, sizeof msg);
+    char msg[512], dir[4096];
+    const char *slash = strrchr(path, '/');
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path + 1) : 0, path);
+    char *whole;
+    rc = mpb_scene_resolve(buf, dir, &whole, msg, sizeof msg);
     free(buf);
+    if (rc != MPB_OK) {
+        if (err && errlen)
+            snprintf(err, errlen, "%s: %s", path, msg);
+        return rc;
+    }
+    rc = mpb_scene_parse(whole, out, msg, sizeof msg);
+    free(whole);
     if (rc != MPB_OK && err && errlen)
         snprintf(err, errlen, "%s: %s", path, msg);
     return rc;

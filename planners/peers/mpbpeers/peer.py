@@ -171,9 +171,14 @@ def parse_scene(text):
                 next_line()
                 numbers(7)
     for ln in lines[i:]:
-        if ln.strip().startswith("attach"):
+        word = ln.split()[0] if ln.split() else ""
+        if word == "attach":
             raise InvalidRequest("scene: carried objects ('attach') are not "
                                  "taken by this peer")
+        if word in ("octree", "spheres"):
+            # planning without them would plan through what is there
+            raise InvalidRequest(f"scene: octrees and point clouds ('{word}') "
+                                 "are not taken by this peer yet")
     return shapes
 
 

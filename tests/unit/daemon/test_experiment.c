@@ -20,6 +20,8 @@
 
 #include <cmocka.h>
 
+#include "test_octree_box.h"
+
 #include "experiment.h"
 #include "test_files.h"
 
@@ -594,6 +596,52 @@ static void joints_outside_the_group_hold_values(void **state)
     assert_error("2:72", "a joint value must be a number, not 'nan'");
 }
 
+/* A scene file beside the experiment names an octree file beside it:
+ * the daemon reads it into the scene's text (what planners get) and
+ * checks starts against its cells. */
+static void a_scene_file_names_its_octree(void **state)
+{
+    (void)state;
+    char *bt = test_box_bt(dir), path[160], text[1024];
+    free(bt);
+    snprintf(path, sizeof path, "%s/oct.scene", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    /* the box's cells from x 0.5, lowered to z -0.2 .. 0.2: the finger
+       (at x 0.5, radius 0.1, when j = 0) is in them */
+    fputs("oct\n.\noctree cells file box.bt 0 0 -0.4 0 0 0 1\n", f);
+    assert_int_equal(fclose(f), 0);
+    write_slide_robot();
+#define OCT_EXPERIMENT(start) "experiment: {name: x, time_limit: 1}\n" \
+        "robot: {format: urdf, file: slide.urdf, joints: [j]}\n" \
+        "scenes: [{name: s, format: moveit-scene, file: oct.scene,\n" \
+        "  queries: [{name: q, start: [" start "], goal: [1.5]}]}]\n" PLANNERS
+    snprintf(text, sizeof text, "%s", OCT_EXPERIMENT("1.5"));
+    mpbd_experiment *e = load_text(text);
+    if (!e)
+        fail_msg("%s", err);
+    assert_non_null(strstr(e->scenes[0].scene, "\noctree cells binary 0.01 "));
+    mpbd_experiment_free(e);
+    snprintf(text, sizeof text, "%s", OCT_EXPERIMENT("0"));
+    assert_null(load_text(text));
+    assert_non_null(strstr(err, "start is in collision"));
+    /* inline text names its octree beside the experiment file */
+    assert_null(load_text("experiment: {name: x, time_limit: 1}\n"
+                          "robot: {format: urdf, file: slide.urdf, joints: [j]}\n"
+                          "scenes: [{name: s, format: moveit-scene, text: "
+                          "\"t\\n.\\noctree cells file box.bt 0 0 -0.4 0 0 0 1\\n\",\n"
+                          "  queries: [{name: q, start: [0], goal: [1.5]}]}]\n" PLANNERS));
+    assert_non_null(strstr(err, "start is in collision"));
+    /* a missing octree file: at the scene's file key, both files named */
+    f = fopen(path, "w");
+    fputs("oct\n.\noctree cells file gone.bt\n", f);
+    fclose(f);
+    snprintf(text, sizeof text, "%s", OCT_EXPERIMENT("1.5"));
+    assert_null(load_text(text));
+    assert_non_null(strstr(err, "oct.scene: scene line 3: "));
+    assert_non_null(strstr(err, "gone.bt: cannot open"));
+}
+
 /* A MoveIt scene file with requests (moveit.h), on the slide robot: the
  * scene's and the start's values of k are held, the request's start
  * wins, the tightest tolerance rules, pose goals name a link, and the
@@ -797,6 +845,7 @@ int main(void)
         cmocka_unit_test(an_unknown_format_is_pointed_at),
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
         cmocka_unit_test(joints_outside_the_group_hold_values),
+        cmocka_unit_test(a_scene_file_names_its_octree),
         cmocka_unit_test(moveit_files_become_scenes_and_queries),
         cmocka_unit_test(moveit_files_of_a_fuller_model_fit_the_robot),
         cmocka_unit_test(faults_are_where_their_file_is_named),

@@ -17,6 +17,7 @@
 
 #include "moveit.h"
 #include "mpbench/scene.h"
+#include "test_octree_box.h"
 
 static char dir[64];
 static char path[128];
@@ -380,6 +381,92 @@ static void corrupted_files_are_refused_at_their_place(void **state)
     assert_string_equal(err, want);
 }
 
+
+/* A PlanningScene YAML whose world holds an octomap of `n` int8 values
+ * (OctoMap's binary stream at res, binary: true), into a new string. */
+static char *octomap_yaml(const unsigned char *b, size_t n, const char *res)
+{
+    size_t cap = 64 * 1024 + 6 * n;
+    char *y = malloc(cap);
+    assert_non_null(y);
+    size_t at = (size_t)snprintf(y, cap,
+        "name: s\n"
+        "world:\n"
+        "  octomap:\n"
+        "    header: {frame_id: world}\n"
+        "    origin: {position: {x: 0, y: 0, z: 0}, orientation: {x: 0, y: 0, z: 0, w: 1}}\n"
+        "    octomap:\n"
+        "      header: {frame_id: world}\n"
+        "      binary: true\n"
+        "      id: OcTree\n"
+        "      resolution: %s\n"
+        "      data: [", res);
+    for (size_t i = 0; i < n; i++)
+        at += (size_t)snprintf(y + at, cap - at, i ? ", %d" : "%d", (int)(signed char)b[i]);
+    snprintf(y + at, cap - at, "]\n");
+    return y;
+}
+
+/* MoveIt's world.octomap loads, and checks, as the .bt file of the same
+ * tree does. */
+static void an_octomap_checks_as_its_bt_file(void **state)
+{
+    (void)state;
+    char *bt = test_box_bt(dir);
+    mpb_octree *o = test_box_octree();
+    unsigned char *raw;
+    size_t n;
+    assert_int_equal(mpb_octree_write(o, 0, &raw, &n), MPB_OK);
+    mpb_octree_free(o);
+    char *y = octomap_yaml(raw, n, "0.01");
+    mpbd_moveit_scene ms;
+    if (mpbd_moveit_scene_read(write_file("om.yaml", y), "set/0001", &ms, err,
+                               sizeof err) != MPB_OK)
+        fail_msg("%s", err);
+    char from_bt[300], *resolved;
+    snprintf(from_bt, sizeof from_bt, "set/0001\n.\noctree octomap file %s\n", bt);
+    assert_int_equal(mpb_scene_resolve(from_bt, NULL, &resolved, err, sizeof err), MPB_OK);
+    /* the same text: the same hash, so planners and the store see one scene */
+    assert_string_equal(ms.text, resolved);
+    mpb_collision *a = test_probe_world(ms.text, 0.004), *b = test_probe_world(resolved, 0.004);
+    unsigned seed = 3;
+    int hits = 0;
+    for (int i = 0; i < 2000; i++) {
+        double p[3], da, db;
+        for (int k = 0; k < 3; k++) {
+            seed = seed * 1103515245u + 12345u;
+            p[k] = TEST_BOX_LO[k] - 0.03 + (seed >> 8) / (double)(1u << 24) *
+                   (TEST_BOX_HI[k] - TEST_BOX_LO[k] + 0.06);
+        }
+        int ha = test_probe(a, p, &da);
+        assert_int_equal(ha, test_probe(b, p, &db));
+        assert_true(da == db);
+        hits += ha;
+    }
+    assert_true(hits > 100 && hits < 1900);
+    mpb_collision_destroy(a);
+    mpb_collision_destroy(b);
+    mpbd_moveit_scene_clear(&ms);
+    free(resolved);
+    free(y);
+
+    /* resolution 0; the data cut short: each at its place */
+    y = octomap_yaml(raw, n, "0");
+    assert_int_equal(mpbd_moveit_scene_read(write_file("r0.yaml", y), "x", &ms, err,
+                                            sizeof err), MPB_EPARSE);
+    assert_error("r0.yaml", "10:19", "octomap resolution 0 is outside 0.0001 .. 1 m");
+    free(y);
+    y = octomap_yaml(raw, n / 2, "0.01");
+    assert_int_equal(mpbd_moveit_scene_read(write_file("cut.yaml", y), "x", &ms, err,
+                                            sizeof err), MPB_EPARSE);
+    assert_non_null(strstr(err, "cut.yaml:11:13: octomap data: data byte "));
+    assert_non_null(strstr(err, "truncated"));
+    free(y);
+    free(raw);
+    unlink(bt);
+    free(bt);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -389,6 +476,7 @@ int main(void)
         cmocka_unit_test(bad_files_are_named_at_the_place),
         cmocka_unit_test(a_non_unit_orientation_is_taken_as_identity),
         cmocka_unit_test(corrupted_files_are_refused_at_their_place),
+        cmocka_unit_test(an_octomap_checks_as_its_bt_file),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);
 }

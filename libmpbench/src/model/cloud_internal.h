@@ -1,0 +1,41 @@
+/*
+ * cloud_internal.h - what the PLY and PCD header readers (cloud_ply.c,
+ * cloud_pcd.c) tell the body reader (cloud.c): where the points are and
+ * how each is laid out.
+ */
+#ifndef MPB_CLOUD_INTERNAL_H
+#define MPB_CLOUD_INTERNAL_H
+
+#include <stddef.h>
+
+enum { MPB__CT_I8, MPB__CT_U8, MPB__CT_I16, MPB__CT_U16, MPB__CT_I32,
+       MPB__CT_U32, MPB__CT_F32, MPB__CT_F64 };
+
+enum { MPB__CLOUD_ASCII, MPB__CLOUD_LE, MPB__CLOUD_BE };
+
+typedef struct mpb__cloud_layout {
+    int    format;      /* MPB__CLOUD_* */
+    long   n;           /* points */
+    const char *unit;   /* "vertex" or "point", for messages */
+    int    nvalues;     /* ASCII: numbers a point */
+    size_t record;      /* binary: bytes a point */
+    int    type[3];     /* x y z: MPB__CT_* */
+    size_t off[3];      /* binary: byte offsets in a record */
+    int    tok[3];      /* ASCII: their places among the numbers */
+    size_t body;        /* where the data starts (after the header) */
+    int    body_line;   /* its line */
+    long   skip_lines;  /* ASCII: lines of elements before the points */
+    size_t skip_bytes;  /* binary: bytes of elements before the points */
+} mpb__cloud_layout;
+
+/* The size of a type (1 to 8). */
+size_t mpb__cloud_type_size(int type);
+
+/* Read a header (bytes, len) into *L; MPB_OK, or MPB_EPARSE /
+ * MPB_EUNSUPPORTED with one line in why ("line 4: ..."). */
+int mpb__ply_header(const char *bytes, size_t len, mpb__cloud_layout *L,
+                    char *why, size_t whylen);
+int mpb__pcd_header(const char *bytes, size_t len, mpb__cloud_layout *L,
+                    char *why, size_t whylen);
+
+#endif /* MPB_CLOUD_INTERNAL_H */
