@@ -89,17 +89,10 @@ int mpbd_mesh_path(const char *path, char *out, size_t n, char *err,
                    size_t errlen)
 {
     mpbd_yaml Y = {.path = path, .err = err, .errlen = errlen};
-    size_t len;
-    char *text = mpb_read_file(path, 0, &len);
+    char *text;
     out[0] = '\0';
-    if (text == NULL) {
-        snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
+    if (mpbd_yaml_load_file(&Y, &text, "an experiment file holds one") != 0)
         return -1;
-    }
-    if (mpbd_yaml_load(&Y, text, len, "an experiment file holds one") != 0) {
-        free(text);
-        return -1;
-    }
     yaml_node_t *robot = mpbd_yaml_get(&Y, yaml_document_get_root_node(&Y.doc),
                                        "robot");
     const char *format = mpbd_yaml_scalar(mpbd_yaml_get(&Y, robot, "format"));

@@ -5,7 +5,6 @@
  * megabytes to start). Reads only the file's YAML, as --mesh-path does;
  * mpbenchd checks the whole file when it runs it.
  */
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,16 +16,9 @@ int mpbd_planner_families(const char *path, FILE *out, char *err,
                           size_t errlen)
 {
     mpbd_yaml Y = {.path = path, .err = err, .errlen = errlen};
-    size_t len;
-    char *text = mpb_read_file(path, 0, &len);
-    if (text == NULL) {
-        snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
+    char *text;
+    if (mpbd_yaml_load_file(&Y, &text, "an experiment file holds one") != 0)
         return -1;
-    }
-    if (mpbd_yaml_load(&Y, text, len, "an experiment file holds one") != 0) {
-        free(text);
-        return -1;
-    }
     yaml_node_t *list = mpbd_yaml_get(&Y, yaml_document_get_root_node(&Y.doc),
                                       "planners");
     int n = mpbd_yaml_count(list), rc = 0;

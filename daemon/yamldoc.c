@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "mpbench/mpbench.h"
 #include "yamldoc.h"
 /*
  * s as text that is safe to print on one line: control bytes, DEL and
@@ -407,6 +408,22 @@ static int load_checked(mpbd_yaml *Y, yaml_parser_t *parser, const char *holds)
     if (rc != 0)
         yaml_document_delete(&Y->doc);
     return rc;
+}
+
+int mpbd_yaml_load_file(mpbd_yaml *Y, char **text, const char *holds)
+{
+    size_t len;
+    if ((*text = mpb_read_file(Y->path, 0, &len)) == NULL) {
+        snprintf(Y->err, Y->errlen, "%s: cannot read: %s", Y->path,
+                 strerror(errno));
+        return -1;
+    }
+    if (mpbd_yaml_load(Y, *text, len, holds) != 0) {
+        free(*text);
+        *text = NULL;
+        return -1;
+    }
+    return 0;
 }
 
 int mpbd_yaml_load(mpbd_yaml *Y, const char *text, size_t len,

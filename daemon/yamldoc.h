@@ -51,6 +51,11 @@ typedef struct mpbd_yaml {
 int mpbd_yaml_load(mpbd_yaml *Y, const char *text, size_t len,
                    const char *holds);
 
+/* Read the file Y->path and mpbd_yaml_load() it: 0 with the document and
+ * its text in *text (free() it after yaml_document_delete()); else -1
+ * with the fault in Y->err ("cannot read" and why, or the parser's). */
+int mpbd_yaml_load_file(mpbd_yaml *Y, char **text, const char *holds);
+
 /*
  * Record a fault, "<path>:<line>:<column>: <what>" at node n (or at
  * Y->place_path's place, or at the file, when n is NULL), unless one is
