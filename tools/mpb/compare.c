@@ -76,40 +76,20 @@ static int on_experiment(void *ud, const mpb_experiment_row *e)
 static int on_config(void *ud, const mpb_planner_config_row *c)
 {
     data *d = ud;
-    int64_t *ids = realloc(d->config_ids, (size_t)(d->nc + 1) * sizeof *ids);
-    if (ids != NULL)
-        d->config_ids = ids;
-    char **names = ids ? realloc(d->config_names,
-                                 (size_t)(d->nc + 1) * sizeof *names) : NULL;
-    if (names != NULL)
-        d->config_names = names;
-    if (ids == NULL || names == NULL ||
-        (names[d->nc] = strdup(c->name)) == NULL) {
-        d->nomem = 1;
-        return 1;
-    }
-    ids[d->nc++] = c->id;
-    return 0;
+    if (tool_config_add(&d->config_ids, &d->config_names, &d->nc, c) == 0)
+        return 0;
+    d->nomem = 1;
+    return 1;
 }
 
-static int on_scene(void *ud, const mpb_scene_row *s)
+static int on_scene(void *ud, const mpb_scene_row *row)
 {
     data *d = ud;
-    int set = tool_set_index(&d->set_names, &d->ns, s);
-    int64_t *ids = set < 0 ? NULL : realloc(d->scene_ids,
-                              (size_t)(d->num_scenes + 1) * sizeof *ids);
-    if (ids != NULL)
-        d->scene_ids = ids;
-    int *sets = ids ? realloc(d->scene_set,
-                              (size_t)(d->num_scenes + 1) * sizeof *sets) : NULL;
-    if (sets == NULL) {
-        d->nomem = 1;
-        return 1;
-    }
-    d->scene_set = sets;
-    ids[d->num_scenes] = s->id;
-    sets[d->num_scenes++] = set;
-    return 0;
+    if (tool_scene_add(&d->scene_ids, &d->scene_set, &d->num_scenes, &d->set_names,
+                       &d->ns, row) == 0)
+        return 0;
+    d->nomem = 1;
+    return 1;
 }
 
 static int on_query(void *ud, const mpb_query_row *q)

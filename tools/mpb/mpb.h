@@ -78,6 +78,16 @@ const char *tool_problem_set(const mpb_scene_row *scene);
  * array. */
 int tool_set_index(char ***sets, int *n, const mpb_scene_row *scene);
 
+/* The lists a tool reads an experiment into, from the store's callbacks:
+ * a configuration's id and a copy of its name appended to *ids and
+ * *names (*n of each); a scene's id and its problem set's index
+ * (tool_set_index(), into *sets of *nsets) appended to *ids and *set_of.
+ * 0, or -1 when out of memory (the lists stay valid, to free). */
+int tool_config_add(int64_t **ids, char ***names, int *n,
+                    const mpb_planner_config_row *config);
+int tool_scene_add(int64_t **ids, int **set_of, int *n, char ***sets,
+                   int *nsets, const mpb_scene_row *scene);
+
 /* The length of the valid UTF-8 sequence at s, its code point in *cp; 0
  * when s does not start one. */
 int tool_utf8_char(const char *s, unsigned *cp);

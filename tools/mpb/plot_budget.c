@@ -63,52 +63,20 @@ static int on_experiment(void *ud, const mpb_experiment_row *e)
 static int on_config(void *ud, const mpb_planner_config_row *c)
 {
     plot_budget *b = ud;
-    int64_t *ids = realloc(b->config_ids, (size_t)(b->nconfigs + 1) * sizeof *ids);
-    if (ids != NULL)
-        b->config_ids = ids;
-    char **names = ids ? realloc(b->configs,
-                                 (size_t)(b->nconfigs + 1) * sizeof *names) : NULL;
-    if (names != NULL)
-        b->configs = names;
-    if (names == NULL || (names[b->nconfigs] = strdup(c->name)) == NULL) {
-        b->nomem = 1;
-        return 1;
-    }
-    ids[b->nconfigs++] = c->id;
-    return 0;
+    if (tool_config_add(&b->config_ids, &b->configs, &b->nconfigs, c) == 0)
+        return 0;
+    b->nomem = 1;
+    return 1;
 }
 
 static int on_scene(void *ud, const mpb_scene_row *row)
 {
     plot_budget *b = ud;
-    const char *name = tool_problem_set(row);
-    int set = 0;
-    while (set < b->nsets && strcmp(b->sets[set], name) != 0)
-        set++;
-    if (set == b->nsets) {
-        char **sets = realloc(b->sets, (size_t)(b->nsets + 1) * sizeof *sets);
-        if (sets == NULL || (sets[b->nsets] = strdup(name)) == NULL) {
-            if (sets)
-                b->sets = sets;
-            b->nomem = 1;
-            return 1;
-        }
-        b->sets = sets;
-        b->nsets++;
-    }
-    int64_t *ids = realloc(b->scene_ids, (size_t)(b->nscenes + 1) * sizeof *ids);
-    if (ids != NULL)
-        b->scene_ids = ids;
-    int *of = ids ? realloc(b->scene_set, (size_t)(b->nscenes + 1) * sizeof *of)
-                  : NULL;
-    if (of == NULL) {
-        b->nomem = 1;
-        return 1;
-    }
-    b->scene_set = of;
-    ids[b->nscenes] = row->id;
-    of[b->nscenes++] = set;
-    return 0;
+    if (tool_scene_add(&b->scene_ids, &b->scene_set, &b->nscenes, &b->sets,
+                       &b->nsets, row) == 0)
+        return 0;
+    b->nomem = 1;
+    return 1;
 }
 
 static int add_run(plot_budget *b, curve *c, const mpb_result_row *row)

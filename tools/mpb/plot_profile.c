@@ -60,51 +60,20 @@ static ratios *ratio_of(const plot_profile *p, int set, int metric, int config)
 static int on_config(void *ud, const mpb_planner_config_row *c)
 {
     plot_profile *p = ud;
-    int64_t *ids = realloc(p->config_ids, (size_t)(p->nconfigs + 1) * sizeof *ids);
-    if (ids != NULL)
-        p->config_ids = ids;
-    char **names = ids ? realloc(p->configs,
-                                 (size_t)(p->nconfigs + 1) * sizeof *names) : NULL;
-    if (names != NULL)
-        p->configs = names;
-    if (names == NULL || (names[p->nconfigs] = strdup(c->name)) == NULL) {
-        p->nomem = 1;
-        return 1;
-    }
-    ids[p->nconfigs++] = c->id;
-    return 0;
+    if (tool_config_add(&p->config_ids, &p->configs, &p->nconfigs, c) == 0)
+        return 0;
+    p->nomem = 1;
+    return 1;
 }
 
 static int on_scene(void *ud, const mpb_scene_row *row)
 {
     plot_profile *p = ud;
-    const char *name = tool_problem_set(row);
-    int set = 0;
-    while (set < p->nsets && strcmp(p->sets[set], name) != 0)
-        set++;
-    if (set == p->nsets) {
-        char **sets = realloc(p->sets, (size_t)(p->nsets + 1) * sizeof *sets);
-        if (sets != NULL)
-            p->sets = sets;
-        if (sets == NULL || (sets[p->nsets] = strdup(name)) == NULL) {
-            p->nomem = 1;
-            return 1;
-        }
-        p->nsets++;
-    }
-    int64_t *ids = realloc(p->scene_ids, (size_t)(p->nscenes + 1) * sizeof *ids);
-    if (ids != NULL)
-        p->scene_ids = ids;
-    int *of = ids ? realloc(p->scene_set, (size_t)(p->nscenes + 1) * sizeof *of)
-                  : NULL;
-    if (of == NULL) {
-        p->nomem = 1;
-        return 1;
-    }
-    p->scene_set = of;
-    ids[p->nscenes] = row->id;
-    of[p->nscenes++] = set;
-    return 0;
+    if (tool_scene_add(&p->scene_ids, &p->scene_set, &p->nscenes, &p->sets,
+                       &p->nsets, row) == 0)
+        return 0;
+    p->nomem = 1;
+    return 1;
 }
 
 static int on_run(void *ud, const mpb_result_row *row)

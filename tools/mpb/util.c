@@ -105,3 +105,39 @@ int tool_set_index(char ***sets, int *n, const mpb_scene_row *scene)
         return -1;
     return (*n)++;
 }
+
+int tool_config_add(int64_t **ids, char ***names, int *n,
+                    const mpb_planner_config_row *config)
+{
+    int64_t *grown_ids = realloc(*ids, (size_t)(*n + 1) * sizeof *grown_ids);
+    if (grown_ids == NULL)
+        return -1;
+    *ids = grown_ids;
+    char **grown_names = realloc(*names, (size_t)(*n + 1) * sizeof *grown_names);
+    if (grown_names == NULL)
+        return -1;
+    *names = grown_names;
+    if ((grown_names[*n] = strdup(config->name)) == NULL)
+        return -1;
+    grown_ids[(*n)++] = config->id;
+    return 0;
+}
+
+int tool_scene_add(int64_t **ids, int **set_of, int *n, char ***sets,
+                   int *nsets, const mpb_scene_row *scene)
+{
+    int set = tool_set_index(sets, nsets, scene);
+    if (set < 0)
+        return -1;
+    int64_t *grown_ids = realloc(*ids, (size_t)(*n + 1) * sizeof *grown_ids);
+    if (grown_ids == NULL)
+        return -1;
+    *ids = grown_ids;
+    int *grown_of = realloc(*set_of, (size_t)(*n + 1) * sizeof *grown_of);
+    if (grown_of == NULL)
+        return -1;
+    *set_of = grown_of;
+    grown_ids[*n] = scene->id;
+    grown_of[(*n)++] = set;
+    return 0;
+}
