@@ -92,6 +92,13 @@ void plot_file_part(char *out, size_t size, const char *scene);
 void plot_put_text(FILE *gp, const char *text, plot_glyphs *gl);
 void plot_put_path(FILE *gp, const char *path);
 void plot_begin(FILE *gp, const char *path, const char *ext, int width);
+/* The colour, "#rrggbb", configuration number config (in id order) is
+ * drawn in, in every plot of curves per configuration (the budget
+ * curves, gnuplot's and the report's SVG, and the performance
+ * profiles), so that a configuration looks the same in all; distinct
+ * for the first PLOT_COLORS. */
+#define PLOT_COLORS 12
+const char *plot_config_color(int config);
 
 /*
  * Success against the time budget (plot_budget.c): for each problem set
@@ -133,9 +140,6 @@ const char *plot_budget_config(const plot_budget *b, int config);
 double      plot_budget_limit(const plot_budget *b);
 void        plot_budget_curve(const plot_budget *b, int set, int config,
                               plot_budget_steps *out);
-/* The colour configuration config is drawn in, "#rrggbb", in every
- * budget plot (gnuplot's and the SVG). */
-const char *plot_budget_color(int config);
 
 /*
  * Set set's curves as one inline SVG element (plot_budget_svg.c), with

@@ -238,12 +238,6 @@ int plot_budget_csv(const plot_budget *b, const char *dir,
     return MPB_OK;
 }
 
-static const char *const colors[] = {
-    "#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
-    "#a6761d", "#666666",
-};
-#define NUM_COLORS ((int)(sizeof colors / sizeof colors[0]))
-
 /* A curve as a datablock: from (lo, 0) a step at each run's time up to
  * (limit, its final fraction). */
 static void datablock(FILE *gp, const char *name, const double *t, int n,
@@ -330,7 +324,7 @@ int plot_gnuplot_budget(FILE *gp, const plot_budget *b, const char *dir,
         for (int c = 0; c < b->nconfigs; c++) {
             if (curve_of(b, i, c)->runs == 0)
                 continue;
-            const char *color = colors[c % NUM_COLORS];
+            const char *color = plot_config_color(c);
             fprintf(gp, "%s$v%d using 1:2 with steps lw 2 lc rgb '%s' title ",
                     first ? "" : ", ", c, color);
             plot_put_text(gp, b->configs[c], gl);
@@ -382,9 +376,4 @@ void plot_budget_curve(const plot_budget *b, int set, int config,
 {
     const curve *k = curve_of(b, set, config);
     *out = (plot_budget_steps){k->runs, k->verified, k->nv, k->claimed, k->nc};
-}
-
-const char *plot_budget_color(int config)
-{
-    return colors[config % NUM_COLORS];
 }

@@ -101,7 +101,7 @@ int plot_budget_svg(FILE *out, const plot_budget *b, int set)
         plot_budget_curve(b, set, c, &k);
         if (k.runs == 0)
             continue;
-        const char *color = plot_budget_color(c), *name = plot_budget_config(b, c);
+        const char *color = plot_config_color(c), *name = plot_budget_config(b, c);
         steps(out, &a, k.verified, k.nv, k.runs, "verified", color, name);
         steps(out, &a, k.claimed, k.nc, k.runs, "claimed", color, name);
         paths += 2;

@@ -642,3 +642,13 @@ void plot_begin(FILE *gp, const char *path, const char *ext, int width)
 {
     begin_plot(gp, path, ext, width);
 }
+
+const char *plot_config_color(int config)
+{
+    /* ColorBrewer's Dark2, then four more far from all of them. */
+    static const char *const config_colors[PLOT_COLORS] = {
+        "#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
+        "#a6761d", "#666666", "#1f78b4", "#e31a1c", "#000000", "#17becf",
+    };
+    return config_colors[config % PLOT_COLORS];
+}

@@ -304,14 +304,6 @@ int plot_profile_csv(const plot_profile *p, const char *dir,
     return MPB_OK;
 }
 
-/* The colours of plot_budget.c, so that a configuration looks the same
- * in both. */
-static const char *const colors[] = {
-    "#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
-    "#a6761d", "#666666",
-};
-#define NUM_COLORS ((int)(sizeof colors / sizeof colors[0]))
-
 /* Set i's part of its file name, as plot_budget.c makes it. */
 static void file_part(const plot_profile *p, int i, char *out, size_t size)
 {
@@ -339,7 +331,10 @@ static void panel(FILE *gp, const plot_profile *p, int i, int m, double hi,
                 "set grid xtics ytics lc rgb '#dddddd'\n"
                 "set xlabel \"tau: within this factor of the best (log scale)\"\n"
                 "set ylabel \"fraction of the %d problems\"\n"
-                "set key right bottom opaque box\n", hi, p->problems[i]);
+                "%s\n", hi, p->problems[i],
+                /* One key for both, right of the second: inside either it
+                 * hid the curves that end low. */
+                m == 0 ? "unset key" : "set key at screen 0.99,0.86 right top");
     /* Over a short range gnuplot's log tics are 1 and 2 alone. */
     if (hi <= 4) {
         static const double tics[] = {1, 1.1, 1.25, 1.5, 2, 3, 4};
@@ -359,7 +354,7 @@ static void panel(FILE *gp, const plot_profile *p, int i, int m, double hi,
     fprintf(gp, "plot ");
     for (int c = 0; c < p->nconfigs; c++) {
         fprintf(gp, "%s$p%d_%d using 1:2 with steps lw 2 lc rgb '%s' title ",
-                c ? ", " : "", m, c, colors[c % NUM_COLORS]);
+                c ? ", " : "", m, c, plot_config_color(c));
         plot_put_text(gp, p->configs[c], gl);
     }
     fprintf(gp, "\n");
@@ -376,10 +371,11 @@ int plot_gnuplot_profile(FILE *gp, const plot_profile *p, const char *dir,
         char part[PLOT_PART_MAX + 16], path[4096], title[512];
         file_part(p, i, part, sizeof part);
         snprintf(path, sizeof path, "%s/plot-profile-%s.%s", dir, part, ext);
-        plot_begin(gp, path, ext, 1200);
+        plot_begin(gp, path, ext, 1400);
         snprintf(title, sizeof title, "%s: performance profiles, %d problem%s",
                  set_name(p, i), p->problems[i], p->problems[i] == 1 ? "" : "s");
-        fprintf(gp, "set multiplot layout 1,2 title ");
+        fprintf(gp, "set multiplot layout 1,2 margins 0.06,0.80,0.12,0.86 "
+                    "spacing 0.07,0 title ");
         plot_put_text(gp, title, gl);
         fprintf(gp, ".\"\\n\".");
         plot_put_text(gp, "on each problem, the fraction where a planner's "
