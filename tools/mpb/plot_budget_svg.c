@@ -11,10 +11,10 @@
 #include "plot.h"
 #include "view.h"
 
-#define W 545
+#define W 600
 #define H 300
 #define LEFT 50
-#define RIGHT 175       /* the legend */
+#define RIGHT 230       /* the legend: names of about 30 characters */
 #define TOP 14
 #define BOTTOM 40
 

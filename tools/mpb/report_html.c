@@ -32,11 +32,15 @@ static const char STYLE[] =
     "background:#eef1f5}main{max-width:1100px;margin:0 auto;padding:16px 24px;"
     "background:#fff}h1{font-size:22px}h2{font-size:18px;margin-top:32px;"
     "border-bottom:2px solid #1d2433}h3{font-size:15px}table{border-collapse:"
-    "collapse;margin:8px 0}th,td{padding:3px 10px;border-bottom:1px solid "
+    "collapse;margin:8px 0;display:block;max-width:100%;overflow-x:auto}"
+    /* A table wider than the page (nine configurations) scrolls on its
+     * own, its cells unwrapped, instead of spilling past the page. */
+    "th,td{padding:3px 10px;white-space:nowrap;border-bottom:1px solid "
     "#d5dae3;text-align:right}th:first-child,td:first-child{text-align:left}"
     "td.l,th.l{text-align:left}pre{background:#f4f6f9;padding:10px;white-space:pre-wrap;"
     "overflow:auto}.note{color:#5b6579}.budget{display:flex;flex-wrap:wrap;"
-    "gap:8px}.budget figure{margin:0}.budget figcaption{text-align:center;font-weight:600}td.win{background:#d9f2e3}td.lose{"
+    "gap:8px}.budget figure{margin:0;flex:1 1 45%;min-width:320px}"
+    ".budget svg{width:100%;height:auto}.budget figcaption{text-align:center;font-weight:600}td.win{background:#d9f2e3}td.lose{"
     "background:#f9dede}details>summary{cursor:pointer;font-weight:600;"
     "margin:10px 0}.plots{display:grid;grid-template-columns:"
     "1fr 1fr;gap:8px}.plots svg{max-width:100%;height:auto;"
