@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "heap.h"
+#include "mpbench/planner.h"
 #include "mpbench/proto.h"
 #include "search.h"
 #include "state_table.h"
@@ -355,7 +356,8 @@ static int improve_path(search *s)
         const ara_heap_item *top = ara_heap_top(&s->open);
         if (!top || !(top->f < s->goal_g))
             return top || s->goal_g < INFINITY ? 0 : ARA_NO_PATH;
-        if ((p->stop && *p->stop) || mpb_monotonic_s() >= p->deadline)
+        const mpb_solve_limits lim = {.deadline = p->deadline, .stop = p->stop};
+        if (mpb_solve_should_stop(&lim))
             return ARA_TIMEOUT;
         ara_heap_item it = ara_heap_pop(&s->open);
         int rc = validate(s, it.id);

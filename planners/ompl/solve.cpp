@@ -590,14 +590,16 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, const mpb_solve_li
                                       : std::min(std::max(0.02 * req->time_limit, 0.01), 0.5));
     std::atomic<bool> interrupted{false};
     ProgressLog progress(*planner, o.progress_period, t_setup);
-    volatile sig_atomic_t *stop = lim->stop;
-    ob::PlannerTerminationCondition ptc([deadline, stop, &interrupted, &progress, log_progress] {
-        if (stop != nullptr && *stop != 0)
-            interrupted = true;
-        double now = mpb_monotonic_s();
+    const mpb_solve_limits solver_limits = mpb_solve_limits_moved(lim, deadline - lim->deadline);
+    // The kit's one stop check, on the solver's part of the budget.
+    ob::PlannerTerminationCondition ptc([&solver_limits, &interrupted, &progress, log_progress] {
         if (log_progress)
-            progress.poll(now);
-        return interrupted || now >= deadline;
+            progress.poll(mpb_monotonic_s());
+        if (!mpb_solve_should_stop(&solver_limits))
+            return false;
+        if (solver_limits.stop != nullptr && *solver_limits.stop != 0)
+            interrupted = true;
+        return true;
     });
     // solve() alone, the span ompl::tools::Benchmark times; Benchmark also
     // counts the start and stop of a thread that checks its limit, which

@@ -4,11 +4,13 @@ file the C library's test reads too), the robot text split it shares with
 libmpbench, and reading a request. Run by ctest as unit.python_kit
 (tests/CMakeLists.txt), with the build's libmpbench and message types."""
 import os
+import time
 
 import pytest
 from mpb import goal_t, param_t, plan_request_t
 
 from mpbplanner import request
+from mpbplanner.limits import Limits
 from mpbplanner.node import Auth
 from mpbplanner.world import World, split_robot_text
 
@@ -177,3 +179,18 @@ def test_a_peer_refuses_an_octree_it_cannot_take():
     assert len(peer.parse_scene(box)) == 1
     with pytest.raises(peer.InvalidRequest, match="octrees and point clouds"):
         peer.parse_scene(box + f"octree c binary 0.01 {n} 0 0 0 0 0 0 1\n{b64}\n")
+
+
+def test_limits_moved_keep_the_stop_and_move_the_deadline():
+    stop = {"now": False}
+    now = time.monotonic()
+    limits = Limits(now - 10.0, 5.0, lambda: stop["now"])  # ended 5 s ago
+    assert limits.should_stop()
+    later = limits.moved(60.0)
+    assert later.deadline == limits.deadline + 60.0
+    assert later.start == limits.start
+    assert not later.should_stop()
+    stop["now"] = True          # the node's stop reaches the copy
+    assert later.should_stop()
+    stop["now"] = False
+    assert limits.moved(-1.0).should_stop()

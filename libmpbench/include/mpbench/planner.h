@@ -72,6 +72,16 @@ typedef struct mpb_solve_limits {
  */
 int mpb_solve_should_stop(const mpb_solve_limits *lim);
 
+/*
+ * A copy of lim with its deadline seconds later (earlier when negative),
+ * the stop flag the same: a planner's own budget inside the run's, e.g.
+ * the deadline moved by the world's setup, which mpbenchd leaves out of
+ * the run's time, less a margin for work after the search. Check it with
+ * mpb_solve_should_stop(), the one stop check of every planner.
+ */
+mpb_solve_limits mpb_solve_limits_moved(const mpb_solve_limits *lim,
+                                        double seconds);
+
 typedef int (*mpb_solve_fn)(void *user, const mpb_plan_request_t *req,
                             const mpb_solve_limits *lim,
                             mpb_plan_result_t *res);

@@ -16,8 +16,18 @@ class Limits:
 
     def should_stop(self):
         """True when solve() should give up now: stopping, or the deadline
-        has passed."""
+        has passed. The one stop check of every planner, as the C kit's
+        mpb_solve_should_stop()."""
         return self.stopping() or time.monotonic() >= self.deadline
+
+    def moved(self, seconds):
+        """A copy with the deadline seconds later (earlier when negative),
+        stopping the same: a planner's own budget inside the run's, e.g.
+        the deadline moved by the world's setup, which mpbenchd leaves
+        out of the run's time (mpb_solve_limits_moved())."""
+        copy = Limits(self.start, 0.0, self.stopping)
+        copy.deadline = self.deadline + seconds
+        return copy
 
 
 def takes_limits(solve):

@@ -7,7 +7,6 @@ a goal region). Motions are checked every `resolution` rad in joint space,
 continuous joints the short way round, as the daemon's verifier does.
 """
 import math
-import time
 
 TRAPPED, ADVANCED, REACHED = 0, 1, 2
 
@@ -105,16 +104,11 @@ def _connect(tree, q, step):
             return state, i
 
 
-def _never():
-    return False
-
-
-def plan(space, start, goals, step, deadline, stopping=_never):
+def plan(space, start, goals, step, should_stop):
     """A path (list of configurations) from start to one of goals, or None
-    when the deadline (time.monotonic()) passes first or stopping() says
-    so."""
+    when should_stop() (the kit's Limits.should_stop) says so first."""
     a, b = Tree(space, [start]), Tree(space, goals)
-    while time.monotonic() < deadline and not stopping():
+    while not should_stop():
         state, i = _extend(a, space.sample(), step)
         if state != TRAPPED:
             state, j = _connect(b, a.nodes[i], step)
@@ -127,12 +121,12 @@ def plan(space, start, goals, step, deadline, stopping=_never):
     return None
 
 
-def shortcut(space, path, attempts, deadline, stopping=_never):
+def shortcut(space, path, attempts, should_stop):
     """Replace stretches of the path by straight motions where they are
     free: pick two waypoints at random, join them if nothing is between."""
     path = list(path)
     for _ in range(attempts):
-        if len(path) < 3 or time.monotonic() >= deadline or stopping():
+        if len(path) < 3 or should_stop():
             break
         i = space.rng.randrange(len(path) - 2)
         j = space.rng.randrange(i + 2, len(path))

@@ -18,10 +18,9 @@ from . import rrt_connect
 
 def solve(req, cache, limits):
     """Answer one plan_request_t with a plan_result_t (run_id and planner_id
-    left for the caller), by limits.deadline (limits.py) unless
-    limits.stopping() says to stop first."""
+    left for the caller), stopping when limits.should_stop() (limits.py)
+    says so."""
     t0 = time.monotonic()
-    deadline = limits.deadline
     res = plan_result_t()
     res.stages, res.values, res.progress = [], [], []
     try:
@@ -39,7 +38,7 @@ def solve(req, cache, limits):
             # Building the world is not this run's time (tau_t): it is
             # reported on its own, as OMPL's Benchmark keeps its setup.
             t0 += cache.setup_time
-            deadline += cache.setup_time
+            limits = limits.moved(cache.setup_time)
             setup_value = named_value_t()
             setup_value.name = WORLD_SETUP_TIME
             setup_value.value = cache.setup_time
@@ -52,14 +51,14 @@ def solve(req, cache, limits):
         start = list(req.start)
         if not space.free(start):
             raise InvalidRequest("the start state is in collision")
-        goals = goal_configs(world, req, space.free, deadline)
+        goals = goal_configs(world, req, space.free, limits.deadline)
         t_setup = time.monotonic()
         if not goals:
             res.status = plan_result_t.FAILED
             res.message = "no collision-free goal configuration found"
         else:
-            path = rrt_connect.plan(space, start, goals, step, deadline,
-                                    limits.stopping)
+            path = rrt_connect.plan(space, start, goals, step,
+                                    limits.should_stop)
             t_raw = time.monotonic()
             if path is None:
                 res.status = plan_result_t.TIMEOUT
@@ -68,8 +67,8 @@ def solve(req, cache, limits):
                 res.status = plan_result_t.SOLVED
                 res.stages.append(_stage("raw", t_raw - t_setup, path,
                                          world.num_joints))
-                short = rrt_connect.shortcut(space, path, 100, deadline,
-                                             limits.stopping)
+                short = rrt_connect.shortcut(space, path, 100,
+                                             limits.should_stop)
                 res.stages.append(_stage("shortcut", time.monotonic() - t_raw,
                                          short, world.num_joints))
         res.time_other = t_setup - t0

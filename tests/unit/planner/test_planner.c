@@ -295,11 +295,31 @@ static void test_solve_should_stop(void **state)
     assert_int_equal(mpb_solve_should_stop(&lim), 0);
 }
 
+/* A planner's own budget: the deadline moved, the flag the same one. */
+static void test_solve_limits_moved(void **state)
+{
+    (void)state;
+    volatile sig_atomic_t flag = 0;
+    double now = mpb_monotonic_s();
+    mpb_solve_limits lim = {.start = now, .deadline = now - 1.0, .stop = &flag};
+    mpb_solve_limits later = mpb_solve_limits_moved(&lim, 60.0);
+    assert_true(later.deadline == lim.deadline + 60.0);
+    assert_true(later.start == lim.start);
+    assert_int_equal(mpb_solve_should_stop(&lim), 1);
+    assert_int_equal(mpb_solve_should_stop(&later), 0);
+    flag = 1;       /* the node's stop reaches the copy */
+    assert_int_equal(mpb_solve_should_stop(&later), 1);
+    flag = 0;
+    mpb_solve_limits earlier = mpb_solve_limits_moved(&later, -120.0);
+    assert_int_equal(mpb_solve_should_stop(&earlier), 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_add_stage_copies),
         cmocka_unit_test(test_solve_should_stop),
+        cmocka_unit_test(test_solve_limits_moved),
         cmocka_unit_test(test_add_stage_bad_args),
         cmocka_unit_test(test_values_and_message),
         cmocka_unit_test(test_result_round_trip),
