@@ -786,7 +786,11 @@ void report_cells(const report *r, const column *cols, char (*text)[CELL_TEXT],
             if (tr->what == SHOW_SIGMA && !isnan(v) &&
                 report_sigma_single(&cols[c].m[tr->metric]) > 0)
                 strcat(text[i * nc + c], SIGMA_SINGLE_MARK);
-            any |= !isnan(v) || cols[c].m[tr->metric].n > 0;  /* measured */
+            /* Measured: a value, or runs of a metric row (a count row's
+             * metric is an outcome, or COUNT_CLAIMED, no index of m). */
+            any |= !isnan(v) ||
+                   ((tr->what == SHOW_MEAN || tr->what == SHOW_SIGMA) &&
+                    cols[c].m[tr->metric].n > 0);
         }
         visible[i] = tr->sets_only ? any : !tr->optional || any;
     }
