@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
+#include "test_store.h"
 #include "test_tool.h"
 
 static char mpb_tool[4096];
@@ -27,43 +28,6 @@ typedef struct fixture {
     char db[128];
 } fixture;
 
-static void finish(mpb_store *s, int64_t run_id, int success, double time,
-                   double length)
-{
-    char uid[32];
-    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
-    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p-1"), MPB_OK);
-    mpb_named m[] = {{"path_length", length}};
-    mpb_stage_record st = {.name = "raw", .valid = success,
-                           .verdict = success ? "valid" : "collision",
-                           .verdict_segment = -1, .num_metrics = 1,
-                           .metrics = m};
-    mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "p-1",
-        .status = success ? "solved" : "timeout",
-        .claimed_success = success, .success = success, .time_total = time,
-        .time_raw = time, .num_stages = 1, .stages = &st,
-        .verify_time = NAN, .memory = NAN,
-    };
-    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
-}
-
-typedef struct ids {
-    int64_t run[2][11];
-    int64_t cfg[2], query[11];
-} ids;
-
-static int find_ids(void *ud, const mpb_run_row *row)
-{
-    ids *x = ud;
-    for (int c = 0; c < 2; c++)
-        for (int q = 0; q < 11; q++)
-            if (x->cfg[c] == row->planner_config_id &&
-                x->query[q] == row->query_id)
-                x->run[c][q] = row->id;
-    return 0;
-}
-
 static int setup(void **state)
 {
     fixture *f = calloc(1, sizeof *f);
@@ -71,44 +35,34 @@ static int setup(void **state)
     snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
     mpb_store *s;
     assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
-    int64_t exp;
-    mpb_experiment_info e = {"sets", "sets.yaml", "h", "text", 1, 10.0, NULL, 0};
-    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
-    ids x = {0};
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "a/fast", "a",
-                                                  "fast", "", &x.cfg[0]),
-                     MPB_OK);
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "b/slow", "b",
-                                                  "slow", "", &x.cfg[1]),
-                     MPB_OK);
-    static const char *const joints[] = {"j"};
-    static const double zero[] = {0.0}, one[] = {1.0};
+    int64_t exp = test_store_experiment(s, "sets", "sets.yaml", "h", 1, 10.0);
+    int64_t cfg[2] = {test_store_config(s, exp, "a", "fast", ""),
+                      test_store_config(s, exp, "b", "slow", "")};
+    int64_t query[11];
     for (int q = 0; q < 11; q++) {
         char name[32];
         snprintf(name, sizeof name, "s%d/%04d", q < 8 ? 1 : 2,
                  q < 8 ? q + 1 : q - 7);
-        mpb_scene_info sc = {name, "planar", "r", "r", "planar", "h", "s"};
-        int64_t scene;
-        assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
-        mpb_query_info qi = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
-                             NULL, NULL};
-        assert_int_equal(mpb_store_query_add(s, scene, &qi, &x.query[q]),
-                         MPB_OK);
+        query[q] = test_store_query(s, test_store_scene(s, exp, name, "h", "s"),
+                                    "q");
         for (int c = 0; c < 2; c++)
-            assert_int_equal(mpb_store_run_add(s, exp, x.cfg[c], x.query[q],
-                                               0, 2 * q + c), MPB_OK);
+            assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query[q], 0,
+                                               2 * q + c), MPB_OK);
     }
-    assert_int_equal(mpb_store_runs_unfinished(s, exp, find_ids, &x), MPB_OK);
+    int64_t run[2][11];
+    for (int q = 0; q < 11; q++)
+        for (int c = 0; c < 2; c++)
+            run[c][q] = test_store_run_id(s, exp, cfg[c], query[q], 0);
     for (int q = 0; q < 8; q++) {
-        finish(s, x.run[0][q], 1, q + 1.0, 1.0);
+        test_store_finish(s, run[0][q], 1, q + 1.0, 1.0);
         if (q < 5)
-            finish(s, x.run[1][q], 1, 2.0 * (q + 1), 1.5);
+            test_store_finish(s, run[1][q], 1, 2.0 * (q + 1), 1.5);
         else
-            finish(s, x.run[1][q], 0, 10.0, NAN);
+            test_store_finish(s, run[1][q], 0, 10.0, NAN);
     }
     for (int q = 8; q < 11; q++) {
-        finish(s, x.run[0][q], 0, 10.0, NAN);
-        finish(s, x.run[1][q], 1, 1.0, 1.5);
+        test_store_finish(s, run[0][q], 0, 10.0, NAN);
+        test_store_finish(s, run[1][q], 1, 1.0, 1.5);
     }
     mpb_store_close(s);
     *state = f;

@@ -25,6 +25,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
+#include "test_store.h"
 #include "test_tool.h"
 
 static char mpb_tool[4096];
@@ -70,22 +71,6 @@ static const run_spec runs[5][2][3] = {
     {{{5, 1.0}}, {{5, 1.0}}},
 };
 
-typedef struct ids {
-    int64_t cfg[2], query[5];
-    int64_t run[5][2][3];
-} ids;
-
-static int find_ids(void *ud, const mpb_run_row *row)
-{
-    ids *x = ud;
-    for (int q = 0; q < 5; q++)
-        for (int c = 0; c < 2; c++)
-            if (x->cfg[c] == row->planner_config_id &&
-                x->query[q] == row->query_id)
-                x->run[q][c][row->repetition] = row->id;
-    return 0;
-}
-
 static int setup(void **state)
 {
     fixture *f = calloc(1, sizeof *f);
@@ -93,43 +78,29 @@ static int setup(void **state)
     snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
     mpb_store *s;
     assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
-    int64_t exp;
-    mpb_experiment_info e = {"profiles", "p.yaml", "h", "text", 1, 10.0,
-                             NULL, 0};
-    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
-    ids x = {0};
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "a/fast", "a",
-                                                  "fast", "", &x.cfg[0]),
-                     MPB_OK);
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "b/slow", "b",
-                                                  "slow", "", &x.cfg[1]),
-                     MPB_OK);
-    static const char *const joints[] = {"j"};
-    static const double zero[] = {0.0}, one[] = {1.0};
+    int64_t exp = test_store_experiment(s, "profiles", "p.yaml", "h", 1, 10.0);
+    int64_t cfg[2] = {test_store_config(s, exp, "a", "fast", ""),
+                      test_store_config(s, exp, "b", "slow", "")};
+    int64_t query[5];
     for (int q = 0; q < 5; q++) {
         char name[32];
         snprintf(name, sizeof name, q < 4 ? "s1/%04d" : "lone", q + 1);
-        mpb_scene_info sc = {name, "planar", "r", "r", "planar", "h", "s"};
-        int64_t scene;
-        assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
+        int64_t scene = test_store_scene(s, exp, name, "h", "s");
         if (q == 4)
             assert_int_equal(mpb_store_scene_set_problem_set(s, scene, "s2"),
                              MPB_OK);
-        mpb_query_info qi = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
-                             NULL, NULL};
-        assert_int_equal(mpb_store_query_add(s, scene, &qi, &x.query[q]),
-                         MPB_OK);
+        query[q] = test_store_query(s, scene, "q");
         for (int c = 0; c < 2; c++)
             for (int r = 0; r < 3 && runs[q][c][r].time > 0; r++)
-                assert_int_equal(mpb_store_run_add(s, exp, x.cfg[c],
-                                                   x.query[q], r, 7 * q + r),
+                assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query[q], r,
+                                                   7 * q + r),
                                  MPB_OK);
     }
-    assert_int_equal(mpb_store_runs_unfinished(s, exp, find_ids, &x), MPB_OK);
     for (int q = 0; q < 5; q++)
         for (int c = 0; c < 2; c++)
             for (int r = 0; r < 3 && runs[q][c][r].time > 0; r++)
-                finish(s, x.run[q][c][r], runs[q][c][r]);
+                finish(s, test_store_run_id(s, exp, cfg[c], query[q], r),
+                       runs[q][c][r]);
     mpb_store_close(s);
     *state = f;
     return 0;

@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
+#include "test_store.h"
 
 static char mpb_tool[4096];     /* the built mpb */
 static char dir[64], db[96];
@@ -107,28 +108,18 @@ static int setup(void **state)
     snprintf(db, sizeof db, "%s/results.db", dir);
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
 
-    mpb_experiment_info e = {"paper", "paper.yaml", "h", "text", 2, 60.0, NULL, 0};
-    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
-    static const char *const cfg[NUM_CONFIGS][3] = {
-        {"ompl/RRTConnect", "ompl", "RRTConnect"},
-        {"ompl/RRT", "ompl", "RRT"},
-        {"arastar/ARAstar", "arastar", "ARAstar"},
+    exp = test_store_experiment(s, "paper", "paper.yaml", "h", 2, 60.0);
+    static const char *const cfg[NUM_CONFIGS][2] = {
+        {"ompl", "RRTConnect"}, {"ompl", "RRT"}, {"arastar", "ARAstar"},
     };
     for (int c = 0; c < NUM_CONFIGS; c++)
-        assert_int_equal(mpb_store_planner_config_add(s, exp, cfg[c][0],
-                         cfg[c][1], cfg[c][2], "", &cfg_id[c]), MPB_OK);
+        cfg_id[c] = test_store_config(s, exp, cfg[c][0], cfg[c][1], "");
     static const char *const scene_name[NUM_SCENES] = {"kitchen", "tabletop",
                                                        "narrow_passage"};
-    static const char *const joints[] = {"j"};
-    static const double zero[] = {0.0}, one[] = {1.0};
     for (int k = 0; k < NUM_SCENES; k++) {
-        mpb_scene_info si = {scene_name[k], "planar", "r", "r", "planar",
-                             scene_name[k], scene_name[k]};
-        assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
-        mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
-                            NULL, NULL};
-        assert_int_equal(mpb_store_query_add(s, scene, &q, &query_id[k]),
-                         MPB_OK);
+        scene = test_store_scene(s, exp, scene_name[k], scene_name[k],
+                                 scene_name[k]);
+        query_id[k] = test_store_query(s, scene, "g1");
     }
     for (int i = 0; i < NUM_RUNS; i++)
         assert_int_equal(mpb_store_run_add(s, exp, cfg_id[runs[i].cfg],
@@ -240,18 +231,10 @@ static void test_nothing_finished(void **state)
     mpb_store *s;
     int64_t exp, cfg, scene, query;
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
-    mpb_experiment_info e = {"waiting", "w.yaml", "h", "text", 1, 60.0, NULL, 0};
-    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRT", "ompl",
-                                                  "RRT", "", &cfg), MPB_OK);
-    mpb_scene_info si = {"empty", "planar", "r", "r", "planar", "empty",
-                         "empty"};
-    assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
-    static const char *const joints[] = {"j"};
-    static const double zero[] = {0.0}, one[] = {1.0};
-    mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
-                        NULL, NULL};
-    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    exp = test_store_experiment(s, "waiting", "w.yaml", "h", 1, 60.0);
+    cfg = test_store_config(s, exp, "ompl", "RRT", "");
+    scene = test_store_scene(s, exp, "empty", "empty", "empty");
+    query = test_store_query(s, scene, "g1");
     assert_int_equal(mpb_store_run_add(s, exp, cfg, query, 0, 0), MPB_OK);
     mpb_store_close(s);
     char args[64];
@@ -274,22 +257,12 @@ static void test_what_cannot_fail_is_not_checked(void **state)
     mpb_store *s;
     int64_t exp, cfg[2], scene, query[2], id[3];
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
-    mpb_experiment_info e = {"once", "o.yaml", "h", "text", 2, 60.0, NULL, 0};
-    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "ompl/RRTConnect",
-                     "ompl", "RRTConnect", "", &cfg[0]), MPB_OK);
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "arastar/ARAstar",
-                     "arastar", "ARAstar", "", &cfg[1]), MPB_OK);
-    mpb_scene_info si = {"shelf", "planar", "r", "r", "planar", "shelf",
-                         "shelf"};
-    assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
-    static const char *const joints[] = {"j"};
-    static const double zero[] = {0.0}, one[] = {1.0};
-    for (int k = 0; k < 2; k++) {
-        mpb_query_info q = {k ? "g2" : "g1", 1, joints, zero, MPB_GOAL_JOINTS,
-                            one, 0.01, NULL, NULL};
-        assert_int_equal(mpb_store_query_add(s, scene, &q, &query[k]), MPB_OK);
-    }
+    exp = test_store_experiment(s, "once", "o.yaml", "h", 2, 60.0);
+    cfg[0] = test_store_config(s, exp, "ompl", "RRTConnect", "");
+    cfg[1] = test_store_config(s, exp, "arastar", "ARAstar", "");
+    scene = test_store_scene(s, exp, "shelf", "shelf", "shelf");
+    for (int k = 0; k < 2; k++)
+        query[k] = test_store_query(s, scene, k ? "g2" : "g1");
     /* RRTConnect twice on g1; ARA* once on each query. */
     const run_spec spec[3] = {{0, 0, 0, 1, 1.0, 10.0}, {0, 0, 1, 1, 1.0, 12.0},
                               {1, 0, 0, 1, 2.0, 8.0}};
@@ -332,19 +305,12 @@ static int64_t one_scene_experiment(const char *name,
     int64_t exp, cfg_ids[8], scene, query;
     assert_true(n_cfg <= 8 && n_spec <= 16);
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
-    mpb_experiment_info e = {name, "x.yaml", "h", "text", 3, 60.0, NULL, 0};
-    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
+    exp = test_store_experiment(s, name, "x.yaml", "h", 3, 60.0);
     for (int c = 0; c < n_cfg; c++)
         assert_int_equal(mpb_store_planner_config_add(s, exp, cfg[c][0],
                          cfg[c][1], cfg[c][2], "", &cfg_ids[c]), MPB_OK);
-    mpb_scene_info si = {"narrow_passage", "planar", "r", "r", "planar",
-                         "narrow", "narrow"};
-    assert_int_equal(mpb_store_scene_add(s, exp, &si, &scene), MPB_OK);
-    static const char *const joints[] = {"j"};
-    static const double zero[] = {0.0}, one[] = {1.0};
-    mpb_query_info q = {"g1", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
-                        NULL, NULL};
-    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    scene = test_store_scene(s, exp, "narrow_passage", "narrow", "narrow");
+    query = test_store_query(s, scene, "g1");
     for (int i = 0; i < n_spec; i++)
         assert_int_equal(mpb_store_run_add(s, exp, cfg_ids[spec[i].cfg], query,
                                            spec[i].rep, i + 1), MPB_OK);

@@ -19,6 +19,7 @@
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
+#include "test_store.h"
 #include "test_tool.h"
 
 static char mpb_tool[4096];
@@ -29,83 +30,36 @@ typedef struct fixture {
     int64_t ten, hundred;
 } fixture;
 
-static void finish(mpb_store *s, int64_t run_id, int success, double time,
-                   double length)
-{
-    char uid[32];
-    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
-    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p-1"), MPB_OK);
-    mpb_named m[] = {{"path_length", length}};
-    mpb_stage_record st = {.name = "raw", .valid = success,
-                           .verdict = success ? "valid" : "collision",
-                           .verdict_segment = -1, .num_metrics = 1,
-                           .metrics = m};
-    mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "p-1",
-        .status = success ? "solved" : "timeout",
-        .claimed_success = success, .success = success, .time_total = time,
-        .time_raw = time, .num_stages = 1, .stages = &st,
-        .verify_time = NAN, .memory = NAN,
-    };
-    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
-}
-
 #define MAX_PROBLEMS 100
-
-typedef struct ids {
-    int64_t run[2][MAX_PROBLEMS];
-    int64_t cfg[2], query[MAX_PROBLEMS];
-} ids;
-
-static int find_ids(void *ud, const mpb_run_row *row)
-{
-    ids *x = ud;
-    for (int c = 0; c < 2; c++)
-        for (int q = 0; q < MAX_PROBLEMS; q++)
-            if (x->cfg[c] == row->planner_config_id &&
-                x->query[q] == row->query_id)
-                x->run[c][q] = row->id;
-    return 0;
-}
 
 /* An experiment of n problems in set `set`; runs as the top says. */
 static int64_t experiment(mpb_store *s, const char *name, const char *set,
                           int n)
 {
-    int64_t exp;
-    mpb_experiment_info e = {name, "sets.yaml", "h", "text", 1, 10.0, NULL, 0};
-    assert_int_equal(mpb_store_experiment_create(s, &e, &exp), MPB_OK);
-    static ids x;
-    memset(&x, 0, sizeof x);
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "a/x", "a", "x", "",
-                                                  &x.cfg[0]), MPB_OK);
-    assert_int_equal(mpb_store_planner_config_add(s, exp, "b/y", "b", "y", "",
-                                                  &x.cfg[1]), MPB_OK);
-    static const char *const joints[] = {"j"};
-    static const double zero[] = {0.0}, one[] = {1.0};
+    int64_t exp = test_store_experiment(s, name, "sets.yaml", "h", 1, 10.0);
+    int64_t cfg[2] = {test_store_config(s, exp, "a", "x", ""),
+                      test_store_config(s, exp, "b", "y", "")};
+    static int64_t query[MAX_PROBLEMS];
     for (int q = 0; q < n; q++) {
         char scene_name[32];
         snprintf(scene_name, sizeof scene_name, "%s/%04d", set, q + 1);
-        mpb_scene_info sc = {scene_name, "planar", "r", "r", "planar", "h", "s"};
-        int64_t scene;
-        assert_int_equal(mpb_store_scene_add(s, exp, &sc, &scene), MPB_OK);
-        mpb_query_info qi = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
-                             NULL, NULL};
-        assert_int_equal(mpb_store_query_add(s, scene, &qi, &x.query[q]),
-                         MPB_OK);
+        query[q] = test_store_query(
+            s, test_store_scene(s, exp, scene_name, "h", "s"), "q");
         for (int c = 0; c < 2; c++)
-            assert_int_equal(mpb_store_run_add(s, exp, x.cfg[c], x.query[q],
+            assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query[q],
                                                0, 2 * q + c), MPB_OK);
     }
-    assert_int_equal(mpb_store_runs_unfinished(s, exp, find_ids, &x), MPB_OK);
     for (int q = 0; q < n; q++) {
+        int64_t a = test_store_run_id(s, exp, cfg[0], query[q], 0);
+        int64_t b = test_store_run_id(s, exp, cfg[1], query[q], 0);
         if (n == 10) {
-            finish(s, x.run[0][q], 1, 1.0 + 0.1 * q, 2.0);
-            finish(s, x.run[1][q], q != 0, q != 0 ? 1.0 + 0.1 * q : 10.0, 2.0);
+            test_store_finish(s, a, 1, 1.0 + 0.1 * q, 2.0);
+            test_store_finish(s, b, q != 0, q != 0 ? 1.0 + 0.1 * q : 10.0,
+                              2.0);
         } else {
             double t = 0.01 * (1 + q % 10);
-            finish(s, x.run[0][q], 1, t, 2.0);
-            finish(s, x.run[1][q], 1, 10 * t, 2.0);
+            test_store_finish(s, a, 1, t, 2.0);
+            test_store_finish(s, b, 1, 10 * t, 2.0);
         }
     }
     return exp;
