@@ -85,7 +85,8 @@ static inline int64_t test_store_run_id(mpb_store *s, int64_t exp,
                                         int64_t cfg, int64_t query, int rep)
 {
     test_store_key k = {cfg, query, 0, rep};
-    assert_int_equal(mpb_store_runs_unfinished(s, exp, test_store_match, &k), 1);
+    assert_int_equal(mpb_store_runs_unfinished(s, exp, test_store_match, &k),
+                     1);
     return k.id;
 }
 
