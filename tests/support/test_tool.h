@@ -64,10 +64,11 @@ typedef struct test_output {
 
 /* Run `PROGRAM ARGS` with the shell; keep stdout, stderr or both (which:
  * "stdout", "stderr", "both"). */
-static void test_run(test_output *o, const char *program, const char *which,
-                     const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-static void test_run(test_output *o, const char *program, const char *which,
-                     const char *fmt, ...)
+static inline void test_run(test_output *o, const char *program,
+                            const char *which, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static inline void test_run(test_output *o, const char *program,
+                            const char *which, const char *fmt, ...)
 {
     char args[2048], cmd[8192];
     va_list ap;
