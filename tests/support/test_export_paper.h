@@ -156,12 +156,8 @@ static inline int setup(void **state)
     for (int i = 0; i < 3; i++)
         f->query[i] = test_store_query(s, scene[i == T1], qname[i]);
     for (int i = 0; i < NUM_RUNS; i++)
-        assert_int_equal(mpb_store_run_add(s, exp, f->cfg[runs[i].cfg],
-                                           f->query[runs[i].query],
-                                           runs[i].rep, i), MPB_OK);
-    for (int i = 0; i < NUM_RUNS; i++)
-        f->run_id[i] = test_store_run_id(s, exp, f->cfg[runs[i].cfg],
-                                         f->query[runs[i].query], runs[i].rep);
+        f->run_id[i] = test_store_run(s, exp, f->cfg[runs[i].cfg],
+                                      f->query[runs[i].query], runs[i].rep, i);
     for (int i = 0; i < NUM_RUNS; i++)
         if (runs[i].done)
             finish(s, f->run_id[i], &runs[i], i);
@@ -175,8 +171,7 @@ static inline int setup(void **state)
                                                   "range=0.5", &cfg2), MPB_OK);
     assert_int_equal(mpb_store_scene_add(s, exp2, &kitchen, &scene2), MPB_OK);
     query2 = test_store_query(s, scene2, "k9");
-    assert_int_equal(mpb_store_run_add(s, exp2, cfg2, query2, 0, 1), MPB_OK);
-    run2 = test_store_run_id(s, exp2, cfg2, query2, 0);
+    run2 = test_store_run(s, exp2, cfg2, query2, 0, 1);
     run_spec r2 = {A, 0, 0, 1, "solved", 1, 1, 0.75, 1.0, 1,
                    {{"raw", 0.7, 2.0, 0.0, -1, 2, 1}}};
     finish(s, run2, &r2, 1);

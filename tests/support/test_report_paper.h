@@ -121,12 +121,8 @@ static inline void write_paper(fixture *f, mpb_store *s)
     for (int i = 0; i < 3; i++)
         f->query[i] = test_store_query(s, scene[i == T1], qname[i]);
     for (int i = 0; i < NUM_RUNS; i++)
-        assert_int_equal(mpb_store_run_add(s, exp, f->cfg[runs[i].cfg],
-                                           f->query[runs[i].query],
-                                           runs[i].rep, i), MPB_OK);
-    for (int i = 0; i < NUM_RUNS; i++)
-        f->run_id[i] = test_store_run_id(s, exp, f->cfg[runs[i].cfg],
-                                         f->query[runs[i].query], runs[i].rep);
+        f->run_id[i] = test_store_run(s, exp, f->cfg[runs[i].cfg],
+                                      f->query[runs[i].query], runs[i].rep, i);
     for (int i = 0; i < NUM_RUNS; i++)
         if (runs[i].done)
             finish(s, f->run_id[i], &runs[i]);
@@ -142,8 +138,7 @@ static inline void write_one_run(mpb_store *s, int64_t exp, const char *planner,
     int64_t cfg = test_store_config(s, exp, planner, algorithm, params);
     int64_t q = test_store_query(s, test_store_scene(s, exp, scene, hash, hash),
                                  query);
-    assert_int_equal(mpb_store_run_add(s, exp, cfg, q, 0, 1), MPB_OK);
-    finish(s, test_store_run_id(s, exp, cfg, q, 0), r);
+    finish(s, test_store_run(s, exp, cfg, q, 0, 1), r);
 }
 
 static inline void write_newer(mpb_store *s)

@@ -114,4 +114,13 @@ static inline void test_store_finish(mpb_store *s, int64_t run_id, int success,
     assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
 }
 
+/* A new run of configuration cfg on query, repetition rep, with seed:
+ * its id. */
+static inline int64_t test_store_run(mpb_store *s, int64_t exp, int64_t cfg,
+                                     int64_t query, int rep, int64_t seed)
+{
+    assert_int_equal(mpb_store_run_add(s, exp, cfg, query, rep, seed), MPB_OK);
+    return test_store_run_id(s, exp, cfg, query, rep);
+}
+
 #endif

@@ -38,7 +38,7 @@ static int setup(void **state)
     int64_t exp = test_store_experiment(s, "sets", "sets.yaml", "h", 1, 10.0);
     int64_t cfg[2] = {test_store_config(s, exp, "a", "fast", ""),
                       test_store_config(s, exp, "b", "slow", "")};
-    int64_t query[11];
+    int64_t query[11], run[2][11];
     for (int q = 0; q < 11; q++) {
         char name[32];
         snprintf(name, sizeof name, "s%d/%04d", q < 8 ? 1 : 2,
@@ -46,13 +46,8 @@ static int setup(void **state)
         query[q] = test_store_query(s, test_store_scene(s, exp, name, "h", "s"),
                                     "q");
         for (int c = 0; c < 2; c++)
-            assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query[q], 0,
-                                               2 * q + c), MPB_OK);
+            run[c][q] = test_store_run(s, exp, cfg[c], query[q], 0, 2 * q + c);
     }
-    int64_t run[2][11];
-    for (int q = 0; q < 11; q++)
-        for (int c = 0; c < 2; c++)
-            run[c][q] = test_store_run_id(s, exp, cfg[c], query[q], 0);
     for (int q = 0; q < 8; q++) {
         test_store_finish(s, run[0][q], 1, q + 1.0, 1.0);
         if (q < 5)

@@ -51,17 +51,6 @@ static const run_spec runs[] = {
 
 static int64_t cfg_id[NUM_CONFIGS], query_id[NUM_SCENES], run_id[NUM_RUNS];
 
-static int find_ids(void *ud, const mpb_run_row *row)
-{
-    (void)ud;
-    for (int i = 0; i < NUM_RUNS; i++)
-        if (cfg_id[runs[i].cfg] == row->planner_config_id &&
-            query_id[runs[i].scene] == row->query_id &&
-            runs[i].rep == row->repetition)
-            run_id[i] = row->id;
-    return 0;
-}
-
 /* Send and finish the run with this id as r says. */
 static void finish_run(mpb_store *s, int64_t id, const run_spec *r)
 {
@@ -122,10 +111,8 @@ static int setup(void **state)
         query_id[k] = test_store_query(s, scene, "g1");
     }
     for (int i = 0; i < NUM_RUNS; i++)
-        assert_int_equal(mpb_store_run_add(s, exp, cfg_id[runs[i].cfg],
-                                           query_id[runs[i].scene],
-                                           runs[i].rep, i), MPB_OK);
-    assert_int_equal(mpb_store_runs_unfinished(s, exp, find_ids, NULL), MPB_OK);
+        run_id[i] = test_store_run(s, exp, cfg_id[runs[i].cfg],
+                                   query_id[runs[i].scene], runs[i].rep, i);
     for (int i = 0; i < NUM_RUNS; i++)
         finish(s, i);
     mpb_store_close(s);

@@ -39,19 +39,17 @@ static int64_t experiment(mpb_store *s, const char *name, const char *set,
     int64_t exp = test_store_experiment(s, name, "sets.yaml", "h", 1, 10.0);
     int64_t cfg[2] = {test_store_config(s, exp, "a", "x", ""),
                       test_store_config(s, exp, "b", "y", "")};
-    static int64_t query[MAX_PROBLEMS];
+    static int64_t query[MAX_PROBLEMS], run[2][MAX_PROBLEMS];
     for (int q = 0; q < n; q++) {
         char scene_name[32];
         snprintf(scene_name, sizeof scene_name, "%s/%04d", set, q + 1);
         query[q] = test_store_query(
             s, test_store_scene(s, exp, scene_name, "h", "s"), "q");
         for (int c = 0; c < 2; c++)
-            assert_int_equal(mpb_store_run_add(s, exp, cfg[c], query[q],
-                                               0, 2 * q + c), MPB_OK);
+            run[c][q] = test_store_run(s, exp, cfg[c], query[q], 0, 2 * q + c);
     }
     for (int q = 0; q < n; q++) {
-        int64_t a = test_store_run_id(s, exp, cfg[0], query[q], 0);
-        int64_t b = test_store_run_id(s, exp, cfg[1], query[q], 0);
+        int64_t a = run[0][q], b = run[1][q];
         if (n == 10) {
             test_store_finish(s, a, 1, 1.0 + 0.1 * q, 2.0);
             test_store_finish(s, b, q != 0, q != 0 ? 1.0 + 0.1 * q : 10.0,
