@@ -133,10 +133,8 @@ static inline int setup(void **state)
     fixture *f = calloc(1, sizeof *f);
     mpb_store *s;
     int64_t exp, scene[2];
-    test_make_dir(f->dir, sizeof f->dir, "export");
-    snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
+    s = test_store_new(f->dir, sizeof f->dir, f->db, sizeof f->db, "export");
     snprintf(f->out, sizeof f->out, "%s/arena.db", f->dir);
-    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
 
     mpb_experiment_info e = {"paper", "paper.yaml", "h1",
                              "experiment: {name: paper}\n", 3, 60.0, NULL, 0};

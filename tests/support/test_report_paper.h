@@ -164,15 +164,13 @@ static inline void write_odd(mpb_store *s)
 static inline int setup(void **state)
 {
     fixture *f = calloc(1, sizeof *f);
-    mpb_store *s;
-    test_make_dir(f->dir, sizeof f->dir, "report");
-    snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
+    mpb_store *s = test_store_new(f->dir, sizeof f->dir, f->db, sizeof f->db,
+                                  "report");
     snprintf(f->empty, sizeof f->empty, "%s/empty.db", f->dir);
     snprintf(f->text, sizeof f->text, "%s/notes.txt", f->dir);
     snprintf(f->odd, sizeof f->odd, "%s/odd.db", f->dir);
     snprintf(f->out, sizeof f->out, "%s/report.out", f->dir);
 
-    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
     write_paper(f, s);
     write_newer(s);
     mpb_store_close(s);

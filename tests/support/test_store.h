@@ -11,6 +11,21 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "test_tool.h"
+
+/* A new results database, results.db in a new temporary folder
+ * /tmp/mpb_test_NAME_XXXXXX (test_tool.h): the folder into dir, the
+ * database's path into db, and the store open on it. */
+static inline mpb_store *test_store_new(char *dir, size_t dir_size, char *db,
+                                        size_t db_size, const char *name)
+{
+    mpb_store *s;
+    test_make_dir(dir, dir_size, name);
+    snprintf(db, db_size, "%s/results.db", dir);
+    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    return s;
+}
+
 /* A new experiment: its name, file, hash, repetitions and time limit (s). */
 static inline int64_t test_store_experiment(mpb_store *s, const char *name,
                                             const char *file, const char *hash,

@@ -31,10 +31,8 @@ typedef struct fixture {
 static int setup(void **state)
 {
     fixture *f = calloc(1, sizeof *f);
-    test_make_dir(f->dir, sizeof f->dir, "compare");
-    snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
-    mpb_store *s;
-    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    mpb_store *s = test_store_new(f->dir, sizeof f->dir, f->db, sizeof f->db,
+                                  "compare");
     int64_t exp = test_store_experiment(s, "sets", "sets.yaml", "h", 1, 10.0);
     int64_t cfg[2] = {test_store_config(s, exp, "a", "fast", ""),
                       test_store_config(s, exp, "b", "slow", "")};

@@ -74,10 +74,8 @@ static const run_spec runs[5][2][3] = {
 static int setup(void **state)
 {
     fixture *f = calloc(1, sizeof *f);
-    test_make_dir(f->dir, sizeof f->dir, "plot_profile");
-    snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
-    mpb_store *s;
-    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    mpb_store *s = test_store_new(f->dir, sizeof f->dir, f->db, sizeof f->db,
+                                  "plot_profile");
     int64_t exp = test_store_experiment(s, "profiles", "p.yaml", "h", 1, 10.0);
     int64_t cfg[2] = {test_store_config(s, exp, "a", "fast", ""),
                       test_store_config(s, exp, "b", "slow", "")};

@@ -90,12 +90,8 @@ static void finish(mpb_store *s, int i)
 static int setup(void **state)
 {
     (void)state;
-    mpb_store *s;
     int64_t exp, scene;
-    strcpy(dir, "/tmp/mpb_test_findings_XXXXXX");
-    assert_non_null(mkdtemp(dir));
-    snprintf(db, sizeof db, "%s/results.db", dir);
-    assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
+    mpb_store *s = test_store_new(dir, sizeof dir, db, sizeof db, "findings");
 
     exp = test_store_experiment(s, "paper", "paper.yaml", "h", 2, 60.0);
     static const char *const cfg[NUM_CONFIGS][2] = {
@@ -122,9 +118,7 @@ static int setup(void **state)
 static int teardown(void **state)
 {
     (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    test_remove_dir(dir);
     return 0;
 }
 

@@ -66,10 +66,8 @@ static int64_t experiment(mpb_store *s, const char *name, const char *set,
 static int setup(void **state)
 {
     fixture *f = calloc(1, sizeof *f);
-    test_make_dir(f->dir, sizeof f->dir, "report_sets");
-    snprintf(f->db, sizeof f->db, "%s/results.db", f->dir);
-    mpb_store *s;
-    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    mpb_store *s = test_store_new(f->dir, sizeof f->dir, f->db, sizeof f->db,
+                                  "report_sets");
     f->ten = experiment(s, "ten", "s", 10);
     f->hundred = experiment(s, "hundred", "t", 100);
     mpb_store_close(s);
