@@ -68,7 +68,7 @@ static const run_spec runs[] = {
 #define NUM_RUNS ((int)(sizeof runs / sizeof runs[0]))
 
 typedef struct fixture {
-    char    dir[64];
+    char    dir[64];            /* first: test_store_teardown() */
     char    db[96];
     char    out[96];
     int64_t run_id[NUM_RUNS];
@@ -175,14 +175,6 @@ static inline int setup(void **state)
     finish(s, run2, &r2, 1);
     mpb_store_close(s);
     *state = f;
-    return 0;
-}
-
-static inline int teardown(void **state)
-{
-    fixture *f = *state;
-    test_remove_dir(f->dir);
-    free(f);
     return 0;
 }
 

@@ -53,7 +53,7 @@ static const run_spec runs[] = {
 #define NUM_RUNS ((int)(sizeof runs / sizeof runs[0]))
 
 typedef struct fixture {
-    char    dir[64];
+    char    dir[64];            /* first: test_store_teardown() */
     char    db[96];             /* the two experiments */
     char    empty[96];          /* a database with no experiment */
     char    text[96];           /* not a database */
@@ -187,14 +187,6 @@ static inline int setup(void **state)
     fputs("These are not the results you are looking for.\n", t);
     fclose(t);
     *state = f;
-    return 0;
-}
-
-static inline int teardown(void **state)
-{
-    fixture *f = *state;
-    test_remove_dir(f->dir);
-    free(f);
     return 0;
 }
 

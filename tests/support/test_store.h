@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "test_tool.h"
@@ -24,6 +25,17 @@ static inline mpb_store *test_store_new(char *dir, size_t dir_size, char *db,
     snprintf(db, db_size, "%s/results.db", dir);
     assert_int_equal(mpb_store_open(db, 0, &s), MPB_OK);
     return s;
+}
+
+/* A group teardown for a fixture that calloc() made and whose first
+ * member is the char array of its test_store_new() folder: the folder
+ * removed with all it holds, the fixture freed. */
+static inline int test_store_teardown(void **state)
+{
+    char *dir = *state;
+    test_remove_dir(dir);
+    free(*state);
+    return 0;
 }
 
 /* A new experiment: its name, file, hash, repetitions and time limit (s). */

@@ -309,5 +309,5 @@ int main(void)
         cmocka_unit_test(ompl_logs_of_names_alike_are_files_of_their_own),
         cmocka_unit_test(an_imported_logs_integers_and_unmeasured_properties),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }

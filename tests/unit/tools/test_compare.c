@@ -24,7 +24,7 @@
 static char mpb_tool[4096];
 
 typedef struct fixture {
-    char dir[64];
+    char dir[64];               /* first: test_store_teardown() */
     char db[128];
 } fixture;
 
@@ -59,14 +59,6 @@ static int setup(void **state)
     }
     mpb_store_close(s);
     *state = f;
-    return 0;
-}
-
-static int teardown(void **state)
-{
-    fixture *f = *state;
-    test_remove_dir(f->dir);
-    free(f);
     return 0;
 }
 
@@ -182,5 +174,5 @@ int main(void)
         cmocka_unit_test(every_pair_with_holms_adjustment),
         cmocka_unit_test(bad_input_is_one_line),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }

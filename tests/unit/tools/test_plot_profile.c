@@ -31,7 +31,7 @@
 static char mpb_tool[4096];
 
 typedef struct fixture {
-    char dir[64];
+    char dir[64];               /* first: test_store_teardown() */
     char db[128];
 } fixture;
 
@@ -104,14 +104,6 @@ static int setup(void **state)
     return 0;
 }
 
-static int teardown(void **state)
-{
-    fixture *f = *state;
-    test_remove_dir(f->dir);
-    free(f);
-    return 0;
-}
-
 static void the_profiles_are_the_hand_computed_ones(void **state)
 {
     fixture *f = *state;
@@ -165,5 +157,5 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(the_profiles_are_the_hand_computed_ones),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }

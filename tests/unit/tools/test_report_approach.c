@@ -170,5 +170,5 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(columns_are_grouped_by_approach_and_claims_counted),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }

@@ -124,5 +124,5 @@ int main(void)
         cmocka_unit_test(bad_command_lines_exit_2),
         cmocka_unit_test(help_is_clear),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }

@@ -350,5 +350,5 @@ int main(void)
         cmocka_unit_test(latex_has_a_tabular_per_scene),
         cmocka_unit_test(json_holds_every_number_by_name),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }

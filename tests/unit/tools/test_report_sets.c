@@ -25,7 +25,7 @@
 static char mpb_tool[4096];
 
 typedef struct fixture {
-    char dir[64];
+    char dir[64];               /* first: test_store_teardown() */
     char db[128];
     int64_t ten, hundred;
 } fixture;
@@ -72,14 +72,6 @@ static int setup(void **state)
     f->hundred = experiment(s, "hundred", "t", 100);
     mpb_store_close(s);
     *state = f;
-    return 0;
-}
-
-static int teardown(void **state)
-{
-    fixture *f = *state;
-    test_remove_dir(f->dir);
-    free(f);
     return 0;
 }
 
@@ -216,5 +208,5 @@ int main(void)
         cmocka_unit_test(one_run_in_ten_is_no_finding),
         cmocka_unit_test(ten_times_faster_on_a_hundred_is),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }

@@ -224,5 +224,5 @@ int main(void)
         cmocka_unit_test(the_newest_experiment_is_the_default),
         cmocka_unit_test(tiny_values_and_wide_names),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, test_store_teardown);
 }
