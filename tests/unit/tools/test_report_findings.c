@@ -122,19 +122,16 @@ static int teardown(void **state)
     return 0;
 }
 
-static char out[16384];
+/* The last run_tool()'s output, stdout and stderr together. */
+static test_output last;
+static const char *const out = last.text;
 
+/* `mpb report ARGS DB` run as a user runs it (test_tool.h): its exit
+ * status. */
 static int run_tool(const char *args)
 {
-    char cmd[8192];
-    snprintf(cmd, sizeof cmd, "'%s' report %s '%s' 2>&1", mpb_tool, args, db);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out, 1, sizeof out - 1, p);
-    out[n] = '\0';
-    int st = pclose(p);
-    assert_true(WIFEXITED(st));
-    return WEXITSTATUS(st);
+    test_run(&last, mpb_tool, "both", "report %s '%s'", args, db);
+    return last.status;
 }
 
 static void assert_says(const char *line)
@@ -351,16 +348,10 @@ static void test_tables_alone_without_option(void **state)
     assert_non_null(strstr(out, "Scene kitchen"));
 }
 
-int main(int argc, char **argv)
+int main(void)
 {
-    (void)argc;
-    char self[4096];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n <= 0)
+    if (test_built_program("tools/mpb", mpb_tool, sizeof mpb_tool) != 0)
         return 1;
-    self[n] = '\0';
-    snprintf(mpb_tool, sizeof mpb_tool, "%s/../tools/mpb", dirname(self));
-    (void)argv;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_paper_findings),
         cmocka_unit_test(test_scene_lines),
