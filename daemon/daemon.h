@@ -39,8 +39,12 @@
 #include "mpb_run_ack_t.h"
 
 /* How often and how long things are retried or waited for. */
-#define MPBD_REQUEST_RESEND_S   0.25   /* resend a request not acked by then */
-#define MPBD_REQUEST_MAX_SENDS  20
+/* A request not acknowledged is re-sent after MPBD_REQUEST_RESEND_S, the
+ * wait doubling to MPBD_REQUEST_RESEND_MAX_S, for as long as its run is in
+ * flight (its deadline ends it); not while a hub is away, and at once when
+ * it is back. */
+#define MPBD_REQUEST_RESEND_S   0.25
+#define MPBD_REQUEST_RESEND_MAX_S 4.0
 #define MPBD_DEADLINE_GRACE_S   5.0    /* beyond the time limit, before crash */
 /* A result later than the time limit plus this, by the daemon's clock from
  * the request's last send, is no success whatever time it reports: room
@@ -116,6 +120,11 @@ typedef struct mpbd_planner {
      * request goes to it before declined_until (monotonic s). */
     int     declines;
     double  declined_until;
+    /* The hub came back at this time (monotonic s) and nothing has been
+     * heard from this planner since: its own link may still be away, so
+     * its runs' clocks wait until it is heard (mpbd_planner_heard); 0:
+     * heard. */
+    double  relinked;
     int     runs_done;
     double  heartbeat_s;
     double  last_seen;       /* monotonic s */
@@ -146,6 +155,11 @@ typedef struct mpbd_flight {
                                 its planner's queue */
     double   last_send;
     int      sends;
+    double   next_send;      /* monotonic s: re-send then, if not acked */
+    /* Seconds since last_send that the link was away (a hub outage, then
+     * until its planner is heard again): not the planner's, so left out
+     * of the daemon's clock when its result is judged in time. */
+    double   away;
     int      acked;          /* planner said REQUEST_RECEIVED, or named
                                 it among its active runs */
     double   deadline;
@@ -198,6 +212,7 @@ typedef struct mpbd {
     int              hub_state;      /* MPBD_HUB_..., a tcpq:// URL's link */
     double           hub_lost_at;    /* monotonic s, when it went away */
     long             hub_bad;        /* its dropped frames, last logged */
+    long             hub_connects;   /* its connections made, last seen */
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result, *sub_status;
     mpb_store       *store;
@@ -301,8 +316,16 @@ void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost plann
  * deadlines are counted without it, so that its own absence does not make
  * its planners gone or its runs crashes. */
 void mpbd_scheduler_stalled(mpbd *d, double secs);
-/* The same, silently: the network was away (hub.c). */
+/* The same, silently: the network was away (hub.c); that time is left
+ * out of the runs' time too (mpbd_flight.away). */
 void mpbd_scheduler_pause(mpbd *d, double secs);
+/* The hub is back: every planner's runs wait until it is heard again, and
+ * requests not acknowledged go again at once. */
+void mpbd_scheduler_relink(mpbd *d, double now);
+/* A message of planner (an index) arrived: if it is the first since the
+ * hub came back, its runs' clocks go on, and its runs' requests go again,
+ * so that it answers at once what it finished meanwhile. */
+void mpbd_planner_heard(mpbd *d, int planner, double now);
 /* Queue a run again for a new attempt. */
 int  mpbd_requeue(mpbd *d, const mpbd_run *run);
 /* A request its planner never started (declined, or left waiting at a

@@ -18,11 +18,18 @@ int mpbd_hub_watch(mpbd *d, double now, double secs)
                  st.overflowed, st.malformed);
     }
     if (st.connected) {
-        if (d->hub_state == MPBD_HUB_AWAY)
+        if (d->hub_state == MPBD_HUB_AWAY) {
             mpbd_log("the hub is back after %.1f s (connection %ld)",
                      now - d->hub_lost_at, st.connects);
-        else if (d->hub_state == MPBD_HUB_UNKNOWN)
+            mpbd_scheduler_relink(d, now);
+        } else if (d->hub_state == MPBD_HUB_UNKNOWN) {
             mpbd_log("connected to the hub");
+        } else if (st.connects != d->hub_connects) {
+            /* Lost and made again within one round of the loop. */
+            mpbd_log("reconnected to the hub (connection %ld)", st.connects);
+            mpbd_scheduler_relink(d, now);
+        }
+        d->hub_connects = st.connects;
         d->hub_state = MPBD_HUB_UP;
         return 0;
     }

@@ -165,6 +165,7 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
     p->last_seen = now;
     p->instance = d->msg_from;
     int index = (int)(p - d->planners);
+    mpbd_planner_heard(d, index, now);
     int num_active = m->num_active > 0 ? m->num_active : 0;
     mpbd_planner_working_on(d, index, m->active_runs, num_active);
     if (p->closing)

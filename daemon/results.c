@@ -382,7 +382,9 @@ static int store_result(mpbd *d, const mpbd_flight *f,
      * (docs/metrics.md). Each reason it is not is noted. */
     int claimed = status == MPB_PLAN_RESULT_T_SOLVED;
     int final_valid = m->num_stages > 0 && stages[m->num_stages - 1].valid;
-    double took = recv - latest_start(d, f);
+    /* Less the time the link was away meanwhile: a hub outage delays a
+     * result by as long, through no fault of the planner's. */
+    double took = recv - latest_start(d, f) - f->away;
     /* Building the world is outside the run's time (docs/protocol.md,
      * world_setup_time), as OMPL's Benchmark keeps its setup apart: a
      * planner that reports it has it left out of the daemon's clock too,
@@ -510,6 +512,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         reject(d, "sent by a planner the run did not go to", m);
         return;
     }
+    mpbd_planner_heard(d, f->planner, mpb_monotonic_s());
     /* Verified beside the loop (verifier.c): the run's flight ends now,
      * so that its planner's next request need not wait; unless it is
      * known to be quick. */
