@@ -233,7 +233,10 @@ static int send_next(mpbd *d, int c, int p, int queued)
     if (d->pending_head[c] >= d->pending_len[c])
         return 0;
     run = d->pending[c][d->pending_head[c]];
-    if (run.uid[0] == '\0' && mpb_run_id_new(run.uid) != MPB_OK) {
+    /* A new attempt, or one sent before a restart going again with its id
+     * (the same attempt: not counted again, here or in the store). */
+    int fresh = run.uid[0] == '\0';
+    if (fresh && mpb_run_id_new(run.uid) != MPB_OK) {
         mpbd_log("cannot draw a random run id");
         return 0;
     }
@@ -250,7 +253,8 @@ static int send_next(mpbd *d, int c, int p, int queued)
     snprintf(u->planner_id, sizeof u->planner_id, "%s", d->planners[p].id);
     d->pending_head[c]++;
     d->total_pending--;
-    run.attempts++;
+    if (fresh)
+        run.attempts++;
     /* The clock now, not the loop's wake-up: the results handled since
      * then are not this run's time (its wall_time and latency). */
     now = mpb_monotonic_s();

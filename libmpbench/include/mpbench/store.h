@@ -237,7 +237,9 @@ typedef struct mpb_run_counts {
 int mpb_store_run_counts(mpb_store *s, int64_t experiment_id,
                          mpb_run_counts *out);
 
-/* Record that a request with run_uid went to planner_id (attempts + 1). */
+/* Record that a request with run_uid went to planner_id: attempts + 1,
+ * unless run_uid is already the run's attempt (sent again after a
+ * restart: the same attempt). */
 int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
                        const char *planner_id);
 

@@ -22,7 +22,7 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
     [MPB__ST_ROLLBACK] = "ROLLBACK",
     [MPB__ST_RUN_SENT] =
         "UPDATE runs SET state = 'sent', run_uid = ?2, planner_id = ?3,"
-        " attempts = attempts + 1, sent = ?4"
+        " attempts = attempts + (run_uid IS NOT ?2), sent = ?4"
         " WHERE id = ?1 AND state != 'done'",
     [MPB__ST_RUN_FINISH] =
         "UPDATE runs SET state = 'done', finished = ?16,"
