@@ -56,6 +56,9 @@ int mpb_store_check_file(mpb_store *s);
  * database, and a second one on the same file is refused. An advisory
  * flock() on the file, apart from SQLite's own locks: handles that do not
  * claim (readers, `mpb import`, the sqlite3 shell) are not affected.
+ * While claimed, no other connection to the file can hold SQLite's
+ * PENDING lock, so that a reader with no busy timeout (the sqlite3 shell)
+ * is never refused for another reader closing (docs/schema.md).
  * MPB_EBUSY if another handle holds the claim, MPB_EINVAL if s is
  * read-only. (On NFS, Linux emulates flock() with fcntl() locks, which
  * would hold readers off: keep the database on a local disk, as SQLite's
