@@ -74,9 +74,22 @@
 /* The coarsest verification step --resolution takes (rad): coarser, a
  * segment would pass through an obstacle thinner than the step. */
 #define MPBD_RESOLUTION_MAX     0.1
+/* Results awaiting verification beyond which no request is sent, until
+ * they drain (--backlog, --backlog-mb): the daemon's memory is bounded
+ * whatever its verifier's pace. */
+#define MPBD_BACKLOG_RESULTS    1000
+#define MPBD_BACKLOG_MB         256
 /* A hub (tcpq://) away this long: the daemon stops, to be resumed. */
 #define MPBD_HUB_AWAY_MAX_S     60.0
-enum { MPBD_HUB_UNKNOWN, MPBD_HUB_UP, MPBD_HUB_AWAY };
+/* The hub relays every message to its sender too: a link up over which
+ * none of the daemon's own statuses (one a second) has come back for this
+ * long is stalled (the hub blocked, as by a client that never reads), and
+ * is waited for as if away. */
+#define MPBD_HUB_ECHO_MAX_S     5.0
+/* Past this without its own status back, the link is not known to work:
+ * no planner is counted gone, no run given up on, until it is (hub.c). */
+#define MPBD_HUB_ECHO_DUE_S     2.0
+enum { MPBD_HUB_UNKNOWN, MPBD_HUB_UP, MPBD_HUB_AWAY, MPBD_HUB_STALLED };
 
 /* The first result of each planner configuration in this session: when
  * every one failed with the same world error, every run would (doomed.c). */
@@ -213,6 +226,8 @@ typedef struct mpbd {
     double           hub_lost_at;    /* monotonic s, when it went away */
     long             hub_bad;        /* its dropped frames, last logged */
     long             hub_connects;   /* its connections made, last seen */
+    double           hub_echo_at;    /* monotonic s: own status heard back
+                                        (or the link made), 0 before */
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result, *sub_status;
     mpb_store       *store;
@@ -275,6 +290,13 @@ typedef struct mpbd {
     char             younger_logged[MPB_PLANNER_ID_MAX + 1];
     char             ignored_elder[MPB_PLANNER_ID_MAX + 1];
     struct mpbd_verifier *verifier;  /* verifier.c; NULL: verify inline */
+    /* The backlog's bounds: results handed to the verifier, not stored,
+     * by count and by their bytes; requests wait while it is over either
+     * (backlog_held: logged once each way). */
+    long             backlog_max;
+    double           backlog_bytes_max;
+    int              backlog_held;
+    double           backlog_logged; /* monotonic s: at most one line in 10 s */
     double           last_status;
     double           last_wait_log;
     double           last_bad_announce_log;
@@ -421,6 +443,7 @@ int  mpbd_verifier_quick(const mpbd *d, const mpbd_flight *f,
 void mpbd_verifier_learn(mpbd *d, const mpbd_flight *f,
                          const mpb_plan_result_t *m, const mpbd_measured *ms);
 int  mpbd_verifier_pending(const mpbd *d);               /* how many */
+double mpbd_verifier_bytes(const mpbd *d);  /* their encoded bytes */
 int  mpbd_verifier_fd(const mpbd *d);  /* readable when one is done; -1: none */
 /* Wait up to max_s for the results handed over since the last call to be
  * measured (once per hand-over: a long one is not waited for again). */
@@ -446,6 +469,9 @@ void mpbd_reject(mpbd *d, const char *channel, const char *why);
  * changes; while it is away, pause the clocks of planners and runs. 1 when
  * it has been away over MPBD_HUB_AWAY_MAX_S: stop. */
 int  mpbd_hub_watch(mpbd *d, double now, double secs);
+/* 1 with a hub link none of whose echoes came lately (MPBD_HUB_ECHO_DUE_S):
+ * silence heard then may be the hub's, not a planner's. */
+int  mpbd_hub_unproven(const mpbd *d, double now);
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);

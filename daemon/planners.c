@@ -190,6 +190,8 @@ void mpbd_planners_subscribe(mpbd *d)
 int mpbd_planners_expire(mpbd *d, double now)
 {
     int went = 0;
+    if (mpbd_hub_unproven(d, now))
+        return 0;
     for (int i = 0; i < d->num_planners; i++) {
         mpbd_planner *p = &d->planners[i];
         double silence = now - p->last_seen;

@@ -377,9 +377,33 @@ static int pick_planner(const mpbd *d, int c, double now, int *queued)
  * in turn within one), whichever planner is free: each configuration
  * advances at the same pace, even when its planners share a host's slot,
  * so that an experiment stopped part-way is balanced. */
+/* Too many results wait for the verifier: no request goes out (each
+ * would bring one more) until they drain below the bounds. */
+static int backlog_full(mpbd *d)
+{
+    int n = mpbd_verifier_pending(d);
+    double bytes = mpbd_verifier_bytes(d);
+    int full = (d->backlog_max > 0 && n >= d->backlog_max) ||
+               (d->backlog_bytes_max > 0 && bytes >= d->backlog_bytes_max);
+    double t = mpb_monotonic_s();
+    if (full && !d->backlog_held && t - d->backlog_logged >= 10.0 &&
+        (d->backlog_logged = t) > 0)
+        mpbd_log("%d results (%.0f MB) await verification, at the bound "
+                 "(--backlog %ld, --backlog-mb %.0f): no request goes out "
+                 "until they drain", n, bytes / 1048576.0, d->backlog_max,
+                 d->backlog_bytes_max / 1048576.0);
+    if (!full && d->backlog_held && d->verbose)
+        mpbd_log("the verification backlog drained to %d results: "
+                 "requests go out again", n);
+    d->backlog_held = full;
+    return full;
+}
+
 int mpbd_scheduler_dispatch(mpbd *d, double now)
 {
     int sent = 0, nc = d->exp->num_configs;
+    if (d->total_pending > 0 && backlog_full(d))
+        return 0;
     while (d->total_pending > 0) {
         int got = 0;
         for (int k = 0; k < nc && !got; k++) {
@@ -647,7 +671,7 @@ void mpbd_scheduler_tick(mpbd *d, double now)
         double deadline = f->deadline;
         if (p->queued > 0 || busy(p) > p->capacity)
             deadline += d->exp->time_limit;
-        if (now > deadline) {
+        if (now > deadline && !mpbd_hub_unproven(d, now)) {
             char why[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX + 128];
             if (f->acked)
                 snprintf(why, sizeof why,
@@ -662,7 +686,8 @@ void mpbd_scheduler_tick(mpbd *d, double now)
         }
         /* Not while the hub is away: such a send is lost, and the first
          * after it comes back goes at once (mpbd_scheduler_relink). */
-        if (!f->acked && d->hub_state != MPBD_HUB_AWAY && now >= f->next_send)
+        if (!f->acked && d->hub_state != MPBD_HUB_AWAY &&
+            d->hub_state != MPBD_HUB_STALLED && now >= f->next_send)
             resend(d, f, now);
         i++;
     }
@@ -733,6 +758,12 @@ void mpbd_planner_heard(mpbd *d, int planner, double now)
 
 void mpbd_scheduler_stalled(mpbd *d, double secs)
 {
+    /* The hub away or stalled (its publishing blocks the loop): network
+     * time, logged once by hub.c. */
+    if (d->hub_state == MPBD_HUB_AWAY || d->hub_state == MPBD_HUB_STALLED) {
+        mpbd_scheduler_pause(d, secs);
+        return;
+    }
     /* Not network time: what planners sent meanwhile carries the
      * kernel's receive time, so runs are timed as they ran. */
     hold_clocks(d, secs);
