@@ -195,7 +195,15 @@ int mpbd_planners_expire(mpbd *d, double now)
     for (int i = 0; i < d->num_planners; i++) {
         mpbd_planner *p = &d->planners[i];
         double silence = now - p->last_seen;
-        if (!p->gone && silence > MPBD_PLANNER_MISSED * p->heartbeat_s + 0.5) {
+        double limit = MPBD_PLANNER_MISSED * p->heartbeat_s + 0.5;
+        /* Through a hub, silent only if the daemon's own status came back
+         * after the planner should have been heard: a stalling hub blocks
+         * its clients one after another, the planner's before the
+         * daemon's maybe. */
+        if (d->hub_state != MPBD_HUB_UNKNOWN &&
+            !(d->hub_echo_at > p->last_seen + limit))
+            continue;
+        if (!p->gone && silence > limit) {
             p->gone = 1;
             went++;
             mpbd_log("planner %s is gone (silent for %.1f s)", p->id, silence);
