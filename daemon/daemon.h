@@ -39,8 +39,12 @@
 #include "mpb_run_ack_t.h"
 
 /* How often and how long things are retried or waited for. */
-#define MPBD_REQUEST_RESEND_S   0.25   /* resend a request not acked by then */
-#define MPBD_REQUEST_MAX_SENDS  20
+/* A request not acknowledged is re-sent after MPBD_REQUEST_RESEND_S, the
+ * wait doubling to MPBD_REQUEST_RESEND_MAX_S, for as long as its run is in
+ * flight (its deadline ends it); not while a hub is away, and at once when
+ * it is back. */
+#define MPBD_REQUEST_RESEND_S   0.25
+#define MPBD_REQUEST_RESEND_MAX_S 4.0
 #define MPBD_DEADLINE_GRACE_S   5.0    /* beyond the time limit, before crash */
 /* A result later than the time limit plus this, by the daemon's clock from
  * the request's last send, is no success whatever time it reports: room
@@ -70,9 +74,22 @@
 /* The coarsest verification step --resolution takes (rad): coarser, a
  * segment would pass through an obstacle thinner than the step. */
 #define MPBD_RESOLUTION_MAX     0.1
+/* Results awaiting verification beyond which no request is sent, until
+ * they drain (--backlog, --backlog-mb): the daemon's memory is bounded
+ * whatever its verifier's pace. */
+#define MPBD_BACKLOG_RESULTS    1000
+#define MPBD_BACKLOG_MB         256
 /* A hub (tcpq://) away this long: the daemon stops, to be resumed. */
 #define MPBD_HUB_AWAY_MAX_S     60.0
-enum { MPBD_HUB_UNKNOWN, MPBD_HUB_UP, MPBD_HUB_AWAY };
+/* The hub relays every message to its sender too: a link up over which
+ * none of the daemon's own statuses (one a second) has come back for this
+ * long is stalled (the hub blocked, as by a client that never reads), and
+ * is waited for as if away. */
+#define MPBD_HUB_ECHO_MAX_S     5.0
+/* Past this without its own status back, the link is not known to work:
+ * no planner is counted gone, no run given up on, until it is (hub.c). */
+#define MPBD_HUB_ECHO_DUE_S     2.0
+enum { MPBD_HUB_UNKNOWN, MPBD_HUB_UP, MPBD_HUB_AWAY, MPBD_HUB_STALLED };
 
 /* The first result of each planner configuration in this session: when
  * every one failed with the same world error, every run would (doomed.c). */
@@ -116,6 +133,11 @@ typedef struct mpbd_planner {
      * request goes to it before declined_until (monotonic s). */
     int     declines;
     double  declined_until;
+    /* The hub came back at this time (monotonic s) and nothing has been
+     * heard from this planner since: its own link may still be away, so
+     * its runs' clocks wait until it is heard (mpbd_planner_heard); 0:
+     * heard. */
+    double  relinked;
     int     runs_done;
     double  heartbeat_s;
     double  last_seen;       /* monotonic s */
@@ -146,6 +168,11 @@ typedef struct mpbd_flight {
                                 its planner's queue */
     double   last_send;
     int      sends;
+    double   next_send;      /* monotonic s: re-send then, if not acked */
+    /* Seconds since last_send that the link was away (a hub outage, then
+     * until its planner is heard again): not the planner's, so left out
+     * of the daemon's clock when its result is judged in time. */
+    double   away;
     int      acked;          /* planner said REQUEST_RECEIVED, or named
                                 it among its active runs */
     double   deadline;
@@ -198,6 +225,9 @@ typedef struct mpbd {
     int              hub_state;      /* MPBD_HUB_..., a tcpq:// URL's link */
     double           hub_lost_at;    /* monotonic s, when it went away */
     long             hub_bad;        /* its dropped frames, last logged */
+    long             hub_connects;   /* its connections made, last seen */
+    double           hub_echo_at;    /* monotonic s: own status heard back
+                                        (or the link made), 0 before */
     /* Subscriptions, released before lcm_destroy(). */
     lcm_subscription_t *sub_announce, *sub_ack, *sub_result, *sub_status;
     mpb_store       *store;
@@ -260,6 +290,13 @@ typedef struct mpbd {
     char             younger_logged[MPB_PLANNER_ID_MAX + 1];
     char             ignored_elder[MPB_PLANNER_ID_MAX + 1];
     struct mpbd_verifier *verifier;  /* verifier.c; NULL: verify inline */
+    /* The backlog's bounds: results handed to the verifier, not stored,
+     * by count and by their bytes; requests wait while it is over either
+     * (backlog_held: logged once each way). */
+    long             backlog_max;
+    double           backlog_bytes_max;
+    int              backlog_held;
+    double           backlog_logged; /* monotonic s: at most one line in 10 s */
     double           last_status;
     double           last_wait_log;
     double           last_bad_announce_log;
@@ -301,8 +338,16 @@ void mpbd_scheduler_tick(mpbd *d, double now); /* resends, deadlines, lost plann
  * deadlines are counted without it, so that its own absence does not make
  * its planners gone or its runs crashes. */
 void mpbd_scheduler_stalled(mpbd *d, double secs);
-/* The same, silently: the network was away (hub.c). */
+/* The same, silently: the network was away (hub.c); that time is left
+ * out of the runs' time too (mpbd_flight.away). */
 void mpbd_scheduler_pause(mpbd *d, double secs);
+/* The hub is back: every planner's runs wait until it is heard again, and
+ * requests not acknowledged go again at once. */
+void mpbd_scheduler_relink(mpbd *d, double now);
+/* A message of planner (an index) arrived: if it is the first since the
+ * hub came back, its runs' clocks go on, and its runs' requests go again,
+ * so that it answers at once what it finished meanwhile. */
+void mpbd_planner_heard(mpbd *d, int planner, double now);
 /* Queue a run again for a new attempt. */
 int  mpbd_requeue(mpbd *d, const mpbd_run *run);
 /* A request its planner never started (declined, or left waiting at a
@@ -398,6 +443,7 @@ int  mpbd_verifier_quick(const mpbd *d, const mpbd_flight *f,
 void mpbd_verifier_learn(mpbd *d, const mpbd_flight *f,
                          const mpb_plan_result_t *m, const mpbd_measured *ms);
 int  mpbd_verifier_pending(const mpbd *d);               /* how many */
+double mpbd_verifier_bytes(const mpbd *d);  /* their encoded bytes */
 int  mpbd_verifier_fd(const mpbd *d);  /* readable when one is done; -1: none */
 /* Wait up to max_s for the results handed over since the last call to be
  * measured (once per hand-over: a long one is not waited for again). */
@@ -423,6 +469,9 @@ void mpbd_reject(mpbd *d, const char *channel, const char *why);
  * changes; while it is away, pause the clocks of planners and runs. 1 when
  * it has been away over MPBD_HUB_AWAY_MAX_S: stop. */
 int  mpbd_hub_watch(mpbd *d, double now, double secs);
+/* 1 with a hub link none of whose echoes came lately (MPBD_HUB_ECHO_DUE_S):
+ * silence heard then may be the hub's, not a planner's. */
+int  mpbd_hub_unproven(const mpbd *d, double now);
 
 /* status.c */
 void mpbd_status_publish(mpbd *d, const char *state, double now);

@@ -60,8 +60,10 @@ static void on_status(mpbd *d, const mpb_daemon_status_t *m,
                       const char *channel, double now)
 {
     if (strcmp(m->daemon_id, d->daemon_id) == 0 ||
-        (d->auth != NULL && info->instance == mpb_auth_instance(d->auth)))
-        return;                 /* itself */
+        (d->auth != NULL && info->instance == mpb_auth_instance(d->auth))) {
+        d->hub_echo_at = now;   /* itself: through a hub, the link works */
+        return;
+    }
     int ending = strcmp(m->state, "waiting") != 0 &&
                  strcmp(m->state, "running") != 0;
     int64_t theirs = mpb_daemon_started_utime(m);

@@ -59,16 +59,23 @@ static void usage(FILE *out)
 "                        lcm-logger log of a live run, into a new experiment\n"
 "                        in the database; plans nothing, sends nothing\n"
 "                        (docs/record-and-replay.md)\n"
+"      --backlog N       send no request while N results await verification\n"
+"                        (default %d; 0: no bound by count) ...\n"
+"      --backlog-mb MB   ... or while they hold MB megabytes (default %d;\n"
+"                        0: no bound by size); requests go again as they\n"
+"                        drain, so memory stays bounded\n"
 "  -v, --verbose         log every run\n"
 "  -h, --help            show this help\n"
 "\n"
-"The experiment file format is described in docs/experiment-format.md.\n");
+"The experiment file format is described in docs/experiment-format.md.\n",
+            MPBD_BACKLOG_RESULTS, MPBD_BACKLOG_MB);
 }
 
 typedef struct options {
     const char *db, *lcm_url, *experiment, *secret_file;
     const char *replay;              /* --replay LOG, or NULL */
     double resolution;
+    long backlog, backlog_mb;
     int fresh, again, check, verbose, mesh_path, list_planners;
 } options;
 
@@ -85,6 +92,8 @@ static int parse_options(int argc, char **argv, options *o)
         {"mesh-path", no_argument, NULL, 'M'},
         {"list-planners", no_argument, NULL, 'L'},
         {"replay", required_argument, NULL, 'R'},
+        {"backlog", required_argument, NULL, 'B'},
+        {"backlog-mb", required_argument, NULL, 'b'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
@@ -92,7 +101,8 @@ static int parse_options(int argc, char **argv, options *o)
     int c;
     char *end;
     *o = (options){.db = "mpbench.db", .lcm_url = MPB_DEFAULT_LCM_URL,
-                   .resolution = 0.01};
+                   .resolution = 0.01, .backlog = MPBD_BACKLOG_RESULTS,
+                   .backlog_mb = MPBD_BACKLOG_MB};
     opterr = 0;     /* one line of our own for a bad option, below */
     while ((c = getopt_long(argc, argv, ":d:u:r:vh", longopts, NULL)) != -1) {
         switch (c) {
@@ -108,6 +118,18 @@ static int parse_options(int argc, char **argv, options *o)
                 return -1;
             }
             break;
+        case 'B':
+        case 'b': {
+            long v = strtol(optarg, &end, 10);
+            if (end == optarg || *end != '\0' || v < 0 || v > 100000000L) {
+                fprintf(stderr, "mpbenchd: %s must be a whole number from 0 "
+                                "to 100000000, not '%s'\n",
+                        c == 'B' ? "--backlog" : "--backlog-mb", optarg);
+                return -1;
+            }
+            *(c == 'B' ? &o->backlog : &o->backlog_mb) = v;
+            break;
+        }
         case 'N': o->fresh = 1; break;
         case 'A': o->again = 1; break;
         case 'S': o->secret_file = optarg; break;
@@ -585,6 +607,8 @@ int main(int argc, char **argv)
     }
     d.resolution = o.resolution;
     d.verbose = o.verbose;
+    d.backlog_max = o.backlog;
+    d.backlog_bytes_max = (double)o.backlog_mb * 1048576.0;
     gethostname(host, sizeof host - 1);
     mpb_planner_id_make("mpbenchd", host, (long)getpid(), d.daemon_id,
                         sizeof d.daemon_id);
@@ -728,7 +752,8 @@ int main(int argc, char **argv)
                      "resume", d.exp->num_configs, d.doomed.why,
                      runs_left(&d));
         else if (rc == LOOP_HUB_GONE)
-            mpbd_log("stopped: the hub at %s has been away for %.0f s, with "
+            mpbd_log("stopped: the hub at %s has been away or stalled for "
+                     "%.0f s, with "
                      "%ld runs left; run the same command to resume once it "
                      "is back", o.lcm_url, MPBD_HUB_AWAY_MAX_S, runs_left(&d));
         else if (rc == LOOP_NOT_ALONE)

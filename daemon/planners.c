@@ -165,6 +165,7 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
     p->last_seen = now;
     p->instance = d->msg_from;
     int index = (int)(p - d->planners);
+    mpbd_planner_heard(d, index, now);
     int num_active = m->num_active > 0 ? m->num_active : 0;
     mpbd_planner_working_on(d, index, m->active_runs, num_active);
     if (p->closing)
@@ -189,10 +190,20 @@ void mpbd_planners_subscribe(mpbd *d)
 int mpbd_planners_expire(mpbd *d, double now)
 {
     int went = 0;
+    if (mpbd_hub_unproven(d, now))
+        return 0;
     for (int i = 0; i < d->num_planners; i++) {
         mpbd_planner *p = &d->planners[i];
         double silence = now - p->last_seen;
-        if (!p->gone && silence > MPBD_PLANNER_MISSED * p->heartbeat_s + 0.5) {
+        double limit = MPBD_PLANNER_MISSED * p->heartbeat_s + 0.5;
+        /* Through a hub, silent only if the daemon's own status came back
+         * after the planner should have been heard: a stalling hub blocks
+         * its clients one after another, the planner's before the
+         * daemon's maybe. */
+        if (d->hub_state != MPBD_HUB_UNKNOWN &&
+            !(d->hub_echo_at > p->last_seen + limit))
+            continue;
+        if (!p->gone && silence > limit) {
             p->gone = 1;
             went++;
             mpbd_log("planner %s is gone (silent for %.1f s)", p->id, silence);

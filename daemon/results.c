@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "daemon.h"
 #include "mpbench/planner.h"
@@ -292,6 +293,22 @@ static double latest_start(const mpbd *d, const mpbd_flight *f)
     return d->replaying ? f->sent_at : f->last_send;
 }
 
+/* For tests and bench/backlog.sh only: MPBD_TEST_SLOW_VERIFY=F (1 to
+ * 1000) makes every verification take F times as long, by sleeping the
+ * difference, as a slower verifier or a heavier scene would. */
+static void test_slow_down(mpbd_measured *out)
+{
+    const char *e = getenv("MPBD_TEST_SLOW_VERIFY");
+    double f = e != NULL ? strtod(e, NULL) : 0;
+    if (!(f > 1 && f <= 1000))
+        return;
+    double extra = (f - 1) * (out->verified - out->verify_start);
+    struct timespec ts = {(time_t)extra,
+                          (long)((extra - (double)(time_t)extra) * 1e9)};
+    nanosleep(&ts, NULL);
+    out->verified = mpb_monotonic_s();
+}
+
 int mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
                         const mpb_plan_result_t *m, mpbd_measured *out)
 {
@@ -308,6 +325,7 @@ int mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
     for (int i = 0; i < m->num_stages; i++)
         measure_stage(d, q, &m->stages[i], &out->works[i]);
     out->verified = mpb_monotonic_s();
+    test_slow_down(out);
     return MPB_OK;
 }
 
@@ -382,7 +400,9 @@ static int store_result(mpbd *d, const mpbd_flight *f,
      * (docs/metrics.md). Each reason it is not is noted. */
     int claimed = status == MPB_PLAN_RESULT_T_SOLVED;
     int final_valid = m->num_stages > 0 && stages[m->num_stages - 1].valid;
-    double took = recv - latest_start(d, f);
+    /* Less the time the link was away meanwhile: a hub outage delays a
+     * result by as long, through no fault of the planner's. */
+    double took = recv - latest_start(d, f) - f->away;
     /* Building the world is outside the run's time (docs/protocol.md,
      * world_setup_time), as OMPL's Benchmark keeps its setup apart: a
      * planner that reports it has it left out of the daemon's clock too,
@@ -510,6 +530,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
         reject(d, "sent by a planner the run did not go to", m);
         return;
     }
+    mpbd_planner_heard(d, f->planner, mpb_monotonic_s());
     /* Verified beside the loop (verifier.c): the run's flight ends now,
      * so that its planner's next request need not wait; unless it is
      * known to be quick. */

@@ -233,7 +233,10 @@ static int send_next(mpbd *d, int c, int p, int queued)
     if (d->pending_head[c] >= d->pending_len[c])
         return 0;
     run = d->pending[c][d->pending_head[c]];
-    if (run.uid[0] == '\0' && mpb_run_id_new(run.uid) != MPB_OK) {
+    /* A new attempt, or one sent before a restart going again with its id
+     * (the same attempt: not counted again, here or in the store). */
+    int fresh = run.uid[0] == '\0';
+    if (fresh && mpb_run_id_new(run.uid) != MPB_OK) {
         mpbd_log("cannot draw a random run id");
         return 0;
     }
@@ -250,12 +253,14 @@ static int send_next(mpbd *d, int c, int p, int queued)
     snprintf(u->planner_id, sizeof u->planner_id, "%s", d->planners[p].id);
     d->pending_head[c]++;
     d->total_pending--;
-    run.attempts++;
+    if (fresh)
+        run.attempts++;
     /* The clock now, not the loop's wake-up: the results handled since
      * then are not this run's time (its wall_time and latency). */
     now = mpb_monotonic_s();
     *f = (mpbd_flight){.run = run, .planner = p, .queued = queued,
                        .sent_at = now, .last_send = now, .sends = 1,
+                       .next_send = now + MPBD_REQUEST_RESEND_S,
                        .deadline = queued ? INFINITY
                            : now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S};
     if (queued)
@@ -372,9 +377,33 @@ static int pick_planner(const mpbd *d, int c, double now, int *queued)
  * in turn within one), whichever planner is free: each configuration
  * advances at the same pace, even when its planners share a host's slot,
  * so that an experiment stopped part-way is balanced. */
+/* Too many results wait for the verifier: no request goes out (each
+ * would bring one more) until they drain below the bounds. */
+static int backlog_full(mpbd *d)
+{
+    int n = mpbd_verifier_pending(d);
+    double bytes = mpbd_verifier_bytes(d);
+    int full = (d->backlog_max > 0 && n >= d->backlog_max) ||
+               (d->backlog_bytes_max > 0 && bytes >= d->backlog_bytes_max);
+    double t = mpb_monotonic_s();
+    if (full && !d->backlog_held && t - d->backlog_logged >= 10.0 &&
+        (d->backlog_logged = t) > 0)
+        mpbd_log("%d results (%.0f MB) await verification, at the bound "
+                 "(--backlog %ld, --backlog-mb %.0f): no request goes out "
+                 "until they drain", n, bytes / 1048576.0, d->backlog_max,
+                 d->backlog_bytes_max / 1048576.0);
+    if (!full && d->backlog_held && d->verbose)
+        mpbd_log("the verification backlog drained to %d results: "
+                 "requests go out again", n);
+    d->backlog_held = full;
+    return full;
+}
+
 int mpbd_scheduler_dispatch(mpbd *d, double now)
 {
     int sent = 0, nc = d->exp->num_configs;
+    if (d->total_pending > 0 && backlog_full(d))
+        return 0;
     while (d->total_pending > 0) {
         int got = 0;
         for (int k = 0; k < nc && !got; k++) {
@@ -445,6 +474,8 @@ static void start_queued(mpbd *d, mpbd_flight *f)
     p->active++;
     f->sent_at = f->last_send = now;
     f->sends = 1;
+    f->next_send = now + MPBD_REQUEST_RESEND_S;
+    f->away = 0;
     f->deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S;
 }
 
@@ -601,6 +632,8 @@ void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
         start_next_queued(d, planner);
 }
 
+static void resend(mpbd *d, mpbd_flight *f, double now);
+
 /* A run given up on at its deadline, which its planner may still plan. */
 static void abandon(mpbd *d, const mpbd_flight *f)
 {
@@ -638,9 +671,9 @@ void mpbd_scheduler_tick(mpbd *d, double now)
         double deadline = f->deadline;
         if (p->queued > 0 || busy(p) > p->capacity)
             deadline += d->exp->time_limit;
-        if (now > deadline) {
+        if (now > deadline && !mpbd_hub_unproven(d, now)) {
             char why[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX + 128];
-            if (f->acked || f->sends < MPBD_REQUEST_MAX_SENDS)
+            if (f->acked)
                 snprintf(why, sizeof why,
                          "no result within the time limit and grace");
             else
@@ -651,17 +684,28 @@ void mpbd_scheduler_tick(mpbd *d, double now)
             mpbd_record_crash(d, f, why);
             continue;
         }
-        if (!f->acked && f->sends < MPBD_REQUEST_MAX_SENDS &&
-            now - f->last_send > MPBD_REQUEST_RESEND_S) {
-            f->last_send = now;
-            f->sends++;
-            publish_request(d, f);
-        }
+        /* Not while the hub is away: such a send is lost, and the first
+         * after it comes back goes at once (mpbd_scheduler_relink). */
+        if (!f->acked && d->hub_state != MPBD_HUB_AWAY &&
+            d->hub_state != MPBD_HUB_STALLED && now >= f->next_send)
+            resend(d, f, now);
         i++;
     }
 }
 
-void mpbd_scheduler_pause(mpbd *d, double secs)
+/* Re-send a request not acknowledged: the planner may start on this copy,
+ * so its time starts again here; the next waits twice as long. */
+static void resend(mpbd *d, mpbd_flight *f, double now)
+{
+    double wait = MPBD_REQUEST_RESEND_S * (double)(1 << (f->sends < 5 ? f->sends : 5));
+    f->last_send = now;
+    f->away = 0;
+    f->sends++;
+    f->next_send = now + fmin(wait, MPBD_REQUEST_RESEND_MAX_S);
+    publish_request(d, f);
+}
+
+static void hold_clocks(mpbd *d, double secs)
 {
     for (int i = 0; i < d->num_planners; i++)
         d->planners[i].last_seen += secs;
@@ -669,9 +713,60 @@ void mpbd_scheduler_pause(mpbd *d, double secs)
         d->flights[i].deadline += secs;   /* INFINITY stays so */
 }
 
+void mpbd_scheduler_pause(mpbd *d, double secs)
+{
+    hold_clocks(d, secs);
+    for (int i = 0; i < d->num_flights; i++)
+        if (!d->flights[i].queued)
+            d->flights[i].away += secs;
+}
+
+void mpbd_scheduler_relink(mpbd *d, double now)
+{
+    for (int i = 0; i < d->num_planners; i++)
+        if (!d->planners[i].gone)
+            d->planners[i].relinked = now;
+    for (int i = 0; i < d->num_flights; i++)
+        if (!d->flights[i].acked && !d->flights[i].queued)
+            d->flights[i].next_send = now;
+}
+
+void mpbd_planner_heard(mpbd *d, int planner, double now)
+{
+    mpbd_planner *p = &d->planners[planner];
+    if (p->relinked <= 0)
+        return;
+    for (int i = 0; i < d->num_flights; i++) {
+        mpbd_flight *f = &d->flights[i];
+        if (f->planner != planner || f->queued)
+            continue;
+        double since = fmax(p->relinked, f->last_send);
+        if (now > since) {
+            f->away += now - since;
+            f->deadline += now - since;
+        }
+        /* What it finished while away it answers from its kept results;
+         * what it still plans it acknowledges again. An acknowledged
+         * request's time does not start again. */
+        if (f->acked)
+            publish_request(d, f);
+        else
+            resend(d, f, now);
+    }
+    p->relinked = 0;
+}
+
 void mpbd_scheduler_stalled(mpbd *d, double secs)
 {
-    mpbd_scheduler_pause(d, secs);
+    /* The hub away or stalled (its publishing blocks the loop): network
+     * time, logged once by hub.c. */
+    if (d->hub_state == MPBD_HUB_AWAY || d->hub_state == MPBD_HUB_STALLED) {
+        mpbd_scheduler_pause(d, secs);
+        return;
+    }
+    /* Not network time: what planners sent meanwhile carries the
+     * kernel's receive time, so runs are timed as they ran. */
+    hold_clocks(d, secs);
     mpbd_log("read no message for %.1f s (stopped, its machine "
              "suspended, or busy): planners' silence and runs' deadlines "
              "are counted without that time", secs);
@@ -729,6 +824,7 @@ static void on_ack(mpbd *d, const mpb_run_ack_t *m)
         (f = mpbd_flight_find(d, m->run_id)) == NULL ||
         strcmp(d->planners[f->planner].id, m->sender_id) != 0)
         return;
+    mpbd_planner_heard(d, f->planner, mpb_monotonic_s());
     if (m->kind == MPB_RUN_ACK_T_REQUEST_RECEIVED) {
         f->acked = 1;
         d->planners[f->planner].declines = 0;

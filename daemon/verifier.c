@@ -33,6 +33,7 @@ typedef struct job {
     double             recv;     /* when it arrived, monotonic s */
     mpbd_measured      ms;
     int                ok;       /* measured (else out of memory) */
+    double             bytes;    /* the result's encoded size */
 } job;
 
 typedef struct job_list {
@@ -48,6 +49,7 @@ struct mpbd_verifier {
     job            *current;     /* the one the worker is measuring */
     int             quit;
     int             pending;     /* submitted, not yet stored (loop only) */
+    double          bytes;       /* their results' bytes (loop only) */
     int             fresh;       /* submitted since the last settle (loop only) */
     int             pipe[2];     /* a byte per job done: wakes the loop */
     const mpbd     *d;           /* read by the worker: the experiment */
@@ -231,6 +233,8 @@ int mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
     }
     j->f = *f;
     j->recv = recv;
+    j->bytes = (double)mpb_plan_result_t_encoded_size(m);
+    v->bytes += j->bytes;
     pthread_mutex_lock(&v->mu);
     push(&v->todo, j);
     pthread_cond_signal(&v->cond);
@@ -333,6 +337,11 @@ int mpbd_verifier_pending(const mpbd *d)
     return d->verifier != NULL ? d->verifier->pending : 0;
 }
 
+double mpbd_verifier_bytes(const mpbd *d)
+{
+    return d->verifier != NULL ? d->verifier->bytes : 0;
+}
+
 int mpbd_verifier_fd(const mpbd *d)
 {
     return d->verifier != NULL ? d->verifier->pipe[0] : -1;
@@ -369,6 +378,7 @@ void mpbd_verifier_collect(mpbd *d)
         pop(&v->done);
         pthread_mutex_unlock(&v->mu);
         v->pending--;
+        v->bytes -= j->bytes;
         job_free(j);
     }
 }

@@ -59,8 +59,8 @@ mpb_spawn "$work/deaf-planner.log" "$rogue" deaf deaf@rogue:1 deaf x 12
 mpb_wait $! 30
 check "deaf: the experiment completes" eq $? 0
 check "deaf: the crash says the request was never acknowledged" \
-    test "$(q "SELECT message FROM runs")" = \
-    "request never acknowledged (20 sends): is the planner subscribed to MPB_REQUEST_deaf@rogue:1?"
+    eq "$(q "SELECT count(*) FROM runs WHERE message GLOB
+        'request never acknowledged ([0-9]* sends): is the planner subscribed to MPB_REQUEST_deaf@rogue:1?'")" 1
 mpb_stop_all
 
 # 3. A planner that declines every request while it announces capacity 1:

@@ -125,7 +125,7 @@ typedef struct mpb_planner_def {
 /*
  * Serve requests until *stop becomes nonzero (set it from a signal handler)
  * or, when max_runs > 0, after that many runs have been solved and their
- * results acknowledged (or re-sent until the re-sends ran out, ~10 s).
+ * results acknowledged (or re-sent for 10 s without an acknowledgement).
  * From the start of the last of them the planner announces capacity 0 and
  * declines any further request (REQUEST_DECLINED), so that the daemon
  * gives those runs to other planners, with no crash counted.

@@ -56,6 +56,9 @@ int mpb_store_check_file(mpb_store *s);
  * database, and a second one on the same file is refused. An advisory
  * flock() on the file, apart from SQLite's own locks: handles that do not
  * claim (readers, `mpb import`, the sqlite3 shell) are not affected.
+ * While claimed, no other connection to the file can hold SQLite's
+ * PENDING lock, so that a reader with no busy timeout (the sqlite3 shell)
+ * is never refused for another reader closing (docs/schema.md).
  * MPB_EBUSY if another handle holds the claim, MPB_EINVAL if s is
  * read-only. (On NFS, Linux emulates flock() with fcntl() locks, which
  * would hold readers off: keep the database on a local disk, as SQLite's
@@ -237,7 +240,9 @@ typedef struct mpb_run_counts {
 int mpb_store_run_counts(mpb_store *s, int64_t experiment_id,
                          mpb_run_counts *out);
 
-/* Record that a request with run_uid went to planner_id (attempts + 1). */
+/* Record that a request with run_uid went to planner_id: attempts + 1,
+ * unless run_uid is already the run's attempt (sent again after a
+ * restart: the same attempt). */
 int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
                        const char *planner_id);
 

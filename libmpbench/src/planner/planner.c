@@ -25,10 +25,13 @@
 
 /* How many finished runs are remembered, to answer a repeated request. */
 #define MPB__RESULTS_KEPT 64
-/* A result is re-sent every MPB__RESEND_S until acknowledged, at most
- * MPB__SENDS_MAX times in all (about 10 s). */
+/* A result is re-sent until acknowledged, for as long as it is kept:
+ * after MPB__RESEND_S, the wait doubling to MPB__RESEND_MAX_S, and at once
+ * when a hub link connects again. A planner closing (--max-runs) waits at
+ * most MPB__CLOSING_WAIT_S for its last results' acknowledgements. */
 #define MPB__RESEND_S 0.2
-#define MPB__SENDS_MAX 50
+#define MPB__RESEND_MAX_S 2.0
+#define MPB__CLOSING_WAIT_S 10.0
 /* Longest wait in select(), so that *stop and re-sends are seen promptly. */
 #define MPB__POLL_S 0.05
 /* LCM queue lengths: acks are small and may come many at once (a commit
@@ -45,7 +48,8 @@
 typedef struct mpb__kept {
     int used;
     int acked;
-    int sends_left;
+    int sends;                 /* since it was last acknowledged */
+    double first_send_s;
     double next_send_s;
     mpb_plan_result_t res;     /* owned; res.run_id names the run */
 } mpb__kept;
@@ -66,6 +70,7 @@ typedef struct mpb__server {
 
     mpb__kept kept[MPB__RESULTS_KEPT];
     int kept_next;              /* ring position of the next result */
+    long hub_connects;          /* the hub link's connections, last seen */
 
     /* Shared with the heartbeat thread, under mu. */
     pthread_mutex_t mu;
@@ -488,9 +493,11 @@ static void mpb__send(mpb__server *s, mpb__kept *k)
 {
     mpb_publish_result(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_RESULT,
                        &k->res);
-    k->next_send_s = mpb_monotonic_s() + MPB__RESEND_S;
-    if (k->sends_left > 0)
-        k->sends_left--;
+    double now = mpb_monotonic_s(), wait = MPB__RESEND_S;
+    for (int i = 0; i < k->sends && wait < MPB__RESEND_MAX_S; i++)
+        wait *= 2;
+    k->sends++;
+    k->next_send_s = now + (wait < MPB__RESEND_MAX_S ? wait : MPB__RESEND_MAX_S);
 }
 
 /* ---- solving ----------------------------------------------------------- */
@@ -630,7 +637,7 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
     }
     res->utime = mpb_utime_now();
     k->used = 1;
-    k->sends_left = MPB__SENDS_MAX;
+    k->first_send_s = mpb_monotonic_s();
     mpb__send(s, k);
     return MPB_OK;
 }
@@ -664,9 +671,10 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         /* Solved already: send the result now, and re-send it until it is
          * acknowledged (again, if it was acknowledged before). */
         mpb__ack(s, msg->run_id, MPB_RUN_ACK_T_REQUEST_RECEIVED);
-        if (k->acked || k->sends_left <= 0) {
+        if (k->acked) {
             k->acked = 0;
-            k->sends_left = MPB__SENDS_MAX;
+            k->sends = 0;
+            k->first_send_s = mpb_monotonic_s();
         }
         mpb__send(s, k);
         return;
@@ -757,23 +765,32 @@ static void mpb__on_status_raw(const lcm_recv_buf_t *rbuf,
 
 /* ---- the loop ---------------------------------------------------------- */
 
-/* Re-send due results; return the seconds until the next one is due. */
+/* Re-send due results; return the seconds until the next one is due.
+ * *pending: results not acknowledged that a closing planner waits for. */
 static double mpb__resend_due(mpb__server *s, int *pending)
 {
     double now = mpb_monotonic_s(), wait = MPB__POLL_S;
+    mpb_hub_stats st;
+    /* A hub link connected again: what it sent meanwhile was lost. */
+    mpb_lcm_hub_stats(s->lcm, &st);
+    int relinked = st.connects != s->hub_connects;
+    s->hub_connects = st.connects;
     *pending = 0;
     for (int i = 0; i < MPB__RESULTS_KEPT; i++) {
         mpb__kept *k = &s->kept[i];
-        if (!k->used || k->acked || k->sends_left <= 0)
+        if (!k->used || k->acked)
             continue;
+        if (relinked) {
+            k->sends = 0;
+            k->next_send_s = now;
+        }
         if (k->next_send_s <= now)
             mpb__send(s, k);
-        if (k->sends_left > 0) {
+        if (now - k->first_send_s < MPB__CLOSING_WAIT_S)
             (*pending)++;
-            double w = k->next_send_s - now;
-            if (w < wait)
-                wait = w;
-        }
+        double w = k->next_send_s - now;
+        if (w < wait)
+            wait = w;
     }
     return wait < 0 ? 0 : wait;
 }

@@ -22,7 +22,7 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
     [MPB__ST_ROLLBACK] = "ROLLBACK",
     [MPB__ST_RUN_SENT] =
         "UPDATE runs SET state = 'sent', run_uid = ?2, planner_id = ?3,"
-        " attempts = attempts + 1, sent = ?4"
+        " attempts = attempts + (run_uid IS NOT ?2), sent = ?4"
         " WHERE id = ?1 AND state != 'done'",
     [MPB__ST_RUN_FINISH] =
         "UPDATE runs SET state = 'done', finished = ?16,"
@@ -760,6 +760,31 @@ int mpb_store_check_file(mpb_store *s)
     return MPB_OK;
 }
 
+/* SQLite's PENDING byte (os.h, PENDING_BYTE): a connection asks for it,
+ * as a write lock, on its way to an EXCLUSIVE lock, and no connection can
+ * take a SHARED lock, as every reader must to begin, while another holds
+ * it. In WAL mode a connection closing asks for EXCLUSIVE (to checkpoint
+ * and remove the WAL if it is the last), fails while the daemon holds
+ * SHARED, but holds PENDING meanwhile: a reader opening the database at
+ * that moment, with no busy timeout, is refused ("database is locked").
+ * Readers closing while others open (two sqlite3 shells, a script beside
+ * one) refused each other so, a few times in a thousand while the daemon
+ * ran (issue 47). A read lock on the byte, held by the daemon, makes that
+ * request fail at once, before PENDING is held: readers, which take the
+ * byte only as a read lock for a moment, are never refused. Held on the
+ * store's own descriptor, closed only after SQLite's connections
+ * (fcntl() locks are the process's: closing any descriptor of the file
+ * would drop them all). */
+#define SQLITE_PENDING_BYTE 0x40000000L
+
+static void admit_readers(mpb_store *s)
+{
+    struct flock fl = {.l_type = F_RDLCK, .l_whence = SEEK_SET,
+                       .l_start = SQLITE_PENDING_BYTE, .l_len = 1};
+    /* Best effort: without it, readers are as SQLite leaves them. */
+    (void)fcntl(s->fd, F_SETLK, &fl);
+}
+
 int mpb_store_claim(mpb_store *s)
 {
     if (s->fd < 0)
@@ -767,6 +792,7 @@ int mpb_store_claim(mpb_store *s)
                                "for reading only");
     if (flock(s->fd, LOCK_EX | LOCK_NB) == 0) {
         note_side_files(s);     /* ours now, as the file is */
+        admit_readers(s);
         return MPB_OK;
     }
     if (errno == EWOULDBLOCK)

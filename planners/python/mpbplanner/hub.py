@@ -52,6 +52,7 @@ class HubLCM:
         self.skip = 0                   # bytes of a dropped frame to pass
         self.pending_drop = False       # then its data's length, and that
         self.dropped = 0
+        self.connects = 0               # connections made (for re-sends)
 
     # ---- the connection ----------------------------------------------------
 
@@ -82,6 +83,7 @@ class HubLCM:
         self.inbuf, self.skip, self.pending_drop = bytearray(), 0, False
         with self.lock:
             self.sock = s
+        self.connects += 1
         return s
 
     def _drop(self):

@@ -46,7 +46,8 @@ ANNOUNCE = "MPB_ANNOUNCE"
 ACK = "MPB_ACK"
 RESULT = "MPB_RESULT"
 HEARTBEAT_S = 0.5
-RESEND_S = 0.2
+RESEND_S = 0.2              # a result's first re-send; the wait doubles
+RESEND_MAX_S = 2.0          # to this, until the daemon acknowledges it
 STATUS = "MPB_STATUS"
 TAG_BYTES = 32
 TRAILER_BYTES = 24 + TAG_BYTES
@@ -196,7 +197,9 @@ class Node:
         self.requests = queue.Queue()
         self.lock = threading.Lock()
         self.seen = {}           # run id -> None while planning, else result bytes
-        self.unacked = {}        # run id -> next time to re-send its result
+        self.unacked = {}        # run id -> (next time to re-send its
+                                 # result, the wait after that)
+        self.connects = 0        # the hub link's connections, last seen
         self.active = []
         self.stopping = False
         self.announce_now = False
@@ -317,10 +320,16 @@ class Node:
                 self.announce_now = False
                 self._announce()
                 next_announce = now + HEARTBEAT_S
+            # A hub link connected again: what was sent meanwhile was
+            # lost, so every result not acknowledged goes again now.
+            connects = getattr(self.lc, "connects", 0)
+            relinked, self.connects = connects != self.connects, connects
             with self.lock:
-                due = [r for r, t in self.unacked.items() if t <= now]
+                due = [r for r, (t, _) in self.unacked.items()
+                       if t <= now or relinked]
                 for r in due:
-                    self.unacked[r] = now + RESEND_S
+                    wait = RESEND_S if relinked else self.unacked[r][1]
+                    self.unacked[r] = (now + wait, min(2 * wait, RESEND_MAX_S))
                 resend = [self.seen[r] for r in due]
             for data in resend:
                 self._publish(RESULT, data)
@@ -413,7 +422,8 @@ class Node:
             with self.lock:
                 self.active = []
                 self.seen[req.run_id] = data
-                self.unacked[req.run_id] = time.monotonic() + RESEND_S
+                self.unacked[req.run_id] = (time.monotonic() + RESEND_S,
+                                            2 * RESEND_S)
             self._publish(RESULT, data)
             self.log(f"run {req.run_id[:8]}: status {res.status}, "
                      f"{res.time_total:.3f} s")
