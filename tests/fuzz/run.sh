@@ -14,10 +14,12 @@ seed=${MPB_FUZZ_SEED:-0}
 build=$root/build-fuzz
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DMPB_FUZZ=ON \
     -DCMAKE_BUILD_TYPE=Debug >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_messages fuzz_planar fuzz_experiment fuzz_scene fuzz_urdf fuzz_ompl_log fuzz_lcm_filter
+# Every target, one list: what is built is what is run.
+targets="messages planar experiment scene urdf ompl_log lcm_filter octree"
+cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
 cd "$build"
 status=0
-for target in messages planar experiment scene urdf ompl_log lcm_filter octree; do
+for target in $targets; do
     mkdir -p "corpus/$target"
     echo "== fuzz_$target, $secs s"
     if ! UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
