@@ -172,24 +172,13 @@ static void print_pair(const data *d, const pairs_pair *p, const char *set)
         printf("  path length: no problem solved by both\n");
 }
 
-static void csv_text(const char *s)
-{
-    putchar('"');
-    for (; *s; s++) {
-        if (*s == '"')
-            putchar('"');
-        putchar(*s);
-    }
-    putchar('"');
-}
-
 static void print_csv(const data *d, const pairs_pair *p, const char *set)
 {
-    csv_text(set);
+    tool_csv_text(stdout, set);
     putchar(',');
-    csv_text(d->config_names[p->a]);
+    tool_csv_text(stdout, d->config_names[p->a]);
     putchar(',');
-    csv_text(d->config_names[p->b]);
+    tool_csv_text(stdout, d->config_names[p->b]);
     printf(",%d,%d,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%.9g,%.9g,"
            "%.9g\n", p->problems, p->both, p->only_a, p->only_b, p->neither,
            p->time.n, p->time.median, p->time.lo, p->time.hi, p->time.p,

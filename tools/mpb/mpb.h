@@ -6,6 +6,7 @@
 #define MPB_TOOL_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "mpbench/mpbench.h"
 
@@ -77,6 +78,9 @@ const char *tool_problem_set(const mpb_scene_row *scene);
  * is not there yet; -1 when out of memory. free() each name and the
  * array. */
 int tool_set_index(char ***sets, int *n, const mpb_scene_row *scene);
+
+/* s as one CSV field, always quoted, '"' doubled (RFC 4180). */
+void tool_csv_text(FILE *f, const char *s);
 
 /* The lists a tool reads an experiment into, from the store's callbacks:
  * a configuration's id and a copy of its name appended to *ids and

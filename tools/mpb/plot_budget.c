@@ -189,17 +189,6 @@ static int drawn(const plot_budget *b, int set)
     return set < b->nsets || b->nsets > 1;
 }
 
-static void csv_text(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 int plot_budget_csv(const plot_budget *b, const char *dir,
                     void (*wrote)(void *ud, const char *path), void *ud)
 {
@@ -221,9 +210,9 @@ int plot_budget_csv(const plot_budget *b, const char *dir,
                 for (int j = 0; j < n; j++) {
                     if (j + 1 < n && t[j + 1] == t[j])
                         continue;          /* one step per time */
-                    csv_text(f, set_name(b, i));
+                    tool_csv_text(f, set_name(b, i));
                     fputc(',', f);
-                    csv_text(f, b->configs[c]);
+                    tool_csv_text(f, b->configs[c]);
                     fprintf(f, ",%s,%.9g,%.9g,%d\n",
                             which ? "claimed" : "verified", t[j],
                             (double)(j + 1) / k->runs, k->runs);

@@ -71,7 +71,7 @@ int plot_budget_svg(FILE *out, const plot_budget *b, int set)
     a.lo = isfinite(a.lo) ? fmax(a.lo / 2, 1e-6) : a.hi / 1000;
     if (!(a.lo < a.hi))
         a.lo = a.hi / 1000;
-    fprintf(out, "<figure><svg class=\"budget\" xmlns=\"http://www.w3.org/2000/svg\" "
+    fprintf(out, "<figure><svg class=\"budget\" "
             "viewBox=\"0 0 %d %d\" width=\"%d\" height=\"%d\" role=\"img\">"
             "<title>", W, H, W, H);
     view_html_text(out, plot_budget_set(b, set));

@@ -259,17 +259,6 @@ static int drawn(const plot_profile *p, int set)
     return p->problems[set] > 0 && (set < p->nsets || p->nsets > 1);
 }
 
-static void csv_text(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 int plot_profile_csv(const plot_profile *p, const char *dir,
                      void (*wrote)(void *ud, const char *path), void *ud)
 {
@@ -289,9 +278,9 @@ int plot_profile_csv(const plot_profile *p, const char *dir,
                 for (int j = 0; j < k->n; j++) {
                     if (j + 1 < k->n && k->r[j + 1] == k->r[j])
                         continue;          /* one step per tau */
-                    csv_text(f, set_name(p, i));
+                    tool_csv_text(f, set_name(p, i));
                     fprintf(f, ",%s,", metric_name[m]);
-                    csv_text(f, p->configs[c]);
+                    tool_csv_text(f, p->configs[c]);
                     fprintf(f, ",%.9g,%.9g,%d\n", k->r[j],
                             (double)(j + 1) / p->problems[i], p->problems[i]);
                 }

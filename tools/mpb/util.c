@@ -141,3 +141,14 @@ int tool_scene_add(int64_t **ids, int **set_of, int *n, char ***sets,
     grown_of[(*n)++] = set;
     return 0;
 }
+
+void tool_csv_text(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
