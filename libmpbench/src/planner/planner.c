@@ -523,20 +523,6 @@ static const char *mpb__check_request(const mpb__server *s,
     return NULL;
 }
 
-int mpb_solve_should_stop(const mpb_solve_limits *lim)
-{
-    return (lim->stop != NULL && *lim->stop) ||
-           mpb_monotonic_s() >= lim->deadline;
-}
-
-mpb_solve_limits mpb_solve_limits_moved(const mpb_solve_limits *lim,
-                                        double seconds)
-{
-    mpb_solve_limits moved = *lim;
-    moved.deadline += seconds;
-    return moved;
-}
-
 /* Solve req into a new ring slot, publish the result. */
 static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
 {
