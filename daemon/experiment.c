@@ -218,24 +218,6 @@ void mpbd_experiment_free(mpbd_experiment *e)
     free(e);
 }
 
-void mpbd_query_region(const mpbd_query *q, double region[12])
-{
-    for (int k = 0; k < 3; k++) {
-        region[k] = q->position[k];
-        region[3 + k] = q->position_tolerance[k];
-        region[6 + k] = q->rpy[k];
-        region[9 + k] = q->rpy_tolerance[k];
-    }
-}
-
-mpb_goal mpbd_query_goal(const mpbd_query *q)
-{
-    double region[12];
-    mpbd_query_region(q, region);
-    return mpb_query_goal(q->goal_kind, q->goal, q->tolerance, q->goal_link,
-                          region);
-}
-
 /* splitmix64: a well-mixed 64-bit function of the run's place. */
 static uint64_t mix(uint64_t x)
 {

@@ -5,7 +5,9 @@
  * and the steps each file gives the others:
  *   experiment.c          the file as a whole, its settings
  *   experiment_robot.c    the robot, its SRDF and group, each scene's world
- *   experiment_scenes.c   scenes, queries, goals, held joints
+ *   experiment_scenes.c   the scenes: list, plain scenes and their queries
+ *   experiment_entry.c    what either kind of entry shares: set, states
+ *                         checked, held joints, a query's goal
  *   experiment_moveit.c   MoveIt problem sets and scene files
  *   experiment_planners.c planner configurations and parameters
  */
@@ -112,18 +114,11 @@ static inline int parse_positive_int(mpbd_loader *L, yaml_node_t *n,
     return mpbd_yaml_int_in(&L->y, n, what, 1, 1000000000, out);
 }
 
-/* ---- experiment_scenes.c ------------------------------------------ */
+/* ---- experiment_entry.c ------------------------------------------- */
 
 /* Longest problem set name `set:` may give, in bytes. */
 #define MPBD_SET_MAX 255
 
-/*
- * A scene entry's `set:` (m a scenes entry), into *out (NULL when the key
- * is absent: the store's default): a non-empty name of at most
- * MPBD_SET_MAX bytes without control characters. 0, or -1 with one line
- * at the key's value.
- */
-int mpbd_load_set(mpbd_loader *L, yaml_node_t *m, char **out);
 
 /* ---- experiment_robot.c ------------------------------------------- */
 
@@ -143,17 +138,32 @@ int mpbd_open_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc,
 
 /* The `scenes:` of the document's root, with the robot. */
 int mpbd_load_scenes(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root);
+
+/* ---- experiment_entry.c ------------------------------------------- */
+
 /* Whether q (a start or goal) is within the limits and collision-free. */
 int mpbd_check_state(mpbd_loader *L, const mpbd_experiment *e, int scene,
                      const double *q, const char *what, yaml_node_t *where);
 /* Give query q a value for every held joint known so far. */
 int mpbd_held_fill(mpbd_experiment *e, mpbd_query *q);
-/* Hold joint `name` at v in world w (experiment_scenes.c says how). */
+/* Hold joint `name` at v in world w (experiment_entry.c says how). */
 int mpbd_hold_one(mpbd_loader *L, mpbd_experiment *e, mpb_world *w,
                   const char *name, double v, yaml_node_t *key,
                   yaml_node_t *val, int clamp, int *clamped, int *index);
 /* After the first scene's world opens: the robot's held joint values. */
 int mpbd_first_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc);
+/* `joint_values: {name: value, ...}` (m, may be NULL): the robot's held
+ * joints (q NULL), or query q's own. */
+int mpbd_load_joint_values(mpbd_loader *L, mpbd_experiment *e, mpb_world *w,
+                           yaml_node_t *m, mpbd_query *q);
+/*
+ * A scene entry's `set:` (m a scenes entry), into *out (NULL when the key
+ * is absent: the store's default): a non-empty name of at most
+ * MPBD_SET_MAX bytes without control characters. 0, or -1 with one line
+ * at the key's value.
+ */
+int mpbd_load_set(mpbd_loader *L, yaml_node_t *m, char **out);
+
 
 /* ---- experiment_moveit.c ------------------------------------------ */
 
