@@ -45,9 +45,10 @@ static mpbd_ack_due *push(mpbd_ack_due **arr, int *num, int *cap)
 int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid,
                           double sent_at)
 {
+    mpbd_acks *k = &d->acks;
     if (!mpb_planner_id_is_valid(planner_id) || !mpb_run_id_is_valid(run_uid))
         return MPB_EINVAL;
-    mpbd_ack_due *a = push(&d->acks, &d->num_acks, &d->cap_acks);
+    mpbd_ack_due *a = push(&k->due, &k->num_due, &k->cap_due);
     if (a == NULL)
         return MPB_ENOMEM;
     memcpy(a->run_uid, run_uid, sizeof a->run_uid);
@@ -58,47 +59,74 @@ int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid,
 
 void mpbd_acks_flush(mpbd *d)
 {
-    double now = d->num_acks ? mpb_monotonic_s() : 0.0;
-    for (int i = 0; i < d->num_acks; i++) {
-        mpbd_ack_due *a = &d->acks[i], *o;
+    mpbd_acks *k = &d->acks;
+    double now = k->num_due ? mpb_monotonic_s() : 0.0;
+    for (int i = 0; i < k->num_due; i++) {
+        mpbd_ack_due *a = &k->due[i], *o;
         if (a->sent_at >= 0)
-            mpbd_latency_add(&d->latency, now - a->sent_at);
+            mpbd_latency_add(&k->latency, now - a->sent_at);
         /* A result sent again: its planner is waiting, answer at once. */
         if (a->sent_at < 0 ||
-            (o = push(&d->owed, &d->num_owed, &d->cap_owed)) == NULL) {
+            (o = push(&k->owed, &k->num_owed, &k->cap_owed)) == NULL) {
             mpbd_ack(d, a->planner_id, a->run_uid, MPB_RUN_ACK_T_RESULT_STORED);
             continue;
         }
         *o = *a;
         o->due = now + MPBD_ACK_HOLD_S;
     }
-    d->num_acks = 0;
+    k->num_due = 0;
+}
+
+void mpbd_acks_drop(mpbd *d)
+{
+    d->acks.num_due = 0;
+}
+
+int mpbd_acks_due(const mpbd *d)
+{
+    return d->acks.num_due;
 }
 
 int mpbd_owed_take(mpbd *d, const char *planner_id,
                    char (*ids)[MPB_RUN_ID_SIZE], int max)
 {
+    mpbd_acks *k = &d->acks;
     int n = 0;
-    for (int i = 0; i < d->num_owed && n < max;) {
-        if (strcmp(d->owed[i].planner_id, planner_id) != 0) {
+    for (int i = 0; i < k->num_owed && n < max;) {
+        if (strcmp(k->owed[i].planner_id, planner_id) != 0) {
             i++;
             continue;
         }
-        memcpy(ids[n++], d->owed[i].run_uid, MPB_RUN_ID_SIZE);
-        d->owed[i] = d->owed[--d->num_owed];
+        memcpy(ids[n++], k->owed[i].run_uid, MPB_RUN_ID_SIZE);
+        k->owed[i] = k->owed[--k->num_owed];
     }
     return n;
 }
 
 void mpbd_owed_send(mpbd *d, double now, int all)
 {
-    for (int i = 0; i < d->num_owed;) {
-        if (!all && d->owed[i].due > now) {
+    mpbd_acks *k = &d->acks;
+    for (int i = 0; i < k->num_owed;) {
+        if (!all && k->owed[i].due > now) {
             i++;
             continue;
         }
-        mpbd_ack(d, d->owed[i].planner_id, d->owed[i].run_uid,
+        mpbd_ack(d, k->owed[i].planner_id, k->owed[i].run_uid,
                  MPB_RUN_ACK_T_RESULT_STORED);
-        d->owed[i] = d->owed[--d->num_owed];
+        k->owed[i] = k->owed[--k->num_owed];
     }
+}
+
+int mpbd_acks_init(mpbd *d)
+{
+    return mpbd_latency_init(&d->acks.latency);
+}
+
+void mpbd_acks_free(mpbd *d)
+{
+    mpbd_acks *k = &d->acks;
+    free(k->due);
+    free(k->owed);
+    mpbd_latency_free(&k->latency);
+    memset(k, 0, sizeof *k);
 }

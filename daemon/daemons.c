@@ -61,7 +61,7 @@ static void on_status(mpbd *d, const mpb_daemon_status_t *m,
 {
     if (strcmp(m->daemon_id, d->daemon_id) == 0 ||
         (d->auth != NULL && info->instance == mpb_auth_instance(d->auth))) {
-        d->hub_echo_at = now;   /* itself: through a hub, the link works */
+        mpbd_hub_echo(d, now);   /* itself: through a hub, the link works */
         return;
     }
     int ending = strcmp(m->state, "waiting") != 0 &&

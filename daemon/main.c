@@ -330,7 +330,7 @@ static long runs_left(mpbd *d)
     mpb_run_counts c;
     if (mpb_store_run_counts(d->store, d->experiment_id, &c) == MPB_OK)
         return (long)c.total - c.done;
-    return d->total_pending + d->num_flights + d->num_acks +
+    return d->runs.total_pending + d->runs.num_flights + mpbd_acks_due(d) +
            mpbd_verifier_pending(d);
 }
 
@@ -455,12 +455,18 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
          * so that time is not its planners' silence. */
         if (now - last > MPBD_STALL_S)
             mpbd_scheduler_stalled(d, now - last);
-        if (mpbd_hub_watch(d, now, now - last > MPBD_STALL_S ? 0 : now - last))
+        mpbd_hub_news hub;
+        if (mpbd_hub_watch(d, now, now - last > MPBD_STALL_S ? 0 : now - last,
+                           &hub))
             return LOOP_HUB_GONE;
+        if (hub.relinked)
+            mpbd_scheduler_relink(d, now);
+        if (hub.away_s > 0)
+            mpbd_scheduler_pause(d, hub.away_s);
         /* One transaction: the runs sent last time, then what has arrived
          * (bounded, so that timers still run under a flood). */
         if (mpb_store_begin(d->store) != MPB_OK ||
-            mpbd_scheduler_record_sent(d) != MPB_OK) {
+            mpbd_runs_record_sent(d) != MPB_OK) {
             mpbd_db_error(d);
             mpb_store_rollback(d->store);
             return LOOP_DB_ERROR;
@@ -474,6 +480,7 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
          * transaction in the order they were finished (verifier.c). */
         mpbd_verifier_settle(d, MPBD_SETTLE_S);
         mpbd_verifier_collect(d);
+        mpbd_planners_expire(d, now);
         mpbd_scheduler_tick(d, now);
         if (mpb_store_commit(d->store) != MPB_OK) {
             mpbd_db_error(d);
@@ -501,7 +508,7 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
         mpbd_owed_send(d, now, 0);
         /* Results written to a file that lost its name are lost: looked
          * at once a status period, and before saying the work is done. */
-        int done = mpbd_scheduler_done(d) && mpbd_verifier_pending(d) == 0;
+        int done = mpbd_runs_done(d) && mpbd_verifier_pending(d) == 0;
         if ((done || now - d->last_status >= MPBD_STATUS_PERIOD_S) &&
             mpb_store_check_file(d->store) != MPB_OK) {
             snprintf(gone, cap, "%s", mpb_store_errmsg(d->store));
@@ -519,15 +526,15 @@ static int run_loop(mpbd *d, char *gone, size_t cap)
  * request first sent to result committed. */
 static void log_latency(const mpbd *d)
 {
-    long med = mpbd_latency_quantile_us(&d->latency, 0.5);
-    long p99 = mpbd_latency_quantile_us(&d->latency, 0.99);
+    long med = mpbd_latency_quantile_us(&d->acks.latency, 0.5);
+    long p99 = mpbd_latency_quantile_us(&d->acks.latency, 0.99);
     if (med < 0)
         return;
     mpbd_log("latency of a run, request sent to result committed: median "
              "%s%ld us, p99 %s%ld us (%llu runs)",
              med >= MPBD_LATENCY_MAX_US ? "over " : "", med,
              p99 >= MPBD_LATENCY_MAX_US ? "over " : "", p99,
-             (unsigned long long)d->latency.n);
+             (unsigned long long)d->acks.latency.n);
 }
 
 /* A warning about the experiment, on stderr, at --check and at load. */
@@ -537,18 +544,13 @@ static void warn_line(void *ud, const char *line)
     mpbd_log("warning: %s", line);
 }
 
-int main(int argc, char **argv)
+/* --mesh-path and --list-planners: an answer about the experiment file,
+ * on stdout; the exit code. */
+static int answer_query(const options *o)
 {
-    options o;
-    char err[1024], host[256] = "";
-    mpbd d = {0};
-    int rc, exit_code = 1;
-
-    if (parse_options(argc, argv, &o) != 0)
-        return 2;
-    if (o.mesh_path) {
-        char dir[4096];
-        if (mpbd_mesh_path(o.experiment, dir, sizeof dir, err, sizeof err)) {
+    char err[1024], dir[4096];
+    if (o->mesh_path) {
+        if (mpbd_mesh_path(o->experiment, dir, sizeof dir, err, sizeof err)) {
             fprintf(stderr, "mpbenchd: %s\n", err);
             return 1;
         }
@@ -556,65 +558,78 @@ int main(int argc, char **argv)
             printf("%s\n", dir);
         return 0;
     }
-    if (o.list_planners) {
-        if (mpbd_planner_families(o.experiment, stdout, err, sizeof err)) {
-            fprintf(stderr, "mpbenchd: %s\n", err);
-            return 1;
-        }
-        return 0;
+    if (mpbd_planner_families(o->experiment, stdout, err, sizeof err)) {
+        fprintf(stderr, "mpbenchd: %s\n", err);
+        return 1;
     }
-    /* Read and check the whole experiment before touching the database. */
-    if ((d.exp = mpbd_experiment_load(o.experiment, err, sizeof err)) == NULL) {
+    return 0;
+}
+
+/* Read and check the whole experiment before touching the database, and
+ * say what may surprise about it. -1 to go on, else the exit code (1 on
+ * a fault, said on stderr; 0 after --check). */
+static int load_experiment(const options *o, mpbd *d)
+{
+    char err[1024];
+    if ((d->exp = mpbd_experiment_load(o->experiment, err, sizeof err)) == NULL) {
         fprintf(stderr, "mpbenchd: %s\n", err);
         return 1;
     }
     /* A request over the bound would be dropped by every planner. */
-    if (mpbd_requests_fit(d.exp, o.secret_file != NULL, err, sizeof err) !=
+    if (mpbd_requests_fit(d->exp, o->secret_file != NULL, err, sizeof err) !=
         MPB_OK) {
         fprintf(stderr, "mpbenchd: %s\n", err);
-        mpbd_experiment_free(d.exp);
         return 1;
     }
-    d.runs_total = (int)count_runs(d.exp);
-    if (d.exp->srdf_warning != NULL)
-        warn_line(NULL, d.exp->srdf_warning);
-    if (mpbd_experiment_acm_note(d.exp, err, sizeof err))
+    d->runs_total = (int)count_runs(d->exp);
+    if (d->exp->srdf_warning != NULL)
+        warn_line(NULL, d->exp->srdf_warning);
+    if (mpbd_experiment_acm_note(d->exp, err, sizeof err))
         mpbd_log("%s", err);
-    if (mpbd_experiment_moveit_note(d.exp, err, sizeof err))
+    if (mpbd_experiment_moveit_note(d->exp, err, sizeof err))
         mpbd_log("%s", err);
-    if (mpbd_experiment_scene_acm_note(d.exp, err, sizeof err))
+    if (mpbd_experiment_scene_acm_note(d->exp, err, sizeof err))
         warn_line(NULL, err);
-    mpbd_warn_thin(d.exp, o.resolution, warn_line, NULL);
-    if (mpbd_mesh_note(d.exp, err, sizeof err))
+    mpbd_warn_thin(d->exp, o->resolution, warn_line, NULL);
+    if (mpbd_mesh_note(d->exp, err, sizeof err))
         warn_line(NULL, err);
-    if (mpbd_experiment_orientation_note(d.exp, err, sizeof err))
+    if (mpbd_experiment_orientation_note(d->exp, err, sizeof err))
         warn_line(NULL, err);
-    if (o.check) {
+    if (o->check) {
+        const mpbd_experiment *e = d->exp;
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "
-               "%d run%s\n", o.experiment, d.exp->num_scenes,
-               d.exp->num_scenes == 1 ? "" : "s", d.exp->num_queries,
-               d.exp->num_queries == 1 ? "y" : "ies", d.exp->num_configs,
-               d.exp->num_configs == 1 ? "" : "s", d.runs_total,
-               d.runs_total == 1 ? "" : "s");
-        mpbd_experiment_free(d.exp);
+               "%d run%s\n", o->experiment, e->num_scenes,
+               e->num_scenes == 1 ? "" : "s", e->num_queries,
+               e->num_queries == 1 ? "y" : "ies", e->num_configs,
+               e->num_configs == 1 ? "" : "s", d->runs_total,
+               d->runs_total == 1 ? "" : "s");
         return 0;
     }
-    if (o.secret_file &&
-        mpb_auth_load(o.secret_file, &d.auth, err, sizeof err) != MPB_OK) {
+    return -1;
+}
+
+/* The secret, the LCM link and the database, claimed for this daemon.
+ * -1 to go on, else the exit code; *filtered: the kernel drops what the
+ * daemon does not read (lcm_filter.h). */
+static int open_links(const options *o, mpbd *d, int *filtered)
+{
+    char err[1024], host[256] = "";
+    int rc;
+    if (o->secret_file &&
+        mpb_auth_load(o->secret_file, &d->auth, err, sizeof err) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s\n", err);
-        mpbd_experiment_free(d.exp);
         return 1;
     }
-    d.resolution = o.resolution;
-    d.verbose = o.verbose;
-    d.backlog_max = o.backlog;
-    d.backlog_bytes_max = (double)o.backlog_mb * 1048576.0;
+    d->resolution = o->resolution;
+    d->verbose = o->verbose;
+    d->backlog.max = o->backlog;
+    d->backlog.bytes_max = (double)o->backlog_mb * 1048576.0;
     gethostname(host, sizeof host - 1);
-    mpb_planner_id_make("mpbenchd", host, (long)getpid(), d.daemon_id,
-                        sizeof d.daemon_id);
+    mpb_planner_id_make("mpbenchd", host, (long)getpid(), d->daemon_id,
+                        sizeof d->daemon_id);
 
-    if (o.replay && mpbd_replay_log_readable(o.replay) != 0)
-        goto out;
+    if (o->replay && mpbd_replay_log_readable(o->replay) != 0)
+        return 1;
     /* LCM before the database: a daemon that cannot talk to its planners
      * writes nothing (a replay talks to none). What it subscribes to, and
      * nothing else: its own requests and acknowledgements, and malformed
@@ -624,69 +639,123 @@ int main(int argc, char **argv)
     static const char *const wanted[] = {MPB_CHANNEL_ANNOUNCE,
                                          MPB_CHANNEL_RESULT, MPB_CHANNEL_ACK,
                                          MPB_CHANNEL_STATUS};
-    int filtered = 0;
-    if (!o.replay &&
-        (d.lcm = mpb_lcm_create_keeping(o.lcm_url, wanted, 4, &filtered)) == NULL) {
-        fprintf(stderr, "mpbenchd: cannot start LCM on %s (%s)\n", o.lcm_url,
-                mpb_lcm_url_is_hub(o.lcm_url)
+    *filtered = 0;
+    if (!o->replay &&
+        (d->lcm = mpb_lcm_create_keeping(o->lcm_url, wanted, 4, filtered)) == NULL) {
+        fprintf(stderr, "mpbenchd: cannot start LCM on %s (%s)\n", o->lcm_url,
+                mpb_lcm_url_is_hub(o->lcm_url)
                     ? "a hub's URL is tcpq://HOST:PORT"
                     : "no multicast route? see README");
-        goto out;
+        return 1;
     }
     /* A hub's link connects in the background: a moment for it now
      * saves a line saying it is not there yet. */
-    if (d.lcm != NULL)
-        mpb_lcm_hub_wait(d.lcm, 2.0);
-    d.db_path = o.db;
-    if ((rc = mpb_store_open(o.db, 0, &d.store)) != MPB_OK) {
-        fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
-        goto out;
+    if (d->lcm != NULL)
+        mpb_lcm_hub_wait(d->lcm, 2.0);
+    d->db_path = o->db;
+    if ((rc = mpb_store_open(o->db, 0, &d->store)) != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d->store));
+        return 1;
     }
     /* One daemon per database, whatever its experiment: a second one on
      * the same runs would send each twice. */
-    if ((rc = mpb_store_claim(d.store)) != MPB_OK) {
+    if ((rc = mpb_store_claim(d->store)) != MPB_OK) {
         if (rc == MPB_EBUSY)
             fprintf(stderr, "mpbenchd: %s is in use by another mpbenchd: "
-                    "wait for it to end, or give another --db\n", o.db);
+                    "wait for it to end, or give another --db\n", o->db);
         else
-            fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d.store));
-        goto out;
+            fprintf(stderr, "mpbenchd: %s\n", mpb_store_errmsg(d->store));
+        return 1;
     }
+    return -1;
+}
+
+/* The experiment's rows, new or resumed, and its runs not done loaded.
+ * -1 to go on, else the exit code (0: complete already). */
+static int prepare_runs(const options *o, mpbd *d)
+{
     /* A replay always fills a new experiment of its own. */
-    if (!(o.fresh || o.replay) && cannot_resume(&d, o.db))
-        goto out;
-    if (!(o.fresh || o.replay || o.again)) {
-        int complete = complete_already(&d, o.db);
-        if (complete != 0) {
-            exit_code = complete > 0 ? 0 : 1;
-            goto out;
-        }
+    if (!(o->fresh || o->replay) && cannot_resume(d, o->db))
+        return 1;
+    if (!(o->fresh || o->replay || o->again)) {
+        int complete = complete_already(d, o->db);
+        if (complete != 0)
+            return complete > 0 ? 0 : 1;
     }
-    if ((rc = setup_experiment(&d, o.fresh || o.replay)) != MPB_OK) {
-        fprintf(stderr, "mpbenchd: %s: %s\n", o.db, mpb_store_errmsg(d.store));
-        goto out;
+    if (setup_experiment(d, o->fresh || o->replay) != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s: %s\n", o->db, mpb_store_errmsg(d->store));
+        return 1;
     }
-    if ((rc = mpbd_scheduler_load(&d)) != MPB_OK) {
-        fprintf(stderr, "mpbenchd: %s: cannot load runs: %s\n", o.db,
-                mpb_store_errmsg(d.store));
-        goto out;
+    if (mpbd_runs_load(d) != MPB_OK) {
+        fprintf(stderr, "mpbenchd: %s: cannot load runs: %s\n", o->db,
+                mpb_store_errmsg(d->store));
+        return 1;
     }
-    if (o.replay) {
-        exit_code = mpbd_replay(&d, o.replay) == 0 ? 0 : 1;
-        goto out;
+    return -1;
+}
+
+/* Why the loop ended (run_loop()'s rc), said in the log and the last
+ * status; the exit code. */
+static int say_why_stopped(const options *o, mpbd *d, int rc, const char *gone,
+                           double elapsed)
+{
+    if (rc == 0) {
+        mpb_run_counts counts = {0};
+        mpb_store_run_counts(d->store, d->experiment_id, &counts);
+        mpbd_status_publish(d, "done", mpb_monotonic_s());
+        mpbd_log("experiment '%s' complete: %d runs, %d succeeded, %d crashed "
+                 "(%ld rejected messages), %.1f s", d->exp->name, counts.total,
+                 counts.succeeded, counts.crashed, d->count.rejected, elapsed);
+        return 0;
     }
+    mpbd_status_publish(d, "stopped", mpb_monotonic_s());
+    if (rc > 0) {
+        mpbd_log("stopped by signal %d with %ld runs left; run the same "
+                 "command to resume", (int)stop_signal, runs_left(d));
+        return 128 + (int)stop_signal;
+    }
+    if (rc == LOOP_DB_GONE)
+        mpbd_log("stopped with %ld runs left: %s",
+                 d->runs.total_pending + d->runs.num_flights, gone);
+    else if (rc == LOOP_DOOMED)
+        mpbd_log("stopped: the first run of every planner configuration "
+                 "(%d) failed with the same error, so every run would: "
+                 "%s; %ld runs left: fix it and run the same command to "
+                 "resume", d->exp->num_configs, d->doomed.why,
+                 runs_left(d));
+    else if (rc == LOOP_HUB_GONE)
+        mpbd_log("stopped: the hub at %s has been away or stalled for "
+                 "%.0f s, with "
+                 "%ld runs left; run the same command to resume once it "
+                 "is back", o->lcm_url, MPBD_HUB_AWAY_MAX_S, runs_left(d));
+    else if (rc == LOOP_NOT_ALONE)
+        mpbd_log("stopped: another mpbenchd, %s, is on this LCM URL "
+                 "(%s), and two would disturb each other's runs: give "
+                 "this benchmark its own URL (-u, and the same on its "
+                 "planners), or run the same command once the other "
+                 "ends", d->elder, o->lcm_url);
+    else
+        mpbd_log("stopped by a database error with %ld runs left; run "
+                 "the same command to resume", runs_left(d));
+    return 1;
+}
+
+/* The benchmark itself: handlers, signals, the verifier, the loop, and
+ * what is left written for a resume. The exit code. */
+static int run(const options *o, mpbd *d, int filtered)
+{
     /* A resumed experiment's status counts its runs done before, too. */
     mpb_run_counts before = {0};
-    if (mpb_store_run_counts(d.store, d.experiment_id, &before) == MPB_OK) {
-        d.count.succeeded = before.succeeded;
-        d.count.crashed = before.crashed;
-        d.count.failed = before.done - before.succeeded - before.crashed;
+    if (mpb_store_run_counts(d->store, d->experiment_id, &before) == MPB_OK) {
+        d->count.succeeded = before.succeeded;
+        d->count.crashed = before.crashed;
+        d->count.failed = before.done - before.succeeded - before.crashed;
     }
-    mpbd_planners_subscribe(&d);
-    mpbd_scheduler_subscribe(&d);
-    mpbd_results_subscribe(&d);
-    mpbd_daemons_subscribe(&d);
-    if (d.lcm != NULL && !filtered)
+    mpbd_announce_subscribe(d);
+    mpbd_scheduler_subscribe(d);
+    mpbd_results_subscribe(d);
+    mpbd_daemons_subscribe(d);
+    if (d->lcm != NULL && !filtered)
         mpbd_log("%s", MPB_LCM_UNFILTERED);
 
     struct sigaction sa = {.sa_handler = on_signal};
@@ -695,95 +764,80 @@ int main(int argc, char **argv)
     sigaction(SIGTERM, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
 
-    if (mpbd_latency_init(&d.latency) != MPB_OK)
-        mpbd_log("out of memory for the latency count: not counted");
-    d.started = mpb_monotonic_s();
-    d.started_utime = mpb_utime_now();
+    d->started = mpb_monotonic_s();
+    d->started_utime = mpb_utime_now();
     /* Planners announce within a heartbeat: say nothing of waiting before. */
-    d.last_wait_log = d.started - 4.0;
+    d->last_wait_log = d->started - 4.0;
     mpbd_log("experiment '%s' (id %lld): %ld of %d runs to do, database %s",
-             d.exp->name, (long long)d.experiment_id, d.total_pending,
-             d.runs_total, o.db);
-    if (mpbd_verifier_start(&d) != MPB_OK)
+             d->exp->name, (long long)d->experiment_id, d->runs.total_pending,
+             d->runs_total, o->db);
+    if (mpbd_verifier_start(d) != MPB_OK)
         mpbd_log("cannot start the verification thread: results are "
                  "verified in the loop");
     char gone[256] = "";
-    rc = run_loop(&d, gone, sizeof gone);
+    int rc = run_loop(d, gone, sizeof gone);
     /* Results not stored yet are dropped: their runs stay sent, and a
      * resume runs them again, as after a crash. */
-    mpbd_verifier_stop(&d);
-    mpbd_owed_send(&d, 0.0, 1);     /* no more requests to ride on */
+    mpbd_verifier_stop(d);
+    mpbd_owed_send(d, 0.0, 1);     /* no more requests to ride on */
     /* Runs in flight keep their ids for a resume. */
-    if (d.num_unrecorded > 0 &&
-        (mpb_store_begin(d.store) != MPB_OK ||
-         mpbd_scheduler_record_sent(&d) != MPB_OK ||
-         mpb_store_commit(d.store) != MPB_OK)) {
-        mpbd_db_error(&d);
-        mpb_store_rollback(d.store);
+    if (d->runs.num_unrecorded > 0 &&
+        (mpb_store_begin(d->store) != MPB_OK ||
+         mpbd_runs_record_sent(d) != MPB_OK ||
+         mpb_store_commit(d->store) != MPB_OK)) {
+        mpbd_db_error(d);
+        mpb_store_rollback(d->store);
     }
-    double elapsed = mpb_monotonic_s() - d.started;
-    log_latency(&d);
-    if (rc == 0 && mpb_store_experiment_finish(d.store, d.experiment_id) != MPB_OK) {
-        mpbd_db_error(&d);
+    double elapsed = mpb_monotonic_s() - d->started;
+    log_latency(d);
+    if (rc == 0 && mpb_store_experiment_finish(d->store, d->experiment_id) != MPB_OK) {
+        mpbd_db_error(d);
         rc = LOOP_DB_ERROR;
     }
-    if (rc == 0) {
-        mpb_run_counts counts = {0};
-        mpb_store_run_counts(d.store, d.experiment_id, &counts);
-        mpbd_status_publish(&d, "done", mpb_monotonic_s());
-        mpbd_log("experiment '%s' complete: %d runs, %d succeeded, %d crashed "
-                 "(%ld rejected messages), %.1f s", d.exp->name, counts.total,
-                 counts.succeeded, counts.crashed, d.count.rejected, elapsed);
-        exit_code = 0;
-    } else if (rc > 0) {
-        mpbd_status_publish(&d, "stopped", mpb_monotonic_s());
-        mpbd_log("stopped by signal %d with %ld runs left; run the same "
-                 "command to resume", (int)stop_signal, runs_left(&d));
-        exit_code = 128 + (int)stop_signal;
-    } else {
-        mpbd_status_publish(&d, "stopped", mpb_monotonic_s());
-        if (rc == LOOP_DB_GONE)
-            mpbd_log("stopped with %ld runs left: %s",
-                     d.total_pending + d.num_flights, gone);
-        else if (rc == LOOP_DOOMED)
-            mpbd_log("stopped: the first run of every planner configuration "
-                     "(%d) failed with the same error, so every run would: "
-                     "%s; %ld runs left: fix it and run the same command to "
-                     "resume", d.exp->num_configs, d.doomed.why,
-                     runs_left(&d));
-        else if (rc == LOOP_HUB_GONE)
-            mpbd_log("stopped: the hub at %s has been away or stalled for "
-                     "%.0f s, with "
-                     "%ld runs left; run the same command to resume once it "
-                     "is back", o.lcm_url, MPBD_HUB_AWAY_MAX_S, runs_left(&d));
-        else if (rc == LOOP_NOT_ALONE)
-            mpbd_log("stopped: another mpbenchd, %s, is on this LCM URL "
-                     "(%s), and two would disturb each other's runs: give "
-                     "this benchmark its own URL (-u, and the same on its "
-                     "planners), or run the same command once the other "
-                     "ends", d.elder, o.lcm_url);
-        else
-            mpbd_log("stopped by a database error with %ld runs left; run "
-                     "the same command to resume", runs_left(&d));
+    return say_why_stopped(o, d, rc, gone, elapsed);
+}
+
+/* Everything d holds, released in the reverse order of its making. */
+static void release(mpbd *d)
+{
+    if (d->lcm) {
+        if (d->sub_announce)
+            lcm_unsubscribe(d->lcm, d->sub_announce);
+        if (d->sub_ack)
+            lcm_unsubscribe(d->lcm, d->sub_ack);
+        if (d->sub_result)
+            lcm_unsubscribe(d->lcm, d->sub_result);
+        if (d->sub_status)
+            lcm_unsubscribe(d->lcm, d->sub_status);
+        mpb_lcm_destroy(d->lcm);
     }
-out:
-    if (d.lcm) {
-        if (d.sub_announce)
-            lcm_unsubscribe(d.lcm, d.sub_announce);
-        if (d.sub_ack)
-            lcm_unsubscribe(d.lcm, d.sub_ack);
-        if (d.sub_result)
-            lcm_unsubscribe(d.lcm, d.sub_result);
-        if (d.sub_status)
-            lcm_unsubscribe(d.lcm, d.sub_status);
-        mpb_lcm_destroy(d.lcm);
+    mpbd_acks_free(d);
+    mpbd_doomed_free(d);
+    mpbd_runs_free(d);
+    mpbd_planners_free(d);
+    mpb_store_close(d->store);
+    mpbd_experiment_free(d->exp);
+    mpb_auth_free(d->auth);
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    mpbd d = {0};
+    int filtered = 0, code;
+
+    if (parse_options(argc, argv, &o) != 0)
+        return 2;
+    if (o.mesh_path || o.list_planners)
+        return answer_query(&o);
+    if ((code = load_experiment(&o, &d)) < 0 &&
+        (code = open_links(&o, &d, &filtered)) < 0 &&
+        (code = prepare_runs(&o, &d)) < 0) {
+        if (mpbd_acks_init(&d) != MPB_OK)
+            mpbd_log("out of memory for the latency count: not counted");
+        code = o.replay ? (mpbd_replay(&d, o.replay) == 0 ? 0 : 1)
+                        : run(&o, &d, filtered);
     }
-    mpbd_latency_free(&d.latency);
-    mpbd_doomed_free(&d);
-    mpbd_scheduler_free(&d);
-    mpbd_planners_free(&d);
-    mpb_store_close(d.store);
-    mpbd_experiment_free(d.exp);
-    mpb_auth_free(d.auth);
-    return exit_code;
+    release(&d);
+    return code;
 }

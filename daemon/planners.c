@@ -1,6 +1,7 @@
 /*
- * planners.c - the planner processes the daemon knows, learnt from their
- * announcements alone; one that stays silent too long is gone.
+ * planners.c - the table of planner processes the daemon knows, learnt
+ * from their announcements alone (announce.c hands them here); one that
+ * stays silent too long is gone.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -110,10 +111,10 @@ static const char *announce_fault(const mpb_planner_announce_t *m,
     return NULL;
 }
 
-static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
+mpbd_planner *mpbd_planner_learn(mpbd *d, const mpb_planner_announce_t *m,
+                                 double now)
 {
     mpbd_planner *p;
-    double now = mpb_monotonic_s();
     char why[256];
     const char *fault = announce_fault(m, why, sizeof why);
 
@@ -126,12 +127,12 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
                      "so far)", fault, d->count.rejected);
             d->last_bad_announce_log = now;
         }
-        return;
+        return NULL;
     }
     if ((p = find(d, m->planner_id)) == NULL) {
         if (mpb__grow((void **)&d->planners, &d->cap_planners,
                       d->num_planners + 1, sizeof *d->planners) != MPB_OK)
-            return;
+            return NULL;
         p = &d->planners[d->num_planners++];
         memset(p, 0, sizeof *p);
         strcpy(p->id, m->planner_id);
@@ -164,27 +165,7 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
     p->heartbeat_s = m->heartbeat_ms > 0 ? m->heartbeat_ms / 1000.0 : 0.5;
     p->last_seen = now;
     p->instance = d->msg_from;
-    int index = (int)(p - d->planners);
-    mpbd_planner_heard(d, index, now);
-    int num_active = m->num_active > 0 ? m->num_active : 0;
-    mpbd_planner_working_on(d, index, m->active_runs, num_active);
-    if (p->closing)
-        mpbd_planner_closing(d, index, m->active_runs, num_active);
-}
-
-static void on_announce_raw(const lcm_recv_buf_t *rbuf, const char *channel,
-                            void *user)
-{
-    mpb_planner_announce_t m;
-    if (!mpbd_receive(user, MPB_WIRE_PLANNER_ANNOUNCE, rbuf, channel, &m))
-        return;
-    on_announce(user, &m);
-    mpb_receive_done(MPB_WIRE_PLANNER_ANNOUNCE, &m);
-}
-
-void mpbd_planners_subscribe(mpbd *d)
-{
-    d->sub_announce = lcm_subscribe(d->lcm, MPB_CHANNEL_ANNOUNCE, on_announce_raw, d);
+    return p;
 }
 
 int mpbd_planners_expire(mpbd *d, double now)
@@ -200,8 +181,7 @@ int mpbd_planners_expire(mpbd *d, double now)
          * after the planner should have been heard: a stalling hub blocks
          * its clients one after another, the planner's before the
          * daemon's maybe. */
-        if (d->hub_state != MPBD_HUB_UNKNOWN &&
-            !(d->hub_echo_at > p->last_seen + limit))
+        if (!mpbd_hub_heard_since(d, p->last_seen + limit))
             continue;
         if (!p->gone && silence > limit) {
             p->gone = 1;
@@ -238,7 +218,6 @@ void mpbd_planners_free(mpbd *d)
             free(d->planners[i].algorithms[a]);
         free(d->planners[i].algorithms);
         free(d->planners[i].name);
-        free(d->planners[i].abandoned);
     }
     free(d->planners);
     d->planners = NULL;

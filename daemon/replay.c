@@ -43,6 +43,7 @@ typedef struct replay {
     long        events, requests, matched, unknown_requests;
     int         finished_live; /* the log has the daemon's "done" status */
     double      log_now;     /* s, the log's clock: the current event's time */
+    double      retime_at;   /* monotonic s, for retime() */
 } replay;
 
 /* The header of an event in an LCM log: magic, event number, timestamp,
@@ -56,17 +57,21 @@ static int by_seed(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Every run the store holds as not done, from the scheduler's queues. */
+static void collect_run(void *ud, const mpbd_run *run)
+{
+    replay *r = ud;
+    r->runs[r->num_runs++].run = *run;
+}
+
+/* Every run the store holds as not done, from the pending queues. */
 static int collect_runs(replay *r)
 {
     mpbd *d = r->d;
-    r->runs = calloc((size_t)d->total_pending + 1, sizeof *r->runs);
-    r->open = calloc((size_t)d->total_pending + 1, sizeof *r->open);
+    r->runs = calloc((size_t)d->runs.total_pending + 1, sizeof *r->runs);
+    r->open = calloc((size_t)d->runs.total_pending + 1, sizeof *r->open);
     if (r->runs == NULL || r->open == NULL)
         return MPB_ENOMEM;
-    for (int c = 0; c < d->exp->num_configs; c++)
-        for (int i = d->pending_head[c]; i < d->pending_len[c]; i++)
-            r->runs[r->num_runs++].run = d->pending[c][i];
+    mpbd_runs_each_pending(d, collect_run, r);
     if (r->num_runs > 1)
         qsort(r->runs, (size_t)r->num_runs, sizeof *r->runs, by_seed);
     return MPB_OK;
@@ -155,23 +160,18 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
         goto done;
     }
     run->run.attempts++;
-    mpbd_flight *f = mpbd_flight_add(d);
-    if (f == NULL)
-        goto done;
-    /* last_send holds the request's time on the log's clock (no resends
-     * happen in a replay), so that wall times are the logged ones. A
-     * request to a busy planner waits in its queue, as it did live (with
-     * no queue live, such a request followed a run given up on: a crash
-     * this replay does not see). */
-    mpbd_planner *pl = &d->planners[p];
+    /* Timed by the log's clock (mpbd_clock(): no resends happen in a
+     * replay), so that wall times are the logged ones. A request to a busy
+     * planner waits in its queue, as it did live (with no queue live, such
+     * a request followed a run given up on: a crash this replay does not
+     * see). */
+    const mpbd_planner *pl = &d->planners[p];
     int queued = d->exp->queue_at_planner > 0 && pl->active >= pl->capacity;
-    *f = (mpbd_flight){.run = run->run, .planner = p, .queued = queued,
-                       .last_send = r->log_now, .sends = 1, .acked = 1,
-                       .deadline = INFINITY};
-    if (queued)
-        pl->queued++;
-    else
-        pl->active++;
+    mpbd_flight *f = mpbd_flight_start(d, &run->run, p, queued, r->log_now);
+    if (f != NULL) {
+        f->acked = 1;
+        f->deadline = INFINITY;
+    }
 done:
     mpb_receive_done(MPB_WIRE_PLAN_REQUEST, &rq);
 }
@@ -202,6 +202,14 @@ static void drain(mpbd *d)
             break;
 }
 
+/* A flight's sent_at on the monotonic clock, its request's logged time
+ * (last_send) before the current event's as long before now. */
+static void retime(void *ud, mpbd_flight *f)
+{
+    const replay *r = ud;
+    f->sent_at = r->retime_at - (r->log_now - f->last_send);
+}
+
 /* A logged announcement, result or planner's acknowledgement: through the
  * live handlers. */
 static void on_message(replay *r, const lcm_eventlog_event_t *ev, int result)
@@ -210,9 +218,8 @@ static void on_message(replay *r, const lcm_eventlog_event_t *ev, int result)
     if (result) {
         /* results.c measures wall time as now - sent_at: place sent_at so
          * that it is the logged time from request to result. */
-        double now = mpb_monotonic_s();
-        for (int i = 0; i < d->num_flights; i++)
-            d->flights[i].sent_at = now - (r->log_now - d->flights[i].last_send);
+        r->retime_at = mpb_monotonic_s();
+        mpbd_runs_each_flight(d, retime, r);
     }
     lcm_publish(d->lcm, ev->channel, ev->data, (unsigned)ev->datalen);
     drain(d);
@@ -258,23 +265,9 @@ static void record_crashes(replay *r)
         mpbd_flight *f = mpbd_flight_find(d, run->run.uid);
         if (f == NULL)
             continue;
-        mpb_run_record rec = {
-            .run_id = f->run.id,
-            .run_uid = f->run.uid,
-            .planner_id = d->planners[f->planner].id,
-            .status = "crash",
-            .message = "no result in the log of a finished experiment",
-            .time_total = NAN, .time_raw = NAN, .time_other = NAN,
-            .wall_time = r->log_now - f->last_send,
-            .verify_time = NAN,
-            .memory = NAN,
-        };
-        if (mpb_store_run_finish(d->store, &rec) == MPB_OK) {
-            d->count.done++;
-            d->count.crashed++;
-        }
+        mpbd_run_crashed(d, f, "no result in the log of a finished "
+                         "experiment", r->log_now - f->last_send);
         run->done = 1;
-        mpbd_flight_remove(d, f);
     }
 }
 
@@ -282,7 +275,7 @@ static void record_crashes(replay *r)
  * true are dropped (nobody waits for them). */
 static int commit(mpbd *d)
 {
-    d->num_acks = 0;
+    mpbd_acks_drop(d);
     if (mpb_store_commit(d->store) != MPB_OK) {
         mpbd_db_error(d);
         mpb_store_rollback(d->store);
@@ -377,9 +370,9 @@ int mpbd_replay(mpbd *d, const char *log_path)
         goto out;
     }
     d->replaying = 1;
-    d->on_take_back = taken_back;
-    d->take_back_ud = &r;
-    mpbd_planners_subscribe(d);
+    d->runs.on_take_back = taken_back;
+    d->runs.take_back_ud = &r;
+    mpbd_announce_subscribe(d);
     mpbd_results_subscribe(d);
     mpbd_scheduler_subscribe(d);
 

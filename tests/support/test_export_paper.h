@@ -207,7 +207,7 @@ typedef struct mini_query {
  * Add experiment name to the store at path (made if missing): its scenes,
  * its queries, one configuration (null/straight_line) and num_runs finished
  * runs per query, each with the stages of OMPL's planner (raw, shortcut,
- * smoothed) and every metric the daemon stores (daemon/results.c). Its id
+ * smoothed) and every metric the daemon stores (daemon/record.c). Its id
  * into *id.
  */
 static inline void mini_experiment(const char *path, const char *name,

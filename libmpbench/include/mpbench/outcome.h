@@ -5,7 +5,7 @@
  * claim on trust. Every stage of every result is verified whatever the
  * planner's status (FAILED, TIMEOUT and APPROXIMATE answers with stages
  * too), and the run is then counted by its final stage's verdict and its
- * times. mpbenchd (daemon/results.c) and `mpb verify` both decide with
+ * times. mpbenchd (daemon/record.c) and `mpb verify` both decide with
  * these functions, and a report reads each run's outcome from them, so the
  * rule cannot drift apart between the three (docs/metrics.md, "Claims").
  */
