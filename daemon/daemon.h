@@ -91,6 +91,8 @@
  * whatever its verifier's pace. */
 #define MPBD_BACKLOG_RESULTS    1000
 #define MPBD_BACKLOG_MB         256
+/* The most verifier threads --verify-threads takes. */
+#define MPBD_VERIFY_THREADS_MAX 256
 /* A hub (tcpq://) away this long: the daemon stops, to be resumed. */
 #define MPBD_HUB_AWAY_MAX_S     60.0
 /* The hub relays every message to its sender too: a link up over which
@@ -504,10 +506,13 @@ typedef struct mpbd_measured {
     mpbd_stage_work *works;          /* per stage */
     double verify_start, verified;   /* monotonic s */
 } mpbd_measured;
-/* Touches the experiment's worlds and nothing else of d, so that the
- * verifier's thread may call it while the loop runs. */
-int  mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
-                         const mpb_plan_result_t *m, mpbd_measured *out);
+/* In worlds (one per scene, a verifier thread's own copies; NULL: the
+ * experiment's), which it changes (held joints, caches); it reads d and
+ * changes nothing else, so that verifier threads may call it while the
+ * loop runs, each with worlds of its own. */
+int  mpbd_result_measure(const mpbd *d, mpb_world *const *worlds,
+                         const mpbd_flight *f, const mpb_plan_result_t *m,
+                         mpbd_measured *out);
 void mpbd_measured_free(mpbd_measured *ms);
 
 /* ---- record.c --------------------------------------------------------- */
@@ -523,12 +528,16 @@ int  mpbd_result_store(mpbd *d, const mpbd_flight *f,
 void mpbd_result_reject(mpbd *d, const char *why, const mpb_plan_result_t *m);
 
 /* ---- verifier.c ------------------------------------------------------- */
-/* A worker thread that verifies and measures results while the loop goes
+/* Worker threads that verify and measure results while the loop goes
  * on, so that a planner's next request does not wait for its last
- * result's verification. The loop stores what it finished in order of
- * completion, in its own transaction, and acknowledges each after the
- * commit, as before. */
-int  mpbd_verifier_start(mpbd *d);     /* MPB_OK, or an error: verify inline */
+ * result's verification, and many planners' results are verified at
+ * once. The loop stores what they finished in order of completion, in
+ * its own transaction, and acknowledges each after the commit. */
+/* threads workers (at least 1), each with worlds of its own; MPB_OK, or
+ * an error (said in the log): verify inline. */
+int  mpbd_verifier_start(mpbd *d, int threads);
+/* The host's cores less one (for the loop), at least 1. */
+int  mpbd_verifier_threads_default(void);
 void mpbd_verifier_stop(mpbd *d);      /* results not stored are dropped */
 /* Hand over a result (copied) of flight f; MPB_OK, or an error when there
  * is no verifier or no memory (then verify it inline). */

@@ -198,6 +198,19 @@ void mpbd_query_region(const mpbd_query *q, double region[12]);
  * or the world's code (the values were checked at loading).
  */
 int mpbd_query_hold(const mpbd_experiment *e, const mpbd_query *q);
+/* The same, in world w: a copy of q's scene's world (mpbd_scene_world_copy). */
+int mpbd_query_hold_in(const mpbd_experiment *e, const mpbd_query *q,
+                       mpb_world *w);
+
+/*
+ * A world of its own for scene `scene`, opened as the experiment opened the
+ * scene's (experiment_robot.c), into *out (close it with mpb_world_close()):
+ * for a thread that verifies while another uses the scene's. Held joints
+ * are set by mpbd_query_hold_in() before each use. MPB_OK, or the world's
+ * code and one line in why.
+ */
+int mpbd_scene_world_copy(const mpbd_experiment *e, int scene,
+                          mpb_world **out, char *why, size_t len);
 
 /* The seed of one run, derived from the experiment seed and the run's place. */
 int64_t mpbd_run_seed(const mpbd_experiment *e, int config, int query,

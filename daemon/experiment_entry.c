@@ -147,7 +147,13 @@ int mpbd_load_joint_values(mpbd_loader *L, mpbd_experiment *e, mpb_world *w,
 
 int mpbd_query_hold(const mpbd_experiment *e, const mpbd_query *q)
 {
-    return mpb_world_hold(e->scenes[q->scene].world,
+    return mpbd_query_hold_in(e, q, e->scenes[q->scene].world);
+}
+
+int mpbd_query_hold_in(const mpbd_experiment *e, const mpbd_query *q,
+                       mpb_world *w)
+{
+    return mpb_world_hold(w,
                           (const char *const *)e->held_names, q->held,
                           q->num_held_set < e->num_held ? q->num_held_set
                                                         : e->num_held,

@@ -245,12 +245,13 @@ int mpbd_load_group(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *n)
     return 0;
 }
 
-/* The robot: formats its joints, and gives each scene its world. */
-int mpbd_open_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc,
-                    yaml_node_t *where)
+/* Scene sc's world as the experiment opens it, into *out: the robot, the
+ * scene, the group, the verification; meshes looked for last in the robot
+ * file's folder. MPB_OK, or the world's code and why. */
+static int open_scene_world(const mpbd_experiment *e, const mpbd_scene *sc,
+                            mpb_world **out, char *why, size_t len)
 {
-    char why[512], dir[4096] = "";
-    /* The robot file's folder: where its meshes are looked for last. */
+    char dir[4096] = "";
     if (e->robot_file) {
         snprintf(dir, sizeof dir, "%s", e->robot_file);
         char *slash = strrchr(dir, '/');
@@ -262,9 +263,24 @@ int mpbd_open_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc,
     int rc = mpb_world_open_group_in(sc->robot_format, sc->robot,
                                      dir[0] ? dir : NULL, sc->scene_format,
                                      sc->scene, (const char *const *)e->group,
-                                     e->num_group, &sc->world, why, sizeof why);
+                                     e->num_group, out, why, len);
     if (rc == MPB_OK)
-        mpb_world_set_verification(sc->world, (mpb_verification)e->verification);
+        mpb_world_set_verification(*out, (mpb_verification)e->verification);
+    return rc;
+}
+
+int mpbd_scene_world_copy(const mpbd_experiment *e, int scene,
+                          mpb_world **out, char *why, size_t len)
+{
+    return open_scene_world(e, &e->scenes[scene], out, why, len);
+}
+
+/* The robot: formats its joints, and gives each scene its world. */
+int mpbd_open_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc,
+                    yaml_node_t *where)
+{
+    char why[512];
+    int rc = open_scene_world(e, sc, &sc->world, why, sizeof why);
     const char *goes_with = mpb_world_scene_format(sc->robot_format);
     if (rc == MPB_EUNSUPPORTED &&
         (goes_with == NULL || strcmp(goes_with, sc->scene_format) != 0)) {

@@ -64,11 +64,16 @@ static void usage(FILE *out)
 "      --backlog-mb MB   ... or while they hold MB megabytes (default %d;\n"
 "                        0: no bound by size); requests go again as they\n"
 "                        drain, so memory stays bounded\n"
+"      --verify-threads N\n"
+"                        verify and measure results in N threads, each with\n"
+"                        its own copy of the scenes' worlds (default: this\n"
+"                        host's cores less one, at least 1; here %d)\n"
 "  -v, --verbose         log every run\n"
 "  -h, --help            show this help\n"
 "\n"
 "The experiment file format is described in docs/experiment-format.md.\n",
-            MPBD_BACKLOG_RESULTS, MPBD_BACKLOG_MB);
+            MPBD_BACKLOG_RESULTS, MPBD_BACKLOG_MB,
+            mpbd_verifier_threads_default());
 }
 
 typedef struct options {
@@ -76,6 +81,7 @@ typedef struct options {
     const char *replay;              /* --replay LOG, or NULL */
     double resolution;
     long backlog, backlog_mb;
+    int verify_threads;
     int fresh, again, check, verbose, mesh_path, list_planners;
 } options;
 
@@ -94,6 +100,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"replay", required_argument, NULL, 'R'},
         {"backlog", required_argument, NULL, 'B'},
         {"backlog-mb", required_argument, NULL, 'b'},
+        {"verify-threads", required_argument, NULL, 'T'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
@@ -102,7 +109,8 @@ static int parse_options(int argc, char **argv, options *o)
     char *end;
     *o = (options){.db = "mpbench.db", .lcm_url = MPB_DEFAULT_LCM_URL,
                    .resolution = 0.01, .backlog = MPBD_BACKLOG_RESULTS,
-                   .backlog_mb = MPBD_BACKLOG_MB};
+                   .backlog_mb = MPBD_BACKLOG_MB,
+                   .verify_threads = mpbd_verifier_threads_default()};
     opterr = 0;     /* one line of our own for a bad option, below */
     while ((c = getopt_long(argc, argv, ":d:u:r:vh", longopts, NULL)) != -1) {
         switch (c) {
@@ -128,6 +136,17 @@ static int parse_options(int argc, char **argv, options *o)
                 return -1;
             }
             *(c == 'B' ? &o->backlog : &o->backlog_mb) = v;
+            break;
+        }
+        case 'T': {
+            long v = strtol(optarg, &end, 10);
+            if (end == optarg || *end != '\0' || v < 1 || v > MPBD_VERIFY_THREADS_MAX) {
+                fprintf(stderr, "mpbenchd: --verify-threads must be a whole "
+                                "number from 1 to %d, not '%s'\n",
+                        MPBD_VERIFY_THREADS_MAX, optarg);
+                return -1;
+            }
+            o->verify_threads = (int)v;
             break;
         }
         case 'N': o->fresh = 1; break;
@@ -771,9 +790,13 @@ static int run(const options *o, mpbd *d, int filtered)
     mpbd_log("experiment '%s' (id %lld): %ld of %d runs to do, database %s",
              d->exp->name, (long long)d->experiment_id, d->runs.total_pending,
              d->runs_total, o->db);
-    if (mpbd_verifier_start(d) != MPB_OK)
-        mpbd_log("cannot start the verification thread: results are "
+    if (mpbd_verifier_start(d, o->verify_threads) != MPB_OK)
+        mpbd_log("cannot start the verification threads: results are "
                  "verified in the loop");
+    else if (o->verify_threads > 1)
+        mpbd_log("verifying in %d threads, each with its own copy of the "
+                 "%d scene world%s", o->verify_threads, d->exp->num_scenes,
+                 d->exp->num_scenes == 1 ? "" : "s");
     char gone[256] = "";
     int rc = run_loop(d, gone, sizeof gone);
     /* Results not stored yet are dropped: their runs stay sent, and a

@@ -14,11 +14,10 @@
 #include "daemon.h"
 
 /* Check and measure one stage (mpb_measure_stage()). */
-static void measure_stage(const mpbd *d, const mpbd_query *q,
+static void measure_stage(const mpbd *d, mpb_world *world, const mpbd_query *q,
                           const mpb_stage_t *st, mpbd_stage_work *w)
 {
     const mpbd_experiment *e = d->exp;
-    mpb_world *world = e->scenes[q->scene].world;
     mpb_goal goal = mpbd_query_goal(q);
     char why[200];
 
@@ -106,10 +105,13 @@ static void test_slow_down(mpbd_measured *out)
     out->verified = mpb_monotonic_s();
 }
 
-int mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
-                        const mpb_plan_result_t *m, mpbd_measured *out)
+int mpbd_result_measure(const mpbd *d, mpb_world *const *worlds,
+                        const mpbd_flight *f, const mpb_plan_result_t *m,
+                        mpbd_measured *out)
 {
     const mpbd_query *q = &d->exp->queries[f->run.query];
+    mpb_world *world = worlds != NULL ? worlds[q->scene]
+                                      : d->exp->scenes[q->scene].world;
     out->works = calloc((size_t)m->num_stages + 1, sizeof *out->works);
     if (out->works == NULL)
         return MPB_ENOMEM;
@@ -118,9 +120,9 @@ int mpbd_result_measure(const mpbd *d, const mpbd_flight *f,
     out->verify_start = mpb_monotonic_s();
     /* The scene's world holds the joints outside the group as this
      * query does (its start state may set a Panda's fingers). */
-    mpbd_query_hold(d->exp, q);
+    mpbd_query_hold_in(d->exp, q, world);
     for (int i = 0; i < m->num_stages; i++)
-        measure_stage(d, q, &m->stages[i], &out->works[i]);
+        measure_stage(d, world, q, &m->stages[i], &out->works[i]);
     out->verified = mpb_monotonic_s();
     test_slow_down(out);
     return MPB_OK;

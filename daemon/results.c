@@ -51,7 +51,7 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
     }
     mpbd_measured ms = {0};
     int rc = MPBD_RETRY;        /* out of memory: the planner re-sends */
-    if (mpbd_result_measure(d, f, m, &ms) == MPB_OK) {
+    if (mpbd_result_measure(d, NULL, f, m, &ms) == MPB_OK) {
         mpbd_verifier_learn(d, f, m, &ms);
         rc = mpbd_result_store(d, f, m, recv, &ms);
     }

@@ -1,19 +1,24 @@
 /*
- * verifier.c - verification and metrics beside the loop: one worker thread
- * takes the results the loop hands over, verifies and measures their
- * stages (mpbd_result_measure(), which touches only the experiment's
- * worlds, and only this thread touches them while it runs), and hands
- * them back through a queue and a pipe the loop polls. The loop stores
- * them in order of completion, in its transaction, and acknowledges each
- * after the commit: exactly once, resumable, as when it verified inline.
+ * verifier.c - verification and metrics beside the loop: a pool of worker
+ * threads (--verify-threads; by default the host's cores less one, for
+ * the loop) takes the results the loop hands over, verifies and measures
+ * their stages (mpbd_result_measure()), and hands them back through a
+ * queue and a pipe the loop polls. The loop stores them in order of
+ * completion, in its transaction, and acknowledges each after the commit:
+ * exactly once, resumable, as when it verified inline.
  *
- * What crosses: a job, owned by the loop until submitted, by the worker
+ * Verifying changes the world it uses (the held joints, caches), so each
+ * worker has worlds of its own: the first uses the experiment's, each
+ * other a copy of every scene's world opened before it starts
+ * (mpbd_scene_world_copy()). A world is never touched by two threads.
+ *
+ * What crosses: a job, owned by the loop until submitted, by a worker
  * while on the todo list, by the loop again once on the done list; the
  * lists are under mu. The job holds copies of the flight and the message.
  *
  * A result known to be quick (no waypoint, or a scene whose last cost
  * per waypoint puts it under MPBD_INLINE_S) is verified in the loop
- * instead, when the worker is idle: a hand-over would cost more.
+ * instead, when every worker is idle: a hand-over would cost more.
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -40,19 +45,29 @@ typedef struct job_list {
     job *head, *tail;
 } job_list;
 
-struct mpbd_verifier {
+/* One thread of the pool, and the worlds only it touches. */
+typedef struct worker {
+    struct mpbd_verifier *v;
     pthread_t       thread;
+    int             started;
+    mpb_world     **worlds;      /* per scene; NULL: the experiment's */
+    job            *current;     /* the one it is measuring (under mu) */
+} worker;
+
+struct mpbd_verifier {
+    worker         *workers;
+    int             num_workers;
+    int             busy;        /* workers measuring a job (under mu) */
     pthread_mutex_t mu;
     pthread_cond_t  cond;
     pthread_cond_t  idle;        /* signalled when the todo list empties */
     job_list        todo, done;
-    job            *current;     /* the one the worker is measuring */
     int             quit;
     int             pending;     /* submitted, not yet stored (loop only) */
     double          bytes;       /* their results' bytes (loop only) */
     int             fresh;       /* submitted since the last settle (loop only) */
     int             pipe[2];     /* a byte per job done: wakes the loop */
-    const mpbd     *d;           /* read by the worker: the experiment */
+    const mpbd     *d;           /* read by the workers: the experiment */
     double         *rate;        /* per scene: s per waypoint last measured,
                                     0 if none yet (loop only) */
     double          any_rate;    /* the last measured, of any scene */
@@ -95,49 +110,115 @@ static long waypoints(const mpb_plan_result_t *m)
     return n;
 }
 
-static void *worker(void *arg)
+static void *work(void *arg)
 {
-    struct mpbd_verifier *v = arg;
+    worker *w = arg;
+    struct mpbd_verifier *v = w->v;
     pthread_mutex_lock(&v->mu);
     for (;;) {
         while (v->todo.head == NULL && !v->quit)
             pthread_cond_wait(&v->cond, &v->mu);
         if (v->quit)
             break;
-        job *j = v->current = pop(&v->todo);
+        job *j = w->current = pop(&v->todo);
+        v->busy++;
         pthread_mutex_unlock(&v->mu);
         mpbd_measured_free(&j->ms);
-        j->ok = mpbd_result_measure(v->d, &j->f, j->m, &j->ms) == MPB_OK;
+        j->ok = mpbd_result_measure(v->d, w->worlds, &j->f, j->m,
+                                    &j->ms) == MPB_OK;
         pthread_mutex_lock(&v->mu);
-        v->current = NULL;
+        w->current = NULL;
+        v->busy--;
         push(&v->done, j);
-        if (v->todo.head == NULL)
+        if (v->todo.head == NULL && v->busy == 0)
             pthread_cond_broadcast(&v->idle);
-        ssize_t w;
+        ssize_t n;
         do
-            w = write(v->pipe[1], "", 1);
-        while (w < 0 && errno == EINTR);
+            n = write(v->pipe[1], "", 1);
+        while (n < 0 && errno == EINTR);
     }
     pthread_mutex_unlock(&v->mu);
     return NULL;
 }
 
-int mpbd_verifier_start(mpbd *d)
+/* The worlds of worker w: none for the first (the experiment's), a copy
+ * of every scene's for the others. */
+static int open_worlds(struct mpbd_verifier *v, worker *w)
 {
+    const mpbd_experiment *e = v->d->exp;
+    char why[512];
+    if (w == &v->workers[0])
+        return MPB_OK;
+    if ((w->worlds = calloc((size_t)e->num_scenes + 1, sizeof *w->worlds)) == NULL)
+        return MPB_ENOMEM;
+    for (int i = 0; i < e->num_scenes; i++) {
+        int rc = mpbd_scene_world_copy(e, i, &w->worlds[i], why, sizeof why);
+        if (rc != MPB_OK) {
+            mpbd_log("verifier thread %d: cannot open scene '%s' again: %s",
+                     (int)(w - v->workers) + 1, e->scenes[i].name, why);
+            return rc;
+        }
+    }
+    return MPB_OK;
+}
+
+static void close_worlds(const mpbd_experiment *e, worker *w)
+{
+    for (int i = 0; w->worlds != NULL && i < e->num_scenes; i++)
+        mpb_world_close(w->worlds[i]);
+    free(w->worlds);
+    w->worlds = NULL;
+}
+
+/* Stop and join the workers started, and free everything of v. */
+static void pool_free(struct mpbd_verifier *v)
+{
+    pthread_mutex_lock(&v->mu);
+    v->quit = 1;
+    pthread_cond_broadcast(&v->cond);
+    pthread_mutex_unlock(&v->mu);
+    for (int i = 0; i < v->num_workers; i++) {
+        if (v->workers[i].started)
+            pthread_join(v->workers[i].thread, NULL);
+        close_worlds(v->d->exp, &v->workers[i]);
+    }
+    /* Not stored: the runs stay sent in the database, and a restart runs
+     * them again, as after a crash. */
+    for (job *j; (j = pop(&v->todo)) != NULL || (j = pop(&v->done)) != NULL;)
+        job_free(j);
+    pthread_mutex_destroy(&v->mu);
+    pthread_cond_destroy(&v->cond);
+    pthread_cond_destroy(&v->idle);
+    close(v->pipe[0]);
+    close(v->pipe[1]);
+    free(v->workers);
+    free(v->rate);
+    free(v);
+}
+
+int mpbd_verifier_threads_default(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n > 2 ? (int)(n - 1) : 1;
+}
+
+int mpbd_verifier_start(mpbd *d, int threads)
+{
+    if (threads < 1)
+        threads = 1;
     struct mpbd_verifier *v = calloc(1, sizeof *v);
     if (v == NULL)
         return MPB_ENOMEM;
     v->d = d;
-    if ((v->rate = calloc((size_t)d->exp->num_scenes + 1,
-                          sizeof *v->rate)) == NULL) {
+    v->rate = calloc((size_t)d->exp->num_scenes + 1, sizeof *v->rate);
+    v->workers = calloc((size_t)threads, sizeof *v->workers);
+    if (v->rate == NULL || v->workers == NULL || pipe(v->pipe) != 0) {
+        free(v->rate);
+        free(v->workers);
         free(v);
         return MPB_ENOMEM;
     }
-    if (pipe(v->pipe) != 0) {
-        free(v->rate);
-        free(v);
-        return MPB_EERROR;
-    }
+    v->num_workers = threads;
     /* The loop drains it without blocking; a full pipe already wakes it. */
     fcntl(v->pipe[0], F_SETFL, fcntl(v->pipe[0], F_GETFL) | O_NONBLOCK);
     fcntl(v->pipe[1], F_SETFL, fcntl(v->pipe[1], F_GETFL) | O_NONBLOCK);
@@ -150,20 +231,27 @@ int mpbd_verifier_start(mpbd *d)
     pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
     pthread_cond_init(&v->idle, &ca);
     pthread_condattr_destroy(&ca);
-    /* The worker takes no signals: they belong to the loop's thread. */
+    /* Every world opened before any thread starts: opening is not for two
+     * threads at once. */
+    for (int i = 0; i < threads; i++) {
+        v->workers[i].v = v;
+        if (open_worlds(v, &v->workers[i]) != MPB_OK) {
+            pool_free(v);
+            return MPB_EERROR;
+        }
+    }
+    /* The workers take no signals: they belong to the loop's thread. */
     sigset_t all, old;
     sigfillset(&all);
     pthread_sigmask(SIG_SETMASK, &all, &old);
-    int rc = pthread_create(&v->thread, NULL, worker, v);
+    int rc = 0;
+    for (int i = 0; i < threads && rc == 0; i++)
+        if ((rc = pthread_create(&v->workers[i].thread, NULL, work,
+                                 &v->workers[i])) == 0)
+            v->workers[i].started = 1;
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     if (rc != 0) {
-        pthread_mutex_destroy(&v->mu);
-        pthread_cond_destroy(&v->cond);
-        pthread_cond_destroy(&v->idle);
-        close(v->pipe[0]);
-        close(v->pipe[1]);
-        free(v->rate);
-        free(v);
+        pool_free(v);
         return MPB_EERROR;
     }
     d->verifier = v;
@@ -172,25 +260,9 @@ int mpbd_verifier_start(mpbd *d)
 
 void mpbd_verifier_stop(mpbd *d)
 {
-    struct mpbd_verifier *v = d->verifier;
-    if (v == NULL)
+    if (d->verifier == NULL)
         return;
-    pthread_mutex_lock(&v->mu);
-    v->quit = 1;
-    pthread_cond_signal(&v->cond);
-    pthread_mutex_unlock(&v->mu);
-    pthread_join(v->thread, NULL);
-    /* Not stored: the runs stay sent in the database, and a restart runs
-     * them again, as after a crash. */
-    for (job *j; (j = pop(&v->todo)) != NULL || (j = pop(&v->done)) != NULL;)
-        job_free(j);
-    pthread_mutex_destroy(&v->mu);
-    pthread_cond_destroy(&v->cond);
-    pthread_cond_destroy(&v->idle);
-    close(v->pipe[0]);
-    close(v->pipe[1]);
-    free(v->rate);
-    free(v);
+    pool_free(d->verifier);
     d->verifier = NULL;
 }
 
@@ -251,8 +323,8 @@ int mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
 }
 
 /*
- * Whether to verify m in the loop rather than hand it over: the worker
- * is idle (nothing submitted and not stored: it is touching no world,
+ * Whether to verify m in the loop rather than hand it over: the workers
+ * are idle (nothing submitted and not stored: none touches a world,
  * and stores keep their order) and m has no waypoint (a failure) or the
  * scene's last cost per waypoint says it takes at most MPBD_INLINE_S.
  * Handing over costs two wake-ups and a commit's wait (bench/run.sh: 1
@@ -306,7 +378,7 @@ void mpbd_verifier_settle(mpbd *d, double max_s)
     until.tv_sec += ns / 1000000000L;
     until.tv_nsec = ns % 1000000000L;
     pthread_mutex_lock(&v->mu);
-    while ((v->todo.head != NULL || v->current != NULL) &&
+    while ((v->todo.head != NULL || v->busy > 0) &&
            pthread_cond_timedwait(&v->idle, &v->mu, &until) == 0)
         ;
     pthread_mutex_unlock(&v->mu);
@@ -326,8 +398,10 @@ int mpbd_verifier_has(const mpbd *d, const char *uid)
     if (v == NULL || v->pending == 0)
         return 0;
     pthread_mutex_lock(&v->mu);
-    int has = (v->current != NULL && strcmp(v->current->f.run.uid, uid) == 0) ||
-              has_in(&v->todo, uid) || has_in(&v->done, uid);
+    int has = has_in(&v->todo, uid) || has_in(&v->done, uid);
+    for (int i = 0; i < v->num_workers && !has; i++)
+        has = v->workers[i].current != NULL &&
+              strcmp(v->workers[i].current->f.run.uid, uid) == 0;
     pthread_mutex_unlock(&v->mu);
     return has;
 }
