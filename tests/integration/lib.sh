@@ -49,6 +49,20 @@ mpb_spawn_hub() {
 
 MPB_PIDS=""
 
+# mpb_kit_env: the environment a test's own script on the Python kit needs
+# to load the build's libmpbench (its authentication and hub link), as the
+# launcher planners/python/mpb-planner-python does: the kit and the types
+# on PYTHONPATH, MPB_LIBMPBENCH, and under AddressSanitizer its runtime
+# first. Words for env: `env $(mpb_kit_env) "$python" script.py ...`.
+mpb_kit_env() {
+    lib=$MPB_BUILD/libmpbench/libmpbench.so
+    echo "PYTHONPATH=$MPB_SOURCE/planners/python:$MPB_BUILD/lcmtypes/python"
+    echo "MPB_LIBMPBENCH=$lib"
+    asan=$(ldd "$lib" 2>/dev/null | awk '/libasan/ {print $3; exit}')
+    [ -z "$asan" ] ||
+        echo "LD_PRELOAD=$asan ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1"
+}
+
 # Start a command in the background, its output to a log file; remember it.
 mpb_spawn() {
     log=$1; shift

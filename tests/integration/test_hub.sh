@@ -2,8 +2,8 @@
 # Every process through lcm-java's TCP hub (tcpq://) in a network namespace
 # with no multicast route: scenes/experiments/demo.yaml with the OMPL and
 # null planners (C++ and C kits), 42 of 42 runs each stored once; the
-# Python kit's planner; `mpb status` following the daemon; with a shared
-# secret as over multicast; and a daemon stopped mid-run resumed over the
+# Python kit's planner, without and with a shared secret; `mpb status`
+# following the daemon; with a shared secret as over multicast; and a daemon stopped mid-run resumed over the
 # hub; run_benchmark.sh --hub, recording for --replay. No process warns of
 # an unfiltered socket.
 set -u
@@ -77,6 +77,22 @@ if [ -x "$python" ]; then
     check "3 Python runs done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 3
     check "the Python kit warns of no filter either" \
         eq "$(grep -c 'has no filter' "$work/python.log")" 0
+
+    # And with the shared secret: the kit seals and checks through
+    # libmpbench over libmpbench's hub link, and the C daemon believes
+    # it; the planner above, without the secret, takes no run.
+    mpb_spawn "$work/python-s.log" "$B/planners/python/mpb-planner-python" \
+        --lcm-url "$url" --secret-file "$work/secret" -v
+    sealed=${MPB_PIDS##* }
+    DB=$work/py-secret.db
+    mpb_timeout 90 "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" \
+        --secret-file "$work/secret" "$work/py.yaml" >"$work/py-secret.log" 2>&1
+    check "with a secret, the Python planner's runs complete through the hub" eq $? 0
+    check "... 3 runs done, verified valid, by the planner holding it" \
+        eq "$(q "SELECT count(*) FROM runs WHERE state = 'done' AND success = 1
+                 AND planner_id LIKE 'python@%:$sealed'")" 3
+    check "... the planner without it never joined" \
+        eq "$(grep -c 'planner python@.* joined' "$work/py-secret.log")" 1
 fi
 
 # tools/run_benchmark.sh --hub starts its own hub (a second, on another

@@ -46,11 +46,11 @@ c_case c-secret --secret-file "$work/secret"
 # The Python kit, under a planner of the test's own that returns the
 # straight line in as many waypoints as its "waypoints" parameter asks.
 python=$MPB_SOURCE/.venv/bin/python3
-kitpath=$MPB_SOURCE/planners/python:$MPB_BUILD/lcmtypes/python
 cat >"$work/long.py" <<'EOT'
 import sys
 from mpb import plan_result_t, stage_t
-from mpbplanner.node import Auth, Node
+from mpbplanner.auth import Auth
+from mpbplanner.node import Node
 
 def solve(req):
     m = int(next(p.value for p in req.params if p.key == "waypoints"))
@@ -75,7 +75,7 @@ mpb_planar_experiment "$work/py.yaml" "name: py, runs: 1, time_limit: 10" \
 py_case() {
     label=$1; shift
     DB=$work/$label.db
-    PYTHONPATH=$kitpath "$python" "$work/long.py" "$@" >"$work/$label-planner.log" 2>&1 &
+    env $(mpb_kit_env) "$python" "$work/long.py" "$@" >"$work/$label-planner.log" 2>&1 &
     MPB_PIDS="$MPB_PIDS $!"
     if [ $# -gt 0 ]; then set -- --secret-file "$1"; fi
     "$daemon" -d "$DB" "$@" "$work/py.yaml" >"$work/$label.log" 2>&1 &

@@ -226,27 +226,29 @@ check "with --secret-file: completes" eq $? 0
 check "with --secret-file: 10 runs verified valid" \
     eq "$(q "SELECT count(*) FROM runs WHERE success = 1")" 10
 
-# The kit's trailer is docs/protocol.md's test vector (the C library's is
-# checked by tests/unit/net/test_auth.c), and a replay is told from a message.
+# The kit's trailer, from the generated type's encoding, is
+# docs/protocol.md's test vector (the C library's is checked by
+# tests/unit/net/test_auth.c, the kit's trailer by tests/python), and a
+# replay is told from a message.
 cat >"$work/vector.py" <<'EOT'
 import sys
 from mpb import run_ack_t
-from mpbplanner.node import Auth
+from mpbplanner.auth import Auth
 
 with open(sys.argv[1], "wb") as f:
     f.write(b"mpbench test vector secret")
 a = Auth(sys.argv[1])
-a.instance, a.counter = 0x0123456789abcdef, 0
 k = run_ack_t()
 k.utime, k.run_id, k.sender_id, k.kind = 1, "0123456789abcdef" * 2, "null@h:1", 0
-sealed = a.seal("MPB_ACK", k.encode(), 0xfedcba9876543210)
-print(sealed[-56:].hex())
+trailer = a.trailer("MPB_ACK", k.encode(), 0x0123456789abcdef, 1,
+                    0xfedcba9876543210)
+print(trailer.hex())
 me = Auth(sys.argv[1])
-me.instance = 0xfedcba9876543210
+sealed = a.seal("MPB_ACK", k.encode(), me.instance)
 print([me.open("MPB_ACK", sealed)[0], me.open("MPB_ACK", sealed)[0],
        me.open("MPB_RESULT", sealed)[0]])
 EOT
-PYTHONPATH=$kitpath "$python" "$work/vector.py" "$work/vector-secret" >"$work/vector.out" 2>&1
+env $(mpb_kit_env) "$python" "$work/vector.py" "$work/vector-secret" >"$work/vector.out" 2>&1
 check "the kit's trailer is the protocol's test vector" test "$(head -1 "$work/vector.out")" = \
     0123456789abcdef0000000000000001fedcba9876543210abcdde89fe6c4044f4f8f4b55acae43bcdd531a996f290f02468d5440009d9f3
 check "... believed once, then a replay; on another channel a wrong tag" \

@@ -1,9 +1,11 @@
 """test_kit.py - the Python kit (planners/python/mpbplanner) on its own,
-with pytest: its authentication against the protocol's test vector (the
-file the C library's test reads too), the robot text split it shares with
-libmpbench, and reading a request. Run by ctest as unit.python_kit
+with pytest: its authentication through libmpbench against the
+protocol's test vector (tests/support/data/auth_vector.txt, which the C
+library's tests/unit/net/test_auth.c reads too), its hub link's checks,
+the robot text split it shares with libmpbench, and reading a request. Run by ctest as unit.python_kit
 (tests/CMakeLists.txt), with the build's libmpbench and message types."""
 import os
+import socket
 import time
 
 import pytest
@@ -11,7 +13,8 @@ from mpb import goal_t, param_t, plan_request_t
 
 from mpbplanner import request
 from mpbplanner.limits import Limits
-from mpbplanner.node import Auth
+from mpbplanner.auth import TRAILER_BYTES, Auth, AuthError
+from mpbplanner.hub import HubLCM, is_hub
 from mpbplanner.world import World, split_robot_text
 
 SOURCE = os.environ["MPB_SOURCE"]
@@ -33,33 +36,87 @@ def test_auth_gives_the_protocol_test_vector(tmp_path):
     secret = tmp_path / "secret"
     secret.write_bytes(v["secret"].encode())
     auth = Auth(str(secret))
-    auth.instance = int(v["instance"], 16)
-    auth.counter = int(v["counter"]) - 1      # seal() counts this one
     message = bytes.fromhex(v["message"])
-    sealed = auth.seal(v["channel"], message, int(v["echo"], 16))
-    assert sealed[:len(message)] == message
-    assert sealed[len(message):].hex() == v["trailer"]
+    trailer = auth.trailer(v["channel"], message, int(v["instance"], 16),
+                           int(v["counter"]), int(v["echo"], 16))
+    assert trailer.hex() == v["trailer"]
+    # A receiver whose instance the vector's message echoes believes it
+    # once; on another channel its tag is wrong.
+    assert auth.open(v["channel"], message + trailer)[0] == Auth.UNPROVEN
+
+
+def test_a_seal_is_this_process_instance_and_its_next_counter(tmp_path):
+    secret = tmp_path / "secret"
+    secret.write_bytes(b"the same secret, 32 bytes long..")
+    auth = Auth(str(secret))
+    assert auth.instance != 0
+    for counter in (1, 2, 3):
+        sealed = auth.seal("CH", b"hello", echo=0xfedcba9876543210)
+        assert len(sealed) == 5 + TRAILER_BYTES
+        assert sealed[:5] == b"hello"
+        assert sealed[5:] == auth.trailer("CH", b"hello", auth.instance,
+                                          counter, 0xfedcba9876543210)
 
 
 def test_auth_believes_an_echo_and_refuses_a_replay(tmp_path):
     secret = tmp_path / "secret"
     secret.write_bytes(b"the same secret, 32 bytes long..")
     me, peer = Auth(str(secret)), Auth(str(secret))
+    assert me.instance != peer.instance
     first = peer.seal("CH", b"hello", echo=0)
-    assert me.open("CH", first)[0] == Auth.UNPROVEN
+    assert me.open("CH", first) == (Auth.UNPROVEN, b"hello", peer.instance)
     answer = peer.seal("CH", b"hello", echo=me.instance)
     verdict, body, sender = me.open("CH", answer)
     assert (verdict, body, sender) == (Auth.FRESH, b"hello", peer.instance)
     assert me.open("CH", answer)[0] == Auth.REPLAYED
-    assert me.open("OTHER", peer.seal("CH", b"x", me.instance))[0] == \
-        Auth.BAD_TAG
+    assert me.open("OTHER", peer.seal("CH", b"x", me.instance)) == \
+        (Auth.BAD_TAG, None, 0)
+    assert me.open("CH", answer[:TRAILER_BYTES - 1]) == (Auth.BAD_TAG, None, 0)
+    other = tmp_path / "other"
+    other.write_bytes(b"another secret of 32 bytes......")
+    assert me.open("CH", Auth(str(other)).seal("CH", b"x", me.instance))[0] \
+        == Auth.BAD_TAG
+    assert "replay" in Auth.verdict_text(Auth.REPLAYED)
 
 
-def test_a_short_secret_is_refused(tmp_path):
+def test_a_short_or_missing_secret_is_refused_naming_the_file(tmp_path):
     secret = tmp_path / "secret"
     secret.write_bytes(b"too short")
-    with pytest.raises(ValueError, match="at least 16 bytes"):
+    with pytest.raises(AuthError, match=f"^{secret}: a secret needs at "
+                       f"least 16 bytes, this has 9$"):
         Auth(str(secret))
+    with pytest.raises(ValueError, match=f"^{tmp_path}/none: cannot read "
+                       f"secret: No such file"):
+        Auth(str(tmp_path / "none"))
+
+
+def test_a_hub_url_is_told_and_checked_by_libmpbench():
+    assert is_hub("tcpq://127.0.0.1:7700")
+    assert is_hub("tcpq://")
+    assert not is_hub("udpm://239.255.76.67:7667?ttl=0")
+    assert not is_hub("")
+    assert not is_hub(None)
+    for bad in ("tcpq://h:0", "tcpq://h:65536", "tcpq://h:x1", "tcpq://h:"):
+        with pytest.raises(ValueError, match="tcpq://HOST:PORT"):
+            HubLCM(bad, ["CH"])
+
+
+def test_a_hub_link_subscribes_only_what_it_told_the_hub():
+    # A loopback port bound but not listening: every connection is
+    # refused, and the link keeps trying.
+    closed = socket.socket()
+    closed.bind(("127.0.0.1", 0))
+    link = HubLCM(f"tcpq://127.0.0.1:{closed.getsockname()[1]}", ["MPB_ACK_x"])
+    try:
+        with pytest.raises(ValueError, match="not given to the hub link"):
+            link.subscribe("MPB_STATUS", lambda channel, data: None)
+        link.subscribe("MPB_ACK_x", lambda channel, data: None)
+        link.publish("MPB_ACK_x", b"lost while the hub is away")
+        assert link.handle_timeout(0) == 0
+        assert link.stats().is_hub == 1 and link.connects == 0
+    finally:
+        link.close()
+        closed.close()
 
 
 URDF = '<robot name="r">\n  <link name="a"/>\n</robot>\n'

@@ -130,6 +130,20 @@ void mpb_auth_trailer(const mpb_auth *a, const char *channel, const void *buf,
                       size_t len, uint64_t instance, uint64_t counter,
                       uint64_t echo, unsigned char out[MPB_AUTH_TRAILER_SIZE]);
 
+/*
+ * Seal one message this process sends on channel through an LCM binding
+ * of its own (the Python kit's, planners/python/mpbplanner/auth.py): out
+ * gets the trailer the mpb_publish_... functions would append to the len
+ * bytes at buf, with this process's instance, its next counter (counted
+ * with those functions', safe from any thread as they are) and echo;
+ * the caller sends buf then out as one message. The library keeps
+ * nothing of buf or out. MPB_OK, or MPB_EINVAL if a or channel is NULL
+ * (out is then untouched).
+ */
+int mpb_auth_seal(mpb_auth *a, const char *channel, const void *buf,
+                  size_t len, uint64_t echo,
+                  unsigned char out[MPB_AUTH_TRAILER_SIZE]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -135,6 +135,17 @@ void mpb_auth_trailer(const mpb_auth *a, const char *channel, const void *buf,
     tag(a, channel, buf, len, out, out + 24);
 }
 
+int mpb_auth_seal(mpb_auth *a, const char *channel, const void *buf,
+                  size_t len, uint64_t echo,
+                  unsigned char out[MPB_AUTH_TRAILER_SIZE])
+{
+    if (a == NULL || channel == NULL)
+        return MPB_EINVAL;
+    uint64_t c = atomic_fetch_add(&a->counter, 1) + 1;
+    mpb_auth_trailer(a, channel, buf, len, a->instance, c, echo, out);
+    return MPB_OK;
+}
+
 static mpb__peer *find_peer(mpb_auth *a, uint64_t instance)
 {
     for (size_t i = 0; i < a->num_peers; i++)
@@ -221,9 +232,7 @@ int mpb__publish_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
 {
     size_t total = (size_t)len;
     if (a != NULL) {
-        uint64_t c = atomic_fetch_add(&a->counter, 1) + 1;
-        mpb_auth_trailer(a, channel, buf, (size_t)len, a->instance, c, echo,
-                         buf + len);
+        mpb_auth_seal(a, channel, buf, (size_t)len, echo, buf + len);
         total += MPB_AUTH_TRAILER_SIZE;
     }
     return mpb__hub_publish(lcm, channel, buf, (unsigned int)total, dying) == 0

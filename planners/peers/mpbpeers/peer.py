@@ -41,8 +41,9 @@ import time
 from mpb import goal_t, named_value_t, plan_request_t, plan_result_t
 
 from mpbplanner import request as kit_request
+from mpbplanner.auth import Auth, AuthError
 from mpbplanner.memory import Watch
-from mpbplanner.node import Auth, Node
+from mpbplanner.node import Node
 from mpbplanner.world import World, WorldError, split_robot_text
 
 
@@ -557,7 +558,11 @@ def main(adapter, argv=None):
     ap.add_argument("-s", "--secret-file", metavar="FILE")
     ap.add_argument("-v", "--verbose", action="store_true")
     args = ap.parse_args(argv)
-    auth = Auth(args.secret_file) if args.secret_file else None
+    try:
+        auth = Auth(args.secret_file) if args.secret_file else None
+    except AuthError as e:      # libmpbench's line, naming the file
+        print(f"mpb-planner-{adapter.NAME}: {e}", file=sys.stderr)
+        sys.exit(1)
     worker = Worker(adapter)    # forked before LCM's threads start
     node = Node(adapter.NAME, adapter.ALGORITHMS, args.lcm_url, auth,
                 args.verbose, getattr(adapter, "APPROACH", None))

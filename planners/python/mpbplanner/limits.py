@@ -1,7 +1,10 @@
 """limits.py - when a solve() must end, as the C kit's mpb_solve_limits:
 the run's deadline (time.monotonic()) and the node's stop flag."""
+from __future__ import annotations
+
 import inspect
 import time
+from typing import Callable
 
 
 class Limits:
@@ -9,18 +12,19 @@ class Limits:
     called solve(), deadline start + req.time_limit; stopping() is true
     once the node is asked to stop (Node.stop(), a signal)."""
 
-    def __init__(self, start, time_limit, stopping=lambda: False):
+    def __init__(self, start: float, time_limit: float,
+                 stopping: Callable[[], bool] = lambda: False) -> None:
         self.start = start
         self.deadline = start + time_limit
         self.stopping = stopping
 
-    def should_stop(self):
+    def should_stop(self) -> bool:
         """True when solve() should give up now: stopping, or the deadline
         has passed. The one stop check of every planner, as the C kit's
         mpb_solve_should_stop()."""
         return self.stopping() or time.monotonic() >= self.deadline
 
-    def moved(self, seconds):
+    def moved(self, seconds: float) -> Limits:
         """A copy with the deadline seconds later (earlier when negative),
         stopping the same: a planner's own budget inside the run's, e.g.
         the deadline moved by the world's setup, which mpbenchd leaves
@@ -30,7 +34,7 @@ class Limits:
         return copy
 
 
-def takes_limits(solve):
+def takes_limits(solve: Callable[..., object]) -> bool:
     """Whether solve takes (req, limits): two positional parameters without
     defaults, or *args. A solve(req) of older planners, or a solve(req,
     cache=None), is called with the request alone."""

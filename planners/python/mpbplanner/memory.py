@@ -9,7 +9,10 @@ so that an allocation past it raises MemoryError. Where the reset is not
 available the peak is the process's since it started; where
 /proc/self/status is not, it is NaN (not measured).
 """
+from __future__ import annotations
+
 import math
+from typing import Optional
 
 try:
     import resource
@@ -17,7 +20,7 @@ except ImportError:             # not POSIX: no limit
     resource = None
 
 
-def _status_kb(key):
+def _status_kb(key: str) -> Optional[int]:
     try:
         with open("/proc/self/status", encoding="ascii",
                   errors="replace") as f:
@@ -32,7 +35,7 @@ def _status_kb(key):
 class Watch:
     """with Watch(limit_mb) as w: solve ...; then w.peak_mb, w.note."""
 
-    def __init__(self, limit_mb):
+    def __init__(self, limit_mb: float) -> None:
         self.limit_mb = limit_mb if limit_mb and limit_mb > 0 and \
             math.isfinite(limit_mb) else 0.0
         self.old = None
@@ -40,7 +43,7 @@ class Watch:
         self.peak_mb = math.nan
         self.note = ""          # why the limit was not set, if it was not
 
-    def __enter__(self):
+    def __enter__(self) -> Watch:
         try:
             with open("/proc/self/clear_refs", "w", encoding="ascii") as f:
                 f.write("5")
@@ -66,7 +69,7 @@ class Watch:
                              f"enforced: setrlimit(RLIMIT_DATA): {e}")
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> bool:
         if self.old is not None:
             resource.setrlimit(resource.RLIMIT_DATA, self.old)
             self.old = None

@@ -23,8 +23,9 @@ calling solve(), an exception in solve() with FAILED and the
 exception in the result's message, and a result too large to send (over
 16 MiB encoded) with FAILED saying so, and goes on serving.
 """
+from __future__ import annotations
+
 import hashlib
-import hmac
 import os
 import queue
 import re
@@ -33,10 +34,12 @@ import sys
 import threading
 import time
 import traceback
+from typing import Any, Callable, Mapping, Optional, Sequence
 
 from mpb import (daemon_status_t, plan_request_t, plan_result_t,
                  planner_announce_t, run_ack_t)
 
+from .auth import TRAILER_BYTES, Auth, AuthError  # noqa: F401 (the kit's API)
 from .limits import Limits, takes_limits
 from .hub import HubLCM, is_hub
 from .memory import Watch
@@ -49,15 +52,13 @@ HEARTBEAT_S = 0.5
 RESEND_S = 0.2              # a result's first re-send; the wait doubles
 RESEND_MAX_S = 2.0          # to this, until the daemon acknowledges it
 STATUS = "MPB_STATUS"
-TAG_BYTES = 32
-TRAILER_BYTES = 24 + TAG_BYTES
 PLANNER_ID_MAX = 51         # MPB_REQUEST_<id> within LCM's 63 characters
 MESSAGE_MAX = 1000          # characters of an exception kept in a message
 LCM_MESSAGE_MAX = 16 << 20  # MPB_LCM_MESSAGE_MAX (lcm_filter.h): every
                             # mpbench socket drops a larger message
 
 
-def name_error(name):
+def name_error(name: str) -> Optional[str]:
     """Why name cannot name a planner family (the C kit's rule), or None."""
     if not 1 <= len(name) <= 32:
         return "planner name must be 1 to 32 characters"
@@ -67,7 +68,7 @@ def name_error(name):
     return None
 
 
-def planner_id(name, host, pid):
+def planner_id(name: str, host: str, pid: int) -> str:
     """name@host:pid within PLANNER_ID_MAX characters, as the C kit makes it
     (mpb_planner_id_make() in proto.h): the host's characters outside
     [A-Za-z0-9_.-] as '-'; a host too long keeps its first characters,
@@ -79,73 +80,6 @@ def planner_id(name, host, pid):
         host = host[:room - 9] + "-" + digest[:8]
     host = re.sub(r"[^A-Za-z0-9_.-]", "-", host)
     return f"{name}@{host}:{pid}"
-
-
-class Auth:
-    """The optional shared secret (docs/protocol.md, "Authentication"):
-    after each message, a trailer of this process's instance, a counter and
-    the instance it answers (8 bytes each, big-endian), then a tag: the
-    first 32 bytes of HMAC-SHA-512, keyed with the BLAKE2b-256 hash of the
-    secret file, over the channel, a NUL byte, the encoding and those 24
-    bytes. A receiver believes a sender once it echoes the receiver's
-    instance, and drops any counter of it had before (a replay)."""
-
-    FRESH, UNPROVEN, REPLAYED, BAD_TAG = range(4)
-
-    def __init__(self, path):
-        with open(path, "rb") as f:
-            secret = f.read()
-        if len(secret) < 16:        # as the C library says it
-            raise ValueError(f"{path}: a secret needs at least 16 bytes, "
-                             f"this has {len(secret)}")
-        self.key = hashlib.blake2b(secret, digest_size=32).digest()
-        self.instance = 0
-        while self.instance == 0:
-            self.instance = int.from_bytes(os.urandom(8), "big")
-        self.counter = 0
-        self.lock = threading.Lock()
-        self.peers = {}          # instance -> [highest counter, bits below]
-
-    def tag(self, channel, data):
-        mac = hmac.new(self.key, channel.encode() + b"\0" + data, hashlib.sha512)
-        return mac.digest()[:TAG_BYTES]
-
-    def seal(self, channel, data, echo=0):
-        with self.lock:
-            self.counter += 1
-            counter = self.counter
-        head = (self.instance.to_bytes(8, "big") + counter.to_bytes(8, "big")
-                + echo.to_bytes(8, "big"))
-        return data + head + self.tag(channel, data + head)
-
-    def open(self, channel, data):
-        """(verdict, message without its trailer, sender instance)."""
-        if len(data) < TRAILER_BYTES:
-            return self.BAD_TAG, None, 0
-        body, head = data[:-TRAILER_BYTES], data[-TRAILER_BYTES:-TAG_BYTES]
-        if not hmac.compare_digest(data[-TAG_BYTES:],
-                                   self.tag(channel, body + head)):
-            return self.BAD_TAG, None, 0
-        sender = int.from_bytes(head[:8], "big")
-        counter = int.from_bytes(head[8:16], "big")
-        echo = int.from_bytes(head[16:], "big")
-        with self.lock:
-            peer = self.peers.get(sender)
-            if peer is None:
-                if echo != self.instance:
-                    return self.UNPROVEN, body, sender
-                self.peers[sender] = [counter, 1]
-                return self.FRESH, body, sender
-            top, seen = peer
-            if counter > top:
-                shift = counter - top
-                peer[:] = [counter, 1 if shift >= 64 else (seen << shift | 1) & (2**64 - 1)]
-                return self.FRESH, body, sender
-            k = top - counter
-            if k >= 64 or seen >> k & 1:
-                return self.REPLAYED, body, sender
-            peer[1] = seen | 1 << k
-            return self.FRESH, body, sender
 
 
 # The approaches a planner may declare per algorithm (docs/protocol.md).
@@ -162,8 +96,9 @@ class Node:
     Raises ValueError for a name the C kit would refuse too, or an
     approach that is none of those words."""
 
-    def __init__(self, name, algorithms, url, auth=None, verbose=False,
-                 approaches=None):
+    def __init__(self, name: str, algorithms: Sequence[str], url: str,
+                 auth: Optional[Auth] = None, verbose: bool = False,
+                 approaches: Optional[Mapping[str, str]] = None) -> None:
         approaches = dict(approaches or {})
         for algorithm, word in approaches.items():
             if word not in APPROACHES:
@@ -180,13 +115,13 @@ class Node:
         # the instance to echo), and no malformed datagram (sockfilter.py).
         request = "MPB_REQUEST_" + self.planner_id
         ack = ACK + "_" + self.planner_id
-        # Through a hub (hub.py): no socket to filter, every length
-        # checked before it is read.
+        # Through a hub (hub.py, libmpbench's link): no socket to
+        # filter, every length checked before it is read.
+        channels = [request, ack] + ([STATUS] if auth is not None else [])
         if is_hub(url):
-            self.lc, filtered = HubLCM(url), True
+            self.lc, filtered = HubLCM(url, channels), True
         else:
-            self.lc, filtered = filtered_lcm(
-                url, [request, ack] + ([STATUS] if auth is not None else []))
+            self.lc, filtered = filtered_lcm(url, channels)
         if not filtered:
             print("mpb-planner-python: warning: LCM's receive socket has no "
                   "filter (not a udpm:// URL, or the kernel refused it): a "
@@ -210,7 +145,7 @@ class Node:
         # The daemon acknowledges our results on a channel of our own.
         self.lc.subscribe(ack, self._on_ack)
 
-    def log(self, text):
+    def log(self, text: str) -> None:
         if self.verbose:
             print(f"mpb-planner-python: {text}", file=sys.stderr, flush=True)
 
@@ -255,7 +190,7 @@ class Node:
         verdict, body, sender = self.auth.open(channel, data)
         if verdict != Auth.FRESH:
             self.log(f"dropped a message on {channel}: "
-                     f"{['', 'not shown fresh', 'a replay', 'no valid tag'][verdict]}")
+                     f"{Auth.verdict_text(verdict)}")
             return None
         if channel.startswith("MPB_REQUEST_"):
             self.daemon = sender
@@ -405,7 +340,7 @@ class Node:
         res.run_id, res.planner_id = req.run_id, self.planner_id
         return res, res.encode()
 
-    def serve(self, solve):
+    def serve(self, solve: Callable[..., Any]) -> None:
         """Answer requests with solve(req) -> plan_result_t until stop()."""
         t = threading.Thread(target=self._lcm_loop, daemon=True)
         t.start()
@@ -429,5 +364,6 @@ class Node:
                      f"{res.time_total:.3f} s")
         t.join(timeout=1.0)
 
-    def stop(self):
+    def stop(self) -> None:
+        """Make serve() return (after the run in hand, if any)."""
         self.stopping = True

@@ -8,9 +8,12 @@ the result from a list of configurations (stage). The example planner
 (planners/python/mpbrrt) and the peers (planners/peers/mpbpeers) use
 them alike.
 """
-import time
+from __future__ import annotations
 
-from mpb import goal_t, stage_t
+import time
+from typing import Callable, List, Optional, Sequence
+
+from mpb import goal_t, plan_request_t, stage_t
 
 from .world import World, WorldError
 
@@ -19,7 +22,8 @@ class InvalidRequest(Exception):
     """A request this planner cannot use; the message says why."""
 
 
-def param(req, key, default, lo):
+def param(req: plan_request_t, key: str, default: float,
+          lo: float) -> float:
     """The request's parameter key as a number >= lo, or default."""
     for p in req.params:
         if p.key == key:
@@ -43,11 +47,11 @@ class WorldCache:
     """The last world built, reused while requests name the same robot,
     scene and joints (their hashes say so)."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         self.key, self.world = None, None
         self.setup_time = None  # s the last get() spent building a world
 
-    def get(self, req):
+    def get(self, req: plan_request_t) -> World:
         key = (req.robot_format, req.robot_hash, req.scene_format,
                req.scene_hash, tuple(req.joint_names))
         self.setup_time = None
@@ -71,7 +75,9 @@ class WorldCache:
         return self.world
 
 
-def goal_configs(world, req, free, deadline):
+def goal_configs(world: World, req: plan_request_t,
+                 free: Callable[[List[float]], bool],
+                 deadline: float) -> List[List[float]]:
     """Configurations a planner may end at: the joint goal, or up to five
     IK samples inside the pose region for which free(q) is true, sought
     until deadline (time.monotonic())."""
@@ -102,7 +108,9 @@ def goal_configs(world, req, free, deadline):
     return goals
 
 
-def stage(name, seconds, path, num_joints, times=None):
+def stage(name: str, seconds: float, path: Sequence[Sequence[float]],
+          num_joints: int,
+          times: Optional[Sequence[float]] = None) -> stage_t:
     """A stage_t named name: path (a list of configurations) taking
     seconds. times, for a time-parameterised trajectory: the time of each
     waypoint (s from its start; the daemon checks there is one per

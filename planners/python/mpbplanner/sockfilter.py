@@ -9,18 +9,22 @@ do not want) to their LCM socket; this attaches the same program, made by
 libmpbench, to the one UDP socket on the URL's port that appears while
 the binding's LCM instance is made.
 """
+from __future__ import annotations
+
 import ctypes
-import os
 from ctypes import POINTER, c_char_p, c_int
+from typing import Optional, Sequence, Set, Tuple
 
 import lcm
+
+from .libmpbench import library
 
 SOCKETS_MAX = 64
 
 
-def _library():
+def _library() -> Optional[ctypes.CDLL]:
     try:
-        lib = ctypes.CDLL(os.environ.get("MPB_LIBMPBENCH", "libmpbench.so.0"))
+        lib = library()
     except OSError:
         return None
     lib.mpb_lcm_sockets.restype = c_int
@@ -30,13 +34,14 @@ def _library():
     return lib
 
 
-def _sockets(lib, url):
+def _sockets(lib: ctypes.CDLL, url: Optional[str]) -> Set[int]:
     fds = (c_int * SOCKETS_MAX)()
     n = lib.mpb_lcm_sockets(url.encode() if url else None, fds, SOCKETS_MAX)
     return set(fds[:n])
 
 
-def filtered_lcm(url, channels):
+def filtered_lcm(url: Optional[str],
+                 channels: Sequence[str]) -> Tuple[lcm.LCM, bool]:
     """lcm.LCM(url) ("" or None: LCM's default), and whether its receive
     socket now drops malformed datagrams and every short message on a
     channel not in channels (at most 8 names; [] keeps every channel)."""

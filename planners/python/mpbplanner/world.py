@@ -3,36 +3,27 @@
 The Python planner checks collisions and samples goal regions with the same
 C code the daemon verifies with (libmpbench/include/mpbench/world.h and
 robot.h), so a path it accepts is judged by the same geometry. The library
-is found through MPB_LIBMPBENCH (the launcher sets it to the build tree's
-libmpbench.so) or the loader's path.
+is found as libmpbench.py says (MPB_LIBMPBENCH, or the loader's path).
 """
+from __future__ import annotations
+
 import ctypes
-import os
 from ctypes import (POINTER, Structure, byref, c_char_p, c_double, c_int,
                     c_size_t, c_uint64, c_void_p)
+from typing import List, Optional, Sequence, Tuple
+
+from .libmpbench import declare, library, path
 
 
 class WorldError(Exception):
     """A robot or scene the library refused; the message names where."""
 
 
-def _load_library():
-    path = os.environ.get("MPB_LIBMPBENCH", "libmpbench.so.0")
-    try:
-        return ctypes.CDLL(path)
-    except OSError as e:
-        raise WorldError(f"cannot load libmpbench ({path}): {e}") from e
-
-
-_lib = _load_library()
+try:
+    library()
+except OSError as e:
+    raise WorldError(f"cannot load libmpbench ({path()}): {e}") from e
 _doubles = POINTER(c_double)
-
-
-def _declare(name, restype, *argtypes):
-    f = getattr(_lib, name)
-    f.restype = restype
-    f.argtypes = list(argtypes)
-    return f
 
 
 class _GoalRegion(Structure):
@@ -42,36 +33,36 @@ class _GoalRegion(Structure):
                 ("ref_rpy", c_double * 3), ("rpy_tolerance", c_double * 3)]
 
 
-_world_open = _declare("mpb_world_open_group", c_int, c_char_p, c_char_p,
-                       c_char_p, c_char_p, POINTER(c_char_p), c_int,
-                       POINTER(c_void_p), c_char_p, c_size_t)
-_world_close = _declare("mpb_world_close", None, c_void_p)
-_num_joints = _declare("mpb_world_num_joints", c_int, c_void_p)
-_limits = _declare("mpb_world_joint_limits", None, c_void_p, c_int, _doubles,
-                   _doubles)
-_continuous = _declare("mpb_world_joint_is_continuous", c_int, c_void_p, c_int)
-_in_collision = _declare("mpb_world_in_collision", c_int, c_void_p, _doubles)
-_robot_load = _declare("mpb_robot_load_urdf_joints", c_int, c_char_p,
-                       POINTER(c_char_p), c_int, POINTER(c_void_p), c_char_p,
-                       c_size_t)
-_robot_free = _declare("mpb_robot_free", None, c_void_p)
-_world_hold = _declare("mpb_world_hold", c_int, c_void_p, POINTER(c_char_p),
-                       _doubles, c_int, c_char_p, c_size_t)
-_robot_set_passive = _declare("mpb_robot_set_passive", c_int, c_void_p,
-                              c_char_p, c_double)
-_link_index = _declare("mpb_robot_link_index", c_int, c_void_p, c_char_p)
-_region_sample = _declare("mpb_goal_region_sample", c_int, c_void_p,
-                          POINTER(_GoalRegion), _doubles, c_void_p, c_int,
-                          POINTER(c_uint64), _doubles)
-_region_contains = _declare("mpb_goal_region_contains", c_int, c_void_p,
-                            POINTER(_GoalRegion), _doubles)
+_world_open = declare("mpb_world_open_group", c_int, c_char_p, c_char_p,
+                      c_char_p, c_char_p, POINTER(c_char_p), c_int,
+                      POINTER(c_void_p), c_char_p, c_size_t)
+_world_close = declare("mpb_world_close", None, c_void_p)
+_num_joints = declare("mpb_world_num_joints", c_int, c_void_p)
+_limits = declare("mpb_world_joint_limits", None, c_void_p, c_int, _doubles,
+                  _doubles)
+_continuous = declare("mpb_world_joint_is_continuous", c_int, c_void_p, c_int)
+_in_collision = declare("mpb_world_in_collision", c_int, c_void_p, _doubles)
+_robot_load = declare("mpb_robot_load_urdf_joints", c_int, c_char_p,
+                      POINTER(c_char_p), c_int, POINTER(c_void_p), c_char_p,
+                      c_size_t)
+_robot_free = declare("mpb_robot_free", None, c_void_p)
+_world_hold = declare("mpb_world_hold", c_int, c_void_p, POINTER(c_char_p),
+                      _doubles, c_int, c_char_p, c_size_t)
+_robot_set_passive = declare("mpb_robot_set_passive", c_int, c_void_p,
+                             c_char_p, c_double)
+_link_index = declare("mpb_robot_link_index", c_int, c_void_p, c_char_p)
+_region_sample = declare("mpb_goal_region_sample", c_int, c_void_p,
+                         POINTER(_GoalRegion), _doubles, c_void_p, c_int,
+                         POINTER(c_uint64), _doubles)
+_region_contains = declare("mpb_goal_region_contains", c_int, c_void_p,
+                           POINTER(_GoalRegion), _doubles)
 
 
-_text_split = _declare("mpb_robot_text_split", c_int, c_char_p,
-                       POINTER(c_size_t), POINTER(c_size_t))
+_text_split = declare("mpb_robot_text_split", c_int, c_char_p,
+                      POINTER(c_size_t), POINTER(c_size_t))
 
 
-def split_robot_text(text: str) -> "tuple[str, str | None]":
+def split_robot_text(text: str) -> Tuple[str, Optional[str]]:
     """A "urdf" robot text as (URDF, SRDF or None), split where libmpbench
     splits it (mpb_robot_text_split(), world.h)."""
     raw = text.encode()
@@ -82,14 +73,15 @@ def split_robot_text(text: str) -> "tuple[str, str | None]":
     return raw[:urdf_len.value].decode(), srdf
 
 
-def _names(names):
+def _names(names: Sequence[str]) -> ctypes.Array:
     return (c_char_p * len(names))(*[n.encode() for n in names])
 
 
 class World:
     """A robot in a scene, its planning group given by joint names."""
 
-    def __init__(self, robot_format, robot, scene_format, scene, joints):
+    def __init__(self, robot_format: str, robot: str, scene_format: str,
+                 scene: str, joints: Sequence[str]) -> None:
         err = ctypes.create_string_buffer(512)
         handle = c_void_p()
         rc = _world_open(robot_format.encode(), robot.encode(),
@@ -112,7 +104,8 @@ class World:
             self.wraps.append(bool(_continuous(handle, j)))
         self._q = (c_double * n)()
 
-    def close(self):
+    def close(self) -> None:
+        """Free the world and its robot; safe to call twice."""
         if self._robot:
             _robot_free(self._robot)
             self._robot = None
@@ -120,7 +113,7 @@ class World:
             _world_close(self._w)
             self._w = None
 
-    def hold(self, names, values):
+    def hold(self, names: Sequence[str], values: Sequence[float]) -> None:
         """Hold the joints outside the group at these values (world.h:
         mpb_world_hold()), in the world and in the robot for IK, as the
         daemon's verifier holds them for the run."""
@@ -134,17 +127,17 @@ class World:
         if self._robot:
             self._hold_robot()
 
-    def _hold_robot(self):
+    def _hold_robot(self) -> None:
         for name, value in zip(*self._held):
             if _robot_set_passive(self._robot, name.encode(), value) != 0:
                 raise WorldError(f"joint '{name}' cannot be held at {value}")
 
-    def free(self, q):
+    def free(self, q: Sequence[float]) -> bool:
         """True when the robot at q touches nothing."""
         self._q[:] = q
         return _in_collision(self._w, self._q) == 0
 
-    def _robot_handle(self):
+    def _robot_handle(self) -> c_void_p:
         """The kinematic model for goal regions (URDF robots only)."""
         if self._robot is None:
             if self._format != "urdf":
@@ -160,7 +153,9 @@ class World:
             self._hold_robot()
         return self._robot
 
-    def goal_region(self, link, center, half_extents, rpy, rpy_tolerance):
+    def goal_region(self, link: str, center: Sequence[float],
+                    half_extents: Sequence[float], rpy: Sequence[float],
+                    rpy_tolerance: Sequence[float]) -> _GoalRegion:
         """A pose region for `link`, as robot.h describes it."""
         robot = self._robot_handle()
         index = _link_index(robot, link.encode())
@@ -170,7 +165,9 @@ class World:
                            (c_double * 3)(*center), (c_double * 3)(*half_extents),
                            (c_double * 3)(*rpy), (c_double * 3)(*rpy_tolerance))
 
-    def sample_goal(self, region, seed_q, rng_state):
+    def sample_goal(self, region: _GoalRegion,
+                    seed_q: Optional[Sequence[float]],
+                    rng_state: List[int]) -> Optional[List[float]]:
         """A configuration inside the region by IK (started from seed_q, or
         from random configurations when it is None), or None. rng_state is
         a one-element list holding the 64-bit generator state; it advances."""
@@ -182,6 +179,7 @@ class World:
         rng_state[0] = rng.value
         return list(out) if rc == 0 else None
 
-    def in_region(self, region, q):
+    def in_region(self, region: _GoalRegion, q: Sequence[float]) -> bool:
+        """True when the link is inside the region at q."""
         self._q[:] = q
         return _region_contains(self._robot_handle(), byref(region), self._q) == 1

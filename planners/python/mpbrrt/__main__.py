@@ -8,7 +8,8 @@ import argparse
 import signal
 import sys
 
-from mpbplanner.node import Auth, Node, name_error
+from mpbplanner.auth import Auth, AuthError
+from mpbplanner.node import Node, name_error
 from mpbplanner.request import WorldCache
 
 from .solve import solve
@@ -52,11 +53,7 @@ def main(argv=None):
 
     try:
         auth = Auth(args.secret_file) if args.secret_file else None
-    except OSError as e:
-        print(f"mpb-planner-python: cannot read {args.secret_file}: "
-              f"{e.strerror}", file=sys.stderr)
-        return 1
-    except ValueError as e:
+    except AuthError as e:      # libmpbench's line, naming the file
         print(f"mpb-planner-python: {e}", file=sys.stderr)
         return 1
     try:

@@ -1,5 +1,6 @@
 /* test_auth.c - the authenticated trailer (auth.h): the test vector of
- * docs/protocol.md, and which messages a receiver believes. */
+ * docs/protocol.md, which messages a receiver believes, and sealing a
+ * message sent through another binding. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -172,11 +173,90 @@ static void a_sender_is_believed_once_it_echoes_the_receiver(void **state)
     mpb_auth_free(NULL);
 }
 
+/* What a memq:// subscriber received last. */
+typedef struct received {
+    unsigned char data[256];
+    size_t len;
+} received;
+
+static void on_message(const lcm_recv_buf_t *rbuf, const char *channel,
+                       void *user)
+{
+    (void)channel;
+    received *r = user;
+    assert_true(rbuf->data_size <= sizeof r->data);
+    memcpy(r->data, rbuf->data, rbuf->data_size);
+    r->len = rbuf->data_size;
+}
+
+static uint64_t be64(const unsigned char *p)
+{
+    uint64_t v = 0;
+    for (int i = 0; i < 8; i++)
+        v = v << 8 | p[i];
+    return v;
+}
+
+/* mpb_auth_seal(), for a sender that publishes through its own binding:
+ * this process's instance, the counter it shares with the mpb_publish_...
+ * functions, and a tag a receiver with the secret believes. */
+static void a_seal_counts_with_publishing_and_is_believed(void **state)
+{
+    (void)state;
+    mpb_auth *me = load("the same secret, 32 bytes long..");
+    mpb_auth *peer = load("the same secret, 32 bytes long..");
+    unsigned char buf[128], want[MPB_AUTH_TRAILER_SIZE];
+    size_t len;
+    mpb_auth_info info;
+
+    memcpy(buf, "message", 7);
+    assert_int_equal(mpb_auth_seal(peer, "CH", buf, 7, mpb_auth_instance(me),
+                                   buf + 7), MPB_OK);
+    mpb_auth_trailer(peer, "CH", buf, 7, mpb_auth_instance(peer), 1,
+                     mpb_auth_instance(me), want);
+    assert_memory_equal(buf + 7, want, sizeof want);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
+                                   &len, &info), MPB_AUTH_FRESH);
+    assert_int_equal(len, 7);
+    assert_true(info.instance == mpb_auth_instance(peer) && info.counter == 1);
+
+    /* A message published in between takes counter 2, the next seal 3. */
+    lcm_t *lcm = lcm_create("memq://");
+    assert_non_null(lcm);
+    received r = {.len = 0};
+    lcm_subscribe(lcm, "MPB_ACK", on_message, &r);
+    mpb_run_ack_t ack = {.utime = 1, .run_id = "r", .sender_id = "s",
+                         .kind = 0};
+    assert_int_equal(mpb_publish_ack(lcm, peer, 0, "MPB_ACK", &ack), MPB_OK);
+    assert_int_equal(lcm_handle(lcm), 0);
+    assert_true(r.len > MPB_AUTH_TRAILER_SIZE);
+    assert_true(be64(r.data + r.len - MPB_AUTH_TRAILER_SIZE + 8) == 2);
+    lcm_destroy(lcm);
+    assert_int_equal(mpb_auth_seal(peer, "CH", buf, 7, 0, buf + 7), MPB_OK);
+    assert_true(be64(buf + 7) == mpb_auth_instance(peer));
+    assert_true(be64(buf + 15) == 3 && be64(buf + 23) == 0);
+    /* Believed already: the same bytes again are a replay. */
+    assert_int_equal(mpb_auth_open(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
+                                   &len, &info), MPB_AUTH_FRESH);
+    assert_int_equal(mpb_auth_open(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
+                                   &len, &info), MPB_AUTH_REPLAYED);
+
+    /* No secret, no channel: refused, out untouched. */
+    memset(want, 0xab, sizeof want);
+    assert_int_equal(mpb_auth_seal(NULL, "CH", buf, 7, 0, want), MPB_EINVAL);
+    assert_int_equal(mpb_auth_seal(peer, NULL, buf, 7, 0, want), MPB_EINVAL);
+    for (size_t i = 0; i < sizeof want; i++)
+        assert_int_equal(want[i], 0xab);
+    mpb_auth_free(me);
+    mpb_auth_free(peer);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(the_protocol_test_vector),
         cmocka_unit_test(a_sender_is_believed_once_it_echoes_the_receiver),
+        cmocka_unit_test(a_seal_counts_with_publishing_and_is_believed),
     };
     return cmocka_run_group_tests_name("auth", tests, NULL, NULL);
 }
