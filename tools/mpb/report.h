@@ -1,8 +1,10 @@
 /*
  * report.h - what `mpb report`'s files share: an experiment's results
- * gathered per (planner configuration, query) and folded per scene, the
- * paper's table rows, and one writer per output format (report.c: text;
- * report_formats.c: Markdown, CSV, LaTeX, JSON). Not part of libmpbench.
+ * gathered per (planner configuration, query) (report_gather.c) and
+ * folded per scene or problem set (report_columns.c), the paper's table
+ * rows (report_rows.c) and their cells (report_cells.c), and one writer
+ * per output format (report_text.c: text; report_formats.c: Markdown,
+ * CSV, LaTeX, JSON; report_html.c). Not part of libmpbench.
  */
 #ifndef MPB_TOOL_REPORT_H
 #define MPB_TOOL_REPORT_H
@@ -145,6 +147,19 @@ typedef struct report {
                                    query_set the query's set */
     int         nomem;
 } report;
+
+/* mpb_store_experiment_get()'s callback: the experiment's row into the
+ * report r (ud); nonzero, and r->nomem set, when out of memory. */
+int report_on_experiment(void *ud, const mpb_experiment_row *e);
+
+/* Everything the tables need, after report_on_experiment(): the
+ * experiment's configurations, scenes and queries, then one walk over
+ * its runs (report_gather.c). MPB_OK, a store's error code, or nonzero
+ * with r->nomem set. */
+int report_gather(report *r, mpb_store *s);
+
+/* Everything r holds freed (r itself is the caller's). */
+void report_free(report *r);
 
 /* The group of a configuration's approach: its place among
  * MPB_APPROACHES (proto.h), MPB_NUM_APPROACHES for none. */
