@@ -135,6 +135,16 @@ $(printf '  - %s\n' "$@")
 EOT
 }
 
+# mpb_paper_quick_experiment FILE: the paper's quick suite (the PR2 in its
+# four environments, every query) at one run a query and a 1 s limit, up
+# to its planners: key, for the caller to append its planner entries to.
+mpb_paper_quick_experiment() {
+    sed -n '1,/^planners:/p' "$MPB_SOURCE/scenes/experiments/paper-quick.yaml" |
+        sed -e 's#file: \.\./#file: '"$MPB_SOURCE/scenes"'/#' \
+            -e 's/^  runs: 3/  runs: 1/' \
+            -e 's/^  time_limit: 10.0/  time_limit: 1.0/' >"$1"
+}
+
 FAILS=0
 PASSES=0
 

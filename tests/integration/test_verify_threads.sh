@@ -13,12 +13,9 @@ mpb_enter_netns "$0" "$@"
 work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
 DB=$work/threads.db
-scenes=$MPB_SOURCE/scenes
 mpb=$MPB_BUILD/tools/mpb
 
-sed -n '1,/^planners:/p' "$scenes/experiments/paper-quick.yaml" |
-    sed -e 's#file: \.\./#file: '"$scenes"'/#' -e 's/^  runs: 3/  runs: 1/' \
-        -e 's/^  time_limit: 10.0/  time_limit: 1.0/' >"$work/exp.yaml"
+mpb_paper_quick_experiment "$work/exp.yaml"
 cat >>"$work/exp.yaml" <<EOT
   - planner: ompl
     algorithms: [RRTConnect, KPIECE1]

@@ -8,6 +8,19 @@
 
 #include "report.h"
 
+/* Fold one query's cell into a column: its counts and its metrics. */
+static void column_add(column *to, const column *cell)
+{
+    to->finished += cell->finished;
+    to->succeeded += cell->succeeded;
+    to->claimed += cell->claimed;
+    for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
+        to->outcomes[o] += cell->outcomes[o];
+    to->stage_invalid += cell->stage_invalid;
+    for (int k = 0; k < M_COUNT; k++)
+        mpb_grouped_merge(&to->m[k], &cell->m[k]);
+}
+
 long report_scene_columns(const report *r, int si, column *cols)
 {
     long finished = 0;
@@ -25,14 +38,7 @@ long report_scene_columns(const report *r, int si, column *cols)
                 continue;
             const column *cl = &r->cells[(size_t)c * (size_t)r->num_queries +
                                          (size_t)q];
-            cols[c].finished += cl->finished;
-            cols[c].succeeded += cl->succeeded;
-            cols[c].claimed += cl->claimed;
-            for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
-                cols[c].outcomes[o] += cl->outcomes[o];
-            cols[c].stage_invalid += cl->stage_invalid;
-            for (int k = 0; k < M_COUNT; k++)
-                mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
+            column_add(&cols[c], cl);
         }
         finished += cols[c].finished;
     }
@@ -62,14 +68,7 @@ long report_set_columns(const report *r, int set, column *cols,
         for (int c = 0; c < r->num_configs; c++) {
             const column *cl = &r->cells[(size_t)c * (size_t)r->num_queries +
                                          (size_t)q];
-            cols[c].finished += cl->finished;
-            cols[c].succeeded += cl->succeeded;
-            cols[c].claimed += cl->claimed;
-            for (int o = 0; o < MPB_OUTCOME_COUNT; o++)
-                cols[c].outcomes[o] += cl->outcomes[o];
-            cols[c].stage_invalid += cl->stage_invalid;
-            for (int k = 0; k < M_COUNT; k++)
-                mpb_grouped_merge(&cols[c].m[k], &cl->m[k]);
+            column_add(&cols[c], cl);
             finished += cl->finished;
         }
     }
