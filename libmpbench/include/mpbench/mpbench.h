@@ -92,6 +92,7 @@ char *mpb_read_file(const char *path, size_t max, size_t *len);
 #include "mpbench/octree.h"
 #include "mpbench/cloud.h"
 #include "mpbench/scene.h"
+#include "mpbench/sense.h"
 #include "mpbench/robot.h"
 #include "mpbench/srdf.h"
 #include "mpbench/bodies.h"

@@ -180,6 +180,25 @@ int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
 int mpb_store_scene_set_problem_set(mpb_store *s, int64_t scene_id,
                                     const char *set);
 
+/*
+ * What the planners of a scene were given instead of the scene itself
+ * (an experiment's `seen:`, docs/experiment-format.md): what sensors saw
+ * of it, or any other stand-in. The daemon judges every path on the
+ * scene (the truth) and also on what was seen (mpb_run_record.seen_*).
+ */
+typedef struct mpb_seen_scene {
+    const char *format, *hash, *text;  /* as mpb_scene_info's scene */
+    const char *how;                   /* one line: where it came from ("a
+                                          file", the cameras that sensed
+                                          it); may be NULL */
+} mpb_seen_scene;
+
+/* Record what scene scene_id's planners were given (scenes.seen_format,
+ * seen_hash, seen, seen_how). MPB_OK, MPB_EINVAL for a NULL part,
+ * MPB_ENOTFOUND if there is no such scene, MPB_EDB. */
+int mpb_store_scene_set_seen(mpb_store *s, int64_t scene_id,
+                             const mpb_seen_scene *seen);
+
 typedef struct mpb_query_info {
     const char   *name;
     int           num_joints;
@@ -349,6 +368,14 @@ typedef struct mpb_run_record {
                                      as runs.in_time = 0, so that `mpb
                                      verify` can apply the success rule
                                      again; 0 (in time) by default */
+    /* Judged on what was seen, where the planners were given a seen
+     * scene (mpb_seen_scene): the final stage's verdict in its world
+     * (mpb_verdict_name()) with its detail, and the success rule applied
+     * to that verdict. seen_verdict NULL: nothing seen instead (all three
+     * stored NULL). */
+    const char *seen_verdict;
+    const char *seen_detail;
+    int         seen_success;
 } mpb_run_record;
 
 /*
@@ -400,6 +427,9 @@ typedef struct mpb_scene_row {
     const char *problem_set;   /* scenes.problem_set, never NULL (the
                                   default rule for a database made before
                                   the column, opened read-only) */
+    const char *seen_format, *seen_hash, *seen, *seen_how;
+                               /* what its planners were given instead
+                                  (mpb_seen_scene); NULL: the scene */
 } mpb_scene_row;
 
 /* The scenes of an experiment. */
@@ -473,6 +503,27 @@ int mpb_store_refusal_depths(mpb_store *s, int64_t experiment_id,
                              int (*cb)(void *ud, int64_t config_id,
                                        double lower_mm, double upper_mm),
                              void *ud);
+
+/* A finished run judged on the truth and on what its planner was given
+ * (mpb_run_record.seen_*). */
+typedef struct mpb_seen_judgement {
+    int64_t     run_id, planner_config_id, query_id;
+    int         success;        /* on the truth: runs.success */
+    int         seen_success;   /* on what was seen */
+    int         claimed;        /* the planner said solved */
+    const char *verdict;        /* the final stage's on the truth, or NULL */
+    const char *seen_verdict;   /* its on what was seen */
+} mpb_seen_judgement;
+
+/*
+ * Walk the experiment's finished runs that were judged on a seen scene,
+ * by configuration id then run id; none in an experiment without (or a
+ * database made before them). A nonzero return from cb stops the walk
+ * and is returned. MPB_OK or MPB_EDB.
+ */
+int mpb_store_seen_judgements(mpb_store *s, int64_t experiment_id,
+                              int (*cb)(void *ud, const mpb_seen_judgement *j),
+                              void *ud);
 
 /*
  * How the experiment's stages were checked for collision

@@ -30,7 +30,8 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
         " valid = ?7, verdict = ?8, success = ?9, time_total = ?10,"
         " time_raw = ?11, time_other = ?12, wall_time = ?13, final_stage = ?14,"
         " final_metrics = ?15, world_setup_time = ?17, verify_time = ?18,"
-        " memory = ?19, outcome = ?20, in_time = ?21"
+        " memory = ?19, outcome = ?20, in_time = ?21, seen_verdict = ?22,"
+        " seen_detail = ?23, seen_success = ?24"
         " WHERE id = ?1 AND run_uid = ?2 AND state != 'done'",
     [MPB__ST_STAGE_INSERT] =
         "INSERT OR REPLACE INTO stages(run_id, idx, name, time, num_waypoints,"
@@ -232,6 +233,22 @@ static int add_exact_values(mpb_store *s)
                                     "create log_properties");
 }
 
+/* The migration step of seen scenes (docs/schema.md): a database made
+ * before them gets the columns, NULL: every planner had the scene. */
+static int add_seen(mpb_store *s)
+{
+    static const char *const columns[][3] = {
+        {"scenes", "seen_format", "TEXT"}, {"scenes", "seen_hash", "TEXT"},
+        {"scenes", "seen", "TEXT"},        {"scenes", "seen_how", "TEXT"},
+        {"runs", "seen_verdict", "TEXT"},  {"runs", "seen_detail", "TEXT"},
+        {"runs", "seen_success", "INTEGER"},
+    };
+    int rc = MPB_OK;
+    for (size_t i = 0; i < sizeof columns / sizeof *columns && rc == MPB_OK; i++)
+        rc = add_missing_column(s, columns[i][0], columns[i][1], columns[i][2]);
+    return rc;
+}
+
 /* The migration step of problem sets (docs/schema.md): a database made
  * before scenes.problem_set gets it, each scene's by the default rule
  * (mpb_store_problem_set_len()), and the run_summary view over it. */
@@ -280,7 +297,8 @@ static int create_schema(mpb_store *s)
         (rc = add_exact_values(s)) != MPB_OK ||
         (rc = add_outcomes(s)) != MPB_OK ||
         (rc = add_missing_column(s, "planner_configs", "approach", "TEXT")) != MPB_OK ||
-        (rc = add_problem_sets(s)) != MPB_OK)
+        (rc = add_problem_sets(s)) != MPB_OK ||
+        (rc = add_seen(s)) != MPB_OK)
         goto fail;
     /* The results view is made again when it lacks a column this version
      * gives it (a database made before results.experiment_id). */

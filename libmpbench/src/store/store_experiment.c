@@ -295,6 +295,30 @@ int mpb_store_scene_add(mpb_store *s, int64_t experiment_id,
     return insert_or_get(s, ins, sel, "add scene", id);
 }
 
+int mpb_store_scene_set_seen(mpb_store *s, int64_t scene_id,
+                             const mpb_seen_scene *v)
+{
+    if (v == NULL || v->format == NULL || v->hash == NULL || v->text == NULL)
+        return mpb__store_fail(s, MPB_EINVAL, "set a scene's seen scene: a part is NULL");
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "UPDATE scenes SET seen_format = ?2, seen_hash = ?3, seen = ?4,"
+        " seen_how = ?5 WHERE id = ?1");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, scene_id);
+    sqlite3_bind_text(st, 2, v->format, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 3, v->hash, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 4, v->text, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 5, v->how, -1, SQLITE_STATIC);
+    int rc = sqlite3_step(st) == SQLITE_DONE
+             ? MPB_OK : mpb__store_db_fail(s, "set a scene's seen scene");
+    sqlite3_finalize(st);
+    if (rc == MPB_OK && sqlite3_changes(s->db) == 0)
+        rc = mpb__store_fail(s, MPB_ENOTFOUND, "no scene %lld",
+                             (long long)scene_id);
+    return rc;
+}
+
 int mpb_store_scene_set_problem_set(mpb_store *s, int64_t scene_id,
                                     const char *set)
 {

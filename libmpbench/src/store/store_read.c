@@ -95,15 +95,24 @@ int mpb_store_scenes(mpb_store *s, int64_t experiment_id,
                      int (*cb)(void *ud, const mpb_scene_row *row), void *ud)
 {
     /* A database made before scenes.problem_set, opened read-only, has
-     * none: the default rule, here. */
+     * none: the default rule, here; one made before seen scenes, none. */
+    static const char *const sql[2][2] = {
+        {"SELECT id, name, robot_format, robot_hash, robot, scene_format,"
+         " scene_hash, scene, NULL, NULL, NULL, NULL, NULL FROM scenes"
+         " WHERE experiment_id = ? ORDER BY id",
+         "SELECT id, name, robot_format, robot_hash, robot, scene_format,"
+         " scene_hash, scene, NULL, seen_format, seen_hash, seen, seen_how"
+         " FROM scenes WHERE experiment_id = ? ORDER BY id"},
+        {"SELECT id, name, robot_format, robot_hash, robot, scene_format,"
+         " scene_hash, scene, problem_set, NULL, NULL, NULL, NULL FROM scenes"
+         " WHERE experiment_id = ? ORDER BY id",
+         "SELECT id, name, robot_format, robot_hash, robot, scene_format,"
+         " scene_hash, scene, problem_set, seen_format, seen_hash, seen,"
+         " seen_how FROM scenes WHERE experiment_id = ? ORDER BY id"},
+    };
     int has_set = mpb__store_has_column(s, "scenes", "problem_set");
-    sqlite3_stmt *st = mpb__store_prepare(s, has_set
-        ? "SELECT id, name, robot_format, robot_hash, robot, scene_format,"
-          " scene_hash, scene, problem_set FROM scenes"
-          " WHERE experiment_id = ? ORDER BY id"
-        : "SELECT id, name, robot_format, robot_hash, robot, scene_format,"
-          " scene_hash, scene, NULL FROM scenes"
-          " WHERE experiment_id = ? ORDER BY id");
+    int has_seen = mpb__store_has_column(s, "scenes", "seen");
+    sqlite3_stmt *st = mpb__store_prepare(s, sql[has_set][has_seen]);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, experiment_id);
@@ -129,7 +138,13 @@ int mpb_store_scenes(mpb_store *s, int64_t experiment_id,
             .scene_format = col_text(st, 5),
             .scene_hash = col_text(st, 6),
             .scene = col_text(st, 7),
+            .seen_format = (const char *)sqlite3_column_text(st, 9),
+            .seen_hash = (const char *)sqlite3_column_text(st, 10),
+            .seen = (const char *)sqlite3_column_text(st, 11),
+            .seen_how = (const char *)sqlite3_column_text(st, 12),
         };
+        if (row.seen_format == NULL || row.seen_hash == NULL || row.seen == NULL)
+            row.seen_format = row.seen_hash = row.seen = row.seen_how = NULL;
         stop = cb(ud, &row);
     }
     free(set);
@@ -281,6 +296,37 @@ int mpb_store_refusal_depths(mpb_store *s, int64_t experiment_id,
         stop = cb(ud, sqlite3_column_int64(st, 0), lo, up);
     }
     return walk_end(s, st, stop, step, "read refusal depths");
+}
+
+int mpb_store_seen_judgements(mpb_store *s, int64_t experiment_id,
+                              int (*cb)(void *ud, const mpb_seen_judgement *j),
+                              void *ud)
+{
+    if (!mpb__store_has_column(s, "runs", "seen_success"))
+        return MPB_OK;
+    sqlite3_stmt *st = mpb__store_prepare(s,
+        "SELECT id, planner_config_id, query_id, coalesce(success, 0),"
+        " seen_success, coalesce(claimed_success, 0), verdict, seen_verdict"
+        " FROM runs WHERE +experiment_id = ? AND state = 'done'"
+        " AND seen_success IS NOT NULL ORDER BY planner_config_id, id");
+    if (st == NULL)
+        return MPB_EDB;
+    sqlite3_bind_int64(st, 1, experiment_id);
+    int step, stop = 0;
+    while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
+        mpb_seen_judgement j = {
+            .run_id = sqlite3_column_int64(st, 0),
+            .planner_config_id = sqlite3_column_int64(st, 1),
+            .query_id = sqlite3_column_int64(st, 2),
+            .success = sqlite3_column_int(st, 3),
+            .seen_success = sqlite3_column_int(st, 4),
+            .claimed = sqlite3_column_int(st, 5),
+            .verdict = (const char *)sqlite3_column_text(st, 6),
+            .seen_verdict = (const char *)sqlite3_column_text(st, 7),
+        };
+        stop = cb(ud, &j);
+    }
+    return walk_end(s, st, stop, step, "read seen judgements");
 }
 
 /* ---- the results walk ---------------------------------------------------- */

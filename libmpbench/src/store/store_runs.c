@@ -336,6 +336,12 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
                           r->claimed_success, last != NULL && last->valid,
                           r->success)), -1, SQLITE_STATIC);
     sqlite3_bind_int(st, 21, !r->late);
+    if (r->seen_verdict != NULL) {
+        sqlite3_bind_text(st, 22, r->seen_verdict, -1, SQLITE_STATIC);
+        sqlite3_bind_text(st, 23, r->seen_detail ? r->seen_detail : "", -1,
+                          SQLITE_STATIC);
+        sqlite3_bind_int(st, 24, r->seen_success);
+    }
     sqlite3_bind_double(st, 10, r->time_total);
     sqlite3_bind_double(st, 11, r->time_raw);
     sqlite3_bind_double(st, 12, r->time_other);

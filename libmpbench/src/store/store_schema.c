@@ -45,6 +45,10 @@ const char mpb__schema_v1[] =
     "  scene_hash    TEXT NOT NULL,\n"
     "  scene         TEXT NOT NULL,\n"
     "  problem_set   TEXT,\n"
+    "  seen_format   TEXT,\n"
+    "  seen_hash     TEXT,\n"
+    "  seen          TEXT,\n"
+    "  seen_how      TEXT,\n"
     "  UNIQUE(experiment_id, name));\n"
 
     "CREATE TABLE IF NOT EXISTS queries(\n"
@@ -99,6 +103,9 @@ const char mpb__schema_v1[] =
     "  memory            REAL,\n"
     "  outcome           TEXT,\n"
     "  in_time           INTEGER,\n"
+    "  seen_verdict      TEXT,\n"
+    "  seen_detail       TEXT,\n"
+    "  seen_success      INTEGER,\n"
     "  UNIQUE(experiment_id, planner_config_id, query_id, repetition));\n"
     /* By experiment, in run order: what reports and a resume read. Not by
      * state: each change of state would move an entry between three

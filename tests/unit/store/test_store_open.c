@@ -1,6 +1,7 @@
 /* test_store_open.c - opening the database: what is refused and why, and
  * that reading leaves nothing behind, not even where nothing can be
  * written. */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -15,6 +16,7 @@
 #include <sqlite3.h>
 
 #include "mpbench/mpbench.h"
+#include "test_store.h"
 
 typedef struct fixture {
     char dir[64], db[96], other[96], wal[104], shm[104];
@@ -368,6 +370,106 @@ static void an_older_database_gets_its_problem_sets(void **state)
     free(now);
 }
 
+typedef struct seen_walk {
+    char text[512];
+} seen_walk;
+
+static int on_seen_scene(void *ud, const mpb_scene_row *row)
+{
+    seen_walk *x = ud;
+    size_t n = strlen(x->text);
+    snprintf(x->text + n, sizeof x->text - n, "%s%s:%s/%s/%s/%s", n ? " " : "",
+             row->name, row->seen_format ? row->seen_format : "-",
+             row->seen_hash ? row->seen_hash : "-",
+             row->seen ? row->seen : "-", row->seen_how ? row->seen_how : "-");
+    return 0;
+}
+
+static int on_judgement(void *ud, const mpb_seen_judgement *j)
+{
+    seen_walk *x = ud;
+    size_t n = strlen(x->text);
+    snprintf(x->text + n, sizeof x->text - n, "%s%lld:%d%d%d:%s:%s",
+             n ? " " : "", (long long)j->run_id, j->claimed, j->success,
+             j->seen_success, j->verdict ? j->verdict : "-",
+             j->seen_verdict ? j->seen_verdict : "-");
+    return 0;
+}
+
+/*
+ * Seen scenes (scenes.seen*, runs.seen_*): a scene keeps what its
+ * planners were given beside itself, a run its judgement on that beside
+ * the truth's, and only runs so judged are walked; a database made before
+ * the columns reads as having none and, opened by a writer, gets them.
+ */
+static void a_scene_keeps_what_its_planners_saw(void **state)
+{
+    fixture *f = *state;
+    mpb_store *s;
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    int64_t truth = test_store_scene(s, 1, "truth", "h-t", "t");
+    int64_t plain = test_store_scene(s, 1, "plain", "h-p", "p");
+    mpb_seen_scene seen = {"planar", "h-s", "s", "given: s.scene"};
+    assert_int_equal(mpb_store_scene_set_seen(s, truth, &seen), MPB_OK);
+    assert_int_equal(mpb_store_scene_set_seen(s, plain + 1, &seen),
+                     MPB_ENOTFOUND);
+    mpb_seen_scene none = {"planar", NULL, "s", NULL};
+    assert_int_equal(mpb_store_scene_set_seen(s, truth, &none), MPB_EINVAL);
+    seen_walk w = {""};
+    assert_int_equal(mpb_store_scenes(s, 1, on_seen_scene, &w), MPB_OK);
+    assert_string_equal(w.text, "truth:planar/h-s/s/given: s.scene plain:-/-/-/-");
+
+    int64_t cfg = test_store_config(s, 1, "p", "a", "");
+    int64_t qt = test_store_query(s, truth, "q"), qp = test_store_query(s, plain, "q");
+    int64_t r1 = test_store_run(s, 1, cfg, qt, 0, 1);
+    int64_t r2 = test_store_run(s, 1, cfg, qp, 0, 2);
+    assert_int_equal(mpb_store_run_sent(s, r1, "u1", "p-1"), MPB_OK);
+    mpb_stage_record st = {.name = "raw", .valid = 0, .verdict = "collision",
+                           .verdict_detail = "touches post",
+                           .verdict_segment = 0};
+    mpb_run_record rec = {
+        .run_id = r1, .run_uid = "u1", .planner_id = "p-1",
+        .status = "solved", .claimed_success = 1, .success = 0,
+        .time_total = 0.5, .time_raw = 0.5, .num_stages = 1, .stages = &st,
+        .verify_time = NAN, .memory = NAN, .seen_verdict = "valid",
+        .seen_detail = "valid", .seen_success = 1,
+    };
+    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+    test_store_finish(s, r2, 1, 0.5, 1.0);
+    w.text[0] = '\0';
+    assert_int_equal(mpb_store_seen_judgements(s, 1, on_judgement, &w), MPB_OK);
+    char want[64];
+    snprintf(want, sizeof want, "%lld:101:collision:valid", (long long)r1);
+    assert_string_equal(w.text, want);
+    mpb_store_close(s);
+    char *now = column_text(f->db, "SELECT count(*) FROM runs WHERE seen_success IS NULL");
+    assert_string_equal(now, "1");
+    free(now);
+
+    /* As an older mpbench left it. */
+    exec_sql(f->db, "ALTER TABLE scenes DROP COLUMN seen_format;"
+             " ALTER TABLE scenes DROP COLUMN seen_hash;"
+             " ALTER TABLE scenes DROP COLUMN seen;"
+             " ALTER TABLE scenes DROP COLUMN seen_how;"
+             " ALTER TABLE runs DROP COLUMN seen_verdict;"
+             " ALTER TABLE runs DROP COLUMN seen_detail;"
+             " ALTER TABLE runs DROP COLUMN seen_success");
+    assert_int_equal(mpb_store_open(f->db, 1, &s), MPB_OK);
+    w.text[0] = '\0';
+    assert_int_equal(mpb_store_scenes(s, 1, on_seen_scene, &w), MPB_OK);
+    assert_string_equal(w.text, "truth:-/-/-/- plain:-/-/-/-");
+    w.text[0] = '\0';
+    assert_int_equal(mpb_store_seen_judgements(s, 1, on_judgement, &w), MPB_OK);
+    assert_string_equal(w.text, "");
+    mpb_store_close(s);
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    mpb_store_close(s);
+    now = column_text(f->db, "SELECT count(*) FROM pragma_table_info('runs')"
+                      " WHERE name LIKE 'seen_%'");
+    assert_string_equal(now, "3");
+    free(now);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -377,6 +479,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(a_database_in_a_read_only_folder_is_read, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_database_gets_its_runs_outcomes, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_database_gets_its_problem_sets, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_scene_keeps_what_its_planners_saw, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
