@@ -291,7 +291,8 @@ int cmd_report(int argc, char **argv)
     if ((rc = formats[fmt].write(&r, out)) != MPB_OK ||
         (findings && (rc = report_write_findings(&r, out)) != MPB_OK) ||
         ((fmt == FORMAT_TEXT || fmt == FORMAT_MARKDOWN) &&
-         (rc = report_write_depth(s, &r, fmt == FORMAT_MARKDOWN, out)) != MPB_OK)) {
+         ((rc = report_write_depth(s, &r, fmt == FORMAT_MARKDOWN, out)) != MPB_OK ||
+          (rc = report_write_seen(s, &r, fmt == FORMAT_MARKDOWN, out)) != MPB_OK))) {
         if (rc == REPORT_SAID)
             goto done;
         goto fail;

@@ -254,4 +254,9 @@ int report_write_paired(const report *r, FILE *out);
  * (report_depth.c); nothing when no run was refused for a collision. */
 int report_write_depth(mpb_store *s, const report *r, int markdown, FILE *out);
 
+/* Success on the truth beside success on what was seen, per configuration
+ * and problem set, text or markdown (report_seen.c); nothing when every
+ * planner had the scene itself. */
+int report_write_seen(mpb_store *s, const report *r, int markdown, FILE *out);
+
 #endif
