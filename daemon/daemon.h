@@ -501,16 +501,26 @@ typedef struct mpbd_stage_work {
     mpb_named         metrics[MPB_NUM_METRICS];
     mpb_stage_measure m;
 } mpbd_stage_work;
-/* A result's stages verified and measured (mpb_measure_stage()). */
+/* A result's stages verified and measured (mpb_measure_stage()); where
+ * the planner was given a seen scene (experiment_seen.c), its final stage
+ * judged there too. */
 typedef struct mpbd_measured {
     mpbd_stage_work *works;          /* per stage */
+    int              judged_seen;    /* 1: seen holds the final stage's
+                                        verdict on what was seen */
+    mpb_stage_measure seen;
     double verify_start, verified;   /* monotonic s */
 } mpbd_measured;
-/* In worlds (one per scene, a verifier thread's own copies; NULL: the
- * experiment's), which it changes (held joints, caches); it reads d and
- * changes nothing else, so that verifier threads may call it while the
- * loop runs, each with worlds of its own. */
-int  mpbd_result_measure(const mpbd *d, mpb_world *const *worlds,
+/* The worlds a verifier thread judges in, per scene: the truth, and what
+ * was seen (NULL for a scene without). */
+typedef struct mpbd_worlds {
+    mpb_world **truth, **seen;
+} mpbd_worlds;
+/* In worlds (a verifier thread's own copies; NULL: the experiment's),
+ * which it changes (held joints, caches); it reads d and changes nothing
+ * else, so that verifier threads may call it while the loop runs, each
+ * with worlds of its own. */
+int  mpbd_result_measure(const mpbd *d, const mpbd_worlds *worlds,
                          const mpbd_flight *f, const mpb_plan_result_t *m,
                          mpbd_measured *out);
 void mpbd_measured_free(mpbd_measured *ms);

@@ -170,6 +170,10 @@ void mpbd_experiment_free(mpbd_experiment *e)
         free(s->scene_file);
         free(s->problem_set);
         mpb_world_close(s->world);
+        free(s->seen_format);
+        free(s->seen);
+        free(s->seen_how);
+        mpb_world_close(s->seen_world);
     }
     for (int i = 0; i < e->num_queries; i++) {
         free(e->queries[i].name);

@@ -43,8 +43,28 @@ typedef struct mpbd_scene {
     char      *problem_set;  /* the entry's `set:`, or NULL: the store's
                                 default (the name before its last '/') */
     mpb_world *world;        /* for verification */
+    /* What its planners are given instead, where the entry says `seen:`
+     * (experiment_seen.c): a scene file, or what cameras would see of
+     * this one. NULL: the planners get the scene itself. */
+    char      *seen_format, *seen, seen_hash[MPB_HASH_SIZE];
+    char      *seen_how;     /* one line: the file, or the cameras */
+    mpb_world *seen_world;   /* paths judged on what was seen, too */
     int64_t    db_id;
 } mpbd_scene;
+
+/* The scene text its planners are given: what was seen, or the scene. */
+static inline const char *mpbd_scene_given(const mpbd_scene *s)
+{
+    return s->seen != NULL ? s->seen : s->scene;
+}
+static inline const char *mpbd_scene_given_format(const mpbd_scene *s)
+{
+    return s->seen != NULL ? s->seen_format : s->scene_format;
+}
+static inline const char *mpbd_scene_given_hash(const mpbd_scene *s)
+{
+    return s->seen != NULL ? s->seen_hash : s->scene_hash;
+}
 
 /* Where a query must end: a configuration, or a region for one link (the
  * paper's goals: a box for its position, roll/pitch/yaw tolerances). */
@@ -182,6 +202,14 @@ int mpbd_experiment_orientation_note(const mpbd_experiment *e, char *buf,
                                      size_t len);
 
 /*
+ * When scenes' planners are given what was seen of them (`seen:`,
+ * experiment_seen.c): 1 and one line in buf saying how many and how the
+ * first was made; else 0.
+ */
+int mpbd_experiment_seen_note(const mpbd_experiment *e, char *buf,
+                              size_t len);
+
+/*
  * The goal of q as verify.h describes goals (mpb_query_goal()), for
  * mpb_measure_stage(). The result points into q: it lives as long as q
  * does.
@@ -203,13 +231,14 @@ int mpbd_query_hold_in(const mpbd_experiment *e, const mpbd_query *q,
                        mpb_world *w);
 
 /*
- * A world of its own for scene `scene`, opened as the experiment opened the
- * scene's (experiment_robot.c), into *out (close it with mpb_world_close()):
- * for a thread that verifies while another uses the scene's. Held joints
- * are set by mpbd_query_hold_in() before each use. MPB_OK, or the world's
- * code and one line in why.
+ * A world of its own for scene `scene` (seen 0) or for what its planners
+ * were given (seen 1: its `seen:` scene), opened as the experiment opened
+ * the scene's (experiment_robot.c), into *out (close it with
+ * mpb_world_close()): for a thread that verifies while another uses the
+ * scene's. Held joints are set by mpbd_query_hold_in() before each use.
+ * MPB_OK, or the world's code and one line in why.
  */
-int mpbd_scene_world_copy(const mpbd_experiment *e, int scene,
+int mpbd_scene_world_copy(const mpbd_experiment *e, int scene, int seen,
                           mpb_world **out, char *why, size_t len);
 
 /* The seed of one run, derived from the experiment seed and the run's place. */

@@ -9,6 +9,7 @@
  *   experiment_entry.c    what either kind of entry shares: set, states
  *                         checked, held joints, a query's goal
  *   experiment_moveit.c   MoveIt problem sets and scene files
+ *   experiment_seen.c     an entry's `seen:`, what its planners are given
  *   experiment_planners.c planner configurations and parameters
  */
 #ifndef MPBD_EXPERIMENT_LOAD_H
@@ -176,6 +177,14 @@ int mpbd_moveit_entry_size(mpbd_loader *L, yaml_node_t *m, int *scenes,
 int mpbd_load_moveit_entry(mpbd_loader *L, mpbd_experiment *e,
                            yaml_node_t *m, const char *robot_format,
                            const char *robot);
+
+/* ---- experiment_seen.c -------------------------------------------- */
+
+/* Scene sc's `seen:` (entry's key; absent: none), after its world opened:
+ * the text its planners are given, its hash, its world. A problem set's
+ * entry (one_scene 0) may only sense. 0, or -1 with one line. */
+int mpbd_load_seen(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc,
+                   yaml_node_t *entry, int one_scene);
 
 /* ---- experiment_planners.c ---------------------------------------- */
 

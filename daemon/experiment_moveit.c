@@ -445,8 +445,10 @@ static int moveit_scene(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *entry,
     }
     mpb_hash_hex(sc->robot, strlen(sc->robot), sc->robot_hash);
     mpb_hash_hex(sc->scene, strlen(sc->scene), sc->scene_hash);
-    if (mpbd_open_world(L, e, sc, entry) != 0 || mpbd_first_world(L, e,
-                                                                  sc) != 0)
+    if (mpbd_open_world(L, e, sc, entry) != 0 ||
+        mpbd_first_world(L, e, sc) != 0 ||
+        mpbd_load_seen(L, e, sc, entry,
+                       get(L, entry, "moveit_scene") != NULL) != 0)
         goto done;
     for (int i = 0; i < nreq; i++) {
         if (moveit_query(L, e, e->num_scenes - 1, &ms, scene_path,
@@ -577,7 +579,7 @@ static void path_from(const mpbd_loader *L, const char *f, char *out, size_t n)
 static const char *const moveit_keys[] = {"problems", "first", "count",
                                           "moveit_scene", "requests", "name",
                                           "tolerance", "clamp_joint_values",
-                                          "set", NULL};
+                                          "set", "seen", NULL};
 
 int mpbd_is_moveit_entry(mpbd_loader *L, yaml_node_t *m)
 {

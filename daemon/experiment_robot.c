@@ -23,9 +23,12 @@ int mpbd_load_model(mpbd_loader *L, yaml_node_t *m, const char *what,
                                              "joints", "group", "srdf",
                                              "joint_values", NULL};
     static const char *const scene_keys[] = {"format", "file", "text", "name",
-                                             "queries", "joints", "set", NULL};
-    const char *const *keys = strcmp(what, "robot") == 0 ? robot_keys
-                                                         : scene_keys;
+                                             "queries", "joints", "set",
+                                             "seen", NULL};
+    static const char *const seen_keys[] = {"format", "file", "text", NULL};
+    const char *const *keys = strcmp(what, "robot") == 0  ? robot_keys
+                              : strcmp(what, "seen") == 0 ? seen_keys
+                                                          : scene_keys;
     yaml_node_t *file, *inline_text;
     if (m == NULL || m->type != YAML_MAPPING_NODE)
         return fail_at(L, m,
@@ -249,7 +252,7 @@ int mpbd_load_group(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *n)
  * scene, the group, the verification; meshes looked for last in the robot
  * file's folder. MPB_OK, or the world's code and why. */
 static int open_scene_world(const mpbd_experiment *e, const mpbd_scene *sc,
-                            mpb_world **out, char *why, size_t len)
+                            int seen, mpb_world **out, char *why, size_t len)
 {
     char dir[4096] = "";
     if (e->robot_file) {
@@ -261,18 +264,20 @@ static int open_scene_world(const mpbd_experiment *e, const mpbd_scene *sc,
             snprintf(dir, sizeof dir, ".");
     }
     int rc = mpb_world_open_group_in(sc->robot_format, sc->robot,
-                                     dir[0] ? dir : NULL, sc->scene_format,
-                                     sc->scene, (const char *const *)e->group,
+                                     dir[0] ? dir : NULL,
+                                     seen ? sc->seen_format : sc->scene_format,
+                                     seen ? sc->seen : sc->scene,
+                                     (const char *const *)e->group,
                                      e->num_group, out, why, len);
     if (rc == MPB_OK)
         mpb_world_set_verification(*out, (mpb_verification)e->verification);
     return rc;
 }
 
-int mpbd_scene_world_copy(const mpbd_experiment *e, int scene,
+int mpbd_scene_world_copy(const mpbd_experiment *e, int scene, int seen,
                           mpb_world **out, char *why, size_t len)
 {
-    return open_scene_world(e, &e->scenes[scene], out, why, len);
+    return open_scene_world(e, &e->scenes[scene], seen, out, why, len);
 }
 
 /* The robot: formats its joints, and gives each scene its world. */
@@ -280,7 +285,7 @@ int mpbd_open_world(mpbd_loader *L, mpbd_experiment *e, mpbd_scene *sc,
                     yaml_node_t *where)
 {
     char why[512];
-    int rc = open_scene_world(e, sc, &sc->world, why, sizeof why);
+    int rc = open_scene_world(e, sc, 0, &sc->world, why, sizeof why);
     const char *goes_with = mpb_world_scene_format(sc->robot_format);
     if (rc == MPB_EUNSUPPORTED &&
         (goes_with == NULL || strcmp(goes_with, sc->scene_format) != 0)) {

@@ -286,6 +286,7 @@ int mpbd_load_scenes(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
         mpb_hash_hex(sc->scene, strlen(sc->scene), sc->scene_hash);
         if (mpbd_open_world(L, e, sc, m) != 0 ||
             mpbd_first_world(L, e, sc) != 0 ||
+            mpbd_load_seen(L, e, sc, m, 1) != 0 ||
             load_queries(L, e, e->num_scenes - 1, m) != 0)
             goto done;
     }

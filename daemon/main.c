@@ -240,8 +240,13 @@ static int compare_scene(void *ud, const mpb_scene_row *row)
             if (e->srdf_file != NULL && row->robot != NULL &&
                 !urdf_part_differs(sc->robot, row->robot))
                 what = "robot SRDF", file = e->srdf_file;
-        } else if (strcmp(sc->scene_hash, row->scene_hash) != 0)
+        } else if (strcmp(sc->scene_hash, row->scene_hash) != 0) {
             what = "scene", file = sc->scene_file;
+        } else if ((sc->seen == NULL) != (row->seen_hash == NULL) ||
+                   (sc->seen != NULL &&
+                    strcmp(sc->seen_hash, row->seen_hash) != 0)) {
+            what = "seen scene";
+        }
         if (what == NULL)
             return 0;
         fprintf(stderr, "mpbenchd: %s: experiment '%s' (id %lld) began with "
@@ -404,6 +409,11 @@ static int setup_experiment(mpbd *d, int fresh)
         if (rc == MPB_OK && sc->problem_set != NULL)
             rc = mpb_store_scene_set_problem_set(s, sc->db_id,
                                                  sc->problem_set);
+        if (rc == MPB_OK && sc->seen != NULL) {
+            mpb_seen_scene seen = {sc->seen_format, sc->seen_hash, sc->seen,
+                                   sc->seen_how};
+            rc = mpb_store_scene_set_seen(s, sc->db_id, &seen);
+        }
     }
     for (int i = 0; rc == MPB_OK && i < e->num_queries; i++) {
         mpbd_query *q = &e->queries[i];
@@ -614,6 +624,8 @@ static int load_experiment(const options *o, mpbd *d)
         warn_line(NULL, err);
     if (mpbd_experiment_orientation_note(d->exp, err, sizeof err))
         warn_line(NULL, err);
+    if (mpbd_experiment_seen_note(d->exp, err, sizeof err))
+        mpbd_log("%s", err);
     if (o->check) {
         const mpbd_experiment *e = d->exp;
         printf("%s: ok: %d scene%s, %d quer%s, %d planner configuration%s, "

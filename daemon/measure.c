@@ -105,13 +105,35 @@ static void test_slow_down(mpbd_measured *out)
     out->verified = mpb_monotonic_s();
 }
 
-int mpbd_result_measure(const mpbd *d, mpb_world *const *worlds,
+/* The final stage st judged on what was seen, in world seen: as on the
+ * truth (a fault of the path's own, its sizes or times, is the same
+ * there), without metrics. */
+static void judge_seen(const mpbd *d, mpb_world *seen, const mpbd_query *q,
+                       const mpb_stage_t *st, const mpbd_stage_work *truth,
+                       mpb_stage_measure *out)
+{
+    mpb_goal goal = mpbd_query_goal(q);
+    if (truth->m.verdict.code == MPB_VERDICT_WRONG_SIZE ||
+        truth->m.verdict.code == MPB_VERDICT_BAD_TIMES) {
+        out->verdict = truth->m.verdict;
+        out->num_metrics = 0;
+        return;
+    }
+    mpbd_query_hold_in(d->exp, q, seen);
+    mpb_measure_stage_timed(seen, q->start, q->tolerance, &goal,
+                            st->waypoints, truth->rec.times,
+                            st->num_waypoints, st->num_joints, st->time,
+                            d->resolution, MPB_MEASURE_NO_METRICS, out);
+}
+
+int mpbd_result_measure(const mpbd *d, const mpbd_worlds *worlds,
                         const mpbd_flight *f, const mpb_plan_result_t *m,
                         mpbd_measured *out)
 {
     const mpbd_query *q = &d->exp->queries[f->run.query];
-    mpb_world *world = worlds != NULL ? worlds[q->scene]
-                                      : d->exp->scenes[q->scene].world;
+    const mpbd_scene *sc = &d->exp->scenes[q->scene];
+    mpb_world *world = worlds != NULL ? worlds->truth[q->scene] : sc->world;
+    mpb_world *seen = worlds != NULL ? worlds->seen[q->scene] : sc->seen_world;
     out->works = calloc((size_t)m->num_stages + 1, sizeof *out->works);
     if (out->works == NULL)
         return MPB_ENOMEM;
@@ -123,6 +145,10 @@ int mpbd_result_measure(const mpbd *d, mpb_world *const *worlds,
     mpbd_query_hold_in(d->exp, q, world);
     for (int i = 0; i < m->num_stages; i++)
         measure_stage(d, world, q, &m->stages[i], &out->works[i]);
+    out->judged_seen = seen != NULL && m->num_stages > 0;
+    if (out->judged_seen)
+        judge_seen(d, seen, q, &m->stages[m->num_stages - 1],
+                   &out->works[m->num_stages - 1], &out->seen);
     out->verified = mpb_monotonic_s();
     test_slow_down(out);
     return MPB_OK;

@@ -327,6 +327,15 @@ static int store_result(mpbd *d, const mpbd_flight *f,
         .num_progress = np,
         .progress = prog,
     };
+    /* Judged on what the planner was given too, by the same rule. */
+    if (ms->judged_seen) {
+        const mpb_verdict *v = &ms->seen.verdict;
+        rec.seen_verdict = mpb_verdict_name(v->code);
+        rec.seen_detail = v->detail;
+        rec.seen_success = mpb_run_success(claimed,
+                                           v->code == MPB_VERDICT_VALID,
+                                           in_time);
+    }
     rc = mpb_store_run_finish(d->store, &rec);
     if (rc == MPB_OK) {
         mpbd_doomed_result(d, f->run.config, rec.status, rec.message);

@@ -48,9 +48,9 @@ static void fill_request(const mpbd_experiment *e, int config, int query,
         .robot_format = s->robot_format,
         .robot_hash = (char *)s->robot_hash,
         .robot = s->robot,
-        .scene_format = s->scene_format,
-        .scene_hash = (char *)s->scene_hash,
-        .scene = s->scene,
+        .scene_format = (char *)mpbd_scene_given_format(s),
+        .scene_hash = (char *)mpbd_scene_given_hash(s),
+        .scene = (char *)mpbd_scene_given(s),
         .num_joints = (int16_t)e->num_joints,
         .joint_names = e->joint_names,
         .start = q->start,
@@ -92,7 +92,7 @@ int mpbd_requests_fit(const mpbd_experiment *e, int authenticated, char *err,
         stored[i] = run_id;
     for (int q = 0; q < e->num_queries; q++) {
         const mpbd_scene *s = &e->scenes[e->queries[q].scene];
-        size_t robot = strlen(s->robot), scene = strlen(s->scene);
+        size_t robot = strlen(s->robot), scene = strlen(mpbd_scene_given(s));
         size_t rest = 0;
         for (int c = 0; c < e->num_configs; c++) {
             mpb_plan_request_t rq;

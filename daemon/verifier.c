@@ -50,7 +50,7 @@ typedef struct worker {
     struct mpbd_verifier *v;
     pthread_t       thread;
     int             started;
-    mpb_world     **worlds;      /* per scene; NULL: the experiment's */
+    mpbd_worlds     worlds;      /* per scene; NULL: the experiment's */
     job            *current;     /* the one it is measuring (under mu) */
 } worker;
 
@@ -124,7 +124,8 @@ static void *work(void *arg)
         v->busy++;
         pthread_mutex_unlock(&v->mu);
         mpbd_measured_free(&j->ms);
-        j->ok = mpbd_result_measure(v->d, w->worlds, &j->f, j->m,
+        j->ok = mpbd_result_measure(v->d, w->worlds.truth ? &w->worlds : NULL,
+                                    &j->f, j->m,
                                     &j->ms) == MPB_OK;
         pthread_mutex_lock(&v->mu);
         w->current = NULL;
@@ -142,32 +143,42 @@ static void *work(void *arg)
 }
 
 /* The worlds of worker w: none for the first (the experiment's), a copy
- * of every scene's for the others. */
+ * of every scene's (and of what its planners were given) for the others. */
 static int open_worlds(struct mpbd_verifier *v, worker *w)
 {
     const mpbd_experiment *e = v->d->exp;
     char why[512];
     if (w == &v->workers[0])
         return MPB_OK;
-    if ((w->worlds = calloc((size_t)e->num_scenes + 1, sizeof *w->worlds)) == NULL)
+    size_t n = (size_t)e->num_scenes + 1;
+    if ((w->worlds.truth = calloc(n, sizeof *w->worlds.truth)) == NULL ||
+        (w->worlds.seen = calloc(n, sizeof *w->worlds.seen)) == NULL)
         return MPB_ENOMEM;
-    for (int i = 0; i < e->num_scenes; i++) {
-        int rc = mpbd_scene_world_copy(e, i, &w->worlds[i], why, sizeof why);
-        if (rc != MPB_OK) {
-            mpbd_log("verifier thread %d: cannot open scene '%s' again: %s",
-                     (int)(w - v->workers) + 1, e->scenes[i].name, why);
-            return rc;
+    for (int i = 0; i < e->num_scenes; i++)
+        for (int seen = 0; seen < 1 + (e->scenes[i].seen != NULL); seen++) {
+            mpb_world **out = seen ? &w->worlds.seen[i] : &w->worlds.truth[i];
+            int rc = mpbd_scene_world_copy(e, i, seen, out, why, sizeof why);
+            if (rc != MPB_OK) {
+                mpbd_log("verifier thread %d: cannot open scene '%s'%s "
+                         "again: %s", (int)(w - v->workers) + 1,
+                         e->scenes[i].name, seen ? " as seen" : "", why);
+                return rc;
+            }
         }
-    }
     return MPB_OK;
 }
 
 static void close_worlds(const mpbd_experiment *e, worker *w)
 {
-    for (int i = 0; w->worlds != NULL && i < e->num_scenes; i++)
-        mpb_world_close(w->worlds[i]);
-    free(w->worlds);
-    w->worlds = NULL;
+    for (int i = 0; i < e->num_scenes; i++) {
+        if (w->worlds.truth != NULL)
+            mpb_world_close(w->worlds.truth[i]);
+        if (w->worlds.seen != NULL)
+            mpb_world_close(w->worlds.seen[i]);
+    }
+    free(w->worlds.truth);
+    free(w->worlds.seen);
+    w->worlds.truth = w->worlds.seen = NULL;
 }
 
 /* Stop and join the workers started, and free everything of v. */

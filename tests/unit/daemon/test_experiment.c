@@ -642,6 +642,83 @@ static void a_scene_file_names_its_octree(void **state)
     assert_non_null(strstr(err, "gone.bt: cannot open"));
 }
 
+/* A scene entry's `seen:`: what its planners are given instead of the
+ * scene. A file of its own, or what cameras see of the scene (the same
+ * bytes for the same seed, others for another); its world opened for
+ * judging on it; bad settings refused at their place. */
+static void a_scene_may_be_planned_on_what_was_seen(void **state)
+{
+    (void)state;
+    char text[2048], path[160];
+    write_slide_robot();
+    snprintf(path, sizeof path, "%s/phantom.scene", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("seen\n* phantom\n0 1 0\n0 0 0 1\n1\nbox\n0.2 0.2 0.2\n0 0 0\n"
+          "0 0 0 1\n0 0 0 0\n0\n.\n", f);
+    assert_int_equal(fclose(f), 0);
+#define SEEN_EXPERIMENT(seen) "experiment: {name: x, time_limit: 1}\n" \
+        "robot: {format: urdf, file: slide.urdf, joints: [j]}\n" \
+        "scenes: [{name: s, format: moveit-scene, text: " SLIDE_SCENE ",\n" \
+        "  seen: " seen ",\n" \
+        "  queries: [{name: q, start: [1.5], goal: [-1.5]}]}]\n" PLANNERS
+    snprintf(text, sizeof text, "%s",
+             SEEN_EXPERIMENT("{format: moveit-scene, file: phantom.scene}"));
+    mpbd_experiment *e = load_text(text);
+    if (!e)
+        fail_msg("%s", err);
+    const mpbd_scene *sc = &e->scenes[0];
+    assert_non_null(sc->seen);
+    assert_non_null(strstr(sc->seen, "* phantom"));
+    assert_null(strstr(sc->scene, "phantom"));
+    assert_string_equal(mpbd_scene_given(sc), sc->seen);
+    assert_non_null(sc->seen_world);
+    assert_non_null(strstr(sc->seen_how, "phantom.scene"));
+    mpbd_experiment_free(e);
+
+    /* sensed: a seed gives the same bytes, another seed others */
+    char hash[3][MPB_HASH_SIZE];
+    const char *const sensed[] = {
+        "{sense: {seed: 7, resolution: 0.02, noise: 0.001}}",
+        "{sense: {seed: 7, resolution: 0.02, noise: 0.001}}",
+        "{sense: {seed: 8, resolution: 0.02, noise: 0.001}}",
+    };
+    for (int i = 0; i < 3; i++) {
+        snprintf(text, sizeof text,
+                 "experiment: {name: x, time_limit: 1}\n"
+                 "robot: {format: urdf, file: slide.urdf, joints: [j]}\n"
+                 "scenes: [{name: s, format: moveit-scene, text: " SLIDE_SCENE ",\n"
+                 "  seen: %s,\n"
+                 "  queries: [{name: q, start: [1.5], goal: [-1.5]}]}]\n" PLANNERS,
+                 sensed[i]);
+        assert_non_null(e = load_text(text));
+        assert_non_null(strstr(e->scenes[0].seen, "\noctree "));
+        assert_non_null(strstr(e->scenes[0].seen_how, "sensed: 2 cameras"));
+        assert_non_null(e->scenes[0].seen_world);
+        memcpy(hash[i], e->scenes[0].seen_hash, MPB_HASH_SIZE);
+        mpbd_experiment_free(e);
+    }
+    assert_memory_equal(hash[0], hash[1], MPB_HASH_SIZE);
+    assert_memory_not_equal(hash[0], hash[2], MPB_HASH_SIZE);
+
+    /* bad settings, at their place */
+    snprintf(text, sizeof text, "%s", SEEN_EXPERIMENT("{sense: {fov: 200}}"));
+    assert_null(load_text(text));
+    assert_non_null(strstr(err, "e.yaml:4:17: sense: "));
+    assert_non_null(strstr(err, "fov"));
+    snprintf(text, sizeof text, "%s", SEEN_EXPERIMENT("{sense: {lens: 3}}"));
+    assert_null(load_text(text));
+    assert_non_null(strstr(err, "lens"));
+    snprintf(text, sizeof text, "%s", SEEN_EXPERIMENT("{format: moveit-scene}"));
+    assert_null(load_text(text));
+    assert_non_null(strstr(err, "exactly one of 'file' and 'text'"));
+    snprintf(text, sizeof text, "%s", SEEN_EXPERIMENT("phantom.scene"));
+    assert_null(load_text(text));
+    assert_error("4:9", "seen must be a mapping: a scene (format and file or "
+                 "text) or sense: {camera settings}");
+#undef SEEN_EXPERIMENT
+}
+
 /* A MoveIt scene file with requests (moveit.h), on the slide robot: the
  * scene's and the start's values of k are held, the request's start
  * wins, the tightest tolerance rules, pose goals name a link, and the
@@ -846,6 +923,7 @@ int main(void)
         cmocka_unit_test(an_unsupported_robot_is_not_a_format),
         cmocka_unit_test(joints_outside_the_group_hold_values),
         cmocka_unit_test(a_scene_file_names_its_octree),
+        cmocka_unit_test(a_scene_may_be_planned_on_what_was_seen),
         cmocka_unit_test(moveit_files_become_scenes_and_queries),
         cmocka_unit_test(moveit_files_of_a_fuller_model_fit_the_robot),
         cmocka_unit_test(faults_are_where_their_file_is_named),
