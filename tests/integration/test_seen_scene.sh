@@ -93,6 +93,19 @@ check "mpb report sets success on the truth beside success on what was seen" \
     says "$report" "Planned on what was seen, judged on what is there"
 check "... the null planner: one seen-only and one truth-only success a run" \
     says "$report" "null/straight_line +4 +2 \(50%\) +2 \(50%\) +2 +2"
+# mpb view draws what the planner saw over the truth, and says how the
+# run fared there.
+run=$(q "SELECT r.id FROM runs r JOIN queries q ON q.id = r.query_id
+         JOIN planner_configs c ON c.id = r.planner_config_id
+         WHERE c.planner = 'null' AND q.name = 'by_phantom' LIMIT 1")
+"$MPB_BUILD/tools/mpb" view "$DB" "$run" -o "$work/run.html" >/dev/null 2>&1
+check "mpb view writes the run's page" eq $? 0
+seen=$(sed -n 's/.*"seen":{"how":"\([^"]*\)","success":\([0-9-]*\),"verdict":"\([a-z_]*\)".*/\1|\2|\3/p' \
+       "$work/run.html")
+check "... with what was seen, how the run fared there" \
+    test "${seen#given: }" = "$work/seen.scene|0|collision"
+check "... and its phantom to draw" grep -q '"name":"phantom"' "$work/run.html"
+
 # Again, with a pool of verifier threads: each judges on its own copies.
 mpb_spawn "$work/ompl.log" "$MPB_BUILD/planners/ompl/mpb-planner-ompl"
 mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"

@@ -59,6 +59,15 @@ typedef struct view_run {
     float         *goal_poses;     /* joint goals: moving bodies x 7 */
     view_stage    *stages;
     int            num_stages;
+    /* What its planner was given instead of the scene (`seen:`), or
+     * seen_world NULL: its obstacles, drawn beside the truth's, and the
+     * run's judgement there. */
+    char          *seen_how;
+    mpb_world     *seen_world;
+    mpb_bodies    *seen_bodies;
+    float         *seen_poses;     /* every seen body x 7, at the start */
+    char          *seen_verdict, *seen_detail;
+    int            seen_success;   /* 1, 0; -1: not judged there */
 } view_run;
 
 /* calloc and strdup that end mpb with one line when memory runs out. */

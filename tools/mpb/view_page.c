@@ -168,16 +168,22 @@ static void json_meshes(FILE *f, const mesh_list *l)
     fputs("]", f);
 }
 
-static int json_bodies(FILE *f, const view_run *v, mesh_list *meshes)
+/* The bodies of b, each at its pose in poses (7 floats a body); with
+ * obstacles_only, the scene's alone (what was seen: the robot is the
+ * truth's). */
+static int json_bodies(FILE *f, const mpb_bodies *bodies, const float *poses,
+                       int obstacles_only, mesh_list *meshes)
 {
-    int nb = mpb_bodies_count(v->bodies);
+    int nb = mpb_bodies_count(bodies), written = 0;
     fputs("[", f);
     for (int i = 0; i < nb; i++) {
-        const mpb_body *b = mpb_bodies_get(v->bodies, i);
-        fputs(i ? ",\n{\"name\":" : "\n{\"name\":", f);
+        const mpb_body *b = mpb_bodies_get(bodies, i);
+        if (obstacles_only && b->robot)
+            continue;
+        fputs(written++ ? ",\n{\"name\":" : "\n{\"name\":", f);
         json_str(f, b->name);
         fprintf(f, ",\"robot\":%d,\"moves\":%d,\"pose\":", b->robot, b->moves);
-        json_floats(f, v->static_poses + 7 * i, 7);
+        json_floats(f, poses + 7 * i, 7);
         fputs(",\"shapes\":[", f);
         for (int k = 0; k < b->num_shapes; k++) {
             const mpb_body_shape *s = &b->shapes[k];
@@ -308,9 +314,28 @@ static int json_run(FILE *f, const view_run *v)
         fputs("null", f);
     }
     fputs(",\n\"bodies\":", f);
-    if (json_bodies(f, v, &meshes) != 0) {
+    if (json_bodies(f, v->bodies, v->static_poses, 0, &meshes) != 0) {
         free(meshes.m);
         return -1;
+    }
+    /* What its planner was given instead of the scene, and the run as
+     * judged there. */
+    fputs(",\n\"seen\":", f);
+    if (v->seen_bodies != NULL) {
+        fputs("{\"how\":", f);
+        json_str(f, v->seen_how ? v->seen_how : "");
+        fprintf(f, ",\"success\":%d,\"verdict\":", v->seen_success);
+        json_str(f, v->seen_verdict ? v->seen_verdict : "");
+        fputs(",\"detail\":", f);
+        json_str(f, v->seen_detail ? v->seen_detail : "");
+        fputs(",\"bodies\":", f);
+        if (json_bodies(f, v->seen_bodies, v->seen_poses, 1, &meshes) != 0) {
+            free(meshes.m);
+            return -1;
+        }
+        fputs("}", f);
+    } else {
+        fputs("null", f);
     }
     fputs(",\n\"meshes\":", f);
     json_meshes(f, &meshes);

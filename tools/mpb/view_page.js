@@ -22,7 +22,7 @@ const uints = (b64) => new Uint32Array(bytes(b64).buffer);
 const COLORS = {
   robot: 0xc9ced8, robotStatic: 0x8e97a8, obstacle: 0xc8b89a,
   start: 0x4f86d9, goal: 0x34a853, collision: 0xe53935, trail: 0xf2a900,
-  contactObstacle: 0xff7043,
+  contactObstacle: 0xff7043, seen: 0x8e44ad,
 };
 
 // ---- the scene -------------------------------------------------------------
@@ -131,6 +131,25 @@ data.bodies.forEach((b, i) => {
   (b.robot ? world : sceneGroup).add(o);
   staticObjects[i] = o;
 });
+
+// What the planner was given instead of the scene (an experiment's seen:,
+// such as a sensed octree's cells): its obstacles, over the truth's.
+const seenGroup = new THREE.Group();
+world.add(seenGroup);
+if (data.seen) {
+  const seenMat = material(COLORS.seen, 0.45);
+  for (const b of data.seen.bodies) {
+    const g = new THREE.Group();
+    for (const s of b.shapes) {
+      const m = new THREE.Mesh(shapeGeometry(s, extent), seenMat);
+      setPose(m, s.offset);
+      g.add(m);
+    }
+    setPose(g, b.pose);
+    seenGroup.add(g);
+  }
+  $('seen-key').style.display = 'block';
+}
 
 // A robot: one group per moving body, placed from a pose array.
 function makeRobot(mat) {
@@ -347,6 +366,7 @@ function applyVisibility() {
   setFrame(frame);
   if (trail) trail.visible = $('show-trail').checked;
   sceneGroup.visible = $('show-scene').checked;
+  seenGroup.visible = $('show-seen').checked;
   render();
 }
 
@@ -360,6 +380,12 @@ const runInfo = [
   ['time', run.time_total == null ? '-' : run.time_total.toFixed(4) + ' s'],
   ['planner', run.planner_id || '-'], ['message', run.message || '-'],
 ];
+if (data.seen) {
+  const sn = data.seen;
+  runInfo.push(['planned on', sn.how || 'what was seen'],
+    ['on what was seen', sn.success === 1 ? 'success'
+      : sn.success === 0 ? 'no success (' + (sn.detail || sn.verdict) + ')' : '-']);
+}
 for (const [k, v] of runInfo) {
   const d = document.createElement('div');
   const b = document.createElement('b');
@@ -379,7 +405,8 @@ const firstBad = Math.max(0, stages.findIndex((s) => !s.valid));
 $('stage').value = firstBad;
 $('stage').addEventListener('change', (e) => setStage(Number(e.target.value)));
 $('slider').addEventListener('input', (e) => { stop(); setFrame(Number(e.target.value)); });
-for (const id of ['show-start', 'show-goal', 'show-collision', 'show-trail', 'show-scene'])
+for (const id of ['show-start', 'show-goal', 'show-collision', 'show-trail', 'show-scene',
+  'show-seen'])
   $(id).addEventListener('change', applyVisibility);
 $('to-failure').addEventListener('click', () => { stop(); setFrame(stage.fail_frame); });
 

@@ -70,6 +70,13 @@ static int on_run(void *ud, const mpb_run_detail *d)
     v->run.status = v->strs[3];
     v->run.message = v->strs[4];
     v->run.verdict = v->strs[5];
+    v->seen_success = d->seen_success;
+    if (d->seen_verdict != NULL) {
+        v->seen_verdict = view_strdup(d->seen_verdict);
+        v->seen_detail = view_strdup(d->seen_detail);
+    }
+    v->run.seen_verdict = v->seen_verdict;
+    v->run.seen_detail = v->seen_detail;
     return 0;
 }
 
@@ -82,6 +89,7 @@ static int on_experiment(void *ud, const mpb_experiment_row *e)
 typedef struct scene_text {
     view_run *v;
     char     *robot, *scene, *scene_format;
+    char     *seen, *seen_format;   /* what its planners were given, or NULL */
 } scene_text;
 
 static int on_scene(void *ud, const mpb_scene_row *row)
@@ -94,6 +102,11 @@ static int on_scene(void *ud, const mpb_scene_row *row)
     t->robot = view_strdup(row->robot);
     t->scene = view_strdup(row->scene);
     t->scene_format = view_strdup(row->scene_format);
+    if (row->seen != NULL) {
+        t->seen = view_strdup(row->seen);
+        t->seen_format = view_strdup(row->seen_format);
+        t->v->seen_how = view_strdup(row->seen_how);
+    }
     return 1;
 }
 
@@ -321,6 +334,28 @@ static int prepare(view_run *v, char *err, size_t errlen)
         if (put_poses(v, all, v->goal_joints, v->goal_poses) != 0)
             goto done;
     }
+    if (v->seen_world != NULL) {
+        if (mpb_bodies_open(v->seen_world, &v->seen_bodies, err, errlen)
+                != MPB_OK)
+            goto done;
+        int ns = mpb_bodies_count(v->seen_bodies);
+        mpb_pose *seen = view_calloc((size_t)ns, sizeof *seen);
+        snprintf(err, errlen, "the start is not a configuration");
+        if (mpb_bodies_poses(v->seen_bodies, v->start, seen) != MPB_OK) {
+            free(seen);
+            goto done;
+        }
+        v->seen_poses = view_calloc((size_t)ns * 7, sizeof *v->seen_poses);
+        for (int i = 0; i < ns; i++) {
+            double quat[4];
+            mpb_pose_get_quat(&seen[i], quat);
+            for (int k = 0; k < 3; k++)
+                v->seen_poses[7 * i + k] = (float)seen[i].t[k];
+            for (int k = 0; k < 4; k++)
+                v->seen_poses[7 * i + 3 + k] = (float)quat[k];
+        }
+        free(seen);
+    }
     snprintf(err, errlen, "a waypoint is not a configuration (NaN?)");
     for (int i = 0; i < v->num_stages; i++)
         if (make_frames(v, &v->stages[i], all) != 0)
@@ -335,6 +370,12 @@ void view_free(view_run *v)
 {
     mpb_bodies_close(v->bodies);
     mpb_world_close(v->world);
+    mpb_bodies_close(v->seen_bodies);
+    mpb_world_close(v->seen_world);
+    free(v->seen_how);
+    free(v->seen_poses);
+    free(v->seen_verdict);
+    free(v->seen_detail);
     for (int i = 0; i < 6; i++)
         free(v->strs[i]);
     free(v->experiment);
@@ -375,7 +416,7 @@ int view_read(const char *cmd, mpb_store *s, const char *db, int64_t run_id,
               view_run *v, char *why, size_t whylen)
 {
     char err[512] = "";
-    scene_text t = {v, NULL, NULL, NULL};
+    scene_text t = {v, NULL, NULL, NULL, NULL, NULL};
     int rc = mpb_store_run_get(s, run_id, on_run, v), status = -1;
     if (rc == MPB_ENOTFOUND) {
         fprintf(stderr, "mpb %s: %s: no run %lld\n", cmd, db,
@@ -433,11 +474,26 @@ int view_read(const char *cmd, mpb_store *s, const char *db, int64_t run_id,
                 cmd, db, (long long)run_id, v->query, err);
         goto out;
     }
+    /* What its planner saw, as the daemon judged it there. */
+    if (t.seen != NULL &&
+        (mpb_world_open_group(v->robot_format, t.robot, t.seen_format, t.seen,
+                              (const char *const *)v->joint_names,
+                              v->num_joints, &v->seen_world, err, sizeof err)
+             != MPB_OK ||
+         mpb_world_hold(v->seen_world, (const char *const *)v->held_names,
+                        v->held_values, v->num_held, err, sizeof err)
+             != MPB_OK)) {
+        fprintf(stderr, "mpb %s: %s: run %lld: scene '%s', what was seen: %s\n",
+                cmd, db, (long long)run_id, v->scene, err);
+        goto out;
+    }
     status = 0;
 out:
     free(t.robot);
     free(t.scene);
     free(t.scene_format);
+    free(t.seen);
+    free(t.seen_format);
     return status;
 }
 

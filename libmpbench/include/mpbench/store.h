@@ -603,6 +603,11 @@ typedef struct mpb_run_detail {
                                    verdict was valid (0 if none) */
     int         in_time;        /* runs.in_time (1 if none): the facts
                                    the success rule takes (outcome.h) */
+    const char *seen_verdict;   /* judged on what its planner was given
+                                   (mpb_seen_scene): the final stage's
+                                   verdict there and its detail; NULL: */
+    const char *seen_detail;    /* the run was not so judged */
+    int         seen_success;   /* 1, 0; -1 where not so judged */
 } mpb_run_detail;
 
 /*

@@ -24,18 +24,22 @@ int mpb_store_run_get(mpb_store *s, int64_t run_id,
     /* runs.in_time, or for a database made before it, what its runs
      * say: only a claimed run with a valid final stage could be no
      * success, and then for its time alone (store.c, add_outcomes()). */
-    char sql[640];
+    /* A database made before seen scenes judged nothing on them. */
+    char sql[800];
     snprintf(sql, sizeof sql,
         "SELECT r.id, r.experiment_id, r.planner_config_id, r.query_id,"
         " q.scene_id, r.repetition, r.state, p.name, r.planner_id, r.status,"
         " r.message, r.verdict, r.success, r.time_total,"
-        " coalesce(r.claimed_success, 0), coalesce(r.valid, 0), %s"
+        " coalesce(r.claimed_success, 0), coalesce(r.valid, 0), %s, %s"
         " FROM runs r JOIN planner_configs p ON p.id = r.planner_config_id"
         " JOIN queries q ON q.id = r.query_id WHERE r.id = ?",
         mpb__store_has_column(s, "runs", "in_time")
             ? "coalesce(r.in_time, 1)"
             : "NOT (coalesce(r.claimed_success, 0) AND coalesce(r.valid, 0)"
-              " AND NOT coalesce(r.success, 0))");
+              " AND NOT coalesce(r.success, 0))",
+        mpb__store_has_column(s, "runs", "seen_success")
+            ? "r.seen_verdict, r.seen_detail, r.seen_success"
+            : "NULL, NULL, NULL");
     sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
@@ -62,7 +66,15 @@ int mpb_store_run_get(mpb_store *s, int64_t run_id,
             .claimed = sqlite3_column_int(st, 14),
             .final_valid = sqlite3_column_int(st, 15),
             .in_time = sqlite3_column_int(st, 16),
+            .seen_verdict = (const char *)sqlite3_column_text(st, 17),
+            .seen_detail = (const char *)sqlite3_column_text(st, 18),
+            .seen_success = sqlite3_column_type(st, 19) == SQLITE_NULL
+                                ? -1 : sqlite3_column_int(st, 19),
         };
+        if (d.seen_verdict == NULL || d.seen_success < 0) {
+            d.seen_verdict = d.seen_detail = NULL;
+            d.seen_success = -1;
+        }
         rc = cb(ud, &d);
     } else if (step == SQLITE_DONE) {
         rc = mpb__store_fail(s, MPB_ENOTFOUND, "no run %lld",
