@@ -93,6 +93,17 @@ check "mpb report sets success on the truth beside success on what was seen" \
     says "$report" "Planned on what was seen, judged on what is there"
 check "... the null planner: one seen-only and one truth-only success a run" \
     says "$report" "null/straight_line +4 +2 \(50%\) +2 \(50%\) +2 +2"
+# mpb verify judges every final stage again on what its planner saw.
+out=$("$MPB_BUILD/tools/mpb" verify "$DB")
+check "mpb verify agrees on both judgements: exit 0" eq $? 0
+check "... having judged the 8 final stages again on what was seen" test -n \
+    "$(printf '%s\n' "$out" | grep -x '8 final stages judged again on what their planner saw: 0 changed verdict')"
+cp "$DB" "$work/tampered.db"
+sqlite3 "$work/tampered.db" "UPDATE runs SET seen_verdict = 'valid' WHERE seen_verdict = 'collision'"
+out=$("$MPB_BUILD/tools/mpb" verify "$work/tampered.db")
+check "... and finds a stored judgement on what was seen that does not hold" \
+    test "$?|$(printf '%s\n' "$out" | grep -c 'on what was seen: stored valid, now collision')" = "1|2"
+
 # mpb view draws what the planner saw over the truth, and says how the
 # run fared there.
 run=$(q "SELECT r.id FROM runs r JOIN queries q ON q.id = r.query_id

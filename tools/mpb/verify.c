@@ -71,6 +71,8 @@ typedef struct totals {
     long successes, lost, lost_self, gained;
     long outcomes[MPB_OUTCOME_COUNT];   /* decided again, runs with stages */
     long decided_otherwise;             /* outcome now not the stored one */
+    long seen_checked, seen_changed;    /* final stages judged again on what
+                                           their planner saw (seen:) */
     /* the depths of the collision verdicts now, mm (upper, lower) */
     double *depth_up, *depth_lo;
     long    collisions, depths, depth_cap;
@@ -215,6 +217,29 @@ static int verify_run(mpb_store *s, const char *db, int64_t run_id,
                now.detail, depth_text(&now, deep, sizeof deep));
     }
     t->changed_runs += changed;
+    /* Its final stage judged again on what its planner saw, as the daemon
+     * judged it (measure.c): its verdict there as stored, or another. */
+    const view_stage *last = v.num_stages > 0 ? &v.stages[v.num_stages - 1]
+                                              : NULL;
+    if (v.seen_world != NULL && v.seen_verdict != NULL && last != NULL &&
+        last->num_waypoints > 0 && strcmp(last->verdict, "bad_times") != 0) {
+        view_run seen = v;
+        seen.world = v.seen_world;
+        mpb_verdict now;
+        if (verify_stage(&seen, last, &goal, res, db, run_id, &now) != 0) {
+            view_free(&v);
+            return -1;
+        }
+        t->seen_checked++;
+        const char *name = mpb_verdict_name(now.code);
+        if (strcmp(name, v.seen_verdict) != 0) {
+            t->seen_changed++;
+            printf("run %lld %s/%s %s stage %s on what was seen: stored %s, "
+                   "now %s%s%s\n", (long long)run_id, v.scene, v.query,
+                   v.run.planner_config, last->name, v.seen_verdict, name,
+                   now.detail[0] ? ": " : "", now.detail);
+        }
+    }
     /* The success rule again (outcome.h), as mpbenchd applied it: the
      * planner's claim and the time it took as stored, the final verdict
      * as found now. */
@@ -332,6 +357,9 @@ int cmd_verify(int argc, char **argv)
     if (t.gained)
         printf("; %ld failed runs now verify", t.gained);
     printf("\n");
+    if (t.seen_checked > 0)
+        printf("%ld final stages judged again on what their planner saw: "
+               "%ld changed verdict\n", t.seen_checked, t.seen_changed);
     free(t.depth_up);
     free(t.depth_lo);
     printf("outcomes by the success rule:");
@@ -339,8 +367,8 @@ int cmd_verify(int argc, char **argv)
         printf(" %s %ld%s", mpb_outcome_name((mpb_outcome)o), t.outcomes[o],
                o + 1 < MPB_OUTCOME_COUNT ? "," : "");
     printf("; %ld runs decided otherwise than stored\n", t.decided_otherwise);
-    status = t.changed_stages || t.decided_otherwise ? MPB_EXIT_ERROR
-                                                     : MPB_EXIT_OK;
+    status = t.changed_stages || t.decided_otherwise || t.seen_changed
+                 ? MPB_EXIT_ERROR : MPB_EXIT_OK;
 out:
     view_selection_free(&sel);
     mpb_store_close(s);
