@@ -251,3 +251,29 @@ def test_limits_moved_keep_the_stop_and_move_the_deadline():
     assert later.should_stop()
     stop["now"] = False
     assert limits.moved(-1.0).should_stop()
+
+
+def test_the_kit_speaks_libmpbench_list_of_messages():
+    """Every message of mpbench/messages.h, in libmpbench's order: the kit
+    has its generated type and sends and listens on the same channel."""
+    import ctypes
+
+    import mpb
+    from mpbplanner import node
+    from mpbplanner.libmpbench import Functions
+
+    lib = Functions(mpb_wire_type_name=(ctypes.c_char_p, ctypes.c_int),
+                    mpb_wire_channel=(ctypes.c_char_p, ctypes.c_int))
+    kit = {"planner_announce_t": node.ANNOUNCE,
+           "plan_request_t": node.REQUEST_PREFIX,
+           "plan_result_t": node.RESULT, "run_ack_t": node.ACK,
+           "daemon_status_t": node.STATUS}
+    listed = {}
+    t = 0
+    while lib.mpb_wire_channel(t) is not None:
+        listed[lib.mpb_wire_type_name(t).decode()] = \
+            lib.mpb_wire_channel(t).decode()
+        t += 1
+    assert listed == kit
+    for name in listed:
+        assert hasattr(mpb, name), name

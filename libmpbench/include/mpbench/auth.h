@@ -39,11 +39,8 @@
 
 #include <lcm/lcm.h>
 
-#include "mpb_daemon_status_t.h"
-#include "mpb_plan_request_t.h"
-#include "mpb_plan_result_t.h"
-#include "mpb_planner_announce_t.h"
-#include "mpb_run_ack_t.h"
+#include "mpbench/messages.h"
+#include "mpb_lcmtypes.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -108,18 +105,17 @@ const char *mpb_auth_verdict_text(mpb_auth_verdict v);
 /*
  * Publish a message, followed by its trailer when a is not NULL; echo is
  * the instance of the process it answers (0 for none). Return MPB_OK, or
- * MPB_ENOMEM / MPB_ELCM.
+ * MPB_ENOMEM / MPB_ELCM. One function per message of messages.h:
+ *   int mpb_publish_announce(lcm_t *lcm, mpb_auth *a, uint64_t echo,
+ *                            const char *channel,
+ *                            const mpb_planner_announce_t *m);
+ * and mpb_publish_request, _result, _ack, _status the same way.
  */
-int mpb_publish_announce(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                         const char *channel, const mpb_planner_announce_t *m);
-int mpb_publish_request(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                        const char *channel, const mpb_plan_request_t *m);
-int mpb_publish_result(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                       const char *channel, const mpb_plan_result_t *m);
-int mpb_publish_ack(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                    const char *channel, const mpb_run_ack_t *m);
-int mpb_publish_status(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                       const char *channel, const mpb_daemon_status_t *m);
+#define MPB__PUBLISH_DECL(ID, name, type, channel)                          \
+    int mpb_publish_##name(lcm_t *lcm, mpb_auth *a, uint64_t echo,          \
+                           const char *ch, const mpb_##type *m);
+MPB_MESSAGES(MPB__PUBLISH_DECL)
+#undef MPB__PUBLISH_DECL
 
 /*
  * The trailer for a message of len bytes at buf on channel, as publishing

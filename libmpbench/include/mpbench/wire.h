@@ -8,24 +8,35 @@
  * network is therefore checked here first, without allocating: every
  * length non-negative and within the bytes that remain, every string
  * NUL-terminated, the type's fingerprint right, nothing left over. Only a
- * message that passes is given to the generated decoder.
+ * message that passes is given to the generated decoder. The walk of
+ * each type is generated from its .lcm file (lcmtypes/gen_walks.py).
  */
 #ifndef MPBENCH_WIRE_H
 #define MPBENCH_WIRE_H
 
 #include <stddef.h>
 
+#include "mpbench/messages.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+/* Each message of messages.h: MPB_WIRE_PLANNER_ANNOUNCE, ... */
 typedef enum mpb_wire_type {
-    MPB_WIRE_PLANNER_ANNOUNCE,
-    MPB_WIRE_PLAN_REQUEST,
-    MPB_WIRE_PLAN_RESULT,
-    MPB_WIRE_RUN_ACK,
-    MPB_WIRE_DAEMON_STATUS
+#define MPB__WIRE_TAG(ID, name, type, channel) MPB_WIRE_##ID,
+    MPB_MESSAGES(MPB__WIRE_TAG)
+#undef MPB__WIRE_TAG
+    MPB_WIRE_COUNT                  /* how many; not a message */
 } mpb_wire_type;
+
+/* The message's type name ("plan_request_t"); "?" for no message. */
+const char *mpb_wire_type_name(mpb_wire_type type);
+
+/* The message's channel (messages.h), or for a message to one process
+ * the prefix its id follows; NULL for no message. For other languages'
+ * kits, which check their own list against this one. */
+const char *mpb_wire_channel(mpb_wire_type type);
 
 /*
  * 1 if the len bytes at buf are a well-formed encoding of a message of the

@@ -262,32 +262,12 @@ static int send_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
         return send_encoded(lcm, a, echo, channel, b_, n_);                  \
     } while (0)
 
-int mpb_publish_announce(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                         const char *channel, const mpb_planner_announce_t *m)
-{
-    MPB__PUBLISH(mpb_planner_announce_t, lcm, a, echo, channel, m);
-}
-
-int mpb_publish_request(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                        const char *channel, const mpb_plan_request_t *m)
-{
-    MPB__PUBLISH(mpb_plan_request_t, lcm, a, echo, channel, m);
-}
-
-int mpb_publish_result(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                       const char *channel, const mpb_plan_result_t *m)
-{
-    MPB__PUBLISH(mpb_plan_result_t, lcm, a, echo, channel, m);
-}
-
-int mpb_publish_ack(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                    const char *channel, const mpb_run_ack_t *m)
-{
-    MPB__PUBLISH(mpb_run_ack_t, lcm, a, echo, channel, m);
-}
-
-int mpb_publish_status(lcm_t *lcm, mpb_auth *a, uint64_t echo,
-                       const char *channel, const mpb_daemon_status_t *m)
-{
-    MPB__PUBLISH(mpb_daemon_status_t, lcm, a, echo, channel, m);
-}
+/* mpb_publish_<name>() for each message of messages.h. */
+#define MPB__PUBLISH_DEF(ID, name, type, channel)                           \
+    int mpb_publish_##name(lcm_t *lcm, mpb_auth *a, uint64_t echo,          \
+                           const char *ch, const mpb_##type *m)             \
+    {                                                                       \
+        MPB__PUBLISH(mpb_##type, lcm, a, echo, ch, m);                      \
+    }
+MPB_MESSAGES(MPB__PUBLISH_DEF)
+#undef MPB__PUBLISH_DEF

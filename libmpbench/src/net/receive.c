@@ -89,20 +89,20 @@ int mpb_receive_decode_result(const void *data, int len, mpb_plan_result_t *out)
     return rc;
 }
 
-/* The generated decoder of each type, through one signature. */
+/* The generated decoder of each message (messages.h), through one
+ * signature; an announcement and a result in their older layouts too. */
 static int decode(mpb_wire_type type, const void *data, int len, void *msg)
 {
-    switch (type) {
-    case MPB_WIRE_PLANNER_ANNOUNCE:
+    if (type == MPB_WIRE_PLANNER_ANNOUNCE)
         return decode_announce(data, len, msg);
-    case MPB_WIRE_PLAN_REQUEST:
-        return mpb_plan_request_t_decode(data, 0, len, msg);
-    case MPB_WIRE_PLAN_RESULT:
+    if (type == MPB_WIRE_PLAN_RESULT)
         return mpb_receive_decode_result(data, len, msg);
-    case MPB_WIRE_RUN_ACK:
-        return mpb_run_ack_t_decode(data, 0, len, msg);
-    case MPB_WIRE_DAEMON_STATUS:
-        return mpb_daemon_status_t_decode(data, 0, len, msg);
+    switch (type) {
+#define MPB__CASE(ID, name, type, channel)                                  \
+    case MPB_WIRE_##ID: return mpb_##type##_decode(data, 0, len, msg);
+    MPB_MESSAGES(MPB__CASE)
+#undef MPB__CASE
+    default: break;
     }
     return -1;
 }
@@ -112,11 +112,11 @@ void mpb_receive_done(mpb_wire_type type, void *msg)
     if (msg == NULL)
         return;
     switch (type) {
-    case MPB_WIRE_PLANNER_ANNOUNCE: mpb_planner_announce_t_decode_cleanup(msg); break;
-    case MPB_WIRE_PLAN_REQUEST:     mpb_plan_request_t_decode_cleanup(msg); break;
-    case MPB_WIRE_PLAN_RESULT:      mpb_plan_result_t_decode_cleanup(msg); break;
-    case MPB_WIRE_RUN_ACK:          mpb_run_ack_t_decode_cleanup(msg); break;
-    case MPB_WIRE_DAEMON_STATUS:    mpb_daemon_status_t_decode_cleanup(msg); break;
+#define MPB__CLEANUP(ID, name, type, channel)                               \
+    case MPB_WIRE_##ID: mpb_##type##_decode_cleanup(msg); break;
+    MPB_MESSAGES(MPB__CLEANUP)
+#undef MPB__CLEANUP
+    default: break;
     }
 }
 

@@ -1,9 +1,10 @@
 /*
  * wire.c - a walk over an encoded message that checks every length against
  * the bytes that remain, without allocating (see wire.h for why). The walk
- * follows the .lcm files of lcmtypes/ field by field; tests/unit/net/test_wire.c checks it
- * against real encodings of every type, so a change to a .lcm file that is
- * not made here too fails there.
+ * of each type is generated from its .lcm file (lcmtypes/gen_walks.py);
+ * here are its steps and the layouts each message is taken in.
+ * tests/unit/net/test_wire.c checks it against real encodings of every
+ * type.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -11,13 +12,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/wire.h"
-#include "mpb_daemon_status_t.h"
-#include "mpb_plan_request_t.h"
-#include "mpb_plan_result_t.h"
-#include "mpb_plan_result_v1_t.h"
-#include "mpb_planner_announce_t.h"
-#include "mpb_planner_announce_v1_t.h"
-#include "mpb_run_ack_t.h"
+#include "mpb_lcmtypes.h"
 
 typedef struct cursor {
     const unsigned char *p;
@@ -70,156 +65,66 @@ static void string(cursor *c)
         fail(c, "string is not NUL-terminated");
 }
 
-/* A count for an array whose elements take at least min_size bytes each. */
-static int64_t count(cursor *c, int bytes, size_t min_size)
+/* An integer field that sizes arrays after it: its value, refused when
+ * negative (the decoder would allocate by it). */
+static int64_t dim(cursor *c, int bytes)
 {
     int64_t n = read_int(c, bytes);
-    if (c->bad)
-        return 0;
-    if (n < 0) {
+    if (!c->bad && n < 0) {
         fail(c, "negative array length");
-        return 0;
-    }
-    if (min_size > 0 && (uint64_t)n > (c->len - c->pos) / min_size) {
-        fail(c, "array longer than the message");
         return 0;
     }
     return n;
 }
 
-static void doubles(cursor *c, int64_t n)
+/* Whether n elements of at least min_size bytes each can follow. */
+static int elems(cursor *c, int64_t n, size_t min_size)
 {
-    skip(c, (size_t)n * 8);
+    if (c->bad)
+        return 0;
+    if (min_size > 0 && (uint64_t)n > (c->len - c->pos) / min_size)
+        return fail(c, "array longer than the message"), 0;
+    return 1;
 }
 
-static void named_value(cursor *c)
+/* walk_<type>() for every type of lcmtypes/, generated from its .lcm
+ * file: the fields after the fingerprint, in order. */
+#include "mpb_wire_walks.h"
+
+/* The layouts each message is taken in: today's (messages.h), then an
+ * older one that older planners send, which receive.c decodes as today's:
+ * an announcement before approaches, a result before waypoint times. */
+typedef struct layout {
+    int64_t (*hash)(void);
+    void (*walk)(cursor *c);
+} layout;
+
+#define MPB__TODAY(ID, name, type, channel)                                 \
+    [MPB_WIRE_##ID][0] = {__mpb_##type##_get_hash, walk_##type},
+#define MPB__OLDER(ID, type) [MPB_WIRE_##ID][1] = {__mpb_##type##_get_hash, walk_##type},
+static const layout layouts[MPB_WIRE_COUNT][2] = {
+    MPB_MESSAGES(MPB__TODAY)
+    MPB__OLDER(PLANNER_ANNOUNCE, planner_announce_v1_t)
+    MPB__OLDER(PLAN_RESULT, plan_result_v1_t)
+};
+#undef MPB__OLDER
+#undef MPB__TODAY
+
+const char *mpb_wire_type_name(mpb_wire_type type)
 {
-    string(c);
-    doubles(c, 1);
+#define MPB__NAME(ID, name, type, channel) [MPB_WIRE_##ID] = #type,
+    static const char *const names[MPB_WIRE_COUNT] = {MPB_MESSAGES(MPB__NAME)};
+#undef MPB__NAME
+    return (unsigned)type < MPB_WIRE_COUNT ? names[type] : "?";
 }
 
-static void fingerprint(cursor *c, int64_t expected)
+const char *mpb_wire_channel(mpb_wire_type type)
 {
-    if (read_int(c, 8) != expected)
-        fail(c, "not this message type (fingerprint differs)");
-}
-
-/* An announcement: planner_announce_t, or planner_announce_v1_t as older
- * planners send it, the same fields without the approaches. */
-static void announce(cursor *c)
-{
-    int64_t fp = read_int(c, 8);
-    int v1 = fp == (int64_t)__mpb_planner_announce_v1_t_get_hash();
-    if (!c->bad && !v1 && fp != (int64_t)__mpb_planner_announce_t_get_hash())
-        fail(c, "not this message type (fingerprint differs)");
-    doubles(c, 1);                         /* utime */
-    string(c); string(c); string(c);       /* planner_id, name, host */
-    skip(c, 4);                            /* pid */
-    string(c); string(c);                  /* language, version */
-    skip(c, 4);                            /* heartbeat_ms */
-    for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
-        string(c);                         /* algorithms */
-    skip(c, 2);                            /* capacity */
-    for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
-        string(c);                         /* active_runs */
-    if (v1)
-        return;
-    for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
-        string(c);                         /* approaches */
-}
-
-static void goal(cursor *c)
-{
-    skip(c, 1);                            /* kind */
-    doubles(c, count(c, 2, 8));            /* joints */
-    doubles(c, 1);                         /* joint_tolerance */
-    string(c);                             /* link */
-    doubles(c, 12);                        /* position, tolerances, rpy */
-}
-
-static void request(cursor *c)
-{
-    fingerprint(c, (int64_t)__mpb_plan_request_t_get_hash());
-    doubles(c, 1);                         /* utime */
-    string(c); string(c); string(c);       /* run_id, planner_id, algorithm */
-    for (int64_t i = count(c, 2, 10); i > 0 && !c->bad; i--) {
-        string(c);                         /* params: key, value */
-        string(c);
-    }
-    doubles(c, 3);                         /* time_limit, seed, memory_limit */
-    for (int k = 0; k < 6; k++)
-        string(c);                         /* robot and scene: format, hash, text */
-    int64_t nj = count(c, 2, 5 + 8);
-    for (int64_t i = nj; i > 0 && !c->bad; i--)
-        string(c);                         /* joint_names */
-    doubles(c, nj);                        /* start */
-    goal(c);
-    int64_t nh = count(c, 2, 5 + 8);
-    for (int64_t i = nh; i > 0 && !c->bad; i--)
-        string(c);                         /* held_names */
-    doubles(c, nh);                        /* held_values */
-    for (int64_t i = count(c, 2, 5); i > 0 && !c->bad; i--)
-        string(c);                         /* stored */
-}
-
-/* A stage_t, or with timed 0 a stage_v1_t (no num_times, no times). */
-static void stage(cursor *c, int timed)
-{
-    string(c);                             /* name */
-    doubles(c, 1);                         /* time */
-    skip(c, 4 + 2);                        /* num_waypoints, num_joints */
-    doubles(c, count(c, 4, 8));            /* waypoints */
-    if (timed)
-        doubles(c, count(c, 4, 8));        /* times */
-}
-
-/* Either layout of a result: plan_result_t, or plan_result_v1_t as
- * planners built before waypoint times send it (its own fingerprint). */
-static void result(cursor *c)
-{
-    int64_t fp = read_int(c, 8);
-    int timed = fp == (int64_t)__mpb_plan_result_t_get_hash();
-    if (!c->bad && !timed && fp != (int64_t)__mpb_plan_result_v1_t_get_hash()) {
-        fail(c, "not this message type (fingerprint differs)");
-        return;
-    }
-    doubles(c, 1);                         /* utime */
-    string(c); string(c);                  /* run_id, planner_id */
-    skip(c, 1);                            /* status */
-    string(c);                             /* message */
-    doubles(c, 3);                         /* time_total, time_other, memory */
-    for (int64_t i = count(c, 2, 5 + 8 + (timed ? 14 : 10)); i > 0 && !c->bad;
-         i--)
-        stage(c, timed);
-    for (int64_t i = count(c, 2, 5 + 8); i > 0 && !c->bad; i--)
-        named_value(c);
-    for (int64_t i = count(c, 4, 8 + 2); i > 0 && !c->bad; i--) {
-        doubles(c, 1);                     /* progress: time */
-        for (int64_t k = count(c, 2, 5 + 8); k > 0 && !c->bad; k--)
-            named_value(c);
-    }
-}
-
-static void ack(cursor *c)
-{
-    fingerprint(c, (int64_t)__mpb_run_ack_t_get_hash());
-    doubles(c, 1);                         /* utime */
-    string(c); string(c);                  /* run_id, sender_id */
-    skip(c, 1);                            /* kind */
-}
-
-static void status(cursor *c)
-{
-    fingerprint(c, (int64_t)__mpb_daemon_status_t_get_hash());
-    doubles(c, 1);                         /* utime */
-    string(c); string(c); string(c);       /* daemon_id, experiment, state */
-    skip(c, 7 * 4);                        /* run counters */
-    doubles(c, 2);                         /* elapsed_s, runs_per_s */
-    for (int64_t i = count(c, 2, 5 + 5 + 2 + 4 + 8); i > 0 && !c->bad; i--) {
-        string(c); string(c);              /* planner_id, name */
-        skip(c, 2 + 4);                    /* num_active, runs_done */
-        doubles(c, 1);                     /* last_seen_s */
-    }
+#define MPB__CHANNEL(ID, name, type, channel) [MPB_WIRE_##ID] = channel,
+    static const char *const channels[MPB_WIRE_COUNT] = {
+        MPB_MESSAGES(MPB__CHANNEL)};
+#undef MPB__CHANNEL
+    return (unsigned)type < MPB_WIRE_COUNT ? channels[type] : NULL;
 }
 
 int mpb_wire_check(mpb_wire_type type, const void *buf, size_t len,
@@ -228,14 +133,18 @@ int mpb_wire_check(mpb_wire_type type, const void *buf, size_t len,
     cursor c = {.p = buf, .len = len, .why = why, .whylen = whylen};
     if (buf == NULL)
         return fail(&c, "no message"), 0;
-    switch (type) {
-    case MPB_WIRE_PLANNER_ANNOUNCE: announce(&c); break;
-    case MPB_WIRE_PLAN_REQUEST:     request(&c); break;
-    case MPB_WIRE_PLAN_RESULT:      result(&c); break;
-    case MPB_WIRE_RUN_ACK:          ack(&c); break;
-    case MPB_WIRE_DAEMON_STATUS:    status(&c); break;
-    default:                        return fail(&c, "unknown type"), 0;
-    }
+    if ((unsigned)type >= MPB_WIRE_COUNT)
+        return fail(&c, "unknown type"), 0;
+    int64_t fp = read_int(&c, 8);
+    const layout *l = NULL;
+    for (int i = 0; !c.bad && i < 2 && layouts[type][i].hash != NULL; i++)
+        if (fp == layouts[type][i].hash())
+            l = &layouts[type][i];
+    if (c.bad)
+        return 0;
+    if (l == NULL)
+        return fail(&c, "not this message type (fingerprint differs)"), 0;
+    l->walk(&c);
     if (!c.bad && c.pos != c.len)
         fail(&c, "bytes left over after the message");
     return !c.bad;

@@ -45,7 +45,10 @@ from .hub import HubLCM, is_hub
 from .memory import Watch
 from .sockfilter import filtered_lcm
 
+# The channels of libmpbench's list of messages (mpbench/messages.h),
+# which tests/python/test_kit.py checks these against.
 ANNOUNCE = "MPB_ANNOUNCE"
+REQUEST_PREFIX = "MPB_REQUEST_"
 ACK = "MPB_ACK"
 RESULT = "MPB_RESULT"
 HEARTBEAT_S = 0.5
@@ -113,7 +116,7 @@ class Node:
         self.planner_id = planner_id(name, self.host, os.getpid())
         # Its two channels (and with a secret the daemon's status, for
         # the instance to echo), and no malformed datagram (sockfilter.py).
-        request = "MPB_REQUEST_" + self.planner_id
+        request = REQUEST_PREFIX + self.planner_id
         ack = ACK + "_" + self.planner_id
         # Through a hub (hub.py, libmpbench's link): no socket to
         # filter, every length checked before it is read.
@@ -192,7 +195,7 @@ class Node:
             self.log(f"dropped a message on {channel}: "
                      f"{Auth.verdict_text(verdict)}")
             return None
-        if channel.startswith("MPB_REQUEST_"):
+        if channel.startswith(REQUEST_PREFIX):
             self.daemon = sender
         return body
 

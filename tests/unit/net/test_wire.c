@@ -63,6 +63,8 @@ static int decodes(mpb_wire_type t, const void *buf, int len)
     TRY(MPB_WIRE_RUN_ACK, mpb_run_ack_t)
     TRY(MPB_WIRE_DAEMON_STATUS, mpb_daemon_status_t)
 #undef TRY
+    case MPB_WIRE_COUNT:
+        break;
     }
     return rc >= 0;
 }
