@@ -170,9 +170,13 @@ os._exit(0)" 2>&1 | tail -n 1)
     mpb_stop_all
     check "$peer: killed mid-run, the experiment still completes" eq "$status" 0
     check "$peer: ... the killed process had not answered" eq "$answered" 0
-    check "$peer: ... its run was re-sent (2 attempts) and stored" \
-        eq "$(q "SELECT count(*) FROM runs WHERE state = 'done' AND attempts = 2
-                 AND status != 'crash'")" 1
+    resent=$(q "SELECT count(*) FROM runs WHERE state = 'done' AND attempts = 2
+                AND status != 'crash'")
+    check "$peer: ... its run was re-sent (2 attempts) and stored" eq "$resent" 1
+    # What happened instead, to find the cause (seen once on a loaded
+    # machine: 2026-12-02, drake).
+    [ "$resent" = 1 ] || { q "SELECT id, attempts, crashes, status, message FROM runs";
+                           tail -5 "$work/$peer-kill-daemon.log"; }
     check "$peer: ... once: 2 runs, one first stage each" \
         eq "$(q "SELECT count(*) FROM runs r WHERE state = 'done' AND
                  (status != 'solved' OR (SELECT count(*) FROM stages s
