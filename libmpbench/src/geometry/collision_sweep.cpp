@@ -128,10 +128,17 @@ double movables_lower(mpb_collision *c, const Movable &mi, const Movable &mj,
 struct mpb__sweep {
     const mpb_collision *c = nullptr;   /* the bounds hold for this world */
     size_t               ns = 0, nt = 0, np = 0;  /* and these sizes */
-    std::vector<double>  stat;     /* movable shape x (leaves, planes) */
+    /* movable shape x (leaves, planes): a lower bound as measured, and
+     * its body's closing (cum) when measured: it holds now less what the
+     * body has closed since, cum - stat_at. One number a body, not one a
+     * pair, is lowered at each step, so that a step costs what the pairs
+     * near the robot cost, not what every static does. */
+    std::vector<double>  stat, stat_at;
+    std::vector<double>  cum;      /* by movable index: rate x s, summed */
     std::vector<double>  self;     /* by self pair */
     std::vector<double>  mrate;    /* last rate by movable index */
     std::vector<double>  prate;    /* last rate by self pair */
+    std::vector<int>     near;     /* a shape's leaves near enough to ask */
     bool                 known = false;
     long                 measured = 0, skipped = 0;  /* counters, tests */
     void                *user = nullptr;   /* the caller's (mpb__sweep_user) */
@@ -151,28 +158,37 @@ void sweep_reset(mpb__sweep *st, const mpb_collision *c)
     st->nt = c->leaves.size() + c->planes.size();
     st->np = c->self_pairs.size();
     st->stat.assign(st->ns * st->nt, -1.0);
+    st->stat_at.assign(st->ns * st->nt, 0.0);
+    st->cum.assign(c->movables.size(), 0.0);
     st->self.assign(st->np, -1.0);
     st->mrate.assign(c->movables.size(), 0.0);
     st->prate.assign(st->np, 0.0);
     st->known = true;
 }
 
-/* The bounds lowered by what the last motion, moved units of s at the
- * last rates, may have closed. */
-void sweep_decay(mpb__sweep *st, const mpb_collision *c, double moved)
+/* What the last motion, moved units of s at the last rates, may have
+ * closed: each body's closing grows by its rate x moved (the bounds of
+ * its shapes are lowered by it when read), each self pair's bound by
+ * its own. */
+void sweep_decay(mpb__sweep *st, double moved)
 {
     if (!(moved > 0))
         return;
-    for (size_t si = 0; si < st->ns; si++) {
-        double r = st->mrate[(size_t)c->mshapes[si].body] * moved;
-        if (!(r > 0))
-            continue;
-        double *b = st->stat.data() + si * st->nt;  /* empty: no statics */
-        for (size_t t = 0; t < st->nt; t++)
-            b[t] -= r;
-    }
+    for (size_t i = 0; i < st->cum.size(); i++)
+        st->cum[i] += st->mrate[i] * moved;
     for (size_t k = 0; k < st->np; k++)
         st->self[k] -= st->prate[k] * moved;
+}
+
+/* The bound of shape si's pair t now, and where it is kept. */
+struct pair_bound {
+    double *b, *at;
+    double now(double cum) const { return *b - (cum - *at); }
+};
+
+pair_bound bound_of(mpb__sweep *st, size_t si, size_t t)
+{
+    return {st->stat.data() + si * st->nt + t, st->stat_at.data() + si * st->nt + t};
 }
 
 } // namespace
@@ -297,12 +313,15 @@ int mpb__collision_sweep_step(mpb_collision *c, mpb__sweep *st, double moved,
             st->np != c->self_pairs.size() || st->mrate.size() != c->movables.size())
             sweep_reset(st, c);
         else
-            sweep_decay(st, c, moved);
+            sweep_decay(st, moved);
         /* Until the step is found the rates are set to 0: an error below
            leaves bounds that no decay may trust, so forget them. */
         st->known = false;
         size_t n = c->movables.size(), nl = c->leaves.size();
-        /* the movables against the statics, shape by static */
+        /* the movables against the statics, shape by static: the leaves
+           near enough to be reached by the longest step asked for (the
+           static tree's boxes; every other one is further than any step
+           this shape may take), then the planes */
         for (size_t i = 0; i < n; i++) {
             const Movable &m = c->movables[i];
             double r = rate_of(c, i, rate, num_rates);
@@ -310,27 +329,35 @@ int mpb__collision_sweep_step(mpb_collision *c, mpb__sweep *st, double moved,
             if (!m.enabled || m.self_only || m.shapes.empty() || !(r > 0))
                 continue;
             st->mrate[i] = r;
+            double cum = st->cum[i];
             for (int si : m.shapes) {
                 const Shape &ms = c->mshapes[(size_t)si];
-                double *b = st->stat.data() + (size_t)si * st->nt;
-                for (size_t t = 0; t < st->nt; t++) {
+                gather_near(c, ms.box, want * r + margin);
+                /* leaf_lower() may gather for itself */
+                st->near.assign(c->cand.begin(), c->cand.end());
+                st->skipped += (long)(nl - st->near.size());
+                size_t nn = st->near.size(), np_ = c->planes.size();
+                for (size_t k = 0; k < nn + np_; k++) {
+                    size_t t = k < nn ? (size_t)st->near[k] : nl + (k - nn);
+                    pair_bound pb = bound_of(st, (size_t)si, t);
                     double need = best * r + margin;
-                    if (b[t] >= need) {
+                    if (pb.now(cum) >= need) {
                         st->skipped++;
                         continue;
                     }
                     int body = t < nl ? c->leaves[t].body : c->planes[t - nl].id;
                     if (allowed_static(&m, body)) {
-                        b[t] = INFINITY;    /* never measured again */
+                        *pb.b = INFINITY;   /* never measured again */
                         continue;
                     }
                     st->measured++;
                     /* a bound to last: twice what this step needs */
                     double below = 2 * need + 0.02;
-                    b[t] = t < nl ? leaf_lower(c, ms, c->leaves[t], need, below)
-                                  : plane_distance(ms, c->planes[t - nl], nullptr,
-                                                   nullptr);
-                    best = std::min(best, std::max(0.0, (b[t] - margin) / r));
+                    *pb.b = t < nl ? leaf_lower(c, ms, c->leaves[t], need, below)
+                                   : plane_distance(ms, c->planes[t - nl], nullptr,
+                                                    nullptr);
+                    *pb.at = cum;
+                    best = std::min(best, std::max(0.0, (*pb.b - margin) / r));
                 }
             }
         }
