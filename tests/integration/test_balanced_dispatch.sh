@@ -37,12 +37,26 @@ per_planner() {
        GROUP BY planner_id ORDER BY n" | tr '\n' ' '
 }
 
+# Wait (at most 10 s) until every planner log named says it serves: on a
+# loaded machine a planner process may start late, and the runs before
+# it is up go to the others, as they should, unbalancing the count.
+serving() {
+    for log in "$@"; do
+        ticks=1000
+        while ! grep -q "serving as" "$log" 2>/dev/null && [ "$ticks" -gt 0 ]; do
+            sleep 0.01
+            ticks=$((ticks - 1))
+        done
+    done
+}
+
 # 1. Families "one" and "two" on one host, the host's slot shared: the
 # daemon is stopped (SIGINT) after about 2 s, some 40 runs.
 experiment families 100 one two
 DB=$work/families.db
 mpb_spawn "$work/one.log" "$null" --name one
 mpb_spawn "$work/two.log" "$null" --name two
+serving "$work/one.log" "$work/two.log"
 "$daemon" -d "$DB" "$work/families.yaml" >"$work/families.log" 2>&1 &
 pid=$!
 mpb_wait_count "$DB" 40 10 "SELECT count(*) FROM runs WHERE state = 'done'"
@@ -63,6 +77,7 @@ experiment pair 40 null
 DB=$work/pair.db
 mpb_spawn "$work/pair1.log" "$null"
 mpb_spawn "$work/pair2.log" "$null"
+serving "$work/pair1.log" "$work/pair2.log"
 "$daemon" -d "$DB" "$work/pair.yaml" >"$work/pair.log" 2>&1 &
 mpb_wait $! 60
 check "pair: the experiment completes" eq $? 0
