@@ -136,6 +136,8 @@ typedef struct report {
     report_by   by;
     int         by_default;     /* no --by: chosen once the scenes are
                                    read */
+    int         any_seen;       /* some scene's planners were given what
+                                   was seen of it (report_seen.c) */
     char      **sets;           /* problem sets' names, in order of
                                    their first scene */
     int         num_sets;

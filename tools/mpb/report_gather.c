@@ -96,6 +96,7 @@ static int on_scene(void *ud, const mpb_scene_row *sc)
     s->set = tool_set_index(&r->sets, &r->num_sets, sc);
     if (s->set < 0)
         return r->nomem = 1;
+    r->any_seen |= sc->seen != NULL;
     return 0;
 }
 

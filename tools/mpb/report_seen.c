@@ -115,8 +115,8 @@ static void write_table(const walk *w, int set, int markdown, FILE *out)
 
 int report_write_seen(mpb_store *s, const report *r, int markdown, FILE *out)
 {
-    if (r->num_configs == 0)
-        return MPB_OK;
+    if (r->num_configs == 0 || !r->any_seen)
+        return MPB_OK;      /* and no walk over every run for nothing */
     walk w = {.r = r, .nconfig = r->num_configs, .config = -1, .index = -1};
     size_t n = (size_t)(r->num_sets + 1) * (size_t)r->num_configs;
     if ((w.t = calloc(n, sizeof *w.t)) == NULL)

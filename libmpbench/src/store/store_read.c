@@ -225,10 +225,12 @@ int mpb_store_unfinished_by_scene(mpb_store *s, int64_t experiment_id,
                                             int unfinished),
                                   void *ud)
 {
+    /* +r.experiment_id: the runs in table order, not one seek per run
+     * through runs_by_experiment (as mpb_store_refusal_depths()). */
     sqlite3_stmt *st = mpb__store_prepare(s,
         "SELECT q.scene_id, count(*) FROM runs r"
         " JOIN queries q ON q.id = r.query_id"
-        " WHERE r.experiment_id = ? AND r.state != 'done'"
+        " WHERE +r.experiment_id = ? AND r.state != 'done'"
         " GROUP BY q.scene_id ORDER BY q.scene_id");
     if (st == NULL)
         return MPB_EDB;
@@ -245,9 +247,12 @@ int mpb_store_verification_counts(mpb_store *s, int64_t experiment_id,
     *certified = *sampled = 0;
     if (!mpb__store_has_column(s, "stages", "verification"))
         return MPB_OK;          /* an older database, opened read-only */
+    /* The stages in table order, each run found by its id: not every
+     * run sought through runs_by_experiment and its stages after it
+     * (a million runs: 0.48 s of CPU down to 0.26 s). */
     sqlite3_stmt *st = mpb__store_prepare(s,
         "SELECT sum(g.verification = 'certified'), sum(g.verification = 'sampled')"
-        " FROM stages g JOIN runs r ON r.id = g.run_id WHERE r.experiment_id = ?");
+        " FROM stages g JOIN runs r ON r.id = g.run_id WHERE +r.experiment_id = ?");
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, experiment_id);
