@@ -343,6 +343,9 @@ int mpb_store_seen_judgements(mpb_store *s, int64_t experiment_id,
  * (status, stage, metric names) are copied into one text buffer that is
  * reused from run to run, so a walk allocates only while its buffers grow.
  */
+#define MPB__HINTS 32          /* metrics a run, hinted */
+#define MPB__HINT_NAME 48      /* bytes of a hinted name */
+
 typedef struct result_walk {
     const char *const *names;
     int             num_names;
@@ -354,6 +357,14 @@ typedef struct result_walk {
     size_t         *name_off;       /* offsets of named[i].name in text */
     mpb_named      *named;
     int             named_cap;
+    /* The k-th metric of the last run, for the next run's k-th: runs of
+     * one stage name their metrics in one order, so one comparison finds
+     * the wanted index that names[] would take num_names to find. */
+    struct name_hint {
+        char name[MPB__HINT_NAME];
+        size_t len;             /* 0: no hint */
+        int wanted;             /* its index in names, or -1 */
+    } hint[MPB__HINTS];
 } result_walk;
 
 #define NO_TEXT ((size_t)-1)
@@ -426,9 +437,29 @@ static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
 static int add_named(result_walk *w, const char *name, size_t len,
                      double value)
 {
-    for (int i = 0; i < w->num_names; i++)
-        if (strncmp(w->names[i], name, len) == 0 && w->names[i][len] == '\0')
-            w->metrics[i] = value;
+    int k = w->row.num_named;
+    struct name_hint *h = k < MPB__HINTS ? &w->hint[k] : NULL;
+    if (h != NULL && h->len == len && memcmp(h->name, name, len) == 0) {
+        if (h->wanted >= 0)
+            w->metrics[h->wanted] = value;
+    } else {
+        int wanted = -1;
+        for (int i = 0; i < w->num_names; i++)
+            if (strncmp(w->names[i], name, len) == 0 &&
+                w->names[i][len] == '\0') {
+                w->metrics[i] = value;
+                wanted = wanted < 0 ? i : wanted;
+            }
+        /* names[] repeating a name would want both: not hinted then */
+        for (int i = wanted + 1; wanted >= 0 && i < w->num_names; i++)
+            if (strncmp(w->names[i], name, len) == 0 && w->names[i][len] == '\0')
+                h = NULL;
+        if (h != NULL && len > 0 && len < MPB__HINT_NAME) {
+            memcpy(h->name, name, len);
+            h->len = len;
+            h->wanted = wanted;
+        }
+    }
     if (w->row.num_named == w->named_cap) {
         /* Two arrays of one capacity, each grown from the same one. */
         int need = w->row.num_named + 1, cap[2] = {w->named_cap, w->named_cap};
@@ -439,7 +470,6 @@ static int add_named(result_walk *w, const char *name, size_t len,
             return MPB_ENOMEM;
         w->named_cap = cap[0];
     }
-    int k = w->row.num_named;
     if (keep_textn(w, name, len, &w->name_off[k]) != MPB_OK)
         return MPB_ENOMEM;
     w->named[k].value = value;
