@@ -166,12 +166,6 @@ static int push_sample(report_samples *x, double v)
     return 0;
 }
 
-static int by_value(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static int on_result(void *ud, const mpb_result_row *row)
 {
     report *r = ud;
@@ -285,9 +279,9 @@ int report_gather(report *r, mpb_store *s)
             mpb_grouped_end_group(&r->cells[i].m[k]);
     for (size_t i = 0; r->times && i < (size_t)(r->num_sets + 1) *
                                         (size_t)r->num_configs; i++)
-        if (r->times[i].n > 1)
-            qsort(r->times[i].v, (size_t)r->times[i].n, sizeof *r->times[i].v,
-                  by_value);
+        if (r->times[i].n > 1 &&
+            mpb_sort_doubles(r->times[i].v, (size_t)r->times[i].n) != MPB_OK)
+            return MPB_ENOMEM;
     return 0;
 }
 

@@ -22,6 +22,15 @@ typedef struct mpb_summary {
 } mpb_summary;
 
 /*
+ * Sort n doubles ascending, in place, in time linear in n (a radix sort of
+ * their bits: a million in some 20 ms, where qsort() takes ten times as
+ * long), -0 before +0. NaNs are no samples: leave them out first (they
+ * would sort to the ends by their sign). MPB_OK, MPB_ENOMEM (x untouched),
+ * MPB_EINVAL for x NULL with n > 0.
+ */
+int mpb_sort_doubles(double *x, size_t n);
+
+/*
  * Summarise n samples. x is not modified (a sorted copy is made). With n == 0
  * every field but n is NaN. Returns MPB_OK, MPB_ENOMEM, or MPB_EINVAL (out
  * NULL, n < 0, x NULL with n > 0, or a sample is NaN: leave failed runs out

@@ -2,13 +2,62 @@
 #include "mpbench/mpbench.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int cmp_double(const void *pa, const void *pb)
+/* A double's bits as a key whose unsigned order is the numbers' order:
+ * the sign bit flipped for positives, every bit for negatives. */
+static uint64_t key_of(double v)
 {
-    double a = *(const double *)pa, b = *(const double *)pb;
-    return (a > b) - (a < b);
+    uint64_t b;
+    memcpy(&b, &v, sizeof b);
+    return b >> 63 ? ~b : b ^ UINT64_C(0x8000000000000000);
+}
+
+static double value_of(uint64_t k)
+{
+    uint64_t b = k >> 63 ? k ^ UINT64_C(0x8000000000000000) : ~k;
+    double v;
+    memcpy(&v, &b, sizeof v);
+    return v;
+}
+
+int mpb_sort_doubles(double *x, size_t n)
+{
+    if (n > 0 && x == NULL)
+        return MPB_EINVAL;
+    if (n < 2)
+        return MPB_OK;
+    uint64_t *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    if (a == NULL || b == NULL) {
+        free(a);
+        free(b);
+        return MPB_ENOMEM;
+    }
+    for (size_t i = 0; i < n; i++)
+        a[i] = key_of(x[i]);
+    /* Least significant byte first, a byte a pass; a pass whose byte is
+     * the same in every key (most of a double's exponent) is skipped. */
+    for (int shift = 0; shift < 64; shift += 8) {
+        size_t count[257] = {0};
+        for (size_t i = 0; i < n; i++)
+            count[((a[i] >> shift) & 0xff) + 1]++;
+        if (count[((a[0] >> shift) & 0xff) + 1] == n)
+            continue;
+        for (int d = 0; d < 256; d++)
+            count[d + 1] += count[d];
+        for (size_t i = 0; i < n; i++)
+            b[count[(a[i] >> shift) & 0xff]++] = a[i];
+        uint64_t *t = a;
+        a = b;
+        b = t;
+    }
+    for (size_t i = 0; i < n; i++)
+        x[i] = value_of(a[i]);
+    free(a);
+    free(b);
+    return MPB_OK;
 }
 
 /* Quantile p of sorted x[0..n), type 7: x[h] interpolated, h = (n - 1) p. */
@@ -38,7 +87,10 @@ int mpb_summarize(const double *x, int n, mpb_summary *out)
     if (!s)
         return MPB_ENOMEM;
     memcpy(s, x, (size_t)n * sizeof *s);
-    qsort(s, (size_t)n, sizeof *s, cmp_double);
+    if (mpb_sort_doubles(s, (size_t)n) != MPB_OK) {
+        free(s);
+        return MPB_ENOMEM;
+    }
 
     double sum = 0.0;
     for (int i = 0; i < n; i++)

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <cmocka.h>
 
 #include "mpbench/mpbench.h"
@@ -199,9 +200,58 @@ static void test_grouped_merge(void **state)
     assert_near(mpb_grouped_stddev(&merged), (1 + sqrt(8.0)) / 3, EPS);
 }
 
+static int cmp_double(const void *pa, const void *pb)
+{
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return (a > b) - (a < b);
+}
+
+/* mpb_sort_doubles() orders as qsort() with < does, on values of every
+ * kind (negatives, both zeros, infinities, repeats, subnormals, values
+ * that share their high bytes), for sizes from none to a hundred
+ * thousand; -0 comes before +0. */
+static void test_sort_doubles(void **state)
+{
+    (void)state;
+    static const size_t sizes[] = {0, 1, 2, 3, 17, 1000, 100000};
+    uint64_t seed = 7;
+    for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) {
+        size_t n = sizes[k];
+        double *x = malloc((n + 1) * sizeof *x), *y = malloc((n + 1) * sizeof *y);
+        assert_non_null(x);
+        assert_non_null(y);
+        for (size_t i = 0; i < n; i++) {
+            seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+            double u = (double)(seed >> 11) / 9007199254740992.0;
+            switch ((seed >> 3) % 8) {
+            case 0: x[i] = -u * 1e6; break;
+            case 1: x[i] = u < 0.5 ? 0.0 : -0.0; break;
+            case 2: x[i] = u < 0.5 ? INFINITY : -INFINITY; break;
+            case 3: x[i] = 1.25; break;
+            case 4: x[i] = u * 1e-310; break;
+            case 5: x[i] = 1.0 + u * 1e-12; break;
+            default: x[i] = u * 100.0; break;
+            }
+            y[i] = x[i];
+        }
+        assert_int_equal(mpb_sort_doubles(x, n), MPB_OK);
+        qsort(y, n, sizeof *y, cmp_double);
+        for (size_t i = 0; i < n; i++) {
+            assert_true(x[i] == y[i]);
+            if (i > 0 && x[i - 1] == 0.0 && x[i] == 0.0)
+                assert_false(signbit(x[i]) && !signbit(x[i - 1]));
+        }
+        free(x);
+        free(y);
+    }
+    assert_int_equal(mpb_sort_doubles(NULL, 0), MPB_OK);
+    assert_int_equal(mpb_sort_doubles(NULL, 3), MPB_EINVAL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sort_doubles),
         cmocka_unit_test(test_summarize_six),
         cmocka_unit_test(test_grouped_merge),
         cmocka_unit_test(test_summarize_small),
