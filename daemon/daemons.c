@@ -120,8 +120,9 @@ static void on_status_raw(const lcm_recv_buf_t *rbuf, const char *channel,
      * the log are for, so both are counted and logged as every dropped
      * message is (mpbd_reject() limits the lines). Another secret's
      * daemon costs a count a second; docs/protocol.md says so. */
-    if (!mpb_receive(d->auth, MPB_RECEIVE_AUTHENTIC, MPB_WIRE_DAEMON_STATUS,
-                     channel, rbuf->data, (size_t)rbuf->data_size, &m, &r)) {
+    if (mpb_receive(d->auth, MPB_RECEIVE_AUTHENTIC, MPB_WIRE_DAEMON_STATUS,
+                    channel, rbuf->data, (size_t)rbuf->data_size, &m, &r)
+            != MPB_OK) {
         mpbd_reject(d, channel, r.verdict == MPB_AUTH_BAD_TAG
                     ? "a daemon status without the right tag (another "
                       "secret's daemon, or forged)"

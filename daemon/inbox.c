@@ -22,7 +22,7 @@ int mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
      * all from others, and their tags are all that can be checked. */
     unsigned accept = d->replaying ? MPB_RECEIVE_AUTHENTIC : MPB_RECEIVE_FRESH;
     int ok = mpb_receive(d->auth, accept, type, channel, rbuf->data,
-                         (size_t)rbuf->data_size, msg, &r);
+                         (size_t)rbuf->data_size, msg, &r) == MPB_OK;
     d->msg_from = r.info.instance;
     if (!ok) {
         mpbd_reject(d, channel, r.why);

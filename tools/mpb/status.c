@@ -380,11 +380,11 @@ static void on_status_raw(const lcm_recv_buf_t *rbuf, const char *channel,
     mpb_daemon_status_t st;
     mpb_received r;
     size_t n = (size_t)rbuf->data_size;
-    if (!mpb_receive(NULL, MPB_RECEIVE_FRESH, MPB_WIRE_DAEMON_STATUS, channel,
-                     rbuf->data, n, &st, &r) &&
+    if (mpb_receive(NULL, MPB_RECEIVE_FRESH, MPB_WIRE_DAEMON_STATUS, channel,
+                    rbuf->data, n, &st, &r) != MPB_OK &&
         (n <= MPB_AUTH_TRAILER_SIZE ||
-         !mpb_receive(NULL, MPB_RECEIVE_FRESH, MPB_WIRE_DAEMON_STATUS, channel,
-                      rbuf->data, n - MPB_AUTH_TRAILER_SIZE, &st, &r)))
+         mpb_receive(NULL, MPB_RECEIVE_FRESH, MPB_WIRE_DAEMON_STATUS, channel,
+                     rbuf->data, n - MPB_AUTH_TRAILER_SIZE, &st, &r) != MPB_OK))
         return;
     on_status(&st, ud);
     mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &st);

@@ -68,7 +68,7 @@ int mpb_lcm_hub_wait(lcm_t *lcm, double timeout_s);
 
 /*
  * Publish datalen bytes on channel: through the hub for a hub link, else
- * lcm_publish(). 0 on success, -1 if not sent. Safe from any thread.
+ * lcm_publish(). MPB_OK, or MPB_ELCM if not sent. Safe from any thread.
  */
 int mpb_lcm_publish(lcm_t *lcm, const char *channel, const void *data,
                     unsigned int datalen);

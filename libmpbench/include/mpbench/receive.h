@@ -41,11 +41,11 @@ typedef struct mpb_received {
  * Pass the size bytes at data, received on channel, through the gate: with
  * auth (NULL: no authentication, every message fresh), taking the verdicts
  * in accept (MPB_RECEIVE_...), as a message of the given type. On success
- * return 1 with the message decoded into *msg, which must point to the
- * generated struct of that type (mpb_plan_request_t for
+ * return MPB_OK with the message decoded into *msg, which must point to
+ * the generated struct of that type (mpb_plan_request_t for
  * MPB_WIRE_PLAN_REQUEST, ...); free its contents with mpb_receive_done().
- * Otherwise return 0 with nothing allocated and r->why saying why. r (not
- * NULL) gets the verdict and the trailer's fields either way.
+ * Otherwise return MPB_EREJECTED with nothing allocated and r->why saying
+ * why. r (not NULL) gets the verdict and the trailer's fields either way.
  */
 int mpb_receive(mpb_auth *auth, unsigned accept, mpb_wire_type type,
                 const char *channel, const void *data, size_t size,

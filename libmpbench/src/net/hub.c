@@ -463,7 +463,8 @@ int mpb__hub_publish(lcm_t *lcm, const char *channel, const void *data,
 int mpb_lcm_publish(lcm_t *lcm, const char *channel, const void *data,
                     unsigned int datalen)
 {
-    return mpb__hub_publish(lcm, channel, data, datalen, 0);
+    return mpb__hub_publish(lcm, channel, data, datalen, 0) == 0 ? MPB_OK
+                                                                 : MPB_ELCM;
 }
 
 void mpb_lcm_hub_stats(lcm_t *lcm, mpb_hub_stats *out)

@@ -129,13 +129,13 @@ int mpb_receive(mpb_auth *auth, unsigned accept, mpb_wire_type type,
     r->verdict = mpb_auth_open(auth, channel, data, size, &len, &r->info);
     if (!(accept & (1u << r->verdict))) {
         snprintf(r->why, sizeof r->why, "%s", mpb_auth_verdict_text(r->verdict));
-        return 0;
+        return MPB_EREJECTED;
     }
     if (!mpb_wire_check(type, data, len, r->why, sizeof r->why))
-        return 0;
+        return MPB_EREJECTED;
     if (len > INT_MAX || decode(type, data, (int)len, msg) < 0) {
         snprintf(r->why, sizeof r->why, "the decoder refused it");
-        return 0;
+        return MPB_EREJECTED;
     }
-    return 1;
+    return MPB_OK;
 }

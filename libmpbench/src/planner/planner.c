@@ -694,8 +694,8 @@ static void mpb__on_request_raw(const lcm_recv_buf_t *rbuf,
     mpb_received r;
     /* With a secret, only a request from a daemon heard lately that
      * echoes this process, not had before: a replay is dropped. */
-    if (!mpb_receive(s->auth, MPB_RECEIVE_FRESH, MPB_WIRE_PLAN_REQUEST,
-                     channel, rbuf->data, rbuf->data_size, &m, &r))
+    if (mpb_receive(s->auth, MPB_RECEIVE_FRESH, MPB_WIRE_PLAN_REQUEST,
+                    channel, rbuf->data, rbuf->data_size, &m, &r) != MPB_OK)
         return;
     if (s->auth != NULL)
         mpb__set_daemon(s, r.info.instance);
@@ -722,9 +722,9 @@ static void mpb__on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
 {
     mpb_run_ack_t m;
     mpb_received r;
-    if (!mpb_receive(((mpb__server *)user)->auth, MPB_RECEIVE_FRESH,
-                     MPB_WIRE_RUN_ACK, channel, rbuf->data, rbuf->data_size,
-                     &m, &r))
+    if (mpb_receive(((mpb__server *)user)->auth, MPB_RECEIVE_FRESH,
+                    MPB_WIRE_RUN_ACK, channel, rbuf->data, rbuf->data_size,
+                    &m, &r) != MPB_OK)
         return;
     mpb__on_ack(rbuf, channel, &m, user);
     mpb_receive_done(MPB_WIRE_RUN_ACK, &m);
@@ -740,9 +740,9 @@ static void mpb__on_status_raw(const lcm_recv_buf_t *rbuf,
     mpb__server *s = user;
     mpb_daemon_status_t m;
     mpb_received r;
-    if (!mpb_receive(s->auth, MPB_RECEIVE_FRESH | MPB_RECEIVE_UNPROVEN,
-                     MPB_WIRE_DAEMON_STATUS, channel, rbuf->data,
-                     rbuf->data_size, &m, &r))
+    if (mpb_receive(s->auth, MPB_RECEIVE_FRESH | MPB_RECEIVE_UNPROVEN,
+                    MPB_WIRE_DAEMON_STATUS, channel, rbuf->data,
+                    rbuf->data_size, &m, &r) != MPB_OK)
         return;
     if (strcmp(m.state, "waiting") == 0 || strcmp(m.state, "running") == 0)
         mpb__set_daemon(s, r.info.instance);

@@ -156,7 +156,7 @@ static void test_both_ways(void **state)
     send_frame(c, "B", 1, "hello", 5, 5);
     expect(lcm, &h, "hello");
 
-    assert_int_equal(mpb_lcm_publish(lcm, "C", "xyz", 3), 0);
+    assert_int_equal(mpb_lcm_publish(lcm, "C", "xyz", 3), MPB_OK);
     read_frame(c, 1, name, sizeof name);
     assert_string_equal(name, "C");
     unsigned char w[4], data[3];
@@ -257,7 +257,7 @@ static void test_urls(void **state)
     lcm_t *lcm = mpb_lcm_create_keeping(url, NULL, 0, NULL);
     assert_non_null(lcm);
     assert_int_equal(mpb_lcm_hub_wait(lcm, 0.2), 0);
-    assert_int_equal(mpb_lcm_publish(lcm, "C", "x", 1), -1);
+    assert_int_equal(mpb_lcm_publish(lcm, "C", "x", 1), MPB_ELCM);
     mpb_lcm_destroy(lcm);
     mpb_lcm_destroy(NULL);
 
@@ -267,7 +267,7 @@ static void test_urls(void **state)
     mpb_lcm_hub_stats(lcm, &st);
     assert_int_equal(st.is_hub, 0);
     assert_int_equal(mpb_lcm_hub_wait(lcm, 0), 1);
-    assert_int_equal(mpb_lcm_publish(lcm, "C", "x", 1), 0);
+    assert_int_equal(mpb_lcm_publish(lcm, "C", "x", 1), MPB_OK);
     mpb_lcm_destroy(lcm);
 }
 

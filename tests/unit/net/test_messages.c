@@ -86,7 +86,7 @@ static void on_note(const lcm_recv_buf_t *rbuf, const char *channel, void *ud)
     mpb_received r;
     if (mpb_receive(g->auth, MPB_RECEIVE_FRESH | MPB_RECEIVE_UNPROVEN,
                     MPB_WIRE_TEST_NOTE, channel,
-                    rbuf->data, rbuf->data_size, &g->m, &r))
+                    rbuf->data, rbuf->data_size, &g->m, &r) == MPB_OK)
         g->count++;
 }
 

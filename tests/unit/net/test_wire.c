@@ -179,7 +179,7 @@ static void an_older_planners_announcement_is_taken(void **state)
     mpb_received r;
     assert_int_equal(mpb_receive(NULL, MPB_RECEIVE_FRESH,
                                  MPB_WIRE_PLANNER_ANNOUNCE, "MPB_ANNOUNCE",
-                                 buf, (size_t)len, &m, &r), 1);
+                                 buf, (size_t)len, &m, &r), MPB_OK);
     assert_string_equal(m.planner_id, "old@h:3");
     assert_string_equal(m.name, "old");
     assert_int_equal(m.num_algorithms, 2);
@@ -194,7 +194,7 @@ static void an_older_planners_announcement_is_taken(void **state)
     assert_int_equal(mpb_receive(NULL, MPB_RECEIVE_FRESH,
                                  MPB_WIRE_PLANNER_ANNOUNCE, "MPB_ANNOUNCE",
                                  samples[0].buf, (size_t)samples[0].len, &m,
-                                 &r), 1);
+                                 &r), MPB_OK);
     assert_int_equal(m.num_approaches, 2);
     assert_string_equal(m.approaches[0], "sampling");
     assert_string_equal(m.approaches[1], "");
@@ -280,7 +280,7 @@ static void both_result_layouts_decode(void **state)
         assert_int_equal(mpb_receive(NULL, MPB_RECEIVE_FRESH,
                                      MPB_WIRE_PLAN_RESULT, "MPB_RESULT",
                                      samples[i].buf, (size_t)samples[i].len,
-                                     &m, &r), 1);
+                                     &m, &r), MPB_OK);
         assert_string_equal(m.run_id, "0123456789abcdef0123456789abcdef");
         assert_string_equal(m.message, "ok");
         assert_int_equal(m.num_stages, 2);
