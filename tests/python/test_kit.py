@@ -227,15 +227,20 @@ def test_the_kit_world_checks_an_octree_of_the_scene():
         w.close()
 
 
-def test_a_peer_refuses_an_octree_it_cannot_take():
+def test_a_peer_takes_an_octree():
+    # The object's shapes as before, the octree's cell beside them
+    # (tests/python/test_peer_clouds.py has the rest).
     import sys
     sys.path.insert(0, os.path.join(SOURCE, "planners", "peers"))
     from mpbpeers import peer
     b64, n = _one_cell_stream()
     box = "s\n* b\n0 0 0\n0 0 0 1\n1\nbox\n1 1 1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n"
     assert len(peer.parse_scene(box)) == 1
-    with pytest.raises(peer.InvalidRequest, match="octrees and point clouds"):
-        peer.parse_scene(box + f"octree c binary 0.01 {n} 0 0 0 0 0 0 1\n{b64}\n")
+    text = box + f"octree c binary 0.01 {n} 0 0 0 0 0 0 1\n{b64}\n"
+    assert len(peer.parse_scene(text)) == 1
+    found, shapes = peer.read_clouds(text)
+    assert [(c.id, c.count_points()) for c in found] == [("c", 1)]
+    assert [(s.kind, s.cloud) for s in shapes] == [("box", "c")]
 
 
 def test_limits_moved_keep_the_stop_and_move_the_deadline():

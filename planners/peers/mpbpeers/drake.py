@@ -17,7 +17,9 @@ computes signed distances between a link's mesh and an obstacle on the
 mesh's convex hull (Drake's Mesh documentation: a general mesh is replaced
 by its convex hull for these queries), so it is conservative where a
 link is concave (the hand and fingers' gap, link6's shape); obstacles are
-exact primitives.
+exact primitives. Drake has no octree or point cloud geometry: an octree
+of the scene comes as its occupied cells, boxes merged as libmpbench
+merges them (a cloud's spheres as spheres), at most MAX_CLOUD_SHAPES.
 
 KTO, as Drake's own tutorial uses it: KinematicTrajectoryOptimization(n,
 16 control points, order 4), AddDurationCost(1), AddPathLengthCost(1),
@@ -78,6 +80,11 @@ MAX_STEP_RAD = 0.01        # largest joint change between stage samples
 RRT_STEP_RAD = 0.2         # the RRT's extension step
 ROUNDING_RAD = 1e-9        # past a limit by rounding (see _sample)
 SNOPT_LIMIT_SHARE = 0.9    # of the time left, SNOPT's own limit
+# The most shapes an octree's cells (a cloud's spheres) may give drake:
+# SceneGraphCollisionChecker's setup grows with the square of the world's
+# geometries (1000 boxes: 1.9 s and 0.5 GB; 2500: 19 s and 2.4 GB; a
+# sensed MotionBenchMaker scene's 5871: 160 s and 12 GB).
+MAX_CLOUD_SHAPES = 1000
 
 SNOPT_TIME_LIMIT_INFO = 74  # SNOPT: "time limit reached"
 
@@ -108,6 +115,13 @@ class Adapter:
                         f"{MARGIN_M})"}
 
     def build(self, problem, world):
+        cloud_shapes = sum(1 for s in problem.shapes if s.cloud is not None)
+        if cloud_shapes > MAX_CLOUD_SHAPES:
+            raise peer.InvalidRequest(
+                f"drake: the scene's octrees and point clouds are "
+                f"{cloud_shapes} boxes and spheres, more than the "
+                f"{MAX_CLOUD_SHAPES} this peer gives drake (its collision "
+                f"checker's setup grows with their square)")
         from pydrake.geometry import (Box, CollisionFilterDeclaration,
                                       Cylinder, GeometrySet, Mesh, Sphere)
         from pydrake.math import RigidTransform

@@ -13,7 +13,12 @@ child links), the scene's shapes as terrains (WorldModel.makeTerrain):
 boxes and spheres as Klampt's GeometricPrimitives, meshes as its
 TriangleMesh, cylinders as a triangle mesh (Klampt's cylinder is only
 "semi-supported": a 32-sided prism circumscribing the cylinder, so
-Klampt's obstacle holds mpbench's). The request's joints are Klampt's
+Klampt's obstacle holds mpbench's); an octree as its occupied cells,
+boxes merged as libmpbench merges them, a cloud's spheres as spheres,
+each cloud one terrain of a Group geometry (Klampt's OccupancyGrid would
+hold the cells, but checks a mesh against it slowly: 1.7 ms for a
+360-triangle sphere in a 200^3 grid).
+The request's joints are Klampt's
 configuration indices of their child links (Klampt numbers its
 configuration by link, the frozen root's five virtual links and the
 fixed joints included); the other entries hold the request's held values.
@@ -223,9 +228,19 @@ class Adapter:
                 for pb in pieces(b):
                     if pa in index and pb in index:
                         robot.enableSelfCollision(index[pa], index[pb], False)
+        groups = {}
         for k, s in enumerate(problem.shapes):
+            if s.cloud is not None:
+                groups.setdefault(s.cloud, []).append(s)
+                continue
             terrain = kworld.makeTerrain(f"scene{k}")
             terrain.geometry().set(_geometry(s))
+        for cid, shapes in groups.items():
+            g = Geometry3D()
+            g.setGroup()
+            for i, s in enumerate(shapes):
+                g.setElement(i, _geometry(s))
+            kworld.makeTerrain(f"cloud_{cid}").geometry().set(g)
         return {"world": kworld, "robot": robot, "moving": moving,
                 "held": held}
 

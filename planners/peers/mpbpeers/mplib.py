@@ -13,6 +13,12 @@ at plan_qpos's time step 0.1 s) sampled positions with the time of each
 sample, as "toppra", a timed stage (mpbench measures its duration and
 velocities against the URDF's limits). Its time limit: plan(time=...).
 
+An octree or point cloud of the scene: what Planner.update_point_cloud
+builds, MPLib's FCL OcTree of the points at a resolution (fcl.OcTree,
+in an FCLObject at the cloud's pose): an octree's leaf cells' centres at
+its resolution, so the same cells; a cloud of spheres at their diameter
+(MPLib's word for the resolution), cubes where the verifier has balls.
+
 mplib refuses the Panda's link6.obj ("face with 2 vertices"): as a user
 would, every mesh goes through repair_mesh.py, which loads a copy without
 OBJ line elements (.cache/peers/mesh-repair), docs/results-peers.md.
@@ -46,6 +52,7 @@ class Adapter:
     ALGORITHMS = ["RRTConnect"]
     APPROACH = {a: "sampling" for a in ALGORITHMS}
     GOAL_REGIONS = False     # it takes goal configurations (IK by the kit)
+    CLOUDS = "points"        # octrees and point clouds: its own form
 
     def mesh_map(self, path):
         return repair_mesh.repaired(path, _repair_dir())
@@ -73,6 +80,8 @@ class Adapter:
                 raise peer.InvalidRequest(f"mplib's move group lacks "
                                           f"{', '.join(missing)}")
         for k, s in enumerate(problem.shapes):
+            if s.cloud is not None:
+                continue            # below, as MPLib's point cloud
             if s.kind == "box":
                 geom = fcl.Box(*s.dims)
             elif s.kind == "sphere":
@@ -90,6 +99,19 @@ class Adapter:
             obj = fcl.FCLObject(f"scene{k}", pose,
                                 [fcl.CollisionObject(geom)], [_mplib.Pose()])
             planner.planning_world.add_object(obj)
+        for c in problem.clouds:
+            # What Planner.update_point_cloud builds (an FCL OcTree of
+            # the points at a resolution), in the cloud's own frame: an
+            # octree's leaf cells at its resolution, the same cells;
+            # spheres at their diameter.
+            tree = fcl.OcTree(vertices=np.array(c.points(), dtype=float),
+                              resolution=c.cell)
+            x, y, z, w = c.quat
+            pose = _mplib.Pose(np.array(c.position, dtype=float),
+                               np.array([w, x, y, z]))
+            planner.planning_world.add_object(fcl.FCLObject(
+                f"cloud_{c.id}", pose, [fcl.CollisionObject(tree)],
+                [_mplib.Pose()]))
         return {"planner": planner, "names": names, "joints": problem.joints,
                 "held": problem.held}
 

@@ -46,6 +46,8 @@ from mpbplanner.memory import Watch
 from mpbplanner.node import Node
 from mpbplanner.world import World, WorldError, split_robot_text
 
+from . import clouds
+
 
 class InvalidRequest(Exception):
     """A request this peer cannot take; the message says why."""
@@ -90,13 +92,16 @@ def _compose(p1, q1, p2, q2):
 class Shape:
     """One shape of the scene in the world frame: kind box (dims = side
     lengths), sphere (radius), cylinder (radius, length along z) or mesh
-    (vertices, triangles); position xyz and quaternion xyzw."""
+    (vertices, triangles); position xyz and quaternion xyzw; cloud: the
+    id of the octree or point cloud it stands for (a merged box of its
+    occupied cells, a sphere of its points), None for an object's."""
 
     def __init__(self, name, kind, dims, position, quat, vertices=None,
-                 triangles=None):
+                 triangles=None, cloud=None):
         self.name, self.kind, self.dims = name, kind, dims
         self.position, self.quat = position, quat
         self.vertices, self.triangles = vertices, triangles
+        self.cloud = cloud
 
     def matrix(self):
         """The 4x4 homogeneous pose, as nested lists."""
@@ -106,7 +111,8 @@ class Shape:
 
 
 def parse_scene(text):
-    """The shapes of a MoveIt .scene text (docs/scenes.md), world frame.
+    """The shapes of a MoveIt .scene text's objects (docs/scenes.md),
+    world frame; its octrees and point clouds are read_clouds()'s.
     Cones, planes and carried objects are refused: no peer takes them
     as a user would without changing the problem."""
     lines = text.splitlines()
@@ -171,16 +177,50 @@ def parse_scene(text):
             for _ in range(int(numbers(1)[0])):
                 next_line()
                 numbers(7)
+    data = 0        # base64 characters of an octree line still to come
     for ln in lines[i:]:
-        word = ln.split()[0] if ln.split() else ""
+        words = ln.split()
+        if data > 0:
+            data -= len(ln.strip())
+            continue
+        word = words[0] if words else ""
         if word == "attach":
             raise InvalidRequest("scene: carried objects ('attach') are not "
                                  "taken by this peer")
-        if word in ("octree", "spheres"):
-            # planning without them would plan through what is there
-            raise InvalidRequest(f"scene: octrees and point clouds ('{word}') "
-                                 "are not taken by this peer yet")
+        if word == "octree" and len(words) > 4 and words[4].isdigit():
+            data = 4 * ((int(words[4]) + 2) // 3)
     return shapes
+
+
+def read_clouds(text):
+    """The scene's octrees and point clouds (its octree and spheres lines,
+    read by libmpbench: clouds.py), and the shapes that stand for them in
+    the world frame, each with its cloud's id: an octree's occupied cells
+    as boxes, merged as libmpbench merges them (union exactly the cells),
+    a cloud's spheres. Each cloud gets position and quat (x y z w), its
+    pose as a Shape's. ([], []) for a scene without any."""
+    after = text.split("\n.", 1)
+    if len(after) < 2 or not re.search(r"^\s*(octree|spheres)\s", after[1],
+                                       re.M):
+        return [], []
+    try:
+        found = clouds.read(text)
+    except clouds.CloudError as e:
+        raise InvalidRequest(str(e)) from None
+    shapes = []
+    for c in found:
+        quat = _matrix_quat(c.rotation)
+        c.position, c.quat = list(c.translation), list(quat)
+        if c.kind == "octree":
+            parts = [("box", d, p) for p, d in c.boxes]
+        else:
+            parts = [("sphere", [c.resolution], p) for p in c.centres]
+        for k, (kind, dims, p) in enumerate(parts):
+            wp = [c.translation[i] + sum(c.rotation[i][j] * p[j]
+                                         for j in range(3)) for i in range(3)]
+            shapes.append(Shape(f"{c.id}#{k}", kind, list(dims), wp,
+                                list(quat), cloud=c.id))
+    return found, shapes
 
 
 def _mesh_dirs():
@@ -216,7 +256,11 @@ def resolve_mesh(uri):
 class Problem:
     """A request as files and plain values: urdf_path, srdf_path (or
     None), urdf and srdf texts (meshes absolute), shapes, joints, the
-    held joints, start, and the experiment's base name."""
+    held joints, start, and the experiment's base name. The scene's
+    octrees and point clouds are in shapes as boxes and spheres (their
+    cloud set), for a library that takes no cloud, and in clouds
+    (clouds.Cloud: points() for a library's point cloud API), for one
+    that does and leaves those shapes out."""
 
     def __init__(self, req, workdir, mesh_map=None):
         if req.robot_format != "urdf":
@@ -247,6 +291,8 @@ class Problem:
             with open(self.srdf_path, "w") as f:
                 f.write(srdf)
         self.shapes = parse_scene(req.scene)
+        self.clouds, shapes = read_clouds(req.scene)
+        self.shapes += shapes
         self.joints = list(req.joint_names)
         self.held = dict(zip(req.held_names, req.held_values))
 
@@ -295,7 +341,11 @@ def _value(name, v):
 class Peer:
     """Serves one library: adapter has NAME, ALGORITHMS, APPROACH (each
     algorithm's kind of planner: "sampling", "search", "optimisation" or
-    "hybrid"), GOAL_REGIONS (False: the kit samples IK goals),
+    "hybrid"), GOAL_REGIONS (False: the kit samples IK goals), CLOUDS
+    ("points": it gives the library the scene's octrees and point clouds
+    as points, problem.clouds; else it takes their boxes and spheres
+    from problem.shapes; each run says which, as the named value
+    cloud_points or cloud_shapes: how many),
     build(problem) -> model (cached while the robot and scene hashes
     stay), and plan(model, algorithm, start, goals, time_limit, seed,
     params) -> (stages, status, message, values), stages a list of
@@ -308,6 +358,7 @@ class Peer:
         self.adapter = adapter
         self.key = None
         self.model = self.world = None
+        self.cloud_values = []
         self.workdir = tempfile.mkdtemp(prefix=f"mpb-{adapter.NAME}-")
 
     def _prepare(self, req):
@@ -329,6 +380,15 @@ class Peer:
                           getattr(self.adapter, "mesh_map", None))
         self.model = self.adapter.build(problem, self.world)
         self.key = key
+        # What the library was given for the scene's octrees and point
+        # clouds, as named values of every run (docs/results-peers.md).
+        self.cloud_values = []
+        if problem.clouds and getattr(self.adapter, "CLOUDS", "") == "points":
+            self.cloud_values = [("cloud_points", sum(
+                c.count_points() for c in problem.clouds))]
+        elif problem.clouds:
+            self.cloud_values = [("cloud_shapes", sum(
+                1 for s in problem.shapes if s.cloud is not None))]
         return time.monotonic() - t0
 
     def _goals(self, req, deadline):
@@ -368,6 +428,8 @@ class Peer:
             setup = self._prepare(req)
             if setup is not None:
                 res.values.append(_value("world_setup_time", setup))
+            for name, v in self.cloud_values:
+                res.values.append(_value(name, v))
             self.world.hold(list(req.held_names), list(req.held_values))
             ready(setup)
             if req.num_joints != self.world.num_joints:
@@ -413,6 +475,23 @@ SETUP_MAX_S = 120.0  # at most this long to build a library's model
 DAEMON_GRACE_S = 5.0  # mpbenchd's wait past the time limit (daemon.h)
 
 
+_CLOUD_FORMS = ("cloud_points", "cloud_shapes")
+
+
+def _pack_clouds(values):
+    """A Peer's cloud_values (at most one) for the b"S" message, so that
+    a run stopped at its time limit still says what the library was
+    given."""
+    return b"".join(struct.pack("<Bd", _CLOUD_FORMS.index(n), v)
+                    for n, v in values[:1])
+
+
+def _unpack_clouds(data):
+    if len(data) != 9 or data[0] >= len(_CLOUD_FORMS):
+        return []
+    return [(_CLOUD_FORMS[data[0]], struct.unpack("<d", data[1:])[0])]
+
+
 def _die_with_parent():
     """Linux: SIGKILL this process when the serving process dies, even by
     SIGKILL, so that no worker outlives its planner."""
@@ -441,7 +520,8 @@ def _worker(adapter, conn, parent_end):
         with Watch(req.memory_limit) as watch:
             try:
                 res = p.solve(req, lambda setup: conn.send_bytes(
-                    b"S" + struct.pack("<d", -1.0 if setup is None else setup)))
+                    b"S" + struct.pack("<d", -1.0 if setup is None else setup)
+                    + _pack_clouds(p.cloud_values)))
             except MemoryError:
                 res = None
             except Exception as e:      # the library's: say so, go on
@@ -509,6 +589,7 @@ class Worker:
         # deadline starts when the worker says planning starts (b"S").
         limit = req.time_limit + GRACE_S + SETUP_MAX_S
         setup = None
+        clouds_given = []
         while True:
             if self.conn.poll(0.05):
                 try:
@@ -519,10 +600,11 @@ class Worker:
                     self._start()
                     raise RuntimeError(f"{self.adapter.NAME}'s worker died "
                                        f"(exit {code})") from None
-                if len(data) != 9 or data[:1] != b"S":
+                if len(data) not in (9, 18) or data[:1] != b"S":
                     return plan_result_t.decode(data)
                 t0 = time.monotonic()
-                setup = struct.unpack("<d", data[1:])[0]
+                setup = struct.unpack("<d", data[1:9])[0]
+                clouds_given = _unpack_clouds(data[9:])
                 limit = req.time_limit + GRACE_S
                 continue
             if not self.proc.is_alive():
@@ -545,7 +627,8 @@ class Worker:
                 # stays the world's setup, outside the run's time.
                 if setup is not None and setup >= 0:
                     res.values = [_value("world_setup_time", setup)]
-                    res.num_values = 1
+                res.values += [_value(n, v) for n, v in clouds_given]
+                res.num_values = len(res.values)
                 return res
 
 

@@ -11,6 +11,10 @@ create_obj and set_pose, the SRDF's disabled pairs as disabled_collisions,
 then what plan_joint_motion does, with its get_*_fn defaults (resolution
 0.05 rad), birrt with max_time (its time limit) and no smoothing as "raw",
 then the library's smooth_path (its default iterations) as "smoothed".
+
+Bullet has no octree: an octree of the scene comes as its occupied cells,
+boxes merged as libmpbench merges them, sixteen to a body (a cloud's
+spheres alike).
 """
 import os
 import random
@@ -22,6 +26,8 @@ from mpb import plan_result_t
 from pybullet_planning.motion_planners import meta
 
 from . import peer
+
+ARRAY_MAX = 16      # shapes a pybullet shape array keeps
 
 
 class Adapter:
@@ -42,7 +48,11 @@ class Adapter:
             raise peer.InvalidRequest(f"pybullet refuses the robot: {e}") \
                 from None
         obstacles = []
+        chunks = {}
         for k, s in enumerate(problem.shapes):
+            if s.cloud is not None:
+                chunks.setdefault(s.cloud, []).append(s)
+                continue
             if s.kind == "box":
                 body = pp.create_box(*s.dims)
             elif s.kind == "sphere":
@@ -56,6 +66,19 @@ class Adapter:
                 body = pp.create_obj(path)
             pp.set_pose(body, (tuple(s.position), tuple(s.quat)))
             obstacles.append(body)
+        # An octree's merged cells (a cloud's spheres): Bullet has no
+        # octree; its boxes go into bodies of 16 shapes each, the most a
+        # shape array keeps (createCollisionShapeArray drops the rest,
+        # silently), where a body a box would cost birrt's collision_fn
+        # one call per box and link.
+        for shapes in chunks.values():
+            for i in range(0, len(shapes), ARRAY_MAX):
+                part = shapes[i:i + ARRAY_MAX]
+                geoms = [pp.get_box_geometry(*s.dims) if s.kind == "box"
+                         else pp.get_sphere_geometry(s.dims[0]) for s in part]
+                poses = [(tuple(s.position), tuple(s.quat)) for s in part]
+                collision, _ = pp.create_shape_array(geoms, poses)
+                obstacles.append(pp.create_body(collision))
         links = {pp.get_link_name(robot, link) for link in pp.get_links(robot)}
         links.add(pp.get_base_name(robot))
         pairs = [(a, b) for a, b in peer.acm_pairs(problem.srdf)

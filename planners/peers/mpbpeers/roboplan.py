@@ -11,6 +11,12 @@ joints (Scene.addGroup), then roboplan.rrt.RRT with its own RRTOptions
 defaults but group_name, max_planning_time (its time limit) and, for the
 algorithm RRTConnect, rrt_connect=True. Its PathShortcutter, with its
 default options, gives the stage "shortcut" after "raw".
+
+An octree or point cloud of the scene: roboplan's OcTree (Coal's
+octree of an OctoMap tree, Scene.addOcTreeGeometry at the cloud's pose)
+from the cells in Coal's toBoxes() format: an octree's leaf cells at its
+resolution, so the same cells; a cloud of spheres as cells of their
+diameter.
 """
 import os
 import time
@@ -22,6 +28,8 @@ from roboplan import core, rrt
 from . import peer
 
 GROUP = "mpb_group"
+OCCUPIED = 0.97      # a cell's occupancy: OctoMap's clamping maximum
+THRESHOLD = 0.5      # OctoMap's default occupancy threshold
 
 
 class Adapter:
@@ -31,6 +39,7 @@ class Adapter:
     ALGORITHMS = ["RRT", "RRTConnect"]
     APPROACH = {a: "sampling" for a in ALGORITHMS}
     GOAL_REGIONS = False     # RRT.plan takes one goal configuration
+    CLOUDS = "points"        # octrees and point clouds: its own form
 
     def build(self, problem, world):
         try:
@@ -45,9 +54,13 @@ class Adapter:
             raise peer.InvalidRequest(f"roboplan refuses the robot: {e}") \
                 from None
         color = np.array([0.5, 0.5, 0.5, 1.0])
+        objs = []
         for k, s in enumerate(problem.shapes):
+            if s.cloud is not None:
+                continue            # below, as roboplan's OcTree
             tform = np.asfortranarray(np.array(s.matrix(), dtype=float))
             name = f"scene{k}"
+            objs.append(name)
             if s.kind == "box":
                 scene.addBoxGeometry(name, "universe", core.Box(*s.dims),
                                      tform, color)
@@ -63,10 +76,22 @@ class Adapter:
                 peer.write_obj(path, s)
                 scene.addMeshGeometry(name, "universe", core.Mesh(path),
                                       tform, color)
+        # An octree or point cloud: roboplan's OcTree (Coal's, on an
+        # OctoMap tree) from its cells as Coal's toBoxes() gives them
+        # (x, y, z, size, occupancy, threshold): each leaf cell's centre,
+        # in the cloud's frame at its resolution, the same cells; a
+        # cloud's spheres at their diameter.
+        for c in problem.clouds:
+            name = f"cloud_{c.id}"
+            boxes = [np.array([x, y, z, c.cell, OCCUPIED, THRESHOLD])
+                     for x, y, z in c.points()]
+            tform = np.asfortranarray(np.array(c.matrix(), dtype=float))
+            scene.addOcTreeGeometry(name, "universe",
+                                    core.OcTree(boxes, c.cell), tform, color)
+            objs.append(name)
         # roboplan checks scene objects against each other too; the
         # problems' objects touch (a shelf's boards): a user allows those
         # pairs, as MoveIt never checks the world against itself.
-        objs = [f"scene{k}" for k in range(len(problem.shapes))]
         pairs = [(a, b) for i, a in enumerate(objs) for b in objs[i + 1:]]
         if pairs:
             scene.setCollisions(pairs, False)

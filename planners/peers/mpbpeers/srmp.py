@@ -24,9 +24,16 @@ and where it starts from the start snapped onto its lattice (seen on the
 PR2's starts, up to 0.0072 rad away), the exact start is put first.
 docs/results-approaches.md says so. srmp's own time limit is the
 request's less what the kit spent on IK goals.
+
+An octree or point cloud of the scene: srmp's add_point_cloud (an
+octree of world-frame points at a resolution): an octree's leaf cells'
+centres at its resolution, the same cells while the octree's pose
+keeps its grid (a sensed scene's is the identity); a cloud of spheres
+as cells of their diameter.
 """
 import time
 
+import ims.pyims as _pyims
 import numpy as np
 from mpb import plan_result_t
 from srmp import GoalConstraint, GoalType, GridConfig, PlannerInterface, Pose
@@ -45,6 +52,7 @@ class Adapter:
     ALGORITHMS = ["wAstar", "ARAstar", "MHAstar", "Astar"]
     APPROACH = {a: "search" for a in ALGORITHMS}
     GOAL_REGIONS = False     # joint goals; the kit samples IK for regions
+    CLOUDS = "points"        # octrees and point clouds: its own form
 
     def build(self, problem, world):
         if problem.held:
@@ -73,6 +81,8 @@ class Adapter:
                 f"srmp's move group is {', '.join(names)}, the request's "
                 f"joints {', '.join(problem.joints)}")
         for k, s in enumerate(problem.shapes):
+            if s.cloud is not None:
+                continue            # below, as srmp's point cloud
             x, y, z, w = s.quat
             pose = Pose(np.array(s.position, dtype=float),
                         np.array([w, x, y, z], dtype=float))
@@ -87,6 +97,17 @@ class Adapter:
                 pi.add_mesh(name, vertices=np.array(s.vertices, dtype=float),
                             triangles=np.array(s.triangles, dtype=np.int32),
                             pose=pose)
+        # An octree or point cloud: srmp's add_point_cloud (an octree of
+        # the points, world frame, at a resolution): an octree's leaf
+        # cells' centres at its resolution, the same cells where the
+        # octree's pose is the world's; a cloud's spheres at their
+        # diameter. srmp's Python add_point_cloud drops the resolution
+        # (its binding's default, 1 cm, always): the binding's own,
+        # which takes it, is called.
+        for c in problem.clouds:
+            _pyims.PlannerInterface.add_point_cloud(
+                pi, f"cloud_{c.id}",
+                np.array(c.points(world=True), dtype=float), c.cell)
         return {"pi": pi, "planner": None}
 
     def plan(self, model, algorithm, start, goals, time_limit, seed, params):

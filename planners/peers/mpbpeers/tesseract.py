@@ -6,6 +6,10 @@ and OMPL inside Tesseract, collision checking by Tesseract's own Bullet
 contact managers on the URDF's collision meshes (each mesh as Bullet's
 BVH of its triangles; Tesseract's default discrete manager) and the
 scene's boxes, spheres, cylinders and meshes as Tesseract geometry.
+An octree of the scene comes as its occupied cells, boxes merged as
+libmpbench merges them, all on one link (a cloud's spheres alike):
+Tesseract's Octree geometry wants an octomap::OcTree, which its Python
+bindings cannot make.
 
 Algorithms:
 
@@ -198,12 +202,26 @@ class Adapter:
                 raise peer.InvalidRequest("tesseract: the last scene's "
                                           "links could not be removed")
         root = env.getRootLinkName()
-        for k, s in enumerate(problem.shapes):
+        # A shape a link, but an octree's boxes (a cloud's spheres) one
+        # link of many collision shapes: a link each would be thousands
+        # of AddLinkCommands (a sensed scene's 5871 took over 300 s).
+        links = []
+        clouds = {}
+        for s in problem.shapes:
+            if s.cloud is None:
+                links.append([s])
+            elif s.cloud in clouds:
+                clouds[s.cloud].append(s)
+            else:
+                clouds[s.cloud] = [s]
+                links.append(clouds[s.cloud])
+        for k, shapes in enumerate(links):
             link = Link(f"mpb_scene_{k}")
-            col = Collision()
-            col.origin = Isometry3d(np.array(s.matrix(), dtype=float))
-            col.geometry = _geometry(s)
-            link.collision.append(col)
+            for s in shapes:
+                col = Collision()
+                col.origin = Isometry3d(np.array(s.matrix(), dtype=float))
+                col.geometry = _geometry(s)
+                link.collision.append(col)
             joint = Joint(f"mpb_scene_{k}_joint")
             joint.type = JointType_FIXED
             joint.parent_link_name = root
@@ -211,7 +229,7 @@ class Adapter:
             cmd = AddLinkCommand(link, joint)
             if not env.applyCommand(cmd):
                 raise peer.InvalidRequest(f"tesseract refuses scene shape "
-                                          f"'{s.name}'")
+                                          f"'{shapes[0].name}'")
             self.scene_links.append(link.getName())
         if problem.held:
             env.setState(list(problem.held), np.array(
