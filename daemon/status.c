@@ -1,4 +1,5 @@
 /* status.c - the daemon's state on MPB_STATUS, for lcm-spy and `mpb status`. */
+#include <math.h>
 #include <stdlib.h>
 
 #include "daemon.h"
@@ -7,11 +8,16 @@
 void mpbd_status_publish(mpbd *d, const char *state, double now)
 {
     mpb_planner_seen_t *seen = calloc((size_t)d->num_planners + 1, sizeof *seen);
-    /* Both clocks read together: utime less elapsed_s is when the daemon
-     * started, to the microsecond, for other daemons (daemons.c). */
+    /* utime is the start's wall time plus elapsed_s by the monotonic
+     * clock, so that utime less elapsed_s (mpb_daemon_started_utime())
+     * is exactly this daemon's started_utime, in every status: two
+     * daemons that start together then judge which is older alike
+     * (daemons.c). Read from two clocks at two moments, the start wobbled
+     * by as long as the reads were apart, and under load both once
+     * judged the other older, and both stopped. */
     double elapsed = mpb_monotonic_s() - d->started;
     mpb_daemon_status_t st = {
-        .utime = mpb_utime_now(),
+        .utime = d->started_utime + (int64_t)llround(elapsed * 1e6),
         .daemon_id = d->daemon_id,
         .experiment = d->exp->name,
         .state = (char *)state,
