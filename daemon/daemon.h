@@ -221,6 +221,10 @@ typedef struct mpbd_latency {
 typedef struct mpbd_counters {
     long done, succeeded, failed, crashed, rejected, retried;
     long unproven;   /* of rejected: right tag, echoing another process */
+    /* of rejected, by the message list's channel each came on (inbox.c),
+     * the last for any other channel: each kind's first ten are logged,
+     * so that a flood on one channel hides no other's */
+    long rejected_on[MPB_WIRE_COUNT + 1];
 } mpbd_counters;
 
 /* runs.c: every run not yet done, from its configuration's queue to its
@@ -396,7 +400,9 @@ void mpbd_hub_echo(mpbd *d, double now);
  * sender's instance (auth.h) in d->msg_from either way. */
 int  mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
                   const char *channel, void *msg);
-/* Count a message received on channel as rejected, and log why. */
+/* Count a message received on channel as rejected, and log why: the
+ * first ten on each channel of the message list (and on any other), then
+ * one in a thousand of all. */
 void mpbd_reject(mpbd *d, const char *channel, const char *why);
 
 /* ---- planners.c ------------------------------------------------------- */
