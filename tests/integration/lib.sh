@@ -21,6 +21,44 @@ mpb_enter_netns() {
     ip route add 224.0.0.0/4 dev lo
 }
 
+# mpb_peers_enter SCRIPT ARGS...: what the peer planners' tests share.
+# Before the private network (no way out of it): the Panda and its
+# problems, and the peers' environments. Then the network namespace;
+# panda (the robot's folder) and MPB_MESH_PATH set; and the test skipped
+# in a sanitized build: a sanitized libmpbench loads into Python only
+# after the ASan runtime, and the libraries' wheels (their own static
+# libstdc++) do not run under it (ASan's __cxa_throw interceptor finds no
+# real one and aborts, seen in matplotlib's ft2font, which mplib imports).
+# Their C++ is not ours to check; the plain build runs these tests.
+mpb_peers_enter() {
+    if [ -z "${MPB_IN_NETNS:-}" ]; then
+        "$MPB_SOURCE/tools/robot_data.sh" --check ||
+            "$MPB_SOURCE/tools/robot_data.sh" >/dev/null || exit 1
+        sh "$MPB_SOURCE/tools/peers_env.sh" >/dev/null || exit 1
+    fi
+    mpb_enter_netns "$@"
+    panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
+    export MPB_MESH_PATH=$panda MPB_BUILD
+    if ldd "$MPB_BUILD/libmpbench/libmpbench.so" 2>/dev/null | grep -q libasan; then
+        echo "skipped: a sanitized build; the peers' wheels do not run under ASan"
+        echo "0 passed, 0 failed, 1 skipped"
+        exit 0
+    fi
+}
+
+# mpb_ball_robot FILE: a ball of radius 2 cm on prismatic joints x, y, z
+# (each -1 .. 1 m), as URDF: the smallest robot that meets a scene.
+mpb_ball_robot() {
+    cat >"$1" <<'EOT'
+<robot name="ball"><link name="base"/><link name="lx"/><link name="ly"/>
+<link name="ball"><collision><geometry><sphere radius="0.02"/></geometry></collision></link>
+<joint name="x" type="prismatic"><parent link="base"/><child link="lx"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+<joint name="y" type="prismatic"><parent link="lx"/><child link="ly"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+<joint name="z" type="prismatic"><parent link="ly"/><child link="ball"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+EOT
+}
+
 # mpb_need_hub: skip the test (exit 0, saying why) unless java and
 # lcm.jar (Debian's liblcm-java), which lcm-java's TCP hub needs, are here.
 mpb_need_hub() {

@@ -12,15 +12,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 DB=$work/octree.db
 
-# A ball of radius 2 cm on prismatic joints x, y, z.
-cat >"$work/ball.urdf" <<'EOT'
-<robot name="ball"><link name="base"/><link name="lx"/><link name="ly"/>
-<link name="ball"><collision><geometry><sphere radius="0.02"/></geometry></collision></link>
-<joint name="x" type="prismatic"><parent link="base"/><child link="lx"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-<joint name="y" type="prismatic"><parent link="lx"/><child link="ly"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-<joint name="z" type="prismatic"><parent link="ly"/><child link="ball"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-</robot>
-EOT
+mpb_ball_robot "$work/ball.urdf"
 # The wall: points every 1 cm at x = 0.5, y -0.3 .. 0.3, z 0 .. 0.8.
 awk 'BEGIN { n = 0; for (y = -30; y <= 30; y++) for (z = 0; z <= 80; z++) n++;
              print "ply\nformat ascii 1.0\nelement vertex " n;

@@ -18,27 +18,7 @@ PASSES=0
 FAILS=0
 PEERS=${MPB_TEST_PEERS:-ompl2 roboplan mplib pybullet_planning tesseract drake klampt srmp}
 
-# The data and the environments before the private network (no way out).
-if [ -z "${MPB_IN_NETNS:-}" ]; then
-    "$MPB_SOURCE/tools/robot_data.sh" --check ||
-        "$MPB_SOURCE/tools/robot_data.sh" >/dev/null || exit 1
-    sh "$MPB_SOURCE/tools/peers_env.sh" >/dev/null || exit 1
-fi
-mpb_enter_netns "$0" "$@"
-panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
-export MPB_MESH_PATH=$panda MPB_BUILD
-# A sanitized libmpbench loads into Python only after the ASan runtime
-# (as planners/python/CMakeLists.txt does for the Python planner).
-# A sanitized libmpbench loads into Python only after the ASan runtime,
-# and the libraries' wheels (their own static libstdc++) do not run under
-# it: ASan's __cxa_throw interceptor finds no real one and aborts (seen in
-# matplotlib's ft2font, which mplib imports). Their C++ is not ours to
-# check; the plain build runs this test.
-if ldd "$MPB_BUILD/libmpbench/libmpbench.so" 2>/dev/null | grep -q libasan; then
-    echo "skipped: a sanitized build; the peers' wheels do not run under ASan"
-    echo "0 passed, 0 failed, 1 skipped"
-    exit 0
-fi
+mpb_peers_enter "$0" "$@"
 
 work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT

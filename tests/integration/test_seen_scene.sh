@@ -17,15 +17,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 DB=$work/seen.db
 
-# A ball of radius 2 cm on prismatic joints x, y, z.
-cat >"$work/ball.urdf" <<'EOT'
-<robot name="ball"><link name="base"/><link name="lx"/><link name="ly"/>
-<link name="ball"><collision><geometry><sphere radius="0.02"/></geometry></collision></link>
-<joint name="x" type="prismatic"><parent link="base"/><child link="lx"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-<joint name="y" type="prismatic"><parent link="lx"/><child link="ly"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-<joint name="z" type="prismatic"><parent link="ly"/><child link="ball"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-</robot>
-EOT
+mpb_ball_robot "$work/ball.urdf"
 # Posts 10 cm square, 80 cm tall, at x 0.5: the truth's at y 0.5, the
 # seen scene's phantom at y -0.5.
 post() {
