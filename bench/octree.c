@@ -69,7 +69,7 @@ static int cloud_load(void)
            "memory +%ld KiB\n", t, mpb_octree_num_cells(o), peak_kib() - before);
     mpbb_result("cloud_load_s=%.4f cloud_cells=%d cloud_peak_kib=%ld", t,
                 mpb_octree_num_cells(o), peak_kib() - before);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     remove(path);
     return 0;
 }
@@ -128,7 +128,7 @@ static int check_ratio(const char *src, int rounds)
     snprintf(path, sizeof path, "%s/tests/support/data/pr2_right_arm.srdf", src);
     char *srdf = mpb_read_file(path, 0, &len);
     mpb_scene *s = NULL;
-    if (!prim || !urdf || !srdf || mpb_scene_parse(prim, &s, err, sizeof err) != MPB_OK) {
+    if (!prim || !urdf || !srdf || mpb_scene_open_text(prim, &s, err, sizeof err) != MPB_OK) {
         fprintf(stderr, "mpb-bench-octree: cannot read %s's scenes and robots\n", src);
         return -1;
     }
@@ -192,8 +192,8 @@ static int check_ratio(const char *src, int rounds)
                 "octree_cells=%d", tp * 1e6, to * 1e6, med, mpb_octree_num_cells(o));
     mpb_world_close(wp);
     mpb_world_close(wo);
-    mpb_octree_free(o);
-    mpb_scene_free(s);
+    mpb_octree_destroy(o);
+    mpb_scene_close(s);
     free(q);
     free(ratio);
     free(oct);

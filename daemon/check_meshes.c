@@ -53,7 +53,7 @@ int mpbd_mesh_note(const mpbd_experiment *e, char *buf, size_t len)
         strcmp(e->scenes[0].robot_format, "urdf") != 0)
         return 0;
     mpb_robot *r = NULL;
-    if (mpb_robot_load_urdf_joints(e->scenes[0].robot,
+    if (mpb_robot_open_urdf_joints(e->scenes[0].robot,
                                    (const char *const *)e->group, e->num_group,
                                    &r, NULL, 0) != MPB_OK)
         return 0;
@@ -80,7 +80,7 @@ int mpbd_mesh_note(const mpbd_experiment *e, char *buf, size_t len)
                  "(tools/run_benchmark.sh does so for its own)", beside,
                  beside == 1 ? "" : "es", first, beside == 1 ? "is" : "are",
                  robot_dir, robot_dir);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
     free(env);
     return beside > 0;
 }

@@ -144,13 +144,13 @@ mpbd_experiment *mpbd_experiment_load(const char *path, char *err,
         goto fail;
 
     yaml_document_delete(&L.y.doc);
-    mpb_srdf_free(L.srdf);
+    mpb_srdf_close(L.srdf);
     free(L.dir);
     return e;
 fail:
     if (have_doc)
         yaml_document_delete(&L.y.doc);
-    mpb_srdf_free(L.srdf);
+    mpb_srdf_close(L.srdf);
     free(L.dir);
     mpbd_experiment_free(e);
     return NULL;

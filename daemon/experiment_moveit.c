@@ -29,7 +29,7 @@ static mpb_robot *robot_model(mpbd_loader *L, const mpbd_experiment *e,
 {
     if (L->model == NULL && strcmp(robot_format, "urdf") == 0 &&
         e->num_group > 0)
-        mpb_robot_load_urdf_joints(robot, (const char *const *)e->group,
+        mpb_robot_open_urdf_joints(robot, (const char *const *)e->group,
                                    e->num_group, &L->model, NULL, 0);
     return L->model;
 }

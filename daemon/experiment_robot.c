@@ -144,7 +144,7 @@ int mpbd_load_srdf(mpbd_loader *L, mpbd_experiment *e, char **robot)
      * pairs naming links the URDF lacks (skipped, as MoveIt does). */
     char why[512];
     mpb_srdf *sem = NULL;
-    if (mpb_srdf_load(*robot, srdf, &sem, why, sizeof why) != MPB_OK) {
+    if (mpb_srdf_open(*robot, srdf, &sem, why, sizeof why) != MPB_OK) {
         free(srdf);
         return robot_fault(L, e, why);
     }
@@ -153,7 +153,7 @@ int mpbd_load_srdf(mpbd_loader *L, mpbd_experiment *e, char **robot)
         snprintf(line, sizeof line, "robot: %s: %s", path,
                  mpb_srdf_skipped_pairs(sem));
         if ((e->srdf_warning = strdup(line)) == NULL) {
-            mpb_srdf_free(sem);
+            mpb_srdf_close(sem);
             free(srdf);
             return fail_at(L, n, "out of memory");
         }
@@ -161,7 +161,7 @@ int mpbd_load_srdf(mpbd_loader *L, mpbd_experiment *e, char **robot)
     if (get(L, L->robot, "group") != NULL)
         L->srdf = sem;
     else
-        mpb_srdf_free(sem);
+        mpb_srdf_close(sem);
     size_t rl = strlen(*robot);
     int nl = rl > 0 && (*robot)[rl - 1] != '\n';
     char *both = malloc(rl + (size_t)nl + len + 1);

@@ -298,7 +298,7 @@ int mpbd_load_scenes(mpbd_loader *L, mpbd_experiment *e, yaml_node_t *root)
         }
     rc = 0;
 done:
-    mpb_robot_free(L->model);
+    mpb_robot_close(L->model);
     L->model = NULL;
     free(robot_format);
     free(robot);

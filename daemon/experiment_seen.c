@@ -106,7 +106,7 @@ static int sense_scene(mpbd_loader *L, mpbd_scene *sc, yaml_node_t *m)
         return fail_at(L, m, "sense: scene '%s' is a '%s' scene; cameras see "
                        "moveit-scene ones only", sc->name, sc->scene_format);
     mpb_scene *truth = NULL;
-    if (mpb_scene_parse(sc->scene, &truth, why, sizeof why) != MPB_OK)
+    if (mpb_scene_open_text(sc->scene, &truth, why, sizeof why) != MPB_OK)
         return fail_at(L, m, "sense: scene '%s': %s", sc->name, why);
     long hits = 0;
     int cells = 0;
@@ -114,7 +114,7 @@ static int sense_scene(mpbd_loader *L, mpbd_scene *sc, yaml_node_t *m)
                                   sizeof why);
     if (rc == MPB_OK && o.num_cameras == 0)
         mpb_sense_default_cameras(truth, &o);
-    mpb_scene_free(truth);
+    mpb_scene_close(truth);
     if (rc != MPB_OK)
         return fail_at(L, m, "sense: scene '%s': %s", sc->name, why);
     char how[256];

@@ -647,7 +647,7 @@ static int open_links(const options *o, mpbd *d, int *filtered)
     char err[1024], host[256] = "";
     int rc;
     if (o->secret_file &&
-        mpb_auth_load(o->secret_file, &d->auth, err, sizeof err) != MPB_OK) {
+        mpb_auth_open(o->secret_file, &d->auth, err, sizeof err) != MPB_OK) {
         fprintf(stderr, "mpbenchd: %s\n", err);
         return 1;
     }
@@ -852,7 +852,7 @@ static void release(mpbd *d)
     mpbd_planners_free(d);
     mpb_store_close(d->store);
     mpbd_experiment_free(d->exp);
-    mpb_auth_free(d->auth);
+    mpb_auth_close(d->auth);
 }
 
 int main(int argc, char **argv)

@@ -555,12 +555,12 @@ static int octomap(reader *R, yaml_node_t *world, text *t)
     }
     char why[300];
     mpb_octree *o = NULL;
-    if (mpb_octree_read_data(bytes, (size_t)n, res, binary, "octomap data", &o, why,
-                             sizeof why) != MPB_OK) {
+    if (mpb_octree_create_from_stream(bytes, (size_t)n, res, binary, "octomap data", &o, why,
+                                      sizeof why) != MPB_OK) {
         free(bytes);
         return fail_at(R, data, "%s", why);
     }
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     char *b64 = NULL;
     if (mpb__base64_encode(bytes, (size_t)n, &b64, NULL) != MPB_OK) {
         free(bytes);

@@ -137,7 +137,7 @@ static int thin_moveit(const mpbd_scene *sc, double limit, double res,
 {
     mpb_scene *s = NULL;
     int n = 0;
-    if (mpb_scene_parse(sc->scene, &s, NULL, 0) != MPB_OK)
+    if (mpb_scene_open_text(sc->scene, &s, NULL, 0) != MPB_OK)
         return 0;
     for (int i = 0; i < mpb_scene_num_objects(s); i++) {
         const mpb_scene_object *o = mpb_scene_object_at(s, i);
@@ -152,7 +152,7 @@ static int thin_moveit(const mpbd_scene *sc, double limit, double res,
             }
         }
     }
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     return n;
 }
 

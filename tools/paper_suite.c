@@ -315,7 +315,7 @@ static int write_suite(FILE *out, const suite *s, const variant *v)
     snprintf(path, sizeof path, "%s/%s", s->dir, s->robot);
     char *urdf = read_file(path);
     mpb_robot *robot;
-    if (mpb_robot_load_urdf_joints(urdf, arm_joints, NUM_JOINTS, &robot, err,
+    if (mpb_robot_open_urdf_joints(urdf, arm_joints, NUM_JOINTS, &robot, err,
                                    sizeof err) != MPB_OK)
         die("%s: %s", path, err);
     if (mpb_robot_link_index(robot, EE_LINK) < 0)
@@ -367,7 +367,7 @@ static int write_suite(FILE *out, const suite *s, const variant *v)
         free(scene);
     }
     write_planners(out, v);
-    mpb_robot_free(robot);
+    mpb_robot_close(robot);
     free(urdf);
     return unreachable;
 }

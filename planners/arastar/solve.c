@@ -97,8 +97,8 @@ static void run_free(run *r)
     free(r->sol.waypoints);
     ara_grid_free(&r->grid);
     ara_motion_free(&r->motion);
-    mpb_scene_free(r->scene);
-    mpb_robot_free(r->robot);
+    mpb_scene_close(r->scene);
+    mpb_robot_close(r->robot);
     mpb_world_close(r->world);
 }
 
@@ -193,10 +193,10 @@ static int solve_run(run *r, const mpb_solve_limits *lim,
     rc = mpb_world_open_group(req->robot_format, req->robot, req->scene_format,
                               req->scene, names, nj, &r->world, err, sizeof err);
     if (rc == MPB_OK)
-        rc = mpb_robot_load_urdf_joints(req->robot, names, nj, &r->robot, err,
+        rc = mpb_robot_open_urdf_joints(req->robot, names, nj, &r->robot, err,
                                         sizeof err);
     if (rc == MPB_OK)
-        rc = mpb_scene_parse(req->scene, &r->scene, err, sizeof err);
+        rc = mpb_scene_open_text(req->scene, &r->scene, err, sizeof err);
     if (rc == MPB_OK)
         rc = mpb_request_hold(req, r->world, r->robot, err, sizeof err);
     if (rc != MPB_OK) {

@@ -9,7 +9,7 @@ namespace {
 void close(CachedWorld &c)
 {
     mpb_world_close(c.world);
-    mpb_robot_free(c.robot);
+    mpb_robot_close(c.robot);
 }
 
 // A hash names the text; without one, the text names itself.
@@ -38,7 +38,7 @@ mpb_robot *cached_robot(CachedWorld &c, const mpb_plan_request_t *req, std::stri
         return nullptr;
     }
     char msg[256] = "";
-    if (mpb_robot_load_urdf_joints(req->robot, req->joint_names, req->num_joints,
+    if (mpb_robot_open_urdf_joints(req->robot, req->joint_names, req->num_joints,
                                    &c.robot, msg, sizeof msg) != MPB_OK ||
         mpb_request_hold(req, nullptr, c.robot, msg, sizeof msg) != MPB_OK) {
         err = msg;

@@ -28,12 +28,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     data++;
     size--;
     if (which == 0)
-        mpb_octree_read_file(data, size, "f", &o, err, sizeof err);
+        mpb_octree_create_from_bytes(data, size, "f", &o, err, sizeof err);
     else if (which == 1 || which == 2)
-        mpb_octree_read_data(data, size, 0.01, which == 1, "d", &o, err, sizeof err);
+        mpb_octree_create_from_stream(data, size, 0.01, which == 1, "d", &o, err, sizeof err);
     else if (mpb_octree_create(0.01, &o) == MPB_OK &&
              mpb_cloud_read(data, size, "c", into, o, NULL, err, sizeof err) != MPB_OK) {
-        mpb_octree_free(o);
+        mpb_octree_destroy(o);
         o = NULL;
     }
     if (o) {
@@ -42,13 +42,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (mpb_octree_write(o, 1, &b, &n) == MPB_OK) {
             mpb_octree *back = NULL;
             /* what is written reads back as the same cells */
-            if (mpb_octree_read_file(b, n, "w", &back, err, sizeof err) != MPB_OK ||
+            if (mpb_octree_create_from_bytes(b, n, "w", &back, err, sizeof err) != MPB_OK ||
                 mpb_octree_num_cells(back) != mpb_octree_num_cells(o))
                 abort();
-            mpb_octree_free(back);
+            mpb_octree_destroy(back);
             free(b);
         }
-        mpb_octree_free(o);
+        mpb_octree_destroy(o);
     }
     return 0;
 }

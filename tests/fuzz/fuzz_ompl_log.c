@@ -10,8 +10,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     mpb_ompl_log *log = NULL;
     char err[256];
-    if (mpb_ompl_log_parse((const char *)data, size, &log, err,
-                           sizeof err) == MPB_OK) {
+    if (mpb_ompl_log_open((const char *)data, size, &log, err,
+                          sizeof err) == MPB_OK) {
         for (int i = 0; i < log->num_planners; i++) {
             const mpb_ompl_planner *p = &log->planners[i];
             volatile double sink = 0;
@@ -22,7 +22,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 sink += (double)p->progress_start[p->num_runs];
             (void)sink;
         }
-        mpb_ompl_log_free(log);
+        mpb_ompl_log_close(log);
     }
     return 0;
 }

@@ -16,14 +16,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     memcpy(text, data, size);
     text[size] = '\0';
-    if (mpb_scene_parse(text, &s, err, sizeof err) == MPB_OK) {
+    if (mpb_scene_open_text(text, &s, err, sizeof err) == MPB_OK) {
         mpb_collision *c = NULL;
         if (mpb_collision_create(&c) == MPB_OK) {
             mpb_scene_add_statics(s, c);
             mpb_collision_check(c, NULL, NULL);
             mpb_collision_destroy(c);
         }
-        mpb_scene_free(s);
+        mpb_scene_close(s);
     }
     free(text);
     return 0;

@@ -16,7 +16,7 @@ static void exercise(mpb_robot *r)
         mpb_robot_fk(r, q, poses);
     free(q);
     free(poses);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -28,9 +28,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     memcpy(text, data, size);
     text[size] = '\0';
-    if (mpb_robot_load_urdf(text, NULL, "tool", &r, err, sizeof err) == MPB_OK)
+    if (mpb_robot_open_urdf(text, NULL, "tool", &r, err, sizeof err) == MPB_OK)
         exercise(r);
-    if (mpb_robot_load_urdf_joints(text, joints, 1, &r, err, sizeof err) == MPB_OK)
+    if (mpb_robot_open_urdf_joints(text, joints, 1, &r, err, sizeof err) == MPB_OK)
         exercise(r);
     free(text);
     return 0;

@@ -18,7 +18,7 @@ from mpbpeers import clouds, peer  # noqa: E402
 
 _create = declare("mpb_octree_create", c_int, c_double, POINTER(c_void_p))
 _add = declare("mpb_octree_add_point", c_int, c_void_p, POINTER(c_double))
-_free = declare("mpb_octree_free", None, c_void_p)
+_free = declare("mpb_octree_destroy", None, c_void_p)
 _text = declare("mpb_scene_octree_text", c_int, c_void_p, c_char_p,
                 POINTER(c_double), POINTER(c_void_p))
 _libc = ctypes.CDLL(None)

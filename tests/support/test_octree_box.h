@@ -83,7 +83,7 @@ static inline char *test_box_bt(const char *dir)
     sprintf(path, "%s/box.bt", dir);
     test_write_bytes(path, b, n);
     free(b);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     return path;
 }
 
@@ -93,7 +93,7 @@ static inline mpb_collision *test_probe_world(const char *scene_text, double r)
 {
     mpb_scene *s = NULL;
     char err[300];
-    int rc = mpb_scene_parse(scene_text, &s, err, sizeof err);
+    int rc = mpb_scene_open_text(scene_text, &s, err, sizeof err);
     if (rc != MPB_OK)
         fail_msg("scene: %s", err);
     mpb_collision *c = NULL;
@@ -101,7 +101,7 @@ static inline mpb_collision *test_probe_world(const char *scene_text, double r)
     assert_int_equal(mpb_scene_add_statics(s, c), MPB_OK);
     mpb_geometry g = {.type = MPB_SHAPE_SPHERE, .dims = {r, 0, 0, 0}};
     assert_int_equal(mpb_collision_add_movable(c, 0, &g, NULL), MPB_OK);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     return c;
 }
 

@@ -395,7 +395,7 @@ typedef struct loaded {
 
 static void unload(loaded *l)
 {
-    mpb_ompl_log_free(l->log);
+    mpb_ompl_log_close(l->log);
     free(l->text);
     *l = (loaded){0};
 }
@@ -422,7 +422,7 @@ static int load(const char *path, loaded *l)
                 errno ? strerror(errno) : "out of memory");
         return 0;
     }
-    if ((rc = mpb_ompl_log_parse(l->text, len, &l->log, err, sizeof err)) !=
+    if ((rc = mpb_ompl_log_open(l->text, len, &l->log, err, sizeof err)) !=
         MPB_OK) {
         /* "line N: what" -> "PATH:N: what", as compilers say it. */
         fprintf(stderr, "mpb " CMD ": %s:%s\n", path,

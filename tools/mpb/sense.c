@@ -182,7 +182,7 @@ int cmd_sense(int argc, char **argv)
     const char *inpath = argv[optind];
     char err[600];
     mpb_scene *s = NULL;
-    if (mpb_scene_load(inpath, &s, err, sizeof err) != MPB_OK) {
+    if (mpb_scene_open(inpath, &s, err, sizeof err) != MPB_OK) {
         fprintf(stderr, "mpb sense: %s\n", err);
         return MPB_EXIT_ERROR;
     }
@@ -190,7 +190,7 @@ int cmd_sense(int argc, char **argv)
     long hits = 0;
     int cells = 0;
     int rc = mpb_scene_sense_text(s, &so, &text, &hits, &cells, err, sizeof err);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     if (rc != MPB_OK) {
         fprintf(stderr, "mpb sense: %s: %s\n", inpath, err);
         return MPB_EXIT_ERROR;

@@ -290,7 +290,7 @@ int cmd_srdf(int argc, char **argv)
         goto done;
     }
     /* The SRDF read against the URDF: its groups, and the group named. */
-    if (srdf && mpb_srdf_load(urdf, srdf, &sem, err, sizeof err) != MPB_OK) {
+    if (srdf && mpb_srdf_open(urdf, srdf, &sem, err, sizeof err) != MPB_OK) {
         /* "srdf line 3: ..." is the SRDF file's line 3. */
         if (strncmp(err, "srdf ", 5) == 0)
             fprintf(stderr, "mpb %s: %s: %s\n", CMD, srdf_path, err + 5);
@@ -318,10 +318,10 @@ int cmd_srdf(int argc, char **argv)
             names[num_joints++] = (char *)G->active[j];
     }
     /* The robot alone first: its name, and the group when none is given. */
-    if ((joint_list || group ? mpb_robot_load_urdf_joints(urdf,
+    if ((joint_list || group ? mpb_robot_open_urdf_joints(urdf,
                                                  (const char *const *)names,
                                                  num_joints, &robot, err, sizeof err)
-                    : mpb_robot_load_urdf(urdf, NULL, NULL, &robot, err,
+                    : mpb_robot_open_urdf(urdf, NULL, NULL, &robot, err,
                                           sizeof err)) != MPB_OK) {
         fprintf(stderr, "mpb %s: %s: %s\n", CMD, urdf_path, err);
         goto done;
@@ -378,8 +378,8 @@ done:
         rc = MPB_EXIT_ERROR;
     }
     mpb_world_close(w);
-    mpb_srdf_free(sem);
-    mpb_robot_free(robot);
+    mpb_srdf_close(sem);
+    mpb_robot_close(robot);
     free(text);
     free(srdf);
     free(urdf);

@@ -51,7 +51,7 @@ extern "C" {
 #define MPB_AUTH_TRAILER_SIZE (24 + MPB_AUTH_TAG_SIZE)
 
 /* A secret, this process's instance and counter, and the senders it
- * believes. Publishing is safe from any thread; mpb_auth_open() is to be
+ * believes. Publishing is safe from any thread; mpb_auth_check() is to be
  * called from one thread only. */
 typedef struct mpb_auth mpb_auth;
 
@@ -59,10 +59,10 @@ typedef struct mpb_auth mpb_auth;
  * Read a shared secret from the file at path (at least 16 bytes, e.g. from
  * `head -c 32 /dev/urandom`); the key is the BLAKE2b-256 hash of all the
  * file's bytes. Draws this process's instance. On failure *out is NULL and
- * err holds one line naming the file. Free with mpb_auth_free().
+ * err holds one line naming the file. Free with mpb_auth_close().
  */
-int mpb_auth_load(const char *path, mpb_auth **out, char *err, size_t errlen);
-void mpb_auth_free(mpb_auth *a);
+int mpb_auth_open(const char *path, mpb_auth **out, char *err, size_t errlen);
+void mpb_auth_close(mpb_auth *a);
 
 /* This process's instance (never 0), or 0 when a is NULL. */
 uint64_t mpb_auth_instance(const mpb_auth *a);
@@ -74,7 +74,7 @@ typedef struct mpb_auth_info {
     uint64_t echo;          /* the instance it answers, 0 if none */
 } mpb_auth_info;
 
-/* What mpb_auth_open() made of a message. */
+/* What mpb_auth_check() made of a message. */
 typedef enum mpb_auth_verdict {
     MPB_AUTH_FRESH = 0,     /* authentic and new: from a sender believed
                                (or believed from now on, as it echoes this
@@ -95,9 +95,9 @@ typedef enum mpb_auth_verdict {
  * is remembered, so that the same bytes again are MPB_AUTH_REPLAYED. Only
  * MPB_AUTH_FRESH and MPB_AUTH_UNPROVEN messages may be decoded.
  */
-mpb_auth_verdict mpb_auth_open(mpb_auth *a, const char *channel,
-                               const void *buf, size_t len, size_t *msg_len,
-                               mpb_auth_info *info);
+mpb_auth_verdict mpb_auth_check(mpb_auth *a, const char *channel,
+                                const void *buf, size_t len, size_t *msg_len,
+                                mpb_auth_info *info);
 
 /* A few words on a verdict, for a log line ("a replay", ...). */
 const char *mpb_auth_verdict_text(mpb_auth_verdict v);

@@ -54,7 +54,7 @@ int mpb_cloud_read(const void *bytes, size_t len, const char *name,
 
 /*
  * The cloud at path as an octree of cells of side `voxel` (m): each
- * point's cell is occupied. MPB_OK with *out (mpb_octree_free()); MPB_EIO;
+ * point's cell is occupied. MPB_OK with *out (mpb_octree_destroy()); MPB_EIO;
  * MPB_EINVAL for a voxel outside the octree's resolutions (octree.h);
  * otherwise as mpb_cloud_read(), a point beyond the octree's reach
  * MPB_EPARSE.

@@ -42,12 +42,12 @@ typedef struct mpb_mesh {
 /*
  * A new mesh with room for the given counts (>= 0), contents unset (zeroed).
  * NULL when out of memory or a count is negative or too large. Free with
- * mpb_mesh_free().
+ * mpb_mesh_destroy().
  */
-mpb_mesh *mpb_mesh_new(int num_vertices, int num_triangles);
+mpb_mesh *mpb_mesh_create(int num_vertices, int num_triangles);
 
 /* Release a mesh and its arrays; NULL does nothing. */
-void mpb_mesh_free(mpb_mesh *m);
+void mpb_mesh_destroy(mpb_mesh *m);
 
 /* A new deep copy of m (NULL when out of memory or m is NULL). */
 mpb_mesh *mpb_mesh_copy(const mpb_mesh *m);
@@ -80,15 +80,15 @@ int mpb_mesh_resolve(const char *uri, const char *const *dirs, int num_dirs,
 /*
  * Load the mesh at uri (resolved as above) and scale it per axis (scale
  * NULL means 1 1 1; the URDF <mesh scale="x y z">). On success *out is a
- * new mesh, freed with mpb_mesh_free(). On failure *out is NULL, and the
+ * new mesh, freed with mpb_mesh_destroy(). On failure *out is NULL, and the
  * return is one of mpb_mesh_resolve()'s codes, MPB_EPARSE (assimp cannot
  * read the file, or it holds no triangles), MPB_EINVAL (a scale not finite
  * or zero) or MPB_ENOMEM; err holds one line naming the file ("mesh
  * '/x/m.stl': assimp: ...").
  */
-int mpb_mesh_load(const char *uri, const char *const *dirs, int num_dirs,
-                  const double scale[3], mpb_mesh **out,
-                  char *err, size_t errlen);
+int mpb_mesh_create_from_uri(const char *uri, const char *const *dirs,
+                             int num_dirs, const double scale[3],
+                             mpb_mesh **out, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -7,8 +7,11 @@
  *   - Functions that can fail return an int: 0 (MPB_OK) on success, a
  *     negative MPB_E... code on failure. mpb_strerror() names a code; the
  *     handle's own errmsg function (e.g. mpb_store_errmsg()) gives the detail.
- *   - Objects are opaque handles made by mpb_x_open()/mpb_x_create() and
- *     released by mpb_x_close()/mpb_x_destroy(); releasing NULL does nothing.
+ *   - Objects are handles with one release function each. A handle read
+ *     from a source (a file, a text, a key) is made by mpb_x_open...() and
+ *     released by mpb_x_close(); one made empty or from numbers, to be
+ *     filled by the caller, by mpb_x_create...() and mpb_x_destroy().
+ *     Releasing NULL does nothing.
  *   - Who frees returned memory is stated at each function.
  *   - The library never prints and never exits.
  */

@@ -41,13 +41,13 @@ typedef struct mpb_octree mpb_octree;
 
 /*
  * A new empty tree of cells of side `resolution` (m) in *out (MPB_OK),
- * freed with mpb_octree_free(). MPB_EINVAL for NULL out or a resolution
+ * freed with mpb_octree_destroy(). MPB_EINVAL for NULL out or a resolution
  * that is not finite or outside [MPB_OCTREE_MIN_RESOLUTION,
  * MPB_OCTREE_MAX_RESOLUTION]; MPB_ENOMEM.
  */
 int mpb_octree_create(double resolution, mpb_octree **out);
 
-void mpb_octree_free(mpb_octree *o);
+void mpb_octree_destroy(mpb_octree *o);
 
 double mpb_octree_resolution(const mpb_octree *o);
 
@@ -94,26 +94,30 @@ int mpb_octree_boxes(mpb_octree *o, double **boxes, int *n);
  * MPB_EINVAL for a bad resolution; MPB_EPARSE for truncated or corrupt
  * data, or bytes after the tree; MPB_ENOMEM.
  */
-int mpb_octree_read_data(const void *data, size_t len, double resolution,
-                         int binary, const char *name, mpb_octree **out,
-                         char *err, size_t errlen);
+int mpb_octree_create_from_stream(const void *data, size_t len,
+                                  double resolution, int binary,
+                                  const char *name, mpb_octree **out,
+                                  char *err, size_t errlen);
 
 /*
  * Read a whole .bt or .ot file's bytes (told apart by their first line:
  * "# Octomap OcTree binary file" or "# Octomap OcTree file"): the header
  * ("id OcTree", "size N", "res R", comments, then "data") and the tree.
  * Other tree types (ColorOcTree, OcTreeStamped) are MPB_EUNSUPPORTED.
- * Otherwise as mpb_octree_read_data().
+ * Otherwise as mpb_octree_create_from_stream().
  */
-int mpb_octree_read_file(const void *bytes, size_t len, const char *name,
-                         mpb_octree **out, char *err, size_t errlen);
+int mpb_octree_create_from_bytes(const void *bytes, size_t len,
+                                 const char *name, mpb_octree **out,
+                                 char *err, size_t errlen);
 
-/* mpb_octree_read_file() of the file at path; MPB_EIO if it cannot be
+/* mpb_octree_create_from_bytes() of the file at path; MPB_EIO if it cannot be
  * read. */
-int mpb_octree_load(const char *path, mpb_octree **out, char *err, size_t errlen);
+int mpb_octree_create_from_file(const char *path, mpb_octree **out,
+                                char *err, size_t errlen);
 
 /*
- * The tree as OctoMap's binary stream (mpb_octree_read_data(), binary 1)
+ * The tree as OctoMap's binary stream (mpb_octree_create_from_stream(),
+ * binary 1)
  * in *data (the caller frees it) of *len bytes; with header != 0, as a
  * whole .bt file. MPB_OK; MPB_EINVAL; MPB_ENOMEM. The same cells give
  * the same bytes.

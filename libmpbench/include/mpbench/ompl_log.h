@@ -113,14 +113,14 @@ typedef struct mpb_ompl_log {
 
 /*
  * Parse a log held in text[0..len) (it need not end in NUL). On success
- * *out is a new log, freed with mpb_ompl_log_free(). On failure returns
+ * *out is a new log, freed with mpb_ompl_log_close(). On failure returns
  * MPB_EPARSE (or MPB_ENOMEM, MPB_EINVAL for NULL arguments) with one line
  * in err: "line N: what was expected" (lines count from 1).
  */
-int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
-                       char *err, size_t errlen);
+int mpb_ompl_log_open(const char *text, size_t len, mpb_ompl_log **out,
+                      char *err, size_t errlen);
 
-void mpb_ompl_log_free(mpb_ompl_log *log);
+void mpb_ompl_log_close(mpb_ompl_log *log);
 
 struct mpb_export_counts;
 

@@ -32,7 +32,7 @@ extern "C" {
 
 /* What the gate made of a message. */
 typedef struct mpb_received {
-    mpb_auth_verdict verdict;   /* mpb_auth_open()'s */
+    mpb_auth_verdict verdict;   /* mpb_auth_check()'s */
     mpb_auth_info info;         /* the trailer's fields (zero without one) */
     char why[160];              /* why it was refused, one line; "" if not */
 } mpb_received;

@@ -29,7 +29,7 @@
  * for every q (the base, the torso, the other arm ...).
  *
  * Ownership. A robot owns every string and array it hands out; they live
- * until mpb_robot_free(). Nothing returned needs freeing by the caller.
+ * until mpb_robot_close(). Nothing returned needs freeing by the caller.
  *
  * Threads. After loading, a robot is read-only, so FK, IK and goal-region
  * calls may run on one robot from several threads at once, each with its
@@ -133,7 +133,7 @@ typedef struct mpb_robot_collision {
  * the base with the most active joints above it (the first in depth-first
  * order of those): the robot's longest chain.
  *
- * On success *out is a new robot, freed with mpb_robot_free(). On failure
+ * On success *out is a new robot, freed with mpb_robot_close(). On failure
  * *out is NULL and err (if not NULL) holds one line starting "urdf: ":
  *   MPB_EPARSE       not XML, not a valid URDF (urdfdom's messages, joined;
  *                    anything urdfdom reports as an error counts, even an
@@ -149,12 +149,12 @@ typedef struct mpb_robot_collision {
  * urdfdom's console output is captured while parsing (console_bridge's
  * handler is swapped for the duration, under a lock), never printed.
  */
-int mpb_robot_load_urdf(const char *urdf_text, const char *base_link,
+int mpb_robot_open_urdf(const char *urdf_text, const char *base_link,
                         const char *tip_link, mpb_robot **out,
                         char *err, size_t errlen);
 
 /*
- * As mpb_robot_load_urdf(), the group given as its active joints, named in
+ * As mpb_robot_open_urdf(), the group given as its active joints, named in
  * order from base to tip. They must lie on one path from the root, each
  * below the one before; joints on that path not named become passive. The
  * base link is the first joint's parent, the tip link the last's child.
@@ -162,22 +162,22 @@ int mpb_robot_load_urdf(const char *urdf_text, const char *base_link,
  * floating, planar or mimic joint named, or joints not on one path in
  * order.
  */
-int mpb_robot_load_urdf_joints(const char *urdf_text,
+int mpb_robot_open_urdf_joints(const char *urdf_text,
                                const char *const *joint_names, int num_names,
                                mpb_robot **out, char *err, size_t errlen);
 
 /*
- * Read the file at path and load it as mpb_robot_load_urdf() does; the
+ * Read the file at path and load it as mpb_robot_open_urdf() does; the
  * message then starts with the path instead of "urdf"
  * ("robots/pr2.urdf: tip link 'r_hand' not found"). MPB_EIO when the file
  * cannot be read.
  */
-int mpb_robot_load_urdf_file(const char *path, const char *base_link,
+int mpb_robot_open_urdf_file(const char *path, const char *base_link,
                              const char *tip_link, mpb_robot **out,
                              char *err, size_t errlen);
 
 /* Release a robot and everything it handed out; NULL does nothing. */
-void mpb_robot_free(mpb_robot *r);
+void mpb_robot_close(mpb_robot *r);
 
 /* ---- the model ---------------------------------------------------------- */
 

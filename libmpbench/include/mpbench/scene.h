@@ -42,11 +42,11 @@
  * The octree's object has box shapes whose union is its occupied cells
  * (mpb_octree_boxes(): cells side by side merged; kind MPB_SCENE_OCTREE); the spheres' a sphere per point (MPB_SCENE_SPHERES).
  * A scene file may instead name files, which mpb_scene_resolve() (and so
- * mpb_scene_load()) turns into the lines above:
+ * mpb_scene_open()) turns into the lines above:
  *     octree <id> file <path.bt|path.ot> [<x y z> <qx qy qz qw>]
  *     cloud <id> file <path.ply|path.pcd> voxel <side> [<pose>]
  *     cloud <id> file <path.ply|path.pcd> radius <r> [<pose>]
- * mpb_scene_parse() refuses those: the text that travels (to planners,
+ * mpb_scene_open_text() refuses those: the text that travels (to planners,
  * into the store, under the content hash) holds the data itself.
  */
 #ifndef MPBENCH_SCENE_H
@@ -117,22 +117,23 @@ typedef enum mpb_scene_variant {
 
 /*
  * Parse the scene text (NUL-terminated; empty or all blank means an empty
- * scene). On success *out is a new scene, freed with mpb_scene_free(). On
+ * scene). On success *out is a new scene, freed with mpb_scene_close(). On
  * failure *out is NULL, the return is MPB_EPARSE (MPB_EINVAL for NULL text
  * or out, MPB_ENOMEM) and err (if not NULL) holds one line, "scene line 7:
  * cylinder needs <radius> <length>, found 'x'".
  */
-int mpb_scene_parse(const char *text, mpb_scene **out, char *err, size_t errlen);
+int mpb_scene_open_text(const char *text, mpb_scene **out, char *err,
+                        size_t errlen);
 
 /*
  * Read, resolve (mpb_scene_resolve(), against the file's folder) and
- * parse the file at path. As mpb_scene_parse(), with the file's name in
+ * parse the file at path. As mpb_scene_open_text(), with the file's name in
  * front of the message ("kitchen.scene: scene line 7: ..."), and MPB_EIO
  * when the file (or one it names) cannot be read.
  */
-int mpb_scene_load(const char *path, mpb_scene **out, char *err, size_t errlen);
+int mpb_scene_open(const char *path, mpb_scene **out, char *err, size_t errlen);
 
-void mpb_scene_free(mpb_scene *s);
+void mpb_scene_close(mpb_scene *s);
 
 /*
  * The scene text with its octree-file and cloud-file lines (above) made

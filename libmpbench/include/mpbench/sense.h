@@ -104,7 +104,7 @@ void mpb_sense_default_cameras(const mpb_scene *s, mpb_sense_options *o);
 
 /*
  * Cast every camera's rays against s and fuse the hits into a new octree
- * of o->resolution: MPB_OK with *out (freed with mpb_octree_free()) and,
+ * of o->resolution: MPB_OK with *out (freed with mpb_octree_destroy()) and,
  * if hits is not NULL, *hits, the number of rays whose points went into
  * the tree. With o->num_cameras 0 the cameras are
  * mpb_sense_default_cameras()'; o itself is not changed. On failure *out
@@ -122,7 +122,7 @@ int mpb_scene_sense(const mpb_scene *s, const mpb_sense_options *o,
  * 0.002 m, seed 1, resolution 0.01 m: <hits> hits, <cells> cells", a
  * comment line a camera ("# camera 1 at EX EY EZ looking at AX AY AZ"),
  * then the octree's object "sensed" (mpb_scene_octree_text(), the
- * identity pose): a scene text mpb_scene_parse() takes. MPB_OK with *text
+ * identity pose): a scene text mpb_scene_open_text() takes. MPB_OK with *text
  * (the caller frees it with free()) and, where not NULL, *hits (as
  * mpb_scene_sense()) and *cells (the tree's occupied cells, pruned). On
  * failure *text is NULL; otherwise as mpb_scene_sense().

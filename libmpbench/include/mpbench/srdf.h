@@ -24,7 +24,7 @@
  * planned.
  *
  * Ownership. A handle owns every string and array it hands out; they live
- * until mpb_srdf_free(). Lines count from 1 in the SRDF's text.
+ * until mpb_srdf_close(). Lines count from 1 in the SRDF's text.
  */
 #ifndef MPBENCH_SRDF_H
 #define MPBENCH_SRDF_H
@@ -39,7 +39,7 @@ typedef struct mpb_srdf mpb_srdf;
 
 /*
  * Read srdf_text against the robot of urdf_text (both NUL-terminated).
- * On success *out is a new handle, freed with mpb_srdf_free(). On failure
+ * On success *out is a new handle, freed with mpb_srdf_close(). On failure
  * *out is NULL and err (if not NULL) holds one line: "urdf: ..." for a
  * fault of the URDF (as robot.h words them), else "srdf line 12: ...":
  *   MPB_EPARSE  not XML or no <robot> root (with the line and column); an
@@ -54,11 +54,11 @@ typedef struct mpb_srdf mpb_srdf;
  *               planar, or not attached to the URDF's root link;
  *   MPB_EINVAL  NULL text or out;  MPB_ENOMEM.
  */
-int mpb_srdf_load(const char *urdf_text, const char *srdf_text,
+int mpb_srdf_open(const char *urdf_text, const char *srdf_text,
                   mpb_srdf **out, char *err, size_t errlen);
 
 /* Release the handle; NULL does nothing. */
-void mpb_srdf_free(mpb_srdf *s);
+void mpb_srdf_close(mpb_srdf *s);
 
 /* The SRDF's <robot name>, "" if none; owned by s. */
 const char *mpb_srdf_robot_name(const mpb_srdf *s);

@@ -32,7 +32,7 @@
  *             closing </robot>, with the robot's SRDF (MoveIt's semantic
  *             description); its line numbers in messages ("srdf line 7:
  *             ...") count from there. The whole SRDF is read and its
- *             names checked against the URDF as mpb_srdf_load() (srdf.h)
+ *             names checked against the URDF as mpb_srdf_open() (srdf.h)
  *             does, so a bad one is refused by every process that opens
  *             the world alike; a passive joint of the SRDF in the group is
  *             refused. Of what it says, the world uses its

@@ -79,12 +79,12 @@ mpb_mesh *mpb__mesh_disk_get(const mpb__mesh_disk_id *id)
     }
     if (nv >= 0 && nt > 0 && nv <= INT32_MAX / 3 && nt <= INT32_MAX / 3 &&
         len == 8 + (size_t)nv * 3 * sizeof(double) + (size_t)nt * 3 * sizeof(int32_t) &&
-        (m = mpb_mesh_new(nv, nt))) {
+        (m = mpb_mesh_create(nv, nt))) {
         size_t vb = (size_t)nv * 3 * sizeof(double);
         memcpy(m->vertices, payload + 8, vb);
         memcpy(m->triangles, payload + 8 + vb, (size_t)nt * 3 * sizeof(int32_t));
         if (mpb_mesh_check(m, NULL, 0) != MPB_OK) {
-            mpb_mesh_free(m);
+            mpb_mesh_destroy(m);
             m = NULL;
         }
     }

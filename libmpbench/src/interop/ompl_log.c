@@ -489,8 +489,8 @@ static void free_enums(reader *r)
     r->num_enums = 0;
 }
 
-int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
-                       char *err, size_t errlen)
+int mpb_ompl_log_open(const char *text, size_t len, mpb_ompl_log **out,
+                      char *err, size_t errlen)
 {
     if (out)
         *out = NULL;
@@ -530,7 +530,7 @@ int mpb_ompl_log_parse(const char *text, size_t len, mpb_ompl_log **out,
     return MPB_OK;
 fail:
     rc = r.err && strstr(r.err, "out of memory") ? MPB_ENOMEM : MPB_EPARSE;
-    mpb_ompl_log_free(log);
+    mpb_ompl_log_close(log);
 done:
     free(r.buf);
     free_enums(&r);
@@ -547,7 +547,7 @@ static void free_properties(mpb_ompl_property *p, int n)
     free(p);
 }
 
-void mpb_ompl_log_free(mpb_ompl_log *log)
+void mpb_ompl_log_close(mpb_ompl_log *log)
 {
     if (log == NULL)
         return;

@@ -433,7 +433,7 @@ static int imported_log(pa_out *o, int64_t id, mpb_ompl_log **out)
         if (text && runs == done &&
             (strncmp(text, "OMPL version", 12) == 0 ||
              strncmp(text, "MoveIt", 6) == 0)) {
-            rc = mpb_ompl_log_parse(text, len, &log, NULL, 0);
+            rc = mpb_ompl_log_open(text, len, &log, NULL, 0);
             if (rc == MPB_EPARSE)
                 rc = MPB_OK;        /* not a log after all */
         }
@@ -443,7 +443,7 @@ static int imported_log(pa_out *o, int64_t id, mpb_ompl_log **out)
         if (log && total == runs)
             *out = log;
         else
-            mpb_ompl_log_free(log);
+            mpb_ompl_log_close(log);
     }
     sqlite3_finalize(st);
     if (rc == MPB_ENOMEM)
@@ -527,7 +527,7 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
         if (log) {
             if (!log_exported(&o, log, before))
                 rc = mpb__pa_write_log(&o, log);
-            mpb_ompl_log_free(log);
+            mpb_ompl_log_close(log);
             continue;
         }
         /* mpbench's status enum, and the experiment parameters after

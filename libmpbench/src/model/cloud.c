@@ -222,7 +222,7 @@ int mpb_cloud_load_octree(const char *path, double voxel, mpb_octree **out,
     char *buf;
     size_t len;
     if ((rc = mpb__read_file(path, MPB_CLOUD_MAX_BYTES, &buf, &len, err, errlen)) != MPB_OK) {
-        mpb_octree_free(o);
+        mpb_octree_destroy(o);
         return rc;
     }
     rc = mpb_cloud_read(buf, len, path, to_octree, o, NULL, err, errlen);
@@ -233,7 +233,7 @@ int mpb_cloud_load_octree(const char *path, double voxel, mpb_octree **out,
         mpb__set_err(err, errlen, "%s: more than %d occupied cells at this voxel size",
                      path, MPB_OCTREE_MAX_CELLS);
     if (rc != MPB_OK) {
-        mpb_octree_free(o);
+        mpb_octree_destroy(o);
         return rc;
     }
     *out = o;

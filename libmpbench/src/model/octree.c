@@ -66,7 +66,7 @@ int mpb_octree_create(double resolution, mpb_octree **out)
     return MPB_OK;
 }
 
-void mpb_octree_free(mpb_octree *o)
+void mpb_octree_destroy(mpb_octree *o)
 {
     if (!o)
         return;

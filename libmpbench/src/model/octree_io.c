@@ -116,9 +116,9 @@ static void name_err(char *err, size_t errlen, const char *name, const char *why
         mpb__set_err(err, errlen, "octree: %s", why);
 }
 
-int mpb_octree_read_data(const void *data, size_t len, double resolution,
-                         int binary, const char *name, mpb_octree **out,
-                         char *err, size_t errlen)
+int mpb_octree_create_from_stream(const void *data, size_t len, double resolution,
+                                  int binary, const char *name, mpb_octree **out,
+                                  char *err, size_t errlen)
 {
     if (err && errlen)
         err[0] = '\0';
@@ -152,7 +152,7 @@ int mpb_octree_read_data(const void *data, size_t len, double resolution,
     }
     if (r.rc != MPB_OK) {
         name_err(err, errlen, name, r.why);
-        mpb_octree_free(o);
+        mpb_octree_destroy(o);
         return r.rc;
     }
     *out = o;
@@ -167,8 +167,8 @@ static int header_line(const char *b, const char *e, const char *word)
            ((size_t)(e - b) == n || b[n] == ' ' || b[n] == '\t' || b[n] == '\r');
 }
 
-int mpb_octree_read_file(const void *bytes, size_t len, const char *name,
-                         mpb_octree **out, char *err, size_t errlen)
+int mpb_octree_create_from_bytes(const void *bytes, size_t len, const char *name,
+                                 mpb_octree **out, char *err, size_t errlen)
 {
     if (err && errlen)
         err[0] = '\0';
@@ -266,10 +266,10 @@ int mpb_octree_read_file(const void *bytes, size_t len, const char *name,
         name_err(err, errlen, name, m);
         return MPB_EPARSE;
     }
-    return mpb_octree_read_data(p, (size_t)(end - p), res, binary, name, out, err, errlen);
+    return mpb_octree_create_from_stream(p, (size_t)(end - p), res, binary, name, out, err, errlen);
 }
 
-int mpb_octree_load(const char *path, mpb_octree **out, char *err, size_t errlen)
+int mpb_octree_create_from_file(const char *path, mpb_octree **out, char *err, size_t errlen)
 {
     if (!path || !out)
         return MPB_EINVAL;
@@ -279,7 +279,7 @@ int mpb_octree_load(const char *path, mpb_octree **out, char *err, size_t errlen
     int rc = mpb__read_file(path, MAX_FILE, &buf, &len, err, errlen);
     if (rc != MPB_OK)
         return rc;
-    rc = mpb_octree_read_file(buf, len, path, out, err, errlen);
+    rc = mpb_octree_create_from_bytes(buf, len, path, out, err, errlen);
     free(buf);
     return rc;
 }

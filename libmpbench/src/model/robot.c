@@ -555,11 +555,11 @@ fail:
     free(mi.lead);
     free(mi.mul);
     free(mi.off);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
     return rc;
 }
 
-int mpb_robot_load_urdf(const char *urdf_text, const char *base_link,
+int mpb_robot_open_urdf(const char *urdf_text, const char *base_link,
                         const char *tip_link, mpb_robot **out,
                         char *err, size_t errlen)
 {
@@ -574,7 +574,7 @@ int mpb_robot_load_urdf(const char *urdf_text, const char *base_link,
                 errlen);
 }
 
-int mpb_robot_load_urdf_joints(const char *urdf_text,
+int mpb_robot_open_urdf_joints(const char *urdf_text,
                                const char *const *joint_names, int num_names,
                                mpb_robot **out, char *err, size_t errlen)
 {
@@ -589,7 +589,7 @@ int mpb_robot_load_urdf_joints(const char *urdf_text,
                 err, errlen);
 }
 
-int mpb_robot_load_urdf_file(const char *path, const char *base_link,
+int mpb_robot_open_urdf_file(const char *path, const char *base_link,
                              const char *tip_link, mpb_robot **out,
                              char *err, size_t errlen)
 {
@@ -616,7 +616,7 @@ int mpb_robot_load_urdf_file(const char *path, const char *base_link,
     return rc;
 }
 
-void mpb_robot_free(mpb_robot *r)
+void mpb_robot_close(mpb_robot *r)
 {
     if (!r)
         return;

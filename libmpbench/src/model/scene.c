@@ -251,7 +251,7 @@ static void free_obj(sobj *o)
 {
     free(o->id);
     for (int i = 0; i < o->num_shapes; i++)
-        mpb_mesh_free((mpb_mesh *)o->shapes[i].geometry.mesh);
+        mpb_mesh_destroy((mpb_mesh *)o->shapes[i].geometry.mesh);
     free(o->shapes);
     for (int i = 0; i < o->num_subframes; i++)
         free((char *)o->subframes[i].name);
@@ -260,7 +260,7 @@ static void free_obj(sobj *o)
     free_touch(o);
 }
 
-void mpb_scene_free(mpb_scene *s)
+void mpb_scene_close(mpb_scene *s)
 {
     if (!s)
         return;
@@ -329,7 +329,7 @@ static int parse_mesh(parser *ps, mpb_scene_shape *sh)
     if ((size_t)(nv + nt) > ps->left / 4)
         return fail(ps, line, "mesh of %ld vertices and %ld triangles: more "
                     "than the rest of the text holds", nv, nt);
-    mpb_mesh *m = mpb_mesh_new((int)nv, (int)nt);
+    mpb_mesh *m = mpb_mesh_create((int)nv, (int)nt);
     if (!m)
         return MPB_ENOMEM;
     sh->geometry.mesh = m;      /* owned by the shape from here on */
@@ -595,7 +595,7 @@ static int parse_octree(parser *ps, mpb_scene *s, const tok *t, int n, int line)
 {
     if (n >= 3 && tok_is(&t[2], "file"))
         return fail(ps, line, "octree '%.*s' names a file: a scene file's "
-                    "octree is read by mpb_scene_load() or mpb_scene_resolve()",
+                    "octree is read by mpb_scene_open() or mpb_scene_resolve()",
                     shown(&t[1]), t[1].p);
     if (n != 12)
         return fail(ps, line, "octree needs <id> <binary|full> <resolution> <bytes> "
@@ -658,8 +658,8 @@ static int parse_octree(parser *ps, mpb_scene *s, const tok *t, int n, int line)
     if (rc == MPB_OK) {
         char name[80], why[200];
         snprintf(name, sizeof name, "octree '%.*s'", shown(&t[1]), t[1].p);
-        rc = mpb_octree_read_data(data, (size_t)bytes, res, binary, name, &oc, why,
-                                  sizeof why);
+        rc = mpb_octree_create_from_stream(data, (size_t)bytes, res, binary, name, &oc, why,
+                                           sizeof why);
         if (rc != MPB_OK && rc != MPB_ENOMEM)
             rc = fail(ps, line, "%s", why);
     }
@@ -679,7 +679,7 @@ static int parse_octree(parser *ps, mpb_scene *s, const tok *t, int n, int line)
         rc = add_shape(o, &g, c, line);
     }
     free(boxes);
-    mpb_octree_free(oc);
+    mpb_octree_destroy(oc);
     if (o) {
         o->pub.pose = pose;
         o->pub.kind = MPB_SCENE_OCTREE;
@@ -763,7 +763,7 @@ static int parse_extension(parser *ps, mpb_scene *s)
         }
         if (tok_is(&t[0], "cloud"))
             return fail(ps, line, "cloud '%.*s' names a file: a scene file's "
-                        "cloud is read by mpb_scene_load() or mpb_scene_resolve()",
+                        "cloud is read by mpb_scene_open() or mpb_scene_resolve()",
                         n > 1 ? shown(&t[1]) : 0, n > 1 ? t[1].p : "");
         if (!tok_is(&t[0], "attach"))
             return fail(ps, line, "after the '.' end marker only attach, octree, "
@@ -831,7 +831,7 @@ static int parse(parser *ps, mpb_scene *s)
     }
 }
 
-int mpb_scene_parse(const char *text, mpb_scene **out, char *err, size_t errlen)
+int mpb_scene_open_text(const char *text, mpb_scene **out, char *err, size_t errlen)
 {
     if (err && errlen)
         err[0] = '\0';
@@ -858,14 +858,14 @@ int mpb_scene_parse(const char *text, mpb_scene **out, char *err, size_t errlen)
     if (rc != MPB_OK) {
         if (rc == MPB_ENOMEM && err && errlen)
             snprintf(err, errlen, "scene: out of memory");
-        mpb_scene_free(s);
+        mpb_scene_close(s);
         return rc;
     }
     *out = s;
     return MPB_OK;
 }
 
-int mpb_scene_load(const char *path, mpb_scene **out, char *err, size_t errlen)
+int mpb_scene_open(const char *path, mpb_scene **out, char *err, size_t errlen)
 {
     if (err && errlen)
         err[0] = '\0';
@@ -900,7 +900,7 @@ int mpb_scene_load(const char *path, mpb_scene **out, char *err, size_t errlen)
             snprintf(err, errlen, "%s: %s", path, msg);
         return rc;
     }
-    rc = mpb_scene_parse(whole, out, msg, sizeof msg);
+    rc = mpb_scene_open_text(whole, out, msg, sizeof msg);
     free(whole);
     if (rc != MPB_OK && err && errlen)
         snprintf(err, errlen, "%s: %s", path, msg);

@@ -190,7 +190,7 @@ static int resolve_line(buf *b, const word *w, int n, const char *dir, int line,
     mpb_octree *o = NULL;
     int rc;
     if (!cloud) {
-        rc = mpb_octree_load(path, &o, why, sizeof why);
+        rc = mpb_octree_create_from_file(path, &o, why, sizeof why);
     } else {
         double size;
         if (!mpb__number(w[5].p, w[5].len, &size)) {
@@ -229,7 +229,7 @@ static int resolve_line(buf *b, const word *w, int n, const char *dir, int line,
         return rc;
     }
     rc = octree_lines(b, &w[1], o, pose);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     return rc;
 }
 

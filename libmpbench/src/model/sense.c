@@ -394,7 +394,7 @@ static int sense(const mpb_scene *s, const mpb_sense_options *o, mpb_octree **ou
             mpb__set_err(why, len, "camera %d: %s", i + 1,
                          rc == MPB_EPARSE ? "more occupied cells than an octree may hold"
                                           : mpb_strerror(rc));
-            mpb_octree_free(t);
+            mpb_octree_destroy(t);
             return rc;
         }
         total += h;
@@ -439,7 +439,7 @@ int mpb_scene_sense_text(const mpb_scene *s, const mpb_sense_options *o, char **
     rc = mpb_scene_octree_text(t, "sensed", NULL, &tree);
     if (rc != MPB_OK) {
         mpb__set_err(why, len, "the octree's text: %s", mpb_strerror(rc));
-        mpb_octree_free(t);
+        mpb_octree_destroy(t);
         return rc;
     }
     int k = mpb_octree_num_cells(t);
@@ -462,7 +462,7 @@ int mpb_scene_sense_text(const mpb_scene *s, const mpb_sense_options *o, char **
         }
     }
     free(tree);
-    mpb_octree_free(t);
+    mpb_octree_destroy(t);
     if (!all) {
         mpb__set_err(why, len, "out of memory");
         return MPB_ENOMEM;

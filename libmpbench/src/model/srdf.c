@@ -32,7 +32,7 @@ typedef struct group_info {
 
 struct mpb_srdf {
     mpb__srdf               raw;
-    mpb__urdf_model        *owned;  /* when mpb_srdf_load() parsed the URDF */
+    mpb__urdf_model        *owned;  /* when mpb_srdf_open() parsed the URDF */
     const mpb__urdf_model  *m;
     int                     num_ids;
     group_info             *groups;
@@ -502,7 +502,7 @@ static int bind(mpb__srdf *raw, const mpb__urdf_model *m, mpb_srdf **out,
     if (rc != MPB_OK) {
         if (rc == MPB_ENOMEM)
             mpb__set_err(err, errlen, "out of memory");
-        mpb_srdf_free(s);
+        mpb_srdf_close(s);
         return rc;
     }
     *out = s;
@@ -520,7 +520,7 @@ const mpb__srdf *mpb__srdf_raw(const mpb_srdf *s)
     return s ? &s->raw : NULL;
 }
 
-int mpb_srdf_load(const char *urdf_text, const char *srdf_text,
+int mpb_srdf_open(const char *urdf_text, const char *srdf_text,
                   mpb_srdf **out, char *err, size_t errlen)
 {
     char why[512];
@@ -556,7 +556,7 @@ int mpb_srdf_load(const char *urdf_text, const char *srdf_text,
     return MPB_OK;
 }
 
-void mpb_srdf_free(mpb_srdf *s)
+void mpb_srdf_close(mpb_srdf *s)
 {
     if (!s)
         return;

@@ -45,11 +45,11 @@ static void urdf_close(void *impl)
     urdf_world *u = impl;
     if (!u)
         return;
-    mpb_srdf_free(u->srdf);     /* it borrows the robot's names */
+    mpb_srdf_close(u->srdf);     /* it borrows the robot's names */
     mpb__sweep_free(u->sweep);
     mpb_collision_destroy(u->coll);
-    mpb_scene_free(u->scene);
-    mpb_robot_free(u->robot);
+    mpb_scene_close(u->scene);
+    mpb_robot_close(u->robot);
     for (int i = 0; i < u->num_meshes; i++)
         mpb__mesh_release(u->meshes[i]);
     free(u->meshes);
@@ -330,14 +330,14 @@ static int urdf_open(mpb_world *w, const char *robot_text,
             mpb__srdf_clear(&raw);
             return MPB_ENOMEM;
         }
-        rc = mpb_robot_load_urdf_joints(urdf, joints, num_joints, &u->robot,
+        rc = mpb_robot_open_urdf_joints(urdf, joints, num_joints, &u->robot,
                                         err, errlen);
         free(urdf);
         if (rc != MPB_OK) {
             mpb__srdf_clear(&raw);
             return rc;
         }
-        /* Its names checked against the robot, as mpb_srdf_load() does. */
+        /* Its names checked against the robot, as mpb_srdf_open() does. */
         if ((rc = mpb__srdf_bind_robot(&raw, u->robot, &u->srdf, why,
                                        sizeof why)) != MPB_OK) {
             mpb__set_err(err, errlen, "srdf %s", why);
@@ -353,12 +353,12 @@ static int urdf_open(mpb_world *w, const char *robot_text,
             }
         }
     } else {
-        rc = mpb_robot_load_urdf_joints(robot_text, joints, num_joints,
+        rc = mpb_robot_open_urdf_joints(robot_text, joints, num_joints,
                                         &u->robot, err, errlen);
     }
     if (rc != MPB_OK)
         return rc;
-    if ((rc = mpb_scene_parse(scene_text, &u->scene, err, errlen)) != MPB_OK)
+    if ((rc = mpb_scene_open_text(scene_text, &u->scene, err, errlen)) != MPB_OK)
         return rc;
     if ((rc = mpb_collision_create(&u->coll)) != MPB_OK)
         return rc;

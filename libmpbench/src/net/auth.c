@@ -27,7 +27,7 @@ struct mpb_auth {
     size_t num_peers, cap_peers;
 };
 
-int mpb_auth_load(const char *path, mpb_auth **out, char *err, size_t errlen)
+int mpb_auth_open(const char *path, mpb_auth **out, char *err, size_t errlen)
 {
     unsigned char buf[4096], key[crypto_auth_hmacsha512256_KEYBYTES];
     crypto_generichash_state st;
@@ -82,7 +82,7 @@ int mpb_auth_load(const char *path, mpb_auth **out, char *err, size_t errlen)
     return MPB_OK;
 }
 
-void mpb_auth_free(mpb_auth *a)
+void mpb_auth_close(mpb_auth *a)
 {
     if (a == NULL)
         return;
@@ -170,9 +170,9 @@ static int peer_take(mpb__peer *p, uint64_t c)
     return 1;
 }
 
-mpb_auth_verdict mpb_auth_open(mpb_auth *a, const char *channel,
-                               const void *buf, size_t len, size_t *msg_len,
-                               mpb_auth_info *info)
+mpb_auth_verdict mpb_auth_check(mpb_auth *a, const char *channel,
+                                const void *buf, size_t len, size_t *msg_len,
+                                mpb_auth_info *info)
 {
     unsigned char want[MPB_AUTH_TAG_SIZE];
     memset(info, 0, sizeof *info);

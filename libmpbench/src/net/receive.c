@@ -126,7 +126,7 @@ int mpb_receive(mpb_auth *auth, unsigned accept, mpb_wire_type type,
 {
     size_t len = 0;
     r->why[0] = '\0';
-    r->verdict = mpb_auth_open(auth, channel, data, size, &len, &r->info);
+    r->verdict = mpb_auth_check(auth, channel, data, size, &len, &r->info);
     if (!(accept & (1u << r->verdict))) {
         snprintf(r->why, sizeof r->why, "%s", mpb_auth_verdict_text(r->verdict));
         return MPB_EREJECTED;

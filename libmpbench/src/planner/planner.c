@@ -854,7 +854,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
         s->heartbeat_ms = MPB__ANNOUNCE_GAP_MS;
     int rc = mpb__make_id(s, err, errlen);
     if (rc == MPB_OK && def->secret_file != NULL)
-        rc = mpb_auth_load(def->secret_file, &s->auth, err, errlen);
+        rc = mpb_auth_open(def->secret_file, &s->auth, err, errlen);
     if (rc != MPB_OK) {
         free(s);
         return rc;
@@ -879,7 +879,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
                      ? "a hub's URL is tcpq://HOST:PORT"
                      : "udpm needs a multicast route, e.g. 'ip route add "
                        "224.0.0.0/4 dev lo'");
-        mpb_auth_free(s->auth);
+        mpb_auth_close(s->auth);
         free(s);
         return MPB_ELCM;
     }
@@ -900,7 +900,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
         if (ssub != NULL)
             lcm_unsubscribe(s->lcm, ssub);
         mpb_lcm_destroy(s->lcm);
-        mpb_auth_free(s->auth);
+        mpb_auth_close(s->auth);
         free(s);
         return MPB_ELCM;
     }
@@ -954,7 +954,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     mpb_lcm_destroy(s->lcm);
     pthread_cond_destroy(&s->cond);
     pthread_mutex_destroy(&s->mu);
-    mpb_auth_free(s->auth);
+    mpb_auth_close(s->auth);
     free(s);
     return rc;
 }

@@ -1,6 +1,6 @@
 """clouds.py - a scene's octrees and point clouds (its `octree` and
 `spheres` lines after the '.', docs/scenes.md) as libmpbench reads them,
-through ctypes: mpb_scene_parse() and mpb_scene_object_at() (scene.h),
+through ctypes: mpb_scene_open_text() and mpb_scene_object_at() (scene.h),
 so that the base64, OctoMap's stream and the merging of cells into
 boxes are libmpbench's, the code the daemon verifies with, and not a
 second reading in Python.
@@ -51,9 +51,9 @@ class _Object(Structure):          # scene.h: mpb_scene_object
                 ("resolution", c_double)]
 
 
-_parse = declare("mpb_scene_parse", c_int, c_char_p, POINTER(c_void_p),
+_parse = declare("mpb_scene_open_text", c_int, c_char_p, POINTER(c_void_p),
                  c_char_p, c_size_t)
-_free = declare("mpb_scene_free", None, c_void_p)
+_free = declare("mpb_scene_close", None, c_void_p)
 _num_objects = declare("mpb_scene_num_objects", c_int, c_void_p)
 _object_at = declare("mpb_scene_object_at", POINTER(_Object), c_void_p, c_int)
 

@@ -37,10 +37,10 @@ class _Info(Structure):
 _Trailer = ctypes.c_ubyte * TRAILER_BYTES
 
 _c = Functions(
-    mpb_auth_load=(c_int, c_char_p, POINTER(c_void_p), c_char_p, c_size_t),
-    mpb_auth_free=(None, c_void_p),
+    mpb_auth_open=(c_int, c_char_p, POINTER(c_void_p), c_char_p, c_size_t),
+    mpb_auth_close=(None, c_void_p),
     mpb_auth_instance=(c_uint64, c_void_p),
-    mpb_auth_open=(c_int, c_void_p, c_char_p, c_char_p, c_size_t,
+    mpb_auth_check=(c_int, c_void_p, c_char_p, c_char_p, c_size_t,
                    POINTER(c_size_t), POINTER(_Info)),
     mpb_auth_verdict_text=(c_char_p, c_int),
     mpb_auth_seal=(c_int, c_void_p, c_char_p, c_char_p, c_size_t, c_uint64,
@@ -51,7 +51,7 @@ _c = Functions(
 
 
 class Auth:
-    """A secret read from a file (mpb_auth_load()), this process's
+    """A secret read from a file (mpb_auth_open()), this process's
     instance and counter, and the senders it believes. seal() is safe from
     any thread; open() is for one thread only (the node's LCM thread)."""
 
@@ -59,12 +59,12 @@ class Auth:
     FRESH, UNPROVEN, REPLAYED, BAD_TAG = range(4)
 
     def __init__(self, secret: str) -> None:
-        """Read the secret file at the path secret (mpb_auth_load())."""
+        """Read the secret file at the path secret (mpb_auth_open())."""
         self._a: Optional[c_void_p] = None
         err = ctypes.create_string_buffer(512)
         handle = c_void_p()
         try:
-            load = _c.mpb_auth_load
+            load = _c.mpb_auth_open
         except OSError as e:
             raise AuthError(f"cannot load libmpbench ({path()}), which "
                             f"authenticates messages: {e}") from e
@@ -77,7 +77,7 @@ class Auth:
         after. Not done on garbage collection: another thread may be
         sealing with it (in the library, without the GIL) until exit."""
         if self._a:
-            _c.mpb_auth_free(self._a)
+            _c.mpb_auth_close(self._a)
             self._a = None
 
     def _handle(self) -> c_void_p:
@@ -116,13 +116,13 @@ class Auth:
     def open(self, channel: str,
              data: bytes) -> Tuple[int, Optional[bytes], int]:
         """(verdict, the message without its trailer or None for BAD_TAG,
-        the sender's instance) of a received message (mpb_auth_open()).
+        the sender's instance) of a received message (mpb_auth_check()).
         Only a FRESH or UNPROVEN message may be decoded; a FRESH one is
         remembered, so the same bytes again are REPLAYED."""
         data = bytes(data)
         size, info = c_size_t(), _Info()
-        verdict = _c.mpb_auth_open(self._handle(), channel.encode(), data,
-                                   len(data), byref(size), byref(info))
+        verdict = _c.mpb_auth_check(self._handle(), channel.encode(), data,
+                                    len(data), byref(size), byref(info))
         if verdict == self.BAD_TAG:
             return verdict, None, 0
         return verdict, data[:size.value], int(info.instance)

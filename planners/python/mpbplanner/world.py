@@ -42,10 +42,10 @@ _limits = declare("mpb_world_joint_limits", None, c_void_p, c_int, _doubles,
                   _doubles)
 _continuous = declare("mpb_world_joint_is_continuous", c_int, c_void_p, c_int)
 _in_collision = declare("mpb_world_in_collision", c_int, c_void_p, _doubles)
-_robot_load = declare("mpb_robot_load_urdf_joints", c_int, c_char_p,
+_robot_load = declare("mpb_robot_open_urdf_joints", c_int, c_char_p,
                       POINTER(c_char_p), c_int, POINTER(c_void_p), c_char_p,
                       c_size_t)
-_robot_free = declare("mpb_robot_free", None, c_void_p)
+_robot_free = declare("mpb_robot_close", None, c_void_p)
 _world_hold = declare("mpb_world_hold", c_int, c_void_p, POINTER(c_char_p),
                       _doubles, c_int, c_char_p, c_size_t)
 _robot_set_passive = declare("mpb_robot_set_passive", c_int, c_void_p,

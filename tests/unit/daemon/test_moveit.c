@@ -114,7 +114,7 @@ static void a_scene_becomes_a_moveit_scene(void **state)
                                &s, err, sizeof err) != MPB_OK)
         fail_msg("%s", err);
     assert_int_equal(s.num_objects, 3);
-    if (mpb_scene_parse(s.text, &sc, err, sizeof err) != MPB_OK)
+    if (mpb_scene_open_text(s.text, &sc, err, sizeof err) != MPB_OK)
         fail_msg("%s in:\n%s", err, s.text);
     assert_string_equal(mpb_scene_name(sc), "set/0001");
     assert_int_equal(mpb_scene_num_objects(sc), 3);
@@ -132,7 +132,7 @@ static void a_scene_becomes_a_moveit_scene(void **state)
                      MPB_SHAPE_SPHERE);
     assert_int_equal(mpb_scene_object_at(sc, 2)->shapes[0].geometry.type,
                      MPB_SHAPE_MESH);
-    mpb_scene_free(sc);
+    mpb_scene_close(sc);
     /* a-b and b-c are allowed; a-c is not. */
     assert_int_equal(s.num_pairs, 2);
     assert_string_equal(s.pairs[0], "a");
@@ -417,7 +417,7 @@ static void an_octomap_checks_as_its_bt_file(void **state)
     unsigned char *raw;
     size_t n;
     assert_int_equal(mpb_octree_write(o, 0, &raw, &n), MPB_OK);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     char *y = octomap_yaml(raw, n, "0.01");
     mpbd_moveit_scene ms;
     if (mpbd_moveit_scene_read(write_file("om.yaml", y), "set/0001", &ms, err,

@@ -52,7 +52,7 @@ static int setup(void **state)
     assert_non_null(f);
     assert_non_null(f->paper = load(PAPER));
     assert_non_null(f->quick = load(QUICK));
-    assert_int_equal(mpb_robot_load_urdf_joints(
+    assert_int_equal(mpb_robot_open_urdf_joints(
                          f->paper->scenes[0].robot,
                          (const char *const *)f->paper->group,
                          f->paper->num_group, &f->robot, err, sizeof err),
@@ -66,7 +66,7 @@ static int teardown(void **state)
     fixture *f = *state;
     mpbd_experiment_free(f->paper);
     mpbd_experiment_free(f->quick);
-    mpb_robot_free(f->robot);
+    mpb_robot_close(f->robot);
     free(f);
     return 0;
 }

@@ -97,7 +97,7 @@ static mpb_mesh *box_mesh(const double h[3])
         { 0, 4, 7 }, { 0, 7, 3 },   /* x- */
         { 1, 2, 6 }, { 1, 6, 5 },   /* x+ */
     };
-    mpb_mesh *m = mpb_mesh_new(8, 12);
+    mpb_mesh *m = mpb_mesh_create(8, 12);
     assert_non_null(m);
     for (int i = 0; i < 8; i++) {
         int bits[3] = { (i == 1 || i == 2 || i == 5 || i == 6),
@@ -540,7 +540,7 @@ static void test_mesh_twin(void **state)
     assert_near(res.point_movable[2], 0.9, 1e-9);
     assert_near(res.point_static[2], h[2], 1e-9);
     mpb_collision_destroy(c);
-    mpb_mesh_free(mesh);
+    mpb_mesh_destroy(mesh);
 }
 
 /* ---- bodies, pairs, errors ---------------------------------------------- */
@@ -729,12 +729,12 @@ static void test_errors(void **state)
     assert_int_equal(mpb_collision_add_static(c, 0, &bad, NULL), MPB_EINVAL);
     bad = (mpb_geometry){ .type = MPB_SHAPE_MESH };
     assert_int_equal(mpb_collision_add_static(c, 0, &bad, NULL), MPB_EINVAL);
-    mpb_mesh *m = mpb_mesh_new(3, 1);
+    mpb_mesh *m = mpb_mesh_create(3, 1);
     m->triangles[2] = 3;        /* out of range */
     bad.mesh = m;
     assert_int_equal(mpb_collision_add_static(c, 0, &bad, NULL), MPB_EINVAL);
     assert_non_null(strstr(mpb_collision_errmsg(c), "out of range"));
-    mpb_mesh_free(m);
+    mpb_mesh_destroy(m);
     mpb_pose skew = at(0, 0, 0);
     skew.R[1] = 0.5;            /* not a rotation */
     assert_int_equal(mpb_collision_add_static(c, 0, &s, &skew), MPB_EINVAL);

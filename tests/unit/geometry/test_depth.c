@@ -145,7 +145,7 @@ static mpb_mesh *tetra(void)
         {0, 0, 0}, {0.03, 0, 0.05}, {-0.015, 0.026, 0.05}, {-0.015, -0.026, 0.05},
     };
     static const int t[4][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 3}, {1, 2, 3}};
-    mpb_mesh *m = mpb_mesh_new(4, 4);
+    mpb_mesh *m = mpb_mesh_create(4, 4);
     assert_non_null(m);
     memcpy(m->vertices, v, sizeof v);
     for (int i = 0; i < 12; i++)
@@ -164,7 +164,7 @@ static void test_mesh_vertex_into_box(void **state)
     assert_int_equal(mpb_collision_set_pose(c, 3, &p), MPB_OK);
     expect_depth(c, 0.002);
     mpb_collision_destroy(c);
-    mpb_mesh_free(m);
+    mpb_mesh_destroy(m);
 }
 
 /* A closed cube of side s as 8 vertices and 12 outward triangles. */
@@ -174,7 +174,7 @@ static mpb_mesh *cube(double s)
         {0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
         {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5},
     };
-    mpb_mesh *m = mpb_mesh_new(8, 12);
+    mpb_mesh *m = mpb_mesh_create(8, 12);
     assert_non_null(m);
     for (int i = 0; i < 8; i++) {
         int bits[3] = {(i == 1 || i == 2 || i == 5 || i == 6),
@@ -218,7 +218,7 @@ static void test_self_pairs(void **state)
     assert_int_equal(mpb_collision_set_pose(c, 2, &p), MPB_OK);
     expect_depth(c, 0.0005);
     mpb_collision_destroy(c);
-    mpb_mesh_free(m);
+    mpb_mesh_destroy(m);
 }
 
 static void test_plane(void **state)

@@ -164,7 +164,7 @@ static void test_panda_meshes(void **state)
         snprintf(uri, sizeof uri, "%s/meshes/collision/%s.obj", dir, names[k]);
         mpb_mesh *m = NULL;
         char err[512];
-        if (mpb_mesh_load(uri, NULL, 0, NULL, &m, err, sizeof err) != MPB_OK)
+        if (mpb_mesh_create_from_uri(uri, NULL, 0, NULL, &m, err, sizeof err) != MPB_OK)
             fail_msg("%s", err);
         unsigned char *keep = malloc((size_t)m->num_vertices);
         double *p = malloc((size_t)m->num_vertices * 3 * sizeof *p);
@@ -180,7 +180,7 @@ static void test_panda_meshes(void **state)
         printf("\n");
         free(keep);
         free(p);
-        mpb_mesh_free(m);
+        mpb_mesh_destroy(m);
     }
 }
 

@@ -229,7 +229,7 @@ static mpb_mesh *load_ok(const char *uri, const double *scale)
 {
     mpb_mesh *m = NULL;
     char err[400];
-    int rc = mpb_mesh_load(uri, dirs, 2, scale, &m, err, sizeof err);
+    int rc = mpb_mesh_create_from_uri(uri, dirs, 2, scale, &m, err, sizeof err);
     if (rc != MPB_OK)
         fail_msg("%s: %s: %s", uri, mpb_err_name(rc), err);
     assert_non_null(m);
@@ -260,13 +260,13 @@ static void test_formats(void **state)
     for (int i = 0; i < 3; i++) {
         mpb_mesh *m = load_ok(uris[i], NULL);
         expect_box(m, none, 1e-7);  /* binary STL is float32 */
-        mpb_mesh_free(m);
+        mpb_mesh_destroy(m);
     }
     /* COLLADA: centimetres to metres, Z up kept, the node's 10 cm moved */
     const double shift[3] = { 0.1, 0, 0 };
     mpb_mesh *m = load_ok("package://arm/meshes/box.dae", NULL);
     expect_box(m, shift, 1e-6);
-    mpb_mesh_free(m);
+    mpb_mesh_destroy(m);
 }
 
 static void test_scale_and_copy(void **state)
@@ -287,16 +287,16 @@ static void test_scale_and_copy(void **state)
     assert_int_equal(c->num_vertices, m->num_vertices);
     assert_memory_equal(c->vertices, m->vertices, 3 * sizeof(double) * (size_t)m->num_vertices);
     assert_memory_equal(c->triangles, m->triangles, 3 * sizeof(int32_t) * (size_t)m->num_triangles);
-    mpb_mesh_free(c);
-    mpb_mesh_free(m);
-    mpb_mesh_free(NULL);
+    mpb_mesh_destroy(c);
+    mpb_mesh_destroy(m);
+    mpb_mesh_destroy(NULL);
     assert_null(mpb_mesh_copy(NULL));
-    assert_null(mpb_mesh_new(-1, 3));
+    assert_null(mpb_mesh_create(-1, 3));
 
     const double zero[3] = { 1, 0, 1 };
     char err[300];
-    assert_int_equal(mpb_mesh_load("package://arm/meshes/box.stl", dirs, 2, zero,
-                                   &m, err, sizeof err), MPB_EINVAL);
+    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/box.stl", dirs, 2, zero,
+                                              &m, err, sizeof err), MPB_EINVAL);
     assert_null(m);
     assert_non_null(strstr(err, "scale"));
 }
@@ -335,7 +335,7 @@ static void test_resolve(void **state)
                                       sizeof err), MPB_OK);
     assert_string_equal(path, want);
     mpb_mesh *m = load_ok(uri, NULL);
-    mpb_mesh_free(m);
+    mpb_mesh_destroy(m);
 
     /* not found: a one-line message naming the URI */
     assert_int_equal(mpb_mesh_resolve("package://arm/meshes/nope.stl", dirs, 2,
@@ -379,8 +379,8 @@ static void test_load_errors(void **state)
     mpb_mesh *m = (mpb_mesh *)1;
     char err[400];
     /* missing file */
-    assert_int_equal(mpb_mesh_load("package://arm/meshes/missing.stl", dirs, 2,
-                                   NULL, &m, err, sizeof err), MPB_ENOTFOUND);
+    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/missing.stl", dirs, 2,
+                                              NULL, &m, err, sizeof err), MPB_ENOTFOUND);
     assert_null(m);
     assert_non_null(strstr(err, "missing.stl"));
     /* files assimp cannot read: the message names the file, on one line */
@@ -394,31 +394,31 @@ static void test_load_errors(void **state)
         char uri[100], name[100];
         snprintf(uri, sizeof uri, "package://arm/meshes/%s", bad[i]);
         snprintf(name, sizeof name, "ws2/arm/meshes/%s", bad[i]);
-        assert_int_equal(mpb_mesh_load(uri, dirs, 2, NULL, &m, err, sizeof err),
+        assert_int_equal(mpb_mesh_create_from_uri(uri, dirs, 2, NULL, &m, err, sizeof err),
                          MPB_EPARSE);
         assert_null(m);
         if (!strstr(err, name) || strchr(err, '\n'))
             fail_msg("\"%s\" does not name %s on one line", err, name);
     }
-    assert_int_equal(mpb_mesh_load("other/readme.txt", dirs, 2, NULL, &m, err,
-                                   sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_mesh_create_from_uri("other/readme.txt", dirs, 2, NULL, &m, err,
+                                              sizeof err), MPB_EPARSE);
     assert_non_null(strstr(err, "readme.txt"));
     /* lines only: no triangles */
-    assert_int_equal(mpb_mesh_load("package://arm/meshes/lines.obj", dirs, 2,
-                                   NULL, &m, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/lines.obj", dirs, 2,
+                                              NULL, &m, err, sizeof err), MPB_EPARSE);
     assert_non_null(strstr(err, "lines.obj"));
-    assert_int_equal(mpb_mesh_load("x.stl", dirs, 2, NULL, NULL, err, sizeof err),
+    assert_int_equal(mpb_mesh_create_from_uri("x.stl", dirs, 2, NULL, NULL, err, sizeof err),
                      MPB_EINVAL);
     /* no error buffer is fine */
-    assert_int_equal(mpb_mesh_load("package://arm/meshes/broken.dae", dirs, 2,
-                                   NULL, &m, NULL, 0), MPB_EPARSE);
+    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/broken.dae", dirs, 2,
+                                              NULL, &m, NULL, 0), MPB_EPARSE);
 }
 
 static void test_check_and_bounds(void **state)
 {
     (void)state;
     char err[200];
-    mpb_mesh *m = mpb_mesh_new(3, 1);
+    mpb_mesh *m = mpb_mesh_create(3, 1);
     assert_non_null(m);
     const double v[9] = { 0, 0, 0, 1, 0, 0, 0, 2, -1 };
     memcpy(m->vertices, v, sizeof v);
@@ -437,11 +437,11 @@ static void test_check_and_bounds(void **state)
     m->vertices[4] = NAN;
     assert_int_equal(mpb_mesh_check(m, err, sizeof err), MPB_EINVAL);
     assert_non_null(strstr(err, "vertex 1"));
-    mpb_mesh_free(m);
-    m = mpb_mesh_new(0, 0);
+    mpb_mesh_destroy(m);
+    m = mpb_mesh_create(0, 0);
     assert_int_equal(mpb_mesh_check(m, err, sizeof err), MPB_EINVAL);
     assert_int_equal(mpb_mesh_bounds(m, lo, hi), MPB_EINVAL);
-    mpb_mesh_free(m);
+    mpb_mesh_destroy(m);
     assert_int_equal(mpb_mesh_check(NULL, err, sizeof err), MPB_EINVAL);
 }
 
@@ -457,7 +457,7 @@ static void test_loaded_mesh_collides(void **state)
     mpb_pose p;
     mpb_pose_identity(&p);
     assert_int_equal(mpb_collision_add_static(c, 0, &g, &p), MPB_OK);
-    mpb_mesh_free(m);           /* the world keeps its own copy */
+    mpb_mesh_destroy(m);           /* the world keeps its own copy */
     mpb_geometry s = { .type = MPB_SHAPE_SPHERE, .dims = { 0.1 } };
     assert_int_equal(mpb_collision_add_movable(c, 0, &s, NULL), MPB_OK);
     p.t[0] = H[0] + 0.3;        /* 0.2 from the x+ face */

@@ -170,7 +170,7 @@ static void a_broken_mesh_in_the_cache_is_a_miss(void **state)
     /* The key the loader uses names assimp; any reader text works here,
      * as long as put and get agree. */
     assert_int_equal(mpb__mesh_disk_key(mesh_path, one, "test", &id), MPB_OK);
-    mpb_mesh *bad = mpb_mesh_new(3, 1);
+    mpb_mesh *bad = mpb_mesh_create(3, 1);
     assert_non_null(bad);
     bad->triangles[0] = 0;
     bad->triangles[1] = 1;
@@ -183,8 +183,8 @@ static void a_broken_mesh_in_the_cache_is_a_miss(void **state)
     mpb_mesh *good = mpb__mesh_disk_get(&id);
     assert_non_null(good);
     assert_true(good->vertices[0] == 0.5);
-    mpb_mesh_free(good);
-    mpb_mesh_free(bad);
+    mpb_mesh_destroy(good);
+    mpb_mesh_destroy(bad);
 }
 
 static void without_a_cache_meshes_still_load(void **state)

@@ -41,9 +41,9 @@ static int parse_edited(const char *old, const char *new, char *err, size_t errl
     }
     mpb_ompl_log *log = NULL;
     err[0] = '\0';
-    int rc = mpb_ompl_log_parse(edited, len, &log, err, errlen);
+    int rc = mpb_ompl_log_open(edited, len, &log, err, errlen);
     assert_true((rc == MPB_OK) == (log != NULL));
-    mpb_ompl_log_free(log);
+    mpb_ompl_log_close(log);
     if (edited != text)
         free(edited);
     free(text);
@@ -61,9 +61,9 @@ static int parse_appended(const char *tail, char *err, size_t errlen)
     memcpy(all + n, tail, k + 1);
     mpb_ompl_log *log = NULL;
     err[0] = '\0';
-    int rc = mpb_ompl_log_parse(all, n + k, &log, err, errlen);
+    int rc = mpb_ompl_log_open(all, n + k, &log, err, errlen);
     assert_true((rc == MPB_OK) == (log != NULL));
-    mpb_ompl_log_free(log);
+    mpb_ompl_log_close(log);
     free(all);
     free(text);
     return rc;
@@ -197,7 +197,7 @@ static void what_the_script_keeps_is_kept(void **state)
              big + strlen("0; 0; 1; 1; 13; 14; "));
     mpb_ompl_log *log = NULL;
     char err[256] = "";
-    if (mpb_ompl_log_parse(edited, strlen(edited), &log, err, sizeof err) !=
+    if (mpb_ompl_log_open(edited, strlen(edited), &log, err, sizeof err) !=
         MPB_OK)
         fail_msg("%s", err);
     assert_int_equal(log->num_params, 3);
@@ -219,7 +219,7 @@ static void what_the_script_keeps_is_kept(void **state)
     assert_true(p->exact[0].value == 9007199254740993LL);
     assert_int_equal(p->exact[1].cell, 5);
     assert_true(p->exact[1].value == -9223372036854775807LL);
-    mpb_ompl_log_free(log);
+    mpb_ompl_log_close(log);
     free(edited);
     free(text);
     refused("0 experiment properties\n", "1 experiment properties\nwidth 0.6\n",
@@ -264,7 +264,7 @@ static void what_the_databases_would_refuse(void **state)
     assert_non_null(at);
     at[11] = '\0';
     mpb_ompl_log *log = NULL;
-    assert_int_equal(mpb_ompl_log_parse(text, n, &log, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_ompl_log_open(text, n, &log, err, sizeof err), MPB_EPARSE);
     assert_null(log);
     assert_string_equal(err, "line 61: a NUL byte: not a benchmark log");
     free(text);
@@ -303,8 +303,8 @@ static void logs_are_written_one_at_a_time_whole_or_not_at_all(void **state)
     (void)state;
     char *text = test_read_file(WALL_LOG), err[256];
     mpb_ompl_log *log = NULL;
-    assert_int_equal(mpb_ompl_log_parse(text, strlen(text), &log, err,
-                                        sizeof err), MPB_OK);
+    assert_int_equal(mpb_ompl_log_open(text, strlen(text), &log, err,
+                                       sizeof err), MPB_OK);
     long runs = 0;
     for (int i = 0; i < log->num_planners; i++)
         runs += log->planners[i].num_runs;
@@ -359,7 +359,7 @@ static void logs_are_written_one_at_a_time_whole_or_not_at_all(void **state)
 
     unlink(path);
     rmdir(dir);
-    mpb_ompl_log_free(log);
+    mpb_ompl_log_close(log);
     free(text);
 }
 

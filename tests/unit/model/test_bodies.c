@@ -100,7 +100,7 @@ static void urdf_bodies_are_the_links_and_objects_where_fk_puts_them(void **stat
                                           box_scene, joints, 7, &w, err,
                                           sizeof err), MPB_OK);
     assert_int_equal(mpb_bodies_open(w, &b, err, sizeof err), MPB_OK);
-    assert_int_equal(mpb_robot_load_urdf_joints(urdf, joints, 7, &r, err,
+    assert_int_equal(mpb_robot_open_urdf_joints(urdf, joints, 7, &r, err,
                                                 sizeof err), MPB_OK);
 
     /* One body per link with shapes, then the box. */
@@ -154,7 +154,7 @@ static void urdf_bodies_are_the_links_and_objects_where_fk_puts_them(void **stat
     assert_float_equal(poses[0].t[0], 42, 0);
     free(poses);
     free(fk);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
     mpb_bodies_close(b);
     mpb_world_close(w);
 }

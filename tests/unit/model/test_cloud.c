@@ -131,7 +131,7 @@ static void test_formats_agree(void **state)
                      fabs(c[2] - 1.005) < 1e-9;
         }
         assert_int_equal(found, 2);
-        mpb_octree_free(o);
+        mpb_octree_destroy(o);
         double *xyz;
         long n;
         assert_int_equal(mpb_cloud_load_points(paths[i], 10, &xyz, &n, err, sizeof err),
@@ -156,7 +156,7 @@ static void test_scene_clouds(void **state)
     const char *sc = text_file("c.scene", "c\n.\ncloud vox file c.ply voxel 0.01\n"
                                "cloud balls file c.ply radius 0.02 0 0 1 0 0 0 1\n");
     mpb_scene *s;
-    if (mpb_scene_load(sc, &s, err, sizeof err) != MPB_OK)
+    if (mpb_scene_open(sc, &s, err, sizeof err) != MPB_OK)
         fail_msg("%s", err);
     assert_int_equal(mpb_scene_num_objects(s), 2);
     const mpb_scene_object *v = mpb_scene_object_at(s, 0), *b = mpb_scene_object_at(s, 1);
@@ -165,7 +165,7 @@ static void test_scene_clouds(void **state)
     assert_int_equal(b->kind, MPB_SCENE_SPHERES);
     assert_int_equal(b->num_shapes, 3);
     assert_true(b->shapes[1].geometry.dims[0] == 0.02 && b->pose.t[2] == 1.0);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 }
 
 typedef struct bad {
@@ -253,7 +253,7 @@ static size_t box_bt(unsigned char **b)
     mpb_octree *o = test_box_octree();
     size_t n;
     assert_int_equal(mpb_octree_write(o, 1, b, &n), MPB_OK);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     return n;
 }
 
@@ -267,7 +267,7 @@ static void test_bad_octrees(void **state)
     mpb_octree *o = NULL;
     /* truncated */
     const char *p = file("cut.bt", b, n - 10);
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EPARSE);
     assert_null(o);
     char want[200];
     snprintf(want, sizeof want, "data byte %zu: truncated: the tree needs more bytes",
@@ -278,7 +278,7 @@ static void test_bad_octrees(void **state)
     memcpy(c, b, n);
     memset(c + head, 0xff, n - head);
     p = file("deep.bt", c, n);
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EPARSE);
     assert_err("deep.bt", "data byte 30: corrupt: a leaf cell has children (deeper "
                "than OctoMap's 16 levels)");
     /* trailing bytes */
@@ -287,20 +287,20 @@ static void test_bad_octrees(void **state)
     FILE *f = fopen(p, "ab");
     fputc(0, f);
     fclose(f);
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EPARSE);
     snprintf(want, sizeof want, "data byte %zu: corrupt: 1 bytes after the tree", n - head);
     assert_err("tail.bt", want);
     free(c);
     /* resolution 0 in the header; no header; another tree type */
     p = text_file("r0.bt", "# Octomap OcTree binary file\nid OcTree\nsize 1\nres 0\ndata\n");
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EPARSE);
     assert_err("r0.bt", "line 4: resolution 0 is outside 0.0001 .. 1 m");
     p = text_file("x.bt", "hello\n");
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EPARSE);
     assert_err("x.bt", "line 1: not an OctoMap file (expected '# Octomap OcTree binary "
                "file' or '# Octomap OcTree file')");
     p = text_file("color.ot", "# Octomap OcTree file\nid ColorOcTree\nres 0.1\ndata\n");
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EUNSUPPORTED);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EUNSUPPORTED);
     assert_err("color.ot", "line 2: tree type 'ColorOcTree' is not supported (only OcTree)");
     /* .ot: a NaN log-odds, cut short */
     unsigned char ot[64];
@@ -309,13 +309,13 @@ static void test_bad_octrees(void **state)
     memcpy(ot + h, &nanf_, 4);
     ot[h + 4] = 0;
     p = file("nan.ot", ot, (size_t)h + 5);
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EPARSE);
     assert_err("nan.ot", "data byte 0: corrupt: a log-odds value is not finite");
     float one = 1;
     memcpy(ot + h, &one, 4);
     ot[h + 4] = 0x01;
     p = file("cut.ot", ot, (size_t)h + 7);
-    assert_int_equal(mpb_octree_load(p, &o, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_octree_create_from_file(p, &o, err, sizeof err), MPB_EPARSE);
     assert_err("cut.ot", "data byte 5: truncated: the tree needs more bytes");
     free(b);
 }
@@ -342,23 +342,23 @@ static void test_bad_scene_lines(void **state)
          "scene line 5: spheres point 1 needs <x> <y> <z>, found 'nan'"},
         {"s\n.\ncloud c file x.ply voxel 0.01\n",
          "scene line 3: cloud 'c' names a file: a scene file's cloud is read by "
-         "mpb_scene_load() or mpb_scene_resolve()"},
+         "mpb_scene_open() or mpb_scene_resolve()"},
     };
     for (size_t i = 0; i < sizeof B / sizeof B[0]; i++) {
         mpb_scene *s = NULL;
-        assert_int_equal(mpb_scene_parse(B[i].text, &s, err, sizeof err), MPB_EPARSE);
+        assert_int_equal(mpb_scene_open_text(B[i].text, &s, err, sizeof err), MPB_EPARSE);
         assert_null(s);
         assert_string_equal(err, B[i].what);
     }
     /* a scene file naming a missing or bad file says both places */
     const char *sc = text_file("m.scene", "m\n.\n\noctree map file none.bt\n");
     mpb_scene *s = NULL;
-    assert_int_equal(mpb_scene_load(sc, &s, err, sizeof err), MPB_EIO);
+    assert_int_equal(mpb_scene_open(sc, &s, err, sizeof err), MPB_EIO);
     assert_non_null(strstr(err, "m.scene: scene line 4: "));
     assert_non_null(strstr(err, "none.bt: cannot open"));
     text_file("r0.bt", "# Octomap OcTree binary file\nres 0\ndata\n");
     sc = text_file("r.scene", "r\n.\noctree map file r0.bt\n");
-    assert_int_equal(mpb_scene_load(sc, &s, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_scene_open(sc, &s, err, sizeof err), MPB_EPARSE);
     char want[400];
     snprintf(want, sizeof want, "%s/r.scene: scene line 3: %s/r0.bt: line 2: resolution 0 "
              "is outside 0.0001 .. 1 m", dir, dir);

@@ -33,7 +33,7 @@ static mpb_robot *load_mimic(const char *const *joints, int n)
 {
     char *urdf = test_read_file(MPB_TEST_DATA "/mimic_gripper.urdf"), err[512];
     mpb_robot *r = NULL;
-    int rc = mpb_robot_load_urdf_joints(urdf, joints, n, &r, err, sizeof err);
+    int rc = mpb_robot_open_urdf_joints(urdf, joints, n, &r, err, sizeof err);
     free(urdf);
     if (rc != MPB_OK)
         fail_msg("%s", err);
@@ -84,7 +84,7 @@ static void test_mimic_fk(void **state)
     memset(P, 0, sizeof P);
     assert_int_equal(mpb_robot_fk_moving(r, q, P), MPB_OK);
     assert_near(P[fr].t[1], 0.51, 1e-12);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 
     /* The leader held: the mimic follows its value, and set_passive. */
     const char *const arm[] = {"shoulder"};
@@ -100,7 +100,7 @@ static void test_mimic_fk(void **state)
     assert_near(link_t(r, P, "tip_r")[0], 0.53, 1e-12);
     /* A mimic joint is set through its leader only. */
     assert_int_equal(mpb_robot_set_passive(r, "finger_r_joint", 0.0), MPB_EINVAL);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 /* The world moves the mimic's link too: a block beside the right finger
@@ -132,16 +132,16 @@ static void test_mimic_refused(void **state)
     char *urdf = test_read_file(MPB_TEST_DATA "/mimic_gripper.urdf"), err[512];
     mpb_robot *r = NULL;
     const char *const names[] = {"shoulder", "finger_r_joint"};
-    assert_int_equal(mpb_robot_load_urdf_joints(urdf, names, 2, &r, err,
+    assert_int_equal(mpb_robot_open_urdf_joints(urdf, names, 2, &r, err,
                                                 sizeof err), MPB_EPARSE);
     assert_string_equal(err, "urdf: joint 'finger_r_joint' mimics "
                         "'finger_l_joint' and follows it; a mimic joint cannot "
                         "be in the group");
     /* Base to tip: the mimics on the way are not active. */
-    assert_int_equal(mpb_robot_load_urdf(urdf, "base", "tip_r", &r, err,
+    assert_int_equal(mpb_robot_open_urdf(urdf, "base", "tip_r", &r, err,
                                          sizeof err), MPB_OK);
     assert_int_equal(mpb_robot_num_joints(r), 1);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
     /* A mimic of no joint, and a loop of mimics. */
     char *bad = malloc(strlen(urdf) + 64);
     assert_non_null(bad);
@@ -149,13 +149,13 @@ static void test_mimic_refused(void **state)
     assert_non_null(at);
     sprintf(bad, "%.*s<mimic joint=\"finger_x\"%s", (int)(at - urdf), urdf,
             at + strlen("<mimic joint=\"finger_l_joint\""));
-    assert_int_equal(mpb_robot_load_urdf(bad, NULL, NULL, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf(bad, NULL, NULL, &r, err, sizeof err),
                      MPB_EPARSE);
     assert_string_equal(err, "urdf: joint 'finger_r_joint' mimics 'finger_x', "
                         "which is not a joint of the URDF");
     sprintf(bad, "%.*s<mimic joint=\"tip_r_joint\"%s", (int)(at - urdf), urdf,
             at + strlen("<mimic joint=\"finger_l_joint\""));
-    assert_int_equal(mpb_robot_load_urdf(bad, NULL, NULL, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf(bad, NULL, NULL, &r, err, sizeof err),
                      MPB_EPARSE);
     assert_non_null(strstr(err, "mimics itself through other mimic joints"));
     free(bad);
@@ -201,7 +201,7 @@ static void test_panda_fingers(void **state)
         urdf = next;
     }
     mpb_srdf *s = NULL;
-    assert_int_equal(mpb_srdf_load(urdf, srdf, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_open(urdf, srdf, &s, err, sizeof err), MPB_OK);
     /* Now the hand has finger_joint1 to plan, below the arm's chain; its
      * mimic finger_joint2 follows and is not active. */
     const mpb_srdf_group *g =
@@ -212,7 +212,7 @@ static void test_panda_fingers(void **state)
     assert_int_equal(mpb_srdf_group_check(s, mpb_srdf_group_index(s,
                      "panda_arm_hand"), err, sizeof err), MPB_OK);
     mpb_robot *r = NULL;
-    if (mpb_robot_load_urdf_joints(urdf, g->active, g->num_active, &r, err,
+    if (mpb_robot_open_urdf_joints(urdf, g->active, g->num_active, &r, err,
                                    sizeof err) != MPB_OK)
         fail_msg("%s", err);
     double q[8] = {0, -0.785, 0, -2.356, 0, 1.571, 0.785, 0.0};
@@ -235,8 +235,8 @@ static void test_panda_fingers(void **state)
     assert_near(sqrt(ma), 0.03, 1e-9);
     assert_near(sqrt(mb), 0.03, 1e-9);
     assert_near(sqrt(d1) - sqrt(d0), 0.06, 1e-9);
-    mpb_robot_free(r);
-    mpb_srdf_free(s);
+    mpb_robot_close(r);
+    mpb_srdf_close(s);
     free(urdf);
     free(srdf);
 }

@@ -51,7 +51,7 @@ static void test_cells_and_pruning(void **state)
                 fabs(c[2] - 0.005) < 1e-12);
     assert_true(fabs(side - 0.01) < 1e-15);
     /* the 8 cells of an aligned 2 cm cube are one cell */
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     assert_int_equal(mpb_octree_create(0.01, &o), MPB_OK);
     for (int i = 0; i < 8; i++) {
         double q[3] = {0.205 + 0.01 * (i & 1), 0.005 + 0.01 * (i >> 1 & 1),
@@ -68,10 +68,10 @@ static void test_cells_and_pruning(void **state)
     double far[3] = {0.01 * 32768, 0, 0}, nan3[3] = {NAN, 0, 0};
     assert_int_equal(mpb_octree_add_point(o, far), MPB_EINVAL);
     assert_int_equal(mpb_octree_add_point(o, nan3), MPB_EINVAL);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
     assert_int_equal(mpb_octree_create(0, &o), MPB_EINVAL);
     assert_int_equal(mpb_octree_create(NAN, &o), MPB_EINVAL);
-    mpb_octree_free(NULL);
+    mpb_octree_destroy(NULL);
 }
 
 /* What a tree writes reads back as the same cells and the same bytes,
@@ -90,7 +90,7 @@ static void test_bt_round_trip(void **state)
     assert_memory_equal(bt + nbt - nraw, raw, nraw);
     assert_memory_equal(bt, "# Octomap OcTree binary file\n", 29);
     char err[200];
-    assert_int_equal(mpb_octree_read_file(bt, nbt, "box.bt", &back, err, sizeof err),
+    assert_int_equal(mpb_octree_create_from_bytes(bt, nbt, "box.bt", &back, err, sizeof err),
                      MPB_OK);
     assert_int_equal(mpb_octree_num_cells(back), n);
     assert_true(mpb_octree_resolution(back) == 0.01);
@@ -104,15 +104,15 @@ static void test_bt_round_trip(void **state)
         assert_memory_equal(a, b, sizeof a);
         assert_true(sa == sb);
     }
-    mpb_octree_free(back);
-    assert_int_equal(mpb_octree_read_data(raw, nraw, 0.01, 1, NULL, &back, err,
-                                          sizeof err), MPB_OK);
+    mpb_octree_destroy(back);
+    assert_int_equal(mpb_octree_create_from_stream(raw, nraw, 0.01, 1, NULL, &back, err,
+                                                   sizeof err), MPB_OK);
     assert_int_equal(mpb_octree_num_cells(back), n);
-    mpb_octree_free(back);
+    mpb_octree_destroy(back);
     free(bt);
     free(bt2);
     free(raw);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
 }
 
 /* A .ot (full data: log-odds per node) of two leaves, one occupied, one
@@ -143,8 +143,8 @@ static void test_ot_file(void **state)
     memcpy(file + h, data, n);
     mpb_octree *o;
     char err[200];
-    assert_int_equal(mpb_octree_read_file(file, (size_t)h + n, "t.ot", &o, err,
-                                          sizeof err), MPB_OK);
+    assert_int_equal(mpb_octree_create_from_bytes(file, (size_t)h + n, "t.ot", &o, err,
+                                                  sizeof err), MPB_OK);
     assert_int_equal(mpb_octree_num_cells(o), 1);
     double c[3], side;
     assert_int_equal(mpb_octree_cell(o, 0, c, &side), MPB_OK);
@@ -153,7 +153,7 @@ static void test_ot_file(void **state)
     assert_true(fabs(side - 0.05) < 1e-12);
     for (int k = 0; k < 3; k++)
         assert_true(fabs(c[k] - (-0.1 + 0.025)) < 1e-9);
-    mpb_octree_free(o);
+    mpb_octree_destroy(o);
 }
 
 /* The octree of the box's surface collides where the box does, and is
@@ -166,7 +166,7 @@ static void test_box_surface_collision(void **state)
     mpb_collision *oc = test_probe_world(text, 0.01), *bx = test_probe_world(BOX_SCENE, 0.01);
     mpb_scene *s;
     char err[200];
-    assert_int_equal(mpb_scene_parse(text, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_scene_open_text(text, &s, err, sizeof err), MPB_OK);
     const mpb_scene_object *ob = mpb_scene_object_at(s, 0);
     assert_int_equal(ob->kind, MPB_SCENE_OCTREE);
     assert_true(ob->resolution == 0.01);
@@ -186,8 +186,8 @@ static void test_box_surface_collision(void **state)
     }
     assert_true(cells > 4000 && ob->num_shapes * 10 < cells);
     assert_true(fabs(vb - vc) < 1e-9 * vc);
-    mpb_octree_free(tree);
-    mpb_scene_free(s);
+    mpb_octree_destroy(tree);
+    mpb_scene_close(s);
     /* on each face (and 8 mm inside or outside it): both collide */
     unsigned seed = 7;
     for (int i = 0; i < 600; i++) {
@@ -304,14 +304,14 @@ static void test_scene_file_names_octree(void **state)
                        "octree map file box.bt 1 0 0 0 0 0 1\n";
     test_write_bytes(path, text, strlen(text));
     mpb_scene *s;
-    assert_int_equal(mpb_scene_load(path, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_scene_open(path, &s, err, sizeof err), MPB_OK);
     assert_int_equal(mpb_scene_num_objects(s), 1);
     const mpb_scene_object *o = mpb_scene_object_at(s, 0);
     assert_string_equal(o->id, "map");
     assert_true(o->pose.t[0] == 1.0);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     /* parse alone refuses a file */
-    assert_int_equal(mpb_scene_parse(text, &s, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_scene_open_text(text, &s, err, sizeof err), MPB_EPARSE);
     assert_non_null(strstr(err, "scene line 4: octree 'map' names a file"));
     unlink(path);
     unlink(bt);

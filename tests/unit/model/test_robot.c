@@ -63,7 +63,7 @@ static mpb_robot *load_ok(const char *file, const char *base, const char *tip)
     char *text = read_data(file);
     mpb_robot *r = NULL;
     char err[256];
-    int rc = mpb_robot_load_urdf(text, base, tip, &r, err, sizeof err);
+    int rc = mpb_robot_open_urdf(text, base, tip, &r, err, sizeof err);
     free(text);
     if (rc != MPB_OK)
         fail_msg("load %s: %s: %s", file, mpb_err_name(rc), err);
@@ -229,8 +229,8 @@ static void test_fk3_structure(void **state)
     assert_null(mesh->name);
     assert_int_equal(mpb_robot_get_link(r, tool)->num_collisions, 0);
 
-    mpb_robot_free(r);
-    mpb_robot_free(NULL);
+    mpb_robot_close(r);
+    mpb_robot_close(NULL);
 }
 
 /* ---- fk3: poses by hand --------------------------------------------------- */
@@ -354,7 +354,7 @@ static void test_fk3_poses(void **state)
     assert_int_equal(mpb_robot_fk(r, NULL, P), MPB_EINVAL);
     assert_int_equal(mpb_robot_link_pose(r, q, 6, &P[0]), MPB_EINVAL);
     assert_int_equal(mpb_robot_link_pose(r, q, -1, &P[0]), MPB_EINVAL);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 /* ---- axes that are not x, y or z ---------------------------------------- */
@@ -387,7 +387,7 @@ static void test_general_axis(void **state)
     (void)state;
     mpb_robot *r = NULL;
     char err[256];
-    if (mpb_robot_load_urdf(SKEW, "a", "bp", &r, err, sizeof err) != MPB_OK)
+    if (mpb_robot_open_urdf(SKEW, "a", "bp", &r, err, sizeof err) != MPB_OK)
         fail_msg("%s", err);
     const mpb_robot_joint *j = mpb_robot_get_joint(r, 0);
     assert_near(j->axis[0], 0.0, EPS);
@@ -415,16 +415,16 @@ static void test_general_axis(void **state)
     assert_int_equal(mpb_robot_ik(r, bp, NULL, &target, NULL, NULL, &rng, &qs, NULL),
                      MPB_OK);
     assert_near(qs, 0.7, 1e-6);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 
-    if (mpb_robot_load_urdf(SKEW, "c", "dp", &r, err, sizeof err) != MPB_OK)
+    if (mpb_robot_open_urdf(SKEW, "c", "dp", &r, err, sizeof err) != MPB_OK)
         fail_msg("%s", err);
     q = M_PI / 2;
     assert_int_equal(mpb_robot_link_pose(r, &q, dp, &p), MPB_OK);
     assert_near(p.t[0], 0.0, EPS);
     assert_near(p.t[1], -1.0, EPS);
     assert_near(p.t[2], 1.0, EPS);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 /* ---- continuous joints ------------------------------------------------- */
@@ -475,7 +475,7 @@ static void test_continuous(void **state)
         assert_true(mpb_robot_within_limits(r, q));
         assert_true(q[2] >= -M_PI && q[2] < M_PI);
     }
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 /* ---- PR2 arm: FK by hand, passive torso ---------------------------------- */
@@ -561,8 +561,8 @@ static void test_pr2_fk(void **state)
     double q8[8] = { 0.2, 0, 0, 0, -M_PI / 2, 0, 0, 0 };
     assert_int_equal(mpb_robot_link_pose(r8, q8, mpb_robot_tip_link(r8), &p), MPB_OK);
     expect_pose(&p, Rym90, 0.45, -0.188, 1.440675, 1e-12, "pr2 8-joint tool");
-    mpb_robot_free(r8);
-    mpb_robot_free(r);
+    mpb_robot_close(r8);
+    mpb_robot_close(r);
 }
 
 /* ---- PR2 arm: IK round trip ------------------------------------------- */
@@ -649,7 +649,7 @@ static void test_pr2_ik_roundtrip(void **state)
     printf("[ robot    ] FK, PR2 arm, 13 links (11 moving): %.0f ns per "
            "mpb_robot_fk_moving, %.0f ns per mpb_robot_fk (%g)\n",
            1e9 * t_fk / calls, 1e9 * t_fk_all / calls, sink > 0 ? 1.0 : 0.0);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 /* IK details: an offset point, position only, unreachable, bad arguments. */
@@ -715,7 +715,7 @@ static void test_ik_modes(void **state)
     opt.max_attempts = 0;
     assert_int_equal(mpb_robot_ik(r, tool, NULL, &target, NULL, &opt, &rng, q, NULL),
                      MPB_EINVAL);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 /* ---- goal regions ------------------------------------------------------ */
@@ -827,7 +827,7 @@ static void test_goal_contains(void **state)
     assert_int_equal(mpb_goal_region_check(r, &bad, err, sizeof err), MPB_EINVAL);
     double qn[7] = { 0, 0, NAN, 0, 0, 0, 0 };
     assert_int_equal(mpb_goal_region_contains(r, &g, qn), MPB_EINVAL);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 static void test_goal_sample(void **state)
@@ -896,7 +896,7 @@ static void test_goal_sample(void **state)
                      MPB_ENOTFOUND);
     assert_int_equal(mpb_goal_region_sample(r, &far, NULL, NULL, 0, NULL, q),
                      MPB_EINVAL);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 /* ---- groups as joint lists ------------------------------------------------ */
@@ -911,7 +911,7 @@ static void test_joint_list(void **state)
                            "r_upper_arm_roll_joint", "r_elbow_flex_joint",
                            "r_forearm_roll_joint", "r_wrist_flex_joint",
                            "r_wrist_roll_joint" };
-    assert_int_equal(mpb_robot_load_urdf_joints(text, arm, 7, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(text, arm, 7, &r, err, sizeof err),
                      MPB_OK);
     assert_int_equal(mpb_robot_num_joints(r), 7);
     assert_string_equal(mpb_robot_get_link(r, mpb_robot_base_link(r))->name,
@@ -922,37 +922,37 @@ static void test_joint_list(void **state)
     mpb_pose p;
     mpb_robot_link_pose(r, q, mpb_robot_link_index(r, "r_gripper_tool_frame"), &p);
     assert_near(p.t[0], 0.951, 1e-12);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 
     /* Skipping joints makes them passive: the upper arm roll holds 0. */
     const char *some[3] = { "r_shoulder_pan_joint", "r_elbow_flex_joint",
                             "r_wrist_roll_joint" };
-    assert_int_equal(mpb_robot_load_urdf_joints(text, some, 3, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(text, some, 3, &r, err, sizeof err),
                      MPB_OK);
     assert_int_equal(mpb_robot_num_joints(r), 3);
     assert_int_equal(mpb_robot_get_link(r, mpb_robot_link_index(
                          r, "r_upper_arm_roll_link"))->chain_joint, -1);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 
     /* Out of order, unknown, fixed, twice. */
     const char *rev[2] = { "r_elbow_flex_joint", "r_shoulder_pan_joint" };
-    assert_int_equal(mpb_robot_load_urdf_joints(text, rev, 2, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(text, rev, 2, &r, err, sizeof err),
                      MPB_EPARSE);
     assert_null(r);
     assert_non_null(strstr(err, "not below"));
     const char *unk[1] = { "r_elbow_joint" };
-    assert_int_equal(mpb_robot_load_urdf_joints(text, unk, 1, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(text, unk, 1, &r, err, sizeof err),
                      MPB_EPARSE);
     assert_non_null(strstr(err, "'r_elbow_joint' not found"));
     const char *fix[1] = { "r_gripper_palm_joint" };
-    assert_int_equal(mpb_robot_load_urdf_joints(text, fix, 1, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(text, fix, 1, &r, err, sizeof err),
                      MPB_EPARSE);
     assert_non_null(strstr(err, "fixed"));
     const char *twice[2] = { "r_elbow_flex_joint", "r_elbow_flex_joint" };
-    assert_int_equal(mpb_robot_load_urdf_joints(text, twice, 2, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(text, twice, 2, &r, err, sizeof err),
                      MPB_EPARSE);
     assert_non_null(strstr(err, "twice"));
-    assert_int_equal(mpb_robot_load_urdf_joints(text, arm, 0, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(text, arm, 0, &r, err, sizeof err),
                      MPB_EPARSE);
     free(text);
 }

@@ -23,7 +23,7 @@ static void expect_error(const char *text, const char *base, const char *tip,
 {
     mpb_robot *r = (mpb_robot *)1;
     char err[256];
-    int rc = mpb_robot_load_urdf(text, base, tip, &r, err, sizeof err);
+    int rc = mpb_robot_open_urdf(text, base, tip, &r, err, sizeof err);
     if (rc != rc_expected)
         fail_msg("expected %s, got %s: %s", mpb_err_name(rc_expected),
                  mpb_err_name(rc), err);
@@ -178,34 +178,34 @@ static void test_malformed(void **state)
     /* NULL arguments. */
     mpb_robot *r = NULL;
     char err[128];
-    assert_int_equal(mpb_robot_load_urdf(NULL, NULL, "b", &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf(NULL, NULL, "b", &r, err, sizeof err),
                      MPB_EINVAL);
     /* No tip: the longest chain, the first of two equal ones. */
-    assert_int_equal(mpb_robot_load_urdf(two, NULL, NULL, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf(two, NULL, NULL, &r, err, sizeof err),
                      MPB_OK);
     assert_string_equal(mpb_robot_get_link(r, mpb_robot_tip_link(r))->name, "b");
-    mpb_robot_free(r);
+    mpb_robot_close(r);
     r = NULL;
-    assert_int_equal(mpb_robot_load_urdf(two, NULL, "b", NULL, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf(two, NULL, "b", NULL, err, sizeof err),
                      MPB_EINVAL);
     /* No err buffer is fine. */
-    assert_int_equal(mpb_robot_load_urdf(two, NULL, "zz", &r, NULL, 0), MPB_EPARSE);
+    assert_int_equal(mpb_robot_open_urdf(two, NULL, "zz", &r, NULL, 0), MPB_EPARSE);
 
     /* Files: the message names the file. */
     char path[1024];
     snprintf(path, sizeof path, "%s/no_such_robot.urdf", MPB_TEST_DATA);
-    assert_int_equal(mpb_robot_load_urdf_file(path, NULL, "b", &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_file(path, NULL, "b", &r, err, sizeof err),
                      MPB_EIO);
     assert_non_null(strstr(err, "no_such_robot.urdf: cannot open"));
     snprintf(path, sizeof path, "%s/fk3.urdf", MPB_TEST_DATA);
-    assert_int_equal(mpb_robot_load_urdf_file(path, "base", "hand", &r, err,
+    assert_int_equal(mpb_robot_open_urdf_file(path, "base", "hand", &r, err,
                                               sizeof err), MPB_EPARSE);
     assert_non_null(strstr(err, "fk3.urdf: tip link 'hand' not found"));
     printf("[ robot    ] %s\n", err);
-    assert_int_equal(mpb_robot_load_urdf_file(path, "base", "tool", &r, err,
+    assert_int_equal(mpb_robot_open_urdf_file(path, "base", "tool", &r, err,
                                               sizeof err), MPB_OK);
     assert_int_equal(mpb_robot_num_joints(r), 3);
-    mpb_robot_free(r);
+    mpb_robot_close(r);
 }
 
 int main(void)

@@ -50,7 +50,7 @@ static mpb_scene *load_ok(const char *name)
     char path[512], err[300];
     data_path(path, sizeof path, name);
     mpb_scene *s = NULL;
-    int rc = mpb_scene_load(path, &s, err, sizeof err);
+    int rc = mpb_scene_open(path, &s, err, sizeof err);
     if (rc != MPB_OK)
         fail_msg("%s: %s", mpb_err_name(rc), err);
     return s;
@@ -60,7 +60,7 @@ static mpb_scene *parse_ok(const char *text)
 {
     mpb_scene *s = NULL;
     char err[300];
-    int rc = mpb_scene_parse(text, &s, err, sizeof err);
+    int rc = mpb_scene_open_text(text, &s, err, sizeof err);
     if (rc != MPB_OK)
         fail_msg("%s: %s", mpb_err_name(rc), err);
     return s;
@@ -143,7 +143,7 @@ static void test_new_variant(void **state)
     assert_null(mpb_scene_object_at(s, 5));
     assert_null(mpb_scene_object_at(s, -1));
     assert_int_equal(mpb_scene_find(s, "cup"), MPB_ENOTFOUND);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 }
 
 static void test_old_variant(void **state)
@@ -161,7 +161,7 @@ static void test_old_variant(void **state)
     assert_near(o->shapes[0].pose.t[2], 1, 0);
     assert_near(o->shapes[0].color[2], 1, 0);
     assert_int_equal(o->num_subframes, 0);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 }
 
 /*
@@ -205,7 +205,7 @@ static void test_in_collision_world(void **state)
     assert_near(r.distance, 0.01, 1e-6);
     assert_int_equal(r.static_id, 1);
     mpb_collision_destroy(c);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 }
 
 static const char *const CARRIED =
@@ -270,7 +270,7 @@ static void test_attach(void **state)
     assert_int_equal(mpb_scene_attach(s, "wall", "", NULL, NULL, 0), MPB_EINVAL);
     p.R[0] = 2;
     assert_int_equal(mpb_scene_attach(s, "wall", "hand", &p, NULL, 0), MPB_EINVAL);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 }
 
 static void test_small_texts(void **state)
@@ -279,34 +279,34 @@ static void test_small_texts(void **state)
     mpb_scene *s = parse_ok("");
     assert_int_equal(mpb_scene_num_objects(s), 0);
     assert_string_equal(mpb_scene_name(s), "");
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     s = parse_ok("  \n\n");
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     s = parse_ok("empty\n.\n");
     assert_string_equal(mpb_scene_name(s), "empty");
     assert_int_equal(mpb_scene_num_objects(s), 0);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     /* an object with no shapes (old variant), and a name with spaces */
     s = parse_ok("  my scene  \n*   thing one  \n0\n.");
     assert_string_equal(mpb_scene_name(s), "my scene");
     assert_string_equal(mpb_scene_object_at(s, 0)->id, "thing one");
     assert_int_equal(mpb_scene_variant_of(s), MPB_SCENE_OLD);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     /* an un-normalised quaternion is normalised */
     s = parse_ok("q\n* a\n0 0 0\n0 0 2 2\n0\n0\n.\n");
     expect_rotation(&mpb_scene_object_at(s, 0)->pose, 0, 0, M_SQRT1_2, M_SQRT1_2);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     /* at any scale: the squares of 1e300 overflowed and were called zero */
     s = parse_ok("q\n* a\n0 0 0\n0 0 1e300 1e300\n0\n0\n.\n");
     expect_rotation(&mpb_scene_object_at(s, 0)->pose, 0, 0, M_SQRT1_2, M_SQRT1_2);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
     s = parse_ok("q\n* a\n0 0 0\n0 0 1e-300 0\n0\n0\n.\n");
     expect_rotation(&mpb_scene_object_at(s, 0)->pose, 0, 0, 1, 0);
     assert_near(mpb_scene_object_at(s, 0)->pose.R[0], -1, 1e-15);
-    mpb_scene_free(s);
-    mpb_scene_free(NULL);
-    assert_int_equal(mpb_scene_parse(NULL, &s, NULL, 0), MPB_EINVAL);
-    assert_int_equal(mpb_scene_parse("x\n.\n", NULL, NULL, 0), MPB_EINVAL);
+    mpb_scene_close(s);
+    mpb_scene_close(NULL);
+    assert_int_equal(mpb_scene_open_text(NULL, &s, NULL, 0), MPB_EINVAL);
+    assert_int_equal(mpb_scene_open_text("x\n.\n", NULL, NULL, 0), MPB_EINVAL);
     assert_int_equal(mpb_scene_num_objects(NULL), 0);
 }
 
@@ -359,7 +359,7 @@ static void test_errors(void **state)
     for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; i++) {
         mpb_scene *s = (mpb_scene *)1;
         char err[300], want[32];
-        int rc = mpb_scene_parse(BAD[i].text, &s, err, sizeof err);
+        int rc = mpb_scene_open_text(BAD[i].text, &s, err, sizeof err);
         if (rc != MPB_EPARSE)
             fail_msg("case %zu: %s, expected MPB_EPARSE (%s)", i, mpb_err_name(rc), err);
         assert_null(s);
@@ -372,9 +372,9 @@ static void test_errors(void **state)
     /* a small error buffer truncates; none at all is fine */
     mpb_scene *s;
     char tiny[10];
-    assert_int_equal(mpb_scene_parse(BAD[0].text, &s, tiny, sizeof tiny), MPB_EPARSE);
+    assert_int_equal(mpb_scene_open_text(BAD[0].text, &s, tiny, sizeof tiny), MPB_EPARSE);
     assert_int_equal(strlen(tiny), sizeof tiny - 1);
-    assert_int_equal(mpb_scene_parse(BAD[0].text, &s, NULL, 0), MPB_EPARSE);
+    assert_int_equal(mpb_scene_open_text(BAD[0].text, &s, NULL, 0), MPB_EPARSE);
 }
 
 static void test_load_errors(void **state)
@@ -382,7 +382,7 @@ static void test_load_errors(void **state)
     (void)state;
     mpb_scene *s = (mpb_scene *)1;
     char err[300];
-    assert_int_equal(mpb_scene_load("/no/such/file.scene", &s, err, sizeof err), MPB_EIO);
+    assert_int_equal(mpb_scene_open("/no/such/file.scene", &s, err, sizeof err), MPB_EIO);
     assert_null(s);
     assert_non_null(strstr(err, "/no/such/file.scene"));
 
@@ -392,7 +392,7 @@ static void test_load_errors(void **state)
     FILE *f = fdopen(fd, "w");
     fputs("bad\n* a\n0 0 0\n0 0 0 1\n1\nbox 1 1\n", f);
     fclose(f);
-    assert_int_equal(mpb_scene_load(path, &s, err, sizeof err), MPB_EPARSE);
+    assert_int_equal(mpb_scene_open(path, &s, err, sizeof err), MPB_EPARSE);
     char want[128];
     snprintf(want, sizeof want, "%s: scene line 6: ", path);
     if (strncmp(err, want, strlen(want)) != 0)

@@ -295,7 +295,7 @@ static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
         "</robot>\n";
     char *u = test_read_file(MPB_TEST_DATA "/folding_arm.urdf"), err[256];
     mpb_srdf *s = NULL;
-    assert_int_equal(mpb_srdf_load(u, srdf, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_open(u, srdf, &s, err, sizeof err), MPB_OK);
     assert_int_equal(mpb_srdf_num_skipped_pairs(s), 4);
     assert_string_equal(mpb_srdf_skipped_pairs(s),
         "4 of 6 disable_collisions pairs name links the URDF lacks and are "
@@ -303,7 +303,7 @@ static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
         "line 4 (flag, pole: no link 'flag' nor the other), line 6 (wheel, "
         "arm3: no link 'wheel') and 1 more; the names: pole, flag, wheel, "
         "lamp");
-    mpb_srdf_free(s);
+    mpb_srdf_close(s);
 
     char *text = malloc(strlen(u) + sizeof srdf);
     assert_non_null(text);
@@ -325,10 +325,10 @@ static void pairs_naming_unknown_links_are_skipped_with_a_warning(void **state)
     /* An SRDF whose pairs all name known links: no warning. */
     s = NULL;
     char *good = test_read_file(MPB_TEST_DATA "/folding_arm.srdf");
-    assert_int_equal(mpb_srdf_load(u, good, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_open(u, good, &s, err, sizeof err), MPB_OK);
     assert_int_equal(mpb_srdf_num_skipped_pairs(s), 0);
     assert_null(mpb_srdf_skipped_pairs(s));
-    mpb_srdf_free(s);
+    mpb_srdf_close(s);
     free(good);
     free(text);
     free(u);

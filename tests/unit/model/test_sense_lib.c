@@ -33,7 +33,7 @@ static mpb_scene *parse(const char *text)
 {
     char err[300];
     mpb_scene *s = NULL;
-    if (mpb_scene_parse(text, &s, err, sizeof err) != MPB_OK)
+    if (mpb_scene_open_text(text, &s, err, sizeof err) != MPB_OK)
         fail_msg("scene: %s", err);
     return s;
 }
@@ -110,7 +110,7 @@ static void test_same_seed_same_text(void **state)
     assert_int_equal(h, ha);
     assert_int_equal(mpb_octree_num_cells(tree), ca);
     assert_true(mpb_octree_resolution(tree) == 0.01);
-    mpb_octree_free(tree);
+    mpb_octree_destroy(tree);
 
     /* num_cameras 0 is the default cameras given by hand */
     mpb_sense_default_cameras(s, &o);
@@ -121,8 +121,8 @@ static void test_same_seed_same_text(void **state)
     free(b);
     free(c);
     free(d);
-    mpb_scene_free(t);
-    mpb_scene_free(s);
+    mpb_scene_close(t);
+    mpb_scene_close(s);
 }
 
 /* How far p is from the surface of the box at c with half sides h. */
@@ -170,8 +170,8 @@ static void test_cells_lie_on_the_truth(void **state)
     /* the face is 40 x 40 cells; from 2 m at 120 x 90 pixels the rays
        fall about 2 cm apart, two cameras: more than an eighth */
     assert_true(front > 40 * 40 / 8);
-    mpb_octree_free(t);
-    mpb_scene_free(s);
+    mpb_octree_destroy(t);
+    mpb_scene_close(s);
 }
 
 /* Each bad option, alone, refused with one line naming it; by the check
@@ -254,7 +254,7 @@ static void test_bad_options(void **state)
     assert_int_equal(mpb_scene_sense_text(s, NULL, &text, NULL, NULL, NULL, 0), MPB_EINVAL);
     assert_null(text);
     assert_int_equal(mpb_scene_sense_text(s, &o, NULL, NULL, NULL, NULL, 0), MPB_EINVAL);
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 }
 
 /* More occupied cells than an octree may hold: MPB_EPARSE naming the
@@ -280,7 +280,7 @@ static void test_overflow_names_the_camera(void **state)
     assert_int_equal(mpb_scene_sense(s, &o, &t, &hits, why, sizeof why), MPB_OK);
     assert_int_equal(hits, 600 * 600);
     assert_int_equal(mpb_octree_num_cells(t), 600 * 600);
-    mpb_octree_free(t);
+    mpb_octree_destroy(t);
     o.num_cameras = 2;
     o.cameras[1] = (mpb_camera){{2, 0, 1}, {2, 0, 0}};
     t = (mpb_octree *)&o;
@@ -292,7 +292,7 @@ static void test_overflow_names_the_camera(void **state)
                      MPB_EPARSE);
     assert_null(text);
     assert_string_equal(why, "camera 2: more occupied cells than an octree may hold");
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 }
 
 /* The default cameras look at the mean of the world objects' shape
@@ -329,7 +329,7 @@ static void test_default_cameras(void **state)
             assert_true(fabs(o.cameras[i].eye[k] - eye[k]) < 1e-12);
         }
     }
-    mpb_scene_free(s);
+    mpb_scene_close(s);
 
     /* an empty scene: the origin */
     s = parse("empty\n.\n");
@@ -349,8 +349,8 @@ static void test_default_cameras(void **state)
     assert_int_equal(mpb_scene_num_objects(back), 1);
     assert_int_equal(mpb_scene_object_at(back, 0)->num_shapes, 0);
     free(t);
-    mpb_scene_free(back);
-    mpb_scene_free(s);
+    mpb_scene_close(back);
+    mpb_scene_close(s);
 }
 
 int main(void)

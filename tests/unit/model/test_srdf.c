@@ -32,7 +32,7 @@ static mpb_srdf *load_robot(const char *name)
     char *urdf, *srdf, err[512];
     mpb_srdf *s = NULL;
     test_read_robot_data(name, &urdf, &srdf);
-    int rc = mpb_srdf_load(urdf, srdf, &s, err, sizeof err);
+    int rc = mpb_srdf_open(urdf, srdf, &s, err, sizeof err);
     if (rc != MPB_OK)
         fail_msg("%s: %s", name, err);
     free(urdf);
@@ -133,7 +133,7 @@ static void test_panda(void **state)
     assert_string_equal(e->name, "hand");
     assert_string_equal(e->parent_link, "panda_link8");
     assert_string_equal(e->parent_group, "panda_arm");
-    mpb_srdf_free(s);
+    mpb_srdf_close(s);
 }
 
 static void test_other_robots(void **state)
@@ -153,7 +153,7 @@ static void test_other_robots(void **state)
     assert_near(q[3], -1.57, 0);
     assert_int_equal(mpb_srdf_num_passive_joints(s), 5);
     assert_true(mpb_srdf_is_passive(s, "robotiq_85_right_knuckle_joint") > 0);
-    mpb_srdf_free(s);
+    mpb_srdf_close(s);
 
     /* Fetch: VAMP's has its head fixed; the arm with the torso below it. */
     s = load_robot("fetch");
@@ -165,7 +165,7 @@ static void test_other_robots(void **state)
     assert_active(s, "arm_with_torso", "torso_lift_joint,shoulder_pan_joint,"
                   "shoulder_lift_joint,upperarm_roll_joint,elbow_flex_joint,"
                   "forearm_roll_joint,wrist_flex_joint,wrist_roll_joint");
-    mpb_srdf_free(s);
+    mpb_srdf_close(s);
 
     /* Baxter: each arm a chain; both arms are two branches; its virtual
      * joint is passive. */
@@ -183,7 +183,7 @@ static void test_other_robots(void **state)
     assert_near(q[1], -0.55, 0);        /* right_s1 */
     assert_near(q[3], 0.75, 0);         /* right_e1 */
     assert_near(q[5], 1.26, 0);         /* right_w1 */
-    mpb_srdf_free(s);
+    mpb_srdf_close(s);
 }
 
 /* ---- bad SRDFs: one line, naming the line -------------------------------- */
@@ -195,7 +195,7 @@ static void refused(const char *srdf, int code, const char *want)
 {
     char *urdf = test_read_file(PR2), err[512];
     mpb_srdf *s = (mpb_srdf *)1;
-    int rc = mpb_srdf_load(urdf, srdf, &s, err, sizeof err);
+    int rc = mpb_srdf_open(urdf, srdf, &s, err, sizeof err);
     free(urdf);
     if (rc != code || s != NULL || strcmp(err, want) != 0)
         fail_msg("rc %d (expected %d): '%s', expected '%s'", rc, code, err,
@@ -275,7 +275,7 @@ static void test_bad_srdf(void **state)
     /* A broken URDF is the URDF's fault, said so. */
     char err[512];
     mpb_srdf *s = NULL;
-    assert_int_equal(mpb_srdf_load("<robot name=\"r\">\n<link name=\"a\">\n</robot>\n",
+    assert_int_equal(mpb_srdf_open("<robot name=\"r\">\n<link name=\"a\">\n</robot>\n",
                                    HEAD "</robot>\n", &s, err, sizeof err),
                      MPB_EPARSE);
     assert_null(s);
@@ -297,7 +297,7 @@ static void test_unplannable(void **state)
         "  <group name=\"rev\"><joint name=\"r_wrist_flex_joint\"/><joint name=\"r_elbow_flex_joint\"/>"
         "<joint name=\"r_shoulder_pan_joint\"/></group>\n"
         "</robot>\n";
-    assert_int_equal(mpb_srdf_load(urdf, srdf, &s, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_srdf_open(urdf, srdf, &s, err, sizeof err), MPB_OK);
     int g = mpb_srdf_group_index(s, "torso");
     assert_int_equal(mpb_srdf_group_check(s, g, err, sizeof err), MPB_EUNSUPPORTED);
     assert_string_equal(err, "group 'torso' names joint 'torso_lift_joint', "
@@ -316,11 +316,11 @@ static void test_unplannable(void **state)
     /* Joints named tip first are planned base first. */
     assert_active(s, "rev", "r_shoulder_pan_joint,r_elbow_flex_joint,"
                   "r_wrist_flex_joint");
-    mpb_srdf_free(s);
+    mpb_srdf_close(s);
     free(urdf);
 }
 
-/* A world opened with an SRDF checks it as mpb_srdf_load() does. */
+/* A world opened with an SRDF checks it as mpb_srdf_open() does. */
 static void test_world_checks(void **state)
 {
     (void)state;

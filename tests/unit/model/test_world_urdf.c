@@ -139,7 +139,7 @@ static void pose_region_goals_are_checked(void **state)
     mpb_world *w = open_world(box_scene);
     mpb_robot *r;
     char err[200];
-    assert_int_equal(mpb_robot_load_urdf_joints(urdf, joints, 7, &r, err, sizeof err),
+    assert_int_equal(mpb_robot_open_urdf_joints(urdf, joints, 7, &r, err, sizeof err),
                      MPB_OK);
     double qb[7] = {0.5, 0.3, 0, -0.5, 0, -0.4, 0};
     mpb_pose tool;
@@ -179,7 +179,7 @@ static void pose_region_goals_are_checked(void **state)
     g.link = "no_such_link";
     assert_true(mpb_world_goal_contains(w, &g, qb, why, sizeof why) < 0);
     assert_non_null(strstr(why, "no_such_link"));
-    mpb_robot_free(r);
+    mpb_robot_close(r);
     mpb_world_close(w);
 }
 

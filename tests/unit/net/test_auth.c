@@ -22,7 +22,7 @@ static mpb_auth *load(const char *bytes)
     assert_int_equal(write(fd, bytes, strlen(bytes)), (ssize_t)strlen(bytes));
     close(fd);
     mpb_auth *a = NULL;
-    assert_int_equal(mpb_auth_load(path, &a, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_auth_open(path, &a, err, sizeof err), MPB_OK);
     unlink(path);
     return a;
 }
@@ -86,7 +86,7 @@ static void the_protocol_test_vector(void **state)
                      trailer);
     hex(trailer, sizeof trailer, text);
     assert_string_equal(text, want);
-    mpb_auth_free(a);
+    mpb_auth_close(a);
 }
 
 /* A message as a peer with auth b sends it, into buf; its length. */
@@ -115,62 +115,62 @@ static void a_sender_is_believed_once_it_echoes_the_receiver(void **state)
     /* Echoing another process (a recorded message played again to a new
      * one), or none: not believed, nor remembered. */
     n = sealed(peer, 1, 12345, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_UNPROVEN);
     assert_int_equal(len, 7);
     assert_true(info.instance == mpb_auth_instance(peer));
     assert_true(info.counter == 1 && info.echo == 12345);
     n = sealed(peer, 2, 0, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_UNPROVEN);
     /* Echoing this one: believed, and from then on by its counter. */
     n = sealed(peer, 5, mine, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_FRESH);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_REPLAYED);
     n = sealed(peer, 7, 0, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_FRESH);
     /* Reordered by UDP: 6 comes after 7, once; 2 was sent before 5. */
     n = sealed(peer, 6, 0, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_FRESH);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_REPLAYED);
     n = sealed(peer, 2, mine, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_FRESH);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_REPLAYED);
     /* More than 64 behind the newest: too old to tell, so refused. */
     n = sealed(peer, 100, 0, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_FRESH);
     n = sealed(peer, 36, 0, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_REPLAYED);
     /* Another secret, another channel, a changed byte, a short message. */
     n = sealed(other, 200, mine, buf);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_BAD_TAG);
     n = sealed(peer, 201, 0, buf);
-    assert_int_equal(mpb_auth_open(me, "CX", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CX", buf, n, &len, &info),
                      MPB_AUTH_BAD_TAG);
     buf[8] ^= 1;        /* the instance */
-    assert_int_equal(mpb_auth_open(me, "CH", buf, n, &len, &info),
+    assert_int_equal(mpb_auth_check(me, "CH", buf, n, &len, &info),
                      MPB_AUTH_BAD_TAG);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, MPB_AUTH_TRAILER_SIZE - 1,
-                                   &len, &info), MPB_AUTH_BAD_TAG);
+    assert_int_equal(mpb_auth_check(me, "CH", buf, MPB_AUTH_TRAILER_SIZE - 1,
+                                    &len, &info), MPB_AUTH_BAD_TAG);
     /* Without a secret, everything passes whole. */
-    assert_int_equal(mpb_auth_open(NULL, "CH", buf, 9, &len, &info),
+    assert_int_equal(mpb_auth_check(NULL, "CH", buf, 9, &len, &info),
                      MPB_AUTH_FRESH);
     assert_int_equal(len, 9);
     assert_true(mpb_auth_instance(NULL) == 0);
-    mpb_auth_free(me);
-    mpb_auth_free(peer);
-    mpb_auth_free(other);
-    mpb_auth_free(NULL);
+    mpb_auth_close(me);
+    mpb_auth_close(peer);
+    mpb_auth_close(other);
+    mpb_auth_close(NULL);
 }
 
 /* What a memq:// subscriber received last. */
@@ -215,8 +215,8 @@ static void a_seal_counts_with_publishing_and_is_believed(void **state)
     mpb_auth_trailer(peer, "CH", buf, 7, mpb_auth_instance(peer), 1,
                      mpb_auth_instance(me), want);
     assert_memory_equal(buf + 7, want, sizeof want);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
-                                   &len, &info), MPB_AUTH_FRESH);
+    assert_int_equal(mpb_auth_check(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
+                                    &len, &info), MPB_AUTH_FRESH);
     assert_int_equal(len, 7);
     assert_true(info.instance == mpb_auth_instance(peer) && info.counter == 1);
 
@@ -236,10 +236,10 @@ static void a_seal_counts_with_publishing_and_is_believed(void **state)
     assert_true(be64(buf + 7) == mpb_auth_instance(peer));
     assert_true(be64(buf + 15) == 3 && be64(buf + 23) == 0);
     /* Believed already: the same bytes again are a replay. */
-    assert_int_equal(mpb_auth_open(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
-                                   &len, &info), MPB_AUTH_FRESH);
-    assert_int_equal(mpb_auth_open(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
-                                   &len, &info), MPB_AUTH_REPLAYED);
+    assert_int_equal(mpb_auth_check(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
+                                    &len, &info), MPB_AUTH_FRESH);
+    assert_int_equal(mpb_auth_check(me, "CH", buf, 7 + MPB_AUTH_TRAILER_SIZE,
+                                    &len, &info), MPB_AUTH_REPLAYED);
 
     /* No secret, no channel: refused, out untouched. */
     memset(want, 0xab, sizeof want);
@@ -247,8 +247,8 @@ static void a_seal_counts_with_publishing_and_is_believed(void **state)
     assert_int_equal(mpb_auth_seal(peer, NULL, buf, 7, 0, want), MPB_EINVAL);
     for (size_t i = 0; i < sizeof want; i++)
         assert_int_equal(want[i], 0xab);
-    mpb_auth_free(me);
-    mpb_auth_free(peer);
+    mpb_auth_close(me);
+    mpb_auth_close(peer);
 }
 
 int main(void)

@@ -103,8 +103,8 @@ static void it_is_published_and_received(void **state)
     fputs("a secret of thirty-two bytes or more\n", f);
     assert_int_equal(fclose(f), 0);
     mpb_auth *sender = NULL, *receiver = NULL;
-    assert_int_equal(mpb_auth_load(path, &sender, err, sizeof err), MPB_OK);
-    assert_int_equal(mpb_auth_load(path, &receiver, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_auth_open(path, &sender, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_auth_open(path, &receiver, err, sizeof err), MPB_OK);
     lcm_t *lcm = lcm_create("memq://");
     assert_non_null(lcm);
     got g = {.auth = receiver};
@@ -119,8 +119,8 @@ static void it_is_published_and_received(void **state)
     assert_string_equal(g.m.tags[1], "bc");
     mpb_receive_done(MPB_WIRE_TEST_NOTE, &g.m);
     lcm_destroy(lcm);
-    mpb_auth_free(sender);
-    mpb_auth_free(receiver);
+    mpb_auth_close(sender);
+    mpb_auth_close(receiver);
     test_remove_dir(dir);
 }
 

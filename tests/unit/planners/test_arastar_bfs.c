@@ -74,7 +74,7 @@ static void test_voxelized_box(void **state)
     (void)state;
     mpb_scene *scene = NULL;
     char err[200];
-    assert_int_equal(mpb_scene_parse(BOX_SCENE, &scene, err, sizeof err),
+    assert_int_equal(mpb_scene_open_text(BOX_SCENE, &scene, err, sizeof err),
                      MPB_OK);
     ara_grid g;
     const double origin[3] = {0, 0, 0};
@@ -110,7 +110,7 @@ static void test_voxelized_box(void **state)
     assert_int_equal(ara_voxelize(&g, scene, NULL, NULL, err, sizeof err),
                      MPB_EINVAL);
     ara_grid_free(&g);
-    mpb_scene_free(scene);
+    mpb_scene_close(scene);
 }
 
 int main(void)

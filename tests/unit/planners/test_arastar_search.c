@@ -52,11 +52,11 @@ static int setup(void **state)
     assert_int_equal(mpb_world_open_group("urdf", fx->urdf, "moveit-scene",
                                           fx->scene_text, JOINTS, 7,
                                           &fx->world, err, sizeof err), MPB_OK);
-    assert_int_equal(mpb_robot_load_urdf_joints(fx->urdf, JOINTS, 7,
+    assert_int_equal(mpb_robot_open_urdf_joints(fx->urdf, JOINTS, 7,
                                                 &fx->robot, err, sizeof err),
                      MPB_OK);
-    assert_int_equal(mpb_scene_parse(fx->scene_text, &fx->scene, err,
-                                     sizeof err), MPB_OK);
+    assert_int_equal(mpb_scene_open_text(fx->scene_text, &fx->scene, err,
+                                         sizeof err), MPB_OK);
     assert_int_equal(ara_motion_init(&fx->motion, fx->world, 0.01), 0);
     *state = fx;
     return 0;
@@ -67,8 +67,8 @@ static int teardown(void **state)
     fixture *fx = *state;
     ara_grid_free(&fx->grid);
     ara_motion_free(&fx->motion);
-    mpb_scene_free(fx->scene);
-    mpb_robot_free(fx->robot);
+    mpb_scene_close(fx->scene);
+    mpb_robot_close(fx->robot);
     mpb_world_close(fx->world);
     free(fx->urdf);
     free(fx->scene_text);

@@ -94,8 +94,8 @@ static void cells_lie_on_the_truth(void **state)
     char path[160], err[300];
     snprintf(path, sizeof path, "%s/s.scene", dir);
     mpb_scene *sensed, *truth;
-    assert_int_equal(mpb_scene_load(path, &sensed, err, sizeof err), MPB_OK);
-    assert_int_equal(mpb_scene_parse(SCENE, &truth, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_scene_open(path, &sensed, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb_scene_open_text(SCENE, &truth, err, sizeof err), MPB_OK);
     assert_int_equal(mpb_scene_num_objects(sensed), 1);
     const mpb_scene_object *oc = mpb_scene_object_at(sensed, 0);
     assert_int_equal(oc->kind, MPB_SCENE_OCTREE);
@@ -131,8 +131,8 @@ static void cells_lie_on_the_truth(void **state)
        (at 120 x 90 pixels from 2 m the rays fall about 2 cm apart) */
     assert_true(front > 0.4 * 0.4 / 8);
     mpb_collision_destroy(c);
-    mpb_scene_free(sensed);
-    mpb_scene_free(truth);
+    mpb_scene_close(sensed);
+    mpb_scene_close(truth);
 }
 
 static void bad_options_get_one_line(void **state)
