@@ -33,9 +33,9 @@
  * 1e-6 leaves errors up to ~3 mm for cones and cylinders), which measures
  * below 5e-7 m against closed forms and finely tessellated shapes. Planes
  * are handled by mpbench itself, exactly (FCL 0.7's plane distances are
- * broken). Overlapping pairs are at distance 0 (how deep they go:
- * mpb_collision_depth());
- * touching within ~1e-9 m may be reported either way by the two queries.
+ * broken). Overlapping pairs are at distance 0 (how deep a robot goes:
+ * mpb_world_depth(), world.h); touching within ~1e-9 m may be reported
+ * either way by the two queries.
  *
  * Cost: queries allocate nothing in this API (the static objects sit in a
  * bounding-volume tree of exact AABBs, built once and reused; movable
@@ -99,13 +99,6 @@ typedef struct mpb_geometry {
 #define MPB_COLLISION_MIN_SIZE  1e-6
 #define MPB_COLLISION_MAX_COORD 1e5
 
-/*
- * MPB_OK if g is well formed (dims finite and within the bounds above, a
- * mesh that passes mpb_mesh_check() with its vertices within bounds);
- * MPB_EINVAL and one line in err (if not NULL) if not.
- */
-int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen);
-
 #define MPB_COLLISION_MAX_ID 1000000
 
 typedef struct mpb_collision mpb_collision;
@@ -160,32 +153,6 @@ int mpb_collision_set_pose(mpb_collision *c, int id, const mpb_pose *pose);
 int mpb_collision_set_enabled(mpb_collision *c, int id, int enabled);
 
 /*
- * Make the movable body `id` take part in self checks only (self_only = 1)
- * or in every query (0, the default): mpb_collision_check() and
- * mpb_collision_distance() skip a self-only body, mpb_collision_check_self()
- * and mpb_collision_check_pair() do not. For a robot's fixed links: the
- * moving links must not pass through them, but they stand where the robot
- * stands (on the floor, say) and are no part of the clearance to the
- * environment. MPB_OK or MPB_ENOTFOUND.
- */
-int mpb_collision_set_self_only(mpb_collision *c, int id, int self_only);
-
-/*
- * Let movable bodies a and b touch: mpb_collision_check_self() skips the
- * pair. MPB_OK; MPB_ENOTFOUND for an unknown body; MPB_EINVAL for a == b.
- */
-int mpb_collision_allow_pair(mpb_collision *c, int movable_a, int movable_b);
-
-/*
- * Let the movable body `movable` touch the static body `static_id` (e.g. a
- * robot's base link and the floor it stands on): both
- * mpb_collision_check() and mpb_collision_distance() skip the pair.
- * MPB_OK; MPB_ENOTFOUND for an unknown movable (the static need not exist
- * yet); MPB_EINVAL for a bad id; MPB_ENOMEM.
- */
-int mpb_collision_allow_static(mpb_collision *c, int movable, int static_id);
-
-/*
  * Does any enabled movable body touch any static body (allowed pairs
  * excepted)? 1 if so, with the first pair found in *movable and *static_id
  * (either may be NULL); 0 if none; a negative code on error (MPB_EINVAL for
@@ -193,22 +160,6 @@ int mpb_collision_allow_static(mpb_collision *c, int movable, int static_id);
  * Stops at the first colliding pair.
  */
 int mpb_collision_check(mpb_collision *c, int *movable, int *static_id);
-
-/*
- * Do two enabled movable bodies touch, pairs allowed with
- * mpb_collision_allow_pair() excepted? 1 with the first pair found
- * (*a < *b), 0 if none, negative on error as above.
- */
-int mpb_collision_check_self(mpb_collision *c, int *a, int *b);
-
-/*
- * Do the movable bodies a and b touch where they are now, whatever
- * mpb_collision_allow_pair() and mpb_collision_set_enabled() say? 1 if
- * so, 0 if not; MPB_ENOTFOUND for an unknown body, MPB_EINVAL for a == b,
- * another negative code on error as above. For building an
- * allowed-collision matrix pair by pair.
- */
-int mpb_collision_check_pair(mpb_collision *c, int a, int b);
 
 typedef struct mpb_collision_distance_result {
     double distance;         /* m: >= 0; 0 when some pair overlaps;
@@ -231,35 +182,6 @@ typedef struct mpb_collision_distance_result {
 int mpb_collision_distance(mpb_collision *c, int nearest_points,
                            mpb_collision_distance_result *out);
 
-/*
- * How deep the bodies overlap where they stand (collision_depth.cpp): over
- * every colliding pair that mpb_collision_check() and
- * mpb_collision_check_self() test (a movable shape against a static
- * shape or plane, a shape of one movable against one of another, pairs
- * allowed to touch excepted), bounds on the penetration depth of each
- * pair of shapes (the shortest translation that parts them), m:
- *   lower  the most, over the pairs, of the deepest point found of one
- *          shape inside the other (mesh vertices; a primitive's corners
- *          and extreme points), its distance to that shape's surface;
- *   upper  the most, over the pairs, of the least h_A(n) + h_B(-n) found
- *          over unit directions n (h: the support function), the depth
- *          of the shapes' convex hulls when the search finds its least.
- * lower <= the deepest pair's depth <= upper; a plane's pair is exact.
- * Both 0 when nothing overlaps. movable, other: the pair of the upper
- * bound (other a static id, or a movable id when self is 1); -1 if none.
- * MPB_OK, or a negative code as for mpb_collision_check(). For refused
- * paths only: a few milliseconds a configuration on meshes.
- */
-typedef struct mpb_collision_depth_result {
-    double lower, upper;
-    int    movable, other, self;
-} mpb_collision_depth_result;
-
-int mpb_collision_depth(mpb_collision *c, mpb_collision_depth_result *out);
-
-/* Counts, for tests and reports. */
-int mpb_collision_num_static_shapes(const mpb_collision *c);
-int mpb_collision_num_movable_shapes(const mpb_collision *c);
 
 #ifdef __cplusplus
 }

@@ -251,7 +251,7 @@ int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len);
 
 /*
  * How deep the robot at q goes into what it collides with, m
- * (mpb_collision_depth(), collision.h): *lower, the deepest robot point
+ * (src/geometry/collision_depth.cpp): *lower, the deepest robot point
  * found inside an obstacle (or another link), its distance to that
  * body's surface; *upper, the penetration depth of the colliding shapes'
  * convex hulls as found. lower <= the true depth <= upper; both 0 when q

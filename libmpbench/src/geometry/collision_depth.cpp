@@ -1,7 +1,7 @@
 /*
  * collision_depth.cpp - how deep the robot is where it collides: for each
  * overlapping pair a lower and an upper bound on its penetration depth
- * (the shortest translation that parts the two), mpb_collision_depth().
+ * (the shortest translation that parts the two), mpb__collision_depth().
  *
  * Lower bound: the deepest point of one shape inside the other. A point p
  * of shape A that lies inside shape B at distance e from B's surface must
@@ -30,6 +30,7 @@
  * its lesser extent past it, both bounds.
  */
 #include "geometry/collision_world.h"
+#include "geometry/collision_internal.h"
 
 namespace mpb {
 namespace coll {
@@ -319,11 +320,11 @@ void pair_depth(const Shape &a, const Shape &b, double &lower, double &upper)
 
 using namespace mpb::coll;
 
-int mpb_collision_depth(mpb_collision *c, mpb_collision_depth_result *out)
+int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
 {
     if (!c || !out)
         return MPB_EINVAL;
-    *out = mpb_collision_depth_result{0.0, 0.0, -1, -1, 0};
+    *out = mpb__collision_depth_result{0.0, 0.0, -1, -1, 0};
     auto keep = [&](double lo, double up, int m, int other, int self) {
         out->lower = std::max(out->lower, lo);
         if (up > out->upper || out->movable < 0) {

@@ -254,7 +254,7 @@ int mpb_collision_set_enabled(mpb_collision *c, int id, int enabled)
     return MPB_OK;
 }
 
-int mpb_collision_allow_pair(mpb_collision *c, int movable_a, int movable_b)
+int mpb__collision_allow_pair(mpb_collision *c, int movable_a, int movable_b)
 {
     if (!c)
         return MPB_EINVAL;
@@ -273,7 +273,7 @@ int mpb_collision_allow_pair(mpb_collision *c, int movable_a, int movable_b)
     return MPB_OK;
 }
 
-int mpb_collision_allow_static(mpb_collision *c, int movable, int static_id)
+int mpb__collision_allow_static(mpb_collision *c, int movable, int static_id)
 {
     if (!c)
         return MPB_EINVAL;
@@ -338,7 +338,7 @@ int mpb_collision_check(mpb_collision *c, int *movable, int *static_id)
     });
 }
 
-int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
+int mpb__collision_check_self(mpb_collision *c, int *a, int *b)
 {
     if (a)
         *a = -1;
@@ -367,7 +367,7 @@ int mpb_collision_check_self(mpb_collision *c, int *a, int *b)
     });
 }
 
-int mpb_collision_check_pair(mpb_collision *c, int movable_a, int movable_b)
+int mpb__collision_check_pair(mpb_collision *c, int movable_a, int movable_b)
 {
     if (!c)
         return MPB_EINVAL;
@@ -382,7 +382,7 @@ int mpb_collision_check_pair(mpb_collision *c, int movable_a, int movable_b)
     return guarded(c, [&]() -> int { return bodies_touch(c, *ma, *mb) ? 1 : 0; });
 }
 
-int mpb_collision_set_self_only(mpb_collision *c, int id, int self_only)
+int mpb__collision_set_self_only(mpb_collision *c, int id, int self_only)
 {
     if (!c)
         return MPB_EINVAL;
@@ -619,12 +619,12 @@ int mpb_collision_distance(mpb_collision *c, int want_points,
     });
 }
 
-int mpb_collision_num_static_shapes(const mpb_collision *c)
+int mpb__collision_num_static_shapes(const mpb_collision *c)
 {
     return c ? (int)(c->sshapes.size() + c->planes.size()) : 0;
 }
 
-int mpb_collision_num_movable_shapes(const mpb_collision *c)
+int mpb__collision_num_movable_shapes(const mpb_collision *c)
 {
     return c ? (int)c->mshapes.size() : 0;
 }

@@ -3,6 +3,8 @@
  * shapes and their sizes, poses, ids (collision.h, collision_world.h).
  */
 #include "geometry/collision_world.h"
+#include "geometry/mesh.h"
+#include "geometry/collision_internal.h"
 
 #include <cstdio>
 
@@ -48,7 +50,7 @@ int check_args(mpb_collision *c, int id, const mpb_geometry *g, const mpb_pose *
         return MPB_EINVAL;
     }
     char why[200];
-    if (mpb_geometry_check(g, why, sizeof why) != MPB_OK) {
+    if (mpb__geometry_check(g, why, sizeof why) != MPB_OK) {
         c->set_err("collision: %s %d: %s", movable ? "movable" : "static", id, why);
         return MPB_EINVAL;
     }
@@ -89,7 +91,7 @@ const char *mpb_shape_type_name(int type)
     return "unknown";
 }
 
-int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen)
+int mpb__geometry_check(const mpb_geometry *g, char *err, size_t errlen)
 {
     if (!g) {
         mpb__set_err(err, errlen, "no geometry");
@@ -130,7 +132,7 @@ int mpb_geometry_check(const mpb_geometry *g, char *err, size_t errlen)
     }
     case MPB_SHAPE_MESH: {
         char why[160];
-        if (mpb_mesh_check(g->mesh, why, sizeof why) != MPB_OK) {
+        if (mpb__mesh_check(g->mesh, why, sizeof why) != MPB_OK) {
             mpb__set_err(err, errlen, "mesh: %s", why);
             return MPB_EINVAL;
         }

@@ -18,9 +18,97 @@ extern "C" {
 #endif
 
 /*
+ * The rest of a collision world's API, for the library's robots and
+ * verdicts (model/, verify/) and the tests: robots' self checks and the
+ * pairs allowed to touch, how deep bodies overlap, shape counts. A planner
+ * that checks a robot's self collisions uses mpb_world (world.h).
+ */
+
+/*
+ * MPB_OK if g is well formed (dims finite and within the bounds above, a
+ * mesh that passes mpb__mesh_check() with its vertices within bounds);
+ * MPB_EINVAL and one line in err (if not NULL) if not.
+ */
+int mpb__geometry_check(const mpb_geometry *g, char *err, size_t errlen);
+
+/*
+ * Make the movable body `id` take part in self checks only (self_only = 1)
+ * or in every query (0, the default): mpb_collision_check() and
+ * mpb_collision_distance() skip a self-only body, mpb__collision_check_self()
+ * and mpb__collision_check_pair() do not. For a robot's fixed links: the
+ * moving links must not pass through them, but they stand where the robot
+ * stands (on the floor, say) and are no part of the clearance to the
+ * environment. MPB_OK or MPB_ENOTFOUND.
+ */
+int mpb__collision_set_self_only(mpb_collision *c, int id, int self_only);
+
+/*
+ * Let movable bodies a and b touch: mpb__collision_check_self() skips the
+ * pair. MPB_OK; MPB_ENOTFOUND for an unknown body; MPB_EINVAL for a == b.
+ */
+int mpb__collision_allow_pair(mpb_collision *c, int movable_a, int movable_b);
+
+/*
+ * Let the movable body `movable` touch the static body `static_id` (e.g. a
+ * robot's base link and the floor it stands on): both
+ * mpb_collision_check() and mpb_collision_distance() skip the pair.
+ * MPB_OK; MPB_ENOTFOUND for an unknown movable (the static need not exist
+ * yet); MPB_EINVAL for a bad id; MPB_ENOMEM.
+ */
+int mpb__collision_allow_static(mpb_collision *c, int movable, int static_id);
+
+/*
+ * Do two enabled movable bodies touch, pairs allowed with
+ * mpb__collision_allow_pair() excepted? 1 with the first pair found
+ * (*a < *b), 0 if none, negative on error as above.
+ */
+int mpb__collision_check_self(mpb_collision *c, int *a, int *b);
+
+/*
+ * Do the movable bodies a and b touch where they are now, whatever
+ * mpb__collision_allow_pair() and mpb_collision_set_enabled() say? 1 if
+ * so, 0 if not; MPB_ENOTFOUND for an unknown body, MPB_EINVAL for a == b,
+ * another negative code on error as above. For building an
+ * allowed-collision matrix pair by pair.
+ */
+int mpb__collision_check_pair(mpb_collision *c, int a, int b);
+
+/*
+ * How deep the bodies overlap where they stand (collision_depth.cpp): over
+ * every colliding pair that mpb_collision_check() and
+ * mpb__collision_check_self() test (a movable shape against a static
+ * shape or plane, a shape of one movable against one of another, pairs
+ * allowed to touch excepted), bounds on the penetration depth of each
+ * pair of shapes (the shortest translation that parts them), m:
+ *   lower  the most, over the pairs, of the deepest point found of one
+ *          shape inside the other (mesh vertices; a primitive's corners
+ *          and extreme points), its distance to that shape's surface;
+ *   upper  the most, over the pairs, of the least h_A(n) + h_B(-n) found
+ *          over unit directions n (h: the support function), the depth
+ *          of the shapes' convex hulls when the search finds its least.
+ * lower <= the deepest pair's depth <= upper; a plane's pair is exact.
+ * Both 0 when nothing overlaps. movable, other: the pair of the upper
+ * bound (other a static id, or a movable id when self is 1); -1 if none.
+ * MPB_OK, or a negative code as for mpb_collision_check(). For refused
+ * paths only: a few milliseconds a configuration on meshes.
+ */
+typedef struct mpb__collision_depth_result {
+    double lower, upper;
+    int    movable, other, self;
+} mpb__collision_depth_result;
+
+int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out);
+
+/* Counts, for tests and reports. */
+int mpb__collision_num_static_shapes(const mpb_collision *c);
+int mpb__collision_num_movable_shapes(const mpb_collision *c);
+
+/* Reference answers and the wrist tables' queries. */
+
+/*
  * 1 if any enabled movable body touches a static body or another enabled
  * movable body (allowed pairs excepted), as mpb_collision_check() ||
- * mpb_collision_check_self(); 0 if not; negative on error.
+ * mpb__collision_check_self(); 0 if not; negative on error.
  */
 int mpb__collision_check_brute(mpb_collision *c);
 
@@ -28,7 +116,7 @@ int mpb__collision_check_brute(mpb_collision *c);
 double mpb__collision_distance_brute(mpb_collision *c);
 
 /*
- * How far movable shape i (0 .. mpb_collision_num_movable_shapes() - 1, a
+ * How far movable shape i (0 .. mpb__collision_num_movable_shapes() - 1, a
  * mesh) reaches along world direction d where it is now: max of d . x
  * over its vertices, as the queries find it (*fast: the hull's vertices
  * listed for d's cell) and over every vertex of its mesh (*all), with the
@@ -61,7 +149,7 @@ double mpb__collision_pair_distance(mpb_collision *c, int a, int b, double below
 /*
  * Tell the next self checks that movables a and b are apart where they
  * stand now (the caller proved it, e.g. from a wrist table):
- * mpb_collision_check_self() skips the pair. The hint lapses as soon as
+ * mpb__collision_check_self() skips the pair. The hint lapses as soon as
  * either body is placed again (mpb_collision_set_pose(), a shape added),
  * so it can never outlive the poses it was proved for. The references
  * above ignore hints. MPB_OK; MPB_ENOTFOUND; MPB_EINVAL for a == b;

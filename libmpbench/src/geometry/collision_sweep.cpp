@@ -362,7 +362,7 @@ int mpb__collision_sweep_step(mpb_collision *c, mpb__sweep *st, double moved,
             }
         }
         /* the pairs of movables that may not touch, as in
-           mpb_collision_check_self() */
+           mpb__collision_check_self() */
         for (size_t k = 0; k < c->self_pairs.size(); k++) {
             size_t i = (size_t)c->self_pairs[k].first, j = (size_t)c->self_pairs[k].second;
             const Movable &mi = c->movables[i], &mj = c->movables[j];

@@ -31,6 +31,7 @@
 #include "core/cxx_guard.h"
 #include "core/errbuf.h"
 #include "geometry/mesh_cache.h"
+#include "geometry/mesh.h"
 
 namespace {
 
@@ -273,16 +274,16 @@ int read_mesh(const std::string &path, const double s[3], mpb_mesh **out,
         mpb__set_err(err, errlen, "mesh '%s': no triangles", path.c_str());
         return MPB_EPARSE;
     }
-    mpb_mesh *m = mpb_mesh_create((int)(c.v.size() / 3), (int)(c.t.size() / 3));
+    mpb_mesh *m = mpb__mesh_create((int)(c.v.size() / 3), (int)(c.t.size() / 3));
     if (!m)
         return MPB_ENOMEM;
     for (size_t i = 0; i < c.v.size(); i++)
         m->vertices[i] = c.v[i] * s[i % 3];
     memcpy(m->triangles, c.t.data(), c.t.size() * sizeof(int32_t));
     char why[160];
-    if (mpb_mesh_check(m, why, sizeof why) != MPB_OK) {
+    if (mpb__mesh_check(m, why, sizeof why) != MPB_OK) {
         mpb__set_err(err, errlen, "mesh '%s': %s", path.c_str(), why);
-        mpb_mesh_destroy(m);
+        mpb__mesh_destroy(m);
         return MPB_EPARSE;
     }
     *out = m;
@@ -339,7 +340,7 @@ struct CacheEntry {
     CacheEntry() = default;
     CacheEntry(const CacheEntry &) = delete;
     CacheEntry &operator=(const CacheEntry &) = delete;
-    ~CacheEntry() { mpb_mesh_destroy(mesh); }
+    ~CacheEntry() { mpb__mesh_destroy(mesh); }
 };
 
 struct Cache {
@@ -469,7 +470,7 @@ int load_at_boundary(const char *uri, Out **out, char *err, size_t errlen,
 
 extern "C" {
 
-mpb_mesh *mpb_mesh_create(int num_vertices, int num_triangles)
+mpb_mesh *mpb__mesh_create(int num_vertices, int num_triangles)
 {
     if (num_vertices < 0 || num_triangles < 0 ||
         num_vertices > INT32_MAX / 3 || num_triangles > INT32_MAX / 3)
@@ -480,7 +481,7 @@ mpb_mesh *mpb_mesh_create(int num_vertices, int num_triangles)
     m->vertices = (double *)calloc((size_t)num_vertices * 3 + 1, sizeof(double));
     m->triangles = (int32_t *)calloc((size_t)num_triangles * 3 + 1, sizeof(int32_t));
     if (!m->vertices || !m->triangles) {
-        mpb_mesh_destroy(m);
+        mpb__mesh_destroy(m);
         return NULL;
     }
     m->num_vertices = num_vertices;
@@ -488,7 +489,7 @@ mpb_mesh *mpb_mesh_create(int num_vertices, int num_triangles)
     return m;
 }
 
-void mpb_mesh_destroy(mpb_mesh *m)
+void mpb__mesh_destroy(mpb_mesh *m)
 {
     if (!m)
         return;
@@ -497,11 +498,11 @@ void mpb_mesh_destroy(mpb_mesh *m)
     free(m);
 }
 
-mpb_mesh *mpb_mesh_copy(const mpb_mesh *m)
+mpb_mesh *mpb__mesh_copy(const mpb_mesh *m)
 {
     if (!m)
         return NULL;
-    mpb_mesh *c = mpb_mesh_create(m->num_vertices, m->num_triangles);
+    mpb_mesh *c = mpb__mesh_create(m->num_vertices, m->num_triangles);
     if (!c)
         return NULL;
     if (m->num_vertices)
@@ -511,7 +512,7 @@ mpb_mesh *mpb_mesh_copy(const mpb_mesh *m)
     return c;
 }
 
-int mpb_mesh_check(const mpb_mesh *m, char *err, size_t errlen)
+int mpb__mesh_check(const mpb_mesh *m, char *err, size_t errlen)
 {
     if (!m) {
         mpb__set_err(err, errlen, "no mesh");
@@ -536,7 +537,7 @@ int mpb_mesh_check(const mpb_mesh *m, char *err, size_t errlen)
     return MPB_OK;
 }
 
-int mpb_mesh_bounds(const mpb_mesh *m, double lo[3], double hi[3])
+int mpb__mesh_bounds(const mpb_mesh *m, double lo[3], double hi[3])
 {
     if (!m || !lo || !hi || m->num_vertices < 1 || !m->vertices)
         return MPB_EINVAL;
@@ -579,7 +580,7 @@ int mpb_mesh_resolve(const char *uri, const char *const *dirs, int num_dirs,
     });
 }
 
-int mpb_mesh_create_from_uri(const char *uri, const char *const *dirs, int num_dirs,
+int mpb__mesh_create_from_uri(const char *uri, const char *const *dirs, int num_dirs,
                              const double scale[3], mpb_mesh **out,
                              char *err, size_t errlen)
 {

@@ -25,15 +25,16 @@
 #include <stddef.h>
 
 #include "mpbench/mesh.h"
+#include "geometry/mesh.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /*
- * mpb_mesh_create_from_uri() through the cache: *out is a mesh to read only, shared
+ * mpb__mesh_create_from_uri() through the cache: *out is a mesh to read only, shared
  * with whoever else loaded the same file at the same scale, until
- * mpb__mesh_release(). Errors as mpb_mesh_create_from_uri()'s.
+ * mpb__mesh_release(). Errors as mpb__mesh_create_from_uri()'s.
  */
 int mpb__mesh_load_shared(const char *uri, const char *const *dirs,
                           int num_dirs, const double scale[3],
@@ -66,7 +67,7 @@ int mpb__mesh_disk_key(const char *path, const double scale[3],
                        const char *reader, mpb__mesh_disk_id *id);
 
 /* The mesh stored under id, a new one the caller frees with
- * mpb_mesh_destroy(); NULL when there is none or it fails a check. */
+ * mpb__mesh_destroy(); NULL when there is none or it fails a check. */
 mpb_mesh *mpb__mesh_disk_get(const mpb__mesh_disk_id *id);
 
 /* Store m under id; a failure is ignored (the next process reads the

@@ -10,7 +10,7 @@
  * by another assimp is another entry. The payload is the mesh: its counts,
  * then its vertices (doubles) and triangles (int32), in the writer's byte
  * order (the file's header tells the other one apart). A payload whose
- * lengths do not add up, or whose mesh fails mpb_mesh_check(), is a miss.
+ * lengths do not add up, or whose mesh fails mpb__mesh_check(), is a miss.
  */
 #include <pthread.h>
 #include <stdint.h>
@@ -20,6 +20,7 @@
 #include "mpbench/mpbench.h"
 #include "geometry/disk_cache.h"
 #include "geometry/mesh_cache.h"
+#include "geometry/mesh.h"
 
 #define MESH_DISK_VERSION 1u
 
@@ -79,12 +80,12 @@ mpb_mesh *mpb__mesh_disk_get(const mpb__mesh_disk_id *id)
     }
     if (nv >= 0 && nt > 0 && nv <= INT32_MAX / 3 && nt <= INT32_MAX / 3 &&
         len == 8 + (size_t)nv * 3 * sizeof(double) + (size_t)nt * 3 * sizeof(int32_t) &&
-        (m = mpb_mesh_create(nv, nt))) {
+        (m = mpb__mesh_create(nv, nt))) {
         size_t vb = (size_t)nv * 3 * sizeof(double);
         memcpy(m->vertices, payload + 8, vb);
         memcpy(m->triangles, payload + 8 + vb, (size_t)nt * 3 * sizeof(int32_t));
-        if (mpb_mesh_check(m, NULL, 0) != MPB_OK) {
-            mpb_mesh_destroy(m);
+        if (mpb__mesh_check(m, NULL, 0) != MPB_OK) {
+            mpb__mesh_destroy(m);
             m = NULL;
         }
     }

@@ -13,6 +13,7 @@
 #include "core/errbuf.h"
 #include "model/srdf_xml.h"
 #include "model/world_urdf.h"
+#include "geometry/collision_internal.h"
 
 /* The reasons a pair is allowed, as MoveIt's setup assistant writes them. */
 static const char REASON_ADJACENT[] = "Adjacent";
@@ -100,7 +101,7 @@ static int acm_generate(urdf_world *u, const double *q0)
         for (int b = a + 1; has_body(u, a) && b < n; b++) {
             if (!has_body(u, b) || *acm_at(u, a, b))
                 continue;
-            int hit = mpb_collision_check_pair(u->coll, a, b);
+            int hit = mpb__collision_check_pair(u->coll, a, b);
             if (hit < 0) {
                 rc = hit;
                 goto done;
@@ -136,7 +137,7 @@ static int acm_generate(urdf_world *u, const double *q0)
                 goto done;
             }
             for (int i = 0; i < nc; i++) {
-                int hit = mpb_collision_check_pair(u->coll, cand[2 * i],
+                int hit = mpb__collision_check_pair(u->coll, cand[2 * i],
                                                    cand[2 * i + 1]);
                 if (hit < 0) {
                     rc = hit;
@@ -179,7 +180,7 @@ static int acm_generate(urdf_world *u, const double *q0)
             goto done;
         }
         for (int i = 0; i < nc;) {
-            int hit = mpb_collision_check_pair(u->coll, cand[2 * i], cand[2 * i + 1]);
+            int hit = mpb__collision_check_pair(u->coll, cand[2 * i], cand[2 * i + 1]);
             if (hit < 0) {
                 rc = hit;
                 goto done;
@@ -248,7 +249,7 @@ int mpb__urdf_build_acm(urdf_world *u, const double *q0, char *err,
             }
             if ((*acm_at(u, a, b) || fixed) && has_body(u, a) &&
                 has_body(u, b) &&
-                (rc = mpb_collision_allow_pair(u->coll, a, b)) != MPB_OK)
+                (rc = mpb__collision_allow_pair(u->coll, a, b)) != MPB_OK)
                 return rc;
         }
     if ((rc = mpb__urdf_find_wrists(u)) != MPB_OK)

@@ -12,6 +12,8 @@
 #include "core/grow.h"
 #include "core/number.h"
 #include "core/readfile.h"
+#include "geometry/mesh.h"
+#include "geometry/collision_internal.h"
 
 #include <errno.h>
 #include <float.h>
@@ -251,7 +253,7 @@ static void free_obj(sobj *o)
 {
     free(o->id);
     for (int i = 0; i < o->num_shapes; i++)
-        mpb_mesh_destroy((mpb_mesh *)o->shapes[i].geometry.mesh);
+        mpb__mesh_destroy((mpb_mesh *)o->shapes[i].geometry.mesh);
     free(o->shapes);
     for (int i = 0; i < o->num_subframes; i++)
         free((char *)o->subframes[i].name);
@@ -329,7 +331,7 @@ static int parse_mesh(parser *ps, mpb_scene_shape *sh)
     if ((size_t)(nv + nt) > ps->left / 4)
         return fail(ps, line, "mesh of %ld vertices and %ld triangles: more "
                     "than the rest of the text holds", nv, nt);
-    mpb_mesh *m = mpb_mesh_create((int)nv, (int)nt);
+    mpb_mesh *m = mpb__mesh_create((int)nv, (int)nt);
     if (!m)
         return MPB_ENOMEM;
     sh->geometry.mesh = m;      /* owned by the shape from here on */
@@ -401,7 +403,7 @@ static int parse_shape(parser *ps, mpb_scene_shape *sh)
      * the dimensions' own (MoveIt writes them below the shape's name), a
      * mesh's at its name */
     char why[160];
-    if (mpb_geometry_check(g, why, sizeof why) != MPB_OK)
+    if (mpb__geometry_check(g, why, sizeof why) != MPB_OK)
         return fail(ps, g->type == MPB_SHAPE_MESH ? sh->line : ps->last_line,
                     "%s", why);
     rc = read_pose(ps, &sh->pose, "shape");

@@ -11,6 +11,7 @@
 #include "core/grow.h"
 #include "model/world_provider.h"
 #include "core/mathconst.h"
+#include "geometry/collision_internal.h"
 
 /* Where a body comes from, to place it and to map collision ids to it. */
 typedef struct body_src {
@@ -346,7 +347,7 @@ int mpb_bodies_contact(mpb_bodies *b, const double *q, int *a, int *c)
         *c = urdf_static_body(b, s);
         return 1;
     }
-    if (mpb_collision_check_self(b->model.coll, &m, &s) == 1) {
+    if (mpb__collision_check_self(b->model.coll, &m, &s) == 1) {
         *a = urdf_movable_body(b, m);
         *c = urdf_movable_body(b, s);
         return 1;

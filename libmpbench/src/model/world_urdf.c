@@ -121,7 +121,7 @@ static int add_robot(urdf_world *u, char *err, size_t errlen)
         if (rc == MPB_OK && link->num_collisions > 0 && !link->moves) {
             rc = mpb_collision_set_pose(u->coll, l, &u->poses[l]);
             if (rc == MPB_OK)
-                rc = mpb_collision_set_self_only(u->coll, l, 1);
+                rc = mpb__collision_set_self_only(u->coll, l, 1);
             if (rc != MPB_OK)
                 mpb__set_err(err, errlen, "robot link '%s': %s", link->name,
                              mpb_collision_errmsg(u->coll));
@@ -180,11 +180,11 @@ static int add_scene(urdf_world *u, char *err, size_t errlen)
         if (o->num_shapes == 0)
             continue;
         if (has_body(u, l))
-            mpb_collision_allow_pair(u->coll, id, l);
+            mpb__collision_allow_pair(u->coll, id, l);
         for (int t = 0; t < o->num_touch_links; t++) {
             int tl = mpb_robot_link_index(u->robot, o->touch_links[t]);
             if (has_body(u, tl))
-                mpb_collision_allow_pair(u->coll, id, tl);
+                mpb__collision_allow_pair(u->coll, id, tl);
         }
         u->attached[u->num_attached] = k;
         u->attached_link[u->num_attached++] = l;
@@ -409,7 +409,7 @@ static int urdf_in_collision(void *impl, const double *q)
     mpb__urdf_hint_wrists(u, q);
     if (mpb_collision_check(u->coll, NULL, NULL) != 0)
         return 1;   /* a collision, or an error: not known to be free */
-    return mpb_collision_check_self(u->coll, NULL, NULL) != 0;
+    return mpb__collision_check_self(u->coll, NULL, NULL) != 0;
 }
 
 /* A body of the collision world by name: a link, or an attached object. */
@@ -445,7 +445,7 @@ static int urdf_contact(void *impl, const double *q, char *what, size_t len)
                      o ? o->id : "?");
         return MPB_CONTACT_SCENE;
     }
-    if ((hit = mpb_collision_check_self(u->coll, &a, &b)) != 0) {
+    if ((hit = mpb__collision_check_self(u->coll, &a, &b)) != 0) {
         if (hit < 0)
             return hit;
         const char *na = body_name(u, a, &ka), *nb = body_name(u, b, &kb);
@@ -600,17 +600,17 @@ static int urdf_safe_step(void *impl, const double *q, const double *d,
                                moved, d, margin, want, step);
 }
 
-/* How deep the robot at q collides (mpb_collision_depth()). */
+/* How deep the robot at q collides (mpb__collision_depth()). */
 static int urdf_depth(void *impl, const double *q, double *lower,
                       double *upper)
 {
     urdf_world *u = impl;
-    mpb_collision_depth_result r;
+    mpb__collision_depth_result r;
     int rc = ensure_acm(u);
     if (rc == MPB_OK)
         rc = mpb__urdf_place(u, q);
     if (rc == MPB_OK)
-        rc = mpb_collision_depth(u->coll, &r);
+        rc = mpb__collision_depth(u->coll, &r);
     if (rc != MPB_OK)
         return rc;
     *lower = r.lower;

@@ -96,7 +96,7 @@ int  mpb__mesh_search_init(mpb__mesh_search *m, const char *robot_dir);
 void mpb__mesh_search_free(mpb__mesh_search *m);
 
 /* After a mesh was not found: the variables and the folders tried, the
- * first few of each, into err after what mpb_mesh_create_from_uri() said. */
+ * first few of each, into err after what mpb__mesh_create_from_uri() said. */
 void mpb__mesh_not_found(const mpb__mesh_search *m, char *err,
                          size_t errlen);
 

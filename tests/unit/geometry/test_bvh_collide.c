@@ -41,7 +41,7 @@ static mpb_world *open_panda(void)
         skip();                                                               \
     }                                                                         \
     mpb_collision *c = mpb__urdf_collision(w);                                \
-    int n = mpb_collision_num_movable_shapes(c);                              \
+    int n = mpb__collision_num_movable_shapes(c);                              \
     assert_true(n >= 10)
 
 /* Uniform in [0, 1), from a 64-bit LCG. */

@@ -31,6 +31,7 @@
 #include "model/world_provider.h"
 #include "test_files.h"
 #include "test_panda.h"
+#include "geometry/mesh.h"
 
 #define NJ 7
 
@@ -118,7 +119,7 @@ static void panda_fine_paths(void **state)
  * segments (4 n + 4 vertices, 8 n + 4 triangles): a deep tree. */
 static mpb_mesh *bar(double len, double side, int n)
 {
-    mpb_mesh *m = mpb_mesh_create(4 * (n + 1), 8 * n + 4);
+    mpb_mesh *m = mpb__mesh_create(4 * (n + 1), 8 * n + 4);
     assert_non_null(m);
     for (int i = 0; i <= n; i++)
         for (int k = 0; k < 4; k++) {
@@ -205,7 +206,7 @@ static void mesh_against_each_primitive(void **state)
         assert_true(positive > 100);
         mpb_collision_destroy(c);
     }
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
 }
 
 /*
@@ -261,7 +262,7 @@ static void concave_mesh_inside(void **state)
         assert_true(inside > 30);
         mpb_collision_destroy(c);
     }
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
 }
 
 /*
@@ -310,7 +311,7 @@ static void cutoff_against_worst_order(void **state)
     assert_int_equal(r.static_id, 2);
     assert_true(ref > 0 && ref < 0.2 && fabs(r.distance - ref) < 1e-9);
     mpb_collision_destroy(c);
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
 }
 
 int main(void)

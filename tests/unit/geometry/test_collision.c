@@ -21,6 +21,7 @@
 #include "geometry/collision_internal.h"
 #include "mpbench/mesh.h"
 #include "mpbench/pose.h"
+#include "geometry/mesh.h"
 
 #define assert_near(a, b, eps)                                              \
     do {                                                                    \
@@ -97,7 +98,7 @@ static mpb_mesh *box_mesh(const double h[3])
         { 0, 4, 7 }, { 0, 7, 3 },   /* x- */
         { 1, 2, 6 }, { 1, 6, 5 },   /* x+ */
     };
-    mpb_mesh *m = mpb_mesh_create(8, 12);
+    mpb_mesh *m = mpb__mesh_create(8, 12);
     assert_non_null(m);
     for (int i = 0; i < 8; i++) {
         int bits[3] = { (i == 1 || i == 2 || i == 5 || i == 6),
@@ -428,10 +429,10 @@ static void test_plane_and_cone(void **state)
     /* Its coefficients are not lengths; where it lies is bounded. */
     char why[160];
     plane = (mpb_geometry){ .type = MPB_SHAPE_PLANE, .dims = { 0, 0, 1e-3, 1e3 } };
-    assert_int_equal(mpb_geometry_check(&plane, why, sizeof why), MPB_EINVAL);
+    assert_int_equal(mpb__geometry_check(&plane, why, sizeof why), MPB_EINVAL);
     assert_string_equal(why, "plane: 1e+06 m from the origin, beyond 100000 m");
     plane.dims[3] = INFINITY;
-    assert_int_equal(mpb_geometry_check(&plane, why, sizeof why), MPB_EINVAL);
+    assert_int_equal(mpb__geometry_check(&plane, why, sizeof why), MPB_EINVAL);
     assert_string_equal(why, "plane: coefficient d is not finite");
 
     /*
@@ -540,7 +541,7 @@ static void test_mesh_twin(void **state)
     assert_near(res.point_movable[2], 0.9, 1e-9);
     assert_near(res.point_static[2], h[2], 1e-9);
     mpb_collision_destroy(c);
-    mpb_mesh_destroy(mesh);
+    mpb__mesh_destroy(mesh);
 }
 
 /* ---- bodies, pairs, errors ---------------------------------------------- */
@@ -554,10 +555,10 @@ static void test_bodies(void **state)
     mpb_pose off1 = at(1, 0, 0), off2 = at(-1, 0, 0);
     ok(c, mpb_collision_add_movable(c, 0, &s, &off1));
     ok(c, mpb_collision_add_movable(c, 0, &s, &off2));
-    assert_int_equal(mpb_collision_num_movable_shapes(c), 2);
+    assert_int_equal(mpb__collision_num_movable_shapes(c), 2);
     mpb_pose bp = at(0, 3, 0);
     ok(c, mpb_collision_add_static(c, 9, &b, &bp));
-    assert_int_equal(mpb_collision_num_static_shapes(c), 1);
+    assert_int_equal(mpb__collision_num_static_shapes(c), 1);
     /* body at identity: spheres at x = +-1, the box's nearest corner edge
        at (+-0.1, 2.9) */
     assert_near(distance_of(c, NULL), sqrt(0.9 * 0.9 + 2.9 * 2.9) - 0.1, 1e-9);
@@ -599,36 +600,36 @@ static void test_allowed_pairs(void **state)
         ok(c, mpb_collision_set_pose(c, 10 + i, &p));
     }
     int a, b;
-    assert_int_equal(mpb_collision_check_self(c, &a, &b), 1);
+    assert_int_equal(mpb__collision_check_self(c, &a, &b), 1);
     assert_int_equal(a, 10);
     assert_int_equal(b, 11);
-    ok(c, mpb_collision_allow_pair(c, 11, 10));
-    assert_int_equal(mpb_collision_check_self(c, &a, &b), 1);
+    ok(c, mpb__collision_allow_pair(c, 11, 10));
+    assert_int_equal(mpb__collision_check_self(c, &a, &b), 1);
     assert_int_equal(a, 11);
     assert_int_equal(b, 12);
-    ok(c, mpb_collision_allow_pair(c, 11, 12));
-    assert_int_equal(mpb_collision_check_self(c, &a, &b), 0);
+    ok(c, mpb__collision_allow_pair(c, 11, 12));
+    assert_int_equal(mpb__collision_check_self(c, &a, &b), 0);
     assert_int_equal(a, -1);
     assert_int_equal(b, -1);
     /* 10 and 12 are 0.6 apart, radius 0.2 each: free; move 12 closer */
     mpb_pose p = at(0.35, 0.1, 0);
     ok(c, mpb_collision_set_pose(c, 12, &p));
-    assert_int_equal(mpb_collision_check_self(c, &a, &b), 1);
+    assert_int_equal(mpb__collision_check_self(c, &a, &b), 1);
     assert_int_equal(a, 10);
     assert_int_equal(b, 12);
     ok(c, mpb_collision_set_enabled(c, 12, 0));
-    assert_int_equal(mpb_collision_check_self(c, NULL, NULL), 0);
+    assert_int_equal(mpb__collision_check_self(c, NULL, NULL), 0);
     ok(c, mpb_collision_set_enabled(c, 12, 1));
     /* a body added later, at the identity, overlaps 10 */
     ok(c, mpb_collision_add_movable(c, 3, &s, NULL));
-    ok(c, mpb_collision_allow_pair(c, 10, 12));
-    assert_int_equal(mpb_collision_check_self(c, &a, &b), 1);
+    ok(c, mpb__collision_allow_pair(c, 10, 12));
+    assert_int_equal(mpb__collision_check_self(c, &a, &b), 1);
     assert_int_equal(a, 3);
     assert_int_equal(b, 10);
-    assert_int_equal(mpb_collision_allow_pair(c, 3, 3), MPB_EINVAL);
-    assert_int_equal(mpb_collision_allow_pair(c, 3, 99), MPB_ENOTFOUND);
+    assert_int_equal(mpb__collision_allow_pair(c, 3, 3), MPB_EINVAL);
+    assert_int_equal(mpb__collision_allow_pair(c, 3, 99), MPB_ENOTFOUND);
     assert_string_equal(mpb_collision_errmsg(c), "collision: no movable body 99");
-    assert_int_equal(mpb_collision_allow_pair(c, 98, 3), MPB_ENOTFOUND);
+    assert_int_equal(mpb__collision_allow_pair(c, 98, 3), MPB_ENOTFOUND);
     assert_string_equal(mpb_collision_errmsg(c), "collision: no movable body 98");
 
     /* a link allowed to touch the floor, not a wall */
@@ -636,7 +637,7 @@ static void test_allowed_pairs(void **state)
     mpb_pose fp = at(0, 0, -0.2), wp = at(2, 0, 0);
     ok(c, mpb_collision_add_static(c, 0, &floor, &fp));
     ok(c, mpb_collision_add_static(c, 1, &wall, &wp));
-    ok(c, mpb_collision_allow_pair(c, 3, 10));
+    ok(c, mpb__collision_allow_pair(c, 3, 10));
     ok(c, mpb_collision_set_enabled(c, 11, 0));
     ok(c, mpb_collision_set_enabled(c, 12, 0));
     ok(c, mpb_collision_set_enabled(c, 3, 0));
@@ -644,8 +645,8 @@ static void test_allowed_pairs(void **state)
     assert_int_equal(mpb_collision_check(c, &m, &st), 1);
     assert_int_equal(m, 10);
     assert_int_equal(st, 0);
-    ok(c, mpb_collision_allow_static(c, 10, 0));
-    ok(c, mpb_collision_allow_static(c, 10, 0));   /* twice is fine */
+    ok(c, mpb__collision_allow_static(c, 10, 0));
+    ok(c, mpb__collision_allow_static(c, 10, 0));   /* twice is fine */
     assert_int_equal(mpb_collision_check(c, &m, &st), 0);
     mpb_collision_distance_result res;
     /* sphere 10 at x = 0 radius 0.2; the wall's face at x = 1.95 */
@@ -678,28 +679,28 @@ static void test_self_only_bodies(void **state)
     int m, st, a, b;
     assert_int_equal(mpb_collision_check(c, &m, &st), 1);  /* base on floor */
     assert_int_equal(m, 1);
-    ok(c, mpb_collision_set_self_only(c, 1, 1));
+    ok(c, mpb__collision_set_self_only(c, 1, 1));
     assert_int_equal(mpb_collision_check(c, NULL, NULL), 0);
     /* the sphere's bottom at z 0.05, the floor's top at 0 */
     assert_near(distance_of(c, &res), 0.05, 1e-9);
     assert_int_equal(res.movable, 2);
     assert_int_equal(mpb__collision_check_brute(c), 1);  /* the self pair */
     assert_near(mpb__collision_distance_brute(c), 0.05, 1e-9);
-    assert_int_equal(mpb_collision_check_self(c, &a, &b), 1);
+    assert_int_equal(mpb__collision_check_self(c, &a, &b), 1);
     assert_int_equal(a, 1);
     assert_int_equal(b, 2);
-    ok(c, mpb_collision_allow_pair(c, 1, 2));
-    assert_int_equal(mpb_collision_check_self(c, NULL, NULL), 0);
+    ok(c, mpb__collision_allow_pair(c, 1, 2));
+    assert_int_equal(mpb__collision_check_self(c, NULL, NULL), 0);
     assert_int_equal(mpb__collision_check_brute(c), 0);
-    assert_int_equal(mpb_collision_check_pair(c, 2, 1), 1);
+    assert_int_equal(mpb__collision_check_pair(c, 2, 1), 1);
     mpb_pose away = at(1, 0, 0.5);
     ok(c, mpb_collision_set_pose(c, 2, &away));
-    assert_int_equal(mpb_collision_check_pair(c, 1, 2), 0);
-    assert_int_equal(mpb_collision_check_pair(c, 1, 1), MPB_EINVAL);
-    assert_int_equal(mpb_collision_check_pair(c, 1, 7), MPB_ENOTFOUND);
-    assert_int_equal(mpb_collision_set_self_only(c, 7, 1), MPB_ENOTFOUND);
+    assert_int_equal(mpb__collision_check_pair(c, 1, 2), 0);
+    assert_int_equal(mpb__collision_check_pair(c, 1, 1), MPB_EINVAL);
+    assert_int_equal(mpb__collision_check_pair(c, 1, 7), MPB_ENOTFOUND);
+    assert_int_equal(mpb__collision_set_self_only(c, 7, 1), MPB_ENOTFOUND);
     /* back in every query */
-    ok(c, mpb_collision_set_self_only(c, 1, 0));
+    ok(c, mpb__collision_set_self_only(c, 1, 0));
     assert_int_equal(mpb_collision_check(c, &m, &st), 1);
     assert_int_equal(m, 1);
     mpb_collision_destroy(c);
@@ -729,12 +730,12 @@ static void test_errors(void **state)
     assert_int_equal(mpb_collision_add_static(c, 0, &bad, NULL), MPB_EINVAL);
     bad = (mpb_geometry){ .type = MPB_SHAPE_MESH };
     assert_int_equal(mpb_collision_add_static(c, 0, &bad, NULL), MPB_EINVAL);
-    mpb_mesh *m = mpb_mesh_create(3, 1);
+    mpb_mesh *m = mpb__mesh_create(3, 1);
     m->triangles[2] = 3;        /* out of range */
     bad.mesh = m;
     assert_int_equal(mpb_collision_add_static(c, 0, &bad, NULL), MPB_EINVAL);
     assert_non_null(strstr(mpb_collision_errmsg(c), "out of range"));
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
     mpb_pose skew = at(0, 0, 0);
     skew.R[1] = 0.5;            /* not a rotation */
     assert_int_equal(mpb_collision_add_static(c, 0, &s, &skew), MPB_EINVAL);
@@ -748,9 +749,9 @@ static void test_errors(void **state)
     assert_int_equal(mpb_collision_set_pose(c, 4, &p), MPB_ENOTFOUND);
     assert_int_equal(mpb_collision_set_enabled(c, 4, 1), MPB_ENOTFOUND);
     assert_string_equal(mpb_collision_errmsg(c), "collision: no movable body 4");
-    assert_int_equal(mpb_collision_allow_static(c, 4, 1), MPB_ENOTFOUND);
+    assert_int_equal(mpb__collision_allow_static(c, 4, 1), MPB_ENOTFOUND);
     ok(c, mpb_collision_add_movable(c, 4, &s, NULL));
-    assert_int_equal(mpb_collision_allow_static(c, 4, -3), MPB_EINVAL);
+    assert_int_equal(mpb__collision_allow_static(c, 4, -3), MPB_EINVAL);
     p.t[1] = NAN;
     assert_int_equal(mpb_collision_set_pose(c, 4, &p), MPB_EINVAL);
     p.t[1] = -1e10;
@@ -759,7 +760,7 @@ static void test_errors(void **state)
     assert_null(strchr(mpb_collision_errmsg(c), '\n'));
     /* an empty world */
     assert_int_equal(mpb_collision_check(c, NULL, NULL), 0);
-    assert_int_equal(mpb_collision_check_self(c, NULL, NULL), 0);
+    assert_int_equal(mpb__collision_check_self(c, NULL, NULL), 0);
     mpb_collision_distance_result res;
     ok(c, mpb_collision_distance(c, 0, &res));
     assert_true(isinf(res.distance));
@@ -809,7 +810,7 @@ static void test_timing(void **state)
         ok(c, mpb_collision_add_movable(c, l, &g, &off));
     }
     for (int l = 0; l + 1 < 7; l++)
-        ok(c, mpb_collision_allow_pair(c, l, l + 1));
+        ok(c, mpb__collision_allow_pair(c, l, l + 1));
     const int N = 4000;
     for (int walk = 0; walk < 2; walk++) {
         int n_hit = 0, n_free = 0, self_hits = 0;
@@ -842,7 +843,7 @@ static void test_timing(void **state)
             mpb_collision_distance_result res;
             mpb_collision_distance(c, 0, &res);
             double t2 = now();
-            self_hits += mpb_collision_check_self(c, NULL, NULL);
+            self_hits += mpb__collision_check_self(c, NULL, NULL);
             double t3 = now();
             for (int l = 0; l < 7; l++)
                 mpb_collision_set_pose(c, l, &link[l]);

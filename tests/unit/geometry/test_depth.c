@@ -1,5 +1,5 @@
 /*
- * test_depth.c - how deep a collision goes (mpb_collision_depth(),
+ * test_depth.c - how deep a collision goes (mpb__collision_depth(),
  * geometry/collision_depth.cpp): hand-made worlds whose penetration depth
  * is known exactly, each asserting lower <= true <= upper, and for these
  * shapes both within 1e-9 m of the truth (the deepest point is a corner
@@ -28,6 +28,8 @@
 #include "mpbench/collision.h"
 #include "mpbench/mesh.h"
 #include "mpbench/pose.h"
+#include "geometry/mesh.h"
+#include "geometry/collision_internal.h"
 
 #define TOL 1e-9
 
@@ -48,10 +50,10 @@ static mpb_pose turned(double x, double y, double z, double a)
     return p;
 }
 
-static mpb_collision_depth_result depth(mpb_collision *c)
+static mpb__collision_depth_result depth(mpb_collision *c)
 {
-    mpb_collision_depth_result r;
-    assert_int_equal(mpb_collision_depth(c, &r), MPB_OK);
+    mpb__collision_depth_result r;
+    assert_int_equal(mpb__collision_depth(c, &r), MPB_OK);
     print_message("depth: lower %.12g upper %.12g m (bodies %d, %d%s)\n",
                   r.lower, r.upper, r.movable, r.other, r.self ? ", self" : "");
     assert_true(r.lower <= r.upper);
@@ -61,7 +63,7 @@ static mpb_collision_depth_result depth(mpb_collision *c)
 /* lower <= truth <= upper, each within TOL of it. */
 static void expect_depth(mpb_collision *c, double truth)
 {
-    mpb_collision_depth_result r = depth(c);
+    mpb__collision_depth_result r = depth(c);
     assert_true(r.lower <= truth + TOL);
     assert_true(r.upper >= truth - TOL);
     assert_true(fabs(r.lower - truth) < TOL);
@@ -88,7 +90,7 @@ static void test_box_into_box(void **state)
     mpb_pose p = at(0.03, -0.02, 0.1 + 0.05 - 0.003);
     assert_int_equal(mpb_collision_set_pose(c, 1, &p), MPB_OK);
     expect_depth(c, 0.003);
-    mpb_collision_depth_result r = depth(c);
+    mpb__collision_depth_result r = depth(c);
     assert_int_equal(r.movable, 1);
     assert_int_equal(r.other, 7);
     assert_int_equal(r.self, 0);
@@ -115,7 +117,7 @@ static void test_box_into_box(void **state)
     /* Pushed in but allowed to touch: nothing counts. */
     p.t[2] = 0.1;
     assert_int_equal(mpb_collision_set_pose(c, 1, &p), MPB_OK);
-    assert_int_equal(mpb_collision_allow_static(c, 1, 7), MPB_OK);
+    assert_int_equal(mpb__collision_allow_static(c, 1, 7), MPB_OK);
     r = depth(c);
     assert_true(r.lower == 0 && r.upper == 0);
     mpb_collision_destroy(c);
@@ -145,7 +147,7 @@ static mpb_mesh *tetra(void)
         {0, 0, 0}, {0.03, 0, 0.05}, {-0.015, 0.026, 0.05}, {-0.015, -0.026, 0.05},
     };
     static const int t[4][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 3}, {1, 2, 3}};
-    mpb_mesh *m = mpb_mesh_create(4, 4);
+    mpb_mesh *m = mpb__mesh_create(4, 4);
     assert_non_null(m);
     memcpy(m->vertices, v, sizeof v);
     for (int i = 0; i < 12; i++)
@@ -164,7 +166,7 @@ static void test_mesh_vertex_into_box(void **state)
     assert_int_equal(mpb_collision_set_pose(c, 3, &p), MPB_OK);
     expect_depth(c, 0.002);
     mpb_collision_destroy(c);
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
 }
 
 /* A closed cube of side s as 8 vertices and 12 outward triangles. */
@@ -174,7 +176,7 @@ static mpb_mesh *cube(double s)
         {0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
         {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5},
     };
-    mpb_mesh *m = mpb_mesh_create(8, 12);
+    mpb_mesh *m = mpb__mesh_create(8, 12);
     assert_non_null(m);
     for (int i = 0; i < 8; i++) {
         int bits[3] = {(i == 1 || i == 2 || i == 5 || i == 6),
@@ -199,11 +201,11 @@ static void test_self_pairs(void **state)
     mpb_pose p = at(0.1 - 0.002, 0.01, -0.02);
     assert_int_equal(mpb_collision_set_pose(c, 5, &p), MPB_OK);
     expect_depth(c, 0.002);
-    mpb_collision_depth_result r = depth(c);
+    mpb__collision_depth_result r = depth(c);
     assert_int_equal(r.self, 1);
     assert_int_equal(r.movable, 4);
     assert_int_equal(r.other, 5);
-    assert_int_equal(mpb_collision_allow_pair(c, 4, 5), MPB_OK);
+    assert_int_equal(mpb__collision_allow_pair(c, 4, 5), MPB_OK);
     r = depth(c);
     assert_true(r.lower == 0 && r.upper == 0);
     mpb_collision_destroy(c);
@@ -218,7 +220,7 @@ static void test_self_pairs(void **state)
     assert_int_equal(mpb_collision_set_pose(c, 2, &p), MPB_OK);
     expect_depth(c, 0.0005);
     mpb_collision_destroy(c);
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
 }
 
 static void test_plane(void **state)

@@ -22,6 +22,7 @@
 #include "mpbench/mpbench.h"
 #include "geometry/dirtable.h"
 #include "geometry/hull.h"
+#include "geometry/mesh.h"
 
 #define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"
 
@@ -164,7 +165,7 @@ static void test_panda_meshes(void **state)
         snprintf(uri, sizeof uri, "%s/meshes/collision/%s.obj", dir, names[k]);
         mpb_mesh *m = NULL;
         char err[512];
-        if (mpb_mesh_create_from_uri(uri, NULL, 0, NULL, &m, err, sizeof err) != MPB_OK)
+        if (mpb__mesh_create_from_uri(uri, NULL, 0, NULL, &m, err, sizeof err) != MPB_OK)
             fail_msg("%s", err);
         unsigned char *keep = malloc((size_t)m->num_vertices);
         double *p = malloc((size_t)m->num_vertices * 3 * sizeof *p);
@@ -180,7 +181,7 @@ static void test_panda_meshes(void **state)
         printf("\n");
         free(keep);
         free(p);
-        mpb_mesh_destroy(m);
+        mpb__mesh_destroy(m);
     }
 }
 

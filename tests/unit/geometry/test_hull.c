@@ -21,6 +21,7 @@
 
 #include "mpbench/mpbench.h"
 #include "geometry/hull.h"
+#include "geometry/mesh.h"
 
 #define PANDA MPB_TEST_DATA "/../../../.cache/robots/vamp-planner-0.6.4/panda"
 
@@ -225,13 +226,13 @@ static void test_panda_meshes(void **state)
         snprintf(uri, sizeof uri, "%s/meshes/collision/%s.obj", dir, names[k]);
         mpb_mesh *m = NULL;
         char err[512];
-        if (mpb_mesh_create_from_uri(uri, NULL, 0, NULL, &m, err, sizeof err) != MPB_OK)
+        if (mpb__mesh_create_from_uri(uri, NULL, 0, NULL, &m, err, sizeof err) != MPB_OK)
             fail_msg("%s", err);
         int kept = check_extents(m->vertices, m->num_vertices, 5000, NULL);
         printf("# %s: %d of %d vertices kept\n", names[k], kept, m->num_vertices);
         if (strcmp(names[k], "link6") == 0)   /* the others are convex */
             assert_true(kept < m->num_vertices / 2);
-        mpb_mesh_destroy(m);
+        mpb__mesh_destroy(m);
     }
 }
 

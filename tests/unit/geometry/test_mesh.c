@@ -21,6 +21,7 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
 #include "mpbench/mesh.h"
+#include "geometry/mesh.h"
 
 #define assert_near(a, b, eps)                                              \
     do {                                                                    \
@@ -229,11 +230,11 @@ static mpb_mesh *load_ok(const char *uri, const double *scale)
 {
     mpb_mesh *m = NULL;
     char err[400];
-    int rc = mpb_mesh_create_from_uri(uri, dirs, 2, scale, &m, err, sizeof err);
+    int rc = mpb__mesh_create_from_uri(uri, dirs, 2, scale, &m, err, sizeof err);
     if (rc != MPB_OK)
         fail_msg("%s: %s: %s", uri, mpb_err_name(rc), err);
     assert_non_null(m);
-    assert_int_equal(mpb_mesh_check(m, NULL, 0), MPB_OK);
+    assert_int_equal(mpb__mesh_check(m, NULL, 0), MPB_OK);
     return m;
 }
 
@@ -242,7 +243,7 @@ static void expect_box(const mpb_mesh *m, const double shift[3], double eps)
     assert_int_equal(m->num_vertices, 8);
     assert_int_equal(m->num_triangles, 12);
     double lo[3], hi[3];
-    assert_int_equal(mpb_mesh_bounds(m, lo, hi), MPB_OK);
+    assert_int_equal(mpb__mesh_bounds(m, lo, hi), MPB_OK);
     for (int k = 0; k < 3; k++) {
         assert_near(lo[k], -H[k] + shift[k], eps);
         assert_near(hi[k], H[k] + shift[k], eps);
@@ -260,13 +261,13 @@ static void test_formats(void **state)
     for (int i = 0; i < 3; i++) {
         mpb_mesh *m = load_ok(uris[i], NULL);
         expect_box(m, none, 1e-7);  /* binary STL is float32 */
-        mpb_mesh_destroy(m);
+        mpb__mesh_destroy(m);
     }
     /* COLLADA: centimetres to metres, Z up kept, the node's 10 cm moved */
     const double shift[3] = { 0.1, 0, 0 };
     mpb_mesh *m = load_ok("package://arm/meshes/box.dae", NULL);
     expect_box(m, shift, 1e-6);
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
 }
 
 static void test_scale_and_copy(void **state)
@@ -276,26 +277,26 @@ static void test_scale_and_copy(void **state)
     const double scale[3] = { 2, -1, 0.5 };
     mpb_mesh *m = load_ok("package://arm/meshes/box.stl", scale);
     double lo[3], hi[3];
-    mpb_mesh_bounds(m, lo, hi);
+    mpb__mesh_bounds(m, lo, hi);
     for (int k = 0; k < 3; k++) {
         double s = fabs(scale[k]);
         assert_near(lo[k], -H[k] * s, 1e-12);
         assert_near(hi[k], H[k] * s, 1e-12);
     }
-    mpb_mesh *c = mpb_mesh_copy(m);
+    mpb_mesh *c = mpb__mesh_copy(m);
     assert_non_null(c);
     assert_int_equal(c->num_vertices, m->num_vertices);
     assert_memory_equal(c->vertices, m->vertices, 3 * sizeof(double) * (size_t)m->num_vertices);
     assert_memory_equal(c->triangles, m->triangles, 3 * sizeof(int32_t) * (size_t)m->num_triangles);
-    mpb_mesh_destroy(c);
-    mpb_mesh_destroy(m);
-    mpb_mesh_destroy(NULL);
-    assert_null(mpb_mesh_copy(NULL));
-    assert_null(mpb_mesh_create(-1, 3));
+    mpb__mesh_destroy(c);
+    mpb__mesh_destroy(m);
+    mpb__mesh_destroy(NULL);
+    assert_null(mpb__mesh_copy(NULL));
+    assert_null(mpb__mesh_create(-1, 3));
 
     const double zero[3] = { 1, 0, 1 };
     char err[300];
-    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/box.stl", dirs, 2, zero,
+    assert_int_equal(mpb__mesh_create_from_uri("package://arm/meshes/box.stl", dirs, 2, zero,
                                               &m, err, sizeof err), MPB_EINVAL);
     assert_null(m);
     assert_non_null(strstr(err, "scale"));
@@ -335,7 +336,7 @@ static void test_resolve(void **state)
                                       sizeof err), MPB_OK);
     assert_string_equal(path, want);
     mpb_mesh *m = load_ok(uri, NULL);
-    mpb_mesh_destroy(m);
+    mpb__mesh_destroy(m);
 
     /* not found: a one-line message naming the URI */
     assert_int_equal(mpb_mesh_resolve("package://arm/meshes/nope.stl", dirs, 2,
@@ -379,7 +380,7 @@ static void test_load_errors(void **state)
     mpb_mesh *m = (mpb_mesh *)1;
     char err[400];
     /* missing file */
-    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/missing.stl", dirs, 2,
+    assert_int_equal(mpb__mesh_create_from_uri("package://arm/meshes/missing.stl", dirs, 2,
                                               NULL, &m, err, sizeof err), MPB_ENOTFOUND);
     assert_null(m);
     assert_non_null(strstr(err, "missing.stl"));
@@ -394,23 +395,23 @@ static void test_load_errors(void **state)
         char uri[100], name[100];
         snprintf(uri, sizeof uri, "package://arm/meshes/%s", bad[i]);
         snprintf(name, sizeof name, "ws2/arm/meshes/%s", bad[i]);
-        assert_int_equal(mpb_mesh_create_from_uri(uri, dirs, 2, NULL, &m, err, sizeof err),
+        assert_int_equal(mpb__mesh_create_from_uri(uri, dirs, 2, NULL, &m, err, sizeof err),
                          MPB_EPARSE);
         assert_null(m);
         if (!strstr(err, name) || strchr(err, '\n'))
             fail_msg("\"%s\" does not name %s on one line", err, name);
     }
-    assert_int_equal(mpb_mesh_create_from_uri("other/readme.txt", dirs, 2, NULL, &m, err,
+    assert_int_equal(mpb__mesh_create_from_uri("other/readme.txt", dirs, 2, NULL, &m, err,
                                               sizeof err), MPB_EPARSE);
     assert_non_null(strstr(err, "readme.txt"));
     /* lines only: no triangles */
-    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/lines.obj", dirs, 2,
+    assert_int_equal(mpb__mesh_create_from_uri("package://arm/meshes/lines.obj", dirs, 2,
                                               NULL, &m, err, sizeof err), MPB_EPARSE);
     assert_non_null(strstr(err, "lines.obj"));
-    assert_int_equal(mpb_mesh_create_from_uri("x.stl", dirs, 2, NULL, NULL, err, sizeof err),
+    assert_int_equal(mpb__mesh_create_from_uri("x.stl", dirs, 2, NULL, NULL, err, sizeof err),
                      MPB_EINVAL);
     /* no error buffer is fine */
-    assert_int_equal(mpb_mesh_create_from_uri("package://arm/meshes/broken.dae", dirs, 2,
+    assert_int_equal(mpb__mesh_create_from_uri("package://arm/meshes/broken.dae", dirs, 2,
                                               NULL, &m, NULL, 0), MPB_EPARSE);
 }
 
@@ -418,31 +419,31 @@ static void test_check_and_bounds(void **state)
 {
     (void)state;
     char err[200];
-    mpb_mesh *m = mpb_mesh_create(3, 1);
+    mpb_mesh *m = mpb__mesh_create(3, 1);
     assert_non_null(m);
     const double v[9] = { 0, 0, 0, 1, 0, 0, 0, 2, -1 };
     memcpy(m->vertices, v, sizeof v);
     m->triangles[0] = 0;
     m->triangles[1] = 1;
     m->triangles[2] = 2;
-    assert_int_equal(mpb_mesh_check(m, err, sizeof err), MPB_OK);
+    assert_int_equal(mpb__mesh_check(m, err, sizeof err), MPB_OK);
     double lo[3], hi[3];
-    assert_int_equal(mpb_mesh_bounds(m, lo, hi), MPB_OK);
+    assert_int_equal(mpb__mesh_bounds(m, lo, hi), MPB_OK);
     assert_near(lo[2], -1, 0);
     assert_near(hi[1], 2, 0);
     m->triangles[1] = 3;
-    assert_int_equal(mpb_mesh_check(m, err, sizeof err), MPB_EINVAL);
+    assert_int_equal(mpb__mesh_check(m, err, sizeof err), MPB_EINVAL);
     assert_non_null(strstr(err, "out of range"));
     m->triangles[1] = 1;
     m->vertices[4] = NAN;
-    assert_int_equal(mpb_mesh_check(m, err, sizeof err), MPB_EINVAL);
+    assert_int_equal(mpb__mesh_check(m, err, sizeof err), MPB_EINVAL);
     assert_non_null(strstr(err, "vertex 1"));
-    mpb_mesh_destroy(m);
-    m = mpb_mesh_create(0, 0);
-    assert_int_equal(mpb_mesh_check(m, err, sizeof err), MPB_EINVAL);
-    assert_int_equal(mpb_mesh_bounds(m, lo, hi), MPB_EINVAL);
-    mpb_mesh_destroy(m);
-    assert_int_equal(mpb_mesh_check(NULL, err, sizeof err), MPB_EINVAL);
+    mpb__mesh_destroy(m);
+    m = mpb__mesh_create(0, 0);
+    assert_int_equal(mpb__mesh_check(m, err, sizeof err), MPB_EINVAL);
+    assert_int_equal(mpb__mesh_bounds(m, lo, hi), MPB_EINVAL);
+    mpb__mesh_destroy(m);
+    assert_int_equal(mpb__mesh_check(NULL, err, sizeof err), MPB_EINVAL);
 }
 
 /* A loaded STL box in the collision world behaves as the box it is. */
@@ -457,7 +458,7 @@ static void test_loaded_mesh_collides(void **state)
     mpb_pose p;
     mpb_pose_identity(&p);
     assert_int_equal(mpb_collision_add_static(c, 0, &g, &p), MPB_OK);
-    mpb_mesh_destroy(m);           /* the world keeps its own copy */
+    mpb__mesh_destroy(m);           /* the world keeps its own copy */
     mpb_geometry s = { .type = MPB_SHAPE_SPHERE, .dims = { 0.1 } };
     assert_int_equal(mpb_collision_add_movable(c, 0, &s, NULL), MPB_OK);
     p.t[0] = H[0] + 0.3;        /* 0.2 from the x+ face */

@@ -28,6 +28,7 @@
 #include "mpbench/mpbench.h"
 #include "geometry/mesh_cache.h"
 #include "model/world_provider.h"
+#include "geometry/mesh.h"
 
 static char dir[256];
 static const char *const joints[] = {"j"};
@@ -94,7 +95,7 @@ static const mpb_mesh *mesh_of(mpb_world *w)
 static double reach_of(mpb_world *w)
 {
     double lo[3], hi[3];
-    assert_int_equal(mpb_mesh_bounds(mesh_of(w), lo, hi), MPB_OK);
+    assert_int_equal(mpb__mesh_bounds(mesh_of(w), lo, hi), MPB_OK);
     return hi[0];
 }
 

@@ -24,6 +24,7 @@
 
 #include "mpbench/mpbench.h"
 #include "geometry/mesh_cache.h"
+#include "geometry/mesh.h"
 
 static char dir[256], cache_dir[300], mesh_path[300];
 
@@ -46,7 +47,7 @@ static double reach(double k)
     if (mpb__mesh_load_shared(mesh_path, NULL, 0, scale, &m, err, sizeof err) != MPB_OK)
         fail_msg("load: %s", err);
     double lo[3], hi[3];
-    assert_int_equal(mpb_mesh_bounds(m, lo, hi), MPB_OK);
+    assert_int_equal(mpb__mesh_bounds(m, lo, hi), MPB_OK);
     assert_int_equal(m->num_triangles, 4);
     mpb__mesh_release(m);
     assert_int_equal(mpb__mesh_cache_live(), 0);
@@ -170,7 +171,7 @@ static void a_broken_mesh_in_the_cache_is_a_miss(void **state)
     /* The key the loader uses names assimp; any reader text works here,
      * as long as put and get agree. */
     assert_int_equal(mpb__mesh_disk_key(mesh_path, one, "test", &id), MPB_OK);
-    mpb_mesh *bad = mpb_mesh_create(3, 1);
+    mpb_mesh *bad = mpb__mesh_create(3, 1);
     assert_non_null(bad);
     bad->triangles[0] = 0;
     bad->triangles[1] = 1;
@@ -183,8 +184,8 @@ static void a_broken_mesh_in_the_cache_is_a_miss(void **state)
     mpb_mesh *good = mpb__mesh_disk_get(&id);
     assert_non_null(good);
     assert_true(good->vertices[0] == 0.5);
-    mpb_mesh_destroy(good);
-    mpb_mesh_destroy(bad);
+    mpb__mesh_destroy(good);
+    mpb__mesh_destroy(bad);
 }
 
 static void without_a_cache_meshes_still_load(void **state)

@@ -191,7 +191,7 @@ static void mesh_extents_exact(void **state)
     for (int i = 0; i < 300; i++) {
         random_state(w, &x, q);
         mpb_world_in_collision(w, q);           /* places the robot */
-        int n = mpb_collision_num_movable_shapes(c);
+        int n = mpb__collision_num_movable_shapes(c);
         for (int s = 0; s < n; s++) {
             for (int k = 0; k < 40; k++) {
                 double d[3], fast, all;

@@ -84,7 +84,7 @@ static int pair_touches(mpb_world *w, int i, const double *q)
     const mpb__wrist_table *t;
     assert_int_equal(mpb__urdf_wrist(w, i, &near, &far, jt, &t), MPB_OK);
     mpb_world_in_collision(w, q);
-    int hit = mpb_collision_check_pair(mpb__urdf_collision(w), near, far);
+    int hit = mpb__collision_check_pair(mpb__urdf_collision(w), near, far);
     assert_true(hit == 0 || hit == 1);
     return hit;
 }

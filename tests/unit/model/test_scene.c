@@ -18,6 +18,7 @@
 #include "mpbench/mpbench.h"
 #include "mpbench/collision.h"
 #include "mpbench/scene.h"
+#include "geometry/collision_internal.h"
 
 #define assert_near(a, b, eps)                                              \
     do {                                                                    \
@@ -176,7 +177,7 @@ static void test_in_collision_world(void **state)
     mpb_collision *c = NULL;
     assert_int_equal(mpb_collision_create(&c), MPB_OK);
     assert_int_equal(mpb_scene_add_statics(s, c), MPB_OK);
-    assert_int_equal(mpb_collision_num_static_shapes(c), 6);
+    assert_int_equal(mpb__collision_num_static_shapes(c), 6);
     mpb_geometry g = { .type = MPB_SHAPE_SPHERE, .dims = { 0.05 } };
     assert_int_equal(mpb_collision_add_movable(c, 0, &g, NULL), MPB_OK);
     mpb_pose p;
@@ -249,7 +250,7 @@ static void test_attach(void **state)
     mpb_collision *c = NULL;
     assert_int_equal(mpb_collision_create(&c), MPB_OK);
     assert_int_equal(mpb_scene_add_statics(s, c), MPB_OK);
-    assert_int_equal(mpb_collision_num_static_shapes(c), 1);
+    assert_int_equal(mpb__collision_num_static_shapes(c), 1);
     mpb_collision_destroy(c);
 
     /* attach through the API: the wall to a link, at a new pose */
