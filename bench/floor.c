@@ -129,7 +129,7 @@ static int run_echo(const options *o, pid_t parent)
     echo e = {0};
     double deadline = mpbb_now() + o->timeout + 10;
     static const char *const mine[] = {REQ_CHANNEL};
-    if ((e.lcm = mpb_lcm_create_keeping(o->url, mine, 1, NULL)) == NULL) {
+    if ((e.lcm = mpb_lcm_create(o->url, mine, 1, NULL)) == NULL) {
         fprintf(stderr, "mpb-bench-floor: echo: cannot start LCM on %s\n",
                 o->url);
         return 1;
@@ -230,7 +230,7 @@ int main(int argc, char **argv)
     };
 
     static const char *const mine[] = {RES_CHANNEL};
-    lcm_t *lcm = mpb_lcm_create_keeping(o.url, mine, 1, NULL);
+    lcm_t *lcm = mpb_lcm_create(o.url, mine, 1, NULL);
     if (lcm == NULL) {
         fprintf(stderr, "mpb-bench-floor: cannot start LCM on %s (no multicast"
                         " route?)\n", o.url);

@@ -1,4 +1,4 @@
-/* hub.c - the daemon's side of a TCP hub (tcpq://, hub.h): the link's
+/* hub.c - the daemon's side of a TCP hub (tcpq://, link.h): the link's
  * comings and goings logged; while it is away, planners' silence and runs'
  * deadlines wait for it (the caller pauses them: mpbd_hub_news); away too
  * long, the daemon stops to be resumed. */

@@ -1,5 +1,5 @@
 /* inbox.c - every message from the network passes the library's receive
- * gate (receive.h: with a secret, a right tag from a sender believed, not
+ * gate (link.h: with a secret, a right tag from a sender believed, not
  * had before; its bytes checked; then decoded); a message that fails is
  * counted as rejected and logged. */
 #include <stdio.h>

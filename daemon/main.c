@@ -672,7 +672,7 @@ static int open_links(const options *o, mpbd *d, int *filtered)
                                          MPB_CHANNEL_STATUS};
     *filtered = 0;
     if (!o->replay &&
-        (d->lcm = mpb_lcm_create_keeping(o->lcm_url, wanted, 4, filtered)) == NULL) {
+        (d->lcm = mpb_lcm_create(o->lcm_url, wanted, 4, filtered)) == NULL) {
         fprintf(stderr, "mpbenchd: cannot start LCM on %s (%s)\n", o->lcm_url,
                 mpb_lcm_url_is_hub(o->lcm_url)
                     ? "a hub's URL is tcpq://HOST:PORT"

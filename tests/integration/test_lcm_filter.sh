@@ -1,5 +1,5 @@
 #!/bin/sh
-# The kernel-side channel filter (mpb_lcm_create_keeping, lcm_filter.h) over
+# The kernel-side channel filter (mpb_lcm_create, lcm_filter.h) over
 # real UDP multicast: a listener filtered to KEEP_1 and KEEP_TWO receives
 # exactly those short messages, not channels one byte or one character
 # longer or shorter, while an unfiltered listener made before it in the

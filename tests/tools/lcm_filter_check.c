@@ -1,10 +1,10 @@
 /*
  * lcm_filter_check.c - mpb-test-lcm-filter: what a socket filter from
- * mpb_lcm_create_keeping() lets through, over real UDP multicast (run it in a
+ * mpb_lcm_create() lets through, over real UDP multicast (run it in a
  * private network namespace: tests/integration/test_lcm_filter.sh).
  *
  * Two listeners subscribe to every channel (".*"): one made by
- * mpb_lcm_create_keeping() to keep KEEP_1 and KEEP_TWO, one by
+ * mpb_lcm_create() to keep KEEP_1 and KEEP_TWO, one by
  * lcm_create() before it. A third instance publishes short messages
  * on kept channels, on channels that differ from them by a byte or by
  * length, and long (fragmented) ones. Prints, per listener, how many
@@ -72,7 +72,7 @@ int main(void)
 
     int on = -1;
     lcm_t *a = lcm_create(URL);         /* unfiltered, made first */
-    lcm_t *b = mpb_lcm_create_keeping(URL, keep, 2, &on);
+    lcm_t *b = mpb_lcm_create(URL, keep, 2, &on);
     if (a == NULL || b == NULL) {
         fprintf(stderr, "mpb-test-lcm-filter: no LCM at %s\n", URL);
         return 1;
@@ -97,7 +97,7 @@ int main(void)
     };
     for (size_t i = 0; i < sizeof refuse / sizeof refuse[0]; i++) {
         int f = -1;
-        lcm_t *x = mpb_lcm_create_keeping(refuse[i].url, refuse[i].ch, refuse[i].n, &f);
+        lcm_t *x = mpb_lcm_create(refuse[i].url, refuse[i].ch, refuse[i].n, &f);
         printf("%s instance %d filtered %d\n", refuse[i].what, x != NULL, f);
         if (x)
             lcm_destroy(x);

@@ -370,7 +370,7 @@ static void on_status(const mpb_daemon_status_t *st, void *ud)
     free(buf);
 }
 
-/* Every status through the library's receive gate (receive.h): its bytes
+/* Every status through the library's receive gate (link.h): its bytes
  * checked before it is decoded. Tags are not checked: mpb status holds
  * no secret (docs/reliability.md); a status with a trailer is read
  * without it. */
@@ -522,7 +522,7 @@ int cmd_status(int argc, char **argv)
     /* Its one channel, and no malformed datagram (lcm_filter.h). */
     static const char *const mine[] = {MPB_CHANNEL_STATUS};
     int filtered = 0;
-    lcm_t *lcm = mpb_lcm_create_keeping(url, mine, 1, &filtered);
+    lcm_t *lcm = mpb_lcm_create(url, mine, 1, &filtered);
     if (lcm != NULL && !filtered)
         fprintf(stderr, "mpb " CMD ": " MPB_LCM_UNFILTERED "\n");
     if (lcm == NULL) {

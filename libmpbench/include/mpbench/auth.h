@@ -103,21 +103,6 @@ mpb_auth_verdict mpb_auth_check(mpb_auth *a, const char *channel,
 const char *mpb_auth_verdict_text(mpb_auth_verdict v);
 
 /*
- * Publish a message, followed by its trailer when a is not NULL; echo is
- * the instance of the process it answers (0 for none). Return MPB_OK, or
- * MPB_ENOMEM / MPB_ELCM. One function per message of messages.h:
- *   int mpb_publish_announce(lcm_t *lcm, mpb_auth *a, uint64_t echo,
- *                            const char *channel,
- *                            const mpb_planner_announce_t *m);
- * and mpb_publish_request, _result, _ack, _status the same way.
- */
-#define MPB__PUBLISH_DECL(ID, name, type, channel)                          \
-    int mpb_publish_##name(lcm_t *lcm, mpb_auth *a, uint64_t echo,          \
-                           const char *ch, const mpb_##type *m);
-MPB_MESSAGES(MPB__PUBLISH_DECL)
-#undef MPB__PUBLISH_DECL
-
-/*
  * The trailer for a message of len bytes at buf on channel, as publishing
  * writes it (for tests and the test vector of docs/protocol.md): out gets
  * instance, counter and echo as given, then the tag.

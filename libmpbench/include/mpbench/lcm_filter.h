@@ -125,25 +125,6 @@ int mpb_lcm_filter_socket(int fd, const char *const *channels, int n);
  */
 int mpb_lcm_sockets(const char *url, int *fds, int max);
 
-/*
- * lcm_create(url), with the filter for these channels (as
- * mpb_lcm_filter_program; n == 0 keeps every channel) on the new
- * instance's receive socket: the one UDP socket on url's port that
- * appears while the instance is made (its receive side is set up at once,
- * as lcm_get_fileno() does). *filtered (if not NULL) says whether the
- * filter is on: 0 for a URL that is not udpm://, a socket not found or not
- * alone, or a kernel that refused the filter; the instance then receives
- * every datagram, malformed ones included, as a plain one does, and the
- * caller should say so once (MPB_LCM_UNFILTERED). NULL if lcm_create()
- * fails.
- */
-lcm_t *mpb_lcm_create_keeping(const char *url, const char *const *channels,
-                              int n, int *filtered);
-
-/* The warning every process prints, once, when its socket has no filter. */
-#define MPB_LCM_UNFILTERED                                                 \
-    "warning: LCM's receive socket has no filter (not a udpm:// URL, or "  \
-    "the kernel refused it): a malformed datagram can crash this process"
 
 #ifdef __cplusplus
 }

@@ -4,8 +4,8 @@
  * A message is its lcmtypes/<type>.lcm file and one line here. From the
  * line come its tag for the receive gate (MPB_WIRE_<ID>, wire.h), its
  * bounds walk (generated from the .lcm file at build time by
- * lcmtypes/gen_walks.py), its decoding and freeing (receive.h) and its
- * sealed publish function mpb_publish_<name>() (auth.h); its channel is
+ * lcmtypes/gen_walks.py), its decoding and freeing (link.h) and its
+ * sealed publish function mpb_publish_<name>() (link.h); its channel is
  * the name the daemon and the planners use. docs/protocol.md describes
  * each; CONTRIBUTING.md says how to add one.
  *

@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 #include "mpbench/mpbench.h"
-#include "mpbench/hub.h"
+#include "mpbench/link.h"
 #include "net/hub_internal.h"
 
 /* The hub's protocol (lcm-java's TCPProvider and TCPService; liblcm's

@@ -11,7 +11,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/lcm_filter.h"
-#include "mpbench/hub.h"
+#include "mpbench/link.h"
 #include "net/hub_internal.h"
 
 /* LCM's UDP format (liblcm's lcm_udpm.c): every datagram starts with a
@@ -344,7 +344,7 @@ int mpb_lcm_sockets(const char *url, int *fds, int max)
     return sockets_on(port, fds, inos, max < SOCKETS_MAX ? max : SOCKETS_MAX);
 }
 
-lcm_t *mpb_lcm_create_keeping(const char *url, const char *const *channels,
+lcm_t *mpb_lcm_create(const char *url, const char *const *channels,
                               int n, int *filtered)
 {
     if (mpb_lcm_url_is_hub(url)) {

@@ -1,4 +1,4 @@
-/* receive.c - the receive gate: trailer, bytes, decoding (receive.h). */
+/* receive.c - the receive gate: trailer, bytes, decoding (link.h). */
 #include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "mpbench/mpbench.h"
-#include "mpbench/receive.h"
+#include "mpbench/link.h"
 #include "mpb_planner_announce_v1_t.h"
 #include "mpb_plan_result_v1_t.h"
 

@@ -15,7 +15,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
-#include "mpbench/receive.h"
+#include "mpbench/link.h"
 #include "mpbench/robot.h"
 #include "mpbench/world.h"
 #include "mpb_daemon_status_t.h"
@@ -684,7 +684,7 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         s->run_error = rc;
 }
 
-/* Raw handlers: every message passes the receive gate (receive.h) before
+/* Raw handlers: every message passes the receive gate (link.h) before
  * anything acts on it; one that fails is dropped. */
 static void mpb__on_request_raw(const lcm_recv_buf_t *rbuf,
                                 const char *channel, void *user)
@@ -871,7 +871,7 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     const char *mine[] = {s->request_channel, s->ack_channel,
                           MPB_CHANNEL_STATUS};
     int filtered = 0;
-    s->lcm = mpb_lcm_create_keeping(url, mine, s->auth != NULL ? 3 : 2,
+    s->lcm = mpb_lcm_create(url, mine, s->auth != NULL ? 3 : 2,
                                     &filtered);
     if (s->lcm == NULL) {
         snprintf(err, errlen, "cannot join LCM at %s (%s)", url,

@@ -1,12 +1,12 @@
 """hub.py - LCM through lcm-java's TCP hub (tcpq://HOST:PORT) with
-libmpbench's own hub link (mpbench/hub.h), for the Python kit: the subset
+libmpbench's own hub link (mpbench/link.h), for the Python kit: the subset
 of lcm.LCM that node.py uses (subscribe, publish, handle_timeout).
 
 The binding's own tcpq provider, like liblcm's, allocates whatever length
 a frame claims and publishes without a lock. libmpbench's link, which the
 C daemon and planners use, checks every length before reading it, sends
 frames whole under a lock and connects again while the hub is away
-(hub.h says how); it hands each message to a memq:// instance of liblcm,
+(link.h says how); it hands each message to a memq:// instance of liblcm,
 whose handlers run here in handle_timeout(), on the caller's thread.
 """
 from __future__ import annotations
@@ -28,7 +28,7 @@ class _RecvBuf(Structure):
 
 
 class _Stats(Structure):
-    """hub.h's mpb_hub_stats."""
+    """link.h's mpb_hub_stats."""
     _fields_ = [("is_hub", c_int), ("connected", c_int), ("connects", c_long),
                 ("oversized", c_long), ("overflowed", c_long),
                 ("malformed", c_long)]
@@ -37,7 +37,7 @@ class _Stats(Structure):
 _HANDLER = CFUNCTYPE(None, POINTER(_RecvBuf), c_char_p, c_void_p)
 
 _c = Functions(
-    mpb_lcm_create_keeping=(c_void_p, c_char_p, POINTER(c_char_p), c_int,
+    mpb_lcm_create=(c_void_p, c_char_p, POINTER(c_char_p), c_int,
                             POINTER(c_int)),
     mpb_lcm_destroy=(None, c_void_p),
     mpb_lcm_publish=(c_int, c_void_p, c_char_p, c_char_p, c_uint),
@@ -62,7 +62,7 @@ class HubLCM:
         names = (c_char_p * max(len(self.channels), 1))(
             *[c.encode() for c in self.channels])
         try:
-            create = _c.mpb_lcm_create_keeping
+            create = _c.mpb_lcm_create
         except OSError as e:
             raise ValueError(f"cannot load libmpbench ({path()}), whose "
                              f"hub link reaches {url}: {e}") from e

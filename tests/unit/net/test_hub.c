@@ -1,4 +1,4 @@
-/* test_hub.c - the library's hub link (hub.h) against a hub played by
+/* test_hub.c - the library's hub link (link.h) against a hub played by
  * the test on loopback: greeting and subscriptions (each channel escaped
  * as a Java regular expression), messages both ways, a frame over each
  * length bound read past and dropped, a frame that is no message closing
@@ -140,7 +140,7 @@ static void test_both_ways(void **state)
     snprintf(url, sizeof url, "tcpq://127.0.0.1:%d", port);
     const char *keep[] = {"MPB_REQUEST_null@vm-1.x:12", "B"};
     int filtered = 0;
-    lcm_t *lcm = mpb_lcm_create_keeping(url, keep, 2, &filtered);
+    lcm_t *lcm = mpb_lcm_create(url, keep, 2, &filtered);
     assert_non_null(lcm);
     assert_int_equal(filtered, 1);
     heard h = {0};
@@ -183,7 +183,7 @@ static void test_hostile_frames(void **state)
     char url[64], name[256];
     snprintf(url, sizeof url, "tcpq://127.0.0.1:%d", port);
     const char *keep[] = {"B"};
-    lcm_t *lcm = mpb_lcm_create_keeping(url, keep, 1, NULL);
+    lcm_t *lcm = mpb_lcm_create(url, keep, 1, NULL);
     heard h = {0};
     lcm_subscription_t *sub = lcm_subscribe(lcm, "B", on_b, &h);
     int c = accept_link(ls);
@@ -245,16 +245,16 @@ static void test_urls(void **state)
     assert_true(mpb_lcm_url_is_hub("tcpq://h:1"));
     assert_false(mpb_lcm_url_is_hub("udpm://239.255.76.67:7667"));
     assert_false(mpb_lcm_url_is_hub(NULL));
-    assert_null(mpb_lcm_create_keeping("tcpq://127.0.0.1:99999", NULL, 0, NULL));
-    assert_null(mpb_lcm_create_keeping("tcpq://127.0.0.1:7x", NULL, 0, NULL));
-    assert_null(mpb_lcm_create_keeping("tcpq://127.0.0.1:", NULL, 0, NULL));
+    assert_null(mpb_lcm_create("tcpq://127.0.0.1:99999", NULL, 0, NULL));
+    assert_null(mpb_lcm_create("tcpq://127.0.0.1:7x", NULL, 0, NULL));
+    assert_null(mpb_lcm_create("tcpq://127.0.0.1:", NULL, 0, NULL));
 
     /* No hub there: publishing fails at once, nothing waits. */
     int port, ls = listen_on(&port);
     close(ls);
     char url[64];
     snprintf(url, sizeof url, "tcpq://127.0.0.1:%d", port);
-    lcm_t *lcm = mpb_lcm_create_keeping(url, NULL, 0, NULL);
+    lcm_t *lcm = mpb_lcm_create(url, NULL, 0, NULL);
     assert_non_null(lcm);
     assert_int_equal(mpb_lcm_hub_wait(lcm, 0.2), 0);
     assert_int_equal(mpb_lcm_publish(lcm, "C", "x", 1), MPB_ELCM);

@@ -21,7 +21,7 @@
 #include <lcm/lcm.h>
 
 #include "mpbench/mpbench.h"
-#include "mpbench/receive.h"
+#include "mpbench/link.h"
 #include "mpb_test_note_t.h"
 #include "test_tool.h"
 
