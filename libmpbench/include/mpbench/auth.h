@@ -58,8 +58,9 @@ typedef struct mpb_auth mpb_auth;
 /*
  * Read a shared secret from the file at path (at least 16 bytes, e.g. from
  * `head -c 32 /dev/urandom`); the key is the BLAKE2b-256 hash of all the
- * file's bytes. Draws this process's instance. On failure *out is NULL and
- * err holds one line naming the file. Free with mpb_auth_close().
+ * file's bytes. Draws this process's instance. MPB_OK; on failure
+ * (MPB_EIO, MPB_EINVAL for a secret too short, MPB_ENOMEM) *out is NULL
+ * and err holds one line naming the file. Release with mpb_auth_close().
  */
 int mpb_auth_open(const char *path, mpb_auth **out, char *err, size_t errlen);
 void mpb_auth_close(mpb_auth *a);
@@ -99,7 +100,7 @@ mpb_auth_verdict mpb_auth_check(mpb_auth *a, const char *channel,
                                 const void *buf, size_t len, size_t *msg_len,
                                 mpb_auth_info *info);
 
-/* A few words on a verdict, for a log line ("a replay", ...). */
+/* A few words on a verdict, for a log line ("a replay", ...); static. */
 const char *mpb_auth_verdict_text(mpb_auth_verdict v);
 
 /*

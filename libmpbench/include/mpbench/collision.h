@@ -77,7 +77,8 @@ typedef enum mpb_shape_type {
     MPB_SHAPE_MESH = 6      /* mesh: the triangles */
 } mpb_shape_type;
 
-/* Lower-case name of a shape type ("box"); "unknown" if out of range. */
+/* Lower-case name of a shape type ("box"), static; "unknown" if out of
+ * range. */
 const char *mpb_shape_type_name(int type);
 
 typedef struct mpb_geometry {

@@ -7,12 +7,19 @@
  *   - Functions that can fail return an int: 0 (MPB_OK) on success, a
  *     negative MPB_E... code on failure. mpb_strerror() names a code; the
  *     handle's own errmsg function (e.g. mpb_store_errmsg()) gives the detail.
+ *     Functions that answer a question and cannot fail return the answer:
+ *     mpb_x_num_...() a count, mpb_x_is_...() 1 or 0, a lookup an index
+ *     or -1 when there is none; each says so, as does any other exception
+ *     (mpb_auth_check() returns its verdict).
  *   - Objects are handles with one release function each. A handle read
  *     from a source (a file, a text, a key) is made by mpb_x_open...() and
  *     released by mpb_x_close(); one made empty or from numbers, to be
  *     filled by the caller, by mpb_x_create...() and mpb_x_destroy().
  *     Releasing NULL does nothing.
- *   - Who frees returned memory is stated at each function.
+ *   - Who frees returned memory is stated at each function. A pointer an
+ *     accessor returns (mpb_x_get_...(), a name) is owned by the handle and
+ *     lives until the handle is released; names of codes and types are
+ *     static.
  *   - The library never prints and never exits.
  */
 #ifndef MPBENCH_H

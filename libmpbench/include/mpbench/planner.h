@@ -227,7 +227,8 @@ int mpb_result_set_message(mpb_plan_result_t *res, const char *fmt, ...)
 /* Free everything res points to (not res itself) and zero it. */
 void mpb_result_clear(mpb_plan_result_t *res);
 
-/* The value of a request parameter (the first with that key), or NULL. */
+/* The value of a request parameter (the first with that key), or NULL;
+ * it points into req and lives as long as req does. */
 const char *mpb_request_param(const mpb_plan_request_t *req, const char *key);
 
 #ifdef __cplusplus

@@ -64,7 +64,8 @@ typedef enum mpb_joint_type {
     MPB_JOINT_PLANAR = 5        /* passive only, held at the identity */
 } mpb_joint_type;
 
-/* Lower-case URDF name of a joint type ("revolute"); "unknown" if out of range. */
+/* Lower-case URDF name of a joint type ("revolute"), static; "unknown" if
+ * out of range. */
 const char *mpb_joint_type_name(mpb_joint_type type);
 
 /* An active joint of the chain. */
@@ -184,7 +185,7 @@ void mpb_robot_close(mpb_robot *r);
 /* The URDF <robot name>; owned by r. */
 const char *mpb_robot_name(const mpb_robot *r);
 
-/* Active joints of the chain; out of range gives NULL. */
+/* Active joints of the chain, owned by r; out of range gives NULL. */
 int                    mpb_robot_num_joints(const mpb_robot *r);
 const mpb_robot_joint *mpb_robot_get_joint(const mpb_robot *r, int joint);
 /* Index of the active joint of that name, or MPB_ENOTFOUND. */
@@ -196,7 +197,7 @@ int                    mpb_robot_joint_index(const mpb_robot *r,
  */
 const unsigned char   *mpb_robot_joint_wraps(const mpb_robot *r);
 
-/* All links; out of range gives NULL. */
+/* All links, owned by r; out of range gives NULL. */
 int                    mpb_robot_num_links(const mpb_robot *r);
 const mpb_robot_link  *mpb_robot_get_link(const mpb_robot *r, int link);
 /* Index of the link of that name, or MPB_ENOTFOUND. */

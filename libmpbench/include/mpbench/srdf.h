@@ -95,7 +95,7 @@ typedef struct mpb_srdf_group {
 } mpb_srdf_group;
 
 int mpb_srdf_num_groups(const mpb_srdf *s);
-/* Group i in file order; NULL out of range. */
+/* Group i in file order, owned by s; NULL out of range. */
 const mpb_srdf_group *mpb_srdf_get_group(const mpb_srdf *s, int i);
 /* Index of the group of that name, or MPB_ENOTFOUND. */
 int mpb_srdf_group_index(const mpb_srdf *s, const char *name);
@@ -122,7 +122,7 @@ typedef struct mpb_srdf_state {
 } mpb_srdf_state;
 
 int mpb_srdf_num_states(const mpb_srdf *s);
-/* State i in file order; NULL out of range. */
+/* State i in file order, owned by s; NULL out of range. */
 const mpb_srdf_state *mpb_srdf_get_state(const mpb_srdf *s, int i);
 
 /*
@@ -149,10 +149,11 @@ typedef struct mpb_srdf_virtual_joint {
 } mpb_srdf_virtual_joint;
 
 int mpb_srdf_num_virtual_joints(const mpb_srdf *s);
+/* Virtual joint i in file order, owned by s; NULL out of range. */
 const mpb_srdf_virtual_joint *mpb_srdf_get_virtual_joint(const mpb_srdf *s,
                                                          int i);
 
-/* Passive joint i's name and line; NULL out of range. */
+/* Passive joint i's name (owned by s) and line; NULL out of range. */
 int         mpb_srdf_num_passive_joints(const mpb_srdf *s);
 const char *mpb_srdf_passive_joint(const mpb_srdf *s, int i, int *line);
 /* The line of the <passive_joint> naming joint, or 0 when it is not

@@ -30,7 +30,8 @@ typedef enum mpb_wire_type {
     MPB_WIRE_COUNT                  /* how many; not a message */
 } mpb_wire_type;
 
-/* The message's type name ("plan_request_t"); "?" for no message. */
+/* The message's type name ("plan_request_t"), static; "?" for no
+ * message. */
 const char *mpb_wire_type_name(mpb_wire_type type);
 
 /* The message's channel (messages.h), or for a message to one process
