@@ -33,8 +33,8 @@ static inline void mpb_pose_identity(mpb_pose *p)
 /*
  * Set p->R from the quaternion (x, y, z, w), normalised first; p->t is left
  * alone. Returns MPB_OK, or MPB_EERROR (-1: this header stands alone) for
- * a quaternion that is zero or not finite (then
- * R is the identity). Any other scale is fine: 1e300 and 1e-300 included.
+ * a quaternion that is zero or not finite (then R is the identity). Any
+ * other scale is fine: 1e300 and 1e-300 included.
  */
 static inline int mpb_pose_set_quat(mpb_pose *p, double x, double y,
                                     double z, double w)
