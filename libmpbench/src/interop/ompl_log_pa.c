@@ -412,21 +412,25 @@ int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
 {
     /* The Planner Arena writer reports through a store's message; this
      * one has nothing else. */
-    mpb_store errs;
-    memset(&errs, 0, sizeof errs);
-    pa_out o = {.s = &errs, .path = path};
+    mpb_store *errs = mpb__store_errors_create();
+    pa_out o = {.s = errs, .path = path};
     struct stat sb;
     char *tmp = NULL;
     int rc;
     if (counts)
         *counts = (mpb_export_counts){0};
+    if (errs == NULL) {
+        if (err && errlen)
+            snprintf(err, errlen, "out of memory");
+        return MPB_ENOMEM;
+    }
     if (next == NULL || path == NULL) {
-        rc = mpb__store_fail(&errs, MPB_EINVAL, "bad arguments");
+        rc = mpb__store_fail(errs, MPB_EINVAL, "bad arguments");
         goto out;
     }
     int exists = stat(path, &sb) == 0;
     if (exists && !(flags & MPB_EXPORT_APPEND)) {
-        rc = mpb__store_fail(&errs, MPB_EEXISTS, "%s exists", path);
+        rc = mpb__store_fail(errs, MPB_EEXISTS, "%s exists", path);
         goto out;
     }
     /* A new database is written whole into a file beside path and takes
@@ -434,7 +438,7 @@ int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
      * needs no journal, no locks and no syncs but the last (publish()).
      * An existing one is added to in place, with SQLite's defaults. */
     if (!exists && (rc = create_beside(path, &tmp)) != MPB_OK) {
-        rc = mpb__store_fail(&errs, rc, "cannot create a file beside %s: %s",
+        rc = mpb__store_fail(errs, rc, "cannot create a file beside %s: %s",
                              path, rc == MPB_ENOMEM ? "out of memory"
                                                     : strerror(errno));
         goto out;
@@ -442,7 +446,7 @@ int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
     /* One thread uses the connection: no mutexes. */
     if (sqlite3_open_v2(tmp ? tmp : path, &o.db, SQLITE_OPEN_READWRITE |
                         SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK) {
-        rc = mpb__store_fail(&errs, MPB_EIO, "cannot open %s: %s", path,
+        rc = mpb__store_fail(errs, MPB_EIO, "cannot open %s: %s", path,
                              o.db ? sqlite3_errmsg(o.db) : "out of memory");
         goto close;
     }
@@ -457,7 +461,7 @@ int mpb_ompl_logs_to_planner_arena(const char *path, int flags,
     for (;;) {
         const mpb_ompl_log *log = NULL;
         if ((rc = next(ud, &log)) != MPB_OK) {
-            rc = mpb__store_fail(&errs, rc, "a log to write could not be "
+            rc = mpb__store_fail(errs, rc, "a log to write could not be "
                                  "read: nothing written");
             break;
         }
@@ -469,7 +473,7 @@ close:
     if (tmp) {
         /* Leave nothing half-written behind. */
         if (rc == MPB_OK)
-            rc = publish(&errs, tmp, path);
+            rc = publish(errs, tmp, path);
         else
             unlink(tmp);
     }
@@ -477,7 +481,8 @@ out:
     if (rc == MPB_OK && counts)
         *counts = o.counts;
     if (rc != MPB_OK && err && errlen)
-        snprintf(err, errlen, "%s", errs.errmsg);
+        snprintf(err, errlen, "%s", mpb_store_errmsg(errs));
+    mpb_store_close(errs);
     free(tmp);
     return rc;
 }

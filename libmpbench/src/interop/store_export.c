@@ -31,30 +31,16 @@ static int planner_id(pa_out *o, int64_t config_id, int64_t *out)
             *out = o->config_map[2 * i + 1];
             return MPB_OK;
         }
-    sqlite3_stmt *st = mpb__store_prepare(o->s,
-        "SELECT name, planner, algorithm, params FROM planner_configs"
-        " WHERE id = ?");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, config_id);
-    if (sqlite3_step(st) != SQLITE_ROW) {
-        sqlite3_finalize(st);
-        return mpb__store_db_fail(o->s, "read a planner configuration");
-    }
-    char *name = mpb__pa_col_dup(st, 0);
-    char *settings = NULL;
-    {
-        char *planner = mpb__pa_col_dup(st, 1), *algorithm = mpb__pa_col_dup(st, 2),
-             *params = mpb__pa_col_dup(st, 3);
-        if (planner && algorithm && params)
-            settings = mpb__pa_config_settings(planner, algorithm, params);
-        free(planner);
-        free(algorithm);
-        free(params);
-    }
-    sqlite3_finalize(st);
-    int rc = MPB_OK;
-    if (name == NULL || settings == NULL) {
+    char *name = NULL, *planner = NULL, *algorithm = NULL, *params = NULL;
+    int rc = mpb__store_config_read(o->s, config_id, &name, &planner,
+                                    &algorithm, &params);
+    if (rc != MPB_OK)
+        return rc;
+    char *settings = mpb__pa_config_settings(planner, algorithm, params);
+    free(planner);
+    free(algorithm);
+    free(params);
+    if (settings == NULL) {
         rc = mpb__store_fail(o->s, MPB_ENOMEM, "out of memory");
         goto done;
     }
@@ -182,7 +168,7 @@ static int export_experiment(pa_out *o, int64_t experiment_id,
     pa_walker *w = NULL;
     int rc;
 
-    if ((rc = mpb__pa_exp_info_read(o->s, experiment_id, &e)) ||
+    if ((rc = mpb__store_exp_info_read(o->s, experiment_id, &e)) ||
         (rc = mpb__pa_experiment_props(o->s, experiment_id, &props, &progress)) ||
         (rc = mpb__pa_read_queries(o->s, &e, &queries)) ||
         (rc = mpb__pa_ensure_columns(o, "runs", &props, 0)) ||
@@ -354,7 +340,7 @@ done:
     mpb__pa_queries_free(&queries);
     mpb__pa_props_free(&props);
     mpb__pa_props_free(&progress);
-    mpb__pa_exp_info_free(&e);
+    mpb__store_exp_info_free(&e);
     return rc;
 }
 
@@ -414,21 +400,12 @@ static int last_experiment(pa_out *o, int64_t *out)
 static int imported_log(pa_out *o, int64_t id, mpb_ompl_log **out)
 {
     *out = NULL;
-    sqlite3_stmt *st = mpb__store_prepare(o->s,
-        "SELECT config_text,"
-        " (SELECT count(*) FROM runs WHERE experiment_id = ?1),"
-        " (SELECT count(*) FROM runs WHERE experiment_id = ?1"
-        "  AND state = 'done')"
-        " FROM experiments WHERE id = ?1");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, id);
-    int rc = MPB_OK;
-    if (sqlite3_step(st) == SQLITE_ROW) {
-        const char *text = (const char *)sqlite3_column_text(st, 0);
-        size_t len = (size_t)sqlite3_column_bytes(st, 0);
-        int64_t runs = sqlite3_column_int64(st, 1);
-        int64_t done = sqlite3_column_int64(st, 2);
+    char *text = NULL;
+    size_t len = 0;
+    int64_t runs = 0, done = 0;
+    int rc = mpb__store_experiment_completion(o->s, id, &text, &len, &runs,
+                                              &done);
+    if (rc == MPB_OK) {
         mpb_ompl_log *log = NULL;
         if (text && runs == done &&
             (strncmp(text, "OMPL version", 12) == 0 ||
@@ -445,7 +422,7 @@ static int imported_log(pa_out *o, int64_t id, mpb_ompl_log **out)
         else
             mpb_ompl_log_close(log);
     }
-    sqlite3_finalize(st);
+    free(text);
     if (rc == MPB_ENOMEM)
         return mpb__store_fail(o->s, rc, "out of memory");
     return rc;
@@ -472,7 +449,7 @@ static int log_exported(pa_out *o, const mpb_ompl_log *log, int64_t before)
 
 static int is_store_file(mpb_store *s, const struct stat *out)
 {
-    const char *mine = sqlite3_db_filename(s->db, "main");
+    const char *mine = mpb__store_filename(s);
     struct stat sb;
     return mine && *mine && stat(mine, &sb) == 0 &&
            sb.st_dev == out->st_dev && sb.st_ino == out->st_ino;
@@ -500,7 +477,7 @@ int mpb_store_export_planner_arena(mpb_store *s, const char *path,
     if (!exists && errno != ENOENT)
         return mpb__store_fail(s, MPB_EIO, "%s: %s", path,
                                strerror(errno));
-    if ((rc = mpb__pa_experiment_ids(s, ids, num_ids, &exps, &num_exps)))
+    if ((rc = mpb__store_experiment_ids(s, ids, num_ids, &exps, &num_exps)))
         return rc;
     if (sqlite3_open_v2(path, &o.db, SQLITE_OPEN_READWRITE |
                         (exists ? 0 : SQLITE_OPEN_CREATE), NULL) != SQLITE_OK) {

@@ -84,37 +84,39 @@ static int is_reserved_param(const char *name)
     return r;
 }
 
+typedef struct config_counts {
+    config_count *v;
+    int           n, cap;
+} config_counts;
+
+static int add_count(void *ud, int64_t config_id, long runs)
+{
+    config_counts *c = ud;
+    if (mpb__grow((void **)&c->v, &c->cap, c->n + 1, sizeof *c->v))
+        return MPB_ENOMEM;
+    c->v[c->n].id = config_id;
+    c->v[c->n++].runs = runs;
+    return MPB_OK;
+}
+
 /* One log: one query of experiment e. */
 static int write_log(mpb_store *s, FILE *out, const exp_info *e,
                      const pa_query *q, const prop_list *props,
                      const prop_list *progress)
 {
     config_count *cfg = NULL;
-    int num_cfg = 0, cap = 0, rc = MPB_OK, step;
+    int num_cfg = 0, rc = MPB_OK;
     pa_walker *w = NULL;
     char *prog_text = NULL;
     size_t prog_len = 0;
     FILE *prog = NULL;
 
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT planner_config_id, count(*) FROM runs WHERE experiment_id = ?1"
-        " AND query_id = ?2 AND state = 'done' GROUP BY planner_config_id"
-        " ORDER BY planner_config_id");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, e->id);
-    sqlite3_bind_int64(st, 2, q->query_id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        if (mpb__grow((void **)&cfg, &cap, num_cfg + 1, sizeof *cfg)) {
-            rc = mpb__store_fail(s, MPB_ENOMEM, "out of memory");
-            break;
-        }
-        cfg[num_cfg].id = sqlite3_column_int64(st, 0);
-        cfg[num_cfg++].runs = sqlite3_column_int64(st, 1);
-    }
-    if (rc == MPB_OK && step != SQLITE_DONE)
-        rc = mpb__store_db_fail(s, "count runs");
-    sqlite3_finalize(st);
+    config_counts cc = {0};
+    rc = mpb__store_each_config_count(s, e->id, q->query_id, add_count, &cc);
+    cfg = cc.v;
+    num_cfg = cc.n;
+    if (rc == MPB_ENOMEM)
+        mpb__store_fail(s, rc, "out of memory");
     if (rc)
         goto done;
 
@@ -180,23 +182,16 @@ static int write_log(mpb_store *s, FILE *out, const exp_info *e,
     run_view rv = {0};
     for (int c = 0; c < num_cfg; c++) {
         /* The planner: its name and settings. */
-        sqlite3_stmt *cs = mpb__store_prepare(s,
-            "SELECT name, planner, algorithm, params FROM planner_configs"
-            " WHERE id = ?");
-        if (cs == NULL) {
-            rc = MPB_EDB;
+        char *name, *planner, *algorithm, *params, *settings = NULL;
+        if ((rc = mpb__store_config_read(s, cfg[c].id, &name, &planner,
+                                         &algorithm, &params)))
             goto done;
-        }
-        sqlite3_bind_int64(cs, 1, cfg[c].id);
-        char *settings = NULL;
-        if (sqlite3_step(cs) == SQLITE_ROW) {
-            log_line(out, (const char *)sqlite3_column_text(cs, 0));
-            settings = mpb__pa_config_settings(
-                (const char *)sqlite3_column_text(cs, 1),
-                (const char *)sqlite3_column_text(cs, 2),
-                (const char *)sqlite3_column_text(cs, 3));
-        }
-        sqlite3_finalize(cs);
+        log_line(out, name);
+        settings = mpb__pa_config_settings(planner, algorithm, params);
+        free(name);
+        free(planner);
+        free(algorithm);
+        free(params);
         if (settings == NULL) {
             rc = mpb__store_fail(s, MPB_ENOMEM, "out of memory");
             goto done;
@@ -314,7 +309,7 @@ static int plan_names(mpb_store *s, const int64_t *exps, int num_exps,
     for (int i = 0; i < num_exps && rc == MPB_OK; i++) {
         exp_info e = {0};
         pa_query_list queries = {0};
-        if ((rc = mpb__pa_exp_info_read(s, exps[i], &e)) == MPB_OK &&
+        if ((rc = mpb__store_exp_info_read(s, exps[i], &e)) == MPB_OK &&
             (rc = mpb__pa_read_queries(s, &e, &queries)) == MPB_OK) {
             for (int k = 0; k < queries.n && rc == MPB_OK; k++) {
                 const pa_query *q = &queries.v[k];
@@ -338,7 +333,7 @@ static int plan_names(mpb_store *s, const int64_t *exps, int num_exps,
             }
         }
         mpb__pa_queries_free(&queries);
-        mpb__pa_exp_info_free(&e);
+        mpb__store_exp_info_free(&e);
     }
     if (rc != MPB_OK || out->n == 0)
         return rc;
@@ -398,7 +393,7 @@ int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
         return mpb__store_fail(s, MPB_EIO, "%s is not a directory",
                                dir);
-    if ((rc = mpb__pa_experiment_ids(s, ids, num_ids, &exps, &num_exps)) ||
+    if ((rc = mpb__store_experiment_ids(s, ids, num_ids, &exps, &num_exps)) ||
         (rc = plan_names(s, exps, num_exps, &names)))
         goto done;
     /* Without MPB_EXPORT_REPLACE, a log there already stops the export
@@ -419,7 +414,7 @@ int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
         exp_info e = {0};
         prop_list props = {0}, progress = {0};
         pa_query_list queries = {0};
-        if ((rc = mpb__pa_exp_info_read(s, exps[i], &e)) ||
+        if ((rc = mpb__store_exp_info_read(s, exps[i], &e)) ||
             (rc = mpb__pa_experiment_props(s, exps[i], &props, &progress)) ||
             (rc = mpb__pa_read_queries(s, &e, &queries)))
             goto next;
@@ -459,7 +454,7 @@ int mpb_store_export_ompl_logs(mpb_store *s, const char *dir,
             free(path);
         }
     next:
-        mpb__pa_exp_info_free(&e);
+        mpb__store_exp_info_free(&e);
         mpb__pa_props_free(&props);
         mpb__pa_props_free(&progress);
         mpb__pa_queries_free(&queries);

@@ -14,14 +14,19 @@
  *   store_export.c     mpbench experiments into that database
  *   store_export_log.c mpbench experiments as OMPL benchmark logs
  *   ompl_log_pa.c      an OMPL benchmark log into that database
+ *
+ * Everything they read of mpbench's own database comes through
+ * store/store_export.h.
  */
 #ifndef MPB_STORE_PA_H
 #define MPB_STORE_PA_H
 
 #include <stdint.h>
 
+#include <sqlite3.h>
+
 #include "mpbench/ompl_log.h"
-#include "store/store_internal.h"
+#include "store/store_export.h"
 
 /* ---- run properties (store_pa_props.c) ------------------------------------ */
 
@@ -123,32 +128,9 @@ void mpb__pa_walker_close(pa_walker *w);
 
 /* ---- what every writer says of an experiment (store_pa_exp.c) -------------- */
 
-/* An experiment property as a log writes it: "name TYPE = value". */
-typedef struct exp_param {
-    char *name, *type, *value;
-} exp_param;
+/* The experiment itself: exp_info, mpb__store_exp_info_read()
+ * (store/store_export.h). */
 
-typedef struct exp_info {
-    int64_t id;
-    char   *name, *config_text, *host, *version;
-    int     runs_per_query;
-    double  time_limit, created;
-    /* An imported log's header (NULL, NaN when the experiment is
-     * mpbench's own): its date as written, seed, CPU block, total time,
-     * memory limit, and its experiment properties. */
-    char   *started, *seed, *cpuinfo;
-    double  total_time, memory_limit;
-    int     num_params;
-    exp_param *params;
-} exp_info;
-
-int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e);
-void mpb__pa_exp_info_free(exp_info *e);
-
-/* Ids of every experiment, or the ids given (checked), each once. Caller
- * frees. */
-int mpb__pa_experiment_ids(mpb_store *s, const int64_t *ids, int num_ids,
-                           int64_t **out, int *n);
 
 /* Whitespace to '_': a log's "Experiment NAME" line keeps one word. */
 void mpb__pa_one_word(char *s);

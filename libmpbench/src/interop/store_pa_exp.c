@@ -13,24 +13,6 @@
 #include "core/grow.h"
 #include "interop/store_pa.h"
 
-void mpb__pa_exp_info_free(exp_info *e)
-{
-    free(e->name);
-    free(e->config_text);
-    free(e->host);
-    free(e->version);
-    free(e->started);
-    free(e->seed);
-    free(e->cpuinfo);
-    for (int i = 0; e->params && i < e->num_params; i++) {
-        free(e->params[i].name);
-        free(e->params[i].type);
-        free(e->params[i].value);
-    }
-    free(e->params);
-    *e = (exp_info){0};
-}
-
 char *mpb__pa_param_column(const char *name)
 {
     char *c = malloc(strlen(name) + 1), *d = c;
@@ -52,96 +34,6 @@ const char *mpb__pa_exp_param(const exp_info *e, const char *column)
             return e->params[i].value;
     }
     return NULL;
-}
-
-/* A text column copied, NULL for NULL; *oom set when out of memory. */
-static char *col_dup_or_null(sqlite3_stmt *st, int i, int *oom)
-{
-    if (sqlite3_column_type(st, i) == SQLITE_NULL)
-        return NULL;
-    char *c = mpb__pa_col_dup(st, i);
-    *oom |= c == NULL;
-    return c;
-}
-
-/* An imported log's header and experiment properties into e; nothing
- * for a database made before they were kept. */
-static int read_log_header(mpb_store *s, exp_info *e)
-{
-    e->total_time = e->memory_limit = NAN;
-    if (!mpb__store_has_column(s, "experiments", "started"))
-        return MPB_OK;
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT started, seed, cpuinfo, total_time, memory_limit"
-        " FROM experiments WHERE id = ?");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, e->id);
-    int oom = 0, rc = MPB_OK;
-    if (sqlite3_step(st) == SQLITE_ROW) {
-        e->started = col_dup_or_null(st, 0, &oom);
-        e->seed = col_dup_or_null(st, 1, &oom);
-        e->cpuinfo = col_dup_or_null(st, 2, &oom);
-        e->total_time = mpb__pa_col_num(st, 3);
-        e->memory_limit = mpb__pa_col_num(st, 4);
-    }
-    sqlite3_finalize(st);
-    if (!oom && mpb__store_has_column(s, "experiment_params", "name")) {
-        st = mpb__store_prepare(s, "SELECT name, type, value FROM"
-                                " experiment_params WHERE experiment_id = ?"
-                                " ORDER BY idx");
-        if (st == NULL)
-            return MPB_EDB;
-        sqlite3_bind_int64(st, 1, e->id);
-        int cap = 0, step;
-        while (!oom && (step = sqlite3_step(st)) == SQLITE_ROW) {
-            if (mpb__grow((void **)&e->params, &cap, e->num_params + 1,
-                          sizeof *e->params)) {
-                oom = 1;
-                break;
-            }
-            exp_param *p = &e->params[e->num_params++];
-            *p = (exp_param){mpb__pa_col_dup(st, 0), mpb__pa_col_dup(st, 1),
-                             mpb__pa_col_dup(st, 2)};
-            oom |= !p->name || !p->type || !p->value;
-        }
-        if (!oom && step != SQLITE_DONE)
-            rc = mpb__store_db_fail(s, "read experiment parameters");
-        sqlite3_finalize(st);
-    }
-    return oom ? mpb__store_fail(s, MPB_ENOMEM, "out of memory") : rc;
-}
-
-int mpb__pa_exp_info_read(mpb_store *s, int64_t id, exp_info *e)
-{
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT name, config_text, host, version, runs_per_query, time_limit,"
-        " created FROM experiments WHERE id = ?");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, id);
-    int step = sqlite3_step(st), rc = MPB_OK;
-    if (step == SQLITE_ROW) {
-        e->id = id;
-        e->name = mpb__pa_col_dup(st, 0);
-        e->config_text = mpb__pa_col_dup(st, 1);
-        e->host = mpb__pa_col_dup(st, 2);
-        e->version = mpb__pa_col_dup(st, 3);
-        e->runs_per_query = sqlite3_column_int(st, 4);
-        e->time_limit = mpb__pa_col_num(st, 5);
-        e->created = mpb__pa_col_num(st, 6);
-        if (!e->name || !e->config_text || !e->host || !e->version)
-            rc = mpb__store_fail(s, MPB_ENOMEM, "out of memory");
-        else
-            rc = read_log_header(s, e);
-    } else if (step == SQLITE_DONE) {
-        rc = mpb__store_fail(s, MPB_ENOTFOUND, "no experiment %lld",
-                             (long long)id);
-    } else {
-        rc = mpb__store_db_fail(s, "read experiment");
-    }
-    sqlite3_finalize(st);
-    return rc;
 }
 
 void mpb__pa_one_word(char *s)
@@ -190,37 +82,35 @@ static void scene_problems_free(scene_problem *v, int n)
  * "a_b#1"). That ends: two names that end in "#N" differ in N, so each
  * round gives a suffix to at least one scene that had none.
  */
+typedef struct scene_gather {
+    const exp_info *e;
+    scene_problem  *v;
+    int             n, cap;
+} scene_gather;
+
+static int gather_scene(void *ud, int64_t id, const char *name)
+{
+    scene_gather *g = ud;
+    size_t len = strlen(g->e->name) + strlen(name) + 2;
+    if (mpb__grow((void **)&g->v, &g->cap, g->n + 1, sizeof *g->v))
+        return MPB_ENOMEM;
+    g->v[g->n] = (scene_problem){.id = id, .problem = malloc(len)};
+    if (g->v[g->n++].problem == NULL)
+        return MPB_ENOMEM;
+    snprintf(g->v[g->n - 1].problem, len, "%s/%s", g->e->name, name);
+    mpb__pa_one_word(g->v[g->n - 1].problem);
+    return MPB_OK;
+}
+
 static int scene_problems(mpb_store *s, const exp_info *e,
                           scene_problem **out, int *num)
 {
-    scene_problem *v = NULL;
-    int n = 0, cap = 0, step, rc = MPB_OK;
+    scene_gather g = {.e = e};
     *out = NULL;
     *num = 0;
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT id, name FROM scenes WHERE experiment_id = ?1 ORDER BY id");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, e->id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        const char *name = (const char *)sqlite3_column_text(st, 1);
-        size_t len = strlen(e->name) + strlen(name ? name : "") + 2;
-        if (mpb__grow((void **)&v, &cap, n + 1, sizeof *v)) {
-            rc = MPB_ENOMEM;
-            break;
-        }
-        v[n] = (scene_problem){.id = sqlite3_column_int64(st, 0),
-                               .problem = malloc(len)};
-        if (v[n++].problem == NULL) {
-            rc = MPB_ENOMEM;
-            break;
-        }
-        snprintf(v[n - 1].problem, len, "%s/%s", e->name, name ? name : "");
-        mpb__pa_one_word(v[n - 1].problem);
-    }
-    if (rc == MPB_OK && step != SQLITE_DONE)
-        rc = mpb__store_db_fail(s, "read scenes");
-    sqlite3_finalize(st);
+    int rc = mpb__store_each_scene(s, e->id, gather_scene, &g);
+    scene_problem *v = g.v;
+    int n = g.n;
     for (int clashes = 1; rc == MPB_OK && clashes;) {
         clashes = 0;
         for (int i = 0; i < n; i++) {
@@ -311,110 +201,82 @@ static char *goal_text(const char *kind, const char *joints,
 static int log_problem(mpb_store *s, const exp_info *e, int64_t scene_id,
                        pa_query *q)
 {
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT robot FROM scenes WHERE id = ?");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, scene_id);
-    int rc = MPB_OK;
-    if (sqlite3_step(st) == SQLITE_ROW) {
-        char *setup = mpb__pa_col_dup(st, 0), *name = strdup(e->name);
-        if (setup == NULL || name == NULL) {
-            free(setup);
-            free(name);
-            rc = MPB_ENOMEM;
-        } else {
-            mpb__pa_one_word(name);
-            free(q->setup);
-            free(q->problem);
-            q->setup = setup;
-            q->problem = name;
-        }
+    char *setup = NULL, *name = NULL;
+    int rc = mpb__store_scene_robot(s, scene_id, &setup);
+    if (rc != MPB_OK || setup == NULL)
+        return rc;
+    if ((name = strdup(e->name)) == NULL) {
+        free(setup);
+        return MPB_ENOMEM;
     }
-    sqlite3_finalize(st);
-    return rc;
+    mpb__pa_one_word(name);
+    free(q->setup);
+    free(q->problem);
+    q->setup = setup;
+    q->problem = name;
+    return MPB_OK;
+}
+
+typedef struct query_gather {
+    mpb_store           *s;
+    const exp_info      *e;
+    const scene_problem *scenes;
+    int                  num_scenes, si;
+    pa_query_list       *out;
+} query_gather;
+
+static int gather_query(void *ud, const mpb__done_query *dq)
+{
+    query_gather *g = ud;
+    const exp_info *e = g->e;
+    if (mpb__grow((void **)&g->out->v, &g->out->cap, g->out->n + 1,
+                  sizeof *g->out->v))
+        return MPB_ENOMEM;
+    pa_query *q = &g->out->v[g->out->n++];
+    *q = (pa_query){.query_id = dq->id, .runs = dq->runs,
+                    .total_time = dq->total_time};
+    /* By scene, as the scenes are. */
+    while (g->si < g->num_scenes && g->scenes[g->si].id != dq->scene_id)
+        g->si++;
+    if (g->si == g->num_scenes)
+        return mpb__store_fail(g->s, MPB_EDB, "query %lld has no scene",
+                               (long long)q->query_id);
+    char *goal = goal_text(dq->goal_kind, dq->goal_joints, dq->goal_tolerance,
+                           dq->goal_link, dq->goal_region);
+    size_t ns = strlen(e->config_text) + 256 + strlen(dq->joint_names) +
+                strlen(dq->start) + (goal ? strlen(goal) : 0) +
+                strlen(dq->name);
+    q->problem = strdup(g->scenes[g->si].problem);
+    q->query = strdup(dq->name);
+    q->setup = malloc(ns);
+    if (!q->problem || !q->query || !q->setup || !goal) {
+        free(goal);
+        return MPB_ENOMEM;
+    }
+    snprintf(q->setup, ns,
+             "%s%s\nmpbench experiment %lld, query %s\n"
+             "joints: %s\nstart: %s\n%s",
+             e->config_text,
+             e->config_text[0] &&
+                     e->config_text[strlen(e->config_text) - 1] != '\n'
+                 ? "\n" : "",
+             (long long)e->id, q->query, dq->joint_names, dq->start, goal);
+    free(goal);
+    /* An imported log's experiment (one scene, one query) keeps its name
+     * and its setup block (the scene's robot text). */
+    return e->started ? log_problem(g->s, e, dq->scene_id, q) : MPB_OK;
 }
 
 int mpb__pa_read_queries(mpb_store *s, const exp_info *e, pa_query_list *out)
 {
     scene_problem *scenes = NULL;
-    int step, rc, num_scenes = 0, si = 0;
-    if ((rc = scene_problems(s, e, &scenes, &num_scenes)) != MPB_OK)
-        goto done;
-    /* A database made before pose-region goals, opened read-only, has no
-     * columns for them (a writer adds them): NULLs instead. */
-    int has_region = mpb__store_has_column(s, "queries", "goal_region");
-    sqlite3_stmt *st = mpb__store_prepare(s, has_region
-        ? "SELECT q.id, q.name, q.scene_id, count(r.id), total(r.wall_time),"
-          " q.joint_names, q.start, q.goal_kind, q.goal_joints,"
-          " q.goal_tolerance, q.goal_link, q.goal_region"
-          " FROM queries q JOIN scenes sc ON sc.id = q.scene_id"
-          " JOIN runs r ON r.query_id = q.id AND r.state = 'done'"
-          " WHERE sc.experiment_id = ?1 GROUP BY q.id ORDER BY sc.id, q.id"
-        : "SELECT q.id, q.name, q.scene_id, count(r.id), total(r.wall_time),"
-          " q.joint_names, q.start, q.goal_kind, q.goal_joints,"
-          " q.goal_tolerance, NULL, NULL"
-          " FROM queries q JOIN scenes sc ON sc.id = q.scene_id"
-          " JOIN runs r ON r.query_id = q.id AND r.state = 'done'"
-          " WHERE sc.experiment_id = ?1 GROUP BY q.id ORDER BY sc.id, q.id");
-    if (st == NULL) {
-        rc = MPB_EDB;
-        goto done;
+    int num_scenes = 0;
+    int rc = scene_problems(s, e, &scenes, &num_scenes);
+    if (rc == MPB_OK) {
+        query_gather g = {.s = s, .e = e, .scenes = scenes,
+                          .num_scenes = num_scenes, .out = out};
+        rc = mpb__store_each_done_query(s, e->id, gather_query, &g);
     }
-    sqlite3_bind_int64(st, 1, e->id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        if ((rc = mpb__grow((void **)&out->v, &out->cap, out->n + 1,
-                            sizeof *out->v)))
-            break;
-        pa_query *q = &out->v[out->n++];
-        *q = (pa_query){.query_id = sqlite3_column_int64(st, 0),
-                        .runs = sqlite3_column_int(st, 3),
-                        .total_time = sqlite3_column_double(st, 4)};
-        /* By scene, as the scenes are. */
-        int64_t scene_id = sqlite3_column_int64(st, 2);
-        while (si < num_scenes && scenes[si].id != scene_id)
-            si++;
-        if (si == num_scenes) {
-            rc = mpb__store_fail(s, MPB_EDB, "query %lld has no scene",
-                                 (long long)q->query_id);
-            break;
-        }
-        const char *text[7];
-        for (int i = 0; i < 7; i++) {
-            text[i] = (const char *)sqlite3_column_text(st, 5 + i);
-            if (text[i] == NULL)
-                text[i] = "";
-        }
-        char *goal = goal_text(text[2], text[3], text[4], text[5], text[6]);
-        size_t ns = strlen(e->config_text) + 256 + strlen(text[0]) +
-                    strlen(text[1]) + (goal ? strlen(goal) : 0) +
-                    strlen((const char *)sqlite3_column_text(st, 1));
-        q->problem = strdup(scenes[si].problem);
-        q->query = mpb__pa_col_dup(st, 1);
-        q->setup = malloc(ns);
-        if (!q->problem || !q->query || !q->setup || !goal) {
-            free(goal);
-            rc = MPB_ENOMEM;
-            break;
-        }
-        snprintf(q->setup, ns,
-                 "%s%s\nmpbench experiment %lld, query %s\n"
-                 "joints: %s\nstart: %s\n%s",
-                 e->config_text,
-                 e->config_text[0] &&
-                         e->config_text[strlen(e->config_text) - 1] != '\n'
-                     ? "\n" : "",
-                 (long long)e->id, q->query, text[0], text[1], goal);
-        free(goal);
-        /* An imported log's experiment (one scene, one query) keeps its
-         * name and its setup block (the scene's robot text). */
-        if (e->started && (rc = log_problem(s, e, scene_id, q)) != MPB_OK)
-            break;
-    }
-    if (rc == MPB_OK && step != SQLITE_DONE)
-        rc = mpb__store_db_fail(s, "read queries");
-    sqlite3_finalize(st);
-done:
     if (rc == MPB_ENOMEM)
         mpb__store_fail(s, rc, "out of memory");
     scene_problems_free(scenes, num_scenes);
@@ -490,55 +352,3 @@ void mpb__pa_format_date(double t, char *buf, size_t n)
     if (gmtime_r(&tt, &tm) != NULL)
         strftime(buf, n, "%Y-%m-%d %H:%M:%S", &tm);
 }
-
-int mpb__pa_experiment_ids(mpb_store *s, const int64_t *ids, int num_ids,
-                           int64_t **out, int *n)
-{
-    *out = NULL;
-    *n = 0;
-    if (num_ids > 0) {
-        sqlite3_stmt *st = mpb__store_prepare(s,
-            "SELECT 1 FROM experiments WHERE id = ?");
-        if (st == NULL)
-            return MPB_EDB;
-        for (int i = 0; i < num_ids; i++) {
-            sqlite3_reset(st);
-            sqlite3_bind_int64(st, 1, ids[i]);
-            if (sqlite3_step(st) != SQLITE_ROW) {
-                sqlite3_finalize(st);
-                return mpb__store_fail(s, MPB_ENOTFOUND, "no experiment %lld",
-                                       (long long)ids[i]);
-            }
-        }
-        sqlite3_finalize(st);
-        if ((*out = malloc(sizeof **out * (size_t)num_ids)) == NULL)
-            return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
-        for (int i = 0; i < num_ids; i++) {   /* each id once */
-            int seen = 0;
-            for (int j = 0; j < *n && !seen; j++)
-                seen = (*out)[j] == ids[i];
-            if (!seen)
-                (*out)[(*n)++] = ids[i];
-        }
-        return MPB_OK;
-    }
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT id FROM experiments ORDER BY id");
-    int step, cap = 0;
-    if (st == NULL)
-        return MPB_EDB;
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        if (mpb__grow((void **)out, &cap, *n + 1, sizeof **out)) {
-            sqlite3_finalize(st);
-            return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
-        }
-        (*out)[(*n)++] = sqlite3_column_int64(st, 0);
-    }
-    sqlite3_finalize(st);
-    if (step != SQLITE_DONE)
-        return mpb__store_db_fail(s, "list experiments");
-    if (*n == 0)
-        return mpb__store_fail(s, MPB_ENOTFOUND, "no experiment to export");
-    return MPB_OK;
-}
-

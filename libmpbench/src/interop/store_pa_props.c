@@ -171,30 +171,21 @@ void mpb__pa_names_free(name_list *l)
     *l = (name_list){0};
 }
 
-/* Every value of the first column of sql (bound to experiment_id). */
-static int read_names(mpb_store *s, const char *sql, int64_t experiment_id,
-                      name_list *out)
+static int add_name(void *ud, const char *name)
 {
-    sqlite3_stmt *st = mpb__store_prepare(s, sql);
-    int step, rc = MPB_OK;
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, experiment_id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        const char *name = (const char *)sqlite3_column_text(st, 0);
-        if (name == NULL)
-            continue;
-        if (mpb__grow((void **)&out->v, &out->cap, out->n + 1,
-                      sizeof *out->v) ||
-            (out->v[out->n] = strdup(name)) == NULL) {
-            rc = MPB_ENOMEM;
-            break;
-        }
-        out->n++;
-    }
-    if (rc == MPB_OK && step != SQLITE_DONE)
-        rc = mpb__store_db_fail(s, "read names");
-    sqlite3_finalize(st);
+    name_list *out = ud;
+    if (mpb__grow((void **)&out->v, &out->cap, out->n + 1, sizeof *out->v) ||
+        (out->v[out->n] = strdup(name)) == NULL)
+        return MPB_ENOMEM;
+    out->n++;
+    return MPB_OK;
+}
+
+/* The names the experiment's finished runs give (store_export.h). */
+static int read_names(mpb_store *s, mpb__run_names which,
+                      int64_t experiment_id, name_list *out)
+{
+    int rc = mpb__store_each_run_name(s, experiment_id, which, add_name, out);
     if (rc == MPB_ENOMEM)
         mpb__store_fail(s, rc, "out of memory");
     return rc;
@@ -286,40 +277,24 @@ static void declared_free(declared_list *l)
  * experiment declare, each name once (its first planner's type), in their
  * planners' and the logs' order; none for a database made before they
  * were kept. */
+static int note_declared(void *ud, const char *name, const char *type)
+{
+    declared_list *out = ud;
+    for (int i = 0; i < out->n; i++)
+        if (strcmp(out->v[i].name, name) == 0)
+            return MPB_OK;
+    if (mpb__grow((void **)&out->v, &out->cap, out->n + 1, sizeof *out->v) ||
+        (out->v[out->n].name = strdup(name)) == NULL)
+        return MPB_ENOMEM;
+    out->v[out->n++].type = log_type(type);
+    return MPB_OK;
+}
+
 static int read_declared(mpb_store *s, int64_t experiment_id, int progress,
                          declared_list *out)
 {
-    if (!mpb__store_has_column(s, "log_properties", "name"))
-        return MPB_OK;
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT p.name, p.type FROM log_properties p JOIN planner_configs c"
-        " ON c.id = p.planner_config_id WHERE c.experiment_id = ?1"
-        " AND p.progress = ?2 ORDER BY c.id, p.idx");
-    int step, rc = MPB_OK;
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, experiment_id);
-    sqlite3_bind_int(st, 2, progress);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        const char *name = (const char *)sqlite3_column_text(st, 0);
-        int seen = name == NULL;
-        for (int i = 0; i < out->n && !seen; i++)
-            seen = strcmp(out->v[i].name, name) == 0;
-        if (seen)
-            continue;
-        if (mpb__grow((void **)&out->v, &out->cap, out->n + 1,
-                      sizeof *out->v) ||
-            (out->v[out->n].name = strdup(name)) == NULL) {
-            rc = MPB_ENOMEM;
-            break;
-        }
-        out->v[out->n++].type =
-            log_type((const char *)sqlite3_column_text(st, 1));
-    }
-    if (rc == MPB_OK && step != SQLITE_DONE)
-        rc = mpb__store_db_fail(s, "read a log's properties");
-    sqlite3_finalize(st);
-    return rc;
+    return mpb__store_each_log_property(s, experiment_id, progress,
+                                        note_declared, out);
 }
 
 /*
@@ -416,26 +391,10 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
     declared_list run_decl = {0}, progress_decl = {0};
     int rc;
 
-    if ((rc = read_names(s,
-            "SELECT DISTINCT m.name FROM runs r JOIN metrics m"
-            " ON m.run_id = r.id WHERE r.experiment_id = ?1"
-            " AND r.state = 'done'", experiment_id, &metrics)) ||
-        (rc = read_names(s,
-            "SELECT st.name FROM runs r JOIN stages st ON st.run_id = r.id"
-            " WHERE r.experiment_id = ?1 AND r.state = 'done' AND st.idx > 0"
-            " AND st.name IS NOT coalesce(r.final_stage, '')"
-            " GROUP BY st.name ORDER BY min(st.idx), st.name",
-            experiment_id, &mids)) ||
-        (rc = read_names(s,
-            "SELECT DISTINCT v.name FROM runs r JOIN planner_values v"
-            " ON v.run_id = r.id WHERE r.experiment_id = ?1"
-            " AND r.state = 'done' ORDER BY v.name", experiment_id,
-            &values)) ||
-        (rc = read_names(s,
-            "SELECT DISTINCT p.name FROM runs r JOIN progress p"
-            " ON p.run_id = r.id WHERE r.experiment_id = ?1"
-            " AND r.state = 'done' ORDER BY p.name", experiment_id,
-            &samples)) ||
+    if ((rc = read_names(s, MPB__NAMES_METRICS, experiment_id, &metrics)) ||
+        (rc = read_names(s, MPB__NAMES_MID_STAGES, experiment_id, &mids)) ||
+        (rc = read_names(s, MPB__NAMES_VALUES, experiment_id, &values)) ||
+        (rc = read_names(s, MPB__NAMES_PROGRESS, experiment_id, &samples)) ||
         (rc = read_declared(s, experiment_id, 0, &run_decl)) ||
         (rc = read_declared(s, experiment_id, 1, &progress_decl)))
         goto done;
@@ -446,16 +405,8 @@ int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
      * "time" (tau_r: tau_t has the simplification too), its "solved" (the
      * claim) and its "simplification time" (the final stage's). */
     int imported = 0;
-    sqlite3_stmt *st = mpb__store_prepare(s, "SELECT 1 FROM scenes WHERE"
-                                          " experiment_id = ?1 AND"
-                                          " robot_format = 'ompl-log'");
-    if (st == NULL) {
-        rc = MPB_EDB;
+    if ((rc = mpb__store_experiment_imported(s, experiment_id, &imported)))
         goto done;
-    }
-    sqlite3_bind_int64(st, 1, experiment_id);
-    imported = sqlite3_step(st) == SQLITE_ROW;
-    sqlite3_finalize(st);
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++) {
         prop_kind kind = fixed[i].kind;
         if (imported && kind == K_TIME)

@@ -26,71 +26,26 @@ static int status_value(const char *status)
     return 0;
 }
 
-typedef struct stage_info {
-    char  *name;
-    double time;
-    int    num_waypoints;
-    int    valid;
-} stage_info;
-
-typedef struct metric_info {
-    char  *stage, *name;
-    double value;
-} metric_info;
-
-typedef struct named_value {
-    char   *name;
-    double  value;
-    int     is_int;     /* value is the integer exact (planner_values.exact) */
-    int64_t exact;
-} named_value;
-
 struct pa_walker {
     mpb_store       *s;
     const prop_list *props, *progress;
-    sqlite3_stmt    *runs, *stages, *metrics, *values, *samples;
+    mpb__run_cursor *runs;
+    const mpb__done_run *run;   /* the current one, the cursor's */
     double          *row;
     int64_t         *ints;      /* the row's integers, where is_int */
     unsigned char   *is_int;
-    stage_info      *st;
-    int              num_st, st_cap;
-    metric_info     *m;
-    int              num_m, m_cap;
-    named_value     *v;
-    int              num_v, v_cap;
     double          *smp;
     int              num_smp, smp_cap;
 };
-
-static void walker_clear_run(pa_walker *w)
-{
-    for (int i = 0; i < w->num_st; i++)
-        free(w->st[i].name);
-    for (int i = 0; i < w->num_m; i++) {
-        free(w->m[i].stage);
-        free(w->m[i].name);
-    }
-    for (int i = 0; i < w->num_v; i++)
-        free(w->v[i].name);
-    w->num_st = w->num_m = w->num_v = w->num_smp = 0;
-}
 
 void mpb__pa_walker_close(pa_walker *w)
 {
     if (w == NULL)
         return;
-    walker_clear_run(w);
-    sqlite3_finalize(w->runs);
-    sqlite3_finalize(w->stages);
-    sqlite3_finalize(w->metrics);
-    sqlite3_finalize(w->values);
-    sqlite3_finalize(w->samples);
+    mpb__run_cursor_close(w->runs);
     free(w->row);
     free(w->ints);
     free(w->is_int);
-    free(w->st);
-    free(w->m);
-    free(w->v);
     free(w->smp);
     free(w);
 }
@@ -100,45 +55,14 @@ int mpb__pa_walker_open(pa_walker **out, mpb_store *s, int64_t experiment_id,
                         const prop_list *progress)
 {
     pa_walker *w = calloc(1, sizeof *w);
+    int rc;
     *out = NULL;
     if (w == NULL)
         return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
     *w = (pa_walker){.s = s, .props = props, .progress = progress};
-#define RUNS_SQL(verify)                                                    \
-        "SELECT r.id, r.planner_config_id, r.query_id, r.status, r.success,"\
-        " r.claimed_success, r.time_total, r.time_raw, r.time_other,"      \
-        " r.wall_time, r.final_stage, " verify                              \
-        " FROM runs r JOIN queries q ON q.id = r.query_id"                 \
-        " WHERE r.experiment_id = ?1 AND r.state = 'done'"                 \
-        " AND (?2 = 0 OR r.query_id = ?2)"                                 \
-        " ORDER BY q.scene_id, r.query_id, r.planner_config_id, r.repetition"
-    /* Without runs.memory, or runs.verify_time too (a database made
-     * before them, opened read-only), NULL. */
-    static const char *const runs_sql[4] = {
-        RUNS_SQL("r.verify_time, r.memory"), RUNS_SQL("r.verify_time, NULL"),
-        RUNS_SQL("NULL, r.memory"), RUNS_SQL("NULL, NULL"),
-    };
-    w->runs = mpb__store_prepare(s, runs_sql[
-        2 * !mpb__store_has_column(s, "runs", "verify_time") +
-        !mpb__store_has_column(s, "runs", "memory")]);
-#undef RUNS_SQL
-    w->stages = mpb__store_prepare(s,
-        "SELECT name, time, num_waypoints, valid FROM stages WHERE run_id = ?"
-        " ORDER BY idx");
-    w->metrics = mpb__store_prepare(s,
-        "SELECT stage, name, value FROM metrics WHERE run_id = ?");
-    /* Without planner_values.exact (a database made before it, opened
-     * read-only), the REAL only. */
-    w->values = mpb__store_prepare(s,
-        mpb__store_has_column(s, "planner_values", "exact")
-            ? "SELECT name, value, exact FROM planner_values WHERE run_id = ?"
-            : "SELECT name, value, NULL FROM planner_values WHERE run_id = ?");
-    w->samples = mpb__store_prepare(s,
-        "SELECT seq, time, name, value FROM progress WHERE run_id = ?"
-        " ORDER BY seq");
-    if (!w->runs || !w->stages || !w->metrics || !w->values || !w->samples) {
+    if ((rc = mpb__run_cursor_open(s, experiment_id, query_id, &w->runs))) {
         mpb__pa_walker_close(w);
-        return MPB_EDB;
+        return rc;
     }
     if ((w->row = malloc(sizeof *w->row * (size_t)(props->n + 1))) == NULL ||
         (w->ints = malloc(sizeof *w->ints * (size_t)(props->n + 1))) == NULL ||
@@ -146,8 +70,6 @@ int mpb__pa_walker_open(pa_walker **out, mpb_store *s, int64_t experiment_id,
         mpb__pa_walker_close(w);
         return mpb__store_fail(s, MPB_ENOMEM, "out of memory");
     }
-    sqlite3_bind_int64(w->runs, 1, experiment_id);
-    sqlite3_bind_int64(w->runs, 2, query_id);
     *out = w;
     return MPB_OK;
 }
@@ -166,74 +88,18 @@ char *mpb__pa_col_dup(sqlite3_stmt *st, int i)
     return strdup(t ? t : "");
 }
 
-/* Read the stages, metrics, planner values and progress of run_id. */
-static int read_run_parts(pa_walker *w, int64_t run_id)
+/* Progress: the store keeps one row per (sample, name), in the order
+ * received; consecutive rows at one time are one sample: a row here, a
+ * column per name. */
+static int gather_samples(pa_walker *w)
 {
-    int step;
-    sqlite3_stmt *st;
-
-    st = w->stages;
-    sqlite3_reset(st);
-    sqlite3_bind_int64(st, 1, run_id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        if (mpb__grow((void **)&w->st, &w->st_cap, w->num_st + 1, sizeof *w->st))
-            return MPB_ENOMEM;
-        stage_info *si = &w->st[w->num_st];
-        if ((si->name = mpb__pa_col_dup(st, 0)) == NULL)
-            return MPB_ENOMEM;
-        si->time = mpb__pa_col_num(st, 1);
-        si->num_waypoints = sqlite3_column_int(st, 2);
-        si->valid = sqlite3_column_int(st, 3) != 0;
-        w->num_st++;
-    }
-    if (step != SQLITE_DONE)
-        return mpb__store_db_fail(w->s, "read stages");
-
-    st = w->metrics;
-    sqlite3_reset(st);
-    sqlite3_bind_int64(st, 1, run_id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        if (mpb__grow((void **)&w->m, &w->m_cap, w->num_m + 1, sizeof *w->m))
-            return MPB_ENOMEM;
-        metric_info *mi = &w->m[w->num_m];
-        mi->stage = mpb__pa_col_dup(st, 0);
-        mi->name = mpb__pa_col_dup(st, 1);
-        w->num_m++;
-        if (mi->stage == NULL || mi->name == NULL)
-            return MPB_ENOMEM;
-        mi->value = mpb__pa_col_num(st, 2);
-    }
-    if (step != SQLITE_DONE)
-        return mpb__store_db_fail(w->s, "read metrics");
-
-    st = w->values;
-    sqlite3_reset(st);
-    sqlite3_bind_int64(st, 1, run_id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        if (mpb__grow((void **)&w->v, &w->v_cap, w->num_v + 1, sizeof *w->v))
-            return MPB_ENOMEM;
-        named_value *nv = &w->v[w->num_v];
-        if ((nv->name = mpb__pa_col_dup(st, 0)) == NULL)
-            return MPB_ENOMEM;
-        nv->value = mpb__pa_col_num(st, 1);
-        nv->is_int = sqlite3_column_type(st, 2) == SQLITE_INTEGER;
-        nv->exact = sqlite3_column_int64(st, 2);
-        w->num_v++;
-    }
-    if (step != SQLITE_DONE)
-        return mpb__store_db_fail(w->s, "read planner values");
-
-    /* Progress: the store keeps one row per (sample, name), in the order
-     * received; consecutive rows at one time are one sample: a row here,
-     * a column per name. */
+    const mpb__done_run *r = w->run;
     int np = w->progress->n;
     double last_time = NAN;
-    st = w->samples;
-    sqlite3_reset(st);
-    sqlite3_bind_int64(st, 1, run_id);
-    while ((step = sqlite3_step(st)) == SQLITE_ROW) {
-        double t = mpb__pa_col_num(st, 1);
-        if (w->num_smp == 0 || !(t == last_time)) {
+    w->num_smp = 0;
+    for (int i = 0; i < r->num_samples; i++) {
+        const mpb__done_sample *p = &r->samples[i];
+        if (w->num_smp == 0 || !(p->time == last_time)) {
             int cap = w->smp_cap / np;
             if (w->num_smp >= cap) {
                 int ncap = cap ? 2 * cap : 64;
@@ -247,76 +113,67 @@ static int read_run_parts(pa_walker *w, int64_t run_id)
             double *row = w->smp + (size_t)w->num_smp * (size_t)np;
             for (int k = 0; k < np; k++)
                 row[k] = NAN;
-            row[0] = t;
+            row[0] = p->time;
             w->num_smp++;
-            last_time = t;
+            last_time = p->time;
         }
-        const char *name = (const char *)sqlite3_column_text(st, 2);
         double *row = w->smp + (size_t)(w->num_smp - 1) * (size_t)np;
-        for (int k = 1; name && k < np; k++)
-            if (strcmp(w->progress->v[k].source, name) == 0)
-                row[k] = mpb__pa_col_num(st, 3);
+        for (int k = 1; p->name && k < np; k++)
+            if (strcmp(w->progress->v[k].source, p->name) == 0)
+                row[k] = p->value;
     }
-    if (step != SQLITE_DONE)
-        return mpb__store_db_fail(w->s, "read progress");
     return MPB_OK;
 }
 
-static double metric_of(const pa_walker *w, const stage_info *si,
+static double metric_of(const mpb__done_run *r, const mpb__done_stage *si,
                         const char *name)
 {
-    for (int i = 0; si && i < w->num_m; i++)
-        if (strcmp(w->m[i].stage, si->name) == 0 &&
-            strcmp(w->m[i].name, name) == 0)
-            return w->m[i].value;
+    for (int i = 0; si && i < r->num_metrics; i++)
+        if (strcmp(r->metrics[i].stage, si->name) == 0 &&
+            strcmp(r->metrics[i].name, name) == 0)
+            return r->metrics[i].value;
     return NAN;
 }
 
 int mpb__pa_walker_next(pa_walker *w, run_view *out)
 {
-    int step = sqlite3_step(w->runs), rc;
-    if (step == SQLITE_DONE)
-        return 0;
-    if (step != SQLITE_ROW)
-        return mpb__store_db_fail(w->s, "read runs");
-    walker_clear_run(w);
-    sqlite3_stmt *r = w->runs;
-    int64_t run_id = sqlite3_column_int64(r, 0);
-    if ((rc = read_run_parts(w, run_id)) != MPB_OK) {
-        if (rc == MPB_ENOMEM)
-            mpb__store_fail(w->s, rc, "out of memory");
+    int rc = mpb__run_cursor_next(w->runs, &w->run);
+    if (rc <= 0)
         return rc;
-    }
-    const char *status = (const char *)sqlite3_column_text(r, 3);
-    const char *final_name = (const char *)sqlite3_column_text(r, 10);
-    const stage_info *first = w->num_st > 0 ? &w->st[0] : NULL;
-    const stage_info *final = w->num_st > 0 ? &w->st[w->num_st - 1] : NULL;
-    for (int i = 0; final_name && i < w->num_st; i++)
-        if (strcmp(w->st[i].name, final_name) == 0)
-            final = &w->st[i];
+    const mpb__done_run *r = w->run;
+    if (gather_samples(w) != MPB_OK)
+        return mpb__store_fail(w->s, MPB_ENOMEM, "out of memory");
+    const char *status = r->status;
+    const char *final_name = r->final_stage;
+    const mpb__done_stage *first = r->num_stages > 0 ? &r->stages[0] : NULL;
+    const mpb__done_stage *final =
+        r->num_stages > 0 ? &r->stages[r->num_stages - 1] : NULL;
+    for (int i = 0; final_name && i < r->num_stages; i++)
+        if (strcmp(r->stages[i].name, final_name) == 0)
+            final = &r->stages[i];
 
     for (int k = 0; k < w->props->n; k++) {
         const prop *p = &w->props->v[k];
-        const stage_info *si = p->role == ROLE_FIRST ? first
+        const mpb__done_stage *si = p->role == ROLE_FIRST ? first
                              : p->role == ROLE_FINAL ? final
                              : p->role == ROLE_SIMPLIFIED && final != first
                                  ? final : NULL;
         if (p->role == ROLE_MID)
-            for (int i = 0; i < w->num_st; i++)
-                if (&w->st[i] != first && &w->st[i] != final &&
-                    strcmp(w->st[i].name, p->stage) == 0)
-                    si = &w->st[i];
+            for (int i = 0; i < r->num_stages; i++)
+                if (&r->stages[i] != first && &r->stages[i] != final &&
+                    strcmp(r->stages[i].name, p->stage) == 0)
+                    si = &r->stages[i];
         double v = NAN;
         w->is_int[k] = 0;
         switch (p->kind) {
-        case K_TIME:       v = mpb__pa_col_num(r, 6); break;
-        case K_TIME_RAW:   v = mpb__pa_col_num(r, 7); break;
-        case K_TIME_OTHER: v = mpb__pa_col_num(r, 8); break;
-        case K_WALL:       v = mpb__pa_col_num(r, 9); break;
-        case K_VERIFY:     v = mpb__pa_col_num(r, 11); break;
-        case K_MEMORY:     v = mpb__pa_col_num(r, 12); break;
-        case K_SOLVED:     v = mpb__pa_col_num(r, 4); break;
-        case K_CLAIMED:    v = mpb__pa_col_num(r, 5); break;
+        case K_TIME:       v = r->time_total; break;
+        case K_TIME_RAW:   v = r->time_raw; break;
+        case K_TIME_OTHER: v = r->time_other; break;
+        case K_WALL:       v = r->wall_time; break;
+        case K_VERIFY:     v = r->verify_time; break;
+        case K_MEMORY:     v = r->memory; break;
+        case K_SOLVED:     v = r->success; break;
+        case K_CLAIMED:    v = r->claimed_success; break;
         case K_APPROX:
             v = status ? strcmp(status, "approximate") == 0 : NAN;
             break;
@@ -324,29 +181,29 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
             v = status_value(status);
             /* An imported run keeps the log's own number as its value
              * "status": OMPL's 0, 8 and 9 are all mpbench's "failed". */
-            for (int i = 0; status && i < w->num_v; i++)
-                if (strcmp(w->v[i].name, "status") == 0 &&
-                    mpb_ompl_status_name(w->v[i].value) != NULL &&
-                    strcmp(mpb_ompl_status_name(w->v[i].value), status) == 0)
-                    v = w->v[i].value;
+            for (int i = 0; status && i < r->num_values; i++)
+                if (strcmp(r->values[i].name, "status") == 0 &&
+                    mpb_ompl_status_name(r->values[i].value) != NULL &&
+                    strcmp(mpb_ompl_status_name(r->values[i].value), status) == 0)
+                    v = r->values[i].value;
             break;
         case K_STAGE_TIME: v = si ? si->time : NAN; break;
-        case K_STAGE_METRIC: v = metric_of(w, si, p->source); break;
+        case K_STAGE_METRIC: v = metric_of(r, si, p->source); break;
         case K_STAGE_SEGMENTS:
             /* An imported run's stages have no waypoints, only the log's
              * count as the metric "waypoints" (mpb import). */
             v = si && si->num_waypoints > 0
                     ? si->num_waypoints - 1
-                    : metric_of(w, si, mpb_metric_info_of(
+                    : metric_of(r, si, mpb_metric_info_of(
                                            MPB_METRIC_WAYPOINTS)->name) - 1;
             break;
         case K_STAGE_VALID: v = si ? si->valid : NAN; break;
         case K_VALUE:
-            for (int i = 0; i < w->num_v; i++)
-                if (strcmp(w->v[i].name, p->source) == 0) {
-                    v = w->v[i].value;
-                    w->is_int[k] = (unsigned char)w->v[i].is_int;
-                    w->ints[k] = w->v[i].exact;
+            for (int i = 0; i < r->num_values; i++)
+                if (strcmp(r->values[i].name, p->source) == 0) {
+                    v = r->values[i].value;
+                    w->is_int[k] = (unsigned char)r->values[i].is_int;
+                    w->ints[k] = r->values[i].exact;
                 }
             break;
         }
@@ -355,9 +212,9 @@ int mpb__pa_walker_next(pa_walker *w, run_view *out)
         w->row[k] = v;
     }
     *out = (run_view){
-        .run_id = run_id,
-        .config_id = sqlite3_column_int64(r, 1),
-        .query_id = sqlite3_column_int64(r, 2),
+        .run_id = r->id,
+        .config_id = r->config_id,
+        .query_id = r->query_id,
         .values = w->row,
         .ints = w->ints,
         .is_int = w->is_int,

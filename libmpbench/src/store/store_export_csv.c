@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "store/store_export.h"
 #include "store/store_internal.h"
 
 /* A number in the fewest digits that read back as it: 0.08, not the
@@ -43,22 +44,6 @@ static void put_text(FILE *out, const char *t)
     fputc('"', out);
 }
 
-/* Whether experiment id is in the database. */
-static int known(mpb_store *s, int64_t id, int *yes)
-{
-    sqlite3_stmt *st = mpb__store_prepare(s,
-        "SELECT 1 FROM experiments WHERE id = ?");
-    if (st == NULL)
-        return MPB_EDB;
-    sqlite3_bind_int64(st, 1, id);
-    int step = sqlite3_step(st);
-    sqlite3_finalize(st);
-    if (step != SQLITE_ROW && step != SQLITE_DONE)
-        return mpb__store_db_fail(s, "read experiments");
-    *yes = step == SQLITE_ROW;
-    return MPB_OK;
-}
-
 int mpb_store_export_runs_csv(mpb_store *s, FILE *out, const int64_t *ids,
                               int num_ids, long *rows)
 {
@@ -78,11 +63,12 @@ int mpb_store_export_runs_csv(mpb_store *s, FILE *out, const int64_t *ids,
         n += (size_t)snprintf(sql + n, cap - n, "%s?", i ? "," : " WHERE "
                               "experiment_id IN (");
     snprintf(sql + n, cap - n, "%s ORDER BY run", num_ids ? ")" : "");
-    for (int i = 0; i < num_ids; i++) {
-        int yes = 0, rc = known(s, ids[i], &yes);
-        if (rc == MPB_OK && !yes)
-            rc = mpb__store_fail(s, MPB_ENOTFOUND, "no experiment %lld",
-                                 (long long)ids[i]);
+    if (num_ids > 0) {                  /* each id given must exist */
+        int64_t *known = NULL;
+        int num_known = 0;
+        int rc = mpb__store_experiment_ids(s, ids, num_ids, &known,
+                                           &num_known);
+        free(known);
         if (rc != MPB_OK) {
             free(sql);
             return rc;
