@@ -9,6 +9,15 @@
  * request seen again is answered from the results it remembers (the last
  * 64 runs), never solved twice.
  *
+ * Through a hub (tcpq://, link.h) each heartbeat also goes to the planner
+ * itself, on its own acknowledgement channel, and the hub relays it back.
+ * With none back for 5 s (or three heartbeats) while the link is
+ * connected, the hub is stalled (a client that never reads blocks it):
+ * the kit says so through on_warning, in one line, sends nothing but that
+ * echo meanwhile (its results are held, and the time counts against
+ * neither a run nor max_runs' wait for acknowledgements), and when an
+ * echo is back says so in one line and sends every result not yet stored.
+ *
  * Solving is synchronous, in the thread that called mpb_planner_serve()
  * (capacity 1): requests that arrive meanwhile wait in LCM's queue and are
  * taken when solve() returns. solve() gets the run's deadline and the
@@ -109,7 +118,8 @@ typedef struct mpb_planner_def {
     /*
      * Optional: called in the serving thread with one line for the user,
      * e.g. MPB_LCM_UNFILTERED when LCM's socket could not be filtered
-     * (lcm_filter.h); print it. NULL: the line is lost.
+     * (lcm_filter.h), or a hub stalled and relaying again (above); print
+     * it. NULL: the line is lost.
      */
     void      (*on_warning)(void *user, const char *line);
     /*

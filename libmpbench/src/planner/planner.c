@@ -1,4 +1,5 @@
-/* planner.c - a planner process's side of the protocol: announce, answer, re-send until acked. */
+/* planner.c - a planner process's side of the protocol: announce, answer,
+ * re-send until acked; through a hub, tell a stalled link and hold. */
 #include <errno.h>
 #include <limits.h>
 #include <pthread.h>
@@ -44,6 +45,12 @@
  * running this long after it began; a quicker result acknowledges its own
  * request. Well below the daemon's re-send interval (250 ms). */
 #define MPB__ACK_AFTER_S 0.05
+/* Through a hub, every heartbeat also goes to the planner itself, on its
+ * own acknowledgement channel: the hub relays it back. None back for this
+ * long (or three heartbeats, if longer) while connected: the hub is
+ * stalled (a client that never reads blocks it), as the daemon judges by
+ * its own statuses (MPBD_HUB_ECHO_MAX_S). */
+#define MPB__ECHO_MAX_S 5.0
 
 typedef struct mpb__kept {
     int used;
@@ -72,6 +79,15 @@ typedef struct mpb__server {
     int kept_next;              /* ring position of the next result */
     long hub_connects;          /* the hub link's connections, last seen */
 
+    /* Through a hub: the link's echo, watched by the serving thread. */
+    int is_hub;
+    double stall_s;             /* no echo this long: stalled */
+    double echo_back_s;         /* monotonic s: an echo came back, or a
+                                   connection began whose echo is to come */
+    long echo_connects;         /* the connection that echo_back_s is of */
+    double stalled_since;       /* the last echo before the stall */
+    int relays_again;           /* the stall ended: every result goes now */
+
     /* Shared with the heartbeat thread, under mu. */
     pthread_mutex_t mu;
     pthread_cond_t cond;
@@ -82,6 +98,9 @@ typedef struct mpb__server {
     int quit;
     int announce_now;
     double waiting_until;           /* the thread sleeps until; 0: awake */
+    int stalled;                    /* the hub relays nothing: send only
+                                       the echo (written by the serving
+                                       thread alone) */
     /* With a secret: the instance of the daemon last heard (auth.h),
      * which every message echoes; 0 before any, when the planner does
      * not announce (no daemon would believe it). */
@@ -367,6 +386,7 @@ static unsigned char *mpb__closing_announce(mpb__server *s,
 }
 
 static void mpb__ack(mpb__server *s, const char *run_id, int kind);
+static void mpb__echo(mpb__server *s);
 
 /*
  * The heartbeat thread: announce at once, then every heartbeat_ms; a change
@@ -374,7 +394,9 @@ static void mpb__ack(mpb__server *s, const char *run_id, int kind);
  * never closer than MPB__ANNOUNCE_GAP_MS to the last, so a fast planner
  * does not announce once per run. It also acknowledges the request being
  * solved once the solve has lasted MPB__ACK_AFTER_S: a planner that answers
- * sooner sends one message per run instead of two.
+ * sooner sends one message per run instead of two. Through a hub each
+ * heartbeat is echoed (mpb__echo); while the hub is stalled the echo is
+ * all it sends, the rest would only wait in the blocked connection.
  */
 static void *mpb__heartbeat_main(void *arg)
 {
@@ -391,17 +413,22 @@ static void *mpb__heartbeat_main(void *arg)
         if (s->announce_now && last_announce + gap < announce_due)
             announce_due = last_announce + gap;
 
+        int stalled = s->stalled;
         if (now >= ack_due) {
             char run[MPB_RUN_ID_SIZE];
             memcpy(run, s->active, sizeof run);
             s->active_acked = 1;
             pthread_mutex_unlock(&s->mu);
-            mpb__ack(s, run, MPB_RUN_ACK_T_REQUEST_RECEIVED);
+            if (!stalled)   /* else the daemon's re-sent request asks again */
+                mpb__ack(s, run, MPB_RUN_ACK_T_REQUEST_RECEIVED);
             pthread_mutex_lock(&s->mu);
         } else if (now >= announce_due) {
             s->announce_now = 0;    /* changes from here on: announce again */
             pthread_mutex_unlock(&s->mu);
-            mpb__announce(s);
+            if (!stalled)
+                mpb__announce(s);
+            if (s->is_hub)
+                mpb__echo(s);
             pthread_mutex_lock(&s->mu);
             last_announce = now;
             next_announce = now + s->heartbeat_ms / 1000.0;
@@ -474,6 +501,22 @@ static void mpb__ack(mpb__server *s, const char *run_id, int kind)
     mpb_publish_ack(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_ACK, &a);
 }
 
+/* The heartbeat's echo, to this planner itself on its acknowledgement
+ * channel (no run, sender_id its own id, and with a secret echoing its
+ * own instance, so that its gate believes it): the hub relays it back
+ * only while it relays at all. */
+static void mpb__echo(mpb__server *s)
+{
+    mpb_run_ack_t a;
+    memset(&a, 0, sizeof a);
+    a.utime = mpb_utime_now();
+    a.run_id = "";
+    a.sender_id = s->id;
+    a.kind = MPB_RUN_ACK_T_REQUEST_RECEIVED;
+    mpb_publish_ack(s->lcm, s->auth, mpb_auth_instance(s->auth),
+                    s->ack_channel, &a);
+}
+
 /* The kept result of run_id, or NULL. Newest first: the run asked about is
  * nearly always the last one answered. */
 static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
@@ -488,11 +531,14 @@ static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
 }
 
 /* Publish a kept result. A failed send (the socket's buffer full, say) is
- * not an error: it counts as a lost message, which the re-sends cover. */
+ * not an error: it counts as a lost message, which the re-sends cover.
+ * With the hub stalled it is held instead: it goes when the hub relays
+ * again (mpb__resend_due). */
 static void mpb__send(mpb__server *s, mpb__kept *k)
 {
-    mpb_publish_result(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_RESULT,
-                       &k->res);
+    if (!s->stalled)
+        mpb_publish_result(s->lcm, s->auth, mpb__daemon(s),
+                           MPB_CHANNEL_RESULT, &k->res);
     double now = mpb_monotonic_s(), wait = MPB__RESEND_S;
     for (int i = 0; i < k->sends && wait < MPB__RESEND_MAX_S; i++)
         wait *= 2;
@@ -717,16 +763,24 @@ static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
         k->acked = 1;
 }
 
+static void mpb__echo_back(mpb__server *s);
+
+/* The daemon's acknowledgement, or this planner's own echo: from its id,
+ * and with a secret from its own instance. */
 static void mpb__on_ack_raw(const lcm_recv_buf_t *rbuf, const char *channel,
                             void *user)
 {
+    mpb__server *s = user;
     mpb_run_ack_t m;
     mpb_received r;
-    if (mpb_receive(((mpb__server *)user)->auth, MPB_RECEIVE_FRESH,
-                    MPB_WIRE_RUN_ACK, channel, rbuf->data, rbuf->data_size,
-                    &m, &r) != MPB_OK)
+    if (mpb_receive(s->auth, MPB_RECEIVE_FRESH, MPB_WIRE_RUN_ACK, channel,
+                    rbuf->data, rbuf->data_size, &m, &r) != MPB_OK)
         return;
-    mpb__on_ack(rbuf, channel, &m, user);
+    if (strcmp(m.sender_id, s->id) == 0 &&
+        (s->auth == NULL || r.info.instance == mpb_auth_instance(s->auth)))
+        mpb__echo_back(s);
+    else
+        mpb__on_ack(rbuf, channel, &m, user);
     mpb_receive_done(MPB_WIRE_RUN_ACK, &m);
 }
 
@@ -749,10 +803,80 @@ static void mpb__on_status_raw(const lcm_recv_buf_t *rbuf,
     mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &m);
 }
 
+/* ---- a stalled hub ----------------------------------------------------- */
+
+static void mpb__warn(mpb__server *s, const char *fmt, ...)
+{
+    if (s->def->on_warning == NULL)
+        return;
+    char line[320];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    s->def->on_warning(s->def->user, line);
+}
+
+static void mpb__set_stalled(mpb__server *s, int stalled)
+{
+    pthread_mutex_lock(&s->mu);
+    s->stalled = stalled;
+    if (!stalled) {                 /* the daemon hears of it at once */
+        s->announce_now = 1;
+        pthread_cond_signal(&s->cond);
+    }
+    pthread_mutex_unlock(&s->mu);
+}
+
+/* An echo came back: the hub relays; if it was stalled, say so once and
+ * have every result not yet stored sent at once. */
+static void mpb__echo_back(mpb__server *s)
+{
+    double now = mpb_monotonic_s();
+    s->echo_back_s = now;
+    if (!s->stalled)
+        return;
+    mpb__set_stalled(s, 0);
+    s->relays_again = 1;
+    mpb__warn(s, "the hub relays again after %.1f s: the results it has "
+              "not stored go again now", now - s->stalled_since);
+}
+
+/* With nothing waiting to be handled (so that an echo received is one
+ * handled, however long a solve kept this thread): connected, and none of
+ * the heartbeats' echoes back for stall_s, the hub is stalled. The link
+ * away is an outage instead (it reconnects, and the results go again), and
+ * a new connection's echo is yet to come. Once stalled, only an echo ends
+ * it, whatever the link does meanwhile. */
+static void mpb__watch_link(mpb__server *s)
+{
+    if (!s->is_hub || s->stalled)
+        return;
+    double now = mpb_monotonic_s();
+    mpb_hub_stats st;
+    mpb_lcm_hub_stats(s->lcm, &st);
+    if (!st.connected || st.connects != s->echo_connects) {
+        s->echo_connects = st.connects;
+        s->echo_back_s = now;
+        return;
+    }
+    if (now - s->echo_back_s <= s->stall_s)
+        return;
+    s->stalled_since = s->echo_back_s;
+    mpb__set_stalled(s, 1);
+    mpb__warn(s, "the hub is stalled: connected, but none of this "
+              "planner's heartbeats has come back for %.1f s (a client "
+              "that never reads blocks it, docs/topology.md); its results "
+              "wait until it relays again", now - s->echo_back_s);
+}
+
 /* ---- the loop ---------------------------------------------------------- */
 
 /* Re-send due results; return the seconds until the next one is due.
- * *pending: results not acknowledged that a closing planner waits for. */
+ * *pending: results not acknowledged that a closing planner waits for.
+ * While the hub is stalled nothing is sent and every such result is
+ * pending: that time is not the planner's, nor the closing wait's, which
+ * begins again when the hub relays again. */
 static double mpb__resend_due(mpb__server *s, int *pending)
 {
     double now = mpb_monotonic_s(), wait = MPB__POLL_S;
@@ -761,15 +885,23 @@ static double mpb__resend_due(mpb__server *s, int *pending)
     mpb_lcm_hub_stats(s->lcm, &st);
     int relinked = st.connects != s->hub_connects;
     s->hub_connects = st.connects;
+    int again = s->relays_again;
+    s->relays_again = 0;
     *pending = 0;
     for (int i = 0; i < MPB__RESULTS_KEPT; i++) {
         mpb__kept *k = &s->kept[i];
         if (!k->used || k->acked)
             continue;
-        if (relinked) {
+        if (s->stalled) {
+            (*pending)++;
+            continue;
+        }
+        if (relinked || again) {
             k->sends = 0;
             k->next_send_s = now;
         }
+        if (again)
+            k->first_send_s = now;
         if (k->next_send_s <= now)
             mpb__send(s, k);
         if (now - k->first_send_s < MPB__CLOSING_WAIT_S)
@@ -812,6 +944,8 @@ static int mpb__loop(mpb__server *s, volatile sig_atomic_t *stop,
             snprintf(err, errlen, "select on the LCM socket: %s", strerror(errno));
             return MPB_ELCM;
         }
+        if (n == 0)
+            mpb__watch_link(s);
         if (n > 0 && lcm_handle(s->lcm) != 0) {
             snprintf(err, errlen, "lcm_handle failed");
             return MPB_ELCM;
@@ -909,6 +1043,14 @@ int mpb_planner_serve(const mpb_planner_def *def, const char *lcm_url,
     /* Through a hub, the link connects in the background: a moment for
      * it, so that the first announcement is not lost. */
     mpb_lcm_hub_wait(s->lcm, 2.0);
+    mpb_hub_stats st;
+    mpb_lcm_hub_stats(s->lcm, &st);
+    s->is_hub = st.is_hub;
+    s->stall_s = 3.0 * s->heartbeat_ms / 1000.0;
+    if (s->stall_s < MPB__ECHO_MAX_S)
+        s->stall_s = MPB__ECHO_MAX_S;
+    s->echo_back_s = mpb_monotonic_s();
+    s->echo_connects = st.connects;
     lcm_subscription_set_queue_capacity(rsub, MPB__REQUEST_QUEUE);
     lcm_subscription_set_queue_capacity(asub, MPB__ACK_QUEUE);
 
