@@ -5,7 +5,10 @@ One thread (the caller's) plans; another runs LCM: it takes requests into a
 queue, acknowledges them, announces the planner every heartbeat, and
 re-sends each result until the daemon acknowledges it. A request seen
 before is never planned twice: it is answered with the result already
-made, or only acknowledged while planning.
+made, or only acknowledged while planning. Through a hub it also tells a
+stalled hub, as the C kit does: each heartbeat goes to the node itself
+too, and with none back for ECHO_MAX_S while connected it says so in one
+line and holds its results until one is back (one line more).
 
 Reusable for any planner in Python (docs/writing-a-planner.md):
 
@@ -55,6 +58,9 @@ HEARTBEAT_S = 0.5
 RESEND_S = 0.2              # a result's first re-send; the wait doubles
 RESEND_MAX_S = 2.0          # to this, until the daemon acknowledges it
 STATUS = "MPB_STATUS"
+ECHO_MAX_S = 5.0            # through a hub, no heartbeat back this long
+                            # while connected: the hub is stalled (the C
+                            # kit's MPB__ECHO_MAX_S, the daemon's too)
 PLANNER_ID_MAX = 51         # MPB_REQUEST_<id> within LCM's 63 characters
 MESSAGE_MAX = 1000          # characters of an exception kept in a message
 LCM_MESSAGE_MAX = 16 << 20  # MPB_LCM_MESSAGE_MAX (lcm_filter.h): every
@@ -117,11 +123,12 @@ class Node:
         # Its two channels (and with a secret the daemon's status, for
         # the instance to echo), and no malformed datagram (sockfilter.py).
         request = REQUEST_PREFIX + self.planner_id
-        ack = ACK + "_" + self.planner_id
+        ack = self.ack_channel = ACK + "_" + self.planner_id
         # Through a hub (hub.py, libmpbench's link): no socket to
         # filter, every length checked before it is read.
         channels = [request, ack] + ([STATUS] if auth is not None else [])
-        if is_hub(url):
+        self.hub = is_hub(url)
+        if self.hub:
             self.lc, filtered = HubLCM(url, channels), True
         else:
             self.lc, filtered = filtered_lcm(url, channels)
@@ -138,6 +145,14 @@ class Node:
         self.unacked = {}        # run id -> (next time to re-send its
                                  # result, the wait after that)
         self.connects = 0        # the hub link's connections, last seen
+        # Through a hub, the heartbeat's echo (the LCM thread's alone).
+        self.echo_back = time.monotonic()   # one came back, or a
+                                 # connection began whose echo is to come
+        self.echo_connects = 0   # the connection echo_back is of
+        self.stalled = False     # the hub relays nothing: send the echo
+                                 # alone, hold the results
+        self.stalled_since = 0.0
+        self.relays_again = False
         self.active = []
         self.stopping = False
         self.announce_now = False
@@ -151,6 +166,9 @@ class Node:
     def log(self, text: str) -> None:
         if self.verbose:
             print(f"mpb-planner-python: {text}", file=sys.stderr, flush=True)
+
+    def warn(self, text: str) -> None:
+        print(f"mpb-planner-python: {text}", file=sys.stderr, flush=True)
 
     # ---- sending ---------------------------------------------------------
 
@@ -183,21 +201,36 @@ class Node:
         k.run_id, k.sender_id, k.kind = run_id, self.planner_id, kind
         self._publish(ACK, k.encode())
 
+    def _echo(self):
+        """The heartbeat's echo, to the node itself on its acknowledgement
+        channel (no run, sender_id its own id, with a secret echoing its
+        own instance): the hub relays it back while it relays at all."""
+        k = run_ack_t()
+        k.utime = int(time.time() * 1e6)
+        k.run_id, k.sender_id = "", self.planner_id
+        k.kind = run_ack_t.REQUEST_RECEIVED
+        data = k.encode()
+        if self.auth:
+            data = self.auth.seal(self.ack_channel, data, self.auth.instance)
+        self.lc.publish(self.ack_channel, data)
+
     # ---- receiving (LCM thread) -------------------------------------------
 
     def _unseal(self, channel, data):
-        """The message to decode, if authentic and fresh (a request or an
-        acknowledgement from a daemon that echoes this process)."""
+        """(the message to decode, its sender's instance) if authentic and
+        fresh (a request or an acknowledgement from a daemon that echoes
+        this process, or the node's own echo), else (None, 0); without a
+        secret the sender is 0."""
         if self.auth is None:
-            return data
+            return data, 0
         verdict, body, sender = self.auth.open(channel, data)
         if verdict != Auth.FRESH:
             self.log(f"dropped a message on {channel}: "
                      f"{Auth.verdict_text(verdict)}")
-            return None
+            return None, 0
         if channel.startswith(REQUEST_PREFIX):
             self.daemon = sender
-        return body
+        return body, sender
 
     def _on_status(self, channel, data):
         verdict, body, sender = self.auth.open(channel, data)
@@ -212,7 +245,7 @@ class Node:
             self.announce_now = True
 
     def _on_request(self, channel, data):
-        data = self._unseal(channel, data)
+        data, _ = self._unseal(channel, data)
         if data is None:
             return
         try:
@@ -239,16 +272,53 @@ class Node:
             self._publish(RESULT, result)
 
     def _on_ack(self, channel, data):
-        data = self._unseal(channel, data)
+        data, sender = self._unseal(channel, data)
         if data is None:
             return
         try:
             k = run_ack_t.decode(data)
         except Exception:
             return
-        if k.kind in (run_ack_t.RESULT_STORED, run_ack_t.RESULT_REJECTED):
+        if k.sender_id == self.planner_id and (
+                self.auth is None or sender == self.auth.instance):
+            self._echo_back()
+        elif k.kind in (run_ack_t.RESULT_STORED, run_ack_t.RESULT_REJECTED):
             with self.lock:
                 self.unacked.pop(k.run_id, None)
+
+    # ---- a stalled hub (LCM thread) ---------------------------------------
+
+    def _echo_back(self):
+        """An echo came back: the hub relays; if it was stalled, say so
+        once and have every result not yet stored sent at once."""
+        now = time.monotonic()
+        self.echo_back = now
+        if self.stalled:
+            self.stalled, self.relays_again = False, True
+            self.announce_now = True
+            self.warn(f"the hub relays again after "
+                      f"{now - self.stalled_since:.1f} s: the results it "
+                      f"has not stored go again now")
+
+    def _watch_link(self):
+        """With nothing waiting to be handled: connected, and no echo back
+        for ECHO_MAX_S, the hub is stalled. The link away is an outage
+        instead, and a new connection's echo is yet to come; once stalled,
+        only an echo ends it."""
+        if not self.hub or self.stalled:
+            return
+        now, st = time.monotonic(), self.lc.stats()
+        if not st.connected or st.connects != self.echo_connects:
+            self.echo_connects, self.echo_back = st.connects, now
+            return
+        if now - self.echo_back <= ECHO_MAX_S:
+            return
+        self.stalled, self.stalled_since = True, self.echo_back
+        self.warn(f"the hub is stalled: connected, but none of this "
+                  f"planner's heartbeats has come back for "
+                  f"{now - self.echo_back:.1f} s (a client that never reads "
+                  f"blocks it, docs/topology.md); its results wait until it "
+                  f"relays again")
 
     def _lcm_loop(self):
         next_announce = 0.0
@@ -256,22 +326,31 @@ class Node:
             now = time.monotonic()
             if now >= next_announce or self.announce_now:
                 self.announce_now = False
-                self._announce()
+                if not self.stalled:    # else it would wait in the hub
+                    self._announce()
+                if self.hub:
+                    self._echo()
                 next_announce = now + HEARTBEAT_S
             # A hub link connected again: what was sent meanwhile was
-            # lost, so every result not acknowledged goes again now.
+            # lost, so every result not acknowledged goes again now; so
+            # it does when a stalled hub relays again, and none goes
+            # while it is stalled.
             connects = getattr(self.lc, "connects", 0)
             relinked, self.connects = connects != self.connects, connects
+            relinked = relinked or self.relays_again
+            self.relays_again = False
             with self.lock:
-                due = [r for r, (t, _) in self.unacked.items()
-                       if t <= now or relinked]
+                due = [] if self.stalled else [
+                    r for r, (t, _) in self.unacked.items()
+                    if t <= now or relinked]
                 for r in due:
                     wait = RESEND_S if relinked else self.unacked[r][1]
                     self.unacked[r] = (now + wait, min(2 * wait, RESEND_MAX_S))
                 resend = [self.seen[r] for r in due]
             for data in resend:
                 self._publish(RESULT, data)
-            self.lc.handle_timeout(50)
+            if self.lc.handle_timeout(50) == 0:
+                self._watch_link()
 
     # ---- planning (caller's thread) ---------------------------------------
 
@@ -362,7 +441,8 @@ class Node:
                 self.seen[req.run_id] = data
                 self.unacked[req.run_id] = (time.monotonic() + RESEND_S,
                                             2 * RESEND_S)
-            self._publish(RESULT, data)
+            if not self.stalled:        # else it goes when the hub relays
+                self._publish(RESULT, data)
             self.log(f"run {req.run_id[:8]}: status {res.status}, "
                      f"{res.time_total:.3f} s")
         t.join(timeout=1.0)
