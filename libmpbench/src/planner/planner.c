@@ -51,6 +51,10 @@
  * stalled (a client that never reads blocks it), as the daemon judges by
  * its own statuses (MPBD_HUB_ECHO_MAX_S). */
 #define MPB__ECHO_MAX_S 5.0
+/* A closing planner (max_runs reached) waits through a stall for its last
+ * results' acknowledgements as long as the daemon waits for a hub away or
+ * stalled before it stops (MPBD_HUB_AWAY_MAX_S), then stops too. */
+#define MPB__STALL_CLOSING_MAX_S 60.0
 
 typedef struct mpb__kept {
     int used;
@@ -893,7 +897,8 @@ static double mpb__resend_due(mpb__server *s, int *pending)
         if (!k->used || k->acked)
             continue;
         if (s->stalled) {
-            (*pending)++;
+            if (now - s->stalled_since < MPB__STALL_CLOSING_MAX_S)
+                (*pending)++;
             continue;
         }
         if (relinked || again) {
@@ -928,8 +933,16 @@ static int mpb__loop(mpb__server *s, volatile sig_atomic_t *stop,
 
         int pending;
         double wait = mpb__resend_due(s, &pending);
-        if (s->max_runs > 0 && s->solved >= s->max_runs && pending == 0)
+        if (s->max_runs > 0 && s->solved >= s->max_runs && pending == 0) {
+            int held = 0;
+            for (int i = 0; s->stalled && i < MPB__RESULTS_KEPT; i++)
+                held += s->kept[i].used && !s->kept[i].acked;
+            if (held > 0)
+                mpb__warn(s, "the hub has been stalled for %.0f s: stopping "
+                          "with %d results not acknowledged, as the daemon "
+                          "stops", mpb_monotonic_s() - s->stalled_since, held);
             return MPB_OK;
+        }
 
         fd_set fds;
         FD_ZERO(&fds);
