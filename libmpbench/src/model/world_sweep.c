@@ -262,13 +262,26 @@ static double joint_rate(const mpb_robot *r, const mpb_robot_link *l,
     return 0.0;
 }
 
-/* The distance of world point x from the line through o along unit w. */
-static double line_dist(const double x[3], const double o[3], const double w[3])
+/* The squared distance of world point x from the line through o along
+ * unit w. */
+static double line_dist2(const double x[3], const double o[3], const double w[3])
 {
     double p[3] = { x[0] - o[0], x[1] - o[1], x[2] - o[2] };
     double c0 = p[1] * w[2] - p[2] * w[1], c1 = p[2] * w[0] - p[0] * w[2],
            c2 = p[0] * w[1] - p[1] * w[0];
-    return sqrt(c0 * c0 + c1 * c1 + c2 * c2);
+    return c0 * c0 + c1 * c1 + c2 * c2;
+}
+
+/* fmax() and fmin() inline, NaN as they treat it (the other operand):
+ * libm's are calls, here in the innermost loop of every step. */
+static inline double max2(double a, double b)
+{
+    return a > b || b != b ? a : b;
+}
+
+static inline double min2(double a, double b)
+{
+    return a < b || b != b ? a : b;
 }
 
 /* Body id's bounds where the robot stands (pose: the body's frame). */
@@ -286,21 +299,27 @@ static void place_bounds(rates *t, int id, const mpb_pose *pose)
 }
 
 /* How far body id's points lie from the axis through o along w, where the
- * robot stands (place_bounds()). */
+ * robot stands (place_bounds()); or, once that plus extra passes cap, any
+ * value that does (the caller takes min(cap, this + extra): cap either
+ * way). The larger of two square roots is the root of the larger square,
+ * to the bit; a capsule is only measured if its sphere reaches further
+ * than the bounds before it, else the least of the two cannot matter. */
 static double axis_reach(const rates *t, int id, const double o[3],
-                         const double w[3])
+                         const double w[3], double extra, double cap)
 {
     double far = 0.0;
     const mpb__body_bound *b = t->bounds + t->bound_off[id];
     double (*at)[3][3] = t->at + t->bound_off[id];
     for (int k = 0; k < t->bound_len[id]; k++) {
-        double r = line_dist(at[k][0], o, w) + b[k].radius;
-        if (b[k].cap_radius >= 0) {
-            double rc = fmax(line_dist(at[k][1], o, w), line_dist(at[k][2], o, w)) +
-                        b[k].cap_radius;
-            r = fmin(r, rc);
+        double r = sqrt(line_dist2(at[k][0], o, w)) + b[k].radius;
+        if (b[k].cap_radius >= 0 && !(r <= far)) {
+            double rc = sqrt(max2(line_dist2(at[k][1], o, w),
+                                  line_dist2(at[k][2], o, w))) + b[k].cap_radius;
+            r = min2(r, rc);
         }
-        far = fmax(far, r);
+        far = max2(far, r);
+        if (far + extra >= cap)
+            return far;
     }
     return far;
 }
@@ -349,7 +368,9 @@ static void body_walk(rates *t, const mpb_pose *poses, int id, double h)
             if (t->axis[l] && o->v > 0) {
                 if (!placed++)
                     place_bounds(t, id, &poses[t->link[id]]);
-                far = fmin(far, axis_reach(t, id, poses[l].t, o->w) + rate * h);
+                double extra = rate * h;
+                far = min2(far, axis_reach(t, id, poses[l].t, o->w, extra, far) +
+                                extra);
             }
             rate += o->v * far;
             break;
