@@ -73,17 +73,83 @@ static int project(double q[][3], int k, double out[3])
     return 1;
 }
 
+/* The projection of the origin onto face {p[i], p[j]} (i < j) or
+ * {p[i], p[j], p[l]} (i < j < l; l < 0 for an edge), as project() finds
+ * it, to the bit, from the differences and dot products the faces share
+ * (tab). 1 if it falls inside the face, into out; 0 if not. */
+struct simplex_tab {
+    double d[4][4][3];          /* d[i][j] = p[j] - p[i], i < j */
+    double dd[4][4];            /* d[i][j] . d[i][j] */
+    double pd[4][4];            /* p[i] . d[i][j] */
+};
+
+static int project_face(double p[][3], const struct simplex_tab *t, int i,
+                        int j, int l, double out[3])
+{
+    const double *e0 = t->d[i][j], *e1 = l >= 0 ? t->d[i][l] : NULL;
+    double w0, w1 = 0;
+    if (l < 0) {
+        double den = t->dd[i][j];
+        if (!(den > 0))
+            return 0;
+        w0 = -t->pd[i][j] / den;
+        if (!(w0 > 0) || !(w0 < 1))
+            return 0;
+    } else {
+        double a11 = t->dd[i][j], a12 = dot(e0, e1), a22 = t->dd[i][l];
+        double b1 = -t->pd[i][j], b2 = -t->pd[i][l];
+        double det = a11 * a22 - a12 * a12;
+        if (!(det > 1e-12 * a11 * a22))
+            return 0;
+        w0 = (b1 * a22 - b2 * a12) / det;
+        w1 = (a11 * b2 - a12 * b1) / det;
+        if (!(w0 > 0) || !(w1 > 0) || !(w0 + w1 < 1))
+            return 0;
+    }
+    for (int k = 0; k < 3; k++) {
+        out[k] = p[i][k];
+        out[k] += w0 * e0[k];
+        if (e1)
+            out[k] += w1 * e1[k];
+    }
+    return 1;
+}
+
+/*
+ * Every face in the order of its mask, as project() on each would: the
+ * edges and triangles from the differences and dot products they share
+ * (the same operations on the same operands, so the same doubles), the
+ * tetrahedron by project() itself.
+ */
 int mpb__simplex_nearest(double p[][3], int m, double v[3])
 {
     double best = INFINITY, q[4][3], x[3];
     int best_mask = 1;
+    struct simplex_tab t;
+    for (int i = 0; i < m; i++)
+        for (int j = i + 1; j < m; j++) {
+            for (int k = 0; k < 3; k++)
+                t.d[i][j][k] = p[j][k] - p[i][k];
+            t.dd[i][j] = dot(t.d[i][j], t.d[i][j]);
+            t.pd[i][j] = dot(p[i], t.d[i][j]);
+        }
     v[0] = p[0][0], v[1] = p[0][1], v[2] = p[0][2];
     for (int mask = 1; mask < (1 << m); mask++) {
-        int k = 0;
+        int idx[4], k = 0;
         for (int i = 0; i < m; i++)
             if (mask >> i & 1)
-                memcpy(q[k++], p[i], sizeof q[0]);
-        int r = project(q, k, x);
+                idx[k++] = i;
+        int r;
+        if (k == 1) {
+            memcpy(x, p[idx[0]], sizeof x);
+            r = 1;
+        } else if (k < 4) {
+            r = project_face(p, &t, idx[0], idx[1], k == 3 ? idx[2] : -1, x);
+        } else {
+            for (int i = 0; i < 4; i++)
+                memcpy(q[i], p[i], sizeof q[0]);
+            r = project(q, 4, x);
+        }
         if (r < 0) {
             v[0] = v[1] = v[2] = 0;
             return 0;
