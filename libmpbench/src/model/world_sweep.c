@@ -74,6 +74,8 @@ typedef struct rates {
     double              (*at)[3][3]; /* by bound, each step: its sphere's
                                         centre and capsule's ends, world */
     int                  *depth;     /* by link: hops to the root */
+    const mpb_robot_link **lk;       /* by link: the robot's own, to walk
+                                        without a call a hop */
     int                  *anc;       /* ids x ids: common ancestor link */
     const double        **axis;      /* by link: its joint's axis (own
                                         frame) if an active revolute one */
@@ -104,6 +106,7 @@ static void rates_free(void *p)
     free(t->bounds);
     free(t->at);
     free(t->depth);
+    free(t->lk);
     free(t->anc);
     free(t->axis);
     free(t->hop);
@@ -188,13 +191,14 @@ static rates *rates_make(const mpb_robot *r, mpb_collision *coll,
     t->bound_off = calloc(n, sizeof *t->bound_off);
     t->bound_len = calloc(n, sizeof *t->bound_len);
     t->depth = calloc((size_t)nl + 1, sizeof *t->depth);
+    t->lk = calloc((size_t)nl + 1, sizeof *t->lk);
     t->anc = malloc(n * n * sizeof *t->anc);
     t->rate = calloc(n, sizeof *t->rate);
     t->partial_off = calloc(n, sizeof *t->partial_off);
     t->axis = calloc((size_t)nl + 1, sizeof *t->axis);
     t->hop = calloc((size_t)nl + 1, sizeof *t->hop);
     if (!t->att || !t->att_link || !t->link || !t->reach || !t->bound_off ||
-        !t->bound_len || !t->depth || !t->anc || !t->rate || !t->partial_off ||
+        !t->bound_len || !t->depth || !t->lk || !t->anc || !t->rate || !t->partial_off ||
         !t->axis || !t->hop) {
         rates_free(t);
         return NULL;
@@ -207,6 +211,7 @@ static rates *rates_make(const mpb_robot *r, mpb_collision *coll,
         t->link[i] = -1;
     /* depth: parents need not come first in the link table */
     for (int l = 0; l < nl; l++) {
+        t->lk[l] = mpb_robot_get_link(r, l);
         int k = 0;
         for (int p = mpb_robot_get_link(r, l)->parent; p >= 0 && k <= nl;
              p = mpb_robot_get_link(r, p)->parent)
@@ -328,7 +333,7 @@ static double axis_reach(const rates *t, int id, const double o[3],
 static void links_step(rates *t, const mpb_pose *poses, const double *d)
 {
     for (int l = 0; l < t->nl; l++) {
-        const mpb_robot_link *link = mpb_robot_get_link(t->r, l);
+        const mpb_robot_link *link = t->lk[l];
         struct hop *o = &t->hop[l];
         if (link->parent < 0)
             continue;
@@ -352,14 +357,13 @@ static void links_step(rates *t, const mpb_pose *poses, const double *d)
  * top), over a horizon of h units of s (links_step() taken). */
 static void body_walk(rates *t, const mpb_pose *poses, int id, double h)
 {
-    const mpb_robot *r = t->r;
     int l = t->link[id], k = 0, depth = t->depth[l];
     double *part = t->partial + t->partial_off[id];
     double rate = 0.0, acc = t->reach[id];
     part[0] = 0.0;
     int placed = 0;
     while (k < depth) {
-        const mpb_robot_link *link = mpb_robot_get_link(r, l);
+        const mpb_robot_link *link = t->lk[l];
         const struct hop *o = &t->hop[l];
         switch (link->joint_type) {
         case MPB_JOINT_REVOLUTE:
