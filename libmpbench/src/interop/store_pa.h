@@ -26,6 +26,7 @@
 #include <sqlite3.h>
 
 #include "mpbench/ompl_log.h"
+#include "store/store_columns.h"
 #include "store/store_export.h"
 
 /* ---- run properties (store_pa_props.c) ------------------------------------ */
@@ -87,12 +88,6 @@ int mpb__pa_same_column(const char *a, const char *b);
  */
 int mpb__pa_experiment_props(mpb_store *s, int64_t experiment_id,
                              prop_list *props, prop_list *progress);
-
-/* A column's text, copied ("" for NULL); NULL when out of memory. */
-char *mpb__pa_col_dup(sqlite3_stmt *st, int i);
-
-/* A column's number, NaN for NULL and for what is not finite. */
-double mpb__pa_col_num(sqlite3_stmt *st, int i);
 
 /* ---- the walk over the runs (store_pa_walk.c) ------------------------------ */
 

@@ -76,7 +76,7 @@ int mpb__pa_ensure_columns(pa_out *o, const char *table,
     while ((step = sqlite3_step(st)) == SQLITE_ROW) {
         if (mpb__grow((void **)&have.v, &have.cap, have.n + 1,
                       sizeof *have.v) ||
-            (have.v[have.n] = mpb__pa_col_dup(st, 1)) == NULL) {
+            (have.v[have.n] = mpb__col_dup(st, 1)) == NULL) {
             rc = MPB_ENOMEM;
             break;
         }

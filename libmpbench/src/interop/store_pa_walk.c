@@ -74,20 +74,6 @@ int mpb__pa_walker_open(pa_walker **out, mpb_store *s, int64_t experiment_id,
     return MPB_OK;
 }
 
-double mpb__pa_col_num(sqlite3_stmt *st, int i)
-{
-    if (sqlite3_column_type(st, i) == SQLITE_NULL)
-        return NAN;
-    double v = sqlite3_column_double(st, i);
-    return isfinite(v) ? v : NAN;
-}
-
-char *mpb__pa_col_dup(sqlite3_stmt *st, int i)
-{
-    const char *t = (const char *)sqlite3_column_text(st, i);
-    return strdup(t ? t : "");
-}
-
 /* Progress: the store keeps one row per (sample, name), in the order
  * received; consecutive rows at one time are one sample: a row here, a
  * column per name. */

@@ -11,6 +11,7 @@
 
 #include "core/grow.h"
 #include "store/store_export.h"
+#include "store/store_columns.h"
 #include "store/store_internal.h"
 
 mpb_store *mpb__store_errors_create(void)
@@ -27,36 +28,14 @@ const char *mpb__store_filename(mpb_store *s)
     return f ? f : "";
 }
 
-/* A column's number, NaN for NULL and for what is not finite. */
-static double col_num(sqlite3_stmt *st, int i)
-{
-    if (sqlite3_column_type(st, i) == SQLITE_NULL)
-        return NAN;
-    double v = sqlite3_column_double(st, i);
-    return isfinite(v) ? v : NAN;
-}
-
-/* A column's text, copied ("" for NULL); NULL when out of memory. */
-static char *col_dup(sqlite3_stmt *st, int i)
-{
-    const char *t = (const char *)sqlite3_column_text(st, i);
-    return strdup(t ? t : "");
-}
-
 /* A column's text, copied, NULL for NULL; *oom set when out of memory. */
 static char *col_dup_or_null(sqlite3_stmt *st, int i, int *oom)
 {
-    if (sqlite3_column_type(st, i) == SQLITE_NULL)
+    if (mpb__col_is_null(st, i))
         return NULL;
-    char *c = col_dup(st, i);
+    char *c = mpb__col_dup(st, i);
     *oom |= c == NULL;
     return c;
-}
-
-static const char *col_text(sqlite3_stmt *st, int i)
-{
-    const char *t = (const char *)sqlite3_column_text(st, i);
-    return t ? t : "";
 }
 
 static int oom(mpb_store *s)
@@ -102,8 +81,8 @@ static int read_log_header(mpb_store *s, exp_info *e)
         e->started = col_dup_or_null(st, 0, &no_mem);
         e->seed = col_dup_or_null(st, 1, &no_mem);
         e->cpuinfo = col_dup_or_null(st, 2, &no_mem);
-        e->total_time = col_num(st, 3);
-        e->memory_limit = col_num(st, 4);
+        e->total_time = mpb__col_finite(st, 3);
+        e->memory_limit = mpb__col_finite(st, 4);
     }
     sqlite3_finalize(st);
     if (!no_mem && mpb__store_has_column(s, "experiment_params", "name")) {
@@ -121,7 +100,7 @@ static int read_log_header(mpb_store *s, exp_info *e)
                 break;
             }
             exp_param *p = &e->params[e->num_params++];
-            *p = (exp_param){col_dup(st, 0), col_dup(st, 1), col_dup(st, 2)};
+            *p = (exp_param){mpb__col_dup(st, 0), mpb__col_dup(st, 1), mpb__col_dup(st, 2)};
             no_mem |= !p->name || !p->type || !p->value;
         }
         if (!no_mem && step != SQLITE_DONE)
@@ -142,13 +121,13 @@ int mpb__store_exp_info_read(mpb_store *s, int64_t id, exp_info *e)
     int step = sqlite3_step(st), rc = MPB_OK;
     if (step == SQLITE_ROW) {
         e->id = id;
-        e->name = col_dup(st, 0);
-        e->config_text = col_dup(st, 1);
-        e->host = col_dup(st, 2);
-        e->version = col_dup(st, 3);
+        e->name = mpb__col_dup(st, 0);
+        e->config_text = mpb__col_dup(st, 1);
+        e->host = mpb__col_dup(st, 2);
+        e->version = mpb__col_dup(st, 3);
         e->runs_per_query = sqlite3_column_int(st, 4);
-        e->time_limit = col_num(st, 5);
-        e->created = col_num(st, 6);
+        e->time_limit = mpb__col_finite(st, 5);
+        e->created = mpb__col_finite(st, 6);
         if (!e->name || !e->config_text || !e->host || !e->version)
             rc = oom(s);
         else
@@ -281,7 +260,7 @@ int mpb__store_each_scene(mpb_store *s, int64_t experiment_id,
     sqlite3_bind_int64(st, 1, experiment_id);
     int step, rc = MPB_OK;
     while (rc == MPB_OK && (step = sqlite3_step(st)) == SQLITE_ROW)
-        rc = fn(ud, sqlite3_column_int64(st, 0), col_text(st, 1));
+        rc = fn(ud, sqlite3_column_int64(st, 0), mpb__col_text_or_empty(st, 1));
     if (rc == MPB_OK && step != SQLITE_DONE)
         rc = mpb__store_db_fail(s, "read scenes");
     sqlite3_finalize(st);
@@ -297,7 +276,7 @@ int mpb__store_scene_robot(mpb_store *s, int64_t scene_id, char **robot)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, scene_id);
     int rc = MPB_OK, step = sqlite3_step(st);
-    if (step == SQLITE_ROW && (*robot = col_dup(st, 0)) == NULL)
+    if (step == SQLITE_ROW && (*robot = mpb__col_dup(st, 0)) == NULL)
         rc = oom(s);
     else if (step != SQLITE_ROW && step != SQLITE_DONE)
         rc = mpb__store_db_fail(s, "read scenes");
@@ -332,17 +311,17 @@ int mpb__store_each_done_query(mpb_store *s, int64_t experiment_id,
     while (rc == MPB_OK && (step = sqlite3_step(st)) == SQLITE_ROW) {
         mpb__done_query q = {
             .id = sqlite3_column_int64(st, 0),
-            .name = col_text(st, 1),
+            .name = mpb__col_text_or_empty(st, 1),
             .scene_id = sqlite3_column_int64(st, 2),
             .runs = sqlite3_column_int(st, 3),
             .total_time = sqlite3_column_double(st, 4),
-            .joint_names = col_text(st, 5),
-            .start = col_text(st, 6),
-            .goal_kind = col_text(st, 7),
-            .goal_joints = col_text(st, 8),
-            .goal_tolerance = col_text(st, 9),
-            .goal_link = col_text(st, 10),
-            .goal_region = col_text(st, 11),
+            .joint_names = mpb__col_text_or_empty(st, 5),
+            .start = mpb__col_text_or_empty(st, 6),
+            .goal_kind = mpb__col_text_or_empty(st, 7),
+            .goal_joints = mpb__col_text_or_empty(st, 8),
+            .goal_tolerance = mpb__col_text_or_empty(st, 9),
+            .goal_link = mpb__col_text_or_empty(st, 10),
+            .goal_region = mpb__col_text_or_empty(st, 11),
         };
         rc = fn(ud, &q);
     }
@@ -388,10 +367,10 @@ int mpb__store_config_read(mpb_store *s, int64_t config_id, char **name,
     sqlite3_bind_int64(st, 1, config_id);
     int rc = MPB_OK, step = sqlite3_step(st);
     if (step == SQLITE_ROW) {
-        *name = col_dup(st, 0);
-        *planner = col_dup(st, 1);
-        *algorithm = col_dup(st, 2);
-        *params = col_dup(st, 3);
+        *name = mpb__col_dup(st, 0);
+        *planner = mpb__col_dup(st, 1);
+        *algorithm = mpb__col_dup(st, 2);
+        *params = mpb__col_dup(st, 3);
         if (!*name || !*planner || !*algorithm || !*params) {
             free(*name);
             free(*planner);
@@ -441,7 +420,7 @@ int mpb__store_each_run_name(mpb_store *s, int64_t experiment_id,
     sqlite3_bind_int64(st, 1, experiment_id);
     int step, rc = MPB_OK;
     while (rc == MPB_OK && (step = sqlite3_step(st)) == SQLITE_ROW) {
-        const char *name = (const char *)sqlite3_column_text(st, 0);
+        const char *name = mpb__col_text(st, 0);
         if (name != NULL)
             rc = fn(ud, name);
     }
@@ -469,9 +448,9 @@ int mpb__store_each_log_property(mpb_store *s, int64_t experiment_id,
     sqlite3_bind_int(st, 2, progress);
     int step, rc = MPB_OK;
     while (rc == MPB_OK && (step = sqlite3_step(st)) == SQLITE_ROW) {
-        const char *name = (const char *)sqlite3_column_text(st, 0);
+        const char *name = mpb__col_text(st, 0);
         if (name != NULL)
-            rc = fn(ud, name, (const char *)sqlite3_column_text(st, 1));
+            rc = fn(ud, name, mpb__col_text(st, 1));
     }
     if (rc == MPB_OK && step != SQLITE_DONE)
         rc = mpb__store_db_fail(s, "read a log's properties");
@@ -595,9 +574,9 @@ static int read_parts(mpb__run_cursor *c, int64_t run_id)
                       sizeof *r->stages))
             return MPB_ENOMEM;
         mpb__done_stage *d = &r->stages[r->num_stages];
-        if ((d->name = col_dup(st, 0)) == NULL)
+        if ((d->name = mpb__col_dup(st, 0)) == NULL)
             return MPB_ENOMEM;
-        d->time = col_num(st, 1);
+        d->time = mpb__col_finite(st, 1);
         d->num_waypoints = sqlite3_column_int(st, 2);
         d->valid = sqlite3_column_int(st, 3) != 0;
         r->num_stages++;
@@ -608,11 +587,11 @@ static int read_parts(mpb__run_cursor *c, int64_t run_id)
                       r->num_metrics + 1, sizeof *r->metrics))
             return MPB_ENOMEM;
         mpb__done_metric *m = &r->metrics[r->num_metrics++];
-        m->stage = col_dup(st, 0);
-        m->name = col_dup(st, 1);
+        m->stage = mpb__col_dup(st, 0);
+        m->name = mpb__col_dup(st, 1);
         if (m->stage == NULL || m->name == NULL)
             return MPB_ENOMEM;
-        m->value = col_num(st, 2);
+        m->value = mpb__col_finite(st, 2);
     });
     st = c->values;
     EACH_ROW(c, st, run_id, "read planner values", {
@@ -620,9 +599,9 @@ static int read_parts(mpb__run_cursor *c, int64_t run_id)
                       sizeof *r->values))
             return MPB_ENOMEM;
         mpb__done_value *v = &r->values[r->num_values];
-        if ((v->name = col_dup(st, 0)) == NULL)
+        if ((v->name = mpb__col_dup(st, 0)) == NULL)
             return MPB_ENOMEM;
-        v->value = col_num(st, 1);
+        v->value = mpb__col_finite(st, 1);
         v->is_int = sqlite3_column_type(st, 2) == SQLITE_INTEGER;
         v->exact = sqlite3_column_int64(st, 2);
         r->num_values++;
@@ -634,9 +613,9 @@ static int read_parts(mpb__run_cursor *c, int64_t run_id)
             return MPB_ENOMEM;
         mpb__done_sample *p = &r->samples[r->num_samples++];
         int no_mem = 0;
-        p->time = col_num(st, 0);
+        p->time = mpb__col_finite(st, 0);
         p->name = col_dup_or_null(st, 1, &no_mem);
-        p->value = col_num(st, 2);
+        p->value = mpb__col_finite(st, 2);
         if (no_mem)
             return MPB_ENOMEM;
     });
@@ -658,15 +637,15 @@ int mpb__run_cursor_next(mpb__run_cursor *c, const mpb__done_run **out)
     r->config_id = sqlite3_column_int64(st, 1);
     r->query_id = sqlite3_column_int64(st, 2);
     r->status = col_dup_or_null(st, 3, &no_mem);
-    r->success = col_num(st, 4);
-    r->claimed_success = col_num(st, 5);
-    r->time_total = col_num(st, 6);
-    r->time_raw = col_num(st, 7);
-    r->time_other = col_num(st, 8);
-    r->wall_time = col_num(st, 9);
+    r->success = mpb__col_finite(st, 4);
+    r->claimed_success = mpb__col_finite(st, 5);
+    r->time_total = mpb__col_finite(st, 6);
+    r->time_raw = mpb__col_finite(st, 7);
+    r->time_other = mpb__col_finite(st, 8);
+    r->wall_time = mpb__col_finite(st, 9);
     r->final_stage = col_dup_or_null(st, 10, &no_mem);
-    r->verify_time = col_num(st, 11);
-    r->memory = col_num(st, 12);
+    r->verify_time = mpb__col_finite(st, 11);
+    r->memory = mpb__col_finite(st, 12);
     if (no_mem)
         return oom(c->s);
     if ((rc = read_parts(c, r->id)) != MPB_OK)

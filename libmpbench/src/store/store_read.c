@@ -9,19 +9,8 @@
 #include <string.h>
 
 #include "core/grow.h"
+#include "store/store_columns.h"
 #include "store/store_internal.h"
-
-/* A REAL column, NaN when NULL. */
-static double col_double(sqlite3_stmt *st, int i)
-{
-    return sqlite3_column_type(st, i) == SQLITE_NULL
-               ? NAN : sqlite3_column_double(st, i);
-}
-
-static const char *col_text(sqlite3_stmt *st, int i)
-{
-    return (const char *)sqlite3_column_text(st, i);
-}
 
 /* Finish a walk: finalize st and say how it ended. stop is what the
  * callback returned, step the last sqlite3_step() result. */
@@ -42,16 +31,16 @@ static mpb_experiment_row experiment_row(sqlite3_stmt *st)
 {
     return (mpb_experiment_row){
         .id = sqlite3_column_int64(st, 0),
-        .name = col_text(st, 1),
-        .config_file = col_text(st, 2),
-        .config_hash = col_text(st, 3),
-        .config_text = col_text(st, 4),
-        .host = col_text(st, 5),
-        .version = col_text(st, 6),
+        .name = mpb__col_text(st, 1),
+        .config_file = mpb__col_text(st, 2),
+        .config_hash = mpb__col_text(st, 3),
+        .config_text = mpb__col_text(st, 4),
+        .host = mpb__col_text(st, 5),
+        .version = mpb__col_text(st, 6),
         .runs_per_query = sqlite3_column_int(st, 7),
-        .time_limit = col_double(st, 8),
-        .created = col_double(st, 9),
-        .finished = col_double(st, 10),
+        .time_limit = mpb__col_real(st, 8),
+        .created = mpb__col_real(st, 9),
+        .finished = mpb__col_real(st, 10),
     };
 }
 
@@ -119,8 +108,8 @@ int mpb_store_scenes(mpb_store *s, int64_t experiment_id,
     int step, stop = 0;
     char *set = NULL;
     while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
-        const char *name = col_text(st, 1);
-        const char *stored = (const char *)sqlite3_column_text(st, 8);
+        const char *name = mpb__col_text(st, 1);
+        const char *stored = mpb__col_text(st, 8);
         if (stored == NULL) {
             free(set);
             if ((set = strndup(name, mpb_store_problem_set_len(name))) == NULL) {
@@ -131,17 +120,17 @@ int mpb_store_scenes(mpb_store *s, int64_t experiment_id,
         mpb_scene_row row = {
             .problem_set = stored != NULL ? stored : set,
             .id = sqlite3_column_int64(st, 0),
-            .name = col_text(st, 1),
-            .robot_format = col_text(st, 2),
-            .robot_hash = col_text(st, 3),
-            .robot = col_text(st, 4),
-            .scene_format = col_text(st, 5),
-            .scene_hash = col_text(st, 6),
-            .scene = col_text(st, 7),
-            .seen_format = (const char *)sqlite3_column_text(st, 9),
-            .seen_hash = (const char *)sqlite3_column_text(st, 10),
-            .seen = (const char *)sqlite3_column_text(st, 11),
-            .seen_how = (const char *)sqlite3_column_text(st, 12),
+            .name = mpb__col_text(st, 1),
+            .robot_format = mpb__col_text(st, 2),
+            .robot_hash = mpb__col_text(st, 3),
+            .robot = mpb__col_text(st, 4),
+            .scene_format = mpb__col_text(st, 5),
+            .scene_hash = mpb__col_text(st, 6),
+            .scene = mpb__col_text(st, 7),
+            .seen_format = mpb__col_text(st, 9),
+            .seen_hash = mpb__col_text(st, 10),
+            .seen = mpb__col_text(st, 11),
+            .seen_how = mpb__col_text(st, 12),
         };
         if (row.seen_format == NULL || row.seen_hash == NULL || row.seen == NULL)
             row.seen_format = row.seen_hash = row.seen = row.seen_how = NULL;
@@ -171,11 +160,11 @@ int mpb_store_planner_configs(mpb_store *s, int64_t experiment_id,
     while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
         mpb_planner_config_row row = {
             .id = sqlite3_column_int64(st, 0),
-            .name = col_text(st, 1),
-            .planner = col_text(st, 2),
-            .algorithm = col_text(st, 3),
-            .params = col_text(st, 4),
-            .approach = col_text(st, 5),
+            .name = mpb__col_text(st, 1),
+            .planner = mpb__col_text(st, 2),
+            .algorithm = mpb__col_text(st, 3),
+            .params = mpb__col_text(st, 4),
+            .approach = mpb__col_text(st, 5),
         };
         stop = cb(ud, &row);
     }
@@ -204,16 +193,16 @@ int mpb_store_queries(mpb_store *s, int64_t scene_id,
         mpb_query_row row = {
             .id = sqlite3_column_int64(st, 0),
             .scene_id = sqlite3_column_int64(st, 1),
-            .name = col_text(st, 2),
-            .joint_names = col_text(st, 3),
-            .start = col_text(st, 4),
+            .name = mpb__col_text(st, 2),
+            .joint_names = mpb__col_text(st, 3),
+            .start = mpb__col_text(st, 4),
             .goal_kind = sqlite3_column_int(st, 5) ? MPB_GOAL_JOINTS
                                                     : MPB_GOAL_POSE_REGION,
-            .goal_joints = col_text(st, 6),
-            .goal_tolerance = col_double(st, 7),
-            .goal_link = col_text(st, 8),
-            .goal_region = col_text(st, 9),
-            .held = col_text(st, 10),
+            .goal_joints = mpb__col_text(st, 6),
+            .goal_tolerance = mpb__col_real(st, 7),
+            .goal_link = mpb__col_text(st, 8),
+            .goal_region = mpb__col_text(st, 9),
+            .held = mpb__col_text(st, 10),
         };
         stop = cb(ud, &row);
     }
@@ -294,10 +283,8 @@ int mpb_store_refusal_depths(mpb_store *s, int64_t experiment_id,
     sqlite3_bind_int64(st, 1, experiment_id);
     int step, stop = 0;
     while (!stop && (step = sqlite3_step(st)) == SQLITE_ROW) {
-        double lo = sqlite3_column_type(st, 1) == SQLITE_NULL
-                        ? NAN : sqlite3_column_double(st, 1);
-        double up = sqlite3_column_type(st, 2) == SQLITE_NULL
-                        ? NAN : sqlite3_column_double(st, 2);
+        double lo = mpb__col_real(st, 1);
+        double up = mpb__col_real(st, 2);
         stop = cb(ud, sqlite3_column_int64(st, 0), lo, up);
     }
     return walk_end(s, st, stop, step, "read refusal depths");
@@ -326,8 +313,8 @@ int mpb_store_seen_judgements(mpb_store *s, int64_t experiment_id,
             .success = sqlite3_column_int(st, 3),
             .seen_success = sqlite3_column_int(st, 4),
             .claimed = sqlite3_column_int(st, 5),
-            .verdict = (const char *)sqlite3_column_text(st, 6),
-            .seen_verdict = (const char *)sqlite3_column_text(st, 7),
+            .verdict = mpb__col_text(st, 6),
+            .seen_verdict = mpb__col_text(st, 7),
         };
         stop = cb(ud, &j);
     }
@@ -412,23 +399,23 @@ static int begin_run(result_walk *w, sqlite3_stmt *st, int64_t scene_id)
         .scene_id = scene_id,
         .repetition = sqlite3_column_int(st, 3),
         .success = sqlite3_column_int(st, 4) != 0,
-        .time_total = col_double(st, 6),
-        .time_raw = col_double(st, 7),
-        .time_other = col_double(st, 8),
+        .time_total = mpb__col_real(st, 6),
+        .time_raw = mpb__col_real(st, 7),
+        .time_other = mpb__col_real(st, 8),
         .metrics = w->metrics,
-        .stage_valid = sqlite3_column_type(st, 13) == SQLITE_NULL
+        .stage_valid = mpb__col_is_null(st, 13)
                            ? -1 : sqlite3_column_int(st, 13) != 0,
-        .world_setup_time = col_double(st, 14),
-        .verify_time = col_double(st, 15),
-        .memory = col_double(st, 16),
+        .world_setup_time = mpb__col_real(st, 14),
+        .verify_time = mpb__col_real(st, 15),
+        .memory = mpb__col_real(st, 16),
         .outcome = mpb_run_outcome(sqlite3_column_int(st, 17),
                                    sqlite3_column_int(st, 18),
                                    sqlite3_column_int(st, 4) != 0),
     };
     for (int i = 0; i < w->num_names; i++)
         w->metrics[i] = NAN;
-    if (keep_text(w, col_text(st, 5), &w->status_off) != MPB_OK ||
-        keep_text(w, col_text(st, 9), &w->stage_off) != MPB_OK)
+    if (keep_text(w, mpb__col_text(st, 5), &w->status_off) != MPB_OK ||
+        keep_text(w, mpb__col_text(st, 9), &w->stage_off) != MPB_OK)
         return MPB_ENOMEM;
     return MPB_OK;
 }
@@ -480,10 +467,10 @@ static int add_named(result_walk *w, const char *name, size_t len,
 /* Add the metric in columns 10 (name) and 11 (value) of st, if any. */
 static int add_metric(result_walk *w, sqlite3_stmt *st)
 {
-    const char *name = col_text(st, 10);
+    const char *name = mpb__col_text(st, 10);
     if (name == NULL)
         return MPB_OK;      /* the run's stage has no metrics */
-    return add_named(w, name, strlen(name), col_double(st, 11));
+    return add_named(w, name, strlen(name), mpb__col_real(st, 11));
 }
 
 /* Add the metrics packed in runs.final_metrics (store_internal.h). */
@@ -643,10 +630,10 @@ static int results_packed(mpb_store *s, int64_t experiment_id,
         int64_t query_id = sqlite3_column_int64(st, 2);
         if ((rc = begin_run(w, st, query_scene(&qs, query_id))) != MPB_OK)
             goto done;
-        if (sqlite3_column_type(st, 10) != SQLITE_NULL) {
+        if (!mpb__col_is_null(st, 10)) {
             rc = add_packed(w, sqlite3_column_blob(st, 10),
                             sqlite3_column_bytes(st, 10));
-        } else if (sqlite3_column_type(st, 9) != SQLITE_NULL) {
+        } else if (!mpb__col_is_null(st, 9)) {
             /* Finished before the column existed: the metrics table. */
             if (old == NULL && (old = mpb__store_prepare(s,
                     "SELECT NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,"

@@ -10,13 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "store/store_columns.h"
 #include "store/store_internal.h"
-
-static const char *text_or_empty(sqlite3_stmt *st, int i)
-{
-    const char *t = (const char *)sqlite3_column_text(st, i);
-    return t ? t : "";
-}
 
 int mpb_store_run_get(mpb_store *s, int64_t run_id,
                       int (*cb)(void *ud, const mpb_run_detail *row), void *ud)
@@ -53,23 +48,20 @@ int mpb_store_run_get(mpb_store *s, int64_t run_id,
             .query_id = sqlite3_column_int64(st, 3),
             .scene_id = sqlite3_column_int64(st, 4),
             .repetition = sqlite3_column_int(st, 5),
-            .state = text_or_empty(st, 6),
-            .planner_config = text_or_empty(st, 7),
-            .planner_id = text_or_empty(st, 8),
-            .status = text_or_empty(st, 9),
-            .message = text_or_empty(st, 10),
-            .verdict = text_or_empty(st, 11),
-            .success = sqlite3_column_type(st, 12) == SQLITE_NULL
-                           ? -1 : sqlite3_column_int(st, 12),
-            .time_total = sqlite3_column_type(st, 13) == SQLITE_NULL
-                              ? NAN : sqlite3_column_double(st, 13),
+            .state = mpb__col_text_or_empty(st, 6),
+            .planner_config = mpb__col_text_or_empty(st, 7),
+            .planner_id = mpb__col_text_or_empty(st, 8),
+            .status = mpb__col_text_or_empty(st, 9),
+            .message = mpb__col_text_or_empty(st, 10),
+            .verdict = mpb__col_text_or_empty(st, 11),
+            .success = mpb__col_int_or(st, 12, -1),
+            .time_total = mpb__col_real(st, 13),
             .claimed = sqlite3_column_int(st, 14),
             .final_valid = sqlite3_column_int(st, 15),
             .in_time = sqlite3_column_int(st, 16),
-            .seen_verdict = (const char *)sqlite3_column_text(st, 17),
-            .seen_detail = (const char *)sqlite3_column_text(st, 18),
-            .seen_success = sqlite3_column_type(st, 19) == SQLITE_NULL
-                                ? -1 : sqlite3_column_int(st, 19),
+            .seen_verdict = mpb__col_text(st, 17),
+            .seen_detail = mpb__col_text(st, 18),
+            .seen_success = mpb__col_int_or(st, 19, -1),
         };
         if (d.seen_verdict == NULL || d.seen_success < 0) {
             d.seen_verdict = d.seen_detail = NULL;
@@ -139,24 +131,20 @@ int mpb_store_run_stages(mpb_store *s, int64_t run_id,
             memcpy(times, tblob, tbytes);
         }
         mpb_stage_record rec = {
-            .name = text_or_empty(st, 0),
-            .time = sqlite3_column_type(st, 1) == SQLITE_NULL
-                        ? NAN : sqlite3_column_double(st, 1),
+            .name = mpb__col_text_or_empty(st, 0),
+            .time = mpb__col_real(st, 1),
             .num_waypoints = wp ? n : 0,
             .num_joints = wp ? nj : 0,
             .waypoints = wp,
             .valid = sqlite3_column_int(st, 5),
-            .verdict = text_or_empty(st, 6),
-            .verdict_detail = text_or_empty(st, 7),
-            .verdict_segment = sqlite3_column_type(st, 8) == SQLITE_NULL
-                                   ? -1 : sqlite3_column_int(st, 8),
-            .verification = (const char *)sqlite3_column_text(st, 9),
+            .verdict = mpb__col_text_or_empty(st, 6),
+            .verdict_detail = mpb__col_text_or_empty(st, 7),
+            .verdict_segment = mpb__col_int_or(st, 8, -1),
+            .verification = mpb__col_text(st, 9),
             .times = times,
-            .has_depth = sqlite3_column_type(st, 12) != SQLITE_NULL,
-            .depth_lower_mm = sqlite3_column_type(st, 11) == SQLITE_NULL
-                                  ? NAN : sqlite3_column_double(st, 11),
-            .depth_upper_mm = sqlite3_column_type(st, 12) == SQLITE_NULL
-                                  ? NAN : sqlite3_column_double(st, 12),
+            .has_depth = !mpb__col_is_null(st, 12),
+            .depth_lower_mm = mpb__col_real(st, 11),
+            .depth_upper_mm = mpb__col_real(st, 12),
         };
         stop = cb(ud, &rec);
         free(times);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "mpbench/outcome.h"
+#include "store/store_columns.h"
 #include "store/store_internal.h"
 
 int mpb_store_runs_unfinished(mpb_store *s, int64_t experiment_id,
@@ -30,8 +31,8 @@ int mpb_store_runs_unfinished(mpb_store *s, int64_t experiment_id,
             .repetition = sqlite3_column_int(st, 3),
             .seed = sqlite3_column_int64(st, 4),
             .attempts = sqlite3_column_int(st, 5),
-            .sent = strcmp((const char *)sqlite3_column_text(st, 6), "sent") == 0,
-            .run_uid = (const char *)sqlite3_column_text(st, 7),
+            .sent = strcmp(mpb__col_text(st, 6), "sent") == 0,
+            .run_uid = mpb__col_text(st, 7),
         };
         stop = cb(ud, &row);
     }
