@@ -102,10 +102,27 @@ mpb_kit_env() {
 }
 
 # Start a command in the background, its output to a log file; remember it.
+# mpb_spawn LOG CMD...: CMD in the background, its output in LOG, stopped
+# by mpb_stop_all; its pid in MPB_SPAWNED.
 mpb_spawn() {
     log=$1; shift
     "$@" >"$log" 2>&1 &
-    MPB_PIDS="$MPB_PIDS $!"
+    MPB_SPAWNED=$!
+    MPB_PIDS="$MPB_PIDS $MPB_SPAWNED"
+}
+
+# mpb_stall_hub LOG: a client of the hub at 127.0.0.1:7700 that subscribes
+# to every channel and never reads (tests/tools/stall_client.py), which
+# blocks lcm-java's hub once its buffers fill; mpb_unstall_hub ends it.
+mpb_stall_hub() {
+    mpb_spawn "$1" python3 "$MPB_SOURCE/tests/tools/stall_client.py" \
+        127.0.0.1 7700 200
+    MPB_STALLER=$MPB_SPAWNED
+}
+
+mpb_unstall_hub() {
+    kill "$MPB_STALLER" 2>/dev/null
+    wait "$MPB_STALLER" 2>/dev/null
 }
 
 mpb_stop_all() {

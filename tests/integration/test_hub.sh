@@ -83,7 +83,7 @@ if [ -x "$python" ]; then
     # it; the planner above, without the secret, takes no run.
     mpb_spawn "$work/python-s.log" "$B/planners/python/mpb-planner-python" \
         --lcm-url "$url" --secret-file "$work/secret" -v
-    sealed=${MPB_PIDS##* }
+    sealed=$MPB_SPAWNED
     DB=$work/py-secret.db
     mpb_timeout 90 "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" \
         --secret-file "$work/secret" "$work/py.yaml" >"$work/py-secret.log" 2>&1

@@ -30,23 +30,22 @@ alive() { kill -0 "$1" 2>/dev/null; }
 mpb_spawn_hub "$work/hub.log"
 hub=$MPB_HUB_PID
 mpb_spawn "$work/null1.log" "$B/planners/null/mpb-planner-null" --lcm-url "$url"
-null1=${MPB_PIDS##* }
+null1=$MPB_SPAWNED
 mpb_spawn "$work/null2.log" "$B/planners/null/mpb-planner-null" --lcm-url "$url"
-null2=${MPB_PIDS##* }
+null2=$MPB_SPAWNED
 pyplanner=""
 if [ -n "$py" ]; then
     mpb_spawn "$work/python.log" "$py" --lcm-url "$url"
-    pyplanner=${MPB_PIDS##* }
+    pyplanner=$MPB_SPAWNED
 fi
 mpb_planar_experiment "$work/exp.yaml" "name: hostile, runs: 300, time_limit: 2" \
     "{planner: null, algorithms: [straight_line], params: {delay: 0.1}}"
 DB=$work/test.db
-"$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
-    >"$work/daemon.log" 2>&1 &
-daemon=$!
-MPB_PIDS="$MPB_PIDS $daemon"
+mpb_spawn "$work/daemon.log" \
+    "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml"
+daemon=$MPB_SPAWNED
 mpb_spawn "$work/status.log" "$B/tools/mpb" status --lcm-url "$url" --timeout 60
-status_pid=${MPB_PIDS##* }
+status_pid=$MPB_SPAWNED
 
 mpb_wait_count "$DB" 5 30 "SELECT count(*) FROM runs WHERE state = 'done'"
 ids=$(grep -o 'planner [^ ]* joined' "$work/daemon.log" | cut -d' ' -f2)
@@ -85,10 +84,10 @@ mpb_spawn "$work/serve.log" $forge --serve 7702 6
 sleep 0.5
 mpb_spawn "$work/null3.log" "$B/planners/null/mpb-planner-null" \
     --lcm-url tcpq://127.0.0.1:7702
-null3=${MPB_PIDS##* }
+null3=$MPB_SPAWNED
 if [ -n "$py" ]; then
     mpb_spawn "$work/python2.log" "$py" --lcm-url tcpq://127.0.0.1:7702
-    pyplanner=${MPB_PIDS##* }
+    pyplanner=$MPB_SPAWNED
 fi
 sleep 5.5
 hwm() { awk '/VmHWM/ {print int($2 / 1024) " MB"}' "/proc/$1/status" 2>/dev/null || echo gone; }

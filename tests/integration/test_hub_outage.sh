@@ -51,10 +51,9 @@ check "... none crashed, each at its first attempt" \
 
 for away in 2 15; do
     DB=$work/out$away.db
-    "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
-        >"$work/out$away.log" 2>&1 &
-    daemon=$!
-    MPB_PIDS="$MPB_PIDS $daemon"
+    mpb_spawn "$work/out$away.log" \
+        "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml"
+    daemon=$MPB_SPAWNED
     mpb_wait_count "$DB" 6 60 "SELECT count(*) FROM runs WHERE state = 'done'"
     kill -KILL $hub
     wait $hub 2>/dev/null

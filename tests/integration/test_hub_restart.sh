@@ -39,10 +39,9 @@ mpb_planar_experiment "$work/exp.yaml" "name: restart, runs: 60, time_limit: 2" 
 DB=$work/test.db
 total=60
 [ -z "$py" ] || total=64
-"$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
-    >"$work/daemon.log" 2>&1 &
-daemon=$!
-MPB_PIDS="$MPB_PIDS $daemon"
+mpb_spawn "$work/daemon.log" \
+    "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml"
+daemon=$MPB_SPAWNED
 
 mpb_wait_count "$DB" 10 30 "SELECT count(*) FROM runs WHERE state = 'done'"
 kill -KILL $hub
@@ -63,10 +62,9 @@ check "no planner counted gone" eq "$(grep -c 'is gone' "$work/daemon.log")" 0
 # The hub gone for good: the daemon waits for it (MPBD_HUB_AWAY_MAX_S,
 # 60 s, then stops by itself); stopped here by a signal, as a user would,
 # it resumes with the same command once a hub is back.
-"$B/daemon/mpbenchd" --again --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
-    >"$work/daemon2.log" 2>&1 &
-daemon=$!
-MPB_PIDS="$MPB_PIDS $daemon"
+mpb_spawn "$work/daemon2.log" \
+    "$B/daemon/mpbenchd" --again --lcm-url "$url" -d "$DB" "$work/exp.yaml"
+daemon=$MPB_SPAWNED
 for i in $(seq 300); do
     [ "$(q 'SELECT count(*) FROM experiments')" -ge 2 ] &&
         [ "$(done_runs)" -ge 10 ] && break

@@ -24,15 +24,11 @@ mpb_spawn "$work/null2.log" "$B/planners/null/mpb-planner-null" --lcm-url "$url"
 # Results of 48 KB: the stalled client's buffers fill within seconds.
 mpb_planar_experiment "$work/exp.yaml" "name: stalled, runs: 400, time_limit: 2, retries: 0" \
     "{planner: null, algorithms: [straight_line], params: {delay: 0.05, waypoints: 2000}}"
-"$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
-    >"$work/daemon.log" 2>&1 &
-daemon=$!
-MPB_PIDS="$MPB_PIDS $daemon"
+mpb_spawn "$work/daemon.log" \
+    "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml"
+daemon=$MPB_SPAWNED
 mpb_wait_count "$DB" 10 60 "SELECT count(*) FROM runs WHERE state = 'done'"
-python3 "$MPB_SOURCE/tests/tools/stall_client.py" 127.0.0.1 7700 200 \
-    >"$work/stall.log" 2>&1 &
-stall=$!
-MPB_PIDS="$MPB_PIDS $stall"
+mpb_stall_hub "$work/stall.log"
 mpb_wait $daemon 150
 rc=$?
 check "the daemon stops by itself, the hub stalled" eq $rc 1
@@ -44,8 +40,7 @@ check "... no planner counted gone meanwhile" \
     eq "$(grep -c 'is gone' "$work/daemon.log")" 0
 check "... no run charged with it" \
     eq "$(q "SELECT count(*) FROM runs WHERE status = 'crash' OR crashes > 0")" 0
-kill $stall 2>/dev/null
-wait $stall 2>/dev/null
+mpb_unstall_hub
 mpb_timeout 120 "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
     >"$work/daemon2.log" 2>&1
 rc=$?

@@ -34,15 +34,11 @@ mpb_spawn "$work/python.log" "$B/planners/python/mpb-planner-python" --lcm-url "
 mpb_planar_experiment "$work/exp.yaml" "name: stalled, runs: 150, time_limit: 2, retries: 0" \
     "{planner: null, algorithms: [straight_line], params: {delay: 0.05, waypoints: 2000}}" \
     "{planner: python, algorithms: [RRTConnect]}"
-"$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
-    >"$work/daemon.log" 2>&1 &
-daemon=$!
-MPB_PIDS="$MPB_PIDS $daemon"
+mpb_spawn "$work/daemon.log" \
+    "$B/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml"
+daemon=$MPB_SPAWNED
 mpb_wait_count "$DB" 10 60 "SELECT count(*) FROM runs WHERE state = 'done'"
-python3 "$MPB_SOURCE/tests/tools/stall_client.py" 127.0.0.1 7700 200 \
-    >"$work/stall.log" 2>&1 &
-stall=$!
-MPB_PIDS="$MPB_PIDS $stall"
+mpb_stall_hub "$work/stall.log"
 # The client stays until both planners have said so, or 40 s, then 5 s
 # more of holding (the daemon stops after 60 s of a stalled hub).
 tenths=400
@@ -53,8 +49,7 @@ while [ $tenths -gt 0 ] && ! { grep -q "$stalled" "$work/null.log" &&
 done
 sleep 5
 done_in_stall=$(q "SELECT count(*) FROM runs WHERE state = 'done'")
-kill $stall 2>/dev/null
-wait $stall 2>/dev/null
+mpb_unstall_hub
 mpb_wait $daemon 150
 rc=$?
 check "the experiment completes once the client is gone" eq $rc 0

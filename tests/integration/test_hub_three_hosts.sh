@@ -57,10 +57,9 @@ MPB_QUERIES='{name: a, start: [0, 0, 0], goal: [0.3, -0.2, 0.1], tolerance: 0.01
              {name: b, start: [0, 0, 0], goal: [-0.2, 0.3, 0.2], tolerance: 0.01}' \
 mpb_planar_experiment "$work/exp.yaml" "name: hub, runs: 20, time_limit: 2, retries: 2" \
     "{planner: null, algorithms: [straight_line], params: {delay: 0.2}}"
-"$MPB_BUILD/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml" \
-    >"$work/daemon.log" 2>&1 &
-daemon=$!
-MPB_PIDS="$MPB_PIDS $daemon"
+mpb_spawn "$work/daemon.log" \
+    "$MPB_BUILD/daemon/mpbenchd" --lcm-url "$url" -d "$DB" "$work/exp.yaml"
+daemon=$MPB_SPAWNED
 
 # Let both hosts work for a while, then cut hostB off.
 mpb_wait_count "$DB" 10 30 "SELECT count(*) FROM runs WHERE state = 'done'"

@@ -30,9 +30,9 @@ start() {
     experiment "$1"
     DB=$work/$1.db
     mpb_spawn "$work/$1-p1.log" "$null"
-    first=${MPB_PIDS##* }
+    first=$MPB_SPAWNED
     mpb_spawn "$work/$1-p2.log" "$null"
-    second=${MPB_PIDS##* }
+    second=$MPB_SPAWNED
     "$daemon" -d "$DB" "$work/$1.yaml" >"$work/$1.log" 2>&1 &
     daemon_pid=$!
     mpb_wait_count "$DB" 2 5 "SELECT count(*) FROM runs WHERE state = 'sent'"

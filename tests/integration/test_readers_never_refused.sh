@@ -18,9 +18,9 @@ mpb_planar_experiment "$work/exp.yaml" "name: readers, runs: 40000, time_limit: 
     "{planner: null, algorithms: [straight_line], params: {waypoints: 100, delay: 0.002}}"
 mpb_spawn "$work/p1.log" "$null"
 mpb_spawn "$work/p2.log" "$null"
-"$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1 &
-daemon=$!
-MPB_PIDS="$MPB_PIDS $daemon"
+mpb_spawn "$work/daemon.log" \
+    "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml"
+daemon=$MPB_SPAWNED
 mpb_wait_count "$DB" 50 60 "SELECT count(*) FROM runs WHERE state = 'done'"
 
 first=$(q "SELECT count(*) FROM runs WHERE state = 'done'")
