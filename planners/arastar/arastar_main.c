@@ -1,20 +1,11 @@
-/* arastar_main.c - mpb-planner-arastar: command line, signals, serving. */
+/* arastar_main.c - mpb-planner-arastar: command line, then the kit serves. */
 #include <errno.h>
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
 #include "solve.h"
-
-static volatile sig_atomic_t g_stop;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    g_stop = 1;
-}
 
 static void usage(FILE *out)
 {
@@ -42,19 +33,6 @@ static void usage(FILE *out)
 "  -v              one line per run on stderr\n"
 "  --help          show this text\n",
             MPB_DEFAULT_LCM_URL);
-}
-
-static void on_warning(void *user, const char *line)
-{
-    (void)user;
-    fprintf(stderr, "mpb-planner-arastar: %s\n", line);
-}
-
-static void on_ready(void *user, const char *planner_id)
-{
-    (void)user;
-    printf("mpb-planner-arastar: serving as %s\n", planner_id);
-    fflush(stdout);
 }
 
 int main(int argc, char **argv)
@@ -85,17 +63,9 @@ int main(int argc, char **argv)
         return 2;
     }
 
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-
     static const char *const algorithms[] = { "ARAstar" };
     static const char *const approaches[] = { "search" };
     mpb_planner_def def = {
-        .name = opt.name,
         .language = "c",
         .version = MPB_VERSION_STRING,
         .algorithms = algorithms,
@@ -103,16 +73,6 @@ int main(int argc, char **argv)
         .approaches = approaches,
         .solve = ara_solve,
         .user = &ctx,
-        .on_ready = on_ready,
-        .on_warning = on_warning,
-        .secret_file = opt.secret_file,
     };
-    int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,
-                               sizeof err);
-    if (rc != MPB_OK) {
-        fprintf(stderr, "mpb-planner-arastar: %s\n",
-                err[0] ? err : mpb_strerror(rc));
-        return 1;
-    }
-    return 0;
+    return mpb_planner_main(&def, &opt, "mpb-planner-arastar");
 }

@@ -6,7 +6,6 @@
  */
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,14 +14,6 @@
 #include "mpbench/planner.h"
 
 #define PROG "mpb-planner-load"
-
-static volatile sig_atomic_t g_stop;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    g_stop = 1;
-}
 
 static void usage(FILE *out)
 {
@@ -327,12 +318,6 @@ static int solve_replay(void *user, const mpb_plan_request_t *req,
     return MPB_OK;
 }
 
-static void on_warning(void *user, const char *line)
-{
-    (void)user;
-    fprintf(stderr, PROG ": %s\n", line);
-}
-
 static void on_ready(void *user, const char *planner_id)
 {
     const library *lib = user;
@@ -397,16 +382,8 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-
     static const char *const algorithms[] = { "replay" };
     mpb_planner_def def = {
-        .name = opt.name,
         .language = "c",
         .version = MPB_VERSION_STRING,
         .algorithms = algorithms,
@@ -415,15 +392,8 @@ int main(int argc, char **argv)
         .user = &lib,
         .heartbeat_ms = 0,
         .on_ready = on_ready,
-        .on_warning = on_warning,
-        .secret_file = opt.secret_file,
     };
-    int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,
-                               sizeof err);
+    int status = mpb_planner_main(&def, &opt, PROG);
     library_free(&lib);
-    if (rc != MPB_OK) {
-        fprintf(stderr, PROG ": %s\n", err[0] ? err : mpb_strerror(rc));
-        return 1;
-    }
-    return 0;
+    return status;
 }

@@ -1,6 +1,5 @@
 /* null_planner.c - mpb-planner-null: the unchecked straight line, for tests and overhead. */
 #include <errno.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,14 +7,6 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/planner.h"
-
-static volatile sig_atomic_t g_stop;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    g_stop = 1;
-}
 
 static void usage(FILE *out)
 {
@@ -216,19 +207,6 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
     return MPB_OK;
 }
 
-static void on_warning(void *user, const char *line)
-{
-    (void)user;
-    fprintf(stderr, "mpb-planner-null: %s\n", line);
-}
-
-static void on_ready(void *user, const char *planner_id)
-{
-    (void)user;
-    printf("mpb-planner-null: serving as %s\n", planner_id);
-    fflush(stdout);
-}
-
 int main(int argc, char **argv)
 {
     mpb_planner_options opt = {.name = "null"};
@@ -252,16 +230,8 @@ int main(int argc, char **argv)
         return 2;
     }
 
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-
     static const char *const algorithms[] = { "straight_line" };
     mpb_planner_def def = {
-        .name = opt.name,
         .language = "c",
         .version = MPB_VERSION_STRING,
         .algorithms = algorithms,
@@ -269,15 +239,6 @@ int main(int argc, char **argv)
         .solve = solve_straight_line,
         .user = NULL,
         .heartbeat_ms = 0,
-        .on_ready = on_ready,
-        .on_warning = on_warning,
-        .secret_file = opt.secret_file,
     };
-    int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,
-                               sizeof err);
-    if (rc != MPB_OK) {
-        fprintf(stderr, "mpb-planner-null: %s\n", err[0] ? err : mpb_strerror(rc));
-        return 1;
-    }
-    return 0;
+    return mpb_planner_main(&def, &opt, "mpb-planner-null");
 }

@@ -1,12 +1,11 @@
 // ompl_planner.cpp - mpb-planner-ompl: OMPL's geometric planners behind the mpbench protocol.
 //
-// The process: its options, OMPL's messages, the signals, and the kit's
+// The process: its options and OMPL's messages, then the kit's
 // serving loop around solve(). One request is one fresh OMPL problem
 // (solve.cpp) over the algorithms of algorithms.cpp; only the parsed world
 // (and robot, for IK) is kept between requests (world_cache.cpp), keyed by
 // the texts' hashes.
 
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -25,10 +24,6 @@ using mpb_ompl::Algorithm;
 using mpb_ompl::algorithms;
 
 namespace {
-
-volatile std::sig_atomic_t g_stop = 0;
-
-extern "C" void on_signal(int) { g_stop = 1; }
 
 #define MPB_STR2(x) #x
 #define MPB_STR(x) MPB_STR2(x)
@@ -121,17 +116,6 @@ void usage(std::FILE *out)
     std::fprintf(out, "\n");
 }
 
-extern "C" void on_warning(void *, const char *line)
-{
-    std::fprintf(stderr, "mpb-planner-ompl: %s\n", line);
-}
-
-extern "C" void on_ready(void *, const char *planner_id)
-{
-    std::printf("mpb-planner-ompl: serving as %s\n", planner_id);
-    std::fflush(stdout);
-}
-
 }  // namespace
 
 int main(int argc, char **argv)
@@ -167,13 +151,6 @@ int main(int argc, char **argv)
     ompl::msg::useOutputHandler(&log);
     ompl::msg::setLogLevel(verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_NONE);
 
-    struct sigaction sa;
-    std::memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-
     std::vector<const char *> names, approaches;
     for (const Algorithm &a : algorithms()) {
         names.push_back(a.name);
@@ -183,7 +160,6 @@ int main(int argc, char **argv)
     mpb_ompl::Context ctx;
     mpb_planner_def def;
     std::memset(&def, 0, sizeof def);
-    def.name = opt.name;
     def.language = "c++";
     def.version = k_version;
     def.algorithms = names.data();
@@ -191,16 +167,8 @@ int main(int argc, char **argv)
     def.approaches = approaches.data();
     def.solve = mpb_ompl_solve;
     def.user = &ctx;
-    def.on_ready = on_ready;
-    def.on_warning = on_warning;
-    def.secret_file = opt.secret_file;
 
-    int rc = mpb_planner_serve(&def, opt.lcm_url, &g_stop, opt.max_runs, err,
-                               sizeof err);
+    int status = mpb_planner_main(&def, &opt, "mpb-planner-ompl");
     ompl::msg::restorePreviousOutputHandler();
-    if (rc != MPB_OK) {
-        std::fprintf(stderr, "mpb-planner-ompl: %s\n", err[0] ? err : mpb_strerror(rc));
-        return 1;
-    }
-    return 0;
+    return status;
 }

@@ -195,6 +195,19 @@ int mpb_planner_option(int argc, char **argv, int *i, mpb_planner_options *o,
                        char *err, size_t errlen);
 
 /*
+ * A planner process's main() after its options: SIGINT and SIGTERM set
+ * the stop flag (the run in hand ends as mpb_planner_serve() says), then
+ * def is served with o's URL and run count, and o's name and secret file
+ * where def has none. Where def has no on_ready or on_warning, "PROG:
+ * serving as ID" goes to stdout and "PROG: LINE" to stderr. Returns the
+ * process's exit status: 0 when it stopped as asked, 1 after one line on
+ * stderr saying why it could not serve. One call a process (the signal
+ * handler's flag is the kit's).
+ */
+int mpb_planner_main(const mpb_planner_def *def, const mpb_planner_options *o,
+                     const char *prog);
+
+/*
  * Append a stage of num_waypoints x num_joints values (copied, row after
  * row) to res. These five return MPB_OK, MPB_EINVAL or MPB_ENOMEM.
  */
