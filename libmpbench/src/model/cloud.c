@@ -10,6 +10,7 @@
 #include "core/readfile.h"
 #include "model/cloud_internal.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -20,6 +21,39 @@ size_t mpb__cloud_type_size(int type)
 {
     static const size_t S[] = {1, 1, 2, 2, 4, 4, 4, 8};
     return type >= 0 && type <= MPB__CT_F64 ? S[type] : 0;
+}
+
+int mpb__cloud_words(const char *b, const char *e, char *w, int rows,
+                     size_t cols)
+{
+    int n = 0;
+    while (b < e) {
+        while (b < e && (*b == ' ' || *b == '\t' || *b == '\r'))
+            b++;
+        if (b >= e)
+            break;
+        const char *s = b;
+        while (b < e && *b != ' ' && *b != '\t' && *b != '\r')
+            b++;
+        if (n < rows) {
+            size_t k = (size_t)(b - s) < cols - 1 ? (size_t)(b - s) : cols - 1;
+            memcpy(w + (size_t)n * cols, s, k);
+            w[(size_t)n * cols + k] = '\0';
+        }
+        n++;
+    }
+    return n;
+}
+
+int mpb__cloud_count(const char *w, long *v)
+{
+    char *e;
+    errno = 0;
+    long long x = strtoll(w, &e, 10);
+    if (e == w || *e || errno || x < 0)
+        return 0;
+    *v = x > MPB_CLOUD_MAX_POINTS ? MPB_CLOUD_MAX_POINTS + 1 : (long)x;
+    return 1;
 }
 
 static double value_at(const unsigned char *p, int type, int big)

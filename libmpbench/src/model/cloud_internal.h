@@ -31,6 +31,17 @@ typedef struct mpb__cloud_layout {
 /* The size of a type (1 to 8). */
 size_t mpb__cloud_type_size(int type);
 
+/* Split the line [b, e) at blanks into words: the first rows of them
+ * into w, a row of cols bytes each, cut to cols - 1 characters. Returns
+ * how many words the line has (more than rows when some did not fit). */
+int mpb__cloud_words(const char *b, const char *e, char *w, int rows,
+                     size_t cols);
+
+/* A header's count: a whole number >= 0, capped at MPB_CLOUD_MAX_POINTS
+ * + 1 so the caller's limit check says "too many". Returns 1, or 0
+ * when w is no such number. */
+int mpb__cloud_count(const char *w, long *v);
+
 /* Read a header (bytes, len) into *L; MPB_OK, or MPB_EPARSE /
  * MPB_EUNSUPPORTED with one line in why ("line 4: ..."). */
 int mpb__ply_header(const char *bytes, size_t len, mpb__cloud_layout *L,

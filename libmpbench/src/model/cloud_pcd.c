@@ -7,51 +7,18 @@
 #include "mpbench/cloud.h"
 #include "model/cloud_internal.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define MAX_FIELDS 64
 
-static int words(const char *b, const char *e, char w[MAX_FIELDS + 1][32])
-{
-    int n = 0;
-    while (b < e) {
-        while (b < e && (*b == ' ' || *b == '\t' || *b == '\r'))
-            b++;
-        if (b >= e)
-            break;
-        const char *s = b;
-        while (b < e && *b != ' ' && *b != '\t' && *b != '\r')
-            b++;
-        if (n <= MAX_FIELDS) {
-            size_t k = (size_t)(b - s) < 31 ? (size_t)(b - s) : 31;
-            memcpy(w[n], s, k);
-            w[n][k] = '\0';
-        }
-        n++;
-    }
-    return n;
-}
-
-static int number_of(const char *w, long *v)
-{
-    char *e;
-    errno = 0;
-    long long x = strtoll(w, &e, 10);
-    if (e == w || *e || errno || x < 0)
-        return 0;
-    *v = x > MPB_CLOUD_MAX_POINTS ? MPB_CLOUD_MAX_POINTS + 1 : (long)x;
-    return 1;
-}
-
 int mpb__pcd_header(const char *bytes, size_t len, mpb__cloud_layout *L,
                     char *why, size_t whylen)
 {
     memset(L, 0, sizeof *L);
     L->unit = "point";
-    static char w[MAX_FIELDS + 1][32];
+    char w[MAX_FIELDS + 1][32];
     char names[MAX_FIELDS][32];
     long size[MAX_FIELDS], count[MAX_FIELDS];
     char type[MAX_FIELDS];
@@ -68,7 +35,7 @@ int mpb__pcd_header(const char *bytes, size_t len, mpb__cloud_layout *L,
             snprintf(why, whylen, "line %d: the header ends before its DATA line", line);
             return MPB_EPARSE;
         }
-        int n = words(p, e, w);
+        int n = mpb__cloud_words(p, e, &w[0][0], MAX_FIELDS + 1, sizeof w[0]);
         p = e + 1;
         if (n == 0 || w[0][0] == '#')
             continue;
@@ -100,7 +67,7 @@ int mpb__pcd_header(const char *bytes, size_t len, mpb__cloud_layout *L,
                     type[i] = w[i + 1][0];
                 } else {
                     long v;
-                    if (!number_of(w[i + 1], &v) || v < 1 || v > 1000) {
+                    if (!mpb__cloud_count(w[i + 1], &v) || v < 1 || v > 1000) {
                         snprintf(why, whylen, "line %d: %s '%s' is not a count", line,
                                  k, w[i + 1]);
                         return MPB_EPARSE;
@@ -113,7 +80,7 @@ int mpb__pcd_header(const char *bytes, size_t len, mpb__cloud_layout *L,
         } else if (strcmp(k, "WIDTH") == 0 || strcmp(k, "HEIGHT") == 0 ||
                    strcmp(k, "POINTS") == 0) {
             long v;
-            if (n != 2 || !number_of(w[1], &v)) {
+            if (n != 2 || !mpb__cloud_count(w[1], &v)) {
                 snprintf(why, whylen, "line %d: %s needs a count", line, k);
                 return MPB_EPARSE;
             }

@@ -6,7 +6,6 @@
 #include "mpbench/cloud.h"
 #include "model/cloud_internal.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,39 +23,6 @@ static int ply_type(const char *w)
         if (strcmp(w, T[i].a) == 0 || strcmp(w, T[i].b) == 0)
             return T[i].t;
     return -1;
-}
-
-/* Split a line into at most MAX_WORDS words of at most 63 characters. */
-static int words(const char *b, const char *e, char w[MAX_WORDS][64])
-{
-    int n = 0;
-    while (b < e) {
-        while (b < e && (*b == ' ' || *b == '\t' || *b == '\r'))
-            b++;
-        if (b >= e)
-            break;
-        const char *s = b;
-        while (b < e && *b != ' ' && *b != '\t' && *b != '\r')
-            b++;
-        if (n < MAX_WORDS) {
-            size_t k = (size_t)(b - s) < 63 ? (size_t)(b - s) : 63;
-            memcpy(w[n], s, k);
-            w[n][k] = '\0';
-        }
-        n++;
-    }
-    return n;
-}
-
-static int count_of(const char *w, long *v)
-{
-    char *e;
-    errno = 0;
-    long long x = strtoll(w, &e, 10);
-    if (e == w || *e || errno || x < 0)
-        return 0;
-    *v = x > MPB_CLOUD_MAX_POINTS ? MPB_CLOUD_MAX_POINTS + 1 : (long)x;
-    return 1;
 }
 
 int mpb__ply_header(const char *bytes, size_t len, mpb__cloud_layout *L,
@@ -78,7 +44,7 @@ int mpb__ply_header(const char *bytes, size_t len, mpb__cloud_layout *L,
             snprintf(why, whylen, "line %d: the header ends before 'end_header'", line);
             return MPB_EPARSE;
         }
-        int n = words(p, e, w);
+        int n = mpb__cloud_words(p, e, &w[0][0], MAX_WORDS, sizeof w[0]);
         p = e + 1;
         if (line == 1) {
             if (n != 1 || strcmp(w[0], "ply") != 0) {
@@ -114,7 +80,7 @@ int mpb__ply_header(const char *bytes, size_t len, mpb__cloud_layout *L,
             }
             if (strcmp(w[0], "end_header") == 0)
                 break;
-            if (n != 3 || !count_of(w[2], &count)) {
+            if (n != 3 || !mpb__cloud_count(w[2], &count)) {
                 snprintf(why, whylen, "line %d: element needs <name> <count>", line);
                 return MPB_EPARSE;
             }
