@@ -21,6 +21,28 @@ mpb_enter_netns() {
     ip route add 224.0.0.0/4 dev lo
 }
 
+# mpb_peer_data_ready [NAME...]: the robots' data and each peer's
+# environment (default: every peer) are as `make deps` leaves them, or the
+# test stops at once with one line saying what to run. A test does not
+# install: rebuilding the kit into eight environments takes minutes, more
+# than a test's time limit.
+mpb_peer_data_ready() {
+    if ! "$MPB_SOURCE/tools/robot_data.sh" --check >/dev/null 2>&1; then
+        echo "not ok - the robots' data is missing: make deps (tools/robot_data.sh)"
+        exit 1
+    fi
+    stale=
+    for env in ${*:-$(cd "$MPB_SOURCE/planners/peers/requirements" &&
+                      ls *.txt | sed 's/\.txt$//')}; do
+        sh "$MPB_SOURCE/tools/peers_env.sh" --check "$env" || stale="$stale $env"
+    done
+    if [ -n "$stale" ]; then
+        echo "not ok - .cache/peers is missing or older than the kit or its" \
+             "requirements for$stale: make deps (tools/peers_env.sh)"
+        exit 1
+    fi
+}
+
 # mpb_peers_enter SCRIPT ARGS...: what the peer planners' tests share.
 # Before the private network (no way out of it): the Panda and its
 # problems, and the peers' environments. Then the network namespace;
@@ -31,11 +53,7 @@ mpb_enter_netns() {
 # real one and aborts, seen in matplotlib's ft2font, which mplib imports).
 # Their C++ is not ours to check; the plain build runs these tests.
 mpb_peers_enter() {
-    if [ -z "${MPB_IN_NETNS:-}" ]; then
-        "$MPB_SOURCE/tools/robot_data.sh" --check ||
-            "$MPB_SOURCE/tools/robot_data.sh" >/dev/null || exit 1
-        sh "$MPB_SOURCE/tools/peers_env.sh" >/dev/null || exit 1
-    fi
+    [ -n "${MPB_IN_NETNS:-}" ] || mpb_peer_data_ready
     mpb_enter_netns "$@"
     panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
     export MPB_MESH_PATH=$panda MPB_BUILD

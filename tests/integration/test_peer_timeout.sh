@@ -17,11 +17,7 @@ set -u
 PASSES=0
 FAILS=0
 
-if [ -z "${MPB_IN_NETNS:-}" ]; then
-    "$MPB_SOURCE/tools/robot_data.sh" --check ||
-        "$MPB_SOURCE/tools/robot_data.sh" >/dev/null || exit 1
-    sh "$MPB_SOURCE/tools/peers_env.sh" tesseract >/dev/null || exit 1
-fi
+[ -n "${MPB_IN_NETNS:-}" ] || mpb_peer_data_ready tesseract
 mpb_enter_netns "$0" "$@"
 panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
 export MPB_MESH_PATH=$panda MPB_BUILD
