@@ -76,4 +76,14 @@ for away in 2 15; do
     check "... no planner counted gone" \
         eq "$(grep -c 'is gone' "$work/out$away.log")" 0
 done
+# The planners, C and Python, say so too: one line as the hub goes, one
+# as it is back, for each of the two outages.
+for p in null1 null2 ${py:+python}; do
+    check "the $p planner says it lost the hub, once an outage" \
+        eq "$(grep -c 'lost the hub; trying again every' "$work/$p.log")" 2
+    check "... and that it is back, once an outage" \
+        eq "$(grep -c 'the hub is back after' "$work/$p.log")" 2
+    check "... and never that it could not reach it at first" \
+        eq "$(grep -c 'cannot reach the hub yet' "$work/$p.log")" 0
+done
 mpb_finish

@@ -17,6 +17,9 @@
  * echo meanwhile (its results are held, and the time counts against
  * neither a run nor max_runs' wait for acknowledgements), and when an
  * echo is back says so in one line and sends every result not yet stored.
+ * A hub away (the link closed: killed, restarted, out of reach) is an
+ * outage instead: one line as it goes, one as it is back, and then every
+ * result not yet stored goes again.
  *
  * Solving is synchronous, in the thread that called mpb_planner_serve()
  * (capacity 1): requests that arrive meanwhile wait in LCM's queue and are

@@ -91,6 +91,9 @@ typedef struct mpb__server {
     long echo_connects;         /* the connection that echo_back_s is of */
     double stalled_since;       /* the last echo before the stall */
     int relays_again;           /* the stall ended: every result goes now */
+    int link_said;              /* the link's state last told the user:
+                                   0 none yet, 1 up, 2 away */
+    double link_lost_s;         /* monotonic s: the link went away */
 
     /* Shared with the heartbeat thread, under mu. */
     pthread_mutex_t mu;
@@ -846,6 +849,25 @@ static void mpb__echo_back(mpb__server *s)
               "not stored go again now", now - s->stalled_since);
 }
 
+/* A hub away (killed, restarted, out of reach) is an outage: say so in
+ * one line when the link goes and one when it is back, as the daemon
+ * does; the results not stored go again then (mpb__resend_due). */
+static void mpb__tell_outage(mpb__server *s, const mpb_hub_stats *st,
+                             double now)
+{
+    if (st->connected && s->link_said == 2)
+        mpb__warn(s, "the hub is back after %.1f s (connection %ld): the "
+                  "results it has not stored go again now",
+                  now - s->link_lost_s, st->connects);
+    else if (!st->connected && s->link_said != 2) {
+        s->link_lost_s = now;
+        mpb__warn(s, "%s; trying again every %.1f s, its results wait "
+                  "meanwhile", s->link_said == 1 ? "lost the hub"
+                  : "cannot reach the hub yet", MPB_HUB_RETRY_S);
+    }
+    s->link_said = st->connected ? 1 : 2;
+}
+
 /* With nothing waiting to be handled (so that an echo received is one
  * handled, however long a solve kept this thread): connected, and none of
  * the heartbeats' echoes back for stall_s, the hub is stalled. The link
@@ -859,6 +881,7 @@ static void mpb__watch_link(mpb__server *s)
     double now = mpb_monotonic_s();
     mpb_hub_stats st;
     mpb_lcm_hub_stats(s->lcm, &st);
+    mpb__tell_outage(s, &st, now);
     if (!st.connected || st.connects != s->echo_connects) {
         s->echo_connects = st.connects;
         s->echo_back_s = now;

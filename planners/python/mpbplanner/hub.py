@@ -42,6 +42,7 @@ _c = Functions(
     mpb_lcm_destroy=(None, c_void_p),
     mpb_lcm_publish=(c_int, c_void_p, c_char_p, c_char_p, c_uint),
     mpb_lcm_hub_stats=(None, c_void_p, POINTER(_Stats)),
+    mpb_lcm_hub_wait=(c_int, c_void_p, ctypes.c_double),
     lcm_subscribe=(c_void_p, c_void_p, c_char_p, _HANDLER, c_void_p),
     lcm_handle_timeout=(c_int, c_void_p, c_int),
 )
@@ -71,6 +72,9 @@ class HubLCM:
             raise ValueError(f"{url}: a hub's URL is tcpq://HOST:PORT")
         # The C callbacks, kept alive as long as the instance.
         self._callbacks: Dict[str, object] = {}
+        # The link connects in the background: a moment for it, as the C
+        # kit gives it, so the first announcement is not lost.
+        _c.mpb_lcm_hub_wait(self._lcm, 2.0)
 
     def subscribe(self, channel: str, handler: Handler) -> None:
         """Call handler(channel, data) for each message on channel (one of

@@ -58,6 +58,8 @@ HEARTBEAT_S = 0.5
 RESEND_S = 0.2              # a result's first re-send; the wait doubles
 RESEND_MAX_S = 2.0          # to this, until the daemon acknowledges it
 STATUS = "MPB_STATUS"
+HUB_RETRY_S = 0.5           # libmpbench's link reconnects this often
+                            # (MPB_HUB_RETRY_S, link.h)
 ECHO_MAX_S = 5.0            # through a hub, no heartbeat back this long
                             # while connected: the hub is stalled (the C
                             # kit's MPB__ECHO_MAX_S, the daemon's too)
@@ -153,6 +155,8 @@ class Node:
                                  # alone, hold the results
         self.stalled_since = 0.0
         self.relays_again = False
+        self.link_said = 0       # the link's state last told: 0 none yet,
+        self.link_lost = 0.0     # 1 up, 2 away (since link_lost)
         self.active = []
         self.stopping = False
         self.announce_now = False
@@ -300,6 +304,22 @@ class Node:
                       f"{now - self.stalled_since:.1f} s: the results it "
                       f"has not stored go again now")
 
+    def _tell_outage(self, st, now: float) -> None:
+        """A hub away (killed, restarted, out of reach) is an outage: say
+        so in one line when the link goes and one when it is back, as the
+        C kit and the daemon do; the results not stored go again then."""
+        if st.connected and self.link_said == 2:
+            self.warn(f"the hub is back after {now - self.link_lost:.1f} s "
+                      f"(connection {st.connects}): the results it has not "
+                      f"stored go again now")
+        elif not st.connected and self.link_said != 2:
+            self.link_lost = now
+            what = ("lost the hub" if self.link_said == 1
+                    else "cannot reach the hub yet")
+            self.warn(f"{what}; trying again every {HUB_RETRY_S:.1f} s, its "
+                      f"results wait meanwhile")
+        self.link_said = 1 if st.connected else 2
+
     def _watch_link(self):
         """With nothing waiting to be handled: connected, and no echo back
         for ECHO_MAX_S, the hub is stalled. The link away is an outage
@@ -308,6 +328,7 @@ class Node:
         if not self.hub or self.stalled:
             return
         now, st = time.monotonic(), self.lc.stats()
+        self._tell_outage(st, now)
         if not st.connected or st.connects != self.echo_connects:
             self.echo_connects, self.echo_back = st.connects, now
             return
