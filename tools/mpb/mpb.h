@@ -17,7 +17,7 @@
  */
 #define MPB_TOOL_COMMANDS(X)                                                  \
     X(report, "print an experiment's results as the paper's tables, per scene or set") \
-    X(plot,   "draw box plots per metric and success-rate bars, per scene (gnuplot)") \
+    X(plot,   "box plots per scene; success-in-budget curves and profiles per set") \
     X(status, "follow a running experiment: progress, rate, time left, planners") \
     X(spy,    "start lcm-spy with mpbench's message types, to watch the traffic") \
     X(export, "write results for Planner Arena, OMPL's tools, or as CSV")    \
