@@ -110,11 +110,21 @@ double point_triangle(const V3 &p, const V3 &a, const V3 &b, const V3 &c)
 }
 
 /* How deep local point x lies inside mesh s (0 outside): inside by the
- * winding number of its triangles about x, then the nearest triangle. */
-double mesh_point_depth(const Shape &s, const V3 &x)
+ * winding number of its triangles about x, then the nearest triangle.
+ * A point inside the mesh is no deeper than inside the mesh's own box (its
+ * vertices' bounds; 1e-12 m covers rounding): when that is at most floor,
+ * its depth cannot raise a maximum that is floor already, and 0 is
+ * returned without reading a triangle. */
+double mesh_point_depth(const Shape &s, const V3 &x, double floor)
 {
     const auto *m = model(s);
-    double wind = 0, near = INFINITY;
+    const fcl::AABBd &bb = m->aabb_local;
+    double in_box = INFINITY;
+    for (int k = 0; k < 3; k++)
+        in_box = std::min({in_box, x[k] - bb.min_[k], bb.max_[k] - x[k]});
+    if (in_box + 1e-12 <= floor)
+        return 0.0;
+    double wind = 0;
     for (int i = 0; i < m->num_tris; i++) {
         const fcl::Triangle &t = m->tri_indices[i];
         V3 a = m->vertices[t[0]] - x, b = m->vertices[t[1]] - x,
@@ -123,14 +133,23 @@ double mesh_point_depth(const Shape &s, const V3 &x)
         double num = a.dot(b.cross(c));
         double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
         wind += 2 * std::atan2(num, den);
-        near = std::min(near, point_triangle(V3(0, 0, 0), a, b, c));
     }
     /* a closed surface winds 4 pi about a point inside it */
-    return std::fabs(wind) > 2 * M_PI ? near : 0.0;
+    if (std::fabs(wind) <= 2 * M_PI)
+        return 0.0;
+    double near = INFINITY;
+    for (int i = 0; i < m->num_tris; i++) {
+        const fcl::Triangle &t = m->tri_indices[i];
+        near = std::min(near, point_triangle(V3(0, 0, 0), m->vertices[t[0]] - x,
+                                             m->vertices[t[1]] - x,
+                                             m->vertices[t[2]] - x));
+    }
+    return near;
 }
 
-/* How deep world point p lies inside shape s (0 outside or on it). */
-double point_depth(const Shape &s, const V3 &p)
+/* How deep world point p lies inside shape s (0 outside or on it; a
+ * mesh may answer 0 for a depth of at most floor, mesh_point_depth()). */
+double point_depth(const Shape &s, const V3 &p, double floor)
 {
     V3 x = to_local(s, p);
     const double *h = s.dims;
@@ -162,7 +181,7 @@ double point_depth(const Shape &s, const V3 &p)
         return std::min(base, side);
     }
     case MPB_SHAPE_MESH:
-        return mesh_point_depth(s, x);
+        return mesh_point_depth(s, x, floor);
     case MPB_SHAPE_PLANE:
         break;
     }
@@ -213,13 +232,15 @@ void solid_points(const Shape &a, std::vector<V3> &out)
     }
 }
 
-/* The deepest of a's points tried inside b (the header's list). */
-double deepest_point(const Shape &a, const Shape &b, const std::vector<V3> &dirs)
+/* The deepest of a's points tried inside b (the header's list), or floor
+ * when none is deeper. */
+double deepest_point(const Shape &a, const Shape &b, const std::vector<V3> &dirs,
+                     double floor)
 {
-    double best = 0;
+    double best = floor;
     auto test = [&](const V3 &p) {
         if (in_box(b.box, p))
-            best = std::max(best, point_depth(b, p));
+            best = std::max(best, point_depth(b, p, best));
     };
     if (a.type == MPB_SHAPE_MESH) {
         const auto *m = model(a);
@@ -300,15 +321,20 @@ double least_part(const Shape &a, const Shape &b, const std::vector<V3> &dirs, V
     return best;
 }
 
-/* Bounds on the depth of overlapping shapes a and b (the header's). */
-void pair_depth(const Shape &a, const Shape &b, double &lower, double &upper)
+/* Bounds on the depth of overlapping shapes a and b (the header's). A
+ * lower bound found elsewhere (floor: another pair's, whose maximum is
+ * what counts) spares the points that cannot beat it: lower is then that
+ * pair's own, or at most floor. */
+void pair_depth(const Shape &a, const Shape &b, double floor, double &lower,
+                double &upper)
 {
     std::vector<V3> dirs = start_dirs(a, b);
     V3 n;
     upper = std::max(0.0, least_part(a, b, dirs, &n));
     dirs.push_back(n);
     dirs.push_back(-n);
-    lower = std::max(deepest_point(a, b, dirs), deepest_point(b, a, dirs));
+    lower = std::max(deepest_point(a, b, dirs, floor),
+                     deepest_point(b, a, dirs, floor));
     /* both exact up to rounding, and lower <= true <= upper: a lower
        above the upper can only be a mesh that is not closed */
     lower = std::min(lower, upper);
@@ -355,7 +381,7 @@ int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
                     if (!narrow_phase(c, ms, ss))
                         continue;
                     double lo, up;
-                    pair_depth(ms, ss, lo, up);
+                    pair_depth(ms, ss, out->lower, lo, up);
                     keep(lo, up, m.id, l.body, 0);
                 }
                 for (const Plane &p : c->planes) {
@@ -386,7 +412,7 @@ int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
                     if (!narrow_phase(c, a, b))
                         continue;
                     double lo, up;
-                    pair_depth(a, b, lo, up);
+                    pair_depth(a, b, out->lower, lo, up);
                     keep(lo, up, std::min(mi.id, mj.id), std::max(mi.id, mj.id), 1);
                 }
         }
