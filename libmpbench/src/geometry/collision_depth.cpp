@@ -29,6 +29,9 @@
  * A static plane is a surface: a shape crossing it is parted from it by
  * its lesser extent past it, both bounds.
  */
+#include <algorithm>
+#include <vector>
+
 #include "geometry/collision_world.h"
 #include "geometry/collision_internal.h"
 
@@ -321,23 +324,34 @@ double least_part(const Shape &a, const Shape &b, const std::vector<V3> &dirs, V
     return best;
 }
 
-/* Bounds on the depth of overlapping shapes a and b (the header's). A
- * lower bound found elsewhere (floor: another pair's, whose maximum is
- * what counts) spares the points that cannot beat it: lower is then that
- * pair's own, or at most floor. */
-void pair_depth(const Shape &a, const Shape &b, double floor, double &lower,
-                double &upper)
+/* A pair found overlapping: its upper bound, and what its lower bound
+ * needs (the directions tried, the best of them among them). */
+struct Overlap {
+    const Shape *a, *b;
+    double upper;
+    std::vector<V3> dirs;
+};
+
+/* The upper bound of overlapping shapes a and b (the header's). */
+Overlap pair_upper(const Shape &a, const Shape &b)
 {
-    std::vector<V3> dirs = start_dirs(a, b);
+    Overlap o{&a, &b, 0.0, start_dirs(a, b)};
     V3 n;
-    upper = std::max(0.0, least_part(a, b, dirs, &n));
-    dirs.push_back(n);
-    dirs.push_back(-n);
-    lower = std::max(deepest_point(a, b, dirs, floor),
-                     deepest_point(b, a, dirs, floor));
+    o.upper = std::max(0.0, least_part(a, b, o.dirs, &n));
+    o.dirs.push_back(n);
+    o.dirs.push_back(-n);
+    return o;
+}
+
+/* The lower bound of an overlap (the header's), or at most floor when it
+ * is not above floor: the points that cannot beat floor are spared. */
+double pair_lower(const Overlap &o, double floor)
+{
+    double lower = std::max(deepest_point(*o.a, *o.b, o.dirs, floor),
+                            deepest_point(*o.b, *o.a, o.dirs, floor));
     /* both exact up to rounding, and lower <= true <= upper: a lower
        above the upper can only be a mesh that is not closed */
-    lower = std::min(lower, upper);
+    return std::min(lower, o.upper);
 }
 
 } // namespace
@@ -346,13 +360,15 @@ void pair_depth(const Shape &a, const Shape &b, double floor, double &lower,
 
 using namespace mpb::coll;
 
-int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
+int mpb__collision_depth(mpb_collision *c, double floor,
+                         mpb__collision_depth_result *out)
 {
     if (!c || !out)
         return MPB_EINVAL;
     *out = mpb__collision_depth_result{0.0, 0.0, -1, -1, 0};
-    auto keep = [&](double lo, double up, int m, int other, int self) {
-        out->lower = std::max(out->lower, lo);
+    /* Nothing below floor is sought: lower is max(floor, the true one). */
+    double least = floor > 0 ? floor : 0.0;
+    auto keep_upper = [&](double up, int m, int other, int self) {
         if (up > out->upper || out->movable < 0) {
             out->upper = std::max(out->upper, up);
             out->movable = m;
@@ -360,6 +376,12 @@ int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
             out->self = self;
         }
     };
+    /* Every overlap's upper bound first, in the order that names the
+     * pair of the largest; then the lower bounds, deepest upper first: a
+     * pair whose upper bound is no more than the lower bound found so far
+     * cannot raise it (its lower is at most its upper), and is spared the
+     * points' depths, by far the dearest part. */
+    std::vector<Overlap> overlaps;
     return guarded(c, [&]() -> int {
         int rc = ensure_tree(c);
         if (rc != MPB_OK)
@@ -380,9 +402,8 @@ int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
                     sync(ss);
                     if (!narrow_phase(c, ms, ss))
                         continue;
-                    double lo, up;
-                    pair_depth(ms, ss, out->lower, lo, up);
-                    keep(lo, up, m.id, l.body, 0);
+                    overlaps.push_back(pair_upper(ms, ss));
+                    keep_upper(overlaps.back().upper, m.id, l.body, 0);
                 }
                 for (const Plane &p : c->planes) {
                     if (allowed_static(&m, p.id) ||
@@ -391,7 +412,8 @@ int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
                     double hi = p.n.dot(extreme(ms, p.n)) - p.d;
                     double lo = p.d - p.n.dot(extreme(ms, -p.n));
                     double e = std::max(0.0, std::min(hi, lo));
-                    keep(e, e, m.id, p.id, 0);
+                    out->lower = std::max(out->lower, e);
+                    keep_upper(e, m.id, p.id, 0);
                 }
             }
         }
@@ -411,11 +433,22 @@ int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out)
                     sync(b);
                     if (!narrow_phase(c, a, b))
                         continue;
-                    double lo, up;
-                    pair_depth(a, b, out->lower, lo, up);
-                    keep(lo, up, std::min(mi.id, mj.id), std::max(mi.id, mj.id), 1);
+                    int lo = std::min(mi.id, mj.id), hi = std::max(mi.id, mj.id);
+                    overlaps.push_back(pair_upper(a, b));
+                    keep_upper(overlaps.back().upper, lo, hi, 1);
                 }
         }
+        std::stable_sort(overlaps.begin(), overlaps.end(),
+                         [](const Overlap &x, const Overlap &y) {
+                             return x.upper > y.upper;
+                         });
+        double lower = std::max(least, out->lower);
+        for (const Overlap &o : overlaps) {
+            if (o.upper <= lower)
+                break;
+            lower = std::max(lower, pair_lower(o, lower));
+        }
+        out->lower = lower;
         return MPB_OK;
     });
 }

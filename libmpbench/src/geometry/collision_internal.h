@@ -89,15 +89,18 @@ int mpb__collision_check_pair(mpb_collision *c, int a, int b);
  * lower <= the deepest pair's depth <= upper; a plane's pair is exact.
  * Both 0 when nothing overlaps. movable, other: the pair of the upper
  * bound (other a static id, or a movable id when self is 1); -1 if none.
- * MPB_OK, or a negative code as for mpb_collision_check(). For refused
- * paths only: a few milliseconds a configuration on meshes.
+ * With floor > 0, lower is max(floor, its value): what cannot beat floor
+ * is not sought (for the worst of several configurations). MPB_OK, or a
+ * negative code as for mpb_collision_check(). For refused paths only: a
+ * few milliseconds a configuration on meshes.
  */
 typedef struct mpb__collision_depth_result {
     double lower, upper;
     int    movable, other, self;
 } mpb__collision_depth_result;
 
-int mpb__collision_depth(mpb_collision *c, mpb__collision_depth_result *out);
+int mpb__collision_depth(mpb_collision *c, double floor,
+                         mpb__collision_depth_result *out);
 
 /* Counts, for tests and reports. */
 int mpb__collision_num_static_shapes(const mpb_collision *c);

@@ -261,15 +261,21 @@ int mpb_world_contact(mpb_world *w, const double *q, char *what, size_t len)
     return w->provider->contact(w->impl, q, what, len);
 }
 
-int mpb_world_depth(mpb_world *w, const double *q, double *lower,
-                    double *upper)
+int mpb__world_depth_above(mpb_world *w, const double *q, double floor,
+                           double *lower, double *upper)
 {
-    if (!w || !q || !lower || !upper || !all_finite(w, q))
+    if (!w || !q || !lower || !upper || !all_finite(w, q) || !(floor >= 0))
         return MPB_EINVAL;
     *lower = *upper = NAN;
     if (!w->provider->depth)
         return MPB_EUNSUPPORTED;
-    return w->provider->depth(w->impl, q, lower, upper);
+    return w->provider->depth(w->impl, q, floor, lower, upper);
+}
+
+int mpb_world_depth(mpb_world *w, const double *q, double *lower,
+                    double *upper)
+{
+    return mpb__world_depth_above(w, q, 0.0, lower, upper);
 }
 
 int mpb_world_hold(mpb_world *w, const char *const *joints,

@@ -98,9 +98,10 @@ typedef struct mpb__world_provider {
                         double *step);
 
     /* Optional: bounds on how deep the robot at q collides
-     * (mpb_world_depth()). NULL: the world cannot say. */
-    int    (*depth)(void *impl, const double *q, double *lower,
-                    double *upper);
+     * (mpb_world_depth()); *lower exact only where above floor (else at
+     * most floor), mpb__world_depth_above(). NULL: the world cannot say. */
+    int    (*depth)(void *impl, const double *q, double floor,
+                    double *lower, double *upper);
 } mpb__world_provider;
 
 struct mpb_world {
@@ -123,6 +124,14 @@ struct mpb_world {
  * limits -pi .. pi whatever lo and hi say; max_velocity not finite and
  * above 0 is kept as 0 (none). MPB_OK or MPB_ENOMEM.
  */
+/*
+ * mpb_world_depth(), for the worst of several configurations: *lower is
+ * exact where it is above floor (>= 0), else some value at most floor,
+ * so that the work that cannot beat floor is spared; *upper is exact.
+ */
+int mpb__world_depth_above(mpb_world *w, const double *q, double floor,
+                           double *lower, double *upper);
+
 int mpb__world_add_joint(mpb_world *w, const char *name, size_t namelen,
                          double lo, double hi, int continuous,
                          double max_velocity);

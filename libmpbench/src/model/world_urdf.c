@@ -601,8 +601,8 @@ static int urdf_safe_step(void *impl, const double *q, const double *d,
 }
 
 /* How deep the robot at q collides (mpb__collision_depth()). */
-static int urdf_depth(void *impl, const double *q, double *lower,
-                      double *upper)
+static int urdf_depth(void *impl, const double *q, double floor,
+                      double *lower, double *upper)
 {
     urdf_world *u = impl;
     mpb__collision_depth_result r;
@@ -610,7 +610,7 @@ static int urdf_depth(void *impl, const double *q, double *lower,
     if (rc == MPB_OK)
         rc = mpb__urdf_place(u, q);
     if (rc == MPB_OK)
-        rc = mpb__collision_depth(u->coll, &r);
+        rc = mpb__collision_depth(u->coll, floor, &r);
     if (rc != MPB_OK)
         return rc;
     *lower = r.lower;

@@ -140,8 +140,13 @@ static void collision_depth(mpb_world *w, const double *q, double at,
     for (double j = 0; p && j <= k; j++) {
         for (int i = 0; i < nj; i++)
             p[i] = a[i] + (j / k) * d[i];
+        /* Just under the worst so far: a configuration no deeper by its
+         * lower bound is spared the search (its lower comes back under
+         * the worst), one as deep is measured to break the tie. */
+        double floor = out->depth_lower > 0
+                           ? nextafter(out->depth_lower, 0.0) : 0.0;
         if (mpb_world_in_collision(w, p) != 1 ||
-            mpb_world_depth(w, p, &lo, &up) != MPB_OK)
+            mpb__world_depth_above(w, p, floor, &lo, &up) != MPB_OK)
             continue;
         if (lo > out->depth_lower ||
             (lo == out->depth_lower && up > out->depth_upper)) {

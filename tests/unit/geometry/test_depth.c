@@ -53,7 +53,7 @@ static mpb_pose turned(double x, double y, double z, double a)
 static mpb__collision_depth_result depth(mpb_collision *c)
 {
     mpb__collision_depth_result r;
-    assert_int_equal(mpb__collision_depth(c, &r), MPB_OK);
+    assert_int_equal(mpb__collision_depth(c, 0.0, &r), MPB_OK);
     print_message("depth: lower %.12g upper %.12g m (bodies %d, %d%s)\n",
                   r.lower, r.upper, r.movable, r.other, r.self ? ", self" : "");
     assert_true(r.lower <= r.upper);
@@ -223,6 +223,41 @@ static void test_self_pairs(void **state)
     mpb__mesh_destroy(m);
 }
 
+/* Many overlapping pairs, the worst first or last (a mesh cube among
+ * spheres, as a link in a wall of a cloud's spheres): each pair's points
+ * are tried only while they can beat the deepest found, and the bounds
+ * are those of trying them all; with a floor, lower is max(floor, that)
+ * and the upper bound and its pair are unchanged. */
+static void test_floor(void **state)
+{
+    (void)state;
+    mpb_collision *c;
+    assert_int_equal(mpb_collision_create(&c), MPB_OK);
+    mpb_mesh *m = cube(0.1);
+    mpb_geometry gm = {.type = MPB_SHAPE_MESH, .mesh = m};
+    assert_int_equal(mpb_collision_add_movable(c, 1, &gm, NULL), MPB_OK);
+    /* spheres of 1.5 cm along the cube's face x = 0.05, 1 to 9 mm into it */
+    for (int i = 0; i < 9; i++) {
+        mpb_geometry g = {.type = MPB_SHAPE_SPHERE, .dims = {0.015}};
+        mpb_pose p = at(0.05 + 0.015 - 0.001 * (i % 2 ? 9 - i : i + 1),
+                        -0.04 + 0.01 * i, 0.01 * (i % 3));
+        assert_int_equal(mpb_collision_add_static(c, 20 + i, &g, &p), MPB_OK);
+    }
+    mpb__collision_depth_result r = depth(c), f;
+    assert_true(fabs(r.lower - 0.009) < TOL);
+    assert_true(fabs(r.upper - 0.009) < TOL);
+    /* a floor under it: the same bounds, bit for bit */
+    assert_int_equal(mpb__collision_depth(c, nextafter(r.lower, 0.0), &f), MPB_OK);
+    assert_true(f.lower == r.lower && f.upper == r.upper);
+    assert_true(f.movable == r.movable && f.other == r.other && f.self == r.self);
+    /* a floor over it: lower is the floor, upper and its pair as before */
+    assert_int_equal(mpb__collision_depth(c, 0.02, &f), MPB_OK);
+    assert_true(f.lower == 0.02 && f.upper == r.upper);
+    assert_true(f.movable == r.movable && f.other == r.other);
+    mpb_collision_destroy(c);
+    mpb__mesh_destroy(m);
+}
+
 static void test_plane(void **state)
 {
     (void)state;
@@ -247,6 +282,7 @@ int main(void)
         cmocka_unit_test(test_mesh_vertex_into_box),
         cmocka_unit_test(test_self_pairs),
         cmocka_unit_test(test_plane),
+        cmocka_unit_test(test_floor),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
