@@ -162,3 +162,52 @@ def test_octree_data_is_not_read_as_lines():
         assert "attach" in str(e)
     else:
         raise AssertionError("an attach line after an octree was taken")
+
+
+_from_bytes = declare("mpb_octree_create_from_bytes", c_int, c_char_p,
+                      ctypes.c_size_t, c_char_p, POINTER(c_void_p), c_char_p,
+                      ctypes.c_size_t)
+_num_cells = declare("mpb_octree_num_cells", c_int, c_void_p)
+_cell = declare("mpb_octree_cell", c_int, c_void_p, c_int, POINTER(c_double),
+                POINTER(c_double))
+
+
+def test_octree_as_an_octomap_file_holds_its_cells():
+    # A posed octree's .bt (for Tesseract's URDF reader): OctoMap's
+    # header at its resolution, and read back by libmpbench the same
+    # cells in the octree's own frame (the block of eight pruned).
+    h = 0.5 ** 0.5
+    text = "scene\n.\n" + _octree_text(CELLS, "posed", [1, 0, 0, 0, 0, h, h])
+    c = peer.read_clouds(text)[0][0]
+    data = c.octomap_bt()
+    lines = data.split(b"\n")
+    assert lines[0] == b"# Octomap OcTree binary file"
+    assert b"id OcTree" in lines and b"res 0.02" in lines
+    tree = c_void_p()
+    err = ctypes.create_string_buffer(256)
+    assert _from_bytes(data, len(data), b"bt", byref(tree), err,
+                       len(err)) == 0, err.value
+    try:
+        n = _num_cells(tree)
+        assert n == len(CELLS) - 7
+        cells = []
+        for i in range(n):
+            centre, side = (c_double * 3)(), c_double()
+            assert _cell(tree, i, centre, byref(side)) == 0
+            cells.append((round(side.value / RES), list(centre)))
+        assert sorted((s, _keys([p])[0]) for s, p in cells if s == 1) == \
+            sorted((1, k) for k in CELLS if k not in BLOCK)
+        assert [(s, p) for s, p in cells if s != 1] == [(2, [RES] * 3)]
+    finally:
+        _free(tree)
+
+
+def test_spheres_are_no_octomap_file():
+    c = clouds.Cloud("pts", "spheres", 0.005, [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
+                     [0, 0, 0], centres=[[0, 0, 0]])
+    try:
+        c.octomap_bt()
+    except clouds.CloudError as e:
+        assert "not an octree" in str(e)
+    else:
+        raise AssertionError("spheres were written as an octree")

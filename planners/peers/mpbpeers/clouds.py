@@ -15,8 +15,11 @@ library's point cloud API takes: an octree's leaf cells' centres
 exactly OctoMap's for its key) or the spheres' centres, with the side
 of the cell each stands for (Cloud.cell: the octree's resolution; for
 spheres their diameter, as MPLib's OcTree documents its resolution:
-"the diameter of a point").
+"the diameter of a point"). Cloud.octomap_bt() gives an octree's cells
+as an OctoMap .bt file, written by libmpbench (mpb_octree_write()), for
+a library that reads OctoMap's files.
 """
+import ctypes
 from ctypes import (POINTER, Structure, byref, c_char_p, c_double, c_float,
                     c_int, c_size_t, c_void_p, create_string_buffer)
 
@@ -56,6 +59,14 @@ _parse = declare("mpb_scene_open_text", c_int, c_char_p, POINTER(c_void_p),
 _free = declare("mpb_scene_close", None, c_void_p)
 _num_objects = declare("mpb_scene_num_objects", c_int, c_void_p)
 _object_at = declare("mpb_scene_object_at", POINTER(_Object), c_void_p, c_int)
+_tree_create = declare("mpb_octree_create", c_int, c_double, POINTER(c_void_p))
+_tree_add = declare("mpb_octree_add_point", c_int, c_void_p, POINTER(c_double))
+_tree_write = declare("mpb_octree_write", c_int, c_void_p, c_int,
+                      POINTER(c_void_p), POINTER(c_size_t))
+_tree_destroy = declare("mpb_octree_destroy", None, c_void_p)
+_libc_free = ctypes.CDLL(None).free
+_libc_free.argtypes = [c_void_p]
+_libc_free.restype = None
 
 
 class CloudError(Exception):
@@ -132,6 +143,34 @@ class Cloud:
             out = [[r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + t[i]
                     for i in range(3)] for p in out]
         return out
+
+    def octomap_bt(self):
+        """An octree's cells, in its own frame, as the bytes of an OctoMap
+        .bt file at its resolution (header and OcTree::writeBinaryData()'s
+        stream), libmpbench's tree of points()' cells written by
+        mpb_octree_write(). CloudError for spheres, or a tree libmpbench
+        refuses."""
+        if self.kind != "octree":
+            raise CloudError(f"{self.kind} '{self.id}': not an octree")
+        tree = c_void_p()
+        if _tree_create(self.resolution, byref(tree)) != 0:
+            raise CloudError(f"octree '{self.id}': resolution "
+                             f"{self.resolution} refused")
+        try:
+            p = (c_double * 3)()
+            for q in self.points():
+                p[0], p[1], p[2] = q
+                if _tree_add(tree, p) != 0:
+                    raise CloudError(f"octree '{self.id}': a cell refused")
+            data, size = c_void_p(), c_size_t()
+            if _tree_write(tree, 1, byref(data), byref(size)) != 0:
+                raise CloudError(f"octree '{self.id}': not written")
+            try:
+                return ctypes.string_at(data, size.value)
+            finally:
+                _libc_free(data)
+        finally:
+            _tree_destroy(tree)
 
 
 def read(text):
