@@ -8,12 +8,14 @@
 #   is the peer's own work;
 # - every peer installed takes both (no INVALID_REQUEST), says what its
 #   library was given (the named value cloud_points for MPLib, srmp and
-#   roboplan, which take octrees and clouds in their own form; else
+#   roboplan, which take octrees and clouds in their own form, and for
+#   Tesseract's octree, its own Octree geometry of the cells; else
 #   cloud_shapes: the merged cells as boxes, the spheres), and plans
 #   round the octree's wall: a path (a stage) mpbench verifies valid
 #   against the octree's cells;
 # - the libraries that take points are given one a leaf cell (654), one
-#   a sphere (756); the others the 19 merged boxes, the 756 spheres.
+#   a sphere (756); the others the 19 merged boxes, the 756 spheres
+#   (Tesseract: the 654 cells, the 756 spheres as spheres).
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
 PASSES=0
@@ -119,8 +121,9 @@ for peer in $PEERS; do
         eq "$(q "SELECT count(*) FROM results WHERE status IN
                  ('invalid_request', 'crash')")" 0
     case $peer in
-        mplib|roboplan|srmp) form=cloud_points octree=654 ;;
-        *) form=cloud_shapes octree=19 ;;
+        mplib|roboplan|srmp) form=cloud_points octree=654 sform=cloud_points ;;
+        tesseract) form=cloud_points octree=654 sform=cloud_shapes ;;
+        *) form=cloud_shapes octree=19 sform=cloud_shapes ;;
     esac
     # Runs on the octree with a stage verified valid: a path of the
     # library's own round the wall (MPLib's last stage, TOPP-RA's spline
@@ -130,16 +133,25 @@ for peer in $PEERS; do
         q "SELECT count(DISTINCT r.run) FROM results r JOIN stages s
            ON s.run_id = r.run WHERE r.scene = 'octree' AND s.valid = 1"
     }
+    # given SCENE FORM TEST: runs on SCENE whose named value FORM passes
+    # TEST; otherwise: their runs that name another form, or fail TEST.
+    otherwise() {
+        q "SELECT count(*) FROM runs r JOIN queries qu ON qu.id = r.query_id
+           JOIN scenes s ON s.id = qu.scene_id JOIN planner_values v
+           ON v.run_id = r.id WHERE r.state = 'done' AND s.name = '$1'
+           AND v.name IN ('cloud_points', 'cloud_shapes')
+           AND NOT (v.name = '$2' AND v.value $3)"
+    }
     given() {
         q "SELECT count(*) FROM runs r JOIN queries qu ON qu.id = r.query_id
            JOIN scenes s ON s.id = qu.scene_id JOIN planner_values v
            ON v.run_id = r.id WHERE r.state = 'done' AND s.name = '$1'
-           AND v.name = '$form' AND v.value $2"
+           AND v.name = '$2' AND v.value $3"
     }
     check "$peer: its library was given $octree for the octree ($form)" \
-        test "$(given octree "= $octree")" -ge 1 -a "$(given octree "!= $octree")" -eq 0
-    check "$peer: ... and 756 for the spheres" \
-        test "$(given spheres "= 756")" -ge 1 -a "$(given spheres "!= 756")" -eq 0
+        test "$(given octree $form "= $octree")" -ge 1 -a "$(otherwise octree $form "= $octree")" -eq 0
+    check "$peer: ... and 756 for the spheres ($sform)" \
+        test "$(given spheres $sform "= 756")" -ge 1 -a "$(otherwise spheres $sform "= 756")" -eq 0
     check "$peer: a path round the octree's wall, verified valid" \
         ge "$(round)" 1
     [ "$(q "SELECT count(*) FROM results WHERE status IN ('invalid_request', 'crash')")" -eq 0 ] &&
@@ -147,5 +159,68 @@ for peer in $PEERS; do
         { q "SELECT scene, status, verdict, message FROM results";
           tail -n 5 "$work/$peer-planner.log"; }
 done
+
+# Tesseract on sensed scenes: two of MotionBenchMaker's Panda problems
+# planned on what two depth cameras see of them (seen: {sense:}, a 1 cm
+# octree of 12,000-14,000 cells), judged on the truth and on that view.
+# Each run gives Tesseract the octree as its own Octree geometry, all
+# of the view's cells (cloud_points: the number `mpb sense` writes in
+# the view's first comment), and a path comes back that mpbench
+# verifies free in the octree Tesseract planned on (seen_verdict; on
+# the truth, a cell's quantisation may graze the table: not asked).
+if [ -x "$MPB_SOURCE/.cache/peers/tesseract/bin/python3" ] &&
+   case " $PEERS " in *" tesseract "*) true ;; *) false ;; esac; then
+    DB=$work/sensed.db
+    probs=$panda/problems
+    cat >"$work/sensed.yaml" <<EOT
+experiment: {name: sensed-tesseract, runs: 1, time_limit: 10, seed: 1}
+robot:
+  format: urdf
+  file: $panda/panda.urdf
+  srdf: $panda/panda.srdf
+  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
+           panda_joint5, panda_joint6, panda_joint7]
+scenes:
+  - {problems: $probs/table_pick_panda, first: 1, count: 1,
+     clamp_joint_values: true,
+     seen: {sense: {resolution: 0.01, noise: 0.002, seed: 1}}}
+  - {problems: $probs/table_pick_panda, first: 4, count: 1,
+     clamp_joint_values: true,
+     seen: {sense: {resolution: 0.01, noise: 0.002, seed: 1}}}
+planners:
+  - {planner: tesseract, algorithms: [TrajOpt, OMPL+TrajOpt]}
+EOT
+    mpb_spawn "$work/sensed-planner.log" "$launcher" tesseract -v
+    mpb_timeout 120 "$daemon" -d "$DB" "$work/sensed.yaml" >"$work/sensed-daemon.log" 2>&1
+    status=$?
+    mpb_stop_all
+    check "tesseract, sensed: the experiment completes" eq "$status" 0
+    check "tesseract, sensed: four runs, none INVALID_REQUEST or crashed" \
+        eq "$(q "SELECT count(*) FROM results WHERE status NOT IN
+                 ('invalid_request', 'crash')")" 4
+    # Per run: the cells its view holds (mpb sense's comment), and what
+    # Tesseract was given.
+    # ("# mpb sense: ... resolution 0.01 m: 14708 hits, 12703 cells").
+    cells() {
+        q "SELECT r.id || ' ' || substr(s.seen, instr(s.seen, ' hits, ') + 7,
+                  instr(s.seen, ' cells') - instr(s.seen, ' hits, ') - 7)
+           FROM runs r JOIN queries qu ON qu.id = r.query_id
+           JOIN scenes s ON s.id = qu.scene_id WHERE r.state = 'done'"
+    }
+    given_sensed() {
+        q "SELECT run_id, value FROM planner_values WHERE name = 'cloud_points'" |
+            sed 's/|/ /; s/\.0$//'
+    }
+    check "tesseract, sensed: each view's octree over 5,000 cells" \
+        eq "$(cells | awk '$2 > 5000' | wc -l)" 4
+    check "tesseract, sensed: every run gave Tesseract the view's cells as its Octree" \
+        test "$(cells | sort)" = "$(given_sensed | sort)"
+    check "tesseract, sensed: ... and none as boxes" \
+        eq "$(q "SELECT count(*) FROM planner_values WHERE name = 'cloud_shapes'")" 0
+    check "tesseract, sensed: a path verified free in the octree it planned on" \
+        ge "$(q "SELECT count(*) FROM runs WHERE seen_verdict = 'valid'")" 1
+    q "SELECT query, planner, status, verdict, seen_verdict FROM results" |
+        sed 's/^/# /'
+fi
 
 mpb_finish

@@ -6,10 +6,22 @@ and OMPL inside Tesseract, collision checking by Tesseract's own Bullet
 contact managers on the URDF's collision meshes (each mesh as Bullet's
 BVH of its triangles; Tesseract's default discrete manager) and the
 scene's boxes, spheres, cylinders and meshes as Tesseract geometry.
-An octree of the scene comes as its occupied cells, boxes merged as
-libmpbench merges them, all on one link (a cloud's spheres alike):
-Tesseract's Octree geometry wants an octomap::OcTree, which its Python
-bindings cannot make.
+An octree of the scene is Tesseract's own Octree geometry (sub-shapes
+boxes: each occupied leaf cell a box in Bullet's compound), at the
+octree's resolution and pose, on a link of its own: its cells written
+as an OctoMap .bt file (clouds.py, libmpbench) and read as a Tesseract
+user reads one, by Tesseract's URDF parser (tesseract_urdf.
+parseURDFString: a collision element <octomap shape_type="box"><octree
+filename=.../></octomap>). That is the one way in from Python: 0.5.1's
+tesseract_geometry.Octree constructors take an octomap::OcTree, and
+its bindings have no way to make one (tesseract_geometry.OcTree has no
+constructor; no point cloud constructor is wrapped). Where that fails
+(Tesseract refuses the file) the octree comes as its occupied cells,
+boxes merged as libmpbench merges them, all on one link, and the run
+says so (cloud_shapes in place of cloud_points). A cloud of spheres is
+always its spheres on one link: Tesseract's Octree sub-shapes are cells
+(boxes, or spheres inside or around them), not a sphere of the cloud's
+radius about each point.
 
 Algorithms:
 
@@ -71,12 +83,16 @@ Deviations from how Tesseract's users use it, and why:
 - Goals: the kit's goal configurations (GOAL_REGIONS False); TrajOpt and
   this use of OMPL take one, the first.
 - Obstacles: each scene shape a link fixed to the URDF's root link by
-  AddLinkCommand (mpbench's world frame is the root's). One Environment
+  AddLinkCommand (mpbench's world frame is the root's); an octree's a
+  link whose one collision is the parsed Octree at the octree's pose
+  (the parsed URDF's links are not added: only its geometry is taken).
+  One Environment
   per robot is kept, as Tesseract's users keep one: a new scene removes
   the last one's links (RemoveLinkCommand) and adds its own (0.06-0.1 s
   where Environment.init takes 0.35-1.3 s on this machine).
 """
 import os
+import sys
 import time
 
 import numpy as np
@@ -92,7 +108,8 @@ from tesseract_robotics.tesseract_common import (
 from tesseract_robotics.tesseract_environment import (AddLinkCommand,
                                                        Environment,
                                                        RemoveLinkCommand)
-from tesseract_robotics.tesseract_geometry import Box, Cylinder, Mesh, Sphere
+from tesseract_robotics.tesseract_geometry import (GeometryType_OCTREE, Box,
+                                                    Cylinder, Mesh, Sphere)
 from tesseract_robotics.tesseract_motion_planners import PlannerRequest
 from tesseract_robotics.tesseract_motion_planners_ompl import (
     OMPLMotionPlanner, OMPLRealVectorPlanProfile)
@@ -103,7 +120,9 @@ from tesseract_robotics.tesseract_motion_planners_trajopt import (
     TrajOptMotionPlanner)
 from tesseract_robotics.tesseract_scene_graph import (Collision, Joint,
                                                       JointType_FIXED, Link)
+from tesseract_robotics.tesseract_urdf import parseURDFString
 
+from . import clouds as clouds_
 from . import peer
 from . import tesseract_setup
 
@@ -128,6 +147,57 @@ def _geometry(shape):
     faces = np.array([x for t in shape.triangles for x in (3, *t)],
                      dtype=np.int32)
     return Mesh(verts, faces)
+
+
+class OctreeRefused(Exception):
+    """An octree Tesseract's URDF parser would not make an Octree of."""
+
+
+# A URDF of one link whose collision is an OctoMap file, as Tesseract's
+# URDF documents an octree (the parser wants a joint: a root link too).
+_OCTREE_URDF = """<robot name="mpb_octree">
+  <link name="root"/>
+  <link name="octree">
+    <collision>
+      <geometry>
+        <octomap shape_type="box"><octree filename="{path}"/></octomap>
+      </geometry>
+    </collision>
+  </link>
+  <joint name="octree_joint" type="fixed">
+    <parent link="root"/><child link="octree"/>
+  </joint>
+</robot>
+"""
+
+
+def _octree(cloud, folder):
+    """The cloud's cells as Tesseract's Octree geometry, in the cloud's
+    frame: its .bt file (Cloud.octomap_bt()) read by Tesseract's URDF
+    parser, then the file removed (OctoMap reads it whole).
+    OctreeRefused with why."""
+    try:
+        data = cloud.octomap_bt()
+    except clouds_.CloudError as e:
+        raise OctreeRefused(str(e)) from None
+    path = os.path.join(folder, "octree.bt")
+    with open(path, "wb") as f:
+        f.write(data)
+    try:
+        graph = parseURDFString(_OCTREE_URDF.format(path=path),
+                                GeneralResourceLocator())
+    except Exception as e:    # SWIG's RuntimeError, Tesseract's message
+        raise OctreeRefused(f"tesseract_urdf: {e}") from None
+    finally:
+        os.unlink(path)
+    if graph is None:
+        raise OctreeRefused("tesseract_urdf: no scene graph")
+    link = graph.getLink("octree")
+    geometry = link.collision[0].geometry if link is not None and \
+        len(link.collision) == 1 else None
+    if geometry is None or geometry.getType() != GeometryType_OCTREE:
+        raise OctreeRefused("tesseract_urdf: no Octree geometry")
+    return geometry
 
 
 def _states(results):
@@ -158,9 +228,14 @@ class Adapter:
     APPROACH = {"TrajOpt": "optimisation", "OMPL+TrajOpt": "hybrid"}
     GOAL_REGIONS = False     # joint goals; the kit samples IK goals
 
+    OCTREES = True      # False: every octree as boxes (bench/, tests)
+
     def __init__(self):
         self.robots = {}    # (URDF, SRDF, joints) -> [Environment, base, tip]
         self.scene_links = []
+        # What the kit reports the library was given (peer.Peer): set by
+        # build(), "points" when an octree went in as Tesseract's Octree.
+        self.CLOUDS = ""
 
     def _robot(self, problem):
         """The robot's Environment, made once per robot and kept, as a
@@ -202,25 +277,46 @@ class Adapter:
                 raise peer.InvalidRequest("tesseract: the last scene's "
                                           "links could not be removed")
         root = env.getRootLinkName()
+        # Each octree Tesseract's Octree if it takes it (else its boxes;
+        # an empty one has none).
+        octrees = {}
+        for c in problem.clouds:
+            if c.kind != "octree" or not c.boxes or not self.OCTREES:
+                continue
+            try:
+                octrees[c.id] = (c, _octree(c, os.path.dirname(
+                    problem.urdf_path)))
+            except OctreeRefused as e:
+                print(f"mpb-planner-tesseract: octree '{c.id}' as boxes: "
+                      f"{e}", file=sys.stderr)
+        self.CLOUDS = "points" if octrees else ""
         # A shape a link, but an octree's boxes (a cloud's spheres) one
         # link of many collision shapes: a link each would be thousands
         # of AddLinkCommands (a sensed scene's 5871 took over 300 s).
-        links = []
+        # links: lists of (origin, 4x4; a Shape or a Tesseract geometry).
+        links = [[(c.matrix(), g)] for c, g in octrees.values()]
+        names = list(octrees)
         clouds = {}
         for s in problem.shapes:
+            if s.cloud in octrees:
+                continue
+            part = (s.matrix(), s)
             if s.cloud is None:
-                links.append([s])
+                links.append([part])
+                names.append(s.name)
             elif s.cloud in clouds:
-                clouds[s.cloud].append(s)
+                clouds[s.cloud].append(part)
             else:
-                clouds[s.cloud] = [s]
+                clouds[s.cloud] = [part]
                 links.append(clouds[s.cloud])
-        for k, shapes in enumerate(links):
+                names.append(s.cloud)
+        for k, parts in enumerate(links):
             link = Link(f"mpb_scene_{k}")
-            for s in shapes:
+            for matrix, g in parts:
                 col = Collision()
-                col.origin = Isometry3d(np.array(s.matrix(), dtype=float))
-                col.geometry = _geometry(s)
+                col.origin = Isometry3d(np.array(matrix, dtype=float))
+                col.geometry = _geometry(g) if isinstance(g, peer.Shape) \
+                    else g
                 link.collision.append(col)
             joint = Joint(f"mpb_scene_{k}_joint")
             joint.type = JointType_FIXED
@@ -229,7 +325,7 @@ class Adapter:
             cmd = AddLinkCommand(link, joint)
             if not env.applyCommand(cmd):
                 raise peer.InvalidRequest(f"tesseract refuses scene shape "
-                                          f"'{shapes[0].name}'")
+                                          f"'{names[k]}'")
             self.scene_links.append(link.getName())
         if problem.held:
             env.setState(list(problem.held), np.array(
