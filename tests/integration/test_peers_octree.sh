@@ -219,7 +219,8 @@ EOT
         eq "$(q "SELECT count(*) FROM planner_values WHERE name = 'cloud_shapes'")" 0
     check "tesseract, sensed: a path verified free in the octree it planned on" \
         ge "$(q "SELECT count(*) FROM runs WHERE seen_verdict = 'valid'")" 1
-    q "SELECT query, planner, status, verdict, seen_verdict FROM results" |
+    q "SELECT r.query_id, c.algorithm, r.status, r.verdict, r.seen_verdict
+       FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id" |
         sed 's/^/# /'
 fi
 
