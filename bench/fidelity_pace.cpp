@@ -61,8 +61,8 @@ void on_request(const lcm_recv_buf_t *rbuf, const char *, void *user)
     if (!mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, rbuf->data_size, nullptr, 0) ||
         mpb_plan_request_t_decode(rbuf->data, 0, static_cast<int>(rbuf->data_size), &m) < 0)
         return;
-    if (mpb_run_id_is_valid(m.run_id) && !p->requests.count(m.run_id))
-        p->requests[m.run_id] = {m.utime, std::to_string(static_cast<long long>(m.seed))};
+    if (mpb_attempt_id_is_valid(m.attempt_id) && !p->requests.count(m.attempt_id))
+        p->requests[m.attempt_id] = {m.utime, std::to_string(static_cast<long long>(m.seed))};
     for (int i = 0; i < m.num_stored; i++)
         if (!p->holding.empty() && p->holding == m.stored[i])
             p->stored = true;
@@ -78,12 +78,12 @@ void on_result(const lcm_recv_buf_t *rbuf, const char *, void *user)
         return;
     // The first result of a run this process saw requested; a result
     // re-sent while mpbenchd was storing it is the same run.
-    if (p->holding.empty() && p->requests.count(m.run_id) && !p->paced.count(m.run_id)) {
+    if (p->holding.empty() && p->requests.count(m.attempt_id) && !p->paced.count(m.attempt_id)) {
         held_pid = p->planner;
         kill(p->planner, SIGSTOP);
         p->held_at = mpb_utime_now();
         p->held_mono = mpb_monotonic_s();
-        p->holding = m.run_id;
+        p->holding = m.attempt_id;
         p->run_s = m.time_total;
         p->stored = false;
     }
@@ -98,7 +98,7 @@ void on_ack(const lcm_recv_buf_t *rbuf, const char *, void *user)
         mpb_run_ack_t_decode(rbuf->data, 0, static_cast<int>(rbuf->data_size), &m) < 0)
         return;
     if ((m.kind == MPB_RUN_ACK_T_RESULT_STORED || m.kind == MPB_RUN_ACK_T_RESULT_REJECTED) &&
-        !p->holding.empty() && p->holding == m.run_id)
+        !p->holding.empty() && p->holding == m.attempt_id)
         p->stored = true;
     mpb_run_ack_t_decode_cleanup(&m);
 }

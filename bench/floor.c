@@ -115,7 +115,7 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel,
                              .num_joints = (int16_t)n, .num_values = 2 * n,
                              .waypoints = wp};
         mpb_plan_result_t res = {
-            .utime = mpb_utime_now(), .run_id = rq.run_id,
+            .utime = mpb_utime_now(), .attempt_id = rq.attempt_id,
             .planner_id = rq.planner_id, .status = MPB_PLAN_RESULT_T_SOLVED,
             .message = "", .num_stages = 1, .stages = &stage,
         };
@@ -160,7 +160,7 @@ static void on_result(const lcm_recv_buf_t *rbuf, const char *channel,
         mpb_plan_result_t_decode(rbuf->data, 0, (int)rbuf->data_size, &res) < 0)
         return;
     /* The run id carries the sequence number, as hex. */
-    p->got = (int64_t)strtoll(res.run_id, NULL, 16);
+    p->got = (int64_t)strtoll(res.attempt_id, NULL, 16);
     p->res_bytes = (int)rbuf->data_size;
     mpb_plan_result_t_decode_cleanup(&res);
 }
@@ -178,7 +178,7 @@ static char **joint_names(mpb_world *w)
 int main(int argc, char **argv)
 {
     options o;
-    char err[256], run_id[MPB_RUN_ID_SIZE], robot_hash[MPB_HASH_SIZE],
+    char err[256], run_id[MPB_ATTEMPT_ID_SIZE], robot_hash[MPB_HASH_SIZE],
          scene_hash[MPB_HASH_SIZE];
     mpb_world *world = NULL;
 
@@ -215,7 +215,7 @@ int main(int argc, char **argv)
     double start[16] = {0}, goal[16] = {0.3, -0.2, 0.1};
     mpb_param_t param = {.key = "delay", .value = "0"};
     mpb_plan_request_t rq = {
-        .run_id = run_id,
+        .attempt_id = run_id,
         .planner_id = "null@mpbench-bench-host:123456",
         .algorithm = "straight_line",
         .num_params = 0, .params = &param,

@@ -43,9 +43,9 @@ def main():
         t = event.timestamp / 1e6
         try:
             if event.channel.startswith("MPB_REQUEST"):
-                req.setdefault(plan_request_t.decode(event.data).run_id, t)
+                req.setdefault(plan_request_t.decode(event.data).attempt_id, t)
             elif event.channel == "MPB_RESULT":
-                res.setdefault(plan_result_t.decode(event.data).run_id, t)
+                res.setdefault(plan_result_t.decode(event.data).attempt_id, t)
         except ValueError:
             pass        # another type on the channel: not ours
     rows = sqlite3.connect(db).execute(

@@ -128,7 +128,7 @@ int main(int argc, char **argv)
     static const char *const stage_names[] = {"raw", "shortcut", "smoothed"};
     options o;
     mpb_store *s = NULL;
-    char uid[MPB_RUN_ID_SIZE], name[96], rh[MPB_HASH_SIZE], sh[MPB_HASH_SIZE];
+    char uid[MPB_ATTEMPT_ID_SIZE], name[96], rh[MPB_HASH_SIZE], sh[MPB_HASH_SIZE];
     uint64_t seed = 88172645463325252ull;
 
     if (parse(argc, argv, &o) != 0)

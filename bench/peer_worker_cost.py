@@ -78,7 +78,7 @@ def requests(problem_set, count, algorithm, time_limit):
         start, goal = _request_values(os.path.join(folder,
                                                    f"request{k:04d}.yaml"))
         r = plan_request_t()
-        r.run_id = f"bench{k}"
+        r.attempt_id = f"bench{k}"
         r.planner_id = "bench"
         r.algorithm = algorithm
         r.params, r.num_params = [], 0

@@ -32,7 +32,7 @@
 #include "bench_util.h"
 
 typedef struct entry {
-    char    id[MPB_RUN_ID_SIZE];
+    char    id[MPB_ATTEMPT_ID_SIZE];
     int64_t request;        /* daemon's utime of the first request seen */
     int64_t result;         /* planner's utime of the first result seen */
     int     done;
@@ -89,7 +89,7 @@ static entry *slot(watch *w, const char *id, int insert)
 /* The result of run id was acknowledged as stored at utime. */
 static void acknowledged(watch *w, const char *id, int64_t utime)
 {
-    if (w->done >= w->want || !mpb_run_id_is_valid(id))
+    if (w->done >= w->want || !mpb_attempt_id_is_valid(id))
         return;
     entry *e = slot(w, id, 0);
     if (e == NULL || e->request == 0) {
@@ -118,9 +118,9 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         mpb_plan_request_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
         return;
     /* Keep the table at most half full. */
-    if (mpb_run_id_is_valid(m.run_id) &&
+    if (mpb_attempt_id_is_valid(m.attempt_id) &&
         (size_t)w->requests < w->mask / 2) {
-        entry *e = slot(w, m.run_id, 1);
+        entry *e = slot(w, m.attempt_id, 1);
         if (e->request == 0) {
             e->request = m.utime;
             if (w->requests++ > w->skip && w->ncycles < w->want)
@@ -143,7 +143,7 @@ static void on_result(const lcm_recv_buf_t *rbuf, const char *channel,
                         NULL, 0) ||
         mpb_plan_result_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
         return;
-    entry *e = mpb_run_id_is_valid(m.run_id) ? slot(w, m.run_id, 0) : NULL;
+    entry *e = mpb_attempt_id_is_valid(m.attempt_id) ? slot(w, m.attempt_id, 0) : NULL;
     if (e != NULL && e->result == 0)
         e->result = m.utime;
     mpb_plan_result_t_decode_cleanup(&m);
@@ -157,7 +157,7 @@ static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
         || mpb_run_ack_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0)
         return;
     if (m.kind == MPB_RUN_ACK_T_RESULT_STORED)
-        acknowledged(user, m.run_id, m.utime);
+        acknowledged(user, m.attempt_id, m.utime);
     mpb_run_ack_t_decode_cleanup(&m);
 }
 

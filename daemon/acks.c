@@ -24,15 +24,16 @@ void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
     char channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
     mpb_run_ack_t ack = {
         .utime = mpb_utime_now(),
-        .run_id = (char *)run_uid,
+        .attempt_id = (char *)run_uid,
         .sender_id = d->daemon_id,
         .kind = (int8_t)kind,
     };
-    /* A result that names no valid planner cannot be answered. */
+    /* A result that names no valid planner cannot be answered. A planner
+     * built before attempt_id takes its acks in their older layout. */
     if (mpb_ack_channel(planner_id, channel, sizeof channel) == MPB_OK)
-        mpb_publish_ack(d->lcm, d->auth, d->auth != NULL
-                            ? mpbd_planner_instance(d, planner_id) : 0,
-                        channel, &ack);
+        mpb_publish_ack_in(d->lcm, d->auth, d->auth != NULL
+                               ? mpbd_planner_instance(d, planner_id) : 0,
+                           channel, &ack, mpbd_planner_layout(d, planner_id));
 }
 
 static mpbd_ack_due *push(mpbd_ack_due **arr, int *num, int *cap)
@@ -46,7 +47,7 @@ int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid,
                           double sent_at)
 {
     mpbd_acks *k = &d->acks;
-    if (!mpb_planner_id_is_valid(planner_id) || !mpb_run_id_is_valid(run_uid))
+    if (!mpb_planner_id_is_valid(planner_id) || !mpb_attempt_id_is_valid(run_uid))
         return MPB_EINVAL;
     mpbd_ack_due *a = push(&k->due, &k->num_due, &k->cap_due);
     if (a == NULL)
@@ -88,7 +89,7 @@ int mpbd_acks_due(const mpbd *d)
 }
 
 int mpbd_owed_take(mpbd *d, const char *planner_id,
-                   char (*ids)[MPB_RUN_ID_SIZE], int max)
+                   char (*ids)[MPB_ATTEMPT_ID_SIZE], int max)
 {
     mpbd_acks *k = &d->acks;
     int n = 0;
@@ -97,7 +98,7 @@ int mpbd_owed_take(mpbd *d, const char *planner_id,
             i++;
             continue;
         }
-        memcpy(ids[n++], k->owed[i].run_uid, MPB_RUN_ID_SIZE);
+        memcpy(ids[n++], k->owed[i].run_uid, MPB_ATTEMPT_ID_SIZE);
         k->owed[i] = k->owed[--k->num_owed];
     }
     return n;

@@ -16,7 +16,7 @@ static int unknown_runs(const mpbd *d, int planner, char *const *active_runs,
 {
     int unknown = 0;
     for (int k = 0; k < num_active; k++)
-        if (mpb_run_id_is_valid(active_runs[k]) &&
+        if (mpb_attempt_id_is_valid(active_runs[k]) &&
             !mpbd_runs_knows(d, planner, active_runs[k]) &&
             !mpbd_verifier_has(d, active_runs[k]))
             unknown++;
@@ -32,7 +32,7 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
     int index = (int)(p - d->planners);
     mpbd_planner_heard(d, index, now);
     int num_active = m->num_active > 0 ? m->num_active : 0;
-    int unknown = unknown_runs(d, index, m->active_runs, num_active);
+    int unknown = unknown_runs(d, index, m->active_attempts, num_active);
     if (unknown > 0 && p->unknown == 0)
         mpbd_log("planner %s is planning %d run%s this daemon did not send "
                  "it (given up on before a restart?): it gets no run in "
@@ -42,9 +42,9 @@ static void on_announce(mpbd *d, const mpb_planner_announce_t *m)
         mpbd_log("planner %s has stopped planning the run%s this daemon did "
                  "not send it: it takes runs again", p->id,
                  p->unknown == 1 ? "" : "s");
-    mpbd_planner_working_on(d, index, m->active_runs, num_active, unknown);
+    mpbd_planner_working_on(d, index, m->active_attempts, num_active, unknown);
     if (p->closing)
-        mpbd_planner_closing(d, index, m->active_runs, num_active);
+        mpbd_planner_closing(d, index, m->active_attempts, num_active);
 }
 
 static void on_announce_raw(const lcm_recv_buf_t *rbuf, const char *channel,

@@ -117,7 +117,7 @@ typedef struct mpbd_doomed {
 
 /* A run given up on at its deadline, that its planner may still plan. */
 typedef struct mpbd_abandoned {
-    char    uid[MPB_RUN_ID_SIZE];
+    char    uid[MPB_ATTEMPT_ID_SIZE];
     int     planner;         /* index into planners: who still plans it */
     int64_t run_id;          /* runs.id, for the log */
     double  since;           /* monotonic s, when given up on */
@@ -154,6 +154,10 @@ typedef struct mpbd_planner {
     int     gone;
     uint64_t instance;       /* its process's, from its announcements
                                 (auth.h): what messages to it echo */
+    /* The layout (wire.h) of the requests and acks it takes: 0, today's;
+     * MPB_WIRE_BEFORE_ATTEMPT_ID for a planner built before attempt_id,
+     * known by its announcements in an older layout. */
+    int      layout;
 } mpbd_planner;
 
 /* A run not yet done, as the scheduler holds it. */
@@ -163,7 +167,7 @@ typedef struct mpbd_run {
     int     query;           /* index into experiment queries */
     int64_t seed;
     int     attempts;        /* requests sent so far, over all attempts */
-    char    uid[MPB_RUN_ID_SIZE];   /* current attempt, "" if none yet */
+    char    uid[MPB_ATTEMPT_ID_SIZE];   /* current attempt, "" if none yet */
 } mpbd_run;
 
 /* A request out on the network, waiting for its result. A queued one was
@@ -191,7 +195,7 @@ typedef struct mpbd_flight {
 /* A stored result to acknowledge, to its planner, once its transaction
  * commits (acks.c). */
 typedef struct mpbd_ack_due {
-    char    run_uid[MPB_RUN_ID_SIZE];
+    char    run_uid[MPB_ATTEMPT_ID_SIZE];
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
     double  sent_at;         /* the request's first send; < 0: a result
                                 sent again, answered alone and at once */
@@ -203,7 +207,7 @@ typedef struct mpbd_ack_due {
  * it, before the results it holds. */
 typedef struct mpbd_unrecorded {
     int64_t run_id;
-    char    run_uid[MPB_RUN_ID_SIZE];
+    char    run_uid[MPB_ATTEMPT_ID_SIZE];
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
 } mpbd_unrecorded;
 
@@ -247,7 +251,7 @@ typedef struct mpbd_runs {
     int              num_abandoned, cap_abandoned;
     /* Runs finished lately, so that a re-sent result is acknowledged
      * again instead of being counted as a stray. */
-    char             recent[256][MPB_RUN_ID_SIZE];
+    char             recent[256][MPB_ATTEMPT_ID_SIZE];
     int              recent_next;
     /* Told of each run taken back (replay.c keeps its own account). */
     void           (*on_take_back)(void *ud, const mpbd_run *run);
@@ -291,6 +295,7 @@ typedef struct mpbd {
     mpb_auth        *auth;           /* NULL: messages are not authenticated */
     uint64_t         msg_from;       /* the sender instance of the message
                                         being handled (mpbd_receive) */
+    int              msg_layout;     /* and its layout (wire.h), 0 today's */
     /* The younger daemon whose status the next status answers (echoes),
      * so that it may believe it (daemons.c); 0 if none. */
     uint64_t         status_echo;
@@ -417,6 +422,9 @@ int  mpbd_planner_offers(const mpbd_planner *p, const char *name,
                          const char *algorithm);
 /* The instance (auth.h) of the planner with this id, 0 if unknown. */
 uint64_t mpbd_planner_instance(const mpbd *d, const char *id);
+/* The layout (wire.h) of the acks the planner with this id takes; 0
+ * (today's) if unknown. */
+int  mpbd_planner_layout(const mpbd *d, const char *id);
 void mpbd_planners_free(mpbd *d);
 
 /* ---- acks.c ----------------------------------------------------------- */
@@ -437,7 +445,7 @@ void mpbd_acks_drop(mpbd *d);
 int  mpbd_acks_due(const mpbd *d);     /* how many wait for the commit */
 /* Take up to max acknowledgements owed to a planner, for its request. */
 int  mpbd_owed_take(mpbd *d, const char *planner_id,
-                    char (*ids)[MPB_RUN_ID_SIZE], int max);
+                    char (*ids)[MPB_ATTEMPT_ID_SIZE], int max);
 /* Send alone those owed acknowledgements whose time is up (all: every one). */
 void mpbd_owed_send(mpbd *d, double now, int all);
 
@@ -450,7 +458,7 @@ int  mpbd_runs_waiting(const mpbd *d, int config);  /* pending of config */
  * queue if queued), with a new attempt id unless it was sent before a
  * restart; the caller publishes it. NULL if none or out of memory. */
 mpbd_flight *mpbd_runs_send(mpbd *d, int config, int planner, int queued);
-/* Write the runs sent since the last call as sent (attempt, run id,
+/* Write the runs sent since the last call as sent (attempts, attempt id,
  * planner), in the open transaction. */
 int  mpbd_runs_record_sent(mpbd *d);
 /* A flight for run, to planner, timed from now (replay.c's requests, as

@@ -42,6 +42,7 @@ int mpbd_receive(mpbd *d, mpb_wire_type type, const lcm_recv_buf_t *rbuf,
     int ok = mpb_receive(d->auth, accept, type, channel, rbuf->data,
                          (size_t)rbuf->data_size, msg, &r) == MPB_OK;
     d->msg_from = r.info.instance;
+    d->msg_layout = r.layout;
     if (!ok) {
         mpbd_reject(d, channel, r.why);
         if (r.verdict == MPB_AUTH_UNPROVEN)

@@ -165,6 +165,7 @@ mpbd_planner *mpbd_planner_learn(mpbd *d, const mpb_planner_announce_t *m,
     p->heartbeat_s = m->heartbeat_ms > 0 ? m->heartbeat_ms / 1000.0 : 0.5;
     p->last_seen = now;
     p->instance = d->msg_from;
+    p->layout = d->msg_layout > 0 ? MPB_WIRE_BEFORE_ATTEMPT_ID : 0;
     return p;
 }
 
@@ -208,6 +209,14 @@ uint64_t mpbd_planner_instance(const mpbd *d, const char *id)
     for (int i = 0; i < d->num_planners; i++)
         if (strcmp(d->planners[i].id, id) == 0)
             return d->planners[i].instance;
+    return 0;
+}
+
+int mpbd_planner_layout(const mpbd *d, const char *id)
+{
+    for (int i = 0; i < d->num_planners; i++)
+        if (strcmp(d->planners[i].id, id) == 0)
+            return d->planners[i].layout;
     return 0;
 }
 

@@ -21,7 +21,7 @@ void mpbd_result_reject(mpbd *d, const char *why, const mpb_plan_result_t *m)
     if (d->count.rejected <= 10 || d->count.rejected % 1000 == 0) {
         char run[4 * 32 + 4], planner[4 * MPB_PLANNER_ID_MAX + 4];
         mpbd_log("rejected result %s from %s: %s (%ld rejected so far)",
-                 mpb_escape(m->run_id, run, sizeof run),
+                 mpb_escape(m->attempt_id, run, sizeof run),
                  mpb_escape(m->planner_id, planner, sizeof planner), why,
                  d->count.rejected);
     }

@@ -2,12 +2,12 @@
  * replay.c - mpbenchd --replay: rebuild an experiment's results from an LCM
  * log written by lcm-logger during a live benchmark, without planning again.
  *
- * The logged requests say which run each run id was (their seed is
+ * The logged requests say which run each attempt id was (their seed is
  * mpbd_run_seed() of one run of the experiment, their algorithm and
  * addressee name its configuration); the logged announcements and results
  * go through the live daemon's own handlers (planners.c, results.c) over an
  * in-process memq:// LCM, so a replayed result is checked, verified,
- * measured and stored exactly as a live one: a result whose run id no
+ * measured and stored exactly as a live one: a result whose attempt id no
  * logged request carried, or that came from another planner, is rejected
  * and counted. Nothing reaches the network: acknowledgements go to memq and
  * are dropped.
@@ -103,7 +103,7 @@ static replay_run *find_run(replay *r, const mpb_plan_request_t *rq,
         if (strcmp(c->algorithm, rq->algorithm) != 0 ||
             strcmp(c->planner, p->name) != 0)
             continue;
-        if (strcmp(hit->run.uid, rq->run_id) == 0)
+        if (strcmp(hit->run.uid, rq->attempt_id) == 0)
             return hit;
         if (!hit->done && fallback == NULL)
             fallback = hit;
@@ -126,17 +126,17 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
     int p = planner_index(d, rq.planner_id);
     replay_run *run = NULL;
     if (strcmp(addressee, rq.planner_id) == 0 && p >= 0 &&
-        mpb_run_id_is_valid(rq.run_id))
+        mpb_attempt_id_is_valid(rq.attempt_id))
         run = find_run(r, &rq, &d->planners[p]);
     if (run == NULL) {
         if (++r->unknown_requests <= 10)
             mpbd_log("%s: request %.32s to %.96s is no run of this experiment"
                      " (or its planner never announced itself); ignored",
-                     r->path, rq.run_id, rq.planner_id);
+                     r->path, rq.attempt_id, rq.planner_id);
         goto done;
     }
     r->matched++;
-    if (run->done || strcmp(run->run.uid, rq.run_id) == 0)
+    if (run->done || strcmp(run->run.uid, rq.attempt_id) == 0)
         goto done; /* a resend */
     if (run->run.uid[0] != '\0') {
         /* A new attempt: the live daemon gave up on the previous one, or
@@ -153,7 +153,7 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
     }
     if (run->run.uid[0] == '\0')
         r->open[r->num_open++] = run;
-    memcpy(run->run.uid, rq.run_id, MPB_RUN_ID_SIZE);
+    memcpy(run->run.uid, rq.attempt_id, MPB_ATTEMPT_ID_SIZE);
     if (mpb_store_run_sent(d->store, run->run.id, run->run.uid,
                            rq.planner_id) != MPB_OK) {
         mpbd_db_error(d);

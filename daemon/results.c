@@ -14,25 +14,25 @@ static void on_result(mpbd *d, const mpb_plan_result_t *m, double recv)
 {
     mpbd_flight *f;
 
-    if (!mpb_run_id_is_valid(m->run_id)) {
+    if (!mpb_attempt_id_is_valid(m->attempt_id)) {
         /* No run has such an id: answered so that a planner stops
          * re-sending it (if it names a valid planner to answer). */
-        mpbd_result_reject(d, "malformed run id", m);
-        mpbd_ack(d, m->planner_id, m->run_id, MPB_RUN_ACK_T_RESULT_REJECTED);
+        mpbd_result_reject(d, "malformed attempt id", m);
+        mpbd_ack(d, m->planner_id, m->attempt_id, MPB_RUN_ACK_T_RESULT_REJECTED);
         return;
     }
-    if ((f = mpbd_flight_find(d, m->run_id)) == NULL) {
+    if ((f = mpbd_flight_find(d, m->attempt_id)) == NULL) {
         /* Being verified: acknowledged once stored. */
-        if (mpbd_verifier_has(d, m->run_id))
+        if (mpbd_verifier_has(d, m->attempt_id))
             return;
-        if (mpbd_recently_done(d, m->run_id)) {
+        if (mpbd_recently_done(d, m->attempt_id)) {
             /* Stored, perhaps in the transaction still open: acknowledged
              * again once that commits. */
-            mpbd_ack_after_commit(d, m->planner_id, m->run_id, -1.0);
+            mpbd_ack_after_commit(d, m->planner_id, m->attempt_id, -1.0);
             return;
         }
         mpbd_result_reject(d, "no such run in flight", m);
-        mpbd_ack(d, m->planner_id, m->run_id, MPB_RUN_ACK_T_RESULT_REJECTED);
+        mpbd_ack(d, m->planner_id, m->attempt_id, MPB_RUN_ACK_T_RESULT_REJECTED);
         return;
     }
     if (strcmp(d->planners[f->planner].id, m->planner_id) != 0) {

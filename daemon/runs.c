@@ -74,8 +74,8 @@ static int load_row(void *ud, const mpb_run_row *row)
         return MPB_ENOTFOUND;
     /* A run sent before a restart keeps its id, so that its result, if the
      * planner still delivers it, is accepted once. */
-    if (row->sent && row->run_uid && mpb_run_id_is_valid(row->run_uid))
-        memcpy(run.uid, row->run_uid, MPB_RUN_ID_SIZE);
+    if (row->sent && row->run_uid && mpb_attempt_id_is_valid(row->run_uid))
+        memcpy(run.uid, row->run_uid, MPB_ATTEMPT_ID_SIZE);
     return push_pending(&d->runs, run.config, &run);
 }
 
@@ -192,8 +192,8 @@ mpbd_flight *mpbd_runs_send(mpbd *d, int config, int planner, int queued)
     /* A new attempt, or one sent before a restart going again with its id
      * (the same attempt: not counted again, here or in the store). */
     int fresh = run.uid[0] == '\0';
-    if (fresh && mpb_run_id_new(run.uid) != MPB_OK) {
-        mpbd_log("cannot draw a random run id");
+    if (fresh && mpb_attempt_id_new(run.uid) != MPB_OK) {
+        mpbd_log("cannot draw a random attempt id");
         return NULL;
     }
     if (mpb__grow((void **)&r->unrecorded, &r->cap_unrecorded,
@@ -366,7 +366,7 @@ void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
     int dropped = unknown < p->unknown;
     for (int k = 0; k < num_active; k++) {
         mpbd_flight *f;
-        if (!mpb_run_id_is_valid(active_runs[k]) ||
+        if (!mpb_attempt_id_is_valid(active_runs[k]) ||
             (f = mpbd_flight_find(d, active_runs[k])) == NULL ||
             f->planner != planner)
             continue;
@@ -418,7 +418,7 @@ void mpbd_runs_abandon(mpbd *d, const mpbd_flight *f)
 void mpbd_runs_remember(mpbd *d, const char *uid)
 {
     mpbd_runs *r = &d->runs;
-    memcpy(r->recent[r->recent_next], uid, MPB_RUN_ID_SIZE);
+    memcpy(r->recent[r->recent_next], uid, MPB_ATTEMPT_ID_SIZE);
     r->recent_next = (r->recent_next + 1) %
                      (int)(sizeof r->recent / sizeof r->recent[0]);
 }

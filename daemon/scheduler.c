@@ -29,7 +29,7 @@
 #include "mpb_run_ack_t.h"
 
 /* The request for a run of config c on query q, without what changes
- * from one send to the next (utime, run_id, planner_id, seed, stored).
+ * from one send to the next (utime, attempt_id, planner_id, seed, stored).
  * It points into e. */
 static void fill_request(const mpbd_experiment *e, int config, int query,
                          mpb_plan_request_t *rq)
@@ -38,7 +38,7 @@ static void fill_request(const mpbd_experiment *e, int config, int query,
     const mpbd_query *q = &e->queries[query];
     const mpbd_scene *s = &e->scenes[q->scene];
     *rq = (mpb_plan_request_t){
-        .run_id = "",
+        .attempt_id = "",
         .planner_id = "",
         .algorithm = c->algorithm,
         .num_params = (int16_t)c->num_params,
@@ -84,12 +84,12 @@ int mpbd_requests_fit(const mpbd_experiment *e, int authenticated, char *err,
      * load of acknowledgements riding on it. The robot and scene text,
      * counted once per scene, stand apart from the rest. */
     static char planner_id[MPB_PLANNER_ID_MAX + 1];
-    static char run_id[MPB_RUN_ID_SIZE];
+    static char attempt_id[MPB_ATTEMPT_ID_SIZE];
     char *stored[MPBD_STORED_MAX];
     memset(planner_id, 'x', MPB_PLANNER_ID_MAX);
-    memset(run_id, '0', MPB_RUN_ID_SIZE - 1);
+    memset(attempt_id, '0', MPB_ATTEMPT_ID_SIZE - 1);
     for (int i = 0; i < MPBD_STORED_MAX; i++)
-        stored[i] = run_id;
+        stored[i] = attempt_id;
     for (int q = 0; q < e->num_queries; q++) {
         const mpbd_scene *s = &e->scenes[e->queries[q].scene];
         size_t robot = strlen(s->robot), scene = strlen(mpbd_scene_given(s));
@@ -97,7 +97,7 @@ int mpbd_requests_fit(const mpbd_experiment *e, int authenticated, char *err,
         for (int c = 0; c < e->num_configs; c++) {
             mpb_plan_request_t rq;
             fill_request(e, c, q, &rq);
-            rq.run_id = run_id;
+            rq.attempt_id = attempt_id;
             rq.planner_id = planner_id;
             rq.num_stored = MPBD_STORED_MAX;
             rq.stored = stored;
@@ -129,21 +129,24 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
     mpb_plan_request_t rq;
     fill_request(e, f->run.config, f->run.query, &rq);
     rq.utime = mpb_utime_now();
-    rq.run_id = (char *)f->run.uid;
+    rq.attempt_id = (char *)f->run.uid;
     rq.planner_id = (char *)p->id;
     rq.seed = f->run.seed;
     if (mpb_request_channel(p->id, channel, sizeof channel) != MPB_OK)
         return MPB_EINVAL;
     /* The planner's stored results ride along (acks.c). If this send
      * fails, the planner re-sends those results and is answered again. */
-    char stored_ids[MPBD_STORED_MAX][MPB_RUN_ID_SIZE];
+    char stored_ids[MPBD_STORED_MAX][MPB_ATTEMPT_ID_SIZE];
     char *stored[MPBD_STORED_MAX];
     rq.num_stored = (int16_t)mpbd_owed_take(d, p->id, stored_ids, MPBD_STORED_MAX);
     for (int i = 0; i < rq.num_stored; i++)
         stored[i] = stored_ids[i];
     rq.stored = stored;
     d->requested = 1;
-    return mpb_publish_request(d->lcm, d->auth, p->instance, channel, &rq);
+    /* In the layout the planner takes (an older one for a planner built
+     * before attempt_id). */
+    return mpb_publish_request_in(d->lcm, d->auth, p->instance, channel, &rq,
+                                  p->layout);
 }
 
 /* Send the next run of config c to planner p (to wait in its queue if
@@ -450,8 +453,8 @@ static void declined(mpbd *d, mpbd_flight *f)
 static void on_ack(mpbd *d, const mpb_run_ack_t *m)
 {
     mpbd_flight *f;
-    if (!mpb_run_id_is_valid(m->run_id) ||
-        (f = mpbd_flight_find(d, m->run_id)) == NULL ||
+    if (!mpb_attempt_id_is_valid(m->attempt_id) ||
+        (f = mpbd_flight_find(d, m->attempt_id)) == NULL ||
         strcmp(d->planners[f->planner].id, m->sender_id) != 0)
         return;
     mpbd_planner_heard(d, f->planner, mpb_monotonic_s());

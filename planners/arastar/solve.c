@@ -321,7 +321,7 @@ int ara_solve(void *user, const mpb_plan_request_t *req,
     int rc = solve_run(&r, lim, req, res);
     if (ctx->verbose)
         fprintf(stderr, "mpb-planner-arastar: run %s: status %d, %.3f s "
-                "(other %.3f s) %s\n", req->run_id, res->status,
+                "(other %.3f s) %s\n", req->attempt_id, res->status,
                 res->time_total, res->time_other,
                 res->message ? res->message : "");
     run_free(&r);

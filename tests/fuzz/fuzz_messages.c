@@ -32,7 +32,7 @@ static void check_result(const mpb_plan_result_t *r)
     mpb_goal g = {.kind = MPB_GOAL_JOINTS, .joints = goal,
                   .joint_tolerance = 0.01};
     mpb_world *w = world();
-    mpb_run_id_is_valid(r->run_id);
+    mpb_attempt_id_is_valid(r->attempt_id);
     mpb_planner_id_is_valid(r->planner_id);
     mpb_status_name(r->status);
     for (int i = 0; i < r->num_stages; i++) {
@@ -94,7 +94,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case 2: {
         mpb_run_ack_t m;
         if (mpb_run_ack_t_decode(buf, 0, len, &m) >= 0) {
-            mpb_run_id_is_valid(m.run_id);
+            mpb_attempt_id_is_valid(m.run_id);
             mpb_run_ack_t_decode_cleanup(&m);
         }
         break;

@@ -45,9 +45,9 @@ for ev in lcm.EventLog(sys.argv[1], "r"):
     elif ev.channel.startswith("MPB_ACK_"):
         a = run_ack_t.decode(ev.data)
         if a.kind == run_ack_t.RESULT_STORED:
-            alone.add(a.run_id)
+            alone.add(a.attempt_id)
     elif ev.channel == "MPB_RESULT":
-        results.append(plan_result_t.decode(ev.data).run_id)
+        results.append(plan_result_t.decode(ev.data).attempt_id)
 done = set(open(sys.argv[2]).read().split())
 print(len(done), len(done - riding - alone), len(riding & done),
       len(alone & done), len(results), len(set(results)))

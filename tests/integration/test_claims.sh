@@ -36,7 +36,9 @@ mpb_planar_experiment "$work/exp.yaml" "name: claims, runs: 1, time_limit: 5, se
     "{planner: ompl, algorithms: [RRTConnect]}"
 
 # A planner of before approaches: the Python kit, announcing the older
-# message (planner_announce_v1_t's layout and fingerprint).
+# message (planner_announce_v1_t's layout and fingerprint); built before
+# attempt_id too, so it speaks that layout of the other messages
+# (MPB_KIT_LAYOUT, test-only), as the daemon then sends them.
 cat >"$work/old.py" <<'EOT'
 import os, time
 from mpb import plan_result_t, planner_announce_v1_t, stage_t
@@ -70,7 +72,8 @@ EOT
 
 mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
 mpb_spawn "$work/ompl.log" "$MPB_BUILD/planners/ompl/mpb-planner-ompl"
-PYTHONPATH=$kitpath "$python" "$work/old.py" >"$work/old.log" 2>&1 &
+PYTHONPATH=$kitpath MPB_KIT_LAYOUT=before-attempt-id "$python" "$work/old.py" \
+    >"$work/old.log" 2>&1 &
 MPB_PIDS="$MPB_PIDS $!"
 
 "$daemon" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1 &

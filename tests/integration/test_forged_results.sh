@@ -34,7 +34,7 @@ check "a result for an unknown run id is refused" test "$out" = "acked rejected"
 # may get meanwhile; the log and the database tell what happened.)
 "$forge" "$uid" "null@elsewhere:1" >/dev/null
 out=$("$forge" "not-a-run-id" "null@elsewhere:1")
-check "a malformed run id is refused too" test "$out" = "acked rejected"
+check "a malformed attempt id is refused too" test "$out" = "acked rejected"
 
 mpb_wait $daemon 30
 check "the experiment completes" eq $? 0

@@ -92,13 +92,13 @@ int main(int argc, char **argv)
     mpb_store_close(s);
     /* A generated message type, through the installed headers. */
     char run_id[] = "run-1", sender[] = "outside", buf[256];
-    mpb_run_ack_t ack = {.run_id = run_id, .sender_id = sender,
+    mpb_run_ack_t ack = {.attempt_id = run_id, .sender_id = sender,
                          .kind = MPB_RUN_ACK_T_RESULT_STORED}, back;
     int n = mpb_run_ack_t_encode(buf, 0, sizeof buf, &ack);
     if (n <= 0 || mpb_run_ack_t_decode(buf, 0, n, &back) != n)
         return 1;
     printf("version %s, status on %s, ack %s from %s\n", MPB_VERSION_STRING,
-           MPB_CHANNEL_STATUS, back.run_id, back.sender_id);
+           MPB_CHANNEL_STATUS, back.attempt_id, back.sender_id);
     mpb_run_ack_t_decode_cleanup(&back);
     return 0;
 }

@@ -106,7 +106,7 @@ while "id" not in seen and time.time() < end:
     lc.handle_timeout(100)
 robot = open(sys.argv[1]).read()
 r = plan_request_t()
-r.run_id, r.planner_id, r.algorithm = "f" * 32, seen["id"], "RRTConnect"
+r.attempt_id, r.planner_id, r.algorithm = "f" * 32, seen["id"], "RRTConnect"
 r.time_limit, r.seed = 1.0, 1
 r.robot_format, r.robot, r.scene_format, r.scene = "planar", robot, "planar", ""
 r.robot_hash = r.scene_hash = ""
@@ -204,7 +204,7 @@ end = time.time() + 10
 while "id" not in seen and time.time() < end:
     lc.handle_timeout(100)
 r = plan_request_t()
-r.run_id, r.planner_id, r.algorithm = "e" * 32, seen["id"], "Nope"
+r.attempt_id, r.planner_id, r.algorithm = "e" * 32, seen["id"], "Nope"
 r.robot_format = r.robot = r.scene_format = r.scene = ""
 r.robot_hash = r.scene_hash = r.goal.link = ""
 lc.publish("MPB_REQUEST_" + seen["id"], r.encode())
@@ -239,7 +239,7 @@ with open(sys.argv[1], "wb") as f:
     f.write(b"mpbench test vector secret")
 a = Auth(sys.argv[1])
 k = run_ack_t()
-k.utime, k.run_id, k.sender_id, k.kind = 1, "0123456789abcdef" * 2, "null@h:1", 0
+k.utime, k.attempt_id, k.sender_id, k.kind = 1, "0123456789abcdef" * 2, "null@h:1", 0
 trailer = a.trailer("MPB_ACK", k.encode(), 0x0123456789abcdef, 1,
                     0xfedcba9876543210)
 print(trailer.hex())
@@ -250,7 +250,7 @@ print([me.open("MPB_ACK", sealed)[0], me.open("MPB_ACK", sealed)[0],
 EOT
 env $(mpb_kit_env) "$python" "$work/vector.py" "$work/vector-secret" >"$work/vector.out" 2>&1
 check "the kit's trailer is the protocol's test vector" test "$(head -1 "$work/vector.out")" = \
-    0123456789abcdef0000000000000001fedcba9876543210abcdde89fe6c4044f4f8f4b55acae43bcdd531a996f290f02468d5440009d9f3
+    0123456789abcdef0000000000000001fedcba9876543210c2b0ff2c5bce3131db7d09628a9cfa76931dabe273dec4663ce084384854e113
 check "... believed once, then a replay; on another channel a wrong tag" \
     test "$(tail -1 "$work/vector.out")" = "[0, 2, 3]"
 

@@ -39,13 +39,13 @@ requested, answered, last_result, early, late = {}, set(), {}, 0, 0
 for n, ev in enumerate(lcm.EventLog(sys.argv[1], "r")):
     if ev.channel.startswith("MPB_REQUEST_"):
         rq = plan_request_t.decode(ev.data)
-        requested.setdefault(rq.run_id, (n, rq.planner_id))
+        requested.setdefault(rq.attempt_id, (n, rq.planner_id))
     elif ev.channel == "MPB_RESULT":
         res = plan_result_t.decode(ev.data)
-        if res.run_id not in requested or res.run_id in answered:
+        if res.attempt_id not in requested or res.attempt_id in answered:
             continue
-        answered.add(res.run_id)
-        sent, planner = requested[res.run_id]
+        answered.add(res.attempt_id)
+        sent, planner = requested[res.attempt_id]
         before = last_result.get(planner)
         if before is not None:
             if sent < before:

@@ -11,8 +11,8 @@
 #   untimed   no times: valid, no timed metric, no times stored;
 #   backwards times decreasing: refused with bad_times, naming the stage.
 # A planner built before waypoint times (the Python kit with bindings
-# generated from the layout before them, lcmtypes/*_v1_t.lcm) is still
-# read: its run a verified success, untimed, nothing rejected. `mpb verify`
+# generated from the layout before them, lcmtypes/*_v1_t.lcm, and so
+# before attempt_id too) is still read: its run a verified success, untimed, nothing rejected. `mpb verify`
 # reaches the same verdicts again from the stored times.
 set -u
 . "$MPB_SOURCE/tests/integration/lib.sh"
@@ -46,25 +46,36 @@ planners:
 EOT
 
 # The Python kit with the bindings of the layout before waypoint times:
-# stage_t and plan_result_t as they were (stage_v1_t and plan_result_v1_t
-# under their old names), every other type as it is.
+# stage_t and plan_result_t as they were (stage_v1_t and plan_result_v1_t,
+# the attempt's id under the kit's name), every other type as it is. Such
+# a planner was built before attempt_id too: the kit speaks those layouts
+# (MPB_KIT_LAYOUT, test-only), its results under the fingerprint of
+# plan_result_v2_t, which here is plan_result_v1_t's layout.
 mkdir -p "$work/oldlcm" "$work/oldtypes"
 for f in "$MPB_SOURCE"/lcmtypes/*.lcm; do
     case $(basename "$f") in
     stage_t.lcm|plan_result_t.lcm|stage_v1_t.lcm|plan_result_v1_t.lcm) ;;
+    plan_result_v2_t.lcm) ;;
     *) cp "$f" "$work/oldlcm/" ;;
     esac
 done
 sed 's/stage_v1_t/stage_t/' "$MPB_SOURCE/lcmtypes/stage_v1_t.lcm" \
     >"$work/oldlcm/stage_t.lcm"
-sed 's/plan_result_v1_t/plan_result_t/; s/stage_v1_t/stage_t/' \
+sed 's/plan_result_v1_t/plan_result_t/; s/stage_v1_t/stage_t/; s/run_id;/attempt_id;/' \
     "$MPB_SOURCE/lcmtypes/plan_result_v1_t.lcm" >"$work/oldlcm/plan_result_t.lcm"
+sed 's/plan_result_v1_t/plan_result_v2_t/; s/stage_v1_t/stage_t/' \
+    "$MPB_SOURCE/lcmtypes/plan_result_v1_t.lcm" >"$work/oldlcm/plan_result_v2_t.lcm"
 lcm-gen -p --ppath "$work/oldtypes" "$work/oldlcm"/*.lcm >/dev/null
 python=$MPB_SOURCE/.venv/bin/python3
 oldpath=$MPB_SOURCE/planners/python:$work/oldtypes
 check "the old bindings' stage_t has no times" \
     test "$(PYTHONPATH=$oldpath "$python" -c \
         'from mpb import stage_t; print(hasattr(stage_t(), "times"))')" = False
+check "... and their results go under plan_result_v1_t's fingerprint" \
+    test "$(PYTHONPATH=$oldpath "$python" -c \
+        'from mpb import plan_result_v2_t as p; print(p._get_packed_fingerprint().hex())')" = \
+         "$(PYTHONPATH=$MPB_BUILD/lcmtypes/python "$python" -c \
+        'from mpb import plan_result_v1_t as p; print(p._get_packed_fingerprint().hex())')"
 cat >"$work/old.py" <<'EOT'
 from mpb import plan_result_t, stage_t
 from mpbplanner.node import Node
@@ -83,7 +94,8 @@ Node("old", ["line"], "").serve(solve)
 EOT
 
 mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
-PYTHONPATH=$oldpath "$python" "$work/old.py" >"$work/old.log" 2>&1 &
+PYTHONPATH=$oldpath MPB_KIT_LAYOUT=before-attempt-id "$python" "$work/old.py" \
+    >"$work/old.log" 2>&1 &
 MPB_PIDS="$MPB_PIDS $!"
 mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/timed.yaml" \
     >"$work/daemon.log" 2>&1

@@ -45,7 +45,7 @@ bad.planner_id, bad.name, bad.host = "bad\x1b[31m\nid", "evil", "h"
 bad.language, bad.version, bad.heartbeat_ms = "c", "1", 500
 r = plan_result_t()
 r.utime = st.utime
-r.run_id, r.planner_id, r.message = "\x1b]0;title\x07", "evil@h:1", ""
+r.attempt_id, r.planner_id, r.message = "\x1b]0;title\x07", "evil@h:1", ""
 for i in range(3):
     lc.publish("MPB_STATUS", st.encode())
     lc.publish("MPB_ANNOUNCE", a.encode())

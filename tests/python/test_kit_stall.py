@@ -83,7 +83,7 @@ def test_a_daemon_ack_is_no_echo_and_the_echo_acknowledges_nothing(
         n._on_ack(*_echo(n))            # the echo takes no result
         assert not n.stalled and "r1" in n.unacked
         k = run_ack_t()
-        k.utime, k.run_id, k.sender_id = int(time.time() * 1e6), "r1", "d"
+        k.utime, k.attempt_id, k.sender_id = int(time.time() * 1e6), "r1", "d"
         k.kind = run_ack_t.RESULT_STORED
         _stall(n, capsys)
         n._on_ack(node.ACK + "_" + n.planner_id, k.encode())

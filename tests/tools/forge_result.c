@@ -52,7 +52,7 @@ static void on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
     (void)rbuf;
     (void)channel;
     (void)user;
-    if (strcmp(m->run_id, run_id) == 0 &&
+    if (strcmp(m->attempt_id, run_id) == 0 &&
         m->kind != MPB_RUN_ACK_T_REQUEST_RECEIVED)
         ack_kind = m->kind;
 }
@@ -74,7 +74,7 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel,
             request.start[j] = m->start[j];
             request.goal[j] = m->goal.num_joints > j ? m->goal.joints[j] : 0;
         }
-        snprintf(run_id, sizeof run_id, "%s", m->run_id);
+        snprintf(run_id, sizeof run_id, "%s", m->attempt_id);
     }
 }
 
@@ -188,7 +188,7 @@ int main(int argc, char **argv)
             return 1;
         }
         mpb_run_ack_t received = {
-            .utime = mpb_utime_now(), .run_id = run_id,
+            .utime = mpb_utime_now(), .attempt_id = run_id,
             .sender_id = (char *)planner_id,
             .kind = MPB_RUN_ACK_T_REQUEST_RECEIVED,
         };
@@ -222,7 +222,7 @@ int main(int argc, char **argv)
                                         .value = eq ? strtod(eq, NULL) : 0};
     }
     mpb_plan_result_t res = {
-        .utime = mpb_utime_now(), .run_id = run_id,
+        .utime = mpb_utime_now(), .attempt_id = run_id,
         .planner_id = (char *)planner_id, .status = (int8_t)status,
         .message = message, .time_total = time_total, .time_other = time_other,
         .num_stages = (int16_t)num_stages, .stages = stages,

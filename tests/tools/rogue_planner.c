@@ -31,7 +31,7 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel,
     (void)rbuf;
     (void)channel;
     requests++;
-    mpb_run_ack_t ack = {.utime = mpb_utime_now(), .run_id = m->run_id,
+    mpb_run_ack_t ack = {.utime = mpb_utime_now(), .attempt_id = m->attempt_id,
                          .sender_id = (char *)planner_id,
                          .kind = MPB_RUN_ACK_T_REQUEST_DECLINED};
     mpb_run_ack_t_publish(lcm, MPB_CHANNEL_ACK, &ack);
@@ -63,7 +63,7 @@ int main(int argc, char **argv)
         .planner_id = (char *)planner_id, .name = argv[3], .host = "rogue",
         .pid = (int32_t)getpid(), .language = "c", .version = "0",
         .heartbeat_ms = 500, .num_algorithms = 1, .algorithms = algorithms,
-        .capacity = 1, .num_active = 0, .active_runs = NULL,
+        .capacity = 1, .num_active = 0, .active_attempts = NULL,
     };
     double end = mpb_monotonic_s() + seconds, next_announce = 0;
     int fd = lcm_get_fileno(lcm);

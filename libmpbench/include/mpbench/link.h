@@ -106,10 +106,19 @@ int mpb_lcm_publish(lcm_t *lcm, const char *channel, const void *data,
  *                            const char *channel,
  *                            const mpb_planner_announce_t *m);
  * and mpb_publish_request, _result, _ack, _status the same way.
+ *
+ * mpb_publish_<name>_in(..., m, layout) publishes m in layout of its
+ * type (wire.h: today's bytes under an older layout's fingerprint, for a
+ * planner built before that takes no other, as the daemon sends
+ * requests and acks in MPB_WIRE_BEFORE_ATTEMPT_ID); MPB_EINVAL for a
+ * layout that is not today's bytes. Layout 0 is mpb_publish_<name>().
  */
 #define MPB__PUBLISH_DECL(ID, name, type, channel)                          \
     int mpb_publish_##name(lcm_t *lcm, mpb_auth *a, uint64_t echo,          \
-                           const char *ch, const mpb_##type *m);
+                           const char *ch, const mpb_##type *m);            \
+    int mpb_publish_##name##_in(lcm_t *lcm, mpb_auth *a, uint64_t echo,     \
+                                const char *ch, const mpb_##type *m,        \
+                                int layout);
 MPB_MESSAGES(MPB__PUBLISH_DECL)
 #undef MPB__PUBLISH_DECL
 
@@ -128,6 +137,9 @@ MPB_MESSAGES(MPB__PUBLISH_DECL)
 typedef struct mpb_received {
     mpb_auth_verdict verdict;   /* mpb_auth_check()'s */
     mpb_auth_info info;         /* the trailer's fields (zero without one) */
+    int layout;                 /* the layout it came in (wire.h): 0
+                                   today's, 1.. an older one; -1 refused
+                                   before its fingerprint was read */
     char why[160];              /* why it was refused, one line; "" if not */
 } mpb_received;
 
@@ -147,9 +159,10 @@ int mpb_receive(mpb_auth *auth, unsigned accept, mpb_wire_type type,
 
 /*
  * Decode a result that mpb_wire_check(MPB_WIRE_PLAN_RESULT) passed, in
- * either layout it takes: plan_result_t, or plan_result_v1_t (from a
- * planner built before waypoint times), read as a plan_result_t whose
- * stages have no times (num_times 0). Returns the bytes decoded, or < 0
+ * any layout it takes: plan_result_t; plan_result_v2_t (from a planner
+ * built before attempt_id: the same bytes); or plan_result_v1_t (built
+ * before waypoint times), read as a plan_result_t whose stages have no
+ * times (num_times 0). Returns the bytes decoded, or < 0
  * as the generated decoder does; free with
  * mpb_plan_result_t_decode_cleanup(). mpb_receive() decodes results so.
  */

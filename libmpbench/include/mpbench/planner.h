@@ -4,8 +4,8 @@
  *
  * mpb_planner_serve() joins LCM, announces the planner every heartbeat (from
  * a thread of its own, so a long solve does not look like a crash), takes
- * requests addressed to it, acknowledges each, calls solve() once per run id,
- * publishes the result and re-sends it until the daemon acknowledges it. A
+ * requests addressed to it, acknowledges each, calls solve() once per
+ * attempt id, publishes the result and re-sends it until the daemon acknowledges it. A
  * request seen again is answered from the results it remembers (the last
  * 64 runs), never solved twice.
  *
@@ -45,14 +45,14 @@ extern "C" {
 
 /*
  * Fill res for req, by lim->deadline; stop early when
- * mpb_solve_should_stop(lim) says so. res arrives zeroed with run_id, planner_id and utime
- * set; fill status, message and times, and add stages and values with the
+ * mpb_solve_should_stop(lim) says so. res arrives zeroed with attempt_id,
+ * planner_id and utime set; fill status, message and times, and add stages and values with the
  * mpb_result_add_* functions (which own what they allocate). Return 0, or a
  * negative code to report INVALID_REQUEST with res->message if set;
  * MPB_ENOMEM (an allocation failed) reports MEMORY instead.
  *
- * Before solve() is called the request has been checked: a valid run id,
- * addressed to this planner, an algorithm from def->algorithms, and for a
+ * Before solve() is called the request has been checked: a valid attempt
+ * id, addressed to this planner, an algorithm from def->algorithms, and for a
  * JOINTS goal as many goal joints as start joints; a request failing these
  * never reaches solve(). utime is set again when the result is published.
  * A status outside SOLVED..MEMORY, or CRASH (the daemon's), is published

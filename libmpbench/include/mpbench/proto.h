@@ -1,8 +1,8 @@
 /*
  * proto.h - the LCM protocol shared by the daemon and planners written in C
- * or C++: channel names, run ids, content hashes, and building and checking
- * messages. The messages themselves are generated from lcmtypes/ (C types
- * mpb_*_t); docs/protocol.md is the full description.
+ * or C++: channel names, attempt ids, content hashes, and building and
+ * checking messages. The messages themselves are generated from lcmtypes/
+ * (C types mpb_*_t); docs/protocol.md is the full description.
  */
 #ifndef MPBENCH_PROTO_H
 #define MPBENCH_PROTO_H
@@ -29,8 +29,10 @@ extern "C" {
 /* The LCM URL used when none is given: loopback-only multicast (ttl=0). */
 #define MPB_DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
-/* Hex run id: 128 random bits, 32 hex digits and a NUL. */
-#define MPB_RUN_ID_SIZE 33
+/* Hex attempt id (plan_request_t.attempt_id: names one attempt of a run;
+ * a retry is a new attempt with a new id): 128 random bits, 32 hex digits
+ * and a NUL. */
+#define MPB_ATTEMPT_ID_SIZE 33
 /* Hex content hash: 128-bit BLAKE2b, 32 hex digits and a NUL. */
 #define MPB_HASH_SIZE 33
 
@@ -42,11 +44,11 @@ extern "C" {
  * MPB_CHANNEL_MAX. */
 #define MPB_PLANNER_ID_MAX (MPB_CHANNEL_MAX - (int)sizeof MPB_CHANNEL_REQUEST_PREFIX + 1)
 
-/* Fill out with a new unguessable run id. Returns MPB_OK or MPB_EIO. */
-int mpb_run_id_new(char out[MPB_RUN_ID_SIZE]);
+/* Fill out with a new unguessable attempt id. Returns MPB_OK or MPB_EIO. */
+int mpb_attempt_id_new(char out[MPB_ATTEMPT_ID_SIZE]);
 
 /* 1 if s is 32 lower-case hex digits, else 0. */
-int mpb_run_id_is_valid(const char *s);
+int mpb_attempt_id_is_valid(const char *s);
 
 /* Hex BLAKE2b-128 digest of len bytes at data. */
 void mpb_hash_hex(const void *data, size_t len, char out[MPB_HASH_SIZE]);

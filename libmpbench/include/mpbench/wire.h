@@ -15,6 +15,7 @@
 #define MPBENCH_WIRE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "mpbench/messages.h"
 
@@ -46,6 +47,36 @@ const char *mpb_wire_channel(mpb_wire_type type);
  */
 int mpb_wire_check(mpb_wire_type type, const void *buf, size_t len,
                    char *why, size_t whylen);
+
+/*
+ * Layouts. A message is taken in today's layout (0, its .lcm file) and in
+ * older ones that planners built before still send or take (1 ..
+ * MPB_WIRE_LAYOUTS - 1; lcmtypes/<type>_v<n>_t.lcm, listed in wire.c):
+ * LCM's fingerprint is made of the field names and types, so a renamed
+ * field is a new fingerprint. docs/protocol.md lists them.
+ */
+#define MPB_WIRE_LAYOUTS 3
+
+/* The layout of plan_request_t and of run_ack_t that planners built
+ * before attempt_id take (the attempt's id named run_id): the daemon
+ * sends it to a planner that announced in an older layout. */
+#define MPB_WIRE_BEFORE_ATTEMPT_ID 1
+
+/* Which layout of type the encoding at buf is (by its fingerprint): 0
+ * today's, 1.. an older one; -1 none (or shorter than a fingerprint). */
+int mpb_wire_layout(mpb_wire_type type, const void *buf, size_t len);
+
+/* The fingerprint of layout n of type; 0 if it has no such layout. */
+int64_t mpb_wire_fingerprint(mpb_wire_type type, int n);
+
+/*
+ * Put layout n's fingerprint on the encoding at buf (len bytes, at least
+ * the fingerprint's 8), so that today's bytes become that layout's or an
+ * older layout's become today's. Only for a layout whose bytes are
+ * today's, its fields renamed alone; MPB_OK, else MPB_EINVAL with buf
+ * untouched.
+ */
+int mpb_wire_stamp(mpb_wire_type type, void *buf, size_t len, int n);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,7 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/auth.h"
+#include "mpbench/wire.h"
 #include "net/auth_internal.h"
 #include "net/hub_internal.h"
 
@@ -249,25 +250,36 @@ static int send_encoded(lcm_t *lcm, mpb_auth *a, uint64_t echo,
     return rc;
 }
 
-#define MPB__PUBLISH(T, lcm, a, echo, channel, m)                            \
+/* Encode m of type T, in layout n of its wire type W (wire.h: today's
+ * bytes under that layout's fingerprint), and publish it. */
+#define MPB__PUBLISH(T, W, n, lcm, a, echo, channel, m)                      \
     do {                                                                     \
         int n_ = T##_encoded_size(m);                                        \
         unsigned char *b_ = malloc((size_t)n_ + MPB_AUTH_TRAILER_SIZE);      \
         if (b_ == NULL)                                                      \
             return MPB_ENOMEM;                                               \
-        if (T##_encode(b_, 0, n_, m) != n_) {                                \
+        if (T##_encode(b_, 0, n_, m) != n_ ||                                \
+            ((n) != 0 && mpb_wire_stamp(W, b_, (size_t)n_, (n)) != MPB_OK)) { \
             free(b_);                                                        \
             return MPB_EINVAL;                                               \
         }                                                                    \
         return send_encoded(lcm, a, echo, channel, b_, n_);                  \
     } while (0)
 
-/* mpb_publish_<name>() for each message of messages.h. */
+/* mpb_publish_<name>() and mpb_publish_<name>_in() for each message of
+ * messages.h. */
 #define MPB__PUBLISH_DEF(ID, name, type, channel)                           \
     int mpb_publish_##name(lcm_t *lcm, mpb_auth *a, uint64_t echo,          \
                            const char *ch, const mpb_##type *m)             \
     {                                                                       \
-        MPB__PUBLISH(mpb_##type, lcm, a, echo, ch, m);                      \
+        MPB__PUBLISH(mpb_##type, MPB_WIRE_##ID, 0, lcm, a, echo, ch, m);    \
+    }                                                                       \
+    int mpb_publish_##name##_in(lcm_t *lcm, mpb_auth *a, uint64_t echo,     \
+                                const char *ch, const mpb_##type *m,        \
+                                int layout)                                 \
+    {                                                                       \
+        MPB__PUBLISH(mpb_##type, MPB_WIRE_##ID, layout, lcm, a, echo, ch,   \
+                     m);                                                    \
     }
 MPB_MESSAGES(MPB__PUBLISH_DEF)
 #undef MPB__PUBLISH_DEF

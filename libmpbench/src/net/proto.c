@@ -22,7 +22,7 @@ static void to_hex(const unsigned char *in, size_t n, char *out)
     out[2 * n] = '\0';
 }
 
-int mpb_run_id_new(char out[MPB_RUN_ID_SIZE])
+int mpb_attempt_id_new(char out[MPB_ATTEMPT_ID_SIZE])
 {
     unsigned char raw[16];
     /* sodium_init() is idempotent and thread-safe; it opens the kernel's
@@ -34,14 +34,14 @@ int mpb_run_id_new(char out[MPB_RUN_ID_SIZE])
     return MPB_OK;
 }
 
-int mpb_run_id_is_valid(const char *s)
+int mpb_attempt_id_is_valid(const char *s)
 {
     if (s == NULL)
         return 0;
-    for (int i = 0; i < MPB_RUN_ID_SIZE - 1; i++)
+    for (int i = 0; i < MPB_ATTEMPT_ID_SIZE - 1; i++)
         if (!((s[i] >= '0' && s[i] <= '9') || (s[i] >= 'a' && s[i] <= 'f')))
             return 0;
-    return s[MPB_RUN_ID_SIZE - 1] == '\0';
+    return s[MPB_ATTEMPT_ID_SIZE - 1] == '\0';
 }
 
 void mpb_hash_hex(const void *data, size_t len, char out[MPB_HASH_SIZE])

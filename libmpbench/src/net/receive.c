@@ -7,24 +7,20 @@
 
 #include "mpbench/mpbench.h"
 #include "mpbench/link.h"
+#include "mpbench/wire.h"
 #include "mpb_planner_announce_v1_t.h"
 #include "mpb_plan_result_v1_t.h"
 
 /*
- * An announcement, checked by mpb_wire_check() as either form: one of an
- * older planner (planner_announce_v1_t's fingerprint, before approaches)
- * is decoded as that and handed on as a planner_announce_t that declares
- * no approach, its strings and arrays moved over, so that
- * mpb_planner_announce_t_decode_cleanup() frees them as its own.
+ * An announcement of a planner built before approaches
+ * (planner_announce_v1_t), decoded as that and handed on as a
+ * planner_announce_t that declares no approach, its strings and arrays
+ * moved over, so that mpb_planner_announce_t_decode_cleanup() frees them
+ * as its own.
  */
-static int decode_announce(const void *data, int len, mpb_planner_announce_t *m)
+static int decode_announce_v1(const void *data, int len,
+                              mpb_planner_announce_t *m)
 {
-    const unsigned char *p = data;
-    uint64_t fp = 0;
-    for (int i = 0; i < 8 && i < len; i++)
-        fp = (fp << 8) | p[i];
-    if ((int64_t)fp != __mpb_planner_announce_v1_t_get_hash())
-        return mpb_planner_announce_t_decode(data, 0, len, m);
     mpb_planner_announce_v1_t v;
     int n = mpb_planner_announce_v1_t_decode(data, 0, len, &v);
     if (n < 0)
@@ -35,27 +31,16 @@ static int decode_announce(const void *data, int len, mpb_planner_announce_t *m)
         .version = v.version, .heartbeat_ms = v.heartbeat_ms,
         .num_algorithms = v.num_algorithms, .algorithms = v.algorithms,
         .capacity = v.capacity, .num_active = v.num_active,
-        .active_runs = v.active_runs,
+        .active_attempts = v.active_runs,
         .num_approaches = 0, .approaches = NULL,
     };
     return n;
 }
 
-/* LCM's fingerprint, the first 8 bytes of an encoding, big-endian. */
-static uint64_t fingerprint_of(const void *data, int len)
+/* A result of a planner built before waypoint times (plan_result_v1_t),
+ * handed on as a plan_result_t whose stages have no times. */
+static int decode_result_v1(const void *data, int len, mpb_plan_result_t *out)
 {
-    const unsigned char *p = data;
-    uint64_t v = 0;
-    for (int i = 0; i < 8 && i < len; i++)
-        v = (v << 8) | p[i];
-    return v;
-}
-
-int mpb_receive_decode_result(const void *data, int len, mpb_plan_result_t *out)
-{
-    if (fingerprint_of(data, len) !=
-        (uint64_t)__mpb_plan_result_v1_t_get_hash())
-        return mpb_plan_result_t_decode(data, 0, len, out);
     mpb_plan_result_v1_t old;
     int rc = mpb_plan_result_v1_t_decode(data, 0, len, &old);
     if (rc < 0)
@@ -79,8 +64,8 @@ int mpb_receive_decode_result(const void *data, int len, mpb_plan_result_t *out)
         };
     free(old.stages);
     *out = (mpb_plan_result_t){
-        .utime = old.utime, .run_id = old.run_id, .planner_id = old.planner_id,
-        .status = old.status, .message = old.message,
+        .utime = old.utime, .attempt_id = old.run_id,
+        .planner_id = old.planner_id, .status = old.status, .message = old.message,
         .time_total = old.time_total, .time_other = old.time_other,
         .memory = old.memory, .num_stages = old.num_stages, .stages = stages,
         .num_values = old.num_values, .values = old.values,
@@ -90,13 +75,10 @@ int mpb_receive_decode_result(const void *data, int len, mpb_plan_result_t *out)
 }
 
 /* The generated decoder of each message (messages.h), through one
- * signature; an announcement and a result in their older layouts too. */
-static int decode(mpb_wire_type type, const void *data, int len, void *msg)
+ * signature, in today's layout. */
+static int decode_today(mpb_wire_type type, const void *data, int len,
+                        void *msg)
 {
-    if (type == MPB_WIRE_PLANNER_ANNOUNCE)
-        return decode_announce(data, len, msg);
-    if (type == MPB_WIRE_PLAN_RESULT)
-        return mpb_receive_decode_result(data, len, msg);
     switch (type) {
 #define MPB__CASE(ID, name, type, channel)                                  \
     case MPB_WIRE_##ID: return mpb_##type##_decode(data, 0, len, msg);
@@ -105,6 +87,44 @@ static int decode(mpb_wire_type type, const void *data, int len, void *msg)
     default: break;
     }
     return -1;
+}
+
+/* An older layout whose bytes are today's (wire.h: mpb_wire_stamp()),
+ * decoded by today's decoder from a copy under today's fingerprint. */
+static int decode_renamed(mpb_wire_type type, const void *data, int len,
+                          void *msg)
+{
+    unsigned char *copy = malloc((size_t)len);
+    if (copy == NULL)
+        return -1;
+    memcpy(copy, data, (size_t)len);
+    int rc = mpb_wire_stamp(type, copy, (size_t)len, 0) == MPB_OK
+                 ? decode_today(type, copy, len, msg) : -1;
+    free(copy);
+    return rc;
+}
+
+/* A message in layout n of its type (mpb_wire_layout()), decoded as
+ * today's: an announcement or a result from before approaches or
+ * waypoint times by its own decoder, any other older layout (today's
+ * bytes, wire.c) by its fingerprint. */
+static int decode(mpb_wire_type type, int n, const void *data, int len,
+                  void *msg)
+{
+    if (n <= 0)
+        return decode_today(type, data, len, msg);
+    if (type == MPB_WIRE_PLANNER_ANNOUNCE && n == 1)
+        return decode_announce_v1(data, len, msg);
+    if (type == MPB_WIRE_PLAN_RESULT && n == 1)
+        return decode_result_v1(data, len, msg);
+    return decode_renamed(type, data, len, msg);
+}
+
+int mpb_receive_decode_result(const void *data, int len, mpb_plan_result_t *out)
+{
+    int n = len > 0 ? mpb_wire_layout(MPB_WIRE_PLAN_RESULT, data, (size_t)len)
+                    : -1;
+    return decode(MPB_WIRE_PLAN_RESULT, n, data, len, out);
 }
 
 void mpb_receive_done(mpb_wire_type type, void *msg)
@@ -126,6 +146,7 @@ int mpb_receive(mpb_auth *auth, unsigned accept, mpb_wire_type type,
 {
     size_t len = 0;
     r->why[0] = '\0';
+    r->layout = -1;
     r->verdict = mpb_auth_check(auth, channel, data, size, &len, &r->info);
     if (!(accept & (1u << r->verdict))) {
         snprintf(r->why, sizeof r->why, "%s", mpb_auth_verdict_text(r->verdict));
@@ -133,7 +154,8 @@ int mpb_receive(mpb_auth *auth, unsigned accept, mpb_wire_type type,
     }
     if (!mpb_wire_check(type, data, len, r->why, sizeof r->why))
         return MPB_EREJECTED;
-    if (len > INT_MAX || decode(type, data, (int)len, msg) < 0) {
+    r->layout = mpb_wire_layout(type, data, len);
+    if (len > INT_MAX || decode(type, r->layout, data, (int)len, msg) < 0) {
         snprintf(r->why, sizeof r->why, "the decoder refused it");
         return MPB_EREJECTED;
     }

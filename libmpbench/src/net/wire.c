@@ -91,24 +91,77 @@ static int elems(cursor *c, int64_t n, size_t min_size)
  * file: the fields after the fingerprint, in order. */
 #include "mpb_wire_walks.h"
 
-/* The layouts each message is taken in: today's (messages.h), then an
- * older one that older planners send, which receive.c decodes as today's:
- * an announcement before approaches, a result before waypoint times. */
+/* The layouts each message is taken in: today's (messages.h) at 0, then
+ * the older ones that planners built before still send or take, which
+ * receive.c decodes as today's. same: the bytes after the fingerprint are
+ * today's (fields renamed only), so one is read or written as the other
+ * by its fingerprint alone (mpb_wire_stamp()); test_wire.c checks that
+ * each layout so marked is. */
 typedef struct layout {
     int64_t (*hash)(void);
     void (*walk)(cursor *c);
+    int same;
 } layout;
 
 #define MPB__TODAY(ID, name, type, channel)                                 \
-    [MPB_WIRE_##ID][0] = {__mpb_##type##_get_hash, walk_##type},
-#define MPB__OLDER(ID, type) [MPB_WIRE_##ID][1] = {__mpb_##type##_get_hash, walk_##type},
-static const layout layouts[MPB_WIRE_COUNT][2] = {
+    [MPB_WIRE_##ID][0] = {__mpb_##type##_get_hash, walk_##type, 1},
+#define MPB__OLDER(ID, n, type, same)                                       \
+    [MPB_WIRE_##ID][n] = {__mpb_##type##_get_hash, walk_##type, same},
+static const layout layouts[MPB_WIRE_COUNT][MPB_WIRE_LAYOUTS] = {
     MPB_MESSAGES(MPB__TODAY)
-    MPB__OLDER(PLANNER_ANNOUNCE, planner_announce_v1_t)
-    MPB__OLDER(PLAN_RESULT, plan_result_v1_t)
+    /* Before approaches (issue 49) and before waypoint times. */
+    MPB__OLDER(PLANNER_ANNOUNCE, 1, planner_announce_v1_t, 0)
+    MPB__OLDER(PLAN_RESULT, 1, plan_result_v1_t, 0)
+    /* Before attempt_id (issue 45): the attempt's id named run_id. A
+     * planner announcing in either older layout takes requests and acks
+     * in these (MPB_WIRE_BEFORE_ATTEMPT_ID). */
+    MPB__OLDER(PLANNER_ANNOUNCE, 2, planner_announce_v2_t, 1)
+    MPB__OLDER(PLAN_REQUEST, MPB_WIRE_BEFORE_ATTEMPT_ID, plan_request_v1_t, 1)
+    MPB__OLDER(PLAN_RESULT, 2, plan_result_v2_t, 1)
+    MPB__OLDER(RUN_ACK, MPB_WIRE_BEFORE_ATTEMPT_ID, run_ack_v1_t, 1)
 };
 #undef MPB__OLDER
 #undef MPB__TODAY
+
+static const layout *layout_of(mpb_wire_type type, int n)
+{
+    if ((unsigned)type >= MPB_WIRE_COUNT || n < 0 || n >= MPB_WIRE_LAYOUTS ||
+        layouts[type][n].hash == NULL)
+        return NULL;
+    return &layouts[type][n];
+}
+
+int64_t mpb_wire_fingerprint(mpb_wire_type type, int n)
+{
+    const layout *l = layout_of(type, n);
+    return l != NULL ? l->hash() : 0;
+}
+
+int mpb_wire_layout(mpb_wire_type type, const void *buf, size_t len)
+{
+    cursor c = {.p = buf, .len = len};
+    if (buf == NULL)
+        return -1;
+    int64_t fp = read_int(&c, 8);
+    for (int n = 0; !c.bad && n < MPB_WIRE_LAYOUTS; n++) {
+        const layout *l = layout_of(type, n);
+        if (l != NULL && fp == l->hash())
+            return n;
+    }
+    return -1;
+}
+
+int mpb_wire_stamp(mpb_wire_type type, void *buf, size_t len, int n)
+{
+    const layout *l = layout_of(type, n);
+    if (l == NULL || !l->same || buf == NULL || len < 8)
+        return MPB_EINVAL;
+    uint64_t fp = (uint64_t)l->hash();
+    unsigned char *p = buf;
+    for (int i = 7; i >= 0; i--, fp >>= 8)
+        p[i] = (unsigned char)(fp & 0xff);
+    return MPB_OK;
+}
 
 const char *mpb_wire_type_name(mpb_wire_type type)
 {
@@ -135,15 +188,12 @@ int mpb_wire_check(mpb_wire_type type, const void *buf, size_t len,
         return fail(&c, "no message"), 0;
     if ((unsigned)type >= MPB_WIRE_COUNT)
         return fail(&c, "unknown type"), 0;
-    int64_t fp = read_int(&c, 8);
-    const layout *l = NULL;
-    for (int i = 0; !c.bad && i < 2 && layouts[type][i].hash != NULL; i++)
-        if (fp == layouts[type][i].hash())
-            l = &layouts[type][i];
-    if (c.bad)
+    if (skip(&c, 8) != 0)           /* the fingerprint */
         return 0;
-    if (l == NULL)
+    int n = mpb_wire_layout(type, buf, len);
+    if (n < 0)
         return fail(&c, "not this message type (fingerprint differs)"), 0;
+    const layout *l = layout_of(type, n);
     l->walk(&c);
     if (!c.bad && c.pos != c.len)
         fail(&c, "bytes left over after the message");

@@ -62,7 +62,7 @@ typedef struct mpb__kept {
     int sends;                 /* since it was last acknowledged */
     double first_send_s;
     double next_send_s;
-    mpb_plan_result_t res;     /* owned; res.run_id names the run */
+    mpb_plan_result_t res;     /* owned; res.attempt_id names the run */
 } mpb__kept;
 
 typedef struct mpb__server {
@@ -98,7 +98,7 @@ typedef struct mpb__server {
     /* Shared with the heartbeat thread, under mu. */
     pthread_mutex_t mu;
     pthread_cond_t cond;
-    char active[MPB_RUN_ID_SIZE];   /* run being solved, "" if idle */
+    char active[MPB_ATTEMPT_ID_SIZE];   /* run being solved, "" if idle */
     double active_since;            /* monotonic s, when its solve began */
     int active_acked;               /* REQUEST_RECEIVED sent for it */
     int closed;                     /* capacity 0: max_runs reached */
@@ -248,7 +248,7 @@ void mpb_result_clear(mpb_plan_result_t *res)
 {
     if (res == NULL)
         return;
-    free(res->run_id);
+    free(res->attempt_id);
     free(res->planner_id);
     free(res->message);
     mpb__result_clear_lists(res);
@@ -346,7 +346,7 @@ static void announce_fill(mpb__server *s, mpb_planner_announce_t *a)
 
 static void mpb__announce(mpb__server *s)
 {
-    char active[MPB_RUN_ID_SIZE];
+    char active[MPB_ATTEMPT_ID_SIZE];
     char *active_list[1] = { active };
     int closed;
 
@@ -362,25 +362,25 @@ static void mpb__announce(mpb__server *s)
     announce_fill(s, &a);
     a.capacity = closed ? 0 : 1;
     a.num_active = active[0] != '\0' ? 1 : 0;
-    a.active_runs = active_list;
+    a.active_attempts = active_list;
     mpb_publish_announce(s->lcm, s->auth, daemon, MPB_CHANNEL_ANNOUNCE, &a);
 }
 
 /*
  * The announcement a process dying under its memory limit sends as its
  * last words (planner_memory.h): closing (capacity 0), still working on
- * run_id. Encoded now, with room for a trailer, since the dying cannot
+ * attempt_id. Encoded now, with room for a trailer, since the dying cannot
  * allocate; caller frees. NULL when out of memory.
  */
 static unsigned char *mpb__closing_announce(mpb__server *s,
-                                            const char *run_id, int *len)
+                                            const char *attempt_id, int *len)
 {
-    char *active_list[1] = { (char *)run_id };
+    char *active_list[1] = { (char *)attempt_id };
     mpb_planner_announce_t a;
     announce_fill(s, &a);
     a.capacity = 0;
     a.num_active = 1;
-    a.active_runs = active_list;
+    a.active_attempts = active_list;
     int n = mpb_planner_announce_t_encoded_size(&a);
     unsigned char *buf = n > 0 ? malloc((size_t)n + MPB_AUTH_TRAILER_SIZE)
                                : NULL;
@@ -392,7 +392,7 @@ static unsigned char *mpb__closing_announce(mpb__server *s,
     return buf;
 }
 
-static void mpb__ack(mpb__server *s, const char *run_id, int kind);
+static void mpb__ack(mpb__server *s, const char *attempt_id, int kind);
 static void mpb__echo(mpb__server *s);
 
 /*
@@ -422,7 +422,7 @@ static void *mpb__heartbeat_main(void *arg)
 
         int stalled = s->stalled;
         if (now >= ack_due) {
-            char run[MPB_RUN_ID_SIZE];
+            char run[MPB_ATTEMPT_ID_SIZE];
             memcpy(run, s->active, sizeof run);
             s->active_acked = 1;
             pthread_mutex_unlock(&s->mu);
@@ -459,11 +459,11 @@ static void *mpb__heartbeat_main(void *arg)
  * acknowledged, if its solve lasts). The heartbeat thread is woken only if
  * it would otherwise sleep past that: a planner answering thousands of
  * runs a second wakes it about every MPB__ANNOUNCE_GAP_MS, not twice a run. */
-static void mpb__set_active(mpb__server *s, const char *run_id, int closed)
+static void mpb__set_active(mpb__server *s, const char *attempt_id, int closed)
 {
     double now = mpb_monotonic_s();
     pthread_mutex_lock(&s->mu);
-    snprintf(s->active, sizeof s->active, "%s", run_id);
+    snprintf(s->active, sizeof s->active, "%s", attempt_id);
     s->active_since = now;
     s->active_acked = 0;
     s->closed = closed;
@@ -497,12 +497,12 @@ static void mpb__set_daemon(mpb__server *s, uint64_t daemon)
     pthread_mutex_unlock(&s->mu);
 }
 
-static void mpb__ack(mpb__server *s, const char *run_id, int kind)
+static void mpb__ack(mpb__server *s, const char *attempt_id, int kind)
 {
     mpb_run_ack_t a;
     memset(&a, 0, sizeof a);
     a.utime = mpb_utime_now();
-    a.run_id = (char *)run_id;
+    a.attempt_id = (char *)attempt_id;
     a.sender_id = s->id;
     a.kind = (int8_t)kind;
     mpb_publish_ack(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_ACK, &a);
@@ -517,21 +517,21 @@ static void mpb__echo(mpb__server *s)
     mpb_run_ack_t a;
     memset(&a, 0, sizeof a);
     a.utime = mpb_utime_now();
-    a.run_id = "";
+    a.attempt_id = "";
     a.sender_id = s->id;
     a.kind = MPB_RUN_ACK_T_REQUEST_RECEIVED;
     mpb_publish_ack(s->lcm, s->auth, mpb_auth_instance(s->auth),
                     s->ack_channel, &a);
 }
 
-/* The kept result of run_id, or NULL. Newest first: the run asked about is
+/* The kept result of attempt_id, or NULL. Newest first: the run asked about is
  * nearly always the last one answered. */
-static mpb__kept *mpb__find_kept(mpb__server *s, const char *run_id)
+static mpb__kept *mpb__find_kept(mpb__server *s, const char *attempt_id)
 {
     for (int n = 1; n <= MPB__RESULTS_KEPT; n++) {
         mpb__kept *k = &s->kept[(s->kept_next + MPB__RESULTS_KEPT - n) %
                                 MPB__RESULTS_KEPT];
-        if (k->used && strcmp(k->res.run_id, run_id) == 0)
+        if (k->used && strcmp(k->res.attempt_id, attempt_id) == 0)
             return k;
     }
     return NULL;
@@ -587,9 +587,9 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
 
     mpb_plan_result_t *res = &k->res;
     res->utime = mpb_utime_now();
-    res->run_id = mpb__strdup(req->run_id);
+    res->attempt_id = mpb__strdup(req->attempt_id);
     res->planner_id = mpb__strdup(s->id);
-    if (res->run_id == NULL || res->planner_id == NULL) {
+    if (res->attempt_id == NULL || res->planner_id == NULL) {
         mpb_result_clear(res);
         return MPB_ENOMEM;
     }
@@ -605,10 +605,10 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
         char unlimited[160] = "";
         int ann_len = 0;
         unsigned char *ann = req->memory_limit > 0
-            ? mpb__closing_announce(s, req->run_id, &ann_len) : NULL;
+            ? mpb__closing_announce(s, req->attempt_id, &ann_len) : NULL;
         mpb__mem_begin(&mw, req->memory_limit, unlimited, sizeof unlimited);
         mpb__last_words_arm(&mw, s->lcm, s->auth, mpb__daemon(s),
-                            req->run_id, s->id, ann, ann_len);
+                            req->attempt_id, s->id, ann, ann_len);
         mpb_solve_limits lim = {.start = mpb_monotonic_s(), .stop = s->stop};
         lim.deadline = lim.start + req->time_limit;
         int rc = s->def->solve(s->def->user, req, &lim, res);
@@ -617,10 +617,10 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
         free(ann);
         if (!(res->memory > 0))
             res->memory = peak;
-        /* The run id and planner id are ours, whatever solve() did. */
-        if (res->run_id == NULL || strcmp(res->run_id, req->run_id) != 0) {
-            free(res->run_id);
-            res->run_id = mpb__strdup(req->run_id);
+        /* The attempt id and planner id are ours, whatever solve() did. */
+        if (res->attempt_id == NULL || strcmp(res->attempt_id, req->attempt_id) != 0) {
+            free(res->attempt_id);
+            res->attempt_id = mpb__strdup(req->attempt_id);
         }
         if (res->planner_id == NULL || strcmp(res->planner_id, s->id) != 0) {
             free(res->planner_id);
@@ -654,7 +654,7 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
                                    res->message && res->message[0] ? "; " : "",
                                    res->message ? res->message : "");
     }
-    if (res->run_id == NULL || res->planner_id == NULL ||
+    if (res->attempt_id == NULL || res->planner_id == NULL ||
         mpb__result_fill_strings(res) != MPB_OK) {
         mpb_result_clear(res);
         return MPB_ENOMEM;
@@ -695,7 +695,7 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
     (void)rbuf;
     (void)channel;
     mpb__server *s = user;
-    if (!mpb_run_id_is_valid(msg->run_id) || msg->planner_id == NULL ||
+    if (!mpb_attempt_id_is_valid(msg->attempt_id) || msg->planner_id == NULL ||
         strcmp(msg->planner_id, s->id) != 0)
         return;                 /* not a request for us: nothing to say */
 
@@ -705,11 +705,11 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         if (done != NULL)
             done->acked = 1;
     }
-    mpb__kept *k = mpb__find_kept(s, msg->run_id);
+    mpb__kept *k = mpb__find_kept(s, msg->attempt_id);
     if (k != NULL) {
         /* Solved already: send the result now, and re-send it until it is
          * acknowledged (again, if it was acknowledged before). */
-        mpb__ack(s, msg->run_id, MPB_RUN_ACK_T_REQUEST_RECEIVED);
+        mpb__ack(s, msg->attempt_id, MPB_RUN_ACK_T_REQUEST_RECEIVED);
         if (k->acked) {
             k->acked = 0;
             k->sends = 0;
@@ -722,14 +722,14 @@ static void mpb__on_request(const lcm_recv_buf_t *rbuf, const char *channel,
         (s->max_runs > 0 && s->solved >= s->max_runs)) {
         /* Closing: take no new runs, and say so, so that the daemon gives
          * this one to another planner instead of waiting for it. */
-        mpb__ack(s, msg->run_id, MPB_RUN_ACK_T_REQUEST_DECLINED);
+        mpb__ack(s, msg->attempt_id, MPB_RUN_ACK_T_REQUEST_DECLINED);
         return;
     }
     /* No REQUEST_RECEIVED yet: the result acknowledges the request, unless
      * the solve lasts MPB__ACK_AFTER_S, when the heartbeat thread sends it. */
 
     int closing = s->max_runs > 0 && s->solved + 1 >= s->max_runs;
-    mpb__set_active(s, msg->run_id, closing);
+    mpb__set_active(s, msg->attempt_id, closing);
     int rc = mpb__run(s, msg);
     s->solved++;
     mpb__set_active(s, "", closing);
@@ -765,7 +765,7 @@ static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
     if (msg->kind != MPB_RUN_ACK_T_RESULT_STORED &&
         msg->kind != MPB_RUN_ACK_T_RESULT_REJECTED)
         return;
-    mpb__kept *k = mpb__find_kept(s, msg->run_id);
+    mpb__kept *k = mpb__find_kept(s, msg->attempt_id);
     if (k != NULL)
         k->acked = 1;
 }

@@ -159,7 +159,7 @@ static struct {
     lcm_t *lcm;
     mpb_auth *auth;
     uint64_t echo;
-    const char *run_id;
+    const char *attempt_id;
     const char *planner_id;
     double limit_mb, data_start_mb, start_s;
     unsigned char *announce;
@@ -230,7 +230,7 @@ static void lw_speak(int sig)
     memset(&res, 0, sizeof res);
     clock_gettime(CLOCK_REALTIME, &ts);
     res.utime = (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-    res.run_id = (char *)g_lw.run_id;
+    res.attempt_id = (char *)g_lw.attempt_id;
     res.planner_id = (char *)g_lw.planner_id;
     res.status = MPB_PLAN_RESULT_T_MEMORY;
     res.message = msg;
@@ -271,7 +271,7 @@ static void lw_on_sanitizer_death(void)
 #endif
 
 void mpb__last_words_arm(const mpb__memwatch *w, lcm_t *lcm, mpb_auth *a,
-                         uint64_t echo, const char *run_id,
+                         uint64_t echo, const char *attempt_id,
                          const char *planner_id, unsigned char *announce,
                          int announce_len)
 {
@@ -283,7 +283,7 @@ void mpb__last_words_arm(const mpb__memwatch *w, lcm_t *lcm, mpb_auth *a,
     g_lw.lcm = lcm;
     g_lw.auth = a;
     g_lw.echo = echo;
-    g_lw.run_id = run_id;
+    g_lw.attempt_id = attempt_id;
     g_lw.planner_id = planner_id;
     g_lw.limit_mb = w->limit_mb;
     g_lw.data_start_mb = w->data_start_mb;
@@ -291,7 +291,7 @@ void mpb__last_words_arm(const mpb__memwatch *w, lcm_t *lcm, mpb_auth *a,
      * handler. */
     mpb_plan_result_t probe;
     memset(&probe, 0, sizeof probe);
-    probe.run_id = probe.planner_id = probe.message = (char *)"";
+    probe.attempt_id = probe.planner_id = probe.message = (char *)"";
     (void)mpb_plan_result_t_encoded_size(&probe);
     unsigned char tmp[256];
     (void)mpb_plan_result_t_encode(tmp, 0, (int)sizeof tmp, &probe);

@@ -43,13 +43,13 @@ double mpb__mem_end(mpb__memwatch *w);
  * sanitizer's death, once the solve has used at least half of
  * w->limit_mb, publishes the announcement at announce (announce_len
  * encoded bytes, with room for a trailer after them: the planner closing,
- * capacity 0, still working on run_id, so that the daemon sends it no
- * other run) and then a MEMORY result for run_id, before the process
+ * capacity 0, still working on attempt_id, so that the daemon sends it no
+ * other run) and then a MEMORY result for attempt_id, before the process
  * dies. Only for a solve under a limit; lcm, a, announce and the strings
  * must outlive the run. Not thread-safe: one run at a time.
  */
 void mpb__last_words_arm(const mpb__memwatch *w, lcm_t *lcm, mpb_auth *a,
-                         uint64_t echo, const char *run_id,
+                         uint64_t echo, const char *attempt_id,
                          const char *planner_id, unsigned char *announce,
                          int announce_len);
 void mpb__last_words_disarm(void);

@@ -41,6 +41,8 @@ from typing import Any, Callable, Mapping, Optional, Sequence
 
 from mpb import (daemon_status_t, plan_request_t, plan_result_t,
                  planner_announce_t, run_ack_t)
+from mpb import (plan_request_v1_t, plan_result_v2_t, planner_announce_v2_t,
+                 run_ack_v1_t)
 
 from .auth import TRAILER_BYTES, Auth, AuthError  # noqa: F401 (the kit's API)
 from .limits import Limits, takes_limits
@@ -67,6 +69,34 @@ PLANNER_ID_MAX = 51         # MPB_REQUEST_<id> within LCM's 63 characters
 MESSAGE_MAX = 1000          # characters of an exception kept in a message
 LCM_MESSAGE_MAX = 16 << 20  # MPB_LCM_MESSAGE_MAX (lcm_filter.h): every
                             # mpbench socket drops a larger message
+
+
+# A test's switch, never a user's: MPB_KIT_LAYOUT=before-attempt-id makes
+# the kit speak as planners built before attempt_id did (docs/protocol.md,
+# "Older layouts"), every message it sends under the older layout's
+# fingerprint and only messages under it taken (the bytes are today's), so
+# that tests/integration/test_old_planner.sh shows today's daemon serving
+# such planners.
+_OLDER = {plan_request_t: plan_request_v1_t, plan_result_t: plan_result_v2_t,
+          planner_announce_t: planner_announce_v2_t, run_ack_t: run_ack_v1_t}
+_SPEAK_OLDER = os.environ.get("MPB_KIT_LAYOUT") == "before-attempt-id"
+
+
+def _encode(msg: Any) -> bytes:
+    """msg's encoding, in the layout the kit speaks."""
+    data = msg.encode()
+    older = _OLDER.get(type(msg)) if _SPEAK_OLDER else None
+    return older._get_packed_fingerprint() + data[8:] if older else data
+
+
+def _decode(cls: Any, data: bytes) -> Any:
+    """A message of type cls from data, in the layout the kit speaks."""
+    older = _OLDER.get(cls) if _SPEAK_OLDER else None
+    if older:
+        if data[:8] != older._get_packed_fingerprint():
+            raise ValueError(f"not {older.__name__}")
+        data = cls._get_packed_fingerprint() + data[8:]
+    return cls.decode(data)
 
 
 def name_error(name: str) -> Optional[str]:
@@ -143,8 +173,9 @@ class Node:
         self.auth, self.verbose = auth, verbose
         self.requests = queue.Queue()
         self.lock = threading.Lock()
-        self.seen = {}           # run id -> None while planning, else result bytes
-        self.unacked = {}        # run id -> (next time to re-send its
+        self.seen = {}           # attempt id -> None while planning, else
+                                 # result bytes
+        self.unacked = {}        # attempt id -> (next time to re-send its
                                  # result, the wait after that)
         self.connects = 0        # the hub link's connections, last seen
         # Through a hub, the heartbeat's echo (the LCM thread's alone).
@@ -195,15 +226,15 @@ class Node:
             a.num_approaches = len(a.approaches)
         a.capacity = 1
         with self.lock:
-            a.active_runs = list(self.active)
-        a.num_active = len(a.active_runs)
-        self._publish(ANNOUNCE, a.encode())
+            a.active_attempts = list(self.active)
+        a.num_active = len(a.active_attempts)
+        self._publish(ANNOUNCE, _encode(a))
 
-    def _ack(self, run_id, kind):
+    def _ack(self, attempt_id, kind):
         k = run_ack_t()
         k.utime = int(time.time() * 1e6)
-        k.run_id, k.sender_id, k.kind = run_id, self.planner_id, kind
-        self._publish(ACK, k.encode())
+        k.attempt_id, k.sender_id, k.kind = attempt_id, self.planner_id, kind
+        self._publish(ACK, _encode(k))
 
     def _echo(self):
         """The heartbeat's echo, to the node itself on its acknowledgement
@@ -211,9 +242,9 @@ class Node:
         own instance): the hub relays it back while it relays at all."""
         k = run_ack_t()
         k.utime = int(time.time() * 1e6)
-        k.run_id, k.sender_id = "", self.planner_id
+        k.attempt_id, k.sender_id = "", self.planner_id
         k.kind = run_ack_t.REQUEST_RECEIVED
-        data = k.encode()
+        data = _encode(k)
         if self.auth:
             data = self.auth.seal(self.ack_channel, data, self.auth.instance)
         self.lc.publish(self.ack_channel, data)
@@ -253,7 +284,7 @@ class Node:
         if data is None:
             return
         try:
-            req = plan_request_t.decode(data)
+            req = _decode(plan_request_t, data)
         except Exception as e:      # a malformed message must not stop us
             self.log(f"dropped a malformed request: {e}")
             return
@@ -261,17 +292,17 @@ class Node:
             return
         with self.lock:
             # Earlier results the daemon has stored ride on the request.
-            for run_id in req.stored:
-                self.unacked.pop(run_id, None)
-            known = req.run_id in self.seen
-            result = self.seen.get(req.run_id)
+            for attempt_id in req.stored:
+                self.unacked.pop(attempt_id, None)
+            known = req.attempt_id in self.seen
+            result = self.seen.get(req.attempt_id)
             if not known:
-                self.seen[req.run_id] = None
+                self.seen[req.attempt_id] = None
         if not known:
-            self._ack(req.run_id, run_ack_t.REQUEST_RECEIVED)
+            self._ack(req.attempt_id, run_ack_t.REQUEST_RECEIVED)
             self.requests.put(req)
         elif result is None:
-            self._ack(req.run_id, run_ack_t.REQUEST_RECEIVED)
+            self._ack(req.attempt_id, run_ack_t.REQUEST_RECEIVED)
         else:
             self._publish(RESULT, result)
 
@@ -280,7 +311,7 @@ class Node:
         if data is None:
             return
         try:
-            k = run_ack_t.decode(data)
+            k = _decode(run_ack_t, data)
         except Exception:
             return
         if k.sender_id == self.planner_id and (
@@ -288,7 +319,7 @@ class Node:
             self._echo_back()
         elif k.kind in (run_ack_t.RESULT_STORED, run_ack_t.RESULT_REJECTED):
             with self.lock:
-                self.unacked.pop(k.run_id, None)
+                self.unacked.pop(k.attempt_id, None)
 
     # ---- a stalled hub (LCM thread) ---------------------------------------
 
@@ -405,7 +436,7 @@ class Node:
                                        f"{watch.limit_mb:g} MB"
                                        if watch.limit_mb > 0 else ""))
             except Exception as e:      # the planner's bug: say so, go on
-                print(f"mpb-planner-python: run {req.run_id[:8]}: solve() "
+                print(f"mpb-planner-python: run {req.attempt_id[:8]}: solve() "
                       f"raised:\n{traceback.format_exc()}", file=sys.stderr,
                       end="", flush=True)
                 res = self._failed(plan_result_t.FAILED, f"solve() raised "
@@ -424,9 +455,9 @@ class Node:
                                              if res.message else ""))[
                                                  :MESSAGE_MAX]
         res.utime = int(time.time() * 1e6)
-        res.run_id, res.planner_id = req.run_id, self.planner_id
+        res.attempt_id, res.planner_id = req.attempt_id, self.planner_id
         try:
-            data = res.encode()
+            data = _encode(res)
         except Exception as e:          # e.g. num_stages != len(stages)
             res = self._failed(plan_result_t.FAILED, f"the result of solve() "
                                f"cannot be encoded: {type(e).__name__}: {e}")
@@ -440,8 +471,8 @@ class Node:
                                f"{size} bytes, over the {LCM_MESSAGE_MAX}"
                                f"-byte (16 MiB) bound of an LCM message")
         res.utime = int(time.time() * 1e6)
-        res.run_id, res.planner_id = req.run_id, self.planner_id
-        return res, res.encode()
+        res.attempt_id, res.planner_id = req.attempt_id, self.planner_id
+        return res, _encode(res)
 
     def serve(self, solve: Callable[..., Any]) -> None:
         """Answer requests with solve(req) -> plan_result_t until stop()."""
@@ -453,18 +484,18 @@ class Node:
             except queue.Empty:
                 continue
             with self.lock:
-                self.active = [req.run_id]
-            self.log(f"run {req.run_id[:8]}: {req.algorithm}, "
+                self.active = [req.attempt_id]
+            self.log(f"run {req.attempt_id[:8]}: {req.algorithm}, "
                      f"{req.time_limit:g} s")
             res, data = self._answer(solve, req)
             with self.lock:
                 self.active = []
-                self.seen[req.run_id] = data
-                self.unacked[req.run_id] = (time.monotonic() + RESEND_S,
+                self.seen[req.attempt_id] = data
+                self.unacked[req.attempt_id] = (time.monotonic() + RESEND_S,
                                             2 * RESEND_S)
             if not self.stalled:        # else it goes when the hub relays
                 self._publish(RESULT, data)
-            self.log(f"run {req.run_id[:8]}: status {res.status}, "
+            self.log(f"run {req.attempt_id[:8]}: status {res.status}, "
                      f"{res.time_total:.3f} s")
         t.join(timeout=1.0)
 

@@ -17,9 +17,9 @@ from . import rrt_connect
 
 
 def solve(req, cache, limits):
-    """Answer one plan_request_t with a plan_result_t (run_id and planner_id
-    left for the caller), stopping when limits.should_stop() (limits.py)
-    says so."""
+    """Answer one plan_request_t with a plan_result_t (attempt_id and
+    planner_id left for the caller), stopping when limits.should_stop()
+    (limits.py) says so."""
     t0 = time.monotonic()
     res = plan_result_t()
     res.stages, res.values, res.progress = [], [], []

@@ -114,7 +114,7 @@ static void test_receive_rejects_garbage(void **state)
                                   MPB_CHANNEL_RESULT, &msg), 0);
     assert_int_equal(d->count.rejected, 1);
     assert_int_equal(lines_on(MPB_CHANNEL_RESULT), 1);
-    assert_null(msg.run_id);
+    assert_null(msg.attempt_id);
     free(d);
 }
 

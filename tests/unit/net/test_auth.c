@@ -68,7 +68,7 @@ static void the_protocol_test_vector(void **state)
     vector("trailer", want, sizeof want);
     mpb_auth *a = load(secret);
     mpb_run_ack_t ack = {.utime = 1,
-                         .run_id = "0123456789abcdef0123456789abcdef",
+                         .attempt_id = "0123456789abcdef0123456789abcdef",
                          .sender_id = "null@h:1", .kind = 0};
     unsigned char enc[256], trailer[MPB_AUTH_TRAILER_SIZE];
     char text[2 * sizeof enc + 1];
@@ -225,7 +225,7 @@ static void a_seal_counts_with_publishing_and_is_believed(void **state)
     assert_non_null(lcm);
     received r = {.len = 0};
     lcm_subscribe(lcm, "MPB_ACK", on_message, &r);
-    mpb_run_ack_t ack = {.utime = 1, .run_id = "r", .sender_id = "s",
+    mpb_run_ack_t ack = {.utime = 1, .attempt_id = "r", .sender_id = "s",
                          .kind = 0};
     assert_int_equal(mpb_publish_ack(lcm, peer, 0, "MPB_ACK", &ack), MPB_OK);
     assert_int_equal(lcm_handle(lcm), 0);

@@ -14,17 +14,17 @@
 static void run_ids_are_hex_and_distinct(void **state)
 {
     (void)state;
-    char a[MPB_RUN_ID_SIZE], b[MPB_RUN_ID_SIZE];
-    assert_int_equal(mpb_run_id_new(a), MPB_OK);
-    assert_int_equal(mpb_run_id_new(b), MPB_OK);
+    char a[MPB_ATTEMPT_ID_SIZE], b[MPB_ATTEMPT_ID_SIZE];
+    assert_int_equal(mpb_attempt_id_new(a), MPB_OK);
+    assert_int_equal(mpb_attempt_id_new(b), MPB_OK);
     assert_int_equal(strlen(a), 32);
-    assert_true(mpb_run_id_is_valid(a));
+    assert_true(mpb_attempt_id_is_valid(a));
     assert_string_not_equal(a, b);
-    assert_false(mpb_run_id_is_valid("0123456789ABCDEF0123456789abcdef")); /* upper case */
-    assert_false(mpb_run_id_is_valid("0123456789abcdef0123456789abcde"));  /* 31 */
-    assert_false(mpb_run_id_is_valid("0123456789abcdef0123456789abcdef0")); /* 33 */
-    assert_false(mpb_run_id_is_valid("0123456789abcdef0123456789abcdeg"));
-    assert_false(mpb_run_id_is_valid(NULL));
+    assert_false(mpb_attempt_id_is_valid("0123456789ABCDEF0123456789abcdef")); /* upper case */
+    assert_false(mpb_attempt_id_is_valid("0123456789abcdef0123456789abcde"));  /* 31 */
+    assert_false(mpb_attempt_id_is_valid("0123456789abcdef0123456789abcdef0")); /* 33 */
+    assert_false(mpb_attempt_id_is_valid("0123456789abcdef0123456789abcdeg"));
+    assert_false(mpb_attempt_id_is_valid(NULL));
 }
 
 static void planner_ids_are_channel_safe(void **state)

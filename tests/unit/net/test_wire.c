@@ -98,7 +98,7 @@ static int setup(void **state)
     char *held_names[] = {"finger_joint1", "finger_joint2"};
     double held_values[] = {0.04, 0.035};
     mpb_plan_request_t req = {
-        .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
+        .utime = 1, .attempt_id = "0123456789abcdef0123456789abcdef",
         .planner_id = "p@h:1", .algorithm = "RRT", .num_params = 1,
         .params = &par, .time_limit = 1, .seed = 2, .robot_format = "planar",
         .robot_hash = "x", .robot = "r", .scene_format = "planar",
@@ -186,7 +186,7 @@ static void an_older_planners_announcement_is_taken(void **state)
     assert_string_equal(m.algorithms[1], "arc");
     assert_int_equal(m.capacity, 1);
     assert_int_equal(m.num_active, 1);
-    assert_string_equal(m.active_runs[0], active[0]);
+    assert_string_equal(m.active_attempts[0], active[0]);
     assert_int_equal(m.num_approaches, 0);
     assert_null(m.approaches);
     mpb_receive_done(MPB_WIRE_PLANNER_ANNOUNCE, &m);
@@ -281,7 +281,7 @@ static void both_result_layouts_decode(void **state)
                                      MPB_WIRE_PLAN_RESULT, "MPB_RESULT",
                                      samples[i].buf, (size_t)samples[i].len,
                                      &m, &r), MPB_OK);
-        assert_string_equal(m.run_id, "0123456789abcdef0123456789abcdef");
+        assert_string_equal(m.attempt_id, "0123456789abcdef0123456789abcdef");
         assert_string_equal(m.message, "ok");
         assert_int_equal(m.num_stages, 2);
         assert_string_equal(m.stages[0].name, "raw");

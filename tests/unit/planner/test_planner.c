@@ -101,7 +101,7 @@ static void test_result_round_trip(void **state)
     assert_int_equal(mpb_result_set_times(&res, 0, NULL, 2), MPB_EINVAL);
     assert_int_equal(mpb_result_add_value(&res, "graph states", 7), MPB_OK);
     assert_int_equal(mpb_result_set_message(&res, "ok"), MPB_OK);
-    res.run_id = strdup("0123456789abcdef0123456789abcdef");
+    res.attempt_id = strdup("0123456789abcdef0123456789abcdef");
     res.planner_id = strdup("test@host:1");
     res.status = MPB_PLAN_RESULT_T_SOLVED;
 
