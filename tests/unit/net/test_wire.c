@@ -1,7 +1,10 @@
 /* test_wire.c - the pre-decode check of encoded messages: real encodings of
  * every type pass (a result in either layout: with waypoint times, and
  * plan_result_v1_t as planners built before them send it); truncated,
- * padded, mistyped and hostile ones do not; and whatever passes decodes. */
+ * padded, mistyped and hostile ones do not; and whatever passes decodes.
+ * Every older layout (wire.c) is taken and decoded as today's, its
+ * fingerprint its own; those of today's bytes are written by a
+ * fingerprint alone. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -18,6 +21,10 @@
 #include "mpb_planner_announce_t.h"
 #include "mpb_planner_announce_v1_t.h"
 #include "mpb_run_ack_t.h"
+#include "mpb_plan_request_v1_t.h"
+#include "mpb_plan_result_v2_t.h"
+#include "mpb_planner_announce_v2_t.h"
+#include "mpb_run_ack_v1_t.h"
 
 typedef struct sample {
     mpb_wire_type type;
@@ -180,6 +187,7 @@ static void an_older_planners_announcement_is_taken(void **state)
     assert_int_equal(mpb_receive(NULL, MPB_RECEIVE_FRESH,
                                  MPB_WIRE_PLANNER_ANNOUNCE, "MPB_ANNOUNCE",
                                  buf, (size_t)len, &m, &r), MPB_OK);
+    assert_int_equal(r.layout, 1);
     assert_string_equal(m.planner_id, "old@h:3");
     assert_string_equal(m.name, "old");
     assert_int_equal(m.num_algorithms, 2);
@@ -195,6 +203,7 @@ static void an_older_planners_announcement_is_taken(void **state)
                                  MPB_WIRE_PLANNER_ANNOUNCE, "MPB_ANNOUNCE",
                                  samples[0].buf, (size_t)samples[0].len, &m,
                                  &r), MPB_OK);
+    assert_int_equal(r.layout, 0);
     assert_int_equal(m.num_approaches, 2);
     assert_string_equal(m.approaches[0], "sampling");
     assert_string_equal(m.approaches[1], "");
@@ -315,6 +324,164 @@ static void both_result_layouts_decode(void **state)
     free(b);
 }
 
+/* The older layouts of today's bytes, each with its generated struct:
+ * decode bytes in it and encode them again into out; the bytes encoded,
+ * or -1 if its decoder refused them. */
+#define REENCODE(T)                                                         \
+    static int reencode_##T(const void *buf, int len, unsigned char *out,   \
+                            int cap)                                        \
+    {                                                                       \
+        mpb_##T m;                                                          \
+        if (mpb_##T##_decode(buf, 0, len, &m) < 0)                          \
+            return -1;                                                      \
+        int n = mpb_##T##_encoded_size(&m) <= cap                           \
+                    ? mpb_##T##_encode(out, 0, cap, &m) : -1;               \
+        mpb_##T##_decode_cleanup(&m);                                       \
+        return n;                                                           \
+    }
+REENCODE(planner_announce_v2_t)
+REENCODE(plan_request_v1_t)
+REENCODE(plan_result_v2_t)
+REENCODE(run_ack_v1_t)
+#undef REENCODE
+
+static const struct renamed {
+    mpb_wire_type type;
+    int layout, sample;
+    int (*reencode)(const void *, int, unsigned char *, int);
+} renamed[] = {
+    {MPB_WIRE_PLANNER_ANNOUNCE, 2, 0, reencode_planner_announce_v2_t},
+    {MPB_WIRE_PLAN_REQUEST, MPB_WIRE_BEFORE_ATTEMPT_ID, 1,
+     reencode_plan_request_v1_t},
+    {MPB_WIRE_PLAN_RESULT, 2, 2, reencode_plan_result_v2_t},
+    {MPB_WIRE_RUN_ACK, MPB_WIRE_BEFORE_ATTEMPT_ID, 3, reencode_run_ack_v1_t},
+};
+
+/*
+ * Planners built before attempt_id: each layout they send or take
+ * (run_id, active_runs) has a fingerprint of its own, differing from
+ * today's and from every other layout of any message; today's bytes
+ * under it are what that layout's own struct encodes (so the daemon can
+ * send it); and the gate takes it, says which layout it was, and decodes
+ * it as today's struct, every field kept.
+ */
+static void the_layouts_before_attempt_id_are_taken(void **state)
+{
+    (void)state;
+    /* Every fingerprint of every layout differs from every other. */
+    for (int t = 0; t < MPB_WIRE_COUNT; t++)
+        for (int n = 0; n < MPB_WIRE_LAYOUTS; n++) {
+            int64_t fp = mpb_wire_fingerprint((mpb_wire_type)t, n);
+            if (fp == 0)
+                continue;
+            for (int u = 0; u < MPB_WIRE_COUNT; u++)
+                for (int k = 0; k < MPB_WIRE_LAYOUTS; k++)
+                    if (u != t || k != n)
+                        assert_true(fp != mpb_wire_fingerprint(
+                                              (mpb_wire_type)u, k));
+        }
+    assert_true(__mpb_plan_request_t_get_hash() !=
+                __mpb_plan_request_v1_t_get_hash());
+    assert_true(__mpb_run_ack_t_get_hash() != __mpb_run_ack_v1_t_get_hash());
+
+    for (size_t i = 0; i < sizeof renamed / sizeof renamed[0]; i++) {
+        const struct renamed *c = &renamed[i];
+        const sample *s = &samples[c->sample];
+        unsigned char *old = malloc((size_t)s->len);
+        unsigned char *again = malloc((size_t)s->len);
+        memcpy(old, s->buf, (size_t)s->len);
+        assert_int_equal(mpb_wire_stamp(c->type, old, (size_t)s->len,
+                                        c->layout), MPB_OK);
+        assert_int_equal(mpb_wire_layout(c->type, old, (size_t)s->len),
+                         c->layout);
+        /* That layout's own decoder reads it, and its encoder gives the
+         * same bytes back: the layout is today's bytes, renamed. */
+        assert_int_equal(c->reencode(old, s->len, again, s->len), s->len);
+        assert_memory_equal(old, again, (size_t)s->len);
+        /* Today's generated decoder refuses it (decodes() reads a result
+         * as the gate does); the gate takes it, as today's. */
+        if (c->type != MPB_WIRE_PLAN_RESULT)
+            assert_false(decodes(c->type, old, s->len));
+        char why[160];
+        assert_true(mpb_wire_check(c->type, old, (size_t)s->len, why,
+                                   sizeof why));
+        union {
+            mpb_planner_announce_t ann;
+            mpb_plan_request_t req;
+            mpb_plan_result_t res;
+            mpb_run_ack_t ack;
+        } m;
+        mpb_received r;
+        assert_int_equal(mpb_receive(NULL, MPB_RECEIVE_FRESH, c->type, "CH",
+                                     old, (size_t)s->len, &m, &r), MPB_OK);
+        assert_int_equal(r.layout, c->layout);
+        int n = -1;
+        switch (c->type) {
+        case MPB_WIRE_PLANNER_ANNOUNCE:
+            n = mpb_planner_announce_t_encode(again, 0, s->len, &m.ann);
+            break;
+        case MPB_WIRE_PLAN_REQUEST:
+            assert_string_equal(m.req.attempt_id,
+                                "0123456789abcdef0123456789abcdef");
+            n = mpb_plan_request_t_encode(again, 0, s->len, &m.req);
+            break;
+        case MPB_WIRE_PLAN_RESULT:
+            assert_string_equal(m.res.attempt_id,
+                                "0123456789abcdef0123456789abcdef");
+            n = mpb_plan_result_t_encode(again, 0, s->len, &m.res);
+            break;
+        case MPB_WIRE_RUN_ACK:
+            assert_string_equal(m.ack.attempt_id,
+                                "0123456789abcdef0123456789abcdef");
+            n = mpb_run_ack_t_encode(again, 0, s->len, &m.ack);
+            break;
+        default: break;
+        }
+        /* Decoded as today's, every field kept: today's bytes again. */
+        assert_int_equal(n, s->len);
+        assert_memory_equal(again, s->buf, (size_t)s->len);
+        mpb_receive_done(c->type, &m);
+        /* Stamped back, today's again. */
+        assert_int_equal(mpb_wire_stamp(c->type, old, (size_t)s->len, 0),
+                         MPB_OK);
+        assert_memory_equal(old, s->buf, (size_t)s->len);
+        free(old);
+        free(again);
+    }
+
+    /* An ack as such a planner builds it, with run_id, reads as today's. */
+    mpb_run_ack_v1_t a1 = {5, "fedcba9876543210fedcba9876543210", "old@h:3",
+                           MPB_RUN_ACK_V1_T_REQUEST_RECEIVED};
+    unsigned char buf[128];
+    int len = mpb_run_ack_v1_t_encode(buf, 0, sizeof buf, &a1);
+    assert_true(len > 0);
+    mpb_run_ack_t ack;
+    mpb_received r;
+    assert_int_equal(mpb_receive(NULL, MPB_RECEIVE_FRESH, MPB_WIRE_RUN_ACK,
+                                 "MPB_ACK", buf, (size_t)len, &ack, &r),
+                     MPB_OK);
+    assert_int_equal(r.layout, MPB_WIRE_BEFORE_ATTEMPT_ID);
+    assert_string_equal(ack.attempt_id, a1.run_id);
+    assert_string_equal(ack.sender_id, "old@h:3");
+    mpb_receive_done(MPB_WIRE_RUN_ACK, &ack);
+
+    /* A layout whose bytes are not today's is never written by its
+     * fingerprint: the result before waypoint times, the announcement
+     * before approaches; nor a layout a message does not have. */
+    unsigned char *b = malloc((size_t)samples[2].len);
+    memcpy(b, samples[2].buf, (size_t)samples[2].len);
+    assert_int_equal(mpb_wire_stamp(MPB_WIRE_PLAN_RESULT, b,
+                                    (size_t)samples[2].len, 1), MPB_EINVAL);
+    assert_int_equal(mpb_wire_stamp(MPB_WIRE_PLANNER_ANNOUNCE, b,
+                                    (size_t)samples[2].len, 1), MPB_EINVAL);
+    assert_int_equal(mpb_wire_stamp(MPB_WIRE_DAEMON_STATUS, b,
+                                    (size_t)samples[2].len, 1), MPB_EINVAL);
+    assert_memory_equal(b, samples[2].buf, (size_t)samples[2].len);
+    assert_int_equal(mpb_wire_fingerprint(MPB_WIRE_DAEMON_STATUS, 1), 0);
+    assert_int_equal(mpb_wire_layout(MPB_WIRE_PLAN_RESULT, b, 7), -1);
+    free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -325,6 +492,7 @@ int main(void)
         cmocka_unit_test(hostile_lengths_fail),
         cmocka_unit_test(whatever_passes_decodes),
         cmocka_unit_test(both_result_layouts_decode),
+        cmocka_unit_test(the_layouts_before_attempt_id_are_taken),
     };
     return cmocka_run_group_tests_name("wire", tests, setup, teardown);
 }
