@@ -165,7 +165,13 @@ mpbd_planner *mpbd_planner_learn(mpbd *d, const mpb_planner_announce_t *m,
     p->heartbeat_s = m->heartbeat_ms > 0 ? m->heartbeat_ms / 1000.0 : 0.5;
     p->last_seen = now;
     p->instance = d->msg_from;
-    p->layout = d->msg_layout > 0 ? MPB_WIRE_BEFORE_ATTEMPT_ID : 0;
+    int layout = d->msg_layout > 0 ? MPB_WIRE_BEFORE_ATTEMPT_ID : 0;
+    if (layout != p->layout)
+        mpbd_log("planner %s %s", p->id, layout != 0
+                     ? "was built before attempt_id: it is sent requests "
+                       "and acks in their older layouts"
+                     : "speaks today's layouts");
+    p->layout = layout;
     return p;
 }
 
