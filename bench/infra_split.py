@@ -49,7 +49,7 @@ def main():
         except ValueError:
             pass        # another type on the channel: not ours
     rows = sqlite3.connect(db).execute(
-        "SELECT run_uid, time_total, coalesce(world_setup_time, 0),"
+        "SELECT attempt_id, time_total, coalesce(world_setup_time, 0),"
         " coalesce(verify_time, 0), finished, finished - wall_time"
         " FROM runs WHERE state = 'done' AND time_total IS NOT NULL").fetchall()
     # A run whose request or result the logger missed (a datagram dropped

@@ -260,7 +260,7 @@ int main(int argc, char **argv)
         mpb_named values[2] = {{"graph_states", (double)(int)(100 * rnd(&seed))},
                                {"collision_checks", (double)(int)(1e4 * rnd(&seed))}};
         mpb_run_record rec = {
-            .run_id = col.runs[i].id, .run_uid = uid, .planner_id = planner_id,
+            .run_id = col.runs[i].id, .attempt_id = uid, .planner_id = planner_id,
             .status = "solved", .message = "", .claimed_success = 1,
             .success = ok, .time_total = total_t, .time_raw = total_t,
             .time_other = 0, .wall_time = total_t + 0.0002,

@@ -19,12 +19,12 @@
 #include "daemon.h"
 #include "mpb_run_ack_t.h"
 
-void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind)
+void mpbd_ack(mpbd *d, const char *planner_id, const char *attempt_id, int kind)
 {
     char channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
     mpb_run_ack_t ack = {
         .utime = mpb_utime_now(),
-        .attempt_id = (char *)run_uid,
+        .attempt_id = (char *)attempt_id,
         .sender_id = d->daemon_id,
         .kind = (int8_t)kind,
     };
@@ -43,16 +43,16 @@ static mpbd_ack_due *push(mpbd_ack_due **arr, int *num, int *cap)
     return &(*arr)[(*num)++];
 }
 
-int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *run_uid,
+int mpbd_ack_after_commit(mpbd *d, const char *planner_id, const char *attempt_id,
                           double sent_at)
 {
     mpbd_acks *k = &d->acks;
-    if (!mpb_planner_id_is_valid(planner_id) || !mpb_attempt_id_is_valid(run_uid))
+    if (!mpb_planner_id_is_valid(planner_id) || !mpb_attempt_id_is_valid(attempt_id))
         return MPB_EINVAL;
     mpbd_ack_due *a = push(&k->due, &k->num_due, &k->cap_due);
     if (a == NULL)
         return MPB_ENOMEM;
-    memcpy(a->run_uid, run_uid, sizeof a->run_uid);
+    memcpy(a->attempt_id, attempt_id, sizeof a->attempt_id);
     memcpy(a->planner_id, planner_id, strlen(planner_id) + 1);
     a->sent_at = sent_at;
     return MPB_OK;
@@ -69,7 +69,7 @@ void mpbd_acks_flush(mpbd *d)
         /* A result sent again: its planner is waiting, answer at once. */
         if (a->sent_at < 0 ||
             (o = push(&k->owed, &k->num_owed, &k->cap_owed)) == NULL) {
-            mpbd_ack(d, a->planner_id, a->run_uid, MPB_RUN_ACK_T_RESULT_STORED);
+            mpbd_ack(d, a->planner_id, a->attempt_id, MPB_RUN_ACK_T_RESULT_STORED);
             continue;
         }
         *o = *a;
@@ -98,7 +98,7 @@ int mpbd_owed_take(mpbd *d, const char *planner_id,
             i++;
             continue;
         }
-        memcpy(ids[n++], k->owed[i].run_uid, MPB_ATTEMPT_ID_SIZE);
+        memcpy(ids[n++], k->owed[i].attempt_id, MPB_ATTEMPT_ID_SIZE);
         k->owed[i] = k->owed[--k->num_owed];
     }
     return n;
@@ -112,7 +112,7 @@ void mpbd_owed_send(mpbd *d, double now, int all)
             i++;
             continue;
         }
-        mpbd_ack(d, k->owed[i].planner_id, k->owed[i].run_uid,
+        mpbd_ack(d, k->owed[i].planner_id, k->owed[i].attempt_id,
                  MPB_RUN_ACK_T_RESULT_STORED);
         k->owed[i] = k->owed[--k->num_owed];
     }

@@ -195,7 +195,7 @@ typedef struct mpbd_flight {
 /* A stored result to acknowledge, to its planner, once its transaction
  * commits (acks.c). */
 typedef struct mpbd_ack_due {
-    char    run_uid[MPB_ATTEMPT_ID_SIZE];
+    char    attempt_id[MPB_ATTEMPT_ID_SIZE];
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
     double  sent_at;         /* the request's first send; < 0: a result
                                 sent again, answered alone and at once */
@@ -207,7 +207,7 @@ typedef struct mpbd_ack_due {
  * it, before the results it holds. */
 typedef struct mpbd_unrecorded {
     int64_t run_id;
-    char    run_uid[MPB_ATTEMPT_ID_SIZE];
+    char    attempt_id[MPB_ATTEMPT_ID_SIZE];
     char    planner_id[MPB_PLANNER_ID_MAX + 1];
 } mpbd_unrecorded;
 
@@ -431,12 +431,12 @@ void mpbd_planners_free(mpbd *d);
 int  mpbd_acks_init(mpbd *d);          /* MPB_OK, or MPB_ENOMEM */
 void mpbd_acks_free(mpbd *d);
 /* Publish an acknowledgement to a planner now (on its MPB_ACK_<id>). */
-void mpbd_ack(mpbd *d, const char *planner_id, const char *run_uid, int kind);
+void mpbd_ack(mpbd *d, const char *planner_id, const char *attempt_id, int kind);
 /* Acknowledge a planner's stored result once the transaction commits;
  * sent_at, the request's first send, counts the run's latency then (< 0:
  * a result stored before, sent again: not counted, answered at once). */
 int  mpbd_ack_after_commit(mpbd *d, const char *planner_id,
-                           const char *run_uid, double sent_at);
+                           const char *attempt_id, double sent_at);
 /* After a commit: count the runs' latency; what it made true is now owed. */
 void mpbd_acks_flush(mpbd *d);
 /* The transaction holding them rolled back or nobody waits (a replay):

@@ -304,7 +304,7 @@ static int store_result(mpbd *d, const mpbd_flight *f,
     }
     mpb_run_record rec = {
         .run_id = f->run.id,
-        .run_uid = f->run.uid,
+        .attempt_id = f->run.uid,
         .planner_id = m->planner_id,
         .status = mpb_status_name(status),
         .message = message ? message : m->message,

@@ -74,8 +74,8 @@ static int load_row(void *ud, const mpb_run_row *row)
         return MPB_ENOTFOUND;
     /* A run sent before a restart keeps its id, so that its result, if the
      * planner still delivers it, is accepted once. */
-    if (row->sent && row->run_uid && mpb_attempt_id_is_valid(row->run_uid))
-        memcpy(run.uid, row->run_uid, MPB_ATTEMPT_ID_SIZE);
+    if (row->sent && row->attempt_id && mpb_attempt_id_is_valid(row->attempt_id))
+        memcpy(run.uid, row->attempt_id, MPB_ATTEMPT_ID_SIZE);
     return push_pending(&d->runs, run.config, &run);
 }
 
@@ -211,7 +211,7 @@ mpbd_flight *mpbd_runs_send(mpbd *d, int config, int planner, int queued)
      * request goes out as soon as a commit has made room for it. */
     mpbd_unrecorded *u = &r->unrecorded[r->num_unrecorded++];
     u->run_id = run.id;
-    memcpy(u->run_uid, run.uid, sizeof u->run_uid);
+    memcpy(u->attempt_id, run.uid, sizeof u->attempt_id);
     snprintf(u->planner_id, sizeof u->planner_id, "%s", d->planners[planner].id);
     r->pending_head[config]++;
     r->total_pending--;
@@ -224,7 +224,7 @@ int mpbd_runs_record_sent(mpbd *d)
     int rc = MPB_OK;
     for (int i = 0; i < r->num_unrecorded; i++) {
         const mpbd_unrecorded *u = &r->unrecorded[i];
-        int e = mpb_store_run_sent(d->store, u->run_id, u->run_uid,
+        int e = mpb_store_run_sent(d->store, u->run_id, u->attempt_id,
                                    u->planner_id);
         /* Done already: its result came in a transaction before (a resend
          * after a restart). Anything else is the database failing. */
@@ -436,7 +436,7 @@ int mpbd_run_crashed(mpbd *d, mpbd_flight *f, const char *why, double wall_time)
 {
     mpb_run_record rec = {
         .run_id = f->run.id,
-        .run_uid = f->run.uid,
+        .attempt_id = f->run.uid,
         .planner_id = d->planners[f->planner].id,
         .status = "crash",
         .message = why,

@@ -52,7 +52,7 @@ done = set(open(sys.argv[2]).read().split())
 print(len(done), len(done - riding - alone), len(riding & done),
       len(alone & done), len(results), len(set(results)))
 EOT
-q "SELECT run_uid FROM runs WHERE state = 'done'" >"$work/done.txt"
+q "SELECT attempt_id FROM runs WHERE state = 'done'" >"$work/done.txt"
 set -- $(PYTHONPATH="$MPB_BUILD/lcmtypes/python" "$python" "$work/count.py" "$lcmlog" "$work/done.txt")
 check "the 200 runs are done" eq "${1:-0}" 200
 check "every run was acknowledged" eq "${2:-1}" 0

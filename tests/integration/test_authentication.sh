@@ -54,7 +54,7 @@ daemon=$!
 
 uid=""
 for i in $(seq 50); do
-    uid=$(q "SELECT run_uid FROM runs WHERE state = 'sent' LIMIT 1" 2>/dev/null)
+    uid=$(q "SELECT attempt_id FROM runs WHERE state = 'sent' LIMIT 1" 2>/dev/null)
     [ -n "$uid" ] && break
     sleep 0.1
 done

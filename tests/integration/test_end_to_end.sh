@@ -32,7 +32,7 @@ check "... whose median is at least the runs' median wall time" \
 check "all 14 runs exist" eq "$(q 'SELECT count(*) FROM runs')" 14
 check "every run is done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 14
 check "each run has its own run id" \
-    eq "$(q 'SELECT count(DISTINCT run_uid) FROM runs')" 14
+    eq "$(q 'SELECT count(DISTINCT attempt_id) FROM runs')" 14
 check "no run needed a second attempt" \
     eq "$(q 'SELECT count(*) FROM runs WHERE attempts != 1')" 0
 check "the experiment is marked finished" \

@@ -22,7 +22,7 @@ daemon=$!
 # Wait for a run in flight, then forge.
 uid=""
 for i in $(seq 50); do
-    uid=$(q "SELECT run_uid FROM runs WHERE state = 'sent' LIMIT 1" 2>/dev/null)
+    uid=$(q "SELECT attempt_id FROM runs WHERE state = 'sent' LIMIT 1" 2>/dev/null)
     [ -n "$uid" ] && break
     sleep 0.1
 done
@@ -47,7 +47,7 @@ check "... the wrong planner's as such" \
 check "no forged stage reached the database" \
     eq "$(q "SELECT count(*) FROM stages WHERE name = 'forged'")" 0
 check "the attacked run holds the real planner's answer" \
-    test "$(q "SELECT planner_id LIKE 'null@%' AND planner_id != 'null@elsewhere:1' AND message != 'forged' FROM runs WHERE run_uid = '$uid'")" = 1
+    test "$(q "SELECT planner_id LIKE 'null@%' AND planner_id != 'null@elsewhere:1' AND message != 'forged' FROM runs WHERE attempt_id = '$uid'")" = 1
 check "all six runs are solved" eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved'")" 6
 # The runs waited on the forger for seconds: their median is said, past
 # the 65536 us where the count once stopped.
@@ -89,28 +89,28 @@ check "negative times are no success" test "$(run success 4)" = 0
 check "... stored as NULL" \
     test "$(run "time_total IS NULL AND time_raw IS NULL AND time_other IS NULL" 4)" = 1
 check "... and the stage time too" \
-    test "$(q "SELECT time IS NULL FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$(run run_uid 4)'")" = 1
+    test "$(q "SELECT time IS NULL FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.attempt_id = '$(run attempt_id 4)'")" = 1
 check "... the values sent kept in the message" \
     test "$(run "message LIKE 'time_total -1 s is negative; time_other 3 s exceeds time_total -1 s; stage 0 time -5 s is negative%'" 4)" = 1
 check "a NaN time_total is no success, with its reason" \
     test "$(run "success = 0 AND message LIKE 'time_total nan s is not finite%'" 5)" = 1
 check "a result late by the daemon's clock is no success" test "$(run success 6)" = 0
 check "... saying so" test "$(run "message LIKE '%by the daemon''s clock%over the time limit 1 s plus 1 s slack%'" 6)" = 1
-uid7=$(run run_uid 7)
+uid7=$(run attempt_id 7)
 check "repeated stage names are all kept, renamed in order" \
-    test "$(q "SELECT group_concat(name, ' ') FROM (SELECT name FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$uid7' ORDER BY idx)")" = "raw raw#3 raw#2"
+    test "$(q "SELECT group_concat(name, ' ') FROM (SELECT name FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.attempt_id = '$uid7' ORDER BY idx)")" = "raw raw#3 raw#2"
 check "... each with its metrics" \
-    eq "$(q "SELECT count(DISTINCT stage) FROM metrics m JOIN runs r ON r.id = m.run_id WHERE r.run_uid = '$uid7'")" 3
+    eq "$(q "SELECT count(DISTINCT stage) FROM metrics m JOIN runs r ON r.id = m.run_id WHERE r.attempt_id = '$uid7'")" 3
 check "repeated value names are all kept" \
-    test "$(q "SELECT group_concat(name || '=' || value, ' ') FROM (SELECT name, value FROM planner_values v JOIN runs r ON r.id = v.run_id WHERE r.run_uid = '$uid7' ORDER BY name)")" = "n=10.0 n#2=20.0"
+    test "$(q "SELECT group_concat(name || '=' || value, ' ') FROM (SELECT name, value FROM planner_values v JOIN runs r ON r.id = v.run_id WHERE r.attempt_id = '$uid7' ORDER BY name)")" = "n=10.0 n#2=20.0"
 check "... the renames noted" \
     test "$(run "message LIKE 'stage 1 ''raw'' stored as ''raw#3''%value 1 ''n'' stored as ''n#2''%'" 7)" = 1
 check "solved with no stages says so" test "$(run "success = 0 AND message LIKE 'solved, but no stages%'" 8)" = 1
 check "an honest time over the limit says so" \
     test "$(run "success = 0 AND message LIKE 'time_total 3 s exceeds the time limit 1 s%'" 9)" = 1
-uid10=$(run run_uid 10)
+uid10=$(run attempt_id 10)
 check "a stage of the wrong size is stored as sent" \
-    test "$(q "SELECT s.verdict || ' ' || num_waypoints || ' ' || num_joints || ' ' || length(waypoints) FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.run_uid = '$uid10' AND idx = 0")" = "wrong_size 2 4 64"
+    test "$(q "SELECT s.verdict || ' ' || num_waypoints || ' ' || num_joints || ' ' || length(waypoints) FROM stages s JOIN runs r ON r.id = s.run_id WHERE r.attempt_id = '$uid10' AND idx = 0")" = "wrong_size 2 4 64"
 check "a failure without a message gets one" \
     test "$(run message 11)" = "the planner reported failed with no message"
 check "a result within the limit and its slack is a success" test "$(run success 12)" = 1

@@ -104,7 +104,7 @@ check "no process warns of an unfiltered socket" \
 
 check "48 runs, each stored once" eq "$(q "SELECT count(*) FROM runs")" 48
 check "... each done" eq "$(q "SELECT count(*) FROM runs WHERE state = 'done'")" 48
-check "... each under its own run id" eq "$(q "SELECT count(DISTINCT run_uid) FROM runs")" 48
+check "... each under its own run id" eq "$(q "SELECT count(DISTINCT attempt_id) FROM runs")" 48
 check "... none a crash, none re-sent to another planner" \
     eq "$(q "SELECT count(*) FROM runs WHERE crashes > 0 OR status = 'crash'")" 0
 check "... no stage stored twice" \

@@ -99,7 +99,7 @@ check "... every run solved in one attempt, as live" \
     eq "$(q "SELECT count(*) FROM runs WHERE status = 'solved' AND attempts = 1")" 20
 check "... each run's wall time within 25 ms of the live one (at least 18)" \
     ge "$(q "ATTACH '$work/queued.db' AS live;
-             SELECT count(*) FROM runs r JOIN live.runs l USING (run_uid)
+             SELECT count(*) FROM runs r JOIN live.runs l USING (attempt_id)
              WHERE abs(r.wall_time - l.wall_time) < 0.025")" 18
 
 experiment unqueued 20 0.05

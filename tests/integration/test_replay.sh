@@ -45,7 +45,7 @@ daemon=$!
 forge=$MPB_BUILD/tests/mpb-test-forge-result
 uid=""
 for i in $(seq 100); do
-    uid=$(sqlite3 "$live" "SELECT run_uid FROM runs r JOIN planner_configs c
+    uid=$(sqlite3 "$live" "SELECT attempt_id FROM runs r JOIN planner_configs c
         ON c.id = r.planner_config_id WHERE c.planner = 'null'
         AND r.state = 'sent' LIMIT 1" 2>/dev/null)
     [ -n "$uid" ] && break

@@ -108,7 +108,7 @@ static inline void finish(mpb_store *s, int64_t run_id, const run_spec *r, int i
         {0.3, "iterations", 30},
     };
     mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "planner-1",
+        .run_id = run_id, .attempt_id = uid, .planner_id = "planner-1",
         .status = r->status, .message = "", .claimed_success = r->claimed,
         .success = r->success, .time_total = r->total,
         .time_raw = r->total - 0.25, .time_other = 0.25,
@@ -266,7 +266,7 @@ static inline void mini_experiment(const char *path, const char *name,
                     .num_metrics = (int)(sizeof metrics / sizeof metrics[0]),
                     .metrics = metrics};
             mpb_run_record rec = {
-                .run_id = run_id, .run_uid = uid, .planner_id = "p",
+                .run_id = run_id, .attempt_id = uid, .planner_id = "p",
                 .status = "solved", .message = "", .claimed_success = 1,
                 .success = 1, .time_total = 1.5, .time_raw = 1.5,
                 .wall_time = 2.0, .num_stages = 3, .stages = st};

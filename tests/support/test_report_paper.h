@@ -89,7 +89,7 @@ static inline void finish(mpb_store *s, int64_t run_id, const run_spec *r)
     };
     int has_raw = r->raw_len >= 0;
     mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "planner-1",
+        .run_id = run_id, .attempt_id = uid, .planner_id = "planner-1",
         .status = "solved", .claimed_success = 1, .success = r->success,
         .time_total = r->total, .time_raw = r->raw, .time_other = r->other,
         .num_stages = has_raw ? 2 : 1, .stages = has_raw ? st : st + 1,

@@ -132,7 +132,7 @@ static inline void test_store_finish(mpb_store *s, int64_t run_id, int success,
                            .verdict_segment = -1, .num_metrics = 1,
                            .metrics = m};
     mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "p-1",
+        .run_id = run_id, .attempt_id = uid, .planner_id = "p-1",
         .status = success ? "solved" : "timeout",
         .claimed_success = success, .success = success, .time_total = time,
         .time_raw = time, .num_stages = 1, .stages = &st,

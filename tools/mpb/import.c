@@ -241,7 +241,7 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
     double t = cell(p, run, c->time), ts = cell(p, run, c->s_time);
     double total = isnan(ts) ? t : t + ts;
     mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "imported",
+        .run_id = run_id, .attempt_id = uid, .planner_id = "imported",
         .status = status_of(cell(p, run, c->status), solved), .message = "",
         .claimed_success = solved, .success = success,
         .time_total = total, .time_raw = t, .time_other = isnan(ts) ? 0.0 : ts,

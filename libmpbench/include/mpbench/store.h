@@ -240,7 +240,7 @@ typedef struct mpb_run_row {
     int64_t seed;
     int     attempts;
     int     sent;                     /* 1 if a request went out before */
-    const char *run_uid;              /* current attempt's id, or NULL */
+    const char *attempt_id;           /* current attempt's id, or NULL */
 } mpb_run_row;
 
 /*
@@ -259,28 +259,30 @@ typedef struct mpb_run_counts {
 int mpb_store_run_counts(mpb_store *s, int64_t experiment_id,
                          mpb_run_counts *out);
 
-/* Record that a request with run_uid went to planner_id: attempts + 1,
- * unless run_uid is already the run's attempt (sent again after a
- * restart: the same attempt). */
-int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
+/* Record that a request with attempt_id (the wire's: plan_request_t's,
+ * kept in runs.attempt_id; run_id is the run's row, runs.id) went to
+ * planner_id: attempts + 1, unless attempt_id is already the run's
+ * attempt (sent again after a restart: the same attempt). */
+int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *attempt_id,
                        const char *planner_id);
 
 /*
- * Put a sent run back to pending after its attempt run_uid ended without a
- * result (its planner crashed or fell silent), to be sent again with a new
+ * Put a sent run back to pending after its attempt attempt_id ended
+ * without a result (its planner crashed or fell silent), to be sent again with a new
  * id; why is kept in runs.message and runs.crashes counts such attempts.
- * MPB_ENOTFOUND if run_uid is not the run's current attempt.
+ * MPB_ENOTFOUND if attempt_id is not the run's current attempt.
  */
-int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
+int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *attempt_id,
                         const char *why);
 
 /*
  * Take back a request that its planner never started (it declined it, or
  * went away while the request still waited in its queue): the run is
- * pending again as if attempt run_uid had not been sent (attempts - 1, no
- * crash counted). MPB_ENOTFOUND if run_uid is not the run's current attempt.
+ * pending again as if attempt attempt_id had not been sent (attempts - 1,
+ * no crash counted). MPB_ENOTFOUND if attempt_id is not the run's current
+ * attempt.
  */
-int mpb_store_run_unsent(mpb_store *s, int64_t run_id, const char *run_uid);
+int mpb_store_run_unsent(mpb_store *s, int64_t run_id, const char *attempt_id);
 
 /* ---- results ------------------------------------------------------------- */
 
@@ -337,8 +339,8 @@ typedef struct mpb_progress_record {
 } mpb_progress_record;
 
 typedef struct mpb_run_record {
-    int64_t     run_id;
-    const char *run_uid;
+    int64_t     run_id;           /* runs.id */
+    const char *attempt_id;       /* the attempt's id on the wire */
     const char *planner_id;
     const char *status;           /* mpb_status_name() of the planner's status */
     const char *message;          /* planner's message, may be "" */
@@ -382,7 +384,7 @@ typedef struct mpb_run_record {
  * Store a finished run: its outcome, stages, metrics, planner values and
  * progress. runs.outcome is mpb_run_outcome(claimed_success, the final
  * stage's validity, success) (outcome.h), runs.in_time !late. Returns MPB_OK, or MPB_EEXISTS (writing nothing) if the run was
- * already done, or MPB_ENOTFOUND if run_uid is not the run's current
+ * already done, or MPB_ENOTFOUND if attempt_id is not the run's current
  * attempt.
  */
 int mpb_store_run_finish(mpb_store *s, const mpb_run_record *r);

@@ -21,8 +21,8 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
     [MPB__ST_COMMIT] = "COMMIT",
     [MPB__ST_ROLLBACK] = "ROLLBACK",
     [MPB__ST_RUN_SENT] =
-        "UPDATE runs SET state = 'sent', run_uid = ?2, planner_id = ?3,"
-        " attempts = attempts + (run_uid IS NOT ?2), sent = ?4"
+        "UPDATE runs SET state = 'sent', attempt_id = ?2, planner_id = ?3,"
+        " attempts = attempts + (attempt_id IS NOT ?2), sent = ?4"
         " WHERE id = ?1 AND state != 'done'",
     [MPB__ST_RUN_FINISH] =
         "UPDATE runs SET state = 'done', finished = ?16,"
@@ -32,7 +32,7 @@ static const char *const stmt_sql[MPB__ST_COUNT] = {
         " final_metrics = ?15, world_setup_time = ?17, verify_time = ?18,"
         " memory = ?19, outcome = ?20, in_time = ?21, seen_verdict = ?22,"
         " seen_detail = ?23, seen_success = ?24"
-        " WHERE id = ?1 AND run_uid = ?2 AND state != 'done'",
+        " WHERE id = ?1 AND attempt_id = ?2 AND state != 'done'",
     [MPB__ST_STAGE_INSERT] =
         "INSERT OR REPLACE INTO stages(run_id, idx, name, time, num_waypoints,"
         " num_joints, waypoints, valid, verdict, verdict_detail,"
@@ -261,12 +261,26 @@ static int add_problem_sets(mpb_store *s)
                                     "create run_summary view");
 }
 
+/* The migration step of attempt ids (docs/schema.md): a database made
+ * before the wire's run_id was named attempt_id keeps the attempt's id
+ * in runs.run_uid; the column is renamed, its values kept, so that a
+ * daemon resumes such a database's runs in flight under their ids. */
+static int rename_attempt_id(mpb_store *s)
+{
+    if (!mpb__store_has_column(s, "runs", "run_uid") ||
+        mpb__store_has_column(s, "runs", "attempt_id"))
+        return MPB_OK;
+    return exec(s, "ALTER TABLE runs RENAME COLUMN run_uid TO attempt_id",
+                "rename runs.run_uid to attempt_id");
+}
+
 static int create_schema(mpb_store *s)
 {
     int version, rc;
     if ((rc = exec(s, "BEGIN IMMEDIATE", "begin")) != MPB_OK)
         return rc;
-    if ((rc = exec(s, mpb__schema_v1, "create schema")) != MPB_OK)
+    if ((rc = exec(s, mpb__schema_v1, "create schema")) != MPB_OK ||
+        (rc = rename_attempt_id(s)) != MPB_OK)
         goto fail;
     /* A database made before runs.final_metrics gets the column, NULL for
      * its runs: reports read their metrics from the metrics table. One made

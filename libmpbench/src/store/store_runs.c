@@ -17,7 +17,7 @@ int mpb_store_runs_unfinished(mpb_store *s, int64_t experiment_id,
 {
     sqlite3_stmt *st = mpb__store_prepare(s,
         "SELECT id, planner_config_id, query_id, repetition, seed, attempts,"
-        " state, run_uid FROM runs WHERE experiment_id = ? AND state != 'done'"
+        " state, attempt_id FROM runs WHERE experiment_id = ? AND state != 'done'"
         " ORDER BY id");
     int rc, stop = 0;
     if (st == NULL)
@@ -32,7 +32,7 @@ int mpb_store_runs_unfinished(mpb_store *s, int64_t experiment_id,
             .seed = sqlite3_column_int64(st, 4),
             .attempts = sqlite3_column_int(st, 5),
             .sent = strcmp(mpb__col_text(st, 6), "sent") == 0,
-            .run_uid = mpb__col_text(st, 7),
+            .attempt_id = mpb__col_text(st, 7),
         };
         stop = cb(ud, &row);
     }
@@ -64,14 +64,14 @@ int mpb_store_run_counts(mpb_store *s, int64_t experiment_id,
     return rc == SQLITE_ROW ? MPB_OK : mpb__store_db_fail(s, "count runs");
 }
 
-int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
+int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *attempt_id,
                        const char *planner_id)
 {
     sqlite3_stmt *st = mpb__store_stmt(s, MPB__ST_RUN_SENT);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, run_id);
-    sqlite3_bind_text(st, 2, run_uid, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 2, attempt_id, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 3, planner_id, -1, SQLITE_STATIC);
     sqlite3_bind_double(st, 4, mpb__store_now());
     int rc = sqlite3_step(st);
@@ -86,14 +86,14 @@ int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *run_uid,
 /* A sent run back to pending by sql (?1 run id, ?2 its attempt's run id,
  * ?3 why, if not NULL); MPB_ENOTFOUND if that is not its current attempt. */
 static int run_back_to_pending(mpb_store *s, const char *sql, int64_t run_id,
-                               const char *run_uid, const char *why,
+                               const char *attempt_id, const char *why,
                                const char *what)
 {
     sqlite3_stmt *st = mpb__store_prepare(s, sql);
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, run_id);
-    sqlite3_bind_text(st, 2, run_uid, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 2, attempt_id, -1, SQLITE_STATIC);
     if (why != NULL)
         sqlite3_bind_text(st, 3, why, -1, SQLITE_STATIC);
     int rc = sqlite3_step(st);
@@ -102,24 +102,24 @@ static int run_back_to_pending(mpb_store *s, const char *sql, int64_t run_id,
         return mpb__store_db_fail(s, what);
     return sqlite3_changes(s->db) ? MPB_OK
         : mpb__store_fail(s, MPB_ENOTFOUND, "run %lld has no attempt %s in "
-                          "flight", (long long)run_id, run_uid);
+                          "flight", (long long)run_id, attempt_id);
 }
 
-int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *run_uid,
+int mpb_store_run_retry(mpb_store *s, int64_t run_id, const char *attempt_id,
                         const char *why)
 {
     return run_back_to_pending(s,
-        "UPDATE runs SET state = 'pending', run_uid = NULL, message = ?3,"
-        " crashes = crashes + 1 WHERE id = ?1 AND run_uid = ?2"
-        " AND state = 'sent'", run_id, run_uid, why, "retry run");
+        "UPDATE runs SET state = 'pending', attempt_id = NULL, message = ?3,"
+        " crashes = crashes + 1 WHERE id = ?1 AND attempt_id = ?2"
+        " AND state = 'sent'", run_id, attempt_id, why, "retry run");
 }
 
-int mpb_store_run_unsent(mpb_store *s, int64_t run_id, const char *run_uid)
+int mpb_store_run_unsent(mpb_store *s, int64_t run_id, const char *attempt_id)
 {
     return run_back_to_pending(s,
-        "UPDATE runs SET state = 'pending', run_uid = NULL,"
-        " attempts = attempts - 1 WHERE id = ?1 AND run_uid = ?2"
-        " AND state = 'sent'", run_id, run_uid, NULL, "take back run");
+        "UPDATE runs SET state = 'pending', attempt_id = NULL,"
+        " attempts = attempts - 1 WHERE id = ?1 AND attempt_id = ?2"
+        " AND state = 'sent'", run_id, attempt_id, NULL, "take back run");
 }
 
 int mpb__metrics_pack(mpb_store *s, const mpb_named *m, int n,
@@ -314,7 +314,7 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
     if (st == NULL)
         return MPB_EDB;
     sqlite3_bind_int64(st, 1, r->run_id);
-    sqlite3_bind_text(st, 2, r->run_uid, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 2, r->attempt_id, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 3, r->planner_id, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 4, r->status, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 5, r->message ? r->message : "", -1, SQLITE_STATIC);
@@ -367,17 +367,17 @@ static int finish_run(mpb_store *s, const mpb_run_record *r)
     if (sqlite3_changes(s->db) == 0) {
         /* Either already done (a repeated result) or not this attempt. */
         sqlite3_stmt *q = mpb__store_prepare(s,
-            "SELECT state = 'done' FROM runs WHERE id = ? AND run_uid = ?");
+            "SELECT state = 'done' FROM runs WHERE id = ? AND attempt_id = ?");
         if (q == NULL)
             return MPB_EDB;
         sqlite3_bind_int64(q, 1, r->run_id);
-        sqlite3_bind_text(q, 2, r->run_uid, -1, SQLITE_STATIC);
+        sqlite3_bind_text(q, 2, r->attempt_id, -1, SQLITE_STATIC);
         rc = sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int(q, 0)
                  ? mpb__store_fail(s, MPB_EEXISTS, "run %lld is already done",
                                    (long long)r->run_id)
                  : mpb__store_fail(s, MPB_ENOTFOUND,
                                    "run %lld has no attempt %s",
-                                   (long long)r->run_id, r->run_uid);
+                                   (long long)r->run_id, r->attempt_id);
         sqlite3_finalize(q);
         return rc;
     }

@@ -80,7 +80,7 @@ const char mpb__schema_v1[] =
     /* Not UNIQUE: runs are found by id, and an index of a random key costs
      * a page of its own in every commit (bench/results/history.md,
      * change 10). */
-    "  run_uid           TEXT,\n"
+    "  attempt_id        TEXT,\n"
     "  attempts          INTEGER NOT NULL DEFAULT 0,\n"
     "  crashes           INTEGER NOT NULL DEFAULT 0,\n"
     "  planner_id        TEXT,\n"

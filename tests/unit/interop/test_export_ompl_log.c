@@ -165,7 +165,7 @@ static void an_imported_logs_integers_and_unmeasured_properties(void **state)
         const mpb_exact_value exact[] = {
             {0, r == 0 ? INT64_C(9007199254740993) : INT64_MIN}};
         mpb_run_record rec = {
-            .run_id = ids[r], .run_uid = "u", .planner_id = "imported",
+            .run_id = ids[r], .attempt_id = "u", .planner_id = "imported",
             .status = "timeout", .message = "", .time_total = 0.5,
             .time_raw = 0.5, .wall_time = NAN, .verify_time = NAN,
             .memory = NAN, .num_values = 1, .values = values,

@@ -105,7 +105,7 @@ static int collect(void *ud, const mpb_run_row *row)
 {
     mpb_run_row *out = ud;
     out[out[0].attempts++ + 1] = *row;
-    out[out[0].attempts].run_uid = NULL;
+    out[out[0].attempts].attempt_id = NULL;
     return 0;
 }
 
@@ -119,7 +119,7 @@ static void a_run_is_finished_once(void **state)
                               2, metrics, NULL, 0, NAN, NAN, NULL};
     mpb_named values[] = {{"graph states", 17}};
     mpb_run_record r = {
-        .run_id = 0, .run_uid = "0123456789abcdef0123456789abcdef",
+        .run_id = 0, .attempt_id = "0123456789abcdef0123456789abcdef",
         .planner_id = "p@h:1", .status = "solved", .message = "",
         .claimed_success = 1, .success = 1, .time_total = 0.02,
         .time_raw = 0.015, .time_other = 0.005, .wall_time = 0.03,
@@ -138,7 +138,7 @@ static void a_run_is_finished_once(void **state)
 
     /* Not sent yet: no attempt has this id. */
     assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_ENOTFOUND);
-    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, r.run_uid, "p@h:1"), MPB_OK);
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, r.attempt_id, "p@h:1"), MPB_OK);
     assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_OK);
     /* The same result again: nothing written. */
     assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_EEXISTS);
@@ -183,7 +183,7 @@ static void a_request_never_started_is_taken_back(void **state)
                      MPB_ENOTFOUND);
     assert_int_equal(peek(f, "SELECT state = 'sent' AND attempts = 1 FROM runs"), 1);
     assert_int_equal(mpb_store_run_unsent(f->s, id, uid), MPB_OK);
-    assert_int_equal(peek(f, "SELECT state = 'pending' AND run_uid IS NULL"
+    assert_int_equal(peek(f, "SELECT state = 'pending' AND attempt_id IS NULL"
                              " AND attempts = 0 AND crashes = 0 FROM runs"), 1);
     /* Taken back once: the same attempt again is no attempt in flight. */
     assert_int_equal(mpb_store_run_unsent(f->s, id, uid), MPB_ENOTFOUND);
@@ -197,14 +197,14 @@ static void a_failed_write_leaves_no_half_run(void **state)
     mpb_stage_record stage = {"raw", 0.01, 0, 2, NULL, 0, "empty", "", -1,
                               2, metrics, NULL, 0, NAN, NAN, NULL};
     mpb_run_record r = {
-        .run_uid = "00000000000000000000000000000001", .planner_id = "p",
+        .attempt_id = "00000000000000000000000000000001", .planner_id = "p",
         .status = "solved", .num_stages = 1, .stages = &stage,
     };
     mpb_run_row rows[2] = {{0}};
     assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 0, 1), MPB_OK);
     assert_int_equal(mpb_store_runs_unfinished(f->s, f->exp, collect, rows), MPB_OK);
     r.run_id = rows[1].id;
-    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, r.run_uid, "p"), MPB_OK);
+    assert_int_equal(mpb_store_run_sent(f->s, r.run_id, r.attempt_id, "p"), MPB_OK);
     assert_int_equal(mpb_store_run_finish(f->s, &r), MPB_EDB);
     assert_non_null(strstr(mpb_store_errmsg(f->s), "metric"));
     assert_int_equal(peek(f, "SELECT count(*) FROM stages"), 0);
@@ -239,7 +239,7 @@ static void an_older_state_index_is_dropped(void **state)
     assert_int_equal(mpb_store_run_add(f->s, f->exp, f->cfg, f->query, 1, 2), MPB_OK);
     assert_int_equal(peek(f, "SELECT count(*) FROM pragma_index_list('runs') l,"
                              " pragma_index_info(l.name) i"
-                             " WHERE i.name IN ('state', 'run_uid')"), 0);
+                             " WHERE i.name IN ('state', 'attempt_id')"), 0);
     mpb_store_close(f->s);
     assert_int_equal(sqlite3_open(f->path, &db), SQLITE_OK);
     assert_int_equal(sqlite3_exec(db, "CREATE INDEX runs_by_state ON"
@@ -291,7 +291,7 @@ static void finish_with_verify_time(fixture *f, int rep, double verify_time)
     char uid[33];
     snprintf(uid, sizeof uid, "%032d", rep + 1);
     mpb_run_record r = {
-        .run_uid = uid, .planner_id = "p", .status = "failed", .message = "",
+        .attempt_id = uid, .planner_id = "p", .status = "failed", .message = "",
         .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
         .wall_time = 0.2, .verify_time = verify_time,
     };
@@ -370,7 +370,7 @@ static void finish_refused(fixture *f, int rep, int has_depth)
         .verdict_detail = "segment 0 collides", .verdict_segment = 0,
         .has_depth = has_depth, .depth_lower_mm = 0.25, .depth_upper_mm = 1.5};
     mpb_run_record r = {
-        .run_uid = uid, .planner_id = "p", .status = "solved", .message = "",
+        .attempt_id = uid, .planner_id = "p", .status = "solved", .message = "",
         .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
         .wall_time = 0.2, .verify_time = 0.0, .stages = &st, .num_stages = 1,
     };
@@ -442,7 +442,7 @@ static void finish_with_memory(fixture *f, int rep, double memory)
     char uid[33];
     snprintf(uid, sizeof uid, "%032d", rep + 1);
     mpb_run_record r = {
-        .run_uid = uid, .planner_id = "p", .status = "memory", .message = "",
+        .attempt_id = uid, .planner_id = "p", .status = "memory", .message = "",
         .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
         .wall_time = 0.2, .verify_time = NAN, .memory = memory,
     };
@@ -519,7 +519,7 @@ static void finish_with_times(fixture *f, int rep, const double *times)
          .verdict_segment = -1, .times = times},
     };
     mpb_run_record r = {
-        .run_uid = uid, .planner_id = "p", .status = "solved", .message = "",
+        .attempt_id = uid, .planner_id = "p", .status = "solved", .message = "",
         .time_total = 0.1, .time_raw = 0.1, .time_other = 0.0,
         .wall_time = 0.2, .verify_time = NAN, .memory = NAN,
         .num_stages = 2, .stages = st,

@@ -258,7 +258,7 @@ static void an_older_database_gets_its_runs_outcomes(void **state)
                                                          : "collision",
                                .verdict_segment = -1};
         mpb_run_record rec = {
-            .run_id = ids[i], .run_uid = uid, .planner_id = "p@h:1",
+            .run_id = ids[i], .attempt_id = uid, .planner_id = "p@h:1",
             .status = kinds[i].status, .message = "",
             .claimed_success = kinds[i].claimed, .success = kinds[i].success,
             .late = i == 2, .time_total = 1, .time_raw = 1, .time_other = 0,
@@ -320,6 +320,97 @@ static int on_scene_set(void *ud, const mpb_scene_row *row)
  * names with several '/', a trailing one, UTF-8) and the run_summary
  * view.
  */
+/* A run not yet done as mpb_store_runs_unfinished() gives it. */
+typedef struct unfinished {
+    int     n;
+    int64_t id[4];
+    int     sent[4];
+    char    attempt[4][40];
+} unfinished;
+
+static int collect_unfinished(void *ud, const mpb_run_row *row)
+{
+    unfinished *u = ud;
+    if (u->n < 4) {
+        u->id[u->n] = row->id;
+        u->sent[u->n] = row->sent;
+        snprintf(u->attempt[u->n], sizeof u->attempt[u->n], "%s",
+                 row->attempt_id != NULL ? row->attempt_id : "NULL");
+    }
+    u->n++;
+    return 0;
+}
+
+/*
+ * A database made before attempt_id (its attempts' ids in runs.run_uid,
+ * as an older mpbench left it) opens for writing with the column renamed
+ * and every value kept: its run in flight resumes under its attempt id,
+ * the other still pending, and the run finishes under that id alone.
+ */
+static void an_older_database_gets_attempt_id(void **state)
+{
+    fixture *f = *state;
+    mpb_store *s;
+    int64_t cfg, scene, query, ids[2];
+    static const char uid[] = "0123456789abcdef0123456789abcdef";
+    static const char *const joints[] = {"j"};
+    static const double zero[] = {0.0}, one[] = {1.0};
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    assert_int_equal(mpb_store_planner_config_add(s, 1, "p/a", "p", "a", "",
+                                                  &cfg), MPB_OK);
+    mpb_scene_info sc = {"s", "planar", "r", "r", "planar", "x", "x"};
+    assert_int_equal(mpb_store_scene_add(s, 1, &sc, &scene), MPB_OK);
+    mpb_query_info q = {"q", 1, joints, zero, MPB_GOAL_JOINTS, one, 0.01,
+                        NULL, NULL};
+    assert_int_equal(mpb_store_query_add(s, scene, &q, &query), MPB_OK);
+    for (int i = 0; i < 2; i++)
+        assert_int_equal(mpb_store_run_add(s, 1, cfg, query, i, i), MPB_OK);
+    assert_int_equal(mpb_store_runs_unfinished(s, 1, run_ids, ids), MPB_OK);
+    assert_int_equal(mpb_store_run_sent(s, ids[0], uid, "p@h:1"), MPB_OK);
+    mpb_store_close(s);
+
+    exec_sql(f->db, "ALTER TABLE runs RENAME COLUMN attempt_id TO run_uid");
+    char *now = column_text(f->db, "SELECT count(run_uid) FROM runs");
+    assert_string_equal(now, "1");           /* as an older mpbench left it */
+    free(now);
+
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    unfinished u = {0};
+    assert_int_equal(mpb_store_runs_unfinished(s, 1, collect_unfinished, &u),
+                     MPB_OK);
+    assert_int_equal(u.n, 2);
+    assert_true(u.id[0] == ids[0] && u.sent[0] == 1);
+    assert_string_equal(u.attempt[0], uid);
+    assert_true(u.id[1] == ids[1] && u.sent[1] == 0);
+    assert_string_equal(u.attempt[1], "NULL");
+    mpb_stage_record st = {.name = "raw", .valid = 1, .verdict = "valid",
+                           .verdict_segment = -1};
+    mpb_run_record rec = {
+        .run_id = ids[0], .attempt_id = "fedcba9876543210fedcba9876543210",
+        .planner_id = "p@h:1", .status = "solved", .message = "",
+        .claimed_success = 1, .success = 1, .time_total = 1, .time_raw = 1,
+        .wall_time = 1, .num_stages = 1, .stages = &st, .verify_time = 0.1,
+        .memory = 1,
+    };
+    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_ENOTFOUND);
+    rec.attempt_id = uid;
+    assert_int_equal(mpb_store_run_finish(s, &rec), MPB_OK);
+    mpb_store_close(s);
+    now = column_text(f->db, "SELECT group_concat(coalesce(attempt_id, 'NULL')"
+                      " || ' ' || state, ', ') FROM (SELECT * FROM runs"
+                      " ORDER BY id)");
+    char want[96];
+    snprintf(want, sizeof want, "%s done, NULL pending", uid);
+    assert_string_equal(now, want);
+    free(now);
+    /* Opened again: nothing left to rename, nothing changed. */
+    assert_int_equal(mpb_store_open(f->db, 0, &s), MPB_OK);
+    mpb_store_close(s);
+    now = column_text(f->db, "SELECT count(attempt_id) FROM runs");
+    assert_string_equal(now, "1");
+    free(now);
+}
+
 static void an_older_database_gets_its_problem_sets(void **state)
 {
     fixture *f = *state;
@@ -428,7 +519,7 @@ static void a_scene_keeps_what_its_planners_saw(void **state)
                            .verdict_detail = "touches post",
                            .verdict_segment = 0};
     mpb_run_record rec = {
-        .run_id = r1, .run_uid = "u1", .planner_id = "p-1",
+        .run_id = r1, .attempt_id = "u1", .planner_id = "p-1",
         .status = "solved", .claimed_success = 1, .success = 0,
         .time_total = 0.5, .time_raw = 0.5, .num_stages = 1, .stages = &st,
         .verify_time = NAN, .memory = NAN, .seen_verdict = "valid",
@@ -479,6 +570,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(a_database_in_a_read_only_folder_is_read, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_database_gets_its_runs_outcomes, setup, teardown),
         cmocka_unit_test_setup_teardown(an_older_database_gets_its_problem_sets, setup, teardown),
+        cmocka_unit_test_setup_teardown(an_older_database_gets_attempt_id, setup, teardown),
         cmocka_unit_test_setup_teardown(a_scene_keeps_what_its_planners_saw, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

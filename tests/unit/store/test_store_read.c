@@ -96,7 +96,7 @@ static void finish(fixture *f, int i)
          .num_metrics = 4, .metrics = final_m},
     };
     mpb_run_record rec = {
-        .run_id = f->run_id[i], .run_uid = uid, .planner_id = "planner-1",
+        .run_id = f->run_id[i], .attempt_id = uid, .planner_id = "planner-1",
         .status = r->stages == NO_STAGES ? "crash" : "solved",
         .claimed_success = r->stages != NO_STAGES, .success = r->success,
         .time_total = r->total, .time_raw = r->raw, .time_other = r->other,
@@ -184,7 +184,7 @@ static int setup(void **state)
     mpb_stage_record ost = {.name = "smoothed", .valid = 1, .verdict = "valid",
                             .verdict_segment = -1, .num_metrics = 1,
                             .metrics = om};
-    mpb_run_record orec = {.run_id = orun, .run_uid = "uid-other",
+    mpb_run_record orec = {.run_id = orun, .attempt_id = "uid-other",
                            .planner_id = "planner-1", .status = "solved",
                            .claimed_success = 1, .success = 1,
                            .time_total = 500.0, .time_raw = 500.0,

@@ -72,7 +72,7 @@ static int setup(void **state)
          .verdict_detail = "waypoint 0 ...", .verdict_segment = 0},
     };
     mpb_run_record rec = {
-        .run_id = f->run, .run_uid = "uid-1", .planner_id = "ompl@h:1",
+        .run_id = f->run, .attempt_id = "uid-1", .planner_id = "ompl@h:1",
         .status = "solved", .message = "final stage is collision",
         .claimed_success = 1, .success = 0, .time_total = 0.75,
         .num_stages = 2, .stages = st,
@@ -81,7 +81,7 @@ static int setup(void **state)
     assert_int_equal(mpb_store_run_sent(f->w, f->empty_run, "uid-2", "ompl@h:1"),
                      MPB_OK);
     mpb_run_record none = {
-        .run_id = f->empty_run, .run_uid = "uid-2", .planner_id = "ompl@h:1",
+        .run_id = f->empty_run, .attempt_id = "uid-2", .planner_id = "ompl@h:1",
         .status = "failed", .message = "no way", .time_total = 1.5,
     };
     assert_int_equal(mpb_store_run_finish(f->w, &none), MPB_OK);

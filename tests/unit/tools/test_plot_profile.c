@@ -53,7 +53,7 @@ static void finish(mpb_store *s, int64_t run_id, run_spec r)
                            .verdict_segment = -1, .num_metrics = ok,
                            .metrics = m};
     mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "p-1",
+        .run_id = run_id, .attempt_id = uid, .planner_id = "p-1",
         .status = ok ? "solved" : "timeout", .claimed_success = ok,
         .success = ok, .time_total = r.time, .time_raw = r.time,
         .num_stages = 1, .stages = &st, .verify_time = NAN, .memory = NAN,

@@ -28,7 +28,7 @@ static void finish_claim(mpb_store *s, int64_t run_id, const char *status,
                            .verdict_segment = -1, .num_metrics = 2,
                            .metrics = m};
     mpb_run_record rec = {
-        .run_id = run_id, .run_uid = uid, .planner_id = "planner-1",
+        .run_id = run_id, .attempt_id = uid, .planner_id = "planner-1",
         .status = status, .claimed_success = strcmp(status, "solved") == 0,
         .success = success, .time_total = 0.5, .time_raw = 0.5,
         .time_other = 0, .num_stages = 1, .stages = &st,

@@ -63,7 +63,7 @@ static void finish_run(mpb_store *s, int64_t id, const run_spec *r)
                            .verdict_segment = -1, .num_metrics = 1,
                            .metrics = m};
     mpb_run_record rec = {
-        .run_id = id, .run_uid = uid, .planner_id = "p",
+        .run_id = id, .attempt_id = uid, .planner_id = "p",
         .status = r->success ? "solved" : "timeout",
         .claimed_success = r->success, .success = r->success,
         .time_total = r->time, .time_raw = r->time,
@@ -78,7 +78,7 @@ static int collect_rows(void *ud, const mpb_run_row *row)
 {
     mpb_run_row *out = ud;
     out[++out[0].attempts] = *row;
-    out[out[0].attempts].run_uid = NULL;
+    out[out[0].attempts].attempt_id = NULL;
     return 0;
 }
 
