@@ -94,7 +94,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case 2: {
         mpb_run_ack_t m;
         if (mpb_run_ack_t_decode(buf, 0, len, &m) >= 0) {
-            mpb_attempt_id_is_valid(m.run_id);
+            mpb_attempt_id_is_valid(m.attempt_id);
             mpb_run_ack_t_decode_cleanup(&m);
         }
         break;

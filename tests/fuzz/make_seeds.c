@@ -81,7 +81,7 @@ int main(int argc, char **argv)
 
     mpb_param_t par = {"range", "0.3"};
     mpb_plan_request_t req = {
-        .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
+        .utime = 1, .attempt_id = "0123456789abcdef0123456789abcdef",
         .planner_id = "null@h:1", .algorithm = "straight_line",
         .num_params = 1, .params = &par, .time_limit = 1, .seed = 7,
         .robot_format = "planar", .robot_hash = "", .robot = "link_radius 0.03\n",
