@@ -1,4 +1,5 @@
-/* proto.c - run ids, content hashes, channel names and clocks of the protocol. */
+/* proto.c - attempt ids, content hashes, channel names and clocks of the
+ * protocol. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

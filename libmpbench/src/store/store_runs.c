@@ -83,7 +83,7 @@ int mpb_store_run_sent(mpb_store *s, int64_t run_id, const char *attempt_id,
                           (long long)run_id);
 }
 
-/* A sent run back to pending by sql (?1 run id, ?2 its attempt's run id,
+/* A sent run back to pending by sql (?1 run id, ?2 its attempt's id,
  * ?3 why, if not NULL); MPB_ENOTFOUND if that is not its current attempt. */
 static int run_back_to_pending(mpb_store *s, const char *sql, int64_t run_id,
                                const char *attempt_id, const char *why,
