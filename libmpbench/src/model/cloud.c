@@ -8,6 +8,7 @@
 #include "core/errbuf.h"
 #include "core/number.h"
 #include "core/readfile.h"
+#include "core/words.h"
 #include "model/cloud_internal.h"
 
 #include <errno.h>
@@ -26,21 +27,14 @@ size_t mpb__cloud_type_size(int type)
 int mpb__cloud_words(const char *b, const char *e, char *w, int rows,
                      size_t cols)
 {
-    int n = 0;
-    while (b < e) {
-        while (b < e && (*b == ' ' || *b == '\t' || *b == '\r'))
-            b++;
-        if (b >= e)
-            break;
-        const char *s = b;
-        while (b < e && *b != ' ' && *b != '\t' && *b != '\r')
-            b++;
-        if (n < rows) {
-            size_t k = (size_t)(b - s) < cols - 1 ? (size_t)(b - s) : cols - 1;
-            memcpy(w + (size_t)n * cols, s, k);
-            w[(size_t)n * cols + k] = '\0';
-        }
-        n++;
+    mpb__word at[MPB__CLOUD_WORDS_MAX];
+    if (rows > MPB__CLOUD_WORDS_MAX)
+        rows = MPB__CLOUD_WORDS_MAX;
+    int n = mpb__split_words(b, e, at, rows);
+    for (int i = 0; i < n && i < rows; i++) {
+        size_t k = (size_t)at[i].len < cols - 1 ? (size_t)at[i].len : cols - 1;
+        memcpy(w + (size_t)i * cols, at[i].p, k);
+        w[(size_t)i * cols + k] = '\0';
     }
     return n;
 }

@@ -31,9 +31,11 @@ typedef struct mpb__cloud_layout {
 /* The size of a type (1 to 8). */
 size_t mpb__cloud_type_size(int type);
 
-/* Split the line [b, e) at blanks into words: the first rows of them
- * into w, a row of cols bytes each, cut to cols - 1 characters. Returns
- * how many words the line has (more than rows when some did not fit). */
+/* Split the line [b, e) at blanks into words (core/words.h): the first
+ * rows of them (at most MPB__CLOUD_WORDS_MAX) into w, a row of cols bytes
+ * each, cut to cols - 1 characters. Returns how many words the line has
+ * (more than rows when some did not fit). */
+#define MPB__CLOUD_WORDS_MAX 65     /* a PCD header's 64 fields and its key */
 int mpb__cloud_words(const char *b, const char *e, char *w, int rows,
                      size_t cols);
 

@@ -11,6 +11,7 @@
 #include "core/base64.h"
 #include "core/errbuf.h"
 #include "core/number.h"
+#include "core/words.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -60,38 +61,13 @@ static void putf(buf *b, const char *fmt, ...)
 
 #define MAX_WORDS 16
 
-typedef struct word {
-    const char *p;
-    int         len;
-} word;
-
-static int split(const char *b, const char *e, word *w)
-{
-    int n = 0;
-    while (b < e) {
-        while (b < e && (*b == ' ' || *b == '\t' || *b == '\r'))
-            b++;
-        if (b >= e)
-            break;
-        const char *s = b;
-        while (b < e && *b != ' ' && *b != '\t' && *b != '\r')
-            b++;
-        if (n < MAX_WORDS) {
-            w[n].p = s;
-            w[n].len = (int)(b - s);
-        }
-        n++;
-    }
-    return n;
-}
-
-static int is(const word *w, const char *s)
+static int is(const mpb__word *w, const char *s)
 {
     return (size_t)w->len == strlen(s) && memcmp(w->p, s, strlen(s)) == 0;
 }
 
 /* The pose words (none: identity) as 7 numbers x y z qx qy qz qw. */
-static int pose_vals(const word *w, int n, double v[7])
+static int pose_vals(const mpb__word *w, int n, double v[7])
 {
     static const double id[7] = {0, 0, 0, 0, 0, 0, 1};
     if (n == 0) {
@@ -112,7 +88,7 @@ static void pose_text(const double v[7], char *out, size_t len)
              v[3], v[4], v[5], v[6]);
 }
 
-static void path_of(const word *w, const char *dir, char *out, size_t len)
+static void path_of(const mpb__word *w, const char *dir, char *out, size_t len)
 {
     if (w->p[0] == '/' || !dir || !*dir)
         snprintf(out, len, "%.*s", w->len, w->p);
@@ -152,7 +128,7 @@ int mpb_scene_octree_text(mpb_octree *o, const char *id, const double pose[7],
     return MPB_OK;
 }
 
-static int octree_lines(buf *b, const word *id, mpb_octree *o, const double pose[7])
+static int octree_lines(buf *b, const mpb__word *id, mpb_octree *o, const double pose[7])
 {
     char name[256], *text;
     snprintf(name, sizeof name, "%.*s", id->len, id->p);
@@ -165,7 +141,7 @@ static int octree_lines(buf *b, const word *id, mpb_octree *o, const double pose
 }
 
 /* One octree-file or cloud-file line (words w, n of them) into b. */
-static int resolve_line(buf *b, const word *w, int n, const char *dir, int line,
+static int resolve_line(buf *b, const mpb__word *w, int n, const char *dir, int line,
                         char *err, size_t errlen)
 {
     char path[4096], why[400];
@@ -250,8 +226,8 @@ int mpb_scene_resolve(const char *text, const char *dir, char **out, char *err,
         const char *next = e ? e + 1 : p + strlen(p);
         if (!e)
             e = next;
-        word w[MAX_WORDS];
-        int n = split(p, e, w);
+        mpb__word w[MAX_WORDS];
+        int n = mpb__split_words(p, e, w, MAX_WORDS);
         if (!after) {
             after = line > 1 && n == 1 && is(&w[0], ".");
         } else if (n >= 3 && n <= MAX_WORDS &&
