@@ -121,8 +121,13 @@ for pair in "MPB_ANNOUNCE planner_announce_t" "MPB_REQUEST_$planner plan_request
     check "lcm-spy decodes $channel as mpb.$type" \
         grep -q "^probe: $channel type=$type class=mpb.$type undecodable=0\$" "$work/spy.log"
 done
-check "lcm-spy saw no mpbench channel it could not decode" \
-    sh -c "! grep -E '^probe: MPB_[^ ]* type=' '$work/spy.log' | grep -Eqv 'type=([a-z_]*) class=mpb\.\1 undecodable=0\$'"
+# Any other line names a channel lcm-spy could not decode (or one in an
+# older layout, whose type has digits, _v1_t: no planner here is that
+# old), shown so that a failure says which.
+undecoded=$(grep -E '^probe: MPB_[^ ]* type=' "$work/spy.log" |
+            grep -Ev 'type=([a-z_]*) class=mpb\.\1 undecodable=0$')
+check "lcm-spy saw no mpbench channel it could not decode" test -z "$undecoded"
+[ -z "$undecoded" ] || echo "$undecoded" | sed 's/^/# /'
 check "... while it lists its own self-test channel as undecoded (the check sees those)" \
     grep -Eq '^probe: LCM_SELF_TEST type=\?\? [0-9a-f]+ class=none undecodable=' "$work/spy.log"
 
