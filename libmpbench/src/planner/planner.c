@@ -1,10 +1,10 @@
 /* planner.c - a planner process's side of the protocol: announce, answer,
- * re-send until acked; through a hub, tell a stalled link and hold. */
+ * re-send until acked (results: result.c; the hub's echo and outages:
+ * planner_link.c). */
 #include <errno.h>
 #include <limits.h>
 #include <pthread.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,269 +22,9 @@
 #include "mpb_daemon_status_t.h"
 #include "mpb_planner_announce_t.h"
 #include "mpb_run_ack_t.h"
+#include "planner/planner_internal.h"
 #include "planner/planner_memory.h"
 
-/* How many finished runs are remembered, to answer a repeated request. */
-#define MPB__RESULTS_KEPT 64
-/* A result is re-sent until acknowledged, for as long as it is kept:
- * after MPB__RESEND_S, the wait doubling to MPB__RESEND_MAX_S, and at once
- * when a hub link connects again. A planner closing (--max-runs) waits at
- * most MPB__CLOSING_WAIT_S for its last results' acknowledgements. */
-#define MPB__RESEND_S 0.2
-#define MPB__RESEND_MAX_S 2.0
-#define MPB__CLOSING_WAIT_S 10.0
-/* Longest wait in select(), so that *stop and re-sends are seen promptly. */
-#define MPB__POLL_S 0.05
-/* LCM queue lengths: acks are small and may come many at once (a commit
- * of several results); requests are large and few. */
-#define MPB__ACK_QUEUE 1000
-#define MPB__REQUEST_QUEUE 8
-/* Closest two announces may be (ms). */
-#define MPB__ANNOUNCE_GAP_MS 50
-/* A request is acknowledged (REQUEST_RECEIVED) only if its solve is still
- * running this long after it began; a quicker result acknowledges its own
- * request. Well below the daemon's re-send interval (250 ms). */
-#define MPB__ACK_AFTER_S 0.05
-/* Through a hub, every heartbeat also goes to the planner itself, on its
- * own acknowledgement channel: the hub relays it back. None back for this
- * long (or three heartbeats, if longer) while connected: the hub is
- * stalled (a client that never reads blocks it), as the daemon judges by
- * its own statuses (MPBD_HUB_ECHO_MAX_S). */
-#define MPB__ECHO_MAX_S 5.0
-/* A closing planner (max_runs reached) waits through a stall for its last
- * results' acknowledgements as long as the daemon waits for a hub away or
- * stalled before it stops (MPBD_HUB_AWAY_MAX_S), then stops too. */
-#define MPB__STALL_CLOSING_MAX_S 60.0
-
-typedef struct mpb__kept {
-    int used;
-    int acked;
-    int sends;                 /* since it was last acknowledged */
-    double first_send_s;
-    double next_send_s;
-    mpb_plan_result_t res;     /* owned; res.attempt_id names the run */
-} mpb__kept;
-
-typedef struct mpb__server {
-    const mpb_planner_def *def;
-    lcm_t *lcm;
-    mpb_auth *auth;             /* NULL: messages are not authenticated */
-    char id[MPB_PLANNER_ID_MAX + 1];
-    char host[256];
-    char request_channel[sizeof MPB_CHANNEL_REQUEST_PREFIX + MPB_PLANNER_ID_MAX];
-    char ack_channel[sizeof MPB_CHANNEL_ACK_PREFIX + MPB_PLANNER_ID_MAX];
-    int heartbeat_ms;
-
-    long solved;                /* runs answered (solve() called) */
-    long max_runs;
-    int run_error;              /* an MPB_E... code that ends the loop */
-
-    mpb__kept kept[MPB__RESULTS_KEPT];
-    int kept_next;              /* ring position of the next result */
-    long hub_connects;          /* the hub link's connections, last seen */
-
-    /* Through a hub: the link's echo, watched by the serving thread. */
-    int is_hub;
-    double stall_s;             /* no echo this long: stalled */
-    double echo_back_s;         /* monotonic s: an echo came back, or a
-                                   connection began whose echo is to come */
-    long echo_connects;         /* the connection that echo_back_s is of */
-    double stalled_since;       /* the last echo before the stall */
-    int relays_again;           /* the stall ended: every result goes now */
-    int link_said;              /* the link's state last told the user:
-                                   0 none yet, 1 up, 2 away */
-    double link_lost_s;         /* monotonic s: the link went away */
-
-    /* Shared with the heartbeat thread, under mu. */
-    pthread_mutex_t mu;
-    pthread_cond_t cond;
-    char active[MPB_ATTEMPT_ID_SIZE];   /* run being solved, "" if idle */
-    double active_since;            /* monotonic s, when its solve began */
-    int active_acked;               /* REQUEST_RECEIVED sent for it */
-    int closed;                     /* capacity 0: max_runs reached */
-    int quit;
-    int announce_now;
-    double waiting_until;           /* the thread sleeps until; 0: awake */
-    int stalled;                    /* the hub relays nothing: send only
-                                       the echo (written by the serving
-                                       thread alone) */
-    /* With a secret: the instance of the daemon last heard (auth.h),
-     * which every message echoes; 0 before any, when the planner does
-     * not announce (no daemon would believe it). */
-    uint64_t daemon;
-    volatile sig_atomic_t *stop;    /* mpb_planner_serve()'s, for solve() */
-} mpb__server;
-
-/* ---- results ----------------------------------------------------------- */
-
-static char *mpb__strdup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *p = malloc(n);
-    if (p != NULL)
-        memcpy(p, s, n);
-    return p;
-}
-
-int mpb_result_add_stage(mpb_plan_result_t *res, const char *name,
-                         double time, const double *waypoints,
-                         int num_waypoints, int num_joints)
-{
-    if (res == NULL || name == NULL || num_waypoints < 0 || num_joints < 0 ||
-        num_joints > INT16_MAX || res->num_stages >= INT16_MAX ||
-        (num_waypoints > 0 && num_joints > 0 && waypoints == NULL) ||
-        (num_joints > 0 && num_waypoints > INT32_MAX / num_joints))
-        return MPB_EINVAL;
-    size_t nv = (size_t)num_waypoints * (size_t)num_joints;
-    mpb_stage_t *stages = realloc(res->stages,
-                                  ((size_t)res->num_stages + 1) * sizeof *stages);
-    if (stages == NULL)
-        return MPB_ENOMEM;
-    res->stages = stages;
-    mpb_stage_t *st = &stages[res->num_stages];
-    memset(st, 0, sizeof *st);
-    st->name = mpb__strdup(name);
-    st->waypoints = nv > 0 ? malloc(nv * sizeof(double)) : NULL;
-    if (st->name == NULL || (nv > 0 && st->waypoints == NULL)) {
-        free(st->name);
-        free(st->waypoints);
-        return MPB_ENOMEM;
-    }
-    if (nv > 0)
-        memcpy(st->waypoints, waypoints, nv * sizeof(double));
-    st->time = time;
-    st->num_waypoints = num_waypoints;
-    st->num_joints = (int16_t)num_joints;
-    st->num_values = (int32_t)nv;
-    res->num_stages++;
-    return MPB_OK;
-}
-
-int mpb_result_set_times(mpb_plan_result_t *res, int stage,
-                         const double *times, int num_times)
-{
-    if (res == NULL || stage < 0 || stage >= res->num_stages ||
-        num_times < 0 || (num_times > 0 && times == NULL))
-        return MPB_EINVAL;
-    mpb_stage_t *st = &res->stages[stage];
-    double *copy = NULL;
-    if (num_times > 0) {
-        if ((copy = malloc((size_t)num_times * sizeof *copy)) == NULL)
-            return MPB_ENOMEM;
-        memcpy(copy, times, (size_t)num_times * sizeof *copy);
-    }
-    free(st->times);
-    st->times = copy;
-    st->num_times = num_times;
-    return MPB_OK;
-}
-
-int mpb_result_add_value(mpb_plan_result_t *res, const char *name,
-                         double value)
-{
-    if (res == NULL || name == NULL || res->num_values >= INT16_MAX)
-        return MPB_EINVAL;
-    mpb_named_value_t *v = realloc(res->values,
-                                   ((size_t)res->num_values + 1) * sizeof *v);
-    if (v == NULL)
-        return MPB_ENOMEM;
-    res->values = v;
-    v[res->num_values].name = mpb__strdup(name);
-    if (v[res->num_values].name == NULL)
-        return MPB_ENOMEM;
-    v[res->num_values].value = value;
-    res->num_values++;
-    return MPB_OK;
-}
-
-int mpb_result_set_message(mpb_plan_result_t *res, const char *fmt, ...)
-{
-    if (res == NULL || fmt == NULL)
-        return MPB_EINVAL;
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        return MPB_EINVAL;
-    char *m = malloc((size_t)n + 1);
-    if (m == NULL)
-        return MPB_ENOMEM;
-    va_start(ap, fmt);
-    vsnprintf(m, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-    free(res->message);
-    res->message = m;
-    return MPB_OK;
-}
-
-/* Free the stages, values and progress of res, leaving none. */
-static void mpb__result_clear_lists(mpb_plan_result_t *res)
-{
-    for (int i = 0; i < res->num_stages; i++) {
-        free(res->stages[i].name);
-        free(res->stages[i].waypoints);
-        free(res->stages[i].times);
-    }
-    free(res->stages);
-    for (int i = 0; i < res->num_values; i++)
-        free(res->values[i].name);
-    free(res->values);
-    for (int i = 0; i < res->num_progress; i++) {
-        for (int j = 0; j < res->progress[i].num_values; j++)
-            free(res->progress[i].values[j].name);
-        free(res->progress[i].values);
-    }
-    free(res->progress);
-    res->stages = NULL;
-    res->values = NULL;
-    res->progress = NULL;
-    res->num_stages = 0;
-    res->num_values = 0;
-    res->num_progress = 0;
-}
-
-void mpb_result_clear(mpb_plan_result_t *res)
-{
-    if (res == NULL)
-        return;
-    free(res->attempt_id);
-    free(res->planner_id);
-    free(res->message);
-    mpb__result_clear_lists(res);
-    memset(res, 0, sizeof *res);
-}
-
-const char *mpb_request_param(const mpb_plan_request_t *req, const char *key)
-{
-    if (req == NULL || key == NULL)
-        return NULL;
-    for (int i = 0; i < req->num_params; i++)
-        if (req->params[i].key != NULL && strcmp(req->params[i].key, key) == 0)
-            return req->params[i].value != NULL ? req->params[i].value : "";
-    return NULL;
-}
-
-/* LCM cannot encode a NULL string: give every string of res a value. */
-static int mpb__result_fill_strings(mpb_plan_result_t *res)
-{
-    if (res->message == NULL && (res->message = mpb__strdup("")) == NULL)
-        return MPB_ENOMEM;
-    for (int i = 0; i < res->num_stages; i++)
-        if (res->stages[i].name == NULL &&
-            (res->stages[i].name = mpb__strdup("")) == NULL)
-            return MPB_ENOMEM;
-    for (int i = 0; i < res->num_values; i++)
-        if (res->values[i].name == NULL &&
-            (res->values[i].name = mpb__strdup("")) == NULL)
-            return MPB_ENOMEM;
-    for (int i = 0; i < res->num_progress; i++)
-        for (int j = 0; j < res->progress[i].num_values; j++)
-            if (res->progress[i].values[j].name == NULL &&
-                (res->progress[i].values[j].name = mpb__strdup("")) == NULL)
-                return MPB_ENOMEM;
-    return MPB_OK;
-}
 
 /* ---- the planner id ---------------------------------------------------- */
 
@@ -393,7 +133,6 @@ static unsigned char *mpb__closing_announce(mpb__server *s,
 }
 
 static void mpb__ack(mpb__server *s, const char *attempt_id, int kind);
-static void mpb__echo(mpb__server *s);
 
 /*
  * The heartbeat thread: announce at once, then every heartbeat_ms; a change
@@ -508,22 +247,6 @@ static void mpb__ack(mpb__server *s, const char *attempt_id, int kind)
     mpb_publish_ack(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_ACK, &a);
 }
 
-/* The heartbeat's echo, to this planner itself on its acknowledgement
- * channel (no run, sender_id its own id, and with a secret echoing its
- * own instance, so that its gate believes it): the hub relays it back
- * only while it relays at all. */
-static void mpb__echo(mpb__server *s)
-{
-    mpb_run_ack_t a;
-    memset(&a, 0, sizeof a);
-    a.utime = mpb_utime_now();
-    a.attempt_id = "";
-    a.sender_id = s->id;
-    a.kind = MPB_RUN_ACK_T_REQUEST_RECEIVED;
-    mpb_publish_ack(s->lcm, s->auth, mpb_auth_instance(s->auth),
-                    s->ack_channel, &a);
-}
-
 /* The kept result of attempt_id, or NULL. Newest first: the run asked about is
  * nearly always the last one answered. */
 static mpb__kept *mpb__find_kept(mpb__server *s, const char *attempt_id)
@@ -587,8 +310,8 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
 
     mpb_plan_result_t *res = &k->res;
     res->utime = mpb_utime_now();
-    res->attempt_id = mpb__strdup(req->attempt_id);
-    res->planner_id = mpb__strdup(s->id);
+    res->attempt_id = strdup(req->attempt_id);
+    res->planner_id = strdup(s->id);
     if (res->attempt_id == NULL || res->planner_id == NULL) {
         mpb_result_clear(res);
         return MPB_ENOMEM;
@@ -620,11 +343,11 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
         /* The attempt id and planner id are ours, whatever solve() did. */
         if (res->attempt_id == NULL || strcmp(res->attempt_id, req->attempt_id) != 0) {
             free(res->attempt_id);
-            res->attempt_id = mpb__strdup(req->attempt_id);
+            res->attempt_id = strdup(req->attempt_id);
         }
         if (res->planner_id == NULL || strcmp(res->planner_id, s->id) != 0) {
             free(res->planner_id);
-            res->planner_id = mpb__strdup(s->id);
+            res->planner_id = strdup(s->id);
         }
         if (rc == MPB_ENOMEM) {
             /* An allocation failed: under a limit, the limit's doing. */
@@ -770,7 +493,6 @@ static void mpb__on_ack(const lcm_recv_buf_t *rbuf, const char *channel,
         k->acked = 1;
 }
 
-static void mpb__echo_back(mpb__server *s);
 
 /* The daemon's acknowledgement, or this planner's own echo: from its id,
  * and with a secret from its own instance. */
@@ -808,93 +530,6 @@ static void mpb__on_status_raw(const lcm_recv_buf_t *rbuf,
     if (strcmp(m.state, "waiting") == 0 || strcmp(m.state, "running") == 0)
         mpb__set_daemon(s, r.info.instance);
     mpb_receive_done(MPB_WIRE_DAEMON_STATUS, &m);
-}
-
-/* ---- a stalled hub ----------------------------------------------------- */
-
-static void mpb__warn(mpb__server *s, const char *fmt, ...)
-{
-    if (s->def->on_warning == NULL)
-        return;
-    char line[320];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    s->def->on_warning(s->def->user, line);
-}
-
-static void mpb__set_stalled(mpb__server *s, int stalled)
-{
-    pthread_mutex_lock(&s->mu);
-    s->stalled = stalled;
-    if (!stalled) {                 /* the daemon hears of it at once */
-        s->announce_now = 1;
-        pthread_cond_signal(&s->cond);
-    }
-    pthread_mutex_unlock(&s->mu);
-}
-
-/* An echo came back: the hub relays; if it was stalled, say so once and
- * have every result not yet stored sent at once. */
-static void mpb__echo_back(mpb__server *s)
-{
-    double now = mpb_monotonic_s();
-    s->echo_back_s = now;
-    if (!s->stalled)
-        return;
-    mpb__set_stalled(s, 0);
-    s->relays_again = 1;
-    mpb__warn(s, "the hub relays again after %.1f s: the results it has "
-              "not stored go again now", now - s->stalled_since);
-}
-
-/* A hub away (killed, restarted, out of reach) is an outage: say so in
- * one line when the link goes and one when it is back, as the daemon
- * does; the results not stored go again then (mpb__resend_due). */
-static void mpb__tell_outage(mpb__server *s, const mpb_hub_stats *st,
-                             double now)
-{
-    if (st->connected && s->link_said == 2)
-        mpb__warn(s, "the hub is back after %.1f s (connection %ld): the "
-                  "results it has not stored go again now",
-                  now - s->link_lost_s, st->connects);
-    else if (!st->connected && s->link_said != 2) {
-        s->link_lost_s = now;
-        mpb__warn(s, "%s; trying again every %.1f s, its results wait "
-                  "meanwhile", s->link_said == 1 ? "lost the hub"
-                  : "cannot reach the hub yet", MPB_HUB_RETRY_S);
-    }
-    s->link_said = st->connected ? 1 : 2;
-}
-
-/* With nothing waiting to be handled (so that an echo received is one
- * handled, however long a solve kept this thread): connected, and none of
- * the heartbeats' echoes back for stall_s, the hub is stalled. The link
- * away is an outage instead (it reconnects, and the results go again), and
- * a new connection's echo is yet to come. Once stalled, only an echo ends
- * it, whatever the link does meanwhile. */
-static void mpb__watch_link(mpb__server *s)
-{
-    if (!s->is_hub || s->stalled)
-        return;
-    double now = mpb_monotonic_s();
-    mpb_hub_stats st;
-    mpb_lcm_hub_stats(s->lcm, &st);
-    mpb__tell_outage(s, &st, now);
-    if (!st.connected || st.connects != s->echo_connects) {
-        s->echo_connects = st.connects;
-        s->echo_back_s = now;
-        return;
-    }
-    if (now - s->echo_back_s <= s->stall_s)
-        return;
-    s->stalled_since = s->echo_back_s;
-    mpb__set_stalled(s, 1);
-    mpb__warn(s, "the hub is stalled: connected, but none of this "
-              "planner's heartbeats has come back for %.1f s (a client "
-              "that never reads blocks it, docs/topology.md); its results "
-              "wait until it relays again", now - s->echo_back_s);
 }
 
 /* ---- the loop ---------------------------------------------------------- */
