@@ -36,10 +36,11 @@ mpb_wait_count "$work/first.db" 5 10 "SELECT count(*) FROM runs WHERE state = 'd
 "$MPB_BUILD/tools/mpb" status --timeout 30 >"$work/status.log" 2>&1 &
 status=$!
 sleep 1.5
-# A second `mpb status`, started with the second daemon just after the
-# first daemon's status of the second (a line in status.log), hears the
-# second daemon before the first publishes again, and must leave it for
-# the first, which stays.
+# A second `mpb status` must hear the second daemon before the first
+# publishes again (once a second), and then leave it for the first, which
+# stays. So it is started just after one of the first's statuses (a line
+# in status.log), and the second daemon only once it listens: its LCM
+# socket is bound (ss), and it has heard nothing yet.
 lines=$(wc -l <"$work/status.log")
 for _ in $(seq 200); do
     [ "$(wc -l <"$work/status.log")" -gt "$lines" ] && break
@@ -47,6 +48,13 @@ for _ in $(seq 200); do
 done
 "$MPB_BUILD/tools/mpb" status --timeout 30 >"$work/status2.log" 2>&1 &
 status2=$!
+listening=no
+for _ in $(seq 200); do
+    ss -uanp 2>/dev/null | grep -q "pid=$status2," && { listening=yes; break; }
+    sleep 0.005
+done
+check "beside: a second mpb status listens, having heard nothing, before the second starts" \
+    test "$listening" = yes -a ! -s "$work/status2.log"
 "$daemon" -d "$work/second.db" "$work/second.yaml" >"$work/second.log" 2>&1 &
 second=$!
 mpb_wait $second 10

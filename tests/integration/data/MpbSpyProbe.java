@@ -123,17 +123,26 @@ public class MpbSpyProbe implements lcm.spy.SpyPlugin
             @SuppressWarnings("unchecked")
             Map<String, lcm.spy.ChannelData> channels =
                 (Map<String, lcm.spy.ChannelData>) field(spy, spy.getClass(), "channelMap");
-            for (int row = 0; row < table.getRowCount(); row++) {
-                String channel = String.valueOf(table.getValueAt(row, 0));
+            /* The cells are read from Spy's own model, by the channel's
+             * row there: the sorter in front of it re-sorts from the LCM
+             * thread, so two cells of one of its rows, read one after the
+             * other, may belong to two channels. */
+            javax.swing.table.TableModel model = (javax.swing.table.TableModel)
+                field(table.getModel(), lcm.util.TableSorter.class, "tableModel");
+            for (int row = 0; row < model.getRowCount(); row++) {
+                String channel = String.valueOf(model.getValueAt(row, 0));
                 lcm.spy.ChannelData cd = channels.get(channel);
                 /* A channel of an unknown type has no last message. */
                 if (cd == null || (cd.last == null && cd.cls != null))
                     continue;
+                if (cd.row != row)
+                    throw new IllegalStateException(channel + " at row " + row
+                                                    + ", its data says " + cd.row);
                 StringBuilder sb = new StringBuilder();
                 String p = "probe: " + channel + " ";
-                sb.append(p).append("type=").append(table.getValueAt(row, 1))
+                sb.append(p).append("type=").append(model.getValueAt(row, 1))
                   .append(" class=").append(cd.cls == null ? "none" : cd.cls.getName())
-                  .append(" undecodable=").append(table.getValueAt(row, 7)).append('\n');
+                  .append(" undecodable=").append(model.getValueAt(row, 7)).append('\n');
                 if (cd.last != null)
                     dump(sb, p, "", cd.last, 0);
                 String text = sb.toString();
