@@ -128,7 +128,7 @@ int main(int argc, char **argv)
     static const char *const stage_names[] = {"raw", "shortcut", "smoothed"};
     options o;
     mpb_store *s = NULL;
-    char uid[MPB_ATTEMPT_ID_SIZE], name[96], rh[MPB_HASH_SIZE], sh[MPB_HASH_SIZE];
+    char attempt[MPB_ATTEMPT_ID_SIZE], name[96], rh[MPB_HASH_SIZE], sh[MPB_HASH_SIZE];
     uint64_t seed = 88172645463325252ull;
 
     if (parse(argc, argv, &o) != 0)
@@ -234,10 +234,10 @@ int main(int argc, char **argv)
     for (long i = 0; i < col.n; i++) {
         int ok = rnd(&seed) < 0.9;
         double t_raw = 0.01 + 0.05 * rnd(&seed), total_t = t_raw;
-        snprintf(uid, sizeof uid, "%016llx%016llx",
+        snprintf(attempt, sizeof attempt, "%016llx%016llx",
                  (unsigned long long)col.runs[i].id,
                  (unsigned long long)(seed & 0xffffffffffffull));
-        CHECK(mpb_store_run_sent(s, col.runs[i].id, uid, planner_id));
+        CHECK(mpb_store_run_sent(s, col.runs[i].id, attempt, planner_id));
         for (int k = 0; k < o.stages; k++) {
             double *w = wp + (size_t)k * nwp * nj;
             for (int p = 0; p < nwp * nj; p++)
@@ -260,7 +260,7 @@ int main(int argc, char **argv)
         mpb_named values[2] = {{"graph_states", (double)(int)(100 * rnd(&seed))},
                                {"collision_checks", (double)(int)(1e4 * rnd(&seed))}};
         mpb_run_record rec = {
-            .run_id = col.runs[i].id, .attempt_id = uid, .planner_id = planner_id,
+            .run_id = col.runs[i].id, .attempt_id = attempt, .planner_id = planner_id,
             .status = "solved", .message = "", .claimed_success = 1,
             .success = ok, .time_total = total_t, .time_raw = total_t,
             .time_other = 0, .wall_time = total_t + 0.0002,

@@ -117,7 +117,7 @@ typedef struct mpbd_doomed {
 
 /* A run given up on at its deadline, that its planner may still plan. */
 typedef struct mpbd_abandoned {
-    char    uid[MPB_ATTEMPT_ID_SIZE];
+    char    attempt_id[MPB_ATTEMPT_ID_SIZE];
     int     planner;         /* index into planners: who still plans it */
     int64_t run_id;          /* runs.id, for the log */
     double  since;           /* monotonic s, when given up on */
@@ -167,7 +167,7 @@ typedef struct mpbd_run {
     int     query;           /* index into experiment queries */
     int64_t seed;
     int     attempts;        /* requests sent so far, over all attempts */
-    char    uid[MPB_ATTEMPT_ID_SIZE];   /* current attempt, "" if none yet */
+    char    attempt_id[MPB_ATTEMPT_ID_SIZE];   /* current attempt, "" if none yet */
 } mpbd_run;
 
 /* A request out on the network, waiting for its result. A queued one was
@@ -466,7 +466,7 @@ int  mpbd_runs_record_sent(mpbd *d);
  * flights may move. */
 mpbd_flight *mpbd_flight_start(mpbd *d, const mpbd_run *run, int planner,
                                int queued, double now);
-mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid);
+mpbd_flight *mpbd_flight_find(mpbd *d, const char *attempt_id);
 /* Remove an ended flight; the next request waiting at its planner, if
  * any, starts now. */
 void mpbd_flight_remove(mpbd *d, mpbd_flight *f);
@@ -502,11 +502,11 @@ void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
  * a run given up on that it leaves out frees its slot. */
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
                              int num_active, int unknown);
-/* 1 if uid is a run this daemon knows for planner: in flight, given up on
+/* 1 if attempt_id is a run this daemon knows for planner: in flight, given up on
  * by it, stored lately, or pending to be sent again after a restart. */
-int  mpbd_runs_knows(const mpbd *d, int planner, const char *uid);
-void mpbd_runs_remember(mpbd *d, const char *uid);      /* just stored */
-int  mpbd_recently_done(const mpbd *d, const char *uid); /* the last 256 */
+int  mpbd_runs_knows(const mpbd *d, int planner, const char *attempt_id);
+void mpbd_runs_remember(mpbd *d, const char *attempt_id);      /* just stored */
+int  mpbd_recently_done(const mpbd *d, const char *attempt_id); /* the last 256 */
 
 /* ---- measure.c -------------------------------------------------------- */
 /* Per stage, what the store needs, owned by the measurement. */
@@ -567,7 +567,8 @@ void mpbd_verifier_stop(mpbd *d);      /* results not stored are dropped */
  * is no verifier or no memory (then verify it inline). */
 int  mpbd_verifier_submit(mpbd *d, const mpbd_flight *f,
                           const mpb_plan_result_t *m, double recv);
-int  mpbd_verifier_has(const mpbd *d, const char *uid);  /* handed over, not stored */
+/* 1 if the attempt is handed to the verifier and not yet stored. */
+int  mpbd_verifier_has(const mpbd *d, const char *attempt_id);
 /* 1: verify m in the loop (the worker idle, m quick by its scene's last
  * cost), then mpbd_verifier_learn() its cost, as collecting does. */
 int  mpbd_verifier_quick(const mpbd *d, const mpbd_flight *f,

@@ -304,7 +304,7 @@ static int store_result(mpbd *d, const mpbd_flight *f,
     }
     mpb_run_record rec = {
         .run_id = f->run.id,
-        .attempt_id = f->run.uid,
+        .attempt_id = f->run.attempt_id,
         .planner_id = m->planner_id,
         .status = mpb_status_name(status),
         .message = message ? message : m->message,
@@ -373,8 +373,8 @@ int mpbd_result_store(mpbd *d, const mpbd_flight *f,
     int rc = store_result(d, f, m, recv, ms);
     if (rc == MPB_OK || rc == MPB_EEXISTS) {
         d->planners[f->planner].runs_done++;
-        mpbd_runs_remember(d, f->run.uid);
-        mpbd_ack_after_commit(d, m->planner_id, f->run.uid,
+        mpbd_runs_remember(d, f->run.attempt_id);
+        mpbd_ack_after_commit(d, m->planner_id, f->run.attempt_id,
                               rc == MPB_OK ? f->sent_at : -1.0);
         return MPB_OK;
     }

@@ -103,7 +103,7 @@ static replay_run *find_run(replay *r, const mpb_plan_request_t *rq,
         if (strcmp(c->algorithm, rq->algorithm) != 0 ||
             strcmp(c->planner, p->name) != 0)
             continue;
-        if (strcmp(hit->run.uid, rq->attempt_id) == 0)
+        if (strcmp(hit->run.attempt_id, rq->attempt_id) == 0)
             return hit;
         if (!hit->done && fallback == NULL)
             fallback = hit;
@@ -136,25 +136,25 @@ static void on_request(replay *r, const lcm_eventlog_event_t *ev)
         goto done;
     }
     r->matched++;
-    if (run->done || strcmp(run->run.uid, rq.attempt_id) == 0)
+    if (run->done || strcmp(run->run.attempt_id, rq.attempt_id) == 0)
         goto done; /* a resend */
-    if (run->run.uid[0] != '\0') {
+    if (run->run.attempt_id[0] != '\0') {
         /* A new attempt: the live daemon gave up on the previous one, or
          * took it back if it never started (taken_back() forgets it). */
-        mpbd_flight *old = mpbd_flight_find(d, run->run.uid);
+        mpbd_flight *old = mpbd_flight_find(d, run->run.attempt_id);
         if (old != NULL && old->queued) {
             mpbd_take_back(d, old, "a new attempt before it started");
         } else {
-            mpb_store_run_retry(d->store, run->run.id, run->run.uid,
+            mpb_store_run_retry(d->store, run->run.id, run->run.attempt_id,
                                 "no result in the log before a new attempt");
             if (old != NULL)
                 mpbd_flight_remove(d, old);
         }
     }
-    if (run->run.uid[0] == '\0')
+    if (run->run.attempt_id[0] == '\0')
         r->open[r->num_open++] = run;
-    memcpy(run->run.uid, rq.attempt_id, MPB_ATTEMPT_ID_SIZE);
-    if (mpb_store_run_sent(d->store, run->run.id, run->run.uid,
+    memcpy(run->run.attempt_id, rq.attempt_id, MPB_ATTEMPT_ID_SIZE);
+    if (mpb_store_run_sent(d->store, run->run.id, run->run.attempt_id,
                            rq.planner_id) != MPB_OK) {
         mpbd_db_error(d);
         goto done;
@@ -184,8 +184,8 @@ static void taken_back(void *ud, const mpbd_run *taken)
     replay *r = ud;
     for (int i = 0; i < r->num_open; i++) {
         replay_run *run = r->open[i];
-        if (strcmp(run->run.uid, taken->uid) == 0) {
-            run->run.uid[0] = '\0';
+        if (strcmp(run->run.attempt_id, taken->attempt_id) == 0) {
+            run->run.attempt_id[0] = '\0';
             run->run.attempts--;
             r->open[i] = r->open[--r->num_open];
             return;
@@ -228,7 +228,7 @@ static void on_message(replay *r, const lcm_eventlog_event_t *ev, int result)
     /* A run whose flight ended was stored (or refused for good). */
     for (int i = 0; i < r->num_open;) {
         replay_run *run = r->open[i];
-        if (mpbd_flight_find(d, run->run.uid) == NULL) {
+        if (mpbd_flight_find(d, run->run.attempt_id) == NULL) {
             run->done = 1;
             r->open[i] = r->open[--r->num_open];
         } else {
@@ -262,7 +262,7 @@ static void record_crashes(replay *r)
     mpbd *d = r->d;
     while (r->num_open > 0) {
         replay_run *run = r->open[--r->num_open];
-        mpbd_flight *f = mpbd_flight_find(d, run->run.uid);
+        mpbd_flight *f = mpbd_flight_find(d, run->run.attempt_id);
         if (f == NULL)
             continue;
         mpbd_run_crashed(d, f, "no result in the log of a finished "

@@ -75,7 +75,7 @@ static int load_row(void *ud, const mpb_run_row *row)
     /* A run sent before a restart keeps its id, so that its result, if the
      * planner still delivers it, is accepted once. */
     if (row->sent && row->attempt_id && mpb_attempt_id_is_valid(row->attempt_id))
-        memcpy(run.uid, row->attempt_id, MPB_ATTEMPT_ID_SIZE);
+        memcpy(run.attempt_id, row->attempt_id, MPB_ATTEMPT_ID_SIZE);
     return push_pending(&d->runs, run.config, &run);
 }
 
@@ -97,7 +97,7 @@ int mpbd_runs_load(mpbd *d)
         mpbd_run *a = r->pending[c];
         int front = 0;
         for (int i = 0; i < r->pending_len[c]; i++)
-            if (a[i].uid[0] != '\0') {
+            if (a[i].attempt_id[0] != '\0') {
                 mpbd_run t = a[i];
                 memmove(&a[front + 1], &a[front], (size_t)(i - front) * sizeof *a);
                 a[front++] = t;
@@ -130,7 +130,7 @@ void mpbd_runs_each_flight(mpbd *d, void (*fn)(void *ud, mpbd_flight *f),
 int mpbd_requeue(mpbd *d, const mpbd_run *run)
 {
     mpbd_run again = *run;
-    again.uid[0] = '\0';
+    again.attempt_id[0] = '\0';
     return push_pending(&d->runs, run->config, &again);
 }
 
@@ -191,8 +191,8 @@ mpbd_flight *mpbd_runs_send(mpbd *d, int config, int planner, int queued)
     mpbd_run run = r->pending[config][r->pending_head[config]];
     /* A new attempt, or one sent before a restart going again with its id
      * (the same attempt: not counted again, here or in the store). */
-    int fresh = run.uid[0] == '\0';
-    if (fresh && mpb_attempt_id_new(run.uid) != MPB_OK) {
+    int fresh = run.attempt_id[0] == '\0';
+    if (fresh && mpb_attempt_id_new(run.attempt_id) != MPB_OK) {
         mpbd_log("cannot draw a random attempt id");
         return NULL;
     }
@@ -211,7 +211,7 @@ mpbd_flight *mpbd_runs_send(mpbd *d, int config, int planner, int queued)
      * request goes out as soon as a commit has made room for it. */
     mpbd_unrecorded *u = &r->unrecorded[r->num_unrecorded++];
     u->run_id = run.id;
-    memcpy(u->attempt_id, run.uid, sizeof u->attempt_id);
+    memcpy(u->attempt_id, run.attempt_id, sizeof u->attempt_id);
     snprintf(u->planner_id, sizeof u->planner_id, "%s", d->planners[planner].id);
     r->pending_head[config]++;
     r->total_pending--;
@@ -237,10 +237,10 @@ int mpbd_runs_record_sent(mpbd *d)
     return rc;
 }
 
-mpbd_flight *mpbd_flight_find(mpbd *d, const char *uid)
+mpbd_flight *mpbd_flight_find(mpbd *d, const char *attempt_id)
 {
     for (int i = 0; i < d->runs.num_flights; i++)
-        if (strcmp(d->runs.flights[i].run.uid, uid) == 0)
+        if (strcmp(d->runs.flights[i].run.attempt_id, attempt_id) == 0)
             return &d->runs.flights[i];
     return NULL;
 }
@@ -288,7 +288,7 @@ void mpbd_flight_remove(mpbd *d, mpbd_flight *f)
 
 int mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why)
 {
-    int rc = mpb_store_run_unsent(d->store, f->run.id, f->run.uid);
+    int rc = mpb_store_run_unsent(d->store, f->run.id, f->run.attempt_id);
     if (rc == MPB_OK) {
         mpbd_run run = f->run;
         run.attempts--;
@@ -306,10 +306,10 @@ int mpbd_take_back(mpbd *d, mpbd_flight *f, const char *why)
     return rc;
 }
 
-static int names_run(char *const *runs, int n, const char *uid)
+static int names_run(char *const *runs, int n, const char *attempt_id)
 {
     for (int k = 0; k < n; k++)
-        if (strcmp(runs[k], uid) == 0)
+        if (strcmp(runs[k], attempt_id) == 0)
             return 1;
     return 0;
 }
@@ -320,42 +320,42 @@ void mpbd_planner_closing(mpbd *d, int planner, char *const *active_runs,
     for (int i = 0; i < d->runs.num_flights;) {
         mpbd_flight *f = &d->runs.flights[i];
         if (f->planner == planner && f->queued &&
-            !names_run(active_runs, num_active, f->run.uid))
+            !names_run(active_runs, num_active, f->run.attempt_id))
             mpbd_take_back(d, f, "its planner is closing"); /* f: the next */
         else
             i++;
     }
 }
 
-static int is_abandoned(const mpbd *d, int planner, const char *uid)
+static int is_abandoned(const mpbd *d, int planner, const char *attempt_id)
 {
     for (int i = 0; i < d->runs.num_abandoned; i++)
         if (d->runs.abandoned[i].planner == planner &&
-            strcmp(d->runs.abandoned[i].uid, uid) == 0)
+            strcmp(d->runs.abandoned[i].attempt_id, attempt_id) == 0)
             return 1;
     return 0;
 }
 
 /* A run sent before a restart, to be sent again with its id: such runs
  * lead their configuration's queue (mpbd_runs_load). */
-static int pending_resend(const mpbd *d, const char *uid)
+static int pending_resend(const mpbd *d, const char *attempt_id)
 {
     const mpbd_runs *r = &d->runs;
     for (int c = 0; c < r->num_configs; c++)
         for (int i = r->pending_head[c];
-             i < r->pending_len[c] && r->pending[c][i].uid[0] != '\0'; i++)
-            if (strcmp(r->pending[c][i].uid, uid) == 0)
+             i < r->pending_len[c] && r->pending[c][i].attempt_id[0] != '\0'; i++)
+            if (strcmp(r->pending[c][i].attempt_id, attempt_id) == 0)
                 return 1;
     return 0;
 }
 
-int mpbd_runs_knows(const mpbd *d, int planner, const char *uid)
+int mpbd_runs_knows(const mpbd *d, int planner, const char *attempt_id)
 {
     for (int i = 0; i < d->runs.num_flights; i++)
-        if (strcmp(d->runs.flights[i].run.uid, uid) == 0)
+        if (strcmp(d->runs.flights[i].run.attempt_id, attempt_id) == 0)
             return 1;
-    return is_abandoned(d, planner, uid) || mpbd_recently_done(d, uid) ||
-           pending_resend(d, uid);
+    return is_abandoned(d, planner, attempt_id) || mpbd_recently_done(d, attempt_id) ||
+           pending_resend(d, attempt_id);
 }
 
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
@@ -381,7 +381,7 @@ void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
         mpbd_abandoned *a = &r->abandoned[i];
         if (a->planner != planner) {
             i++;
-        } else if (names_run(active_runs, num_active, a->uid)) {
+        } else if (names_run(active_runs, num_active, a->attempt_id)) {
             if (!a->named)
                 mpbd_log("planner %s still plans run %lld, given up on at its "
                          "deadline: it gets no run in its place until it "
@@ -408,26 +408,26 @@ void mpbd_runs_abandon(mpbd *d, const mpbd_flight *f)
                   r->num_abandoned + 1, sizeof *r->abandoned) != MPB_OK)
         return;                 /* then its slot is free at once, as before */
     mpbd_abandoned *a = &r->abandoned[r->num_abandoned++];
-    memcpy(a->uid, f->run.uid, sizeof a->uid);
+    memcpy(a->attempt_id, f->run.attempt_id, sizeof a->attempt_id);
     a->planner = f->planner;
     a->run_id = f->run.id;
     a->since = mpb_monotonic_s();
     a->named = 0;
 }
 
-void mpbd_runs_remember(mpbd *d, const char *uid)
+void mpbd_runs_remember(mpbd *d, const char *attempt_id)
 {
     mpbd_runs *r = &d->runs;
-    memcpy(r->recent[r->recent_next], uid, MPB_ATTEMPT_ID_SIZE);
+    memcpy(r->recent[r->recent_next], attempt_id, MPB_ATTEMPT_ID_SIZE);
     r->recent_next = (r->recent_next + 1) %
                      (int)(sizeof r->recent / sizeof r->recent[0]);
 }
 
-int mpbd_recently_done(const mpbd *d, const char *uid)
+int mpbd_recently_done(const mpbd *d, const char *attempt_id)
 {
     const mpbd_runs *r = &d->runs;
     for (size_t i = 0; i < sizeof r->recent / sizeof r->recent[0]; i++)
-        if (strcmp(r->recent[i], uid) == 0)
+        if (strcmp(r->recent[i], attempt_id) == 0)
             return 1;
     return 0;
 }
@@ -436,7 +436,7 @@ int mpbd_run_crashed(mpbd *d, mpbd_flight *f, const char *why, double wall_time)
 {
     mpb_run_record rec = {
         .run_id = f->run.id,
-        .attempt_id = f->run.uid,
+        .attempt_id = f->run.attempt_id,
         .planner_id = d->planners[f->planner].id,
         .status = "crash",
         .message = why,
@@ -473,7 +473,7 @@ int mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why)
     const char *planner = d->planners[f->planner].id;
     long long id = (long long)f->run.id;
     if (f->run.attempts <= d->exp->retries) {
-        int rc = mpb_store_run_retry(d->store, f->run.id, f->run.uid, why);
+        int rc = mpb_store_run_retry(d->store, f->run.id, f->run.attempt_id, why);
         if (rc == MPB_OK && mpbd_requeue(d, &f->run) == MPB_OK) {
             mpbd_log("run %lld %s on %s: %s; retrying (attempt %d of %d)",
                      id, config, planner, why, f->run.attempts + 1,

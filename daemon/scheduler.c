@@ -129,7 +129,7 @@ static int publish_request(mpbd *d, const mpbd_flight *f)
     mpb_plan_request_t rq;
     fill_request(e, f->run.config, f->run.query, &rq);
     rq.utime = mpb_utime_now();
-    rq.attempt_id = (char *)f->run.uid;
+    rq.attempt_id = (char *)f->run.attempt_id;
     rq.planner_id = (char *)p->id;
     rq.seed = f->run.seed;
     if (mpb_request_channel(p->id, channel, sizeof channel) != MPB_OK)
@@ -157,7 +157,7 @@ static int send_next(mpbd *d, int c, int p, int queued)
     if (f == NULL)
         return 0;
     if (publish_request(d, f) != MPB_OK)
-        mpbd_log("could not publish run %s (will resend)", f->run.uid);
+        mpbd_log("could not publish run %s (will resend)", f->run.attempt_id);
     return 1;
 }
 

@@ -395,24 +395,24 @@ void mpbd_verifier_settle(mpbd *d, double max_s)
     pthread_mutex_unlock(&v->mu);
 }
 
-static int has_in(const job_list *l, const char *uid)
+static int has_in(const job_list *l, const char *attempt_id)
 {
     for (const job *j = l->head; j != NULL; j = j->next)
-        if (strcmp(j->f.run.uid, uid) == 0)
+        if (strcmp(j->f.run.attempt_id, attempt_id) == 0)
             return 1;
     return 0;
 }
 
-int mpbd_verifier_has(const mpbd *d, const char *uid)
+int mpbd_verifier_has(const mpbd *d, const char *attempt_id)
 {
     struct mpbd_verifier *v = d->verifier;
     if (v == NULL || v->pending == 0)
         return 0;
     pthread_mutex_lock(&v->mu);
-    int has = has_in(&v->todo, uid) || has_in(&v->done, uid);
+    int has = has_in(&v->todo, attempt_id) || has_in(&v->done, attempt_id);
     for (int i = 0; i < v->num_workers && !has; i++)
         has = v->workers[i].current != NULL &&
-              strcmp(v->workers[i].current->f.run.uid, uid) == 0;
+              strcmp(v->workers[i].current->f.run.attempt_id, attempt_id) == 0;
     pthread_mutex_unlock(&v->mu);
     return has;
 }

@@ -77,9 +77,9 @@ typedef struct fixture {
 
 static inline void finish(mpb_store *s, int64_t run_id, const run_spec *r, int index)
 {
-    char uid[32];
-    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
-    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "planner-1"), MPB_OK);
+    char attempt[32];
+    snprintf(attempt, sizeof attempt, "attempt-%lld", (long long)run_id);
+    assert_int_equal(mpb_store_run_sent(s, run_id, attempt, "planner-1"), MPB_OK);
     mpb_named m[3][5];
     mpb_stage_record st[3];
     for (int i = 0; i < r->num_stages; i++) {
@@ -108,7 +108,7 @@ static inline void finish(mpb_store *s, int64_t run_id, const run_spec *r, int i
         {0.3, "iterations", 30},
     };
     mpb_run_record rec = {
-        .run_id = run_id, .attempt_id = uid, .planner_id = "planner-1",
+        .run_id = run_id, .attempt_id = attempt, .planner_id = "planner-1",
         .status = r->status, .message = "", .claimed_success = r->claimed,
         .success = r->success, .time_total = r->total,
         .time_raw = r->total - 0.25, .time_other = 0.25,
@@ -248,13 +248,13 @@ static inline void mini_experiment(const char *path, const char *name,
                                              &query_id), MPB_OK);
         for (int rep = 0; rep < num_runs; rep++) {
             int64_t run_id = 0;
-            char uid[32];
+            char attempt[32];
             assert_int_equal(mpb_store_run_add(s, *id, cfg, query_id, rep,
                                                rep), MPB_OK);
             assert_int_equal(mpb_store_runs_unfinished(s, *id, first_id,
                                                        &run_id), 1);
-            snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
-            assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p"),
+            snprintf(attempt, sizeof attempt, "attempt-%lld", (long long)run_id);
+            assert_int_equal(mpb_store_run_sent(s, run_id, attempt, "p"),
                              MPB_OK);
             static const char *const stages[] = {"raw", "shortcut",
                                                  "smoothed"};
@@ -266,7 +266,7 @@ static inline void mini_experiment(const char *path, const char *name,
                     .num_metrics = (int)(sizeof metrics / sizeof metrics[0]),
                     .metrics = metrics};
             mpb_run_record rec = {
-                .run_id = run_id, .attempt_id = uid, .planner_id = "p",
+                .run_id = run_id, .attempt_id = attempt, .planner_id = "p",
                 .status = "solved", .message = "", .claimed_success = 1,
                 .success = 1, .time_total = 1.5, .time_raw = 1.5,
                 .wall_time = 2.0, .num_stages = 3, .stages = st};

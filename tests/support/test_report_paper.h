@@ -72,9 +72,9 @@ static double next_memory = NAN;
 
 static inline void finish(mpb_store *s, int64_t run_id, const run_spec *r)
 {
-    char uid[32];
-    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
-    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "planner-1"), MPB_OK);
+    char attempt[32];
+    snprintf(attempt, sizeof attempt, "attempt-%lld", (long long)run_id);
+    assert_int_equal(mpb_store_run_sent(s, run_id, attempt, "planner-1"), MPB_OK);
     mpb_named raw_m[] = {{"path_length", r->raw_len}, {"time", 0.01}};
     mpb_named fin_m[] = {{"path_length", r->len}, {"smoothness", r->smooth},
                          {"waypoints", r->waypoints}, {"time", 0.02},
@@ -89,7 +89,7 @@ static inline void finish(mpb_store *s, int64_t run_id, const run_spec *r)
     };
     int has_raw = r->raw_len >= 0;
     mpb_run_record rec = {
-        .run_id = run_id, .attempt_id = uid, .planner_id = "planner-1",
+        .run_id = run_id, .attempt_id = attempt, .planner_id = "planner-1",
         .status = "solved", .claimed_success = 1, .success = r->success,
         .time_total = r->total, .time_raw = r->raw, .time_other = r->other,
         .num_stages = has_raw ? 2 : 1, .stages = has_raw ? st : st + 1,

@@ -123,16 +123,16 @@ static inline int64_t test_store_run_id(mpb_store *s, int64_t exp,
 static inline void test_store_finish(mpb_store *s, int64_t run_id, int success,
                                      double time, double length)
 {
-    char uid[32];
-    snprintf(uid, sizeof uid, "uid-%lld", (long long)run_id);
-    assert_int_equal(mpb_store_run_sent(s, run_id, uid, "p-1"), MPB_OK);
+    char attempt[32];
+    snprintf(attempt, sizeof attempt, "attempt-%lld", (long long)run_id);
+    assert_int_equal(mpb_store_run_sent(s, run_id, attempt, "p-1"), MPB_OK);
     mpb_named m[] = {{"path_length", length}};
     mpb_stage_record st = {.name = "raw", .valid = success,
                            .verdict = success ? "valid" : "collision",
                            .verdict_segment = -1, .num_metrics = 1,
                            .metrics = m};
     mpb_run_record rec = {
-        .run_id = run_id, .attempt_id = uid, .planner_id = "p-1",
+        .run_id = run_id, .attempt_id = attempt, .planner_id = "p-1",
         .status = success ? "solved" : "timeout",
         .claimed_success = success, .success = success, .time_total = time,
         .time_raw = time, .num_stages = 1, .stages = &st,

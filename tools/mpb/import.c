@@ -177,9 +177,9 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
                       long run, int64_t run_id, mpb_named *values,
                       mpb_exact_value *exact, mpb_progress_record *progress)
 {
-    char uid[64];
-    snprintf(uid, sizeof uid, "imported-%lld", (long long)run_id);
-    int rc = mpb_store_run_sent(s, run_id, uid, "imported");
+    char attempt[64];
+    snprintf(attempt, sizeof attempt, "imported-%lld", (long long)run_id);
+    int rc = mpb_store_run_sent(s, run_id, attempt, "imported");
     if (rc != MPB_OK)
         return rc;
     int solved = cell(p, run, c->solved) == 1.0;
@@ -241,7 +241,7 @@ static int import_run(mpb_store *s, const mpb_ompl_planner *p, const columns *c,
     double t = cell(p, run, c->time), ts = cell(p, run, c->s_time);
     double total = isnan(ts) ? t : t + ts;
     mpb_run_record rec = {
-        .run_id = run_id, .attempt_id = uid, .planner_id = "imported",
+        .run_id = run_id, .attempt_id = attempt, .planner_id = "imported",
         .status = status_of(cell(p, run, c->status), solved), .message = "",
         .claimed_success = solved, .success = success,
         .time_total = total, .time_raw = t, .time_other = isnan(ts) ? 0.0 : ts,
