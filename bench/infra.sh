@@ -76,12 +76,7 @@ experiment_file() { # mode file
     {
         cat <<EOT
 experiment: {name: infra-$1, runs: 1, time_limit: 10, seed: 1, verification: $1}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(panda_robot "$panda")
 scenes:
 EOT
         for set in $(ls "$panda/problems"); do

@@ -22,6 +22,9 @@
 #   daemon_latency LOG    "median p99 runs" of mpbenchd's own latency count
 #                         (us; request first sent to result committed),
 #                         from its log; nothing if the log has none
+#   panda_robot DIR       an experiment file's robot entry for the Panda
+#                         arm in DIR (panda.urdf, panda.srdf): its seven
+#                         joints, base first
 #   experiment NAME RUNS RUNS_PER_HOST FILE [QUEUE_AT_PLANNER]
 #                         writes the planar throughput experiment: the
 #                         3-joint arm among the pillars, query small_move
@@ -80,6 +83,17 @@ cleanup() {
     for p in $PIDS; do kill "$p" 2>/dev/null; kill -CONT "$p" 2>/dev/null; done
     for p in $PIDS; do wait "$p" 2>/dev/null; done
     PIDS=""
+}
+
+panda_robot() { # dir
+    cat <<EOT
+robot:
+  format: urdf
+  file: $1/panda.urdf
+  srdf: $1/panda.srdf
+  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
+           panda_joint5, panda_joint6, panda_joint7]
+EOT
 }
 
 experiment() { # name runs runs_per_host file [queue_at_planner]

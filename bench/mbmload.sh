@@ -62,12 +62,7 @@ trap 'cleanup; rm -rf "$work"' EXIT
 {
     cat <<EOT
 experiment: {name: mbmload, time_limit: 1, seed: 1}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(panda_robot "$panda")
 scenes:
 EOT
     for set in $(ls "$panda/problems" | head -n "$N"); do

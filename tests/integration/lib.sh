@@ -55,13 +55,30 @@ mpb_peer_data_ready() {
 mpb_peers_enter() {
     [ -n "${MPB_IN_NETNS:-}" ] || mpb_peer_data_ready
     mpb_enter_netns "$@"
-    panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
+    panda=$MPB_PANDA
     export MPB_MESH_PATH=$panda MPB_BUILD
     if ldd "$MPB_BUILD/libmpbench/libmpbench.so" 2>/dev/null | grep -q libasan; then
         echo "skipped: a sanitized build; the peers' wheels do not run under ASan"
         echo "0 passed, 0 failed, 1 skipped"
         exit 0
     fi
+}
+
+# MotionBenchMaker's Panda as tools/robot_data.sh fetches it: panda.urdf,
+# panda.srdf, its meshes and problems/.
+MPB_PANDA=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
+
+# mpb_panda_robot: an experiment file's robot entry for that Panda's arm,
+# its seven joints, base first; in a here-document, $(mpb_panda_robot).
+mpb_panda_robot() {
+    cat <<EOT
+robot:
+  format: urdf
+  file: $MPB_PANDA/panda.urdf
+  srdf: $MPB_PANDA/panda.srdf
+  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
+           panda_joint5, panda_joint6, panda_joint7]
+EOT
 }
 
 # mpb_ball_robot FILE: a ball of radius 2 cm on prismatic joints x, y, z

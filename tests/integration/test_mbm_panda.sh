@@ -18,7 +18,7 @@ if [ -z "${MPB_IN_NETNS:-}" ]; then
         "$MPB_SOURCE/tools/robot_data.sh" >/dev/null || exit 1
 fi
 mpb_enter_netns "$0" "$@"
-panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
+panda=$MPB_PANDA
 
 work=$(mktemp -d)
 trap 'mpb_stop_all; rm -rf "$work"' EXIT
@@ -35,12 +35,7 @@ check "... and the daemon says the fixed fingers' values were skipped" \
 # through MPB_MESH_PATH (the URDF says package://meshes/...).
 cat >"$work/two.yaml" <<EOT
 experiment: {name: two, time_limit: 10, seed: 3}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(mpb_panda_robot)
 scenes:
   - {problems: $panda/problems/bookshelf_thin_panda, first: 3, count: 1, clamp_joint_values: true}
   - {problems: $panda/problems/table_pick_panda, count: 1, clamp_joint_values: true}

@@ -10,7 +10,7 @@ FAILS=0
 
 "$MPB_SOURCE/tools/robot_data.sh" --check ||
     "$MPB_SOURCE/tools/robot_data.sh" >/dev/null || exit 1
-panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
+panda=$MPB_PANDA
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -24,12 +24,7 @@ sum_before=$(md5sum <"$DB")
 experiment() {
     cat >"$work/$1.yaml" <<EOT
 experiment: {name: $1, time_limit: 1}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(mpb_panda_robot)
 scenes:
   - {problems: $1, clamp_joint_values: true}
 planners:

@@ -19,7 +19,7 @@ FAILS=0
 
 [ -n "${MPB_IN_NETNS:-}" ] || mpb_peer_data_ready tesseract
 mpb_enter_netns "$0" "$@"
-panda=$MPB_SOURCE/.cache/robots/vamp-planner-0.6.4/panda
+panda=$MPB_PANDA
 export MPB_MESH_PATH=$panda MPB_BUILD
 # The wheels do not run under ASan (test_peers.sh says why).
 if ldd "$MPB_BUILD/libmpbench/libmpbench.so" 2>/dev/null | grep -q libasan; then
@@ -37,12 +37,7 @@ DB=$work/timeout.db
 experiment() {
     cat >"$1" <<EOT
 experiment: {name: $2, runs: 1, time_limit: $3, seed: 5}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(mpb_panda_robot)
 scenes:
   - {problems: $panda/problems/$4, count: 1, clamp_joint_values: true}
 planners:

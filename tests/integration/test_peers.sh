@@ -53,12 +53,7 @@ experiment() {
     f=$1; name=$2; runs=$3; shift 3
     cat >"$f" <<EOT
 experiment: {name: $name, runs: $runs, time_limit: 3, seed: 5, retries: 1}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(mpb_panda_robot)
 scenes:
   - {problems: $panda/problems/${FIRST:-table_pick_panda}, count: 1, clamp_joint_values: true}
   - {problems: $panda/problems/box_panda, first: 4, count: 1, clamp_joint_values: true}

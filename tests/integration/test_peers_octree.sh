@@ -67,12 +67,7 @@ experiment() {
     f=$1; name=$2; shift 2
     cat >"$f" <<EOT
 experiment: {name: $name, runs: 2, time_limit: ${LIMIT:-3}, seed: 3, retries: 1}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(mpb_panda_robot)
 scenes:
 EOT
     for s in octree spheres; do
@@ -178,12 +173,7 @@ if [ -x "$MPB_SOURCE/.cache/peers/tesseract/bin/python3" ] &&
     probs=$panda/problems
     cat >"$work/sensed.yaml" <<EOT
 experiment: {name: sensed-tesseract, runs: 1, time_limit: 10, seed: 1}
-robot:
-  format: urdf
-  file: $panda/panda.urdf
-  srdf: $panda/panda.srdf
-  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,
-           panda_joint5, panda_joint6, panda_joint7]
+$(mpb_panda_robot)
 scenes:
   - {problems: $probs/table_pick_panda, first: 1, count: 1,
      clamp_joint_values: true,
