@@ -80,7 +80,7 @@ done
 # as it is back, for each of the two outages.
 for p in null1 null2 ${py:+python}; do
     check "the $p planner says it lost the hub, once an outage" \
-        eq "$(grep -c 'lost the hub; trying again every' "$work/$p.log")" 2
+        eq "$(grep -c 'lost the hub; trying again every 0\.5 s' "$work/$p.log")" 2
     check "... and that it is back, once an outage" \
         eq "$(grep -c 'the hub is back after' "$work/$p.log")" 2
     check "... and never that it could not reach it at first" \

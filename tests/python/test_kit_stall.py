@@ -33,7 +33,7 @@ def _node(port, auth=None):
 
 def _link(n, connected, connects=1):
     n.lc.stats = lambda: SimpleNamespace(connected=connected,
-                                         connects=connects)
+                                         connects=connects, retry_s=0.5)
 
 
 def _echo(n):

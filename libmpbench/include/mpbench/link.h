@@ -189,6 +189,9 @@ typedef struct mpb_hub_stats {
                            a channel name with a NUL in it */
     long overflowed;    /* messages dropped with the queue full */
     long malformed;     /* connections closed for a frame that was not one */
+    double retry_s;     /* a lost connection is tried again this often
+                           (MPB_HUB_RETRY_S; for kits that cannot read
+                           the macro) */
 } mpb_hub_stats;
 
 /* Fill *out for lcm (any instance; NULL-safe). */

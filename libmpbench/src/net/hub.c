@@ -479,6 +479,7 @@ void mpb_lcm_hub_stats(lcm_t *lcm, mpb_hub_stats *out)
     out->oversized = atomic_load(&h->oversized);
     out->overflowed = atomic_load(&h->overflowed);
     out->malformed = atomic_load(&h->malformed);
+    out->retry_s = MPB_HUB_RETRY_S;
 }
 
 int mpb_lcm_hub_wait(lcm_t *lcm, double timeout_s)

@@ -31,7 +31,7 @@ class _Stats(Structure):
     """link.h's mpb_hub_stats."""
     _fields_ = [("is_hub", c_int), ("connected", c_int), ("connects", c_long),
                 ("oversized", c_long), ("overflowed", c_long),
-                ("malformed", c_long)]
+                ("malformed", c_long), ("retry_s", ctypes.c_double)]
 
 
 _HANDLER = CFUNCTYPE(None, POINTER(_RecvBuf), c_char_p, c_void_p)

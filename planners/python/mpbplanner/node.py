@@ -60,8 +60,6 @@ HEARTBEAT_S = 0.5
 RESEND_S = 0.2              # a result's first re-send; the wait doubles
 RESEND_MAX_S = 2.0          # to this, until the daemon acknowledges it
 STATUS = "MPB_STATUS"
-HUB_RETRY_S = 0.5           # libmpbench's link reconnects this often
-                            # (MPB_HUB_RETRY_S, link.h)
 ECHO_MAX_S = 5.0            # through a hub, no heartbeat back this long
                             # while connected: the hub is stalled (the C
                             # kit's MPB__ECHO_MAX_S, the daemon's too)
@@ -347,7 +345,7 @@ class Node:
             self.link_lost = now
             what = ("lost the hub" if self.link_said == 1
                     else "cannot reach the hub yet")
-            self.warn(f"{what}; trying again every {HUB_RETRY_S:.1f} s, its "
+            self.warn(f"{what}; trying again every {st.retry_s:.1f} s, its "
                       f"results wait meanwhile")
         self.link_said = 1 if st.connected else 2
 
