@@ -1,7 +1,8 @@
 /*
  * fuzz_messages.c - libFuzzer target: every message the daemon and the
- * planners decode, the way they decode it (wire.h's check first, then the
- * generated decoder), and for a result what the daemon then does with each
+ * planners decode, the way they decode it (mpb_receive(), link.h: wire.h's
+ * check, then the decoder of the layout it came in, today's or older), and
+ * for a result what the daemon then does with each
  * stage: the size check, verification and metrics. The first byte picks the
  * message type; the rest is the encoded message.
  */
@@ -67,50 +68,41 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size < 1)
         return 0;
-    const void *buf = data + 1;
-    int len = (int)(size - 1);
     static const mpb_wire_type types[] = {
         MPB_WIRE_PLAN_RESULT, MPB_WIRE_PLANNER_ANNOUNCE, MPB_WIRE_RUN_ACK,
         MPB_WIRE_PLAN_REQUEST, MPB_WIRE_DAEMON_STATUS};
-    if (!mpb_wire_check(types[data[0] % 5], buf, (size_t)len, NULL, 0))
+    mpb_wire_type type = types[data[0] % 5];
+    union {
+        mpb_plan_result_t result;
+        mpb_planner_announce_t announce;
+        mpb_run_ack_t ack;
+        mpb_plan_request_t request;
+        mpb_daemon_status_t status;
+    } m;
+    mpb_received r;
+    /* The one gate the daemon and the planners use: every layout of the
+     * type, today's and the older ones, decoded as today's. */
+    if (mpb_receive(NULL, MPB_RECEIVE_AUTHENTIC, type, "MPB_FUZZ", data + 1,
+                    size - 1, &m, &r) != MPB_OK)
         return 0;
-    switch (data[0] % 5) {
-    case 0: {
-        mpb_plan_result_t m;
-        if (mpb_receive_decode_result(buf, len, &m) >= 0) {
-            check_result(&m);
-            mpb_plan_result_t_decode_cleanup(&m);
-        }
+    switch (type) {
+    case MPB_WIRE_PLAN_RESULT:
+        check_result(&m.result);
+        break;
+    case MPB_WIRE_PLANNER_ANNOUNCE:
+        mpb_planner_id_is_valid(m.announce.planner_id);
+        for (int i = 0; i < m.announce.num_active; i++)
+            mpb_attempt_id_is_valid(m.announce.active_attempts[i]);
+        break;
+    case MPB_WIRE_RUN_ACK:
+        mpb_attempt_id_is_valid(m.ack.attempt_id);
+        break;
+    case MPB_WIRE_PLAN_REQUEST:
+        mpb_attempt_id_is_valid(m.request.attempt_id);
+        break;
+    default:
         break;
     }
-    case 1: {
-        mpb_planner_announce_t m;
-        if (mpb_planner_announce_t_decode(buf, 0, len, &m) >= 0) {
-            mpb_planner_id_is_valid(m.planner_id);
-            mpb_planner_announce_t_decode_cleanup(&m);
-        }
-        break;
-    }
-    case 2: {
-        mpb_run_ack_t m;
-        if (mpb_run_ack_t_decode(buf, 0, len, &m) >= 0) {
-            mpb_attempt_id_is_valid(m.attempt_id);
-            mpb_run_ack_t_decode_cleanup(&m);
-        }
-        break;
-    }
-    case 3: {
-        mpb_plan_request_t m;
-        if (mpb_plan_request_t_decode(buf, 0, len, &m) >= 0)
-            mpb_plan_request_t_decode_cleanup(&m);
-        break;
-    }
-    case 4: {
-        mpb_daemon_status_t m;
-        if (mpb_daemon_status_t_decode(buf, 0, len, &m) >= 0)
-            mpb_daemon_status_t_decode_cleanup(&m);
-        break;
-    }
-    }
+    mpb_receive_done(type, &m);
     return 0;
 }

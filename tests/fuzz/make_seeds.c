@@ -9,9 +9,14 @@
 #include "mpbench/mpbench.h"
 #include "mpb_plan_request_t.h"
 #include "mpb_plan_result_t.h"
+#include "mpb_plan_request_v1_t.h"
 #include "mpb_plan_result_v1_t.h"
+#include "mpb_plan_result_v2_t.h"
 #include "mpb_planner_announce_t.h"
+#include "mpb_planner_announce_v1_t.h"
+#include "mpb_planner_announce_v2_t.h"
 #include "mpb_run_ack_t.h"
+#include "mpb_run_ack_v1_t.h"
 
 static void put(const char *dir, const char *name, unsigned char kind,
                 const unsigned char *buf, int len)
@@ -68,6 +73,11 @@ int main(int argc, char **argv)
                                    "null@h:1", 0, "", 0.002, 0.0001, 3.5, 2,
                                    stages_v1, 1, &val, 1, &prog};
     ENCODE(mpb_plan_result_v1_t, res_v1, dir, "result-v1", 0);
+    /* As a planner built before attempt ids sends it (run_id). */
+    mpb_plan_result_v2_t res_v2 = {1, "0123456789abcdef0123456789abcdef",
+                                   "null@h:1", 0, "", 0.002, 0.0001, 3.5, 2,
+                                   stages, 1, &val, 1, &prog};
+    ENCODE(mpb_plan_result_v2_t, res_v2, dir, "result-v2", 0);
 
     char *algos[] = {"RRTConnect", "RRT"};
     char *active[] = {"0123456789abcdef0123456789abcdef"};
@@ -75,9 +85,20 @@ int main(int argc, char **argv)
     mpb_planner_announce_t ann = {1, "ompl@h:2", "ompl", "h", 2, "c++", "1",
                                   500, 2, algos, 1, 1, active, 2, approaches};
     ENCODE(mpb_planner_announce_t, ann, dir, "announce", 1);
+    /* Before approaches, and before attempt ids (active_runs). */
+    mpb_planner_announce_v1_t ann_v1 = {1, "ompl@h:2", "ompl", "h", 2, "c++",
+                                        "1", 500, 2, algos, 1, 1, active};
+    ENCODE(mpb_planner_announce_v1_t, ann_v1, dir, "announce-v1", 1);
+    mpb_planner_announce_v2_t ann_v2 = {1, "ompl@h:2", "ompl", "h", 2, "c++",
+                                        "1", 500, 2, algos, 1, 1, active, 2,
+                                        approaches};
+    ENCODE(mpb_planner_announce_v2_t, ann_v2, dir, "announce-v2", 1);
 
     mpb_run_ack_t ack = {1, "0123456789abcdef0123456789abcdef", "null@h:1", 0};
     ENCODE(mpb_run_ack_t, ack, dir, "ack", 2);
+    mpb_run_ack_v1_t ack_v1 = {1, "0123456789abcdef0123456789abcdef",
+                               "null@h:1", 0};
+    ENCODE(mpb_run_ack_v1_t, ack_v1, dir, "ack-v1", 2);
 
     mpb_param_t par = {"range", "0.3"};
     mpb_plan_request_t req = {
@@ -91,5 +112,16 @@ int main(int argc, char **argv)
                  .joint_tolerance = 0.01, .link = ""},
     };
     ENCODE(mpb_plan_request_t, req, dir, "request", 3);
+    /* As the daemon sends a planner built before attempt ids (run_id). */
+    mpb_plan_request_v1_t req_v1 = {
+        .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
+        .planner_id = "null@h:1", .algorithm = "straight_line",
+        .num_params = 1, .params = &par, .time_limit = 1, .seed = 7,
+        .robot_format = "planar", .robot_hash = "", .robot = "link_radius 0.03\n",
+        .scene_format = "planar", .scene_hash = "", .scene = "",
+        .num_joints = 3, .joint_names = names, .start = start,
+        .goal = req.goal,
+    };
+    ENCODE(mpb_plan_request_v1_t, req_v1, dir, "request-v1", 3);
     return 0;
 }

@@ -115,7 +115,8 @@ void mpb__result_clear_lists(mpb_plan_result_t *res);
 /* planner_link.c, called by the serving thread: one line to the user
  * (def->on_warning); the heartbeat's echo sent, and one come back; the
  * link looked at when nothing waits to be handled (a stall, an outage). */
-void mpb__warn(mpb__server *s, const char *fmt, ...);
+void mpb__warn(mpb__server *s, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
 void mpb__echo(mpb__server *s);
 void mpb__echo_back(mpb__server *s);
 void mpb__watch_link(mpb__server *s);
