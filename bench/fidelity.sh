@@ -4,7 +4,7 @@
 #
 #   bench/fidelity.sh [--scene kitchen|narrow_passage] [--runs N]
 #                     [--blocks K] [--pin CPU|none] [--queue Q] [--boot B]
-#                     [--interleave block|run] [--apart] [--keep]
+#                     [--interleave block|run] [--apart] [--busy K] [--keep]
 #
 # RRTConnect on the first query of one of the paper's environments (the
 # PR2's right arm; start and goal as in scenes/experiments/paper.yaml, the
@@ -53,6 +53,16 @@
 # Paced, it waits as the planner does; in blocks it plans its block's seeds
 # back to back, with no pause between them.
 #
+# --busy K keeps the daemon's verifiers busy meanwhile, as other planners
+# of a cluster would: before the first block, 20 RRTConnect runs of the
+# query make a results database; three mpb-planner-load processes (on the
+# daemon's CPUs) replay their paths, answering at once, in a second
+# configuration of each block with K times the block's runs, every
+# planner a run at once on the host (runs_per_host 4), so the daemon
+# verifies paths without pause while RRTConnect plans (K about 200
+# paced, 100 in blocks). Only RRTConnect's runs are
+# compared; each block's line says how busy its verifiers were.
+#
 # If mpb-planner-ompl ends, the script stops at once (exit 1) rather than
 # leave mpbenchd waiting for a planner until the block's timeout.
 #
@@ -76,7 +86,7 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
 RUNS=5000 BLOCKS=20 PIN="" BOOT=2000 KEEP=0 NETNS=0 BIN="" WORK="" SCENE=kitchen
-QUEUE=0 INTERLEAVE=block SIDES=ompl,plain
+QUEUE=0 INTERLEAVE=block SIDES=ompl,plain BUSY=0
 KEYP=fidelity_
 while [ $# -gt 0 ]; do
     case $1 in
@@ -88,6 +98,7 @@ while [ $# -gt 0 ]; do
     --queue) QUEUE=$2; shift ;;
     --interleave) INTERLEAVE=$2; shift ;;
     --apart) SIDES=apart,ompl,plain ;;
+    --busy) BUSY=$2; shift ;;
     --boot) BOOT=$2; shift ;;
     --keep) KEEP=1 ;;
     --in-netns) NETNS=1 ;;          # a namespace bench/run.sh set up
@@ -105,8 +116,8 @@ esac
 case $INTERLEAVE in block|run) ;; *)
     echo "bench/fidelity.sh: --interleave block or run, not '$INTERLEAVE'" >&2; exit 2 ;;
 esac
-case $RUNS$BLOCKS$BOOT$QUEUE in *[!0-9]*)
-    echo "bench/fidelity.sh: --runs, --blocks, --queue and --boot want whole numbers" >&2; exit 2 ;;
+case $RUNS$BLOCKS$BOOT$QUEUE$BUSY in *[!0-9]*)
+    echo "bench/fidelity.sh: --runs, --blocks, --queue, --busy and --boot want whole numbers" >&2; exit 2 ;;
 esac
 [ "$BLOCKS" -ge 1 ] && [ "$RUNS" -ge "$BLOCKS" ] || {
     echo "bench/fidelity.sh: wants 1 <= blocks <= runs" >&2; exit 2; }
@@ -125,10 +136,11 @@ fi
 if [ "$NETNS" -eq 0 ]; then
     : "${WORK:=$BUILD/bench-run/fidelity}"
     bench_snapshot bench/fidelity.sh "$WORK" "$BUILD/daemon/mpbenchd" \
-        "$BUILD/planners/ompl/mpb-planner-ompl" "$(bench_program "$BUILD" mpb-bench-fidelity)"
+        "$BUILD/planners/ompl/mpb-planner-ompl" "$BUILD/planners/load/mpb-planner-load" \
+        "$(bench_program "$BUILD" mpb-bench-fidelity)"
     set -- --new-netns --bin "$WORK/bin" --work "$WORK" --runs "$RUNS" \
         --blocks "$BLOCKS" --pin "$PIN" --boot "$BOOT" --scene "$SCENE" --key-prefix "$KEYP" \
-        --queue "$QUEUE" --interleave "$INTERLEAVE"
+        --queue "$QUEUE" --interleave "$INTERLEAVE" --busy "$BUSY"
     [ "$SIDES" = ompl,plain ] || set -- "$@" --apart
     [ "$KEEP" -eq 1 ] && set -- "$@" --keep
     exec unshare -n sh "$0" "$@"
@@ -156,6 +168,8 @@ narrow_passage)
     GOAL=-0.602636,-0.372772,-1.662616,-1.158252,-2.607525,-0.583438,-1.715240 ;;
 esac
 TIME_LIMIT=10 WARMUP=5
+LOADS=3         # --busy: one load planner's request, result and ack in
+                # turn leave the verifiers idle half the time
 PER=$((RUNS / BLOCKS))
 
 if [ "$PIN" = none ]; then
@@ -168,14 +182,15 @@ else
 fi
 
 list() { echo "[$1]" | sed 's/,/, /g'; }
-block_yaml() { # block file
+block_yaml() { # block file [runs]: RUNS, without --busy's planner
     cat >"$2" <<EOF
 experiment:
   name: bench-fidelity-$1
-  runs: $((PER + WARMUP))
+  runs: ${3:-$((PER + WARMUP))}
   time_limit: $TIME_LIMIT
   seed: $((7000 + $1))
   queue_at_planner: $QUEUE
+  runs_per_host: $([ "$BUSY" -gt 0 ] && [ -z "${3:-}" ] && echo $((LOADS + 1)) || echo 1)
 robot:
   format: urdf
   file: $URDF
@@ -194,6 +209,11 @@ planners:
     algorithms: [RRTConnect]
     params: {simplify: 0}
 EOF
+    [ "$BUSY" -eq 0 ] || [ -n "${3:-}" ] || cat >>"$2" <<EOF
+  - planner: load
+    algorithms: [replay]
+    runs: $((BUSY * (PER + WARMUP)))
+EOF
 }
 
 RUNS_TXT=$WORK/runs.txt
@@ -205,6 +225,20 @@ $ON_PIN "$BIN/mpb-planner-ompl" >"$WORK/planner.log" 2>&1 &
 PLANNER=$!      # taskset execs the planner: its pid
 PIDS="$PIDS $PLANNER"
 sleep 0.5   # one announce before the first daemon
+
+# --busy: the paths mpb-planner-load replays, from 20 runs of the query.
+if [ "$BUSY" -gt 0 ]; then
+    block_yaml paths "$WORK/fid-paths.yaml" 20
+    rm -f "$WORK/fid-paths.db"*
+    timeout -k 5 300 $ON_REST "$BIN/mpbenchd" -d "$WORK/fid-paths.db" "$WORK/fid-paths.yaml" \
+        >"$WORK/daemon-paths.log" 2>&1 ||
+        { echo "bench/fidelity.sh: the paths for --busy failed (see $WORK/daemon-paths.log)" >&2; exit 1; }
+    for i in $(seq "$LOADS"); do
+        $ON_REST "$BIN/mpb-planner-load" --from "$WORK/fid-paths.db" >"$WORK/load-$i.log" 2>&1 &
+        PIDS="$PIDS $!"
+    done
+    sleep 0.5
+fi
 
 # A block's seeds: those mpbenchd draws for its experiment, known before
 # it runs (mpb-bench-fidelity seeds); the first WARMUP are warm-up runs.
@@ -236,11 +270,24 @@ mpbench_block() { # block
         coalesce(s.time, 'nan'), r.status = 'solved', coalesce(r.success, 0),
         coalesce((SELECT CAST(v.value AS INTEGER) FROM planner_values v
                   WHERE v.run_id = r.id AND v.name = 'graph states'), -1)
-        FROM runs r LEFT JOIN stages s ON s.run_id = r.id AND s.name = 'raw'
-        WHERE r.state = 'done' AND r.repetition >= $WARMUP
+        FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id
+        LEFT JOIN stages s ON s.run_id = r.id AND s.name = 'raw'
+        WHERE r.state = 'done' AND r.repetition >= $WARMUP AND c.planner = 'ompl'
         ORDER BY r.repetition" >>"$RUNS_TXT"
-    drawn=$(sqlite3 "$db" "SELECT group_concat(seed) FROM (SELECT seed FROM runs
-        ORDER BY repetition)")
+    drawn=$(sqlite3 "$db" "SELECT group_concat(seed) FROM (SELECT r.seed FROM runs r
+        JOIN planner_configs c ON c.id = r.planner_config_id WHERE c.planner = 'ompl'
+        ORDER BY r.repetition)")
+    # --busy: the replayed paths verified while RRTConnect planned, and
+    # the verifiers' time over the span of RRTConnect's runs.
+    [ "$BUSY" -eq 0 ] || sqlite3 "$db" "SELECT '  block $1: verifiers busy ' ||
+        printf('%.0f', 100.0 * sum(CASE WHEN r.finished <= e.last THEN r.verify_time END)
+            / (e.last - e.first)) || ' % of RRTConnect''s span, ' ||
+        sum(r.finished <= e.last) || ' replayed paths verified in it'
+        FROM runs r JOIN planner_configs c ON c.id = r.planner_config_id,
+             (SELECT min(r2.finished) AS first, max(r2.finished) AS last
+              FROM runs r2 JOIN planner_configs c2 ON c2.id = r2.planner_config_id
+              WHERE c2.planner = 'ompl') e
+        WHERE c.planner = 'load' AND r.finished >= e.first"
     [ "$drawn" = "$(block_seeds "$1")" ] ||
         echo "  block $1: mpbenchd drew other seeds than mpb-bench-fidelity seeds gave"
     [ "$KEEP" -eq 1 ] || rm -f "$db"*
@@ -319,7 +366,7 @@ LOAD_END=$(cut -d' ' -f1-3 /proc/loadavg)
 
 {
 echo "RESULT fidelity_setup scene=$SCENE query=$QUERY blocks=$BLOCKS block_runs=$PER warmup=$WARMUP pin=$PIN" \
-     "interleave=$INTERLEAVE" \
+     "interleave=$INTERLEAVE busy=$BUSY" \
      "load_start=$(echo "$LOAD_START" | tr ' ' /) load_end=$(echo "$LOAD_END" | tr ' ' /)"
 [ "$INTERLEAVE" = run ] && awk '{ for (i = 3; i <= NF; i++) { split($i, kv, "=")
         v[kv[1]] = kv[2] }

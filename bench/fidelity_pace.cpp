@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 #include <unordered_map>
@@ -54,6 +55,13 @@ struct Pacer {
     bool stored = false;        // mpbenchd acknowledged `holding`
 };
 
+// A planner id ends in ":PID" (mpb_planner_id_make).
+bool is_held_planner(const Pacer *p, const char *planner_id)
+{
+    const char *colon = planner_id ? std::strrchr(planner_id, ':') : nullptr;
+    return colon != nullptr && std::atol(colon + 1) == static_cast<long>(p->planner);
+}
+
 void on_request(const lcm_recv_buf_t *rbuf, const char *, void *user)
 {
     Pacer *p = static_cast<Pacer *>(user);
@@ -61,7 +69,10 @@ void on_request(const lcm_recv_buf_t *rbuf, const char *, void *user)
     if (!mpb_wire_check(MPB_WIRE_PLAN_REQUEST, rbuf->data, rbuf->data_size, nullptr, 0) ||
         mpb_plan_request_t_decode(rbuf->data, 0, static_cast<int>(rbuf->data_size), &m) < 0)
         return;
-    if (mpb_attempt_id_is_valid(m.attempt_id) && !p->requests.count(m.attempt_id))
+    // Only the held planner's requests: with other planners on the URL
+    // (bench/fidelity.sh --busy), theirs are not paced.
+    if (mpb_attempt_id_is_valid(m.attempt_id) && !p->requests.count(m.attempt_id) &&
+        is_held_planner(p, m.planner_id))
         p->requests[m.attempt_id] = {m.utime, std::to_string(static_cast<long long>(m.seed))};
     for (int i = 0; i < m.num_stored; i++)
         if (!p->holding.empty() && p->holding == m.stored[i])
@@ -125,10 +136,16 @@ int pace(const PaceOptions &opt,
 
     Pacer p;
     p.planner = opt.planner;
+    // The held planner's own request and ack channels (its id ends in
+    // ":PID"): other planners' traffic (--busy) would fill the queues
+    // while this process runs the in-process sides.
+    const std::string own = ".*:" + std::to_string(static_cast<long>(opt.planner));
+    const std::string requests = MPB_CHANNEL_REQUEST_PREFIX + own;
+    const std::string acks = MPB_CHANNEL_ACK_PREFIX + own;
     lcm_subscription_t *subs[] = {
-        lcm_subscribe(lcm, MPB_CHANNEL_REQUEST_PREFIX ".*", on_request, &p),
+        lcm_subscribe(lcm, requests.c_str(), on_request, &p),
         lcm_subscribe(lcm, MPB_CHANNEL_RESULT, on_result, &p),
-        lcm_subscribe(lcm, MPB_CHANNEL_ACK ".*", on_ack, &p),
+        lcm_subscribe(lcm, acks.c_str(), on_ack, &p),
     };
     for (lcm_subscription_t *s : subs)
         lcm_subscription_set_queue_capacity(s, 1000);
