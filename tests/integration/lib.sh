@@ -183,6 +183,29 @@ mpb_wait() {
     wait "$pid"
 }
 
+# mpb_wait_listening PID [SECONDS]: wait (default 10 s) until the process
+# PID, or one it started (within three generations: a backgrounded
+# mpb_timeout, script(1)), has a UDP socket bound: an LCM process that
+# subscribes at start (mpb status) then hears every message from here
+# on, which a sleep cannot promise on a loaded machine. 1 if none has.
+mpb_wait_listening() {
+    hundredths=$((${2:-10} * 100))
+    while [ "$hundredths" -gt 0 ]; do
+        family=$1 generation=$1
+        for _ in 1 2 3; do
+            generation=$(for p in $generation; do pgrep -P "$p"; done 2>/dev/null)
+            family="$family $generation"
+        done
+        sockets=$(ss -uanp 2>/dev/null)
+        for p in $family; do
+            case $sockets in *"pid=$p,"*) return 0 ;; esac
+        done
+        sleep 0.01
+        hundredths=$((hundredths - 1))
+    done
+    return 1
+}
+
 # Run a command with a time limit in seconds; its exit status, or 124.
 mpb_timeout() {
     secs=$1; shift

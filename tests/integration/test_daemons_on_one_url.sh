@@ -49,10 +49,7 @@ done
 "$MPB_BUILD/tools/mpb" status --timeout 30 >"$work/status2.log" 2>&1 &
 status2=$!
 listening=no
-for _ in $(seq 200); do
-    ss -uanp 2>/dev/null | grep -q "pid=$status2," && { listening=yes; break; }
-    sleep 0.005
-done
+mpb_wait_listening $status2 && listening=yes
 check "beside: a second mpb status listens, having heard nothing, before the second starts" \
     test "$listening" = yes -a ! -s "$work/status2.log"
 "$daemon" -d "$work/second.db" "$work/second.yaml" >"$work/second.log" 2>&1 &

@@ -29,7 +29,7 @@ mpb_spawn "$work/null.log" "$MPB_BUILD/planners/null/mpb-planner-null"
 start_daemon() {
     mpb_timeout 30 "$mpb" status >"$work/$1.status" 2>"$work/$1.status.err" &
     follower=$!
-    sleep 0.3
+    mpb_wait_listening $follower
     "$daemon" -d "$2" "$work/exp.yaml" >"$work/$1.log" 2>&1 &
     daemon_pid=$!
 }

@@ -76,6 +76,7 @@ done
 
 "$MPB_BUILD/tools/mpb" status >"$work/status.log" 2>&1 &
 status_pid=$!
+mpb_wait_listening $status_pid
 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/exp.yaml" >"$work/daemon.log" 2>&1 &
 daemon=$!
 sleep 0.5

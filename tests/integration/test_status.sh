@@ -65,7 +65,7 @@ script -qfec "'$mpb' status --timeout 30" "$work/tty.out" >/dev/null 2>&1 &
 tty=$!
 "$mpb" status --experiment nosuch --timeout 3 >"$work/other.out" 2>"$work/other.err" &
 other=$!
-sleep 0.3
+for f in $plain $tty $other; do mpb_wait_listening $f; done
 
 mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$DB" "$work/follow.yaml" \
     >"$work/daemon.log" 2>&1 &
@@ -133,7 +133,7 @@ check "... and a line per planner process" \
 # ---- a daemon stopped before the end ---------------------------------------
 "$mpb" status --timeout 30 >"$work/stopped.out" 2>"$work/stopped.err" &
 follower=$!
-sleep 0.3
+mpb_wait_listening $follower
 "$MPB_BUILD/daemon/mpbenchd" -d "$work/stopped.db" "$work/stopped.yaml" \
     >"$work/daemon2.log" 2>&1 &
 daemon=$!
@@ -150,7 +150,7 @@ check "... after its last line" grep -q '^stopped: stopped, ' "$work/stopped.out
 # Its counts start from the runs done before the stop, as runs done do.
 "$mpb" status --timeout 30 >"$work/resumed.out" 2>"$work/resumed.err" &
 follower=$!
-sleep 0.3
+mpb_wait_listening $follower
 mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$work/stopped.db" \
     "$work/stopped.yaml" >"$work/daemon3.log" 2>&1
 check "the stopped experiment resumes to the end" eq $? 0
@@ -178,7 +178,7 @@ done
 mpb_planar_experiment "$work/names.yaml" "name: names, runs: 4, time_limit: 2.0" "$@"
 COLUMNS=80 script -qfec "'$mpb' status --timeout 30" "$work/names.out" >/dev/null 2>&1 &
 tty=$!
-sleep 0.3
+mpb_wait_listening $tty
 mpb_timeout 120 "$MPB_BUILD/daemon/mpbenchd" -d "$work/names.db" \
     "$work/names.yaml" >"$work/daemon4.log" 2>&1
 check "the experiment of long-named planners completes" eq $? 0
