@@ -114,13 +114,15 @@ int main(int argc, char **argv)
     ENCODE(mpb_plan_request_t, req, dir, "request", 3);
     /* As the daemon sends a planner built before attempt ids (run_id). */
     mpb_plan_request_v1_t req_v1 = {
-        .utime = 1, .run_id = "0123456789abcdef0123456789abcdef",
-        .planner_id = "null@h:1", .algorithm = "straight_line",
-        .num_params = 1, .params = &par, .time_limit = 1, .seed = 7,
-        .robot_format = "planar", .robot_hash = "", .robot = "link_radius 0.03\n",
-        .scene_format = "planar", .scene_hash = "", .scene = "",
-        .num_joints = 3, .joint_names = names, .start = start,
-        .goal = req.goal,
+        .utime = req.utime, .run_id = req.attempt_id,
+        .planner_id = req.planner_id, .algorithm = req.algorithm,
+        .num_params = req.num_params, .params = req.params,
+        .time_limit = req.time_limit, .seed = req.seed,
+        .robot_format = req.robot_format, .robot_hash = req.robot_hash,
+        .robot = req.robot, .scene_format = req.scene_format,
+        .scene_hash = req.scene_hash, .scene = req.scene,
+        .num_joints = req.num_joints, .joint_names = req.joint_names,
+        .start = req.start, .goal = req.goal,
     };
     ENCODE(mpb_plan_request_v1_t, req_v1, dir, "request-v1", 3);
     return 0;

@@ -3,7 +3,7 @@
 
 static int is_blank(char c)
 {
-    return c == ' ' || c == '\t' || c == '\r';
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
 int mpb__split_words(const char *b, const char *e, mpb__word *w, int max)

@@ -1,5 +1,6 @@
-/* words.h - a line of a text format split at blanks (space, tab, CR),
- * the one way the scene and cloud readers split theirs. */
+/* words.h - a line of a text format split at blanks (space, tab, CR,
+ * vertical tab, form feed), the one way the scene and cloud readers
+ * split theirs. */
 #ifndef MPB_CORE_WORDS_H
 #define MPB_CORE_WORDS_H
 

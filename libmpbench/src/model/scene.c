@@ -12,6 +12,7 @@
 #include "core/grow.h"
 #include "core/number.h"
 #include "core/readfile.h"
+#include "core/words.h"
 #include "geometry/mesh.h"
 #include "geometry/collision_internal.h"
 
@@ -509,29 +510,18 @@ static int parse_object(parser *ps, mpb_scene *s, int star_line)
     return MPB_OK;
 }
 
-/* Split [b, e) into at most max tokens; returns how many there are. */
-static int line_tokens(const char *b, const char *e, tok *t, int max, int line)
+#define MAX_ATTACH_TOKENS 64
+
+/* Split the line [b, e) into tokens (words.h), the first
+ * MAX_ATTACH_TOKENS into t, each at `line`; returns how many there are. */
+static int line_tokens(const char *b, const char *e, tok *t, int line)
 {
-    int n = 0;
-    while (b < e) {
-        while (b < e && is_ws(*b))
-            b++;
-        if (b >= e)
-            break;
-        const char *s = b;
-        while (b < e && !is_ws(*b))
-            b++;
-        if (n < max) {
-            t[n].p = s;
-            t[n].len = (int)(b - s);
-            t[n].line = line;
-        }
-        n++;
-    }
+    mpb__word w[MAX_ATTACH_TOKENS];
+    int n = mpb__split_words(b, e, w, MAX_ATTACH_TOKENS);
+    for (int k = 0; k < n && k < MAX_ATTACH_TOKENS; k++)
+        t[k] = (tok){w[k].p, w[k].len, line};
     return n;
 }
-
-#define MAX_ATTACH_TOKENS 64
 
 /* A new object of id t (not yet in s) at `line`, identity pose; *out. */
 static int new_object(parser *ps, mpb_scene *s, const tok *t, int line, sobj **out)
@@ -751,7 +741,7 @@ static int parse_extension(parser *ps, mpb_scene *s)
         if (*ps->p == '\n')
             advance(ps);
         tok t[MAX_ATTACH_TOKENS];
-        int n = line_tokens(b, e, t, MAX_ATTACH_TOKENS, line);
+        int n = line_tokens(b, e, t, line);
         if (n == 0 || t[0].p[0] == '#')
             continue;
         if (tok_is(&t[0], "octree") || tok_is(&t[0], "spheres")) {
