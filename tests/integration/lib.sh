@@ -193,7 +193,8 @@ mpb_wait_listening() {
     while [ "$hundredths" -gt 0 ]; do
         family=$1 generation=$1
         for _ in 1 2 3; do
-            generation=$(for p in $generation; do pgrep -P "$p"; done 2>/dev/null)
+            generation=$(for p in $generation; do
+                cat /proc/"$p"/task/*/children; done 2>/dev/null)
             family="$family $generation"
         done
         sockets=$(ss -uanp 2>/dev/null)
