@@ -127,6 +127,9 @@ for f in "$@"; do
     [ -f "$f" ] || { echo "run_benchmark: $f: no such experiment file" >&2; exit 2; }
 done
 
+# lib.sh finds the robot data and scripts through MPB_SOURCE, which a
+# user's shell does not set.
+MPB_SOURCE=$root
 . "$root/tests/integration/lib.sh"
 
 planner_program() {
