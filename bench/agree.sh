@@ -26,12 +26,13 @@
 # DIR is the build tree (default MPB_BUILD or build/).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 BUILD=${MPB_BUILD:-$src/build} QUICK=1
 while [ $# -gt 0 ]; do
     case $1 in
     --bin) BUILD=$2; shift 2 ;;
     --no-quick) QUICK=0; shift ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     -*) echo "bench/agree.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
     *) break ;;
     esac

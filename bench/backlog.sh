@@ -16,6 +16,7 @@
 set -u
 
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
@@ -26,7 +27,7 @@ while [ $# -gt 0 ]; do
     --bounds) BOUNDS=$2; shift ;;
     --out) OUT=$2; shift ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/backlog.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

@@ -18,6 +18,8 @@
 # is timed. MPB_BUILD is the build tree.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
+mpb_no_options "$@"
 BUILD=${MPB_BUILD:-$root/build}
 RUNS=${1:-50000}
 mpb=$BUILD/tools/mpb

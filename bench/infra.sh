@@ -30,6 +30,7 @@
 # minute a database on an idle machine with `sampled`.
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BIN=${MPB_BUILD:-$src/build} N=10 INNER=0 MODES="" ROUNDS=1 KEEP=""
 while [ $# -gt 0 ]; do
@@ -40,7 +41,7 @@ while [ $# -gt 0 ]; do
     --rounds) ROUNDS=$2; shift ;;
     --keep) KEEP=$2; shift ;;
     --inner) INNER=1 ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/infra.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

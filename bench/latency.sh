@@ -25,6 +25,7 @@
 set -u
 
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
@@ -38,7 +39,7 @@ while [ $# -gt 0 ]; do
     --bin) BIN=$2; shift ;;
     --in-netns) NETNS=1 ;;          # a namespace bench/run.sh set up
     --new-netns) NETNS=2 ;;         # this script's own, to set up
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/latency.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

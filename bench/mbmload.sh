@@ -23,6 +23,7 @@
 # Panda in .cache/robots (tools/robot_data.sh).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BIN=${MPB_BUILD:-$src/build} N=4 INNER=0
 while [ $# -gt 0 ]; do
@@ -30,7 +31,7 @@ while [ $# -gt 0 ]; do
     --bin) BIN=$2; shift ;;
     --problems) N=$2; shift ;;
     --inner) INNER=1 ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/mbmload.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

@@ -28,6 +28,7 @@
 # and DIR/tools/mpb; the bench program is built in DIR/bench-standalone.
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build} DB="" KEEP="" SECS=5
 while [ $# -gt 0 ]; do
@@ -36,7 +37,7 @@ while [ $# -gt 0 ]; do
     --db) DB=$2; shift ;;
     --keep) KEEP=$2; shift ;;
     --seconds) SECS=$2; shift ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/mbmverify.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

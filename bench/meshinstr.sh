@@ -17,6 +17,7 @@
 # MPB_BUILD or build/).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 BUILD=${MPB_BUILD:-$src/build}
 BIN="" STATES=200 SET=table_pick_panda NUM=0001
 while [ $# -gt 0 ]; do
@@ -25,7 +26,7 @@ while [ $# -gt 0 ]; do
     --states) STATES=$2; shift ;;
     --set) SET=$2; shift ;;
     --scene) NUM=$(printf %04d "$2"); shift ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/meshinstr.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

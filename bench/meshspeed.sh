@@ -23,6 +23,7 @@
 # (default: built now in the build tree, MPB_BUILD).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 BIN="" STATES=2000 ROUNDS=10 SECS=1 SET=table_pick_panda NUM=0001
@@ -34,7 +35,7 @@ while [ $# -gt 0 ]; do
     --seconds) SECS=$2; shift ;;
     --set) SET=$2; shift ;;
     --scene) NUM=$(printf %04d "$2"); shift ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/meshspeed.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

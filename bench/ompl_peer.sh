@@ -17,8 +17,9 @@
 # before it leaves the network behind (unshare -n).
 set -eu
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 case ${1:-} in
--h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+-h|--help) mpb_usage; exit 0 ;;
 -*) echo "bench/ompl_peer.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
 esac
 DIR=${1:-$src/.cache/ompl-peer}

@@ -19,6 +19,7 @@
 set -u
 
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
@@ -30,7 +31,7 @@ while [ $# -gt 0 ]; do
     --out) OUT=$2; shift ;;
     --strace) STRACE=1 ;;
     --in-netns) IN_NETNS=1 ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/profile.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

@@ -13,6 +13,7 @@
 # removed. The first report warms the page cache and is not counted.
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build} RUNS=3 DB=
 while [ $# -gt 0 ]; do
@@ -20,7 +21,7 @@ while [ $# -gt 0 ]; do
     --build) BUILD=$2; shift ;;
     --runs) RUNS=$2; shift ;;
     --db) DB=$2; shift ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/report_sets.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

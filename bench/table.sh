@@ -11,13 +11,15 @@
 # without a number "not measured", so an older file or a partial run
 # still gives its table.
 set -u
+src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 
 case ${1:-} in
--h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+-h|--help) mpb_usage; exit 0 ;;
 "") echo "usage: bench/table.sh FILE (bench/table.sh --help)" >&2; exit 2 ;;
+-*) echo "bench/table.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
 esac
 [ -r "$1" ] || { echo "bench/table.sh: cannot read $1" >&2; exit 1; }
-src=$(cd "$(dirname "$0")/.." && pwd)
 . "$src/bench/lib.sh"
 RAW=$1
 FLOOR=$(get floor median_us)

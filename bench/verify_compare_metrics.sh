@@ -13,6 +13,7 @@
 # read. Make them with the older mpbench (tools/run_benchmark.sh).
 set -eu
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 BUILD=${MPB_BUILD:-$src/build}
 TOL=1e-9
 ROBOT_DIR=$src/.cache/robots/vamp-planner-0.6.4/panda
@@ -20,7 +21,7 @@ while [ $# -gt 0 ]; do
     case $1 in
     --tol) TOL=$2; shift 2 ;;
     --robot-dir) ROBOT_DIR=$2; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     --) shift; break ;;
     -*) echo "verify_compare_metrics: unknown option '$1'" >&2; exit 2 ;;
     *) break ;;

@@ -32,6 +32,7 @@
 # lines; the logs stay in DIR (default $MPB_BUILD/bench-run/verifyload).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build}
 case $BUILD in /*) ;; *) BUILD=$src/$BUILD ;; esac
@@ -42,7 +43,7 @@ while [ $# -gt 0 ]; do
     --runs) RUNS=$2; shift ;;
     --planners) NP=$2; shift ;;
     --out) OUT=$2; shift ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/verifyload.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

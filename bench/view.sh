@@ -9,6 +9,8 @@
 #   bench/view.sh [BUILD]     (default build/; root, for the network namespace)
 set -eu
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
+mpb_no_options "$@"
 build=$(cd "${1:-$src/build}" && pwd)
 if [ -z "${MPB_IN_NETNS:-}" ]; then
     export MPB_IN_NETNS=1

@@ -18,13 +18,14 @@
 # Needs the Panda in .cache/robots (tools/robot_data.sh).
 set -u
 src=$(cd "$(dirname "$0")/.." && pwd)
+. "$src/tools/usage.sh"
 . "$src/bench/lib.sh"
 BUILD=${MPB_BUILD:-$src/build} RUNS=5
 while [ $# -gt 0 ]; do
     case $1 in
     --build) BUILD=$2; shift ;;
     --runs) RUNS=$2; shift ;;
-    -h|--help) sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) mpb_usage; exit 0 ;;
     *) echo "bench/worldopen.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift

@@ -6,6 +6,8 @@
 # Results stay in mpbench.db in the project root.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
+mpb_no_arguments "$@"
 export MPB_BUILD=${MPB_BUILD:-$root/build}
 sh "$root/tools/run_benchmark.sh" -d "$root/mpbench.db" -l "$MPB_BUILD/demo-logs" \
     -p ompl,arastar,python "$root/scenes/experiments/paper-demo.yaml"

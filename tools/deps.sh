@@ -4,6 +4,8 @@
 # Idempotent: asks dpkg first and installs only what is missing, so a second
 # run costs a fraction of a second. Uses sudo when not run as root.
 set -eu
+. "$(dirname "$0")/usage.sh"
+mpb_no_arguments "$@"
 
 PACKAGES="
   build-essential cmake pkg-config

@@ -8,6 +8,8 @@
 #   tools/mbm_check.sh [EXPERIMENT.yaml]     exit 0 if every problem loads
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
+mpb_no_options "$@"
 MPB_BUILD=${MPB_BUILD:-$root/build}
 exp=${1:-$root/scenes/experiments/mbm-panda.yaml}
 "$root/tools/robot_data.sh" --check || "$root/tools/robot_data.sh" >/dev/null

@@ -9,6 +9,8 @@
 # Usage: tools/paper_suite.sh [BUILD_DIR]     (default: build)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
+mpb_no_options "$@"
 build=${1:-$root/build}
 cmake --build "$build" --target mpb-paper-suite >/dev/null
 gen=$build/tools/mpb-paper-suite

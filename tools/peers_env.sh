@@ -18,6 +18,7 @@
 # reinstalled only when its sources or lcmtypes/ changed.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
 reqs=$root/planners/peers/requirements
 dest=$root/.cache/peers
 # The peers: one requirements file each (planners/peers/mpbpeers/NAME.py
@@ -97,6 +98,7 @@ if [ "${1:-}" = --lock ]; then
     exit 0
 fi
 
+mpb_no_options "$@"
 for name in ${*:-$ALL}; do
     [ -f "$reqs/$name.txt" ] || {
         echo "peers_env: unknown peer '$name' ($ALL)" >&2

@@ -10,6 +10,8 @@
 # nothing, without the network.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
+mpb_no_arguments "$@"
 venv=$root/.venv
 reqs=$root/planners/python/requirements.txt
 

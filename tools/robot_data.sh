@@ -17,6 +17,8 @@
 # Idempotent: a complete unpacked copy is left alone without the network.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
+[ "${1:-}" = --check ] && [ $# -eq 1 ] || mpb_no_arguments "$@"
 cache=$root/.cache/robots
 VERSION=0.6.4
 SHA256=d3150c6b67ff941af9ad56480b31d3fb73b12211ea21dc684f7737b059f6daba

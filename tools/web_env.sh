@@ -13,6 +13,8 @@
 # chromium is installed only when missing.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/tools/usage.sh"
+mpb_no_arguments "$@"
 cache=$root/.cache/web
 
 # name version integrity
