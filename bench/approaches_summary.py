@@ -6,8 +6,13 @@ time median and 95th percentile and the path length and smoothness
 medians over verified runs; then verified successes per problem set (the
 scene's name before '/').
 
-    python3 bench/approaches_summary.py DB
+    python3 bench/approaches_summary.py DB|RUNS.csv...
+
+Each argument is a results database or its runs as `mpb export
+--runs-csv` writes them (bench/approaches_shard.sh's shards); the tables
+are over all of them together.
 """
+import csv
 import math
 import sqlite3
 import sys
@@ -30,11 +35,32 @@ def fmt(x, d=2):
         else f"{x:.{d}f}"
 
 
-def main(argv):
-    db = sqlite3.connect(argv[1])
-    rows = db.execute(
+COLUMNS = ("planner", "approach", "scene", "outcome", "verdict",
+           "time_total", "path_length", "smoothness")
+
+
+def number(text):
+    return float(text) if text not in ("", None) else None
+
+
+def read_runs(path):
+    """One tuple of COLUMNS per finished run of a database or a CSV."""
+    if path.endswith(".csv"):
+        with open(path, newline="") as f:
+            return [tuple(r[c] or "" for c in COLUMNS[:5]) +
+                    tuple(number(r[c]) for c in COLUMNS[5:])
+                    for r in csv.DictReader(f)]
+    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    return db.execute(
         "SELECT planner, coalesce(approach, ''), scene, outcome, verdict, "
         "time_total, path_length, smoothness FROM results").fetchall()
+
+
+def main(argv):
+    if len(argv) < 2 or argv[1] in ("-h", "--help"):
+        print(__doc__.strip())
+        return 0 if len(argv) >= 2 else 2
+    rows = [r for path in argv[1:] for r in read_runs(path)]
     by = defaultdict(list)
     for r in rows:
         by[(r[0], r[1])].append(r)
@@ -72,4 +98,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    main(sys.argv)
+    sys.exit(main(sys.argv))
