@@ -189,8 +189,13 @@ typedef struct mpbd_flight {
     double   away;
     int      acked;          /* planner said REQUEST_RECEIVED, or named
                                 it among its active runs */
+    int      phase;          /* MPBD_PHASE_*: what its planner said last */
     double   deadline;
 } mpbd_flight;
+
+/* A flight's phase by its planner's word (run_ack_t): sent (or nothing
+ * said), building its model of a new robot and scene, planning. */
+enum { MPBD_PHASE_SENT, MPBD_PHASE_SETTING_UP, MPBD_PHASE_PLANNING };
 
 /* A stored result to acknowledge, to its planner, once its transaction
  * commits (acks.c). */
@@ -487,6 +492,12 @@ int  mpbd_record_crash(mpbd *d, mpbd_flight *f, const char *why);
 /* Store f's run as a crash, why its message, and end its flight. */
 int  mpbd_run_crashed(mpbd *d, mpbd_flight *f, const char *why,
                       double wall_time);
+/* Its planner builds its model for f (run_ack_t SETTING_UP): the deadline
+ * waits MPBD_SETUP_ALLOWANCE_S more. Then it plans (PLANNING): the time
+ * limit and grace run from now. Each once per attempt, in this order; a
+ * flight waiting in the planner's queue starts first. */
+void mpbd_flight_setting_up(mpbd *d, mpbd_flight *f, double now);
+void mpbd_flight_planning(mpbd *d, mpbd_flight *f, double now);
 /* Given up on at its deadline: its planner may still plan it, and while
  * it names it, the run holds one of its slots. */
 void mpbd_runs_abandon(mpbd *d, const mpbd_flight *f);

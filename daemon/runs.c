@@ -12,7 +12,10 @@
  * experiment.queue_at_planner above 0, a request may wait at a busy
  * planner: it is queued, and its times and deadline start only when the
  * run before it on that planner ends, or when the planner names it among
- * its active runs.
+ * its active runs. A flight's deadline is its time limit and grace from
+ * its send; a planner that builds its model first says so (SETTING_UP:
+ * the deadline waits up to MPBD_SETUP_ALLOWANCE_S more) and when it
+ * plans (PLANNING: the limit and grace from then).
  *
  * A run given up on at its deadline may still be planned: while its
  * planner's announcements name it, it holds a slot of that planner's
@@ -161,6 +164,7 @@ static void start_clock(const mpbd *d, mpbd_flight *f, double now)
     f->sends = 1;
     f->next_send = now + MPBD_REQUEST_RESEND_S;
     f->away = 0;
+    f->phase = MPBD_PHASE_SENT;
     f->deadline = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S;
 }
 
@@ -358,6 +362,40 @@ int mpbd_runs_knows(const mpbd *d, int planner, const char *attempt_id)
            pending_resend(d, attempt_id);
 }
 
+/* The planner said it has the request: a queued one has started. */
+static void heard_start(mpbd *d, mpbd_flight *f)
+{
+    f->acked = 1;
+    d->planners[f->planner].declines = 0;
+    if (f->queued)
+        start_queued(d, f);
+}
+
+void mpbd_flight_setting_up(mpbd *d, mpbd_flight *f, double now)
+{
+    heard_start(d, f);
+    if (f->phase != MPBD_PHASE_SENT)
+        return;
+    f->phase = MPBD_PHASE_SETTING_UP;
+    f->deadline = fmax(f->deadline, now + MPBD_SETUP_ALLOWANCE_S +
+                                        d->exp->time_limit +
+                                        MPBD_DEADLINE_GRACE_S);
+}
+
+void mpbd_flight_planning(mpbd *d, mpbd_flight *f, double now)
+{
+    heard_start(d, f);
+    if (f->phase == MPBD_PHASE_PLANNING)
+        return;
+    /* Never past the bound of the setup before it, nor sooner than the
+     * send's own deadline (the request's way to the planner). */
+    double from_now = now + d->exp->time_limit + MPBD_DEADLINE_GRACE_S;
+    f->deadline = f->phase == MPBD_PHASE_SETTING_UP
+                      ? fmin(f->deadline, from_now)
+                      : fmax(f->deadline, from_now);
+    f->phase = MPBD_PHASE_PLANNING;
+}
+
 void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
                              int num_active, int unknown)
 {
@@ -370,10 +408,7 @@ void mpbd_planner_working_on(mpbd *d, int planner, char *const *active_runs,
             (f = mpbd_flight_find(d, active_runs[k])) == NULL ||
             f->planner != planner)
             continue;
-        f->acked = 1;           /* it has the request: no more resends */
-        p->declines = 0;
-        if (f->queued)
-            start_queued(d, f);
+        heard_start(d, f);      /* it has the request: no more resends */
     }
     p->unknown = unknown;
     /* A run given up on holds its slot while the planner names it. */

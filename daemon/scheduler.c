@@ -463,6 +463,10 @@ static void on_ack(mpbd *d, const mpb_run_ack_t *m)
         d->planners[f->planner].declines = 0;
     } else if (m->kind == MPB_RUN_ACK_T_REQUEST_DECLINED) {
         declined(d, f);
+    } else if (m->kind == MPB_RUN_ACK_T_SETTING_UP) {
+        mpbd_flight_setting_up(d, f, mpbd_clock(d));
+    } else if (m->kind == MPB_RUN_ACK_T_PLANNING) {
+        mpbd_flight_planning(d, f, mpbd_clock(d));
     }
 }
 

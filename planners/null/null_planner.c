@@ -22,7 +22,11 @@ static void usage(FILE *out)
 "Only joint-space goals are supported; a pose-region goal is answered with\n"
 "INVALID_REQUEST. A request parameter \"delay\" (seconds) makes it sleep that\n"
 "long before answering, as if it were planning: fault tests use it to catch\n"
-"planners in the middle of a run. A parameter \"waypoints\" (2 to\n"
+"planners in the middle of a run. A parameter \"setup\" (seconds) makes it\n"
+"sleep that long first, as if building its model of the robot and scene,\n"
+"having told the daemon so (SETTING_UP, then PLANNING: docs/protocol.md),\n"
+"and report it as world_setup_time: tests use it for a slow model\n"
+"build. A parameter \"waypoints\" (2 to\n"
 "10000000, default 2) makes the stage that many waypoints, evenly from\n"
 "start to goal: tests use it for results too large to send. A parameter\n"
 "\"allocate\" (MB, 0 to 65536) makes it allocate and touch that much memory,\n"
@@ -110,6 +114,25 @@ static int asked_status(const mpb_plan_request_t *req)
     return -1;
 }
 
+/* Sleep the seconds text says, parameter name's (0 to 3600), until done
+ * or the process is asked to stop. */
+static int sleep_param(const mpb_solve_limits *lim, mpb_plan_result_t *res,
+                       const char *name, const char *text)
+{
+    char *end;
+    double s = strtod(text, &end);
+    if (end == text || *end != '\0' || !(s >= 0 && s <= 3600)) {
+        mpb_result_set_message(res, "%s must be seconds in [0, 3600], "
+                                    "not '%.40s'", name, text);
+        return MPB_EINVAL;
+    }
+    struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR &&
+           !(lim->stop != NULL && *lim->stop))
+        ;
+    return MPB_OK;
+}
+
 static int solve_straight_line(void *user, const mpb_plan_request_t *req,
                                const mpb_solve_limits *lim,
                                mpb_plan_result_t *res)
@@ -124,18 +147,25 @@ static int solve_straight_line(void *user, const mpb_plan_request_t *req,
                                mpb_request_param(req, "status"));
         return MPB_EINVAL;
     }
+    const char *setup = mpb_request_param(req, "setup");
+    if (setup != NULL) {
+        /* As a planner that builds its model first: said, left out of
+         * the run's time, reported as the world's. */
+        mpb_solve_setting_up(lim);
+        int rc = sleep_param(lim, res, "setup", setup);
+        if (rc != MPB_OK)
+            return rc;
+        mpb_solve_planning(lim);
+        double built = mpb_monotonic_s() - t0;
+        t0 += built;
+        if ((rc = mpb_result_add_value(res, MPB_WORLD_SETUP_TIME, built)) !=
+            MPB_OK)
+            return rc;
+    }
     if (delay != NULL) {
-        char *end;
-        double s = strtod(delay, &end);
-        if (*end != '\0' || !(s >= 0 && s <= 3600)) {
-            mpb_result_set_message(res, "delay must be seconds in [0, 3600], "
-                                        "not '%.40s'", delay);
-            return MPB_EINVAL;
-        }
-        struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
-        while (nanosleep(&ts, &ts) != 0 && errno == EINTR &&
-               !(lim->stop != NULL && *lim->stop))
-            ;
+        int rc = sleep_param(lim, res, "delay", delay);
+        if (rc != MPB_OK)
+            return rc;
     }
     const char *allocate = mpb_request_param(req, "allocate");
     if (allocate != NULL) {

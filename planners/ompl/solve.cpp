@@ -524,15 +524,22 @@ void add_stages(const Problem &p, const Options &o, double solve_time,
 }
 
 // The world of the request, held as it says; its setup time, when this
-// request built it, goes to res and onto *t0.
-Problem open_problem(Context *ctx, const mpb_plan_request_t *req, double *t0,
+// request built it, goes to res and onto *t0, and the daemon is told of
+// the build (its deadline waits for it).
+Problem open_problem(Context *ctx, const mpb_plan_request_t *req,
+                     const mpb_solve_limits *lim, double *t0,
                      mpb_plan_result_t *res)
 {
     Problem p{};
     std::string err;
     bool built;
+    const bool cached = ctx->worlds.holds(req);
+    if (!cached)
+        mpb_solve_setting_up(lim);
     const double t_world = mpb_monotonic_s();
     p.cached = ctx->worlds.get(req, err, &built);
+    if (!cached)
+        mpb_solve_planning(lim);
     if (p.cached == nullptr)
         throw InvalidRequest("world: " + err);
     if (built) {
@@ -561,7 +568,7 @@ void solve_inner(Context *ctx, const mpb_plan_request_t *req, const mpb_solve_li
     double t0 = mpb_monotonic_s();
     const double t_entry = t0;
     const Options o = parse_options(req);
-    Problem p = open_problem(ctx, req, &t0, res);
+    Problem p = open_problem(ctx, req, lim, &t0, res);
 
     // Every random generator of this run is made after this, in the same
     // order each time: the same seed gives the same samples (OMPL 1.5

@@ -53,13 +53,29 @@ WorldCache::~WorldCache()
         close(c);
 }
 
-CachedWorld *WorldCache::get(const mpb_plan_request_t *req, std::string &err, bool *built)
+// A world's name in the cache: its robot, scene and joints.
+static std::string key_of(const mpb_plan_request_t *req)
 {
-    *built = false;
     std::string key = part(req->robot_format, req->robot_hash, req->robot) +
                       '\n' + part(req->scene_format, req->scene_hash, req->scene);
     for (int j = 0; j < req->num_joints; j++)
         key += std::string("\n") + req->joint_names[j];
+    return key;
+}
+
+bool WorldCache::holds(const mpb_plan_request_t *req) const
+{
+    const std::string key = key_of(req);
+    for (const CachedWorld &c : list_)
+        if (c.key == key)
+            return true;
+    return false;
+}
+
+CachedWorld *WorldCache::get(const mpb_plan_request_t *req, std::string &err, bool *built)
+{
+    *built = false;
+    const std::string key = key_of(req);
     for (auto it = list_.begin(); it != list_.end(); ++it)
         if (it->key == key) {
             list_.splice(list_.begin(), list_, it);

@@ -32,6 +32,8 @@ public:
     // with err filled when it does not parse. Owned by the cache. *built
     // says whether this call parsed it.
     CachedWorld *get(const mpb_plan_request_t *req, std::string &err, bool *built);
+    // Whether get() would find the request's world without parsing it.
+    bool holds(const mpb_plan_request_t *req) const;
 
 private:
     static constexpr std::size_t kSize = 4;

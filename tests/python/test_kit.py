@@ -258,6 +258,39 @@ def test_limits_moved_keep_the_stop_and_move_the_deadline():
     assert limits.moved(-1.0).should_stop()
 
 
+def test_limits_tell_setting_up_then_planning_once_each_copy_too():
+    told = []
+    limits = Limits(time.monotonic(), 1.0, tell=told.append)
+    moved = limits.moved(2.0)
+    limits.setting_up()
+    moved.setting_up()          # a copy shares what was told
+    limits.setting_up()
+    moved.planning()
+    limits.planning()
+    assert told == ["setting_up", "planning"]
+
+
+def test_a_world_cache_tells_a_build_and_not_a_reuse():
+    from mpbplanner.request import WorldCache
+    told = []
+    req = _request([0.3, -0.2, 0.1])
+    with open(os.path.join(SOURCE, "scenes", "planar", "arm3.robot")) as f:
+        req.robot = f.read()
+    with open(os.path.join(SOURCE, "scenes", "planar", "pillars.scene")) as f:
+        req.scene = f.read()
+    req.robot_format = req.scene_format = "planar"
+    req.robot_hash, req.scene_hash = "r", "s"
+    req.joint_names = ["shoulder", "elbow", "wrist"]
+    req.held_names, req.held_values = [], []
+    cache = WorldCache()
+    cache.get(req, Limits(time.monotonic(), 1.0, tell=told.append))
+    assert told == ["setting_up", "planning"]
+    assert cache.setup_time is not None
+    told.clear()
+    cache.get(req, Limits(time.monotonic(), 1.0, tell=told.append))
+    assert told == [] and cache.setup_time is None
+
+
 def test_the_kit_speaks_libmpbench_list_of_messages():
     """Every message of mpbench/messages.h, in libmpbench's order: the kit
     has its generated type and sends and listens on the same channel."""

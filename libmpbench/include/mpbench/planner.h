@@ -76,6 +76,8 @@ typedef struct mpb_solve_limits {
     volatile sig_atomic_t *stop;    /* mpb_planner_serve()'s stop flag,
                                        nonzero when the process is asked
                                        to stop (a signal); NULL: none */
+    void *kit;          /* the kit's own, for mpb_solve_setting_up() and
+                           mpb_solve_planning(); NULL: they do nothing */
 } mpb_solve_limits;
 
 /*
@@ -93,6 +95,19 @@ int mpb_solve_should_stop(const mpb_solve_limits *lim);
  */
 mpb_solve_limits mpb_solve_limits_moved(const mpb_solve_limits *lim,
                                         double seconds);
+
+/*
+ * Tell mpbenchd that solve() first builds its model of a new robot and
+ * scene (outside the run's time: report it as MPB_WORLD_SETUP_TIME), then
+ * that planning starts (run_ack_t SETTING_UP, PLANNING): the daemon's
+ * deadline waits for the build, up to 120 s, instead of counting it in
+ * the time limit and its 5 s of grace, which run from
+ * mpb_solve_planning(). Each is sent once per run, copies from
+ * mpb_solve_limits_moved() sharing it. Call both, or neither (a cached
+ * world).
+ */
+void mpb_solve_setting_up(const mpb_solve_limits *lim);
+void mpb_solve_planning(const mpb_solve_limits *lim);
 
 typedef int (*mpb_solve_fn)(void *user, const mpb_plan_request_t *req,
                             const mpb_solve_limits *lim,

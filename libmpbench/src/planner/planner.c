@@ -205,6 +205,7 @@ static void mpb__set_active(mpb__server *s, const char *attempt_id, int closed)
     snprintf(s->active, sizeof s->active, "%s", attempt_id);
     s->active_since = now;
     s->active_acked = 0;
+    s->active_told = 0;
     s->closed = closed;
     s->announce_now = 1;
     if (s->waiting_until > now + MPB__ACK_AFTER_S ||
@@ -245,6 +246,22 @@ static void mpb__ack(mpb__server *s, const char *attempt_id, int kind)
     a.sender_id = s->id;
     a.kind = (int8_t)kind;
     mpb_publish_ack(s->lcm, s->auth, mpb__daemon(s), MPB_CHANNEL_ACK, &a);
+}
+
+/* mpb_solve_setting_up(), mpb_solve_planning(): kind, once per run. */
+void mpb__tell_phase(void *kit, int kind)
+{
+    mpb__server *s = kit;
+    char run[MPB_ATTEMPT_ID_SIZE];
+    pthread_mutex_lock(&s->mu);
+    int fresh = s->active[0] != '\0' && !(s->active_told & (1 << kind));
+    s->active_told |= 1 << kind;
+    s->active_acked = 1;        /* it acknowledges the request too */
+    int stalled = s->stalled;
+    memcpy(run, s->active, sizeof run);
+    pthread_mutex_unlock(&s->mu);
+    if (fresh && !stalled)
+        mpb__ack(s, run, kind);
 }
 
 /* The kept result of attempt_id, or NULL. Newest first: the run asked about is
@@ -332,7 +349,8 @@ static int mpb__run(mpb__server *s, const mpb_plan_request_t *req)
         mpb__mem_begin(&mw, req->memory_limit, unlimited, sizeof unlimited);
         mpb__last_words_arm(&mw, s->lcm, s->auth, mpb__daemon(s),
                             req->attempt_id, s->id, ann, ann_len);
-        mpb_solve_limits lim = {.start = mpb_monotonic_s(), .stop = s->stop};
+        mpb_solve_limits lim = {.start = mpb_monotonic_s(), .stop = s->stop,
+                                .kit = s};
         lim.deadline = lim.start + req->time_limit;
         int rc = s->def->solve(s->def->user, req, &lim, res);
         mpb__last_words_disarm();

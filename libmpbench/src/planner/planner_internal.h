@@ -92,6 +92,8 @@ typedef struct mpb__server {
     char active[MPB_ATTEMPT_ID_SIZE];   /* run being solved, "" if idle */
     double active_since;            /* monotonic s, when its solve began */
     int active_acked;               /* REQUEST_RECEIVED sent for it */
+    int active_told;                /* bits 1 << run_ack_t kind: the
+                                       SETTING_UP, PLANNING sent for it */
     int closed;                     /* capacity 0: max_runs reached */
     int quit;
     int announce_now;
@@ -118,6 +120,8 @@ void mpb__result_clear_lists(mpb_plan_result_t *res);
 void mpb__warn(mpb__server *s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 void mpb__echo(mpb__server *s);
+/* Send run_ack_t kind for the run in hand, once per run (solve_limits.c). */
+void mpb__tell_phase(void *kit, int kind);
 void mpb__echo_back(mpb__server *s);
 void mpb__watch_link(mpb__server *s);
 

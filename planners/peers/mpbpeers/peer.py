@@ -16,9 +16,10 @@ pybullet's) would otherwise silence the kit's heartbeats, and the daemon
 would take the planner for gone. The worker measures the run's peak
 memory (the kit's Watch) and enforces its memory_limit; the serving
 process answers TIMEOUT, and starts a new worker, when one has not
-answered by the time limit plus 0.3 s after its model was built, or 4.5 s
-past the time limit after the request (mpbenchd waits 5); the library's
-own limit comes first.
+answered by the time limit plus 0.3 s after its model was built, or has
+not built it in 120 s; the library's own limit comes first. The daemon
+is told when a model is built and when planning starts (run_ack_t
+SETTING_UP, PLANNING), so that its deadline waits for the build.
 
 Timing: building the library's model (and the kit's World) is reported as
 world_setup_time, outside time_total (also in a TIMEOUT answer for a
@@ -361,12 +362,13 @@ class Peer:
         self.cloud_values = []
         self.workdir = tempfile.mkdtemp(prefix=f"mpb-{adapter.NAME}-")
 
-    def _prepare(self, req):
+    def _prepare(self, req, building):
         """The library's model and the kit's World; seconds spent, or None
-        when cached."""
+        when cached. building() is called first when they are built."""
         key = (req.robot_hash, req.scene_hash, tuple(req.joint_names))
         if key == self.key:
             return None
+        building()
         t0 = time.monotonic()
         if self.world:
             self.world.close()
@@ -404,10 +406,10 @@ class Peer:
         except kit_request.InvalidRequest as e:
             raise InvalidRequest(str(e)) from None
 
-    def solve(self, req, ready=lambda setup: None):
-        """The result of one request; ready(setup) is called once the
-        models are built, when planning starts: setup the seconds they
-        took (None: cached)."""
+    def solve(self, req, ready=lambda setup: None, building=lambda: None):
+        """The result of one request; building() is called when the models
+        must be built first, ready(setup) once they are, when planning
+        starts: setup the seconds they took (None: cached)."""
         res = plan_result_t()
         res.stages, res.values, res.progress = [], [], []
         res.message = ""
@@ -425,7 +427,7 @@ class Peer:
             if req.algorithm not in self.adapter.ALGORITHMS:
                 raise InvalidRequest(f"unknown algorithm '{req.algorithm}' "
                                      f"({', '.join(self.adapter.ALGORITHMS)})")
-            setup = self._prepare(req)
+            setup = self._prepare(req, building)
             if setup is not None:
                 res.values.append(_value("world_setup_time", setup))
             for name, v in self.cloud_values:
@@ -471,8 +473,8 @@ class Peer:
 
 
 GRACE_S = 0.3        # past the time limit, the worker is stopped
-SETUP_MAX_S = 120.0  # at most this long to build a library's model
-DAEMON_GRACE_S = 5.0  # mpbenchd's wait past the time limit (daemon.h)
+SETUP_MAX_S = 120.0  # at most this long to build a library's model, as
+                     # mpbenchd waits (MPBD_SETUP_ALLOWANCE_S)
 
 
 _CLOUD_FORMS = ("cloud_points", "cloud_shapes")
@@ -521,7 +523,8 @@ def _worker(adapter, conn, parent_end):
             try:
                 res = p.solve(req, lambda setup: conn.send_bytes(
                     b"S" + struct.pack("<d", -1.0 if setup is None else setup)
-                    + _pack_clouds(p.cloud_values)))
+                    + _pack_clouds(p.cloud_values)),
+                    lambda: conn.send_bytes(b"B"))
             except MemoryError:
                 res = None
             except Exception as e:      # the library's: say so, go on
@@ -576,17 +579,15 @@ class Worker:
         self.conn.close()
         self._start()
 
-    def solve(self, req):
+    def solve(self, req, limits=None):
         while self.stopped:
             self.stopped.pop().join()
         t0 = time.monotonic()
-        # mpbenchd gives up on a run 5 s past its time limit, counted from
-        # its request (MPBD_DEADLINE_GRACE_S): a slow model build must not
-        # push the answer past it, or the run is stored as a crash.
-        last = t0 + req.time_limit + DAEMON_GRACE_S - 0.5
         self.conn.send_bytes(req.encode())
-        # Building the models may come first: not the run's time, so the
-        # deadline starts when the worker says planning starts (b"S").
+        # Building the models may come first (b"B"): not the run's time,
+        # so the deadline starts when the worker says planning starts
+        # (b"S"), and mpbenchd is told both (Limits.setting_up(),
+        # planning()) so that its deadline waits for the build too.
         limit = req.time_limit + GRACE_S + SETUP_MAX_S
         setup = None
         clouds_given = []
@@ -600,28 +601,36 @@ class Worker:
                     self._start()
                     raise RuntimeError(f"{self.adapter.NAME}'s worker died "
                                        f"(exit {code})") from None
+                if data == b"B":
+                    if limits is not None:
+                        limits.setting_up()
+                    continue
                 if len(data) not in (9, 18) or data[:1] != b"S":
                     return plan_result_t.decode(data)
                 t0 = time.monotonic()
                 setup = struct.unpack("<d", data[1:9])[0]
                 clouds_given = _unpack_clouds(data[9:])
                 limit = req.time_limit + GRACE_S
+                if limits is not None and setup >= 0:
+                    limits.planning()
                 continue
             if not self.proc.is_alive():
                 code = self.proc.exitcode
                 self._start()
                 raise RuntimeError(f"{self.adapter.NAME}'s worker died "
                                    f"(exit {code})")
-            if time.monotonic() - t0 > limit or time.monotonic() > last:
+            if time.monotonic() - t0 > limit:
                 self._restart()
                 res = plan_result_t()
                 res.stages, res.values, res.progress = [], [], []
                 res.num_stages = res.num_values = res.num_progress = 0
                 res.status = plan_result_t.TIMEOUT
-                res.message = (f"{self.adapter.NAME} did not return by the "
-                               f"time limit plus {GRACE_S} s after its model "
-                               f"was built, or {DAEMON_GRACE_S - 0.5:g} s "
-                               f"after the request: stopped")
+                res.message = (
+                    f"{self.adapter.NAME} did not return by the time limit "
+                    f"plus {GRACE_S} s after its model was built: stopped"
+                    if setup is not None else
+                    f"{self.adapter.NAME} did not build its model within "
+                    f"{SETUP_MAX_S:g} s: stopped")
                 res.time_total = time.monotonic() - t0
                 # The model built for this run (by the worker now gone)
                 # stays the world's setup, outside the run's time.

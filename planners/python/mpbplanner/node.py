@@ -67,6 +67,9 @@ PLANNER_ID_MAX = 51         # MPB_REQUEST_<id> within LCM's 63 characters
 MESSAGE_MAX = 1000          # characters of an exception kept in a message
 LCM_MESSAGE_MAX = 16 << 20  # MPB_LCM_MESSAGE_MAX (lcm_filter.h): every
                             # mpbench socket drops a larger message
+# What Limits.setting_up() and planning() say, as run_ack_t kinds.
+_PHASES = {"setting_up": run_ack_t.SETTING_UP,
+           "planning": run_ack_t.PLANNING}
 
 
 # A test's switch, never a user's: MPB_KIT_LAYOUT=before-attempt-id makes
@@ -420,7 +423,9 @@ class Node:
         else:
             t0 = time.monotonic()
             watch = Watch(getattr(req, "memory_limit", 0.0))
-            limits = Limits(t0, req.time_limit, lambda: self.stopping)
+            limits = Limits(t0, req.time_limit, lambda: self.stopping,
+                            lambda phase: self._ack(req.attempt_id,
+                                                    _PHASES[phase]))
             try:
                 with watch:
                     res = (solve(req, limits) if takes_limits(solve)

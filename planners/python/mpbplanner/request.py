@@ -15,6 +15,7 @@ from typing import Callable, List, Optional, Sequence
 
 from mpb import goal_t, plan_request_t, stage_t
 
+from .limits import Limits
 from .world import World, WorldError
 
 
@@ -51,11 +52,17 @@ class WorldCache:
         self.key, self.world = None, None
         self.setup_time = None  # s the last get() spent building a world
 
-    def get(self, req: plan_request_t) -> World:
+    def get(self, req: plan_request_t, limits: Optional[Limits] = None
+            ) -> World:
+        """The request's world, built unless the last was the same; with
+        limits, a build is told to mpbenchd (Limits.setting_up(), then
+        planning()) so that it is not counted in the run's deadline."""
         key = (req.robot_format, req.robot_hash, req.scene_format,
                req.scene_hash, tuple(req.joint_names))
         self.setup_time = None
         if key != self.key:
+            if limits is not None:
+                limits.setting_up()
             t0 = time.monotonic()
             if self.world:
                 self.world.close()
@@ -68,6 +75,8 @@ class WorldCache:
                 raise InvalidRequest(str(e)) from None
             self.key = key
             self.setup_time = time.monotonic() - t0
+            if limits is not None:
+                limits.planning()
         try:
             self.world.hold(list(req.held_names), list(req.held_values))
         except WorldError as e:

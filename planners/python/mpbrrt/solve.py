@@ -33,7 +33,7 @@ def solve(req, cache, limits):
         if req.algorithm != "RRTConnect":
             raise InvalidRequest(f"unknown algorithm '{req.algorithm}' "
                                  f"(RRTConnect)")
-        world = cache.get(req)
+        world = cache.get(req, limits)
         if cache.setup_time is not None:
             # Building the world is not this run's time (tau_t): it is
             # reported on its own, as OMPL's Benchmark keeps its setup.
