@@ -104,7 +104,8 @@ mpb_solve_limits mpb_solve_limits_moved(const mpb_solve_limits *lim,
  * the time limit and its 5 s of grace, which run from
  * mpb_solve_planning(). Each is sent once per run, copies from
  * mpb_solve_limits_moved() sharing it. Call both, or neither (a cached
- * world).
+ * world). No return value: a message the daemon misses is no failure of
+ * the run's (it then keeps the deadline it had).
  */
 void mpb_solve_setting_up(const mpb_solve_limits *lim);
 void mpb_solve_planning(const mpb_solve_limits *lim);
