@@ -533,13 +533,8 @@ Problem open_problem(Context *ctx, const mpb_plan_request_t *req,
     Problem p{};
     std::string err;
     bool built;
-    const bool cached = ctx->worlds.holds(req);
-    if (!cached)
-        mpb_solve_setting_up(lim);
     const double t_world = mpb_monotonic_s();
-    p.cached = ctx->worlds.get(req, err, &built);
-    if (!cached)
-        mpb_solve_planning(lim);
+    p.cached = ctx->worlds.get(req, lim, err, &built);
     if (p.cached == nullptr)
         throw InvalidRequest("world: " + err);
     if (built) {

@@ -53,29 +53,14 @@ WorldCache::~WorldCache()
         close(c);
 }
 
-// A world's name in the cache: its robot, scene and joints.
-static std::string key_of(const mpb_plan_request_t *req)
+CachedWorld *WorldCache::get(const mpb_plan_request_t *req, const mpb_solve_limits *lim,
+                             std::string &err, bool *built)
 {
+    *built = false;
     std::string key = part(req->robot_format, req->robot_hash, req->robot) +
                       '\n' + part(req->scene_format, req->scene_hash, req->scene);
     for (int j = 0; j < req->num_joints; j++)
         key += std::string("\n") + req->joint_names[j];
-    return key;
-}
-
-bool WorldCache::holds(const mpb_plan_request_t *req) const
-{
-    const std::string key = key_of(req);
-    for (const CachedWorld &c : list_)
-        if (c.key == key)
-            return true;
-    return false;
-}
-
-CachedWorld *WorldCache::get(const mpb_plan_request_t *req, std::string &err, bool *built)
-{
-    *built = false;
-    const std::string key = key_of(req);
     for (auto it = list_.begin(); it != list_.end(); ++it)
         if (it->key == key) {
             list_.splice(list_.begin(), list_, it);
@@ -83,10 +68,12 @@ CachedWorld *WorldCache::get(const mpb_plan_request_t *req, std::string &err, bo
         }
     mpb_world *w = nullptr;
     char msg[256] = "";
+    mpb_solve_setting_up(lim);
     int rc = mpb_world_open_group(req->robot_format, req->robot,
                                   req->scene_format, req->scene,
                                   req->joint_names, req->num_joints, &w,
                                   msg, sizeof msg);
+    mpb_solve_planning(lim);
     if (rc != MPB_OK || w == nullptr) {
         err = msg[0] != '\0' ? msg : mpb_strerror(rc);
         return nullptr;

@@ -30,10 +30,10 @@ public:
 
     // The world of a request, parsed once per robot and scene; nullptr
     // with err filled when it does not parse. Owned by the cache. *built
-    // says whether this call parsed it.
-    CachedWorld *get(const mpb_plan_request_t *req, std::string &err, bool *built);
-    // Whether get() would find the request's world without parsing it.
-    bool holds(const mpb_plan_request_t *req) const;
+    // says whether this call parsed it; a parse is told to the daemon
+    // through lim (mpb_solve_setting_up(), then mpb_solve_planning()).
+    CachedWorld *get(const mpb_plan_request_t *req, const mpb_solve_limits *lim,
+                     std::string &err, bool *built);
 
 private:
     static constexpr std::size_t kSize = 4;
