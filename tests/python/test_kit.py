@@ -270,6 +270,18 @@ def test_limits_tell_setting_up_then_planning_once_each_copy_too():
     assert told == ["setting_up", "planning"]
 
 
+def test_the_peers_worker_is_given_the_limits_it_tells_through():
+    # Worker.solve(req, limits=None): the node must pass the limits, or
+    # the worker's SETTING_UP and PLANNING never reach the daemon.
+    import sys
+    from mpbplanner.limits import takes_limits
+    sys.path.insert(0, os.path.join(SOURCE, "planners", "peers"))
+    from mpbpeers import peer
+    assert takes_limits(peer.Worker.solve.__get__(object()))
+    assert not takes_limits(lambda req, cache=None: None)
+    assert takes_limits(lambda req, limits: None)
+
+
 def test_a_world_cache_tells_a_build_and_not_a_reuse():
     from mpbplanner.request import WorldCache
     told = []

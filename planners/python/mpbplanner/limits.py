@@ -61,13 +61,16 @@ class Limits:
 
 def takes_limits(solve: Callable[..., object]) -> bool:
     """Whether solve takes (req, limits): two positional parameters without
-    defaults, or *args. A solve(req) of older planners, or a solve(req,
+    defaults, *args, or a second one named limits (solve(req,
+    limits=None)). A solve(req) of older planners, or a solve(req,
     cache=None), is called with the request alone."""
     try:
         params = list(inspect.signature(solve).parameters.values())
     except (TypeError, ValueError):
         return False
     if any(p.kind == p.VAR_POSITIONAL for p in params):
+        return True
+    if len(params) >= 2 and params[1].name == "limits":
         return True
     positional = [p for p in params
                   if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
